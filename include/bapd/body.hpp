@@ -1,0 +1,33 @@
+#pragma once
+// The body and its material points (METHOD.md section 1).
+#include <cstdint>
+#include <vector>
+
+namespace bapd {
+
+struct Circle {
+  double cx, cy, radius;
+};
+struct Segment {
+  double x0, y0, x1, y1;
+};
+
+// A 2D plane sheet [0, width] x [0, height], cut by circular holes and pre-notches.
+struct Body2D {
+  double width = 0, height = 0, thickness = 0, dx = 0;
+  std::vector<Circle>  holes;
+  std::vector<Segment> notches; // bonds that cross one are never created
+};
+
+// Material points in structure-of-arrays form. A point's natural id is its index in
+// the lattice order of the whole body; it never depends on the partition, so every
+// sum over a family runs in natural-id order on any rank layout.
+struct PointCloud {
+  std::vector<double>  x;             // reference positions, 2 per point
+  std::vector<double>  volume;        // dx^2 * thickness
+  std::vector<double>  family_volume; // V(H_i): reference volume of the whole family
+  std::vector<int64_t> natural_id;
+  std::size_t          size() const { return volume.size(); }
+};
+
+} // namespace bapd
