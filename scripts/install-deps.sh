@@ -8,6 +8,7 @@ packages=(
   libmetis-dev                               # graph partitioning
   libhdf5-openmpi-dev                        # parallel HDF5 (fields, checkpoints)
   libgtest-dev                               # unit tests
+  libyaml-dev                                # scene files are checked before PETSc reads them
   python3 python3-numpy python3-matplotlib python3-h5py python3-yaml  # plots, readers
 )
 missing=()

@@ -1,9 +1,44 @@
-// bapd: bond-associated NOSB peridynamics for soft materials (placeholder driver).
+// bapd: large deformation and fracture of soft materials by bond-associated
+// non-ordinary state-based peridynamics (Chen, Yang, Liu; METHOD.md).
+//
+//   mpiexec -n 4 bapd -options_file_yaml examples/plate_hole.yaml [options]
+//
+// Every option is listed by -help; the scene file only sets defaults that later
+// command-line options override.
 #include <petscsys.h>
+
+#include <cstdio>
+#include <cstdlib>
+
+#include "bapd/errors.hpp"
+#include "bapd/scene_file.hpp"
+#include "bapd/simulation.hpp"
+
+static const char help[] = "bapd: bond-associated NOSB peridynamics for hydrogels (Gent model, plane stress).\n"
+                           "Usage: mpiexec -n N bapd -options_file_yaml SCENE.yaml [-option value ...]\n\n";
+
+static PetscErrorCode RunScene()
+{
+  PetscFunctionBegin;
+  bapd::Simulation simulation(PETSC_COMM_WORLD);
+  PetscCall(simulation.Setup());
+  PetscCall(simulation.Run());
+  PetscFunctionReturn(0);
+}
 
 int main(int argc, char **argv)
 {
-  PetscCall(PetscInitialize(&argc, &argv, nullptr, "bapd: BA NOSB peridynamics\n"));
+  // A missing or malformed scene is reported before MPI and PETSc start, so the user
+  // sees one line instead of an error stack from inside PetscInitialize.
+  const std::string problem = bapd::CheckSceneFileArgument(argc, argv);
+  if (!problem.empty()) {
+    const char *rank = std::getenv("OMPI_COMM_WORLD_RANK");
+    if (!rank || std::atoi(rank) == 0) std::fprintf(stderr, "bapd: error: %s\n", problem.c_str());
+    return 1;
+  }
+  PetscCall(PetscInitialize(&argc, &argv, nullptr, help));
+  PetscCall(bapd::PushUserErrorHandler());
+  const PetscErrorCode ierr = RunScene();
   PetscCall(PetscFinalize());
-  return 0;
+  return ierr ? 1 : 0;
 }

@@ -6,9 +6,29 @@
 //   StressStatus energy(const Mat2 &F, double &c33, double &psi) const;
 // F is the in-plane deformation gradient F~, P the in-plane first Piola-Kirchhoff
 // stress P~. c33 = C33 = lambda_3^2 is the out-of-plane state: plane-stress models
-// read it as a warm start (<= 0 means "none") and write the solved value back;
-// plane-strain models set it to 1. Models are picked at run time once, outside the
-// hot loops (with_model below), and are concrete types inside them.
+// read it as a warm start (<= 0 means "none") and write the solved value back only
+// when the status is ok (a failed call leaves the warm start alone); plane-strain
+// models set it to 1. P is zeroed and psi left alone unless the status is ok. Models
+// are picked at run time once, outside the hot loops (with_model in bapd/models.hpp),
+// and are concrete types inside them.
+//
+// Where the files are:
+//   bapd/hyperelastic.hpp  Psi = Psi_iso(I1bar) + U(J): Compressible3D, PlaneStrain,
+//                          PlaneStress (the S33 = 0 solve), numerical_tangent
+//   bapd/gent.hpp          the Gent law (paper eq 24) and its aliases
+//   bapd/neo_hookean.hpp   the neo-Hookean law and its aliases
+//   bapd/models.hpp        with_model: ModelKind x Formulation -> concrete model
+//
+// The Gent chain-extension limit. Gent has no finite energy once I1bar - 3 >= Jm;
+// a model evaluated there returns StressStatus::chain_limit and writes no stress.
+// The bond kernel then breaks the bond when failure is enabled; otherwise the run
+// stops with describe(StressStatus::chain_limit), which names -material_Jm.
+// In plane stress with a finite D the limit is reached only when even the least
+// I1bar over all thickness stretches, 3 (trC~ / (2 J~))^{2/3}, is beyond it: short
+// of that the sheet thickens (J > 1) and the stress rises on the bulk-modulus scale
+// K = 2/D instead (see PlaneStress in hyperelastic.hpp).
+#include <string>
+
 #include "bapd/tensor.hpp"
 
 namespace bapd {
@@ -19,15 +39,30 @@ enum class StressStatus : int {
   inverted       = 2, // det F <= 0
   no_convergence = 3  // the plane-stress C33 solve did not converge
 };
+// Short name ("ok", "chain_limit", ...), for logs and CSV.
 const char *to_string(StressStatus s);
+// One sentence for a run that must stop: what happened and which option changes it.
+const char *describe(StressStatus s);
 
 enum class ModelKind { gent, neo_hookean };
 enum class Formulation { plane_stress, plane_strain };
+
+// Names as written in options (-material_model gent|neo_hookean,
+// -material_formulation plane_stress|plane_strain).
+const char *to_string(ModelKind k);
+const char *to_string(Formulation f);
+// false (and the output untouched) for an unknown name.
+bool parse(const std::string &name, ModelKind &k);
+bool parse(const std::string &name, Formulation &f);
 
 struct MaterialParameters {
   double mu = 4.55e3; // shear modulus [Pa]
   double Jm = 162.6;  // Gent chain-extension limit [-] (ignored by neo-Hookean)
   double D  = 0.0;    // compressibility [1/Pa]; bulk modulus at rest K = 2/D
 };
+
+// Empty when the parameters are usable by the model; otherwise one message per bad
+// value, naming the option (-material_mu, -material_Jm, -material_D) and the fix.
+std::string check_parameters(ModelKind k, const MaterialParameters &p);
 
 } // namespace bapd

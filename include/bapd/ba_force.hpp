@@ -1,0 +1,270 @@
+#pragma once
+// Bond-associated NOSB bond forces (paper eqs 9, 23; METHOD.md sections 2-3).
+//
+// For every intact bond b = (i -> j) with a usable K_ij:
+//   F_ij = [ sum_{k in intact B_ij} (y_k - y_i) (x) (x_k - x_i) V_k ] K_ij^{-1}      (eq 9)
+//   t_ij = P(F_ij) g_ij,   g_ij = 1/2 phi_xi/phi K_ij^{-1} (x_j - x_i)                (eq 23)
+// and the force density of an owned point is
+//   f_i = sum_j (t_ij - t_ji) V_j                                                   (eq 1)
+//
+// The loop is written once here and templated on the constitutive model (any type
+// with `StressStatus stress(const Mat2 &F, double &c33, Mat2 &P) const`), so the
+// model's stress is inlined into it. Per point i, the outer products
+// (y_k - y_i) (x) (x_k - x_i) V_k and (x_k - x_i) (x) (x_k - x_i) V_k are formed once
+// per family member; each bond's F and K are then one masked sum of them (BA mask AND
+// intact mask), in family order (bond_geometry.hpp). Nothing is allocated per call
+// (the workspace is sized once), except the list of failed bonds in the rare call
+// where a model fails.
+//
+// Determinism: every sum runs in family order (families are sorted by natural id) and
+// nothing depends on the local numbering, so a rank's owned points get bit-for-bit
+// the same bond forces and force densities as a one-rank run.
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include "bapd/body.hpp"
+#include "bapd/bond_geometry.hpp"
+#include "bapd/bond_state.hpp"
+#include "bapd/family.hpp"
+#include "bapd/material.hpp"
+#include "bapd/tensor.hpp"
+
+namespace bapd {
+
+// A bond whose model returned something other than StressStatus::ok.
+struct FailedBond {
+  std::size_t  point;    // local index of i
+  std::size_t  position; // q: the bond is the q-th member of i's family
+  StressStatus status;
+};
+
+struct KernelStats {
+  static constexpr std::size_t none = std::numeric_limits<std::size_t>::max();
+
+  std::size_t evaluated      = 0; // intact bonds with a usable K handed to the model
+  std::size_t unusable       = 0; // intact bonds skipped because K is not usable (t = 0)
+  std::size_t chain_limit    = 0; // model failures (those bonds carry t = 0 this step)
+  std::size_t inverted       = 0;
+  std::size_t no_convergence = 0;
+  // The first failed bond in loop order (lowest local point, then family position).
+  std::size_t  first_point    = none;
+  std::size_t  first_position = none;
+  StressStatus first_status   = StressStatus::ok;
+
+  std::size_t failed() const { return chain_limit + inverted + no_convergence; }
+  bool        ok() const { return failed() == 0; }
+  void        record(std::size_t i, std::size_t q, StressStatus s)
+  {
+    if (s == StressStatus::chain_limit) ++chain_limit;
+    else if (s == StressStatus::inverted) ++inverted;
+    else ++no_convergence;
+    if (first_point == none) {
+      first_point    = i;
+      first_position = q;
+      first_status   = s;
+    }
+  }
+  // Adds the counts of a later range of points (keeps this one's first failure).
+  void merge(const KernelStats &o)
+  {
+    evaluated += o.evaluated;
+    unusable += o.unusable;
+    chain_limit += o.chain_limit;
+    inverted += o.inverted;
+    no_convergence += o.no_convergence;
+    if (first_point == none) {
+      first_point    = o.first_point;
+      first_position = o.first_position;
+      first_status   = o.first_status;
+    }
+  }
+};
+
+// Scratch space of the kernel, sized once for the largest family.
+struct BondKernelWorkspace {
+  PointScratch            point;  // per-member data of the point being processed
+  std::vector<FailedBond> failed; // every failed bond of the last compute_bond_forces call
+
+  void reserve(const Families &families) { point.reserve(families.max_family_size); }
+};
+
+namespace detail {
+
+template <std::size_t Words, class Model>
+void bond_forces_range(const Model &model, const PointCloud &ref, const double *y, const Families &fam,
+                       const BondGeometry &geo, const BondState &state, double *c33, double *bond_force,
+                       BondKernelWorkspace &ws, std::size_t begin, std::size_t end, KernelStats &stats)
+{
+  const std::size_t    W          = Words ? Words : fam.mask_words;
+  const std::size_t   *offsets    = fam.offsets.data();
+  const std::uint64_t *ba_all     = fam.ba_mask.data();
+  const std::uint64_t *intact_all = state.intact.data();
+  const std::uint64_t *usable_all = geo.usable.data();
+  PointScratch        &s          = ws.point;
+  std::size_t          evaluated = 0, unusable = 0;
+  for (std::size_t i = begin; i < end; ++i) {
+    const std::size_t    o = offsets[i], m = offsets[i + 1] - o;
+    const std::uint64_t *intact = intact_all + i * W;
+    const std::uint64_t *usable = usable_all + i * W;
+    gather_point<Words>(ref, y, fam, i, intact, s);
+    for (std::size_t q = 0; q < m; ++q) {
+      const std::size_t   b     = o + q;
+      double             *t     = bond_force + 2 * b;
+      const std::uint64_t bit   = std::uint64_t{1} << (q % 64);
+      const bool          alive = intact[q / 64] & bit;
+      if (!(alive && (usable[q / 64] & bit))) {
+        unusable += alive;
+        t[0] = t[1] = 0.0;
+        continue;
+      }
+      const BondKinematics k = bond_kinematics<Words>(ba_all + b * W, intact, W, s);
+      if (!k.usable) { // K went singular since the geometry was computed
+        ++unusable;
+        t[0] = t[1] = 0.0;
+        continue;
+      }
+      double c = c33 ? c33[b] : 0.0; // <= 0: no warm start
+      Mat2   P;
+      ++evaluated;
+      const StressStatus status = model.stress(k.F, c, P);
+      if (status != StressStatus::ok) {
+        stats.record(i, q, status);
+        ws.failed.push_back({i, q, status});
+        t[0] = t[1] = 0.0;
+        continue;
+      }
+      if (c33) c33[b] = c;
+      // g_ij = force_scale K^{-1} (x_j - x_i);  t_ij = P g_ij   (eq 23)
+      const double  f  = force_scale(k, s, q);
+      const double *ki = k.shape_tensor_inv;
+      const double  d0 = s.offset[2 * q], d1 = s.offset[2 * q + 1];
+      const double  g0 = f * (ki[0] * d0 + ki[1] * d1), g1 = f * (ki[1] * d0 + ki[2] * d1);
+      t[0]             = P[0] * g0 + P[1] * g1;
+      t[1]             = P[2] * g0 + P[3] * g1;
+    }
+  }
+  stats.evaluated += evaluated;
+  stats.unusable += unusable;
+}
+
+} // namespace detail
+
+// Bond forces t_ij (2 per bond) of the family points [begin, end), eq 23. y holds the
+// current positions of every local point (ring-2 ghosts included), 2 per point. c33
+// (1 per bond) is the model's out-of-plane warm start, read and written back; it may
+// be nullptr (no warm start, nothing stored). Bonds that are broken, have no usable K
+// or whose model fails get t_ij = 0 and keep their c33. Failed bonds are counted in
+// the result and appended to ws.failed (this overload does not clear it).
+template <class Model>
+KernelStats compute_bond_forces(const Model &model, const PointCloud &ref, const double *y, const Families &families,
+                                const BondGeometry &geometry, const BondState &state, double *c33,
+                                double *bond_force, BondKernelWorkspace &ws, std::size_t begin, std::size_t end)
+{
+  KernelStats stats;
+  ws.reserve(families);
+  if (families.mask_words == 1)
+    detail::bond_forces_range<1>(model, ref, y, families, geometry, state, c33, bond_force, ws, begin, end, stats);
+  else
+    detail::bond_forces_range<0>(model, ref, y, families, geometry, state, c33, bond_force, ws, begin, end, stats);
+  return stats;
+}
+
+// All family points [0, n_family); clears ws.failed first.
+template <class Model>
+KernelStats compute_bond_forces(const Model &model, const PointCloud &ref, const double *y, const Families &families,
+                                const BondGeometry &geometry, const BondState &state, double *c33,
+                                double *bond_force, BondKernelWorkspace &ws)
+{
+  ws.failed.clear();
+  return compute_bond_forces(model, ref, y, families, geometry, state, c33, bond_force, ws, 0, families.n_family);
+}
+
+// Same with a per-thread workspace kept between calls (allocates on the first call only).
+template <class Model>
+KernelStats compute_bond_forces(const Model &model, const PointCloud &ref, const double *y, const Families &families,
+                                const BondGeometry &geometry, const BondState &state, double *c33,
+                                double *bond_force)
+{
+  thread_local BondKernelWorkspace ws;
+  return compute_bond_forces(model, ref, y, families, geometry, state, c33, bond_force, ws);
+}
+
+// f_i = sum_j (t_ij - t_ji) V_j for the owned points [0, n_owned), in family order
+// (eq 1 without body force). Every neighbour of an owned point must have a family
+// here (it is owned or ring-1), so that t_ji is known; throws std::logic_error if not.
+void assemble_force_density(const Families &families, const PointCloud &ref, const double *bond_force,
+                            std::size_t n_owned, double *force_density);
+
+// F_ij of one bond (slow path, for tests and output): zero if the bond is broken or
+// its K is not usable.
+Mat2 bond_deformation_gradient(const PointCloud &ref, const double *y, const Families &families,
+                               const BondGeometry &geometry, const BondState &state, std::size_t i,
+                               std::size_t q);
+
+// Strain energy (for energy reports), per point and in total over points [0, n_points):
+//   E_i = V_i W_i,   W_i = sum_j Psi(F_ij) V_j / sum_j V_j,   W = sum_i E_i,
+// both sums over the intact bonds of i with a usable K whose model energy succeeds
+// (W_i = 0 if there is none). W_i is the volume-weighted mean of the bond energy
+// densities of i, so for an affine motion (F_ij = A) W = Psi(A) * (volume of the
+// points with a usable bond): the continuum energy. It is a diagnostic: the bond
+// forces are not its derivative (the paper's bond-only form, METHOD.md section 3).
+// c33 (may be nullptr) is read as a warm start, never written. Writes E_i to
+// point_energy[i] if given (for a reproducible sum over ranks) and returns W summed
+// in local order. Failed energies are counted in *stats if given, their bonds skipped.
+template <class Model>
+double strain_energy(const Model &model, const PointCloud &ref, const double *y, const Families &families,
+                     const BondGeometry &geometry, const BondState &state, const double *c33, std::size_t n_points,
+                     BondKernelWorkspace &ws, KernelStats *stats = nullptr, double *point_energy = nullptr)
+{
+  ws.reserve(families);
+  const std::size_t W = families.mask_words;
+  PointScratch     &s = ws.point;
+  KernelStats       local;
+  double            total = 0.0;
+  for (std::size_t i = 0; i < n_points; ++i) {
+    const std::size_t    o      = families.offsets[i], m = families.offsets[i + 1] - o;
+    const std::uint64_t *intact = state.intact_mask(i);
+    if (W == 1) detail::gather_point<1>(ref, y, families, i, intact, s);
+    else detail::gather_point<0>(ref, y, families, i, intact, s);
+    double num = 0.0, den = 0.0;
+    for (std::size_t q = 0; q < m; ++q) {
+      if (!state.is_intact(i, q)) continue;
+      const std::size_t    b = o + q;
+      // the kernel's arithmetic, bit for bit
+      const BondKinematics k = W == 1 ? detail::bond_kinematics<1>(families.ba(b), intact, 1, s)
+                                      : detail::bond_kinematics<0>(families.ba(b), intact, W, s);
+      if (!geometry.is_usable(i, q) || !k.usable) {
+        ++local.unusable;
+        continue;
+      }
+      double c = c33 ? c33[b] : 0.0, psi = 0.0;
+      ++local.evaluated;
+      const StressStatus status = model.energy(k.F, c, psi);
+      if (status != StressStatus::ok) {
+        local.record(i, q, status);
+        continue;
+      }
+      const double vj = ref.volume[static_cast<std::size_t>(families.neighbour[b])];
+      num += psi * vj;
+      den += vj;
+    }
+    const double e = den > 0 ? ref.volume[i] * (num / den) : 0.0;
+    if (point_energy) point_energy[i] = e;
+    total += e;
+  }
+  if (stats) *stats = local;
+  return total;
+}
+
+// Same without warm start, with a per-thread workspace.
+template <class Model>
+double strain_energy(const Model &model, const PointCloud &ref, const double *y, const Families &families,
+                     const BondGeometry &geometry, const BondState &state, std::size_t n_points)
+{
+  thread_local BondKernelWorkspace ws;
+  return strain_energy(model, ref, y, families, geometry, state, nullptr, n_points, ws);
+}
+
+} // namespace bapd

@@ -1,0 +1,380 @@
+#pragma once
+// Compressible isotropic hyperelasticity from an isochoric law (METHOD.md section 4):
+//
+//   Psi(F) = Psi_iso(I1bar) + U(J),   I1bar = tr(C) J^{-2/3},  C = F^T F,  J = det F
+//   U(J)   = (1/D) ((J^2 - 1)/2 - ln J)                         (paper eq 24)
+//   P      = G J^{-2/3} (F - tr(C)/3 F^{-T}) + (1/D)(J^2 - 1) F^{-T}   (paper eq 26)
+//
+// with G = 2 dPsi_iso/dI1bar. A law (gent.hpp, neo_hookean.hpp) is a small struct of
+// static functions:
+//   static constexpr bool has_limit;         // Psi_iso finite only for I1bar < limit
+//   static double I1bar_limit(const MaterialParameters &);              (has_limit)
+//   static bool modulus(const MaterialParameters &, double I1bar, Modulus &G);
+//                                              // G[n] = d^n G / dI1bar^n, n = 0..3
+//   static bool energy(const MaterialParameters &, double I1bar, double &psi_iso);
+// modulus and energy return false where the law is locked (I1bar >= limit).
+//
+// This file turns a law into the three stress functions: Compressible3D (3x3 F),
+// PlaneStrain (F33 = 1) and PlaneStress (S33 = 0, C33 solved per call). All of them
+// are inline, allocate nothing and call nothing virtual: they run per bond per step.
+// D must be > 0 (check_parameters).
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+#include "bapd/material.hpp"
+#include "bapd/tensor.hpp"
+
+namespace bapd {
+
+// G = 2 dPsi_iso/dI1bar and its first three I1bar-derivatives (the plane-stress solve
+// uses them; Compressible3D and PlaneStrain read G[0] only).
+using Modulus = std::array<double, 4>;
+
+// (J^2 - 1)/2 - ln J = D U(J). Near J = 1 both terms are O(J - 1) and cancel to
+// O((J - 1)^2), so there it is summed as e^2/2 + (e - ln(1 + e)), e = J - 1, with
+// e - ln(1 + e) = e^2/(2 + e) - 2 sum_{n>=1} u^{2n+1}/(2n+1), u = e/(2 + e)
+// (ln(1 + e) = 2 atanh u): every term positive order, no cancellation.
+inline double volumetric_energy_times_D(double J)
+{
+  const double e = J - 1.0;
+  if (std::abs(e) > 0.1) return 0.5 * (J * J - 1.0) - std::log(J);
+  const double u = e / (2.0 + e), u2 = u * u;
+  double       odd = u * u2, series = 0.0; // u^3/3 + u^5/5 + ... ; u^17 < 1e-22 here
+  for (int n = 3; n <= 17; n += 2, odd *= u2) series += odd / n;
+  return 0.5 * e * e + e * e / (2.0 + e) - 2.0 * series;
+}
+
+// ---------------------------------------------------------------------------------
+// 3D: the law as written in the paper (eqs 24, 26).
+template <class Law> struct Compressible3D {
+  MaterialParameters p;
+
+  StressStatus stress(const Mat3 &F, Mat3 &P) const
+  {
+    const double J = det(F);
+    if (!(J > 0.0)) return fail(P, StressStatus::inverted);
+    const double trC = frobenius_squared(F);
+    const double q   = 1.0 / std::cbrt(J * J); // J^{-2/3}
+    Modulus      G;
+    if (!Law::modulus(p, trC * q, G)) return fail(P, StressStatus::chain_limit);
+    const Mat3   Finv_t = inverse_transpose(F);
+    const double a      = G[0] * q;
+    const double b      = (J * J - 1.0) / p.D - a * trC / 3.0;
+    for (int i = 0; i < 9; ++i) P[i] = a * F[i] + b * Finv_t[i];
+    return StressStatus::ok;
+  }
+
+  StressStatus energy(const Mat3 &F, double &psi) const
+  {
+    const double J = det(F);
+    if (!(J > 0.0)) return StressStatus::inverted;
+    double psi_iso;
+    if (!Law::energy(p, frobenius_squared(F) / std::cbrt(J * J), psi_iso)) return StressStatus::chain_limit;
+    psi = psi_iso + volumetric_energy_times_D(J) / p.D;
+    return StressStatus::ok;
+  }
+
+private:
+  static StressStatus fail(Mat3 &P, StressStatus s)
+  {
+    P = {};
+    return s;
+  }
+};
+
+// ---------------------------------------------------------------------------------
+// Plane strain: F = diag(F~, 1), so J = J~ and tr C = tr C~ + 1. The in-plane block
+// of the 3D P, written out in 2D (it equals Compressible3D at embed(F~, 1)).
+template <class Law> struct PlaneStrain {
+  MaterialParameters p;
+
+  StressStatus stress(const Mat2 &F, double &c33, Mat2 &P) const
+  {
+    c33            = 1.0;
+    const double J = det(F);
+    if (!(J > 0.0)) {
+      P = {};
+      return StressStatus::inverted;
+    }
+    const double trC = F[0] * F[0] + F[1] * F[1] + F[2] * F[2] + F[3] * F[3] + 1.0;
+    const double q   = 1.0 / std::cbrt(J * J);
+    Modulus      G;
+    if (!Law::modulus(p, trC * q, G)) {
+      P = {};
+      return StressStatus::chain_limit;
+    }
+    const double a = G[0] * q;
+    const double b = ((J * J - 1.0) / p.D - a * trC / 3.0) / J; // F^{-T} = cof(F)/J
+    P              = {a * F[0] + b * F[3], a * F[1] - b * F[2], a * F[2] - b * F[1], a * F[3] + b * F[0]};
+    return StressStatus::ok;
+  }
+
+  StressStatus energy(const Mat2 &F, double &c33, double &psi) const
+  {
+    c33            = 1.0;
+    const double J = det(F);
+    if (!(J > 0.0)) return StressStatus::inverted;
+    const double trC = F[0] * F[0] + F[1] * F[1] + F[2] * F[2] + F[3] * F[3] + 1.0;
+    double       psi_iso;
+    if (!Law::energy(p, trC / std::cbrt(J * J), psi_iso)) return StressStatus::chain_limit;
+    psi = psi_iso + volumetric_energy_times_D(J) / p.D;
+    return StressStatus::ok;
+  }
+};
+
+// ---------------------------------------------------------------------------------
+// Plane stress (the paper's case, eqs 27-34). F = diag(F~, lambda_3), c = C33.
+// With a = tr C~, k = J~^2:  J = sqrt(c k),  q = J^{-2/3} = (c k)^{-1/3},
+// I1bar(c) = (a + c) q.  C33 S33 = 0 is the scalar equation (eq 33)
+//
+//   f(c) = Gbar(c) t(c) + (1/D)(c k - 1) = 0,   Gbar = G(I1bar) q,  t = (2c - a)/3
+//
+// and then P~ = Gbar (F~ - c F~^{-T}) (eq 34). Because S33 = 2 dPsi/dc = 0 at the
+// solution, P~ is exactly the derivative of the reduced energy Psi(F~, c(F~)).
+//
+// Facts the solver relies on:
+// * Psi is strictly convex in ln c (U is convex in ln J, and I1bar, a sum of
+//   exponentials of ln c, is fed to a convex increasing Psi_iso), so f = 2 c dPsi/dc
+//   is strictly increasing: there is one root. (f' = (G' q^2 t^2 + Gbar (4c+a)/9)/c
+//   + k/D, every term positive.)
+// * The isochoric term vanishes at c = a/2 and the volumetric one at c = 1/k, with
+//   opposite signs between them: the root lies in [min(a/2, 1/k), max(a/2, 1/k)].
+// * I1bar(c) is least at c = a/2, where it is 3 (a / (2 J~))^{2/3}. A law with a limit
+//   is finite on an interval around a/2; f -> -inf at its left end and +inf at its
+//   right end, so the root is always inside it. A locked trial c counts as f = -inf
+//   below a/2 and +inf above, which keeps the bisection consistent. If even the least
+//   I1bar is beyond the limit, no thickness helps: chain_limit.
+//
+// The solve: Newton on f inside that bracket, bisecting when a step leaves it or
+// fails to halve the step before last (Numerical Recipes' rtsafe); where the
+// second-order (Chebyshev) correction -f'' dc^2 / (2 f') to a Newton step dc = -f/f'
+// is small it is added, which makes the iteration cubic. It starts from the incoming
+// c33 when that lies in the bracket (the previous step's value), else from the
+// incompressible 1/k. It stops when
+//   |f| <= 1e-13 (|Gbar t| + |(ck - 1)/D|) + 1e-12 mu c + 4 eps f' c,
+// i.e. 1e-13 of the two terms that cancel at the root, or 1e-12 mu in S33 = f/c, plus
+// the round-off floor set by the spacing of doubles near c. It also stops, without
+// evaluating again, when the corrected step delta is small (|delta| <= 1e-4 c and G
+// changes by under 1e-3 over it) and the residual it leaves,
+// |dc^3 (f'''/6 - f''^2 / (2 f'))|, is below a quarter of that tolerance: then c + delta
+// is taken and Gbar is carried to it by its third-order Taylor series (error
+// O((delta/c)^4) < 1e-16). A warm start from the previous time step with F changed
+// by up to ~1e-5 thus costs one evaluation (one cbrt and two or three divisions);
+// 1e-2 changes and cold starts take two or three.
+//
+// Near the Gent limit with a finite D: past the incompressible limit the sheet
+// thickens (J > 1) to keep I1bar < Jm + 3, and the stress rises on the bulk scale
+// K = 2/D rather than blowing up. The tangent grows towards K, so wave speeds grow by
+// up to sqrt(K / mu): a time step sized from the small-strain moduli can become
+// unstable there. (Paper parameters, K = 1e4 mu, pure shear: max |dP~/dF~| is 4 mu at
+// rest, 1.6 mu at lambda = 5.125, 10 mu at 10 and 174 mu at 12.5.)
+
+// f and its first three c-derivatives, and Gbar with its own.
+struct PlaneStressResidual {
+  bool                  admissible = false; // false: the law is locked at this c (f = -inf/+inf)
+  std::array<double, 4> f{};                // d^n f / dc^n
+  std::array<double, 4> shear{};            // d^n Gbar / dc^n
+  double                scale     = 0;      // |Gbar t| + |(c k - 1)/D|
+  double                dG_dc     = 0;      // |dG/dI1bar dI1bar/dc|: G changes by this per unit c
+  double                G         = 0;      // G (at this c)
+};
+
+struct PlaneStressSolution {
+  StressStatus status      = StressStatus::ok;
+  double       c33         = 0.0; // C33 = lambda_3^2 with S33 = 0
+  double       shear       = 0.0; // Gbar = G J^{-2/3}: P~ = Gbar (F~ - C33 F~^{-T})
+  int          evaluations = 0;   // residual evaluations, one cbrt each (the iteration count)
+};
+
+template <class Law> struct PlaneStress {
+  MaterialParameters   p;
+  static constexpr int max_iterations = 60;
+
+  // f(c) and its derivatives for a = tr C~, k = J~^2 (inv_k = 1/k, inv_D = 1/D).
+  // With q = (ck)^{-1/3} and w = c q, both powers of c: q^(n) and w^(n) are q and w
+  // times constants over c^n; I1bar = a q + w; Gbar = G(I1bar) q by Faa di Bruno and
+  // Leibniz; f = Gbar t + (ck - 1)/D with t' = 2/3, t'' = 0.
+  PlaneStressResidual residual(double a, double k, double inv_k, double inv_D, double c) const
+  {
+    PlaneStressResidual r;
+    const double        u = 1.0 / c, s = std::cbrt(c * k); // independent: they overlap
+    const double        q = s * s * u * inv_k;               // (ck)^{2/3} / (ck) = J^{-2/3}
+    const double        w = c * q;
+    Modulus             G;
+    if (!Law::modulus(p, a * q + w, G)) return r;
+    r.admissible    = true;
+    const double q1 = -q * u * (1.0 / 3.0), q2 = q * u * u * (4.0 / 9.0), q3 = -q * u * u * u * (28.0 / 27.0);
+    const double I1 = a * q1 + w * u * (2.0 / 3.0);
+    const double I2 = a * q2 - w * u * u * (2.0 / 9.0);
+    const double I3 = a * q3 + w * u * u * u * (8.0 / 27.0);
+    const double H0 = G[0], H1 = G[1] * I1, H2 = G[2] * I1 * I1 + G[1] * I2; // d^n G(I1bar(c)) / dc^n
+    const double H3 = G[3] * I1 * I1 * I1 + 3.0 * G[2] * I1 * I2 + G[1] * I3;
+    r.shear         = {H0 * q, H1 * q + H0 * q1, H2 * q + 2.0 * H1 * q1 + H0 * q2,
+                       H3 * q + 3.0 * H2 * q1 + 3.0 * H1 * q2 + H0 * q3};
+    const double t = (2.0 * c - a) * (1.0 / 3.0);
+    const double iso = r.shear[0] * t, vol = (c * k - 1.0) * inv_D;
+    r.f         = {iso + vol, r.shear[1] * t + (2.0 / 3.0) * r.shear[0] + k * inv_D,
+                   r.shear[2] * t + (4.0 / 3.0) * r.shear[1], r.shear[3] * t + 2.0 * r.shear[2]};
+    r.scale     = std::abs(iso) + std::abs(vol);
+    r.dG_dc     = std::abs(H1);
+    r.G         = G[0];
+    return r;
+  }
+
+  // The S33 = 0 solve, with diagnostics. c33_guess <= 0: no warm start.
+  PlaneStressSolution solve(const Mat2 &F, double c33_guess) const
+  {
+    const double Jt = det(F);
+    return solve(F, Jt, Jt > 0.0 ? 1.0 / Jt : 0.0, c33_guess); // no 1/0 under -fp_trap
+  }
+
+  StressStatus stress(const Mat2 &F, double &c33, Mat2 &P) const
+  {
+    const double              Jt = det(F), inv_Jt = Jt > 0.0 ? 1.0 / Jt : 0.0;
+    const PlaneStressSolution s = solve(F, Jt, inv_Jt, c33);
+    if (s.status != StressStatus::ok) {
+      P = {};
+      return s.status;
+    }
+    c33            = s.c33;
+    const double g = s.shear, b = s.shear * s.c33 * inv_Jt; // Gbar c F~^{-T} = (Gbar c / J~) cof F~
+    P              = {g * F[0] - b * F[3], g * F[1] + b * F[2], g * F[2] + b * F[1], g * F[3] - b * F[0]};
+    return StressStatus::ok;
+  }
+
+  // The reduced energy Psi(F~, C33(F~)) per unit reference volume.
+  StressStatus energy(const Mat2 &F, double &c33, double &psi) const
+  {
+    const PlaneStressSolution s = solve(F, c33);
+    if (s.status != StressStatus::ok) return s.status;
+    c33            = s.c33;
+    const double a = F[0] * F[0] + F[1] * F[1] + F[2] * F[2] + F[3] * F[3];
+    const double J = std::sqrt(s.c33) * det(F);
+    double       psi_iso;
+    if (!Law::energy(p, (a + s.c33) / std::cbrt(J * J), psi_iso)) return StressStatus::chain_limit;
+    psi = psi_iso + volumetric_energy_times_D(J) / p.D;
+    return StressStatus::ok;
+  }
+
+private:
+  // Jt = det F~ and its inverse, shared with stress() so that it divides once.
+  PlaneStressSolution solve(const Mat2 &F, double Jt, double inv_Jt, double c33_guess) const
+  {
+    PlaneStressSolution out;
+    if (!(Jt > 0.0)) {
+      out.status = StressStatus::inverted;
+      return out;
+    }
+    const double a = F[0] * F[0] + F[1] * F[1] + F[2] * F[2] + F[3] * F[3]; // tr C~
+    const double k = Jt * Jt, inv_k = inv_Jt * inv_Jt;
+    if constexpr (Law::has_limit) {
+      // least I1bar = 3 r^{2/3}, r = a/(2 J~) >= 1; beyond the limit L iff 27 r^2 >= L^3
+      const double L = Law::I1bar_limit(p);
+      if (27.0 * a * a >= 4.0 * k * L * L * L) {
+        out.status = StressStatus::chain_limit;
+        return out;
+      }
+    }
+    const double inv_D = 1.0 / p.D, c_iso = 0.5 * a;
+    double       lo = std::min(c_iso, inv_k), hi = std::max(c_iso, inv_k);
+    double       c  = (c33_guess >= lo && c33_guess <= hi) ? c33_guess : inv_k;
+
+    constexpr double eps    = std::numeric_limits<double>::epsilon();
+    auto             middle = [](double l, double h) { return h > 4.0 * l ? std::sqrt(l * h) : 0.5 * (l + h); };
+    double           step_before_last = hi - lo, last_step = hi - lo;
+    for (int it = 1; it <= max_iterations; ++it) {
+      const PlaneStressResidual r = residual(a, k, inv_k, inv_D, c);
+      out.evaluations             = it;
+      double next;
+      if (!r.admissible) {
+        // locked: f = -inf left of the least-I1bar point a/2, +inf right of it
+        if (c < c_iso) lo = c;
+        else if (c > c_iso) hi = c;
+        if (c == c_iso || hi - lo <= 4.0 * eps * hi) {
+          out.status = StressStatus::chain_limit; // the finite set is below round-off
+          return out;
+        }
+        next = middle(lo, hi);
+      } else {
+        const double tol = 1e-13 * r.scale + 1e-12 * p.mu * c + 4.0 * eps * r.f[1] * c;
+        if (std::abs(r.f[0]) <= tol || hi - lo <= 4.0 * eps * hi) {
+          out.c33   = c;
+          out.shear = r.shear[0];
+          return out;
+        }
+        if (r.f[0] < 0.0) lo = c;
+        else hi = c;
+        const double inv_df = 1.0 / r.f[1];
+        const double dc     = -r.f[0] * inv_df;
+        const double bend   = 0.5 * r.f[2] * dc * inv_df; // Chebyshev: delta = dc (1 - bend)
+        const double delta  = std::abs(bend) <= 0.5 ? dc * (1.0 - bend) : dc;
+        next                = c + delta;
+        const bool inside   = next > lo && next < hi;
+        if (inside && std::abs(delta) <= 1e-4 * c && std::abs(delta) * r.dG_dc <= 1e-3 * r.G &&
+            std::abs(dc * dc * dc * (r.f[3] * (1.0 / 6.0) - 0.5 * r.f[2] * r.f[2] * inv_df)) <= 0.25 * tol) {
+          out.c33   = next; // the residual left is below tol / 4: take the step unevaluated
+          out.shear = r.shear[0] +
+                      delta * (r.shear[1] + delta * (0.5 * r.shear[2] + delta * (1.0 / 6.0) * r.shear[3]));
+          return out;
+        }
+        if (!inside || 2.0 * std::abs(r.f[0]) > std::abs(step_before_last * r.f[1])) next = middle(lo, hi);
+      }
+      step_before_last = last_step;
+      last_step        = std::abs(next - c);
+      c                = next;
+    }
+    out.status = StressStatus::no_convergence;
+    return out;
+  }
+};
+
+// ---------------------------------------------------------------------------------
+// Tangent by central differences of the stress, for checks, time-step estimates and
+// anything outside the hot loop (no analytic tangent is provided).
+// A[4 (2i + j) + (2k + l)] = dP_ij / dF_kl (2D); A[9 (3i + j) + (3k + l)] (3D).
+// Step h = rel_step * max(1, max |F_kl|). Error: O(h^2) truncation plus the stress
+// noise over h; the plane-stress solve leaves about 1e-12 relative noise in P, so the
+// default 1e-4 gives about 1e-8 relative. Plane-stress c33 is a warm start only.
+using Tangent2 = std::array<double, 16>;
+using Tangent3 = std::array<double, 81>;
+
+template <class Model>
+StressStatus numerical_tangent(const Model &model, const Mat2 &F, double c33, Tangent2 &A, double rel_step = 1e-4)
+{
+  double scale = 1.0;
+  for (double v : F) scale = std::max(scale, std::abs(v));
+  const double h = rel_step * scale;
+  for (int kl = 0; kl < 4; ++kl) {
+    Mat2   Fp = F, Fm = F, Pp, Pm;
+    double cp = c33, cm = c33;
+    Fp[kl] += h;
+    Fm[kl] -= h;
+    StressStatus s = model.stress(Fp, cp, Pp);
+    if (s != StressStatus::ok) return s;
+    if ((s = model.stress(Fm, cm, Pm)) != StressStatus::ok) return s;
+    for (int ij = 0; ij < 4; ++ij) A[4 * ij + kl] = (Pp[ij] - Pm[ij]) / (Fp[kl] - Fm[kl]);
+  }
+  return StressStatus::ok;
+}
+
+template <class Law>
+StressStatus numerical_tangent(const Compressible3D<Law> &model, const Mat3 &F, Tangent3 &A, double rel_step = 1e-4)
+{
+  double scale = 1.0;
+  for (double v : F) scale = std::max(scale, std::abs(v));
+  const double h = rel_step * scale;
+  for (int kl = 0; kl < 9; ++kl) {
+    Mat3 Fp = F, Fm = F, Pp, Pm;
+    Fp[kl] += h;
+    Fm[kl] -= h;
+    StressStatus s = model.stress(Fp, Pp);
+    if (s != StressStatus::ok) return s;
+    if ((s = model.stress(Fm, Pm)) != StressStatus::ok) return s;
+    for (int ij = 0; ij < 9; ++ij) A[9 * ij + kl] = (Pp[ij] - Pm[ij]) / (Fp[kl] - Fm[kl]);
+  }
+  return StressStatus::ok;
+}
+
+} // namespace bapd

@@ -1,0 +1,37 @@
+#pragma once
+// Owned + ghost numbering of the points of one rank (STYLE.md: layout).
+//
+// Local point order: owned points, then ring-1 ghosts (family members of owned
+// points: their bond forces t_ji enter the owned force sums), then ring-2 ghosts
+// (family members of ring-1 ghosts: positions only). Each group is sorted by natural
+// id. A point's PETSc index puts rank r's owned points in one contiguous block.
+#include <petscvec.h>
+#include <vector>
+
+#include "bapd/body.hpp"
+
+namespace bapd {
+
+struct Layout {
+  PetscInt             n_owned = 0, n_ring1 = 0, n_ring2 = 0;
+  PetscInt             n_global = 0;     // points in the whole body
+  PetscInt             owned_start = 0;  // PETSc index of the first owned point
+  PetscInt             edge_cut = 0;     // METIS edge cut (bonds between ranks)
+  std::vector<PetscInt> petsc_index;     // per local point
+  PointCloud           cloud;            // local points, reference data
+
+  PetscInt n_family() const { return n_owned + n_ring1; }
+  PetscInt n_local() const { return n_owned + n_ring1 + n_ring2; }
+  PetscInt n_ghost() const { return n_ring1 + n_ring2; }
+};
+
+// Rank 0 holds the whole body (global_cloud with family_volume set, and the bond
+// graph in CSR form, both in natural order); every rank receives its Layout.
+PetscErrorCode DistributePoints(MPI_Comm comm, const PointCloud &global_cloud, const std::vector<int> &offsets,
+                                const std::vector<int> &neighbours, Layout *layout);
+
+// A Vec with 2 entries per owned point and ghost slots for the ring-1 and ring-2
+// ghosts, in local order (VecGhostGetLocalForm gives [owned, ghosts]).
+PetscErrorCode CreateGhostedVector(MPI_Comm comm, const Layout &layout, Vec *v);
+
+} // namespace bapd

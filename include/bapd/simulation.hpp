@@ -1,0 +1,135 @@
+#pragma once
+// The program a user runs, as a class whose Run() reads like the method:
+// read the scene, build the body and its families, partition, set up the ghosted
+// state, pick the stable time step, then step with PETSc TS while loading, breaking
+// bonds and writing the history (STYLE.md: the shape of the code).
+#include <petscts.h>
+
+#include <cstdio>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "bapd/ba_force.hpp"
+#include "bapd/bond_geometry.hpp"
+#include "bapd/bond_state.hpp"
+#include "bapd/family.hpp"
+#include "bapd/layout.hpp"
+#include "bapd/scene.hpp"
+
+namespace bapd {
+
+// One loaded component of one owned point.
+struct ConstrainedDof {
+  PetscInt      dof;   // 2 * owned point + component
+  ComponentLoad kind;  // fixed or stretch
+  double        scale; // u = scale * (lambda - 1) * reference_length
+};
+
+struct LoadSetPoints {
+  std::vector<PetscInt> points; // owned local indices
+  PetscInt              global_count = 0;
+};
+
+struct ProbePoint {
+  PetscInt owner_rank  = -1; // rank that owns the point
+  PetscInt local_index = -1; // on the owner
+  double   x = 0, y = 0;     // reference position of the chosen point
+  int64_t  natural_id = -1;
+};
+
+class Simulation {
+public:
+  explicit Simulation(MPI_Comm comm) : comm_(comm) {}
+  ~Simulation();
+  Simulation(const Simulation &)            = delete;
+  Simulation &operator=(const Simulation &) = delete;
+
+  // Reads the scene from the options database and builds everything up to the TS.
+  PetscErrorCode Setup();
+  // Steps to the end time, writing history and progress; prints a summary.
+  PetscErrorCode Run();
+  // Takes exactly `steps` more time steps (tests, tools); no summary.
+  PetscErrorCode Advance(PetscInt steps);
+
+  // Accessors for tests and tools.
+  const Scene  &scene() const { return scene_; }
+  const Layout &layout() const { return layout_; }
+  Vec           state() const { return X_; } // [u (2 per owned point), v (2 per owned point)]
+  TS            ts() const { return ts_; }
+  double        stable_time_step() const { return stable_dt_; }
+  // Force density (2 per owned point) for the owned displacements u_owned.
+  PetscErrorCode ComputeForceDensity(const double *u_owned, double *force_density);
+  // Total energy pieces and broken bonds, reproducible across rank layouts.
+  PetscErrorCode Energies(double *kinetic, double *internal);
+  PetscErrorCode BrokenBondCount(PetscInt *count);
+  // Displacement of every point, gathered on rank 0 in natural order (tests, output).
+  PetscErrorCode GatherDisplacement(std::vector<double> *u_natural);
+  // Directed broken bonds as (natural id i, natural id j) pairs on rank 0, sorted.
+  PetscErrorCode GatherBrokenBonds(std::vector<std::pair<int64_t, int64_t>> *bonds);
+
+private:
+  PetscErrorCode BuildBody();
+  PetscErrorCode BuildLoads();
+  PetscErrorCode BuildProbes();
+  PetscErrorCode EstimateStableTimeStep();
+  PetscErrorCode SetupTimeStepper();
+  PetscErrorCode OpenHistory();
+
+  // The acceleration of the owned points for displacement u (owned, 2 per point).
+  PetscErrorCode Acceleration(const double *u_owned, double *a_owned);
+  PetscErrorCode UpdateGhostedPositions(const double *u_owned);
+  PetscErrorCode InternalForce(const double *u_owned, double *force_density, double *c33);
+  PetscErrorCode ApplyLoading(double t, double *u, double *v);
+  PetscErrorCode BreakBonds();
+  PetscErrorCode CheckHealth(PetscInt step, double t, PetscBool *diverged);
+  PetscErrorCode WriteHistoryRow(PetscInt step, double t);
+  PetscErrorCode Progress(PetscInt step, double t, PetscBool force);
+  PetscErrorCode Summary();
+  PetscErrorCode WriteFinalState();
+
+  static PetscErrorCode RHSPosition(TS, PetscReal, Vec, Vec, void *);
+  static PetscErrorCode RHSMomentum(TS, PetscReal, Vec, Vec, void *);
+  static PetscErrorCode RHSFull(TS, PetscReal, Vec, Vec, void *);
+  static PetscErrorCode PostStep(TS);
+
+  MPI_Comm    comm_;
+  PetscMPIInt rank_ = 0, size_ = 1;
+  Scene       scene_;
+  Layout      layout_;
+
+  Families            families_;
+  BondState           bond_state_;
+  BondGeometry        geometry_;
+  std::vector<double> c33_;        // plane-stress warm start, 1 per bond
+  std::vector<double> bond_force_; // t_ij, 2 per bond
+  std::vector<double> y_;          // current positions, 2 per local point
+  std::vector<double> force_;      // force density, 2 per owned point
+  std::vector<double> c33_scratch_; // warm start copy for output evaluations
+  std::function<KernelStats(const double *y, double *c33)> bond_forces_; // the model, chosen once
+  std::function<void(const double *y, double *energy)> point_energies_; // V_i W_i of owned points
+  BondKernelWorkspace workspace_;
+  KernelStats         last_stats_;
+
+  std::vector<ConstrainedDof> constrained_;
+  std::vector<LoadSetPoints>  load_points_;
+  std::vector<ProbePoint>     probes_;
+
+  Vec u_ghosted_ = nullptr; // displacement with two rings of ghosts
+  Vec X_         = nullptr; // TS state
+  IS  is_position_ = nullptr, is_momentum_ = nullptr;
+  TS  ts_        = nullptr;
+
+  double stable_dt_ = 0, dt_ = 0;
+  double wall_start_ = 0;
+  FILE  *history_    = nullptr;
+  PetscInt total_broken_ = 0;
+  bool   stopped_on_error_ = false;
+  PetscBool write_final_state_ = PETSC_FALSE; // -output_final_state
+  std::string stop_reason_;
+
+  PetscLogStage stage_setup_ = 0, stage_partition_ = 0, stage_force_ = 0, stage_ghost_ = 0, stage_step_ = 0,
+                stage_output_ = 0;
+};
+
+} // namespace bapd

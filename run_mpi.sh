@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# Builds bapd if needed and runs it with MPI.
+#
+#   ./run_mpi.sh                                   # the default scene on 2 ranks
+#   ./run_mpi.sh -n 4 examples/plate_hole.yaml     # a scene on 4 ranks
+#   ./run_mpi.sh -n 2 examples/pure_shear.yaml -material_mu 5e3 -log_view
+#
+# The first .yaml argument is the scene (passed as -options_file_yaml, first, so that
+# every later option overrides it); every other argument goes to bapd unchanged.
+set -euo pipefail
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+ranks=2
+scene=""
+args=()
+while (($#)); do
+  case "$1" in
+    -n|-np) ranks="$2"; shift 2 ;;
+    *.yaml|*.yml) if [ -z "$scene" ]; then scene="$1"; else args+=("$1"); fi; shift ;;
+    *) args+=("$1"); shift ;;
+  esac
+done
+if [ -z "$scene" ] && ((${#args[@]} == 0)); then
+  scene="$here/examples/default.yaml"
+fi
+if [ -z "${BAPD_EXE:-}" ]; then
+  "$here/scripts/install-deps.sh"
+  "$here/scripts/build.sh"
+  BAPD_EXE="${BAPD_BUILD_DIR:-$here/build}/bapd"
+fi
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+scene_args=()
+[ -n "$scene" ] && scene_args=(-options_file_yaml "$scene")
+exec mpiexec -n "$ranks" --oversubscribe --bind-to none "$BAPD_EXE" "${scene_args[@]}" "${args[@]}"

@@ -1,0 +1,72 @@
+// Names, messages and parameter checks for the constitutive models (material.hpp).
+#include "bapd/material.hpp"
+
+#include <cmath>
+#include <sstream>
+
+namespace bapd {
+
+const char *to_string(StressStatus s)
+{
+  switch (s) {
+  case StressStatus::ok: return "ok";
+  case StressStatus::chain_limit: return "chain_limit";
+  case StressStatus::inverted: return "inverted";
+  case StressStatus::no_convergence: return "no_convergence";
+  }
+  return "unknown";
+}
+
+const char *describe(StressStatus s)
+{
+  switch (s) {
+  case StressStatus::ok: return "the stress was evaluated";
+  case StressStatus::chain_limit:
+    return "a bond reached the Gent chain-extension limit (I1bar - 3 >= Jm), where the model has no "
+           "finite energy: raise -material_Jm, lower the load, or enable failure (-failure_critical_stretch) "
+           "so that such bonds break";
+  case StressStatus::inverted:
+    return "a bond deformation gradient has det F <= 0 (the material is inverted): the run is unstable; "
+           "lower -time_step or -time_step_safety";
+  case StressStatus::no_convergence:
+    return "the plane-stress solve for C33 (S33 = 0) did not converge: check -material_D (> 0, not "
+           "vanishingly small) and that the deformation is finite";
+  }
+  return "unknown stress status";
+}
+
+const char *to_string(ModelKind k) { return k == ModelKind::neo_hookean ? "neo_hookean" : "gent"; }
+const char *to_string(Formulation f) { return f == Formulation::plane_strain ? "plane_strain" : "plane_stress"; }
+
+bool parse(const std::string &name, ModelKind &k)
+{
+  if (name == "gent") k = ModelKind::gent;
+  else if (name == "neo_hookean") k = ModelKind::neo_hookean;
+  else return false;
+  return true;
+}
+
+bool parse(const std::string &name, Formulation &f)
+{
+  if (name == "plane_stress") f = Formulation::plane_stress;
+  else if (name == "plane_strain") f = Formulation::plane_strain;
+  else return false;
+  return true;
+}
+
+std::string check_parameters(ModelKind k, const MaterialParameters &p)
+{
+  std::ostringstream msg;
+  if (!(p.mu > 0.0) || !std::isfinite(p.mu))
+    msg << "-material_mu " << p.mu << ": the shear modulus must be a positive number of Pa (paper: 4.55e3)\n";
+  if (k == ModelKind::gent && (!(p.Jm > 0.0) || !std::isfinite(p.Jm)))
+    msg << "-material_Jm " << p.Jm << ": the Gent chain-extension limit must be > 0 (paper: 162.6)\n";
+  if (!(p.D > 0.0) || !std::isfinite(p.D)) {
+    msg << "-material_D " << p.D << ": the compressibility must be > 0 (bulk modulus K = 2/D); e.g. ";
+    if (p.mu > 0.0) msg << "-material_D " << 2.0 / (100.0 * p.mu) << " for K = 100 mu\n";
+    else msg << "K = 100 mu\n";
+  }
+  return msg.str();
+}
+
+} // namespace bapd

@@ -1,0 +1,66 @@
+#include "bapd/scene_file.hpp"
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <yaml.h>
+
+namespace bapd {
+
+namespace {
+
+std::string CheckNode(yaml_document_t *doc, yaml_node_t *node, const std::string &path)
+{
+  if (!node) return "";
+  if (node->type == YAML_MAPPING_NODE) {
+    for (yaml_node_pair_t *pair = node->data.mapping.pairs.start; pair < node->data.mapping.pairs.top; ++pair) {
+      yaml_node_t *key = yaml_document_get_node(doc, pair->key);
+      yaml_node_t *val = yaml_document_get_node(doc, pair->value);
+      if (!key || key->type != YAML_SCALAR_NODE) return "a mapping key under '" + path + "' is not a plain name";
+      const std::string name = (const char *)key->data.scalar.value;
+      std::string       err  = CheckNode(doc, val, path.empty() ? name : path + "_" + name);
+      if (!err.empty()) return err;
+    }
+  } else if (node->type == YAML_SEQUENCE_NODE) {
+    for (yaml_node_item_t *item = node->data.sequence.items.start; item < node->data.sequence.items.top; ++item) {
+      yaml_node_t *it = yaml_document_get_node(doc, *item);
+      if (!it || it->type != YAML_SCALAR_NODE)
+        return "the list '" + path + "' may only hold numbers or names (line " + std::to_string(node->start_mark.line + 1) + ")";
+    }
+  }
+  return "";
+}
+
+} // namespace
+
+std::string CheckSceneFileArgument(int argc, char **argv)
+{
+  for (int a = 1; a < argc; ++a) {
+    if (std::strcmp(argv[a], "-options_file_yaml") != 0) continue;
+    if (a + 1 >= argc) return "-options_file_yaml needs a file name";
+    const char *file = argv[a + 1];
+    FILE       *fd   = std::fopen(file, "rb");
+    if (!fd) return std::string("cannot open scene file '") + file + "': " + std::strerror(errno) + " (check the path given to -options_file_yaml)";
+    yaml_parser_t   parser;
+    yaml_document_t doc;
+    yaml_parser_initialize(&parser);
+    yaml_parser_set_input_file(&parser, fd);
+    std::string err;
+    if (!yaml_parser_load(&parser, &doc)) {
+      err = std::string("scene file '") + file + "' is not valid YAML: " + (parser.problem ? parser.problem : "syntax error") +
+            " at line " + std::to_string(parser.problem_mark.line + 1) + ", column " + std::to_string(parser.problem_mark.column + 1);
+    } else {
+      yaml_node_t *root = yaml_document_get_root_node(&doc);
+      if (root && root->type != YAML_MAPPING_NODE) err = std::string("scene file '") + file + "' must be a mapping of option names to values";
+      else err = CheckNode(&doc, root, "");
+      if (!err.empty() && err.rfind("scene file", 0) != 0) err = std::string("scene file '") + file + "': " + err;
+      yaml_document_delete(&doc);
+    }
+    yaml_parser_delete(&parser);
+    std::fclose(fd);
+    if (!err.empty()) return err;
+  }
+  return "";
+}
+
+} // namespace bapd

@@ -1,0 +1,113 @@
+// The two-ring halo carries every value a force needs, and nothing leaks: perturbing
+// one point changes the force of exactly the points whose force depends on it, on
+// any rank layout.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iterator>
+#include <set>
+
+#include "bapd/family.hpp"
+#include "bapd/lattice.hpp"
+#include "bapd/simulation.hpp"
+#include "mpi/test_scenes.hpp"
+
+using namespace bapd;
+
+namespace {
+
+// f_i = sum_j (t_ij - t_ji) V_j (paper eq 23). t_ij reads y over B_ij, a subset of
+// family(i); t_ji reads y over B_ji = {k in family(j): |x_k - x_i| <= delta}. So f_i
+// depends on y_p iff p is in family(i), or p is in family(j) for some j in family(i)
+// and lies within one horizon of i (even when the bond (i, p) is cut by a notch).
+std::set<int64_t> DependentPoints(const PointCloud &cloud, const Families &fam, int64_t p)
+{
+  std::set<int64_t> out;
+  const double      d2max = fam.horizon * fam.horizon;
+  auto within = [&](std::size_t a, std::size_t b) {
+    const double dx = cloud.x[2 * a] - cloud.x[2 * b], dy = cloud.x[2 * a + 1] - cloud.x[2 * b + 1];
+    return dx * dx + dy * dy <= d2max;
+  };
+  auto in_family = [&](std::size_t i, std::size_t k) {
+    for (std::size_t b = fam.offsets[i]; b < fam.offsets[i + 1]; ++b)
+      if ((std::size_t)fam.neighbour[b] == k) return true;
+    return false;
+  };
+  for (std::size_t i = 0; i < fam.n_family; ++i) {
+    if (i == (std::size_t)p) continue;
+    bool depends = in_family(i, p);
+    for (std::size_t b = fam.offsets[i]; !depends && b < fam.offsets[i + 1]; ++b)
+      depends = in_family(fam.neighbour[b], p) && within(i, p);
+    if (depends) out.insert((int64_t)i);
+  }
+  // The perturbed point itself: its own bonds change (if it has any).
+  if (fam.size(p) > 0) out.insert(p);
+  return out;
+}
+
+std::set<int64_t> GatherIds(MPI_Comm comm, const std::vector<long long> &mine)
+{
+  int size, rank;
+  MPI_Comm_size(comm, &size);
+  MPI_Comm_rank(comm, &rank);
+  int              m = (int)mine.size();
+  std::vector<int> counts(size), displs(size, 0);
+  MPI_Allgather(&m, 1, MPI_INT, counts.data(), 1, MPI_INT, comm);
+  for (int r = 1; r < size; ++r) displs[r] = displs[r - 1] + counts[r - 1];
+  std::vector<long long> all(displs[size - 1] + counts[size - 1]);
+  MPI_Allgatherv(mine.data(), m, MPI_LONG_LONG, all.data(), counts.data(), displs.data(), MPI_LONG_LONG, comm);
+  return std::set<int64_t>(all.begin(), all.end());
+}
+
+} // namespace
+
+TEST(HaloDependency, ExactlyTheDependencyRangeSeesAPerturbation)
+{
+  ASSERT_EQ(bapd_test::SetOptions(bapd_test::FreeSheetScene("halo_test_output")), 0);
+  Simulation sim(PETSC_COMM_WORLD);
+  ASSERT_EQ(sim.Setup(), 0);
+  const Layout  &layout = sim.layout();
+  const PetscInt n      = layout.n_owned;
+
+  // A smooth, non-affine base state with finite stretches everywhere.
+  std::vector<double> u(2 * n), f0(2 * n), f1(2 * n);
+  for (PetscInt i = 0; i < n; ++i) {
+    const double x = layout.cloud.x[2 * i] / 0.02, y = layout.cloud.x[2 * i + 1] / 0.02;
+    u[2 * i]     = 0.002 * (x * y + 0.3 * std::sin(3 * y));
+    u[2 * i + 1] = 0.003 * (x * x - 0.5 * y + 0.2 * std::cos(4 * x));
+  }
+  ASSERT_EQ(sim.ComputeForceDensity(u.data(), f0.data()), 0);
+
+  const PointCloud global   = make_lattice(sim.scene().body);
+  const Families   families = build_families(global, global.size(), sim.scene().horizon(), sim.scene().body.notches);
+  // An interior point, one at the notch tip, one on the hole's rim, one in a corner.
+  auto nearest = [&](double px, double py) {
+    int64_t best = 0;
+    double  bd   = 1e300;
+    for (std::size_t i = 0; i < global.size(); ++i) {
+      const double d = std::hypot(global.x[2 * i] - px, global.x[2 * i + 1] - py);
+      if (d < bd) bd = d, best = (int64_t)i;
+    }
+    return best;
+  };
+  for (int64_t p : {nearest(0.0105, 0.0045), nearest(0.012, 0.007), nearest(0.006, 0.0158), nearest(0.0, 0.0)}) {
+    std::vector<double> u1 = u;
+    for (PetscInt i = 0; i < n; ++i)
+      if (layout.cloud.natural_id[i] == p) u1[2 * i] += 1e-5;
+    ASSERT_EQ(sim.ComputeForceDensity(u1.data(), f1.data()), 0);
+    std::vector<long long> changed;
+    for (PetscInt i = 0; i < n; ++i)
+      if (f1[2 * i] != f0[2 * i] || f1[2 * i + 1] != f0[2 * i + 1]) changed.push_back(layout.cloud.natural_id[i]);
+    const std::set<int64_t> seen     = GatherIds(PETSC_COMM_WORLD, changed);
+    const std::set<int64_t> expected = DependentPoints(global, families, p);
+    std::vector<int64_t> missing, extra;
+    std::set_difference(expected.begin(), expected.end(), seen.begin(), seen.end(), std::back_inserter(missing));
+    std::set_difference(seen.begin(), seen.end(), expected.begin(), expected.end(), std::back_inserter(extra));
+    EXPECT_TRUE(missing.empty() && extra.empty()) << "perturbed point " << p << ": " << missing.size()
+                                                  << " dependent points saw no change (first " << (missing.empty() ? -1 : missing[0])
+                                                  << "), " << extra.size() << " independent points changed (first "
+                                                  << (extra.empty() ? -1 : extra[0]) << ")";
+    EXPECT_GT(expected.size(), 10u);
+  }
+}

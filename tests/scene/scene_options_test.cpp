@@ -1,0 +1,551 @@
+// Scene options (scene.hpp): a valid scene is read with the right values and
+// defaults, a YAML file and flat options give the same scene, later options win,
+// every invalid input is rejected by a message naming its option, and an option
+// that nothing read is answered with the nearest real name.
+#include <gtest/gtest.h>
+#include <petscsys.h>
+
+#include <cstdarg>
+#include <cstdio>
+#include <cstdlib>
+#include <map>
+#include <string>
+#include <unistd.h>
+
+#include "bapd/scene.hpp"
+
+namespace {
+
+using bapd::ComponentLoad;
+using bapd::LoadSet;
+using bapd::Scene;
+
+using Options = std::map<std::string, std::string>; // name -> value ("" for none)
+
+// The paper's plate with a hole (METHOD.md section 7.1) as flat options.
+Options PlateWithHole()
+{
+  return {
+    {"-body_width", "0.08"},
+    {"-body_height", "0.16"},
+    {"-body_thickness", "0.001"},
+    {"-body_dx", "0.001"},
+    {"-body_holes", "0.04,0.08,0.01"},
+    {"-material_bulk_ratio", "100"},
+    {"-load_sets", "top,bottom"},
+    {"-load_top_region", "top"},
+    {"-load_top_x", "fixed"},
+    {"-load_top_y", "stretch"},
+    {"-load_top_y_scale", "0.5"},
+    {"-load_bottom_region", "bottom"},
+    {"-load_bottom_x", "fixed"},
+    {"-load_bottom_y", "stretch"},
+    {"-load_bottom_y_scale", "-0.5"},
+    {"-load_schedule", "0,1,1,1.5,2,1.5"},
+    {"-probes", "left_mid"},
+    {"-probe_left_mid_at", "0,0.08"},
+    {"-damping", "20"},
+    {"-output_dir", "out/plate"},
+    {"-output_interval", "200"},
+  };
+}
+
+// The same scene as a YAML file, as a user writes it.
+const char *const kPlateYAML = R"(body:
+  width: 0.08
+  height: 0.16
+  thickness: 0.001
+  dx: 0.001
+  holes: [0.04, 0.08, 0.01]
+material:
+  bulk_ratio: 100
+load:
+  sets: [top, bottom]
+  top:
+    region: top
+    x: fixed
+    y: stretch
+    y_scale: 0.5
+  bottom:
+    region: bottom
+    x: fixed
+    y: stretch
+    y_scale: -0.5
+  schedule: [0, 1, 1, 1.5, 2, 1.5]
+probes: [left_mid]
+probe:
+  left_mid:
+    at: [0, 0.08]
+damping: 20
+output:
+  dir: out/plate
+  interval: 200
+)";
+
+std::string Join(const Options &options)
+{
+  std::string line;
+  for (const auto &[name, value] : options) line += name + (value.empty() ? "" : " " + value) + " ";
+  return line;
+}
+
+// The message of the error that started the last failure (PETSc keeps it).
+std::string ErrorText()
+{
+  const char *generic  = nullptr;
+  char       *specific = nullptr;
+  PetscErrorMessage(PETSC_ERR_USER, &generic, &specific);
+  return specific ? specific : "";
+}
+
+class SceneOptions : public ::testing::Test {
+protected:
+  // Errors return to the test instead of printing a stack and aborting.
+  void SetUp() override
+  {
+    ASSERT_EQ(PetscOptionsClear(nullptr), 0);
+    ASSERT_EQ(PetscPushErrorHandler(PetscReturnErrorHandler, nullptr), 0);
+  }
+  void TearDown() override
+  {
+    PetscPopErrorHandler();
+    PetscOptionsClear(nullptr);
+  }
+
+  PetscErrorCode Read(const Options &options, Scene *scene)
+  {
+    PetscOptionsClear(nullptr);
+    if (PetscOptionsInsertString(nullptr, Join(options).c_str())) return PETSC_ERR_LIB;
+    return bapd::SceneFromOptions(PETSC_COMM_WORLD, scene);
+  }
+
+  // Reads the options, expects a user error, returns its message.
+  std::string Rejection(const Options &options)
+  {
+    Scene                scene;
+    const PetscErrorCode ierr = Read(options, &scene);
+    EXPECT_EQ(ierr, PETSC_ERR_USER) << "accepted: " << Join(options);
+    return ErrorText();
+  }
+
+  // Writes text to a fresh file (on rank 0, which is where PETSc reads it) and
+  // returns the name, the same on every rank.
+  std::string TempFile(const std::string &text)
+  {
+    PetscMPIInt rank;
+    MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+    char name[64] = "/tmp/bapd_scene_XXXXXX";
+    if (rank == 0) {
+      const int fd = mkstemp(name);
+      EXPECT_GE(fd, 0);
+      EXPECT_EQ(write(fd, text.data(), text.size()), (ssize_t)text.size());
+      close(fd);
+    }
+    MPI_Bcast(name, sizeof(name), MPI_CHAR, 0, PETSC_COMM_WORLD);
+    return name;
+  }
+  void RemoveFile(const std::string &name)
+  {
+    PetscMPIInt rank;
+    MPI_Barrier(PETSC_COMM_WORLD);
+    MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+    if (rank == 0) std::remove(name.c_str());
+  }
+};
+
+void ExpectSameScene(const Scene &a, const Scene &b)
+{
+  EXPECT_EQ(a.body.width, b.body.width);
+  EXPECT_EQ(a.body.height, b.body.height);
+  EXPECT_EQ(a.body.thickness, b.body.thickness);
+  EXPECT_EQ(a.body.dx, b.body.dx);
+  ASSERT_EQ(a.body.holes.size(), b.body.holes.size());
+  for (std::size_t h = 0; h < a.body.holes.size(); ++h) {
+    EXPECT_EQ(a.body.holes[h].cx, b.body.holes[h].cx);
+    EXPECT_EQ(a.body.holes[h].cy, b.body.holes[h].cy);
+    EXPECT_EQ(a.body.holes[h].radius, b.body.holes[h].radius);
+  }
+  EXPECT_EQ(a.body.notches.size(), b.body.notches.size());
+  EXPECT_EQ(a.horizon_factor, b.horizon_factor);
+  EXPECT_EQ(a.model, b.model);
+  EXPECT_EQ(a.formulation, b.formulation);
+  EXPECT_EQ(a.material.mu, b.material.mu);
+  EXPECT_EQ(a.material.Jm, b.material.Jm);
+  EXPECT_EQ(a.material.D, b.material.D);
+  EXPECT_EQ(a.density, b.density);
+  EXPECT_EQ(a.failure, b.failure);
+  EXPECT_EQ(a.critical_stretch, b.critical_stretch);
+  ASSERT_EQ(a.loads.size(), b.loads.size());
+  for (std::size_t s = 0; s < a.loads.size(); ++s) {
+    EXPECT_EQ(a.loads[s].name, b.loads[s].name);
+    EXPECT_EQ(a.loads[s].region, b.loads[s].region);
+    EXPECT_EQ(a.loads[s].layers, b.loads[s].layers);
+    EXPECT_EQ(a.loads[s].x, b.loads[s].x);
+    EXPECT_EQ(a.loads[s].y, b.loads[s].y);
+    EXPECT_EQ(a.loads[s].x_scale, b.loads[s].x_scale);
+    EXPECT_EQ(a.loads[s].y_scale, b.loads[s].y_scale);
+  }
+  EXPECT_EQ(a.schedule.time, b.schedule.time);
+  EXPECT_EQ(a.schedule.stretch, b.schedule.stretch);
+  EXPECT_EQ(a.reference_length, b.reference_length);
+  ASSERT_EQ(a.probes.size(), b.probes.size());
+  for (std::size_t p = 0; p < a.probes.size(); ++p) {
+    EXPECT_EQ(a.probes[p].name, b.probes[p].name);
+    EXPECT_EQ(a.probes[p].x, b.probes[p].x);
+    EXPECT_EQ(a.probes[p].y, b.probes[p].y);
+  }
+  EXPECT_EQ(a.output_dir, b.output_dir);
+  EXPECT_EQ(a.output_interval, b.output_interval);
+  EXPECT_EQ(a.time_step, b.time_step);
+  EXPECT_EQ(a.time_step_safety, b.time_step_safety);
+  EXPECT_EQ(a.damping, b.damping);
+  EXPECT_EQ(a.end_time, b.end_time);
+  EXPECT_EQ(a.progress_interval, b.progress_interval);
+}
+
+// -help lists the options of every component even without a scene, and validates
+// nothing. PETSc lists a block only the first time the process opens it, so this
+// test must come first in the file (gtest runs tests in file order; no shuffling).
+std::string *help_text = nullptr;
+PetscErrorCode CaptureHelp(MPI_Comm, const char format[], ...)
+{
+  char    buffer[4096];
+  va_list args;
+  va_start(args, format);
+  std::vsnprintf(buffer, sizeof(buffer), format, args);
+  va_end(args);
+  if (help_text) *help_text += buffer;
+  return 0;
+}
+
+TEST_F(SceneOptions, HelpListsEveryComponentWithoutAScene)
+{
+  std::string text;
+  help_text  = &text;
+  auto saved = PetscHelpPrintf;
+  PetscHelpPrintf = CaptureHelp;
+  Scene scene;
+  const PetscErrorCode ierr = Read({{"-help", ""}, {"-load_sets", "grip"}}, &scene);
+  PetscHelpPrintf = saved;
+  help_text       = nullptr;
+  ASSERT_EQ(ierr, 0) << ErrorText();
+  EXPECT_TRUE(scene.help_only);
+  for (const char *name : {"-body_width", "-body_holes", "-horizon_factor", "-material_mu", "-material_bulk_ratio", "-failure_critical_stretch",
+                           "-load_schedule", "-load_grip_region", "-load_grip_y_scale", "-probes", "-output_dir", "-time_step_safety", "-end_time"})
+    EXPECT_NE(text.find(name), std::string::npos) << name << " missing from -help";
+}
+
+// ----------------------------------------------------------------------------------
+// Valid scenes
+
+TEST_F(SceneOptions, ReadsThePlateWithAHoleWithItsDefaults)
+{
+  Scene scene;
+  ASSERT_EQ(Read(PlateWithHole(), &scene), 0) << ErrorText();
+  EXPECT_FALSE(scene.help_only);
+  EXPECT_EQ(scene.body.width, 0.08);
+  EXPECT_EQ(scene.body.height, 0.16);
+  EXPECT_EQ(scene.body.thickness, 0.001);
+  EXPECT_EQ(scene.body.dx, 0.001);
+  ASSERT_EQ(scene.body.holes.size(), 1u);
+  EXPECT_EQ(scene.body.holes[0].cx, 0.04);
+  EXPECT_EQ(scene.body.holes[0].cy, 0.08);
+  EXPECT_EQ(scene.body.holes[0].radius, 0.01);
+  EXPECT_TRUE(scene.body.notches.empty());
+
+  // Defaults (docs/options.md).
+  EXPECT_EQ(scene.horizon_factor, 3.015);
+  EXPECT_EQ(scene.model, bapd::ModelKind::gent);
+  EXPECT_EQ(scene.formulation, bapd::Formulation::plane_stress);
+  EXPECT_EQ(scene.material.mu, 4.55e3);
+  EXPECT_EQ(scene.material.Jm, 162.6);
+  EXPECT_EQ(scene.material.D, 2.0 / (100.0 * 4.55e3)); // K = 2/D = 100 mu, same expression: exact
+  EXPECT_EQ(scene.density, 1000.0);
+  EXPECT_FALSE(scene.failure);
+  EXPECT_EQ(scene.reference_length, 0.16); // the body height
+  EXPECT_EQ(scene.time_step, 0.0);
+  EXPECT_EQ(scene.time_step_safety, 0.8);
+  EXPECT_EQ(scene.end_time, 2.0); // the schedule's last knot
+  EXPECT_EQ(scene.progress_interval, 0);
+
+  ASSERT_EQ(scene.loads.size(), 2u);
+  const LoadSet &top = scene.loads[0], &bottom = scene.loads[1];
+  EXPECT_EQ(top.name, "top");
+  EXPECT_EQ(top.region, LoadSet::Region::top);
+  EXPECT_EQ(top.layers, 1);
+  EXPECT_EQ(top.x, ComponentLoad::fixed);
+  EXPECT_EQ(top.y, ComponentLoad::stretch);
+  EXPECT_EQ(top.y_scale, 0.5);
+  EXPECT_EQ(bottom.name, "bottom");
+  EXPECT_EQ(bottom.region, LoadSet::Region::bottom);
+  EXPECT_EQ(bottom.y_scale, -0.5);
+  EXPECT_EQ(scene.schedule.time, (std::vector<double>{0, 1, 2}));
+  EXPECT_EQ(scene.schedule.stretch, (std::vector<double>{1, 1.5, 1.5}));
+
+  ASSERT_EQ(scene.probes.size(), 1u);
+  EXPECT_EQ(scene.probes[0].name, "left_mid");
+  EXPECT_EQ(scene.probes[0].x, 0.0);
+  EXPECT_EQ(scene.probes[0].y, 0.08);
+  EXPECT_EQ(scene.damping, 20.0);
+  EXPECT_EQ(scene.output_dir, "out/plate");
+  EXPECT_EQ(scene.output_interval, 200);
+  EXPECT_TRUE(bapd::SceneWarnings().empty());
+  EXPECT_EQ(bapd::SceneView(PETSC_COMM_WORLD, scene), 0);
+}
+
+TEST_F(SceneOptions, ReadsEveryOtherChoice)
+{
+  Options o = PlateWithHole();
+  o.erase("-material_bulk_ratio");
+  o["-material_model"]           = "neo-hookean";
+  o["-material_formulation"]     = "plane_strain";
+  o["-material_mu"]              = "1e4";
+  o["-material_D"]               = "2e-6";
+  o["-material_density"]         = "1100";
+  o["-failure_critical_stretch"] = "7.2";
+  o["-horizon_factor"]           = "2.515";
+  o["-body_notches"]             = "0.05,0.02,0.08,0.02";
+  o["-load_bottom_layers"]       = "3";
+  o["-load_sets"]                = "top,bottom,side";
+  o["-load_side_region"]         = "box";
+  o["-load_side_box"]            = "0,0.06,0.005,0.1";
+  o["-load_side_x"]              = "fixed";
+  o["-load_reference_length"]    = "0.1";
+  o["-time_step"]                = "1e-5";
+  o["-time_step_safety"]         = "0.5";
+  o["-end_time"]                 = "3";
+  o["-progress_interval"]        = "50";
+  Scene scene;
+  ASSERT_EQ(Read(o, &scene), 0) << ErrorText();
+  EXPECT_EQ(scene.model, bapd::ModelKind::neo_hookean);
+  EXPECT_EQ(scene.formulation, bapd::Formulation::plane_strain);
+  EXPECT_EQ(scene.material.mu, 1e4);
+  EXPECT_EQ(scene.material.D, 2e-6);
+  EXPECT_EQ(scene.density, 1100.0);
+  EXPECT_TRUE(scene.failure);
+  EXPECT_EQ(scene.critical_stretch, 7.2);
+  EXPECT_EQ(scene.horizon_factor, 2.515);
+  ASSERT_EQ(scene.body.notches.size(), 1u);
+  EXPECT_EQ(scene.body.notches[0].x1, 0.08);
+  EXPECT_EQ(scene.loads[1].layers, 3);
+  ASSERT_EQ(scene.loads.size(), 3u);
+  EXPECT_EQ(scene.loads[2].region, LoadSet::Region::box);
+  EXPECT_EQ(scene.loads[2].box[1], 0.06);
+  EXPECT_EQ(scene.loads[2].box[2], 0.005);
+  EXPECT_EQ(scene.loads[2].y, ComponentLoad::free);
+  EXPECT_EQ(scene.reference_length, 0.1);
+  EXPECT_EQ(scene.time_step, 1e-5);
+  EXPECT_EQ(scene.time_step_safety, 0.5);
+  EXPECT_EQ(scene.end_time, 3.0);
+  EXPECT_EQ(scene.progress_interval, 50);
+  // A stretch grip without a scale moves by (lambda - 1) L.
+  o.erase("-load_top_y_scale");
+  ASSERT_EQ(Read(o, &scene), 0) << ErrorText();
+  EXPECT_EQ(scene.loads[0].y_scale, 1.0);
+  // The underscore spelling of the model name is accepted too.
+  o["-material_model"] = "neo_hookean";
+  ASSERT_EQ(Read(o, &scene), 0) << ErrorText();
+  EXPECT_EQ(scene.model, bapd::ModelKind::neo_hookean);
+}
+
+TEST_F(SceneOptions, YAMLFileGivesTheSameSceneAsFlatOptions)
+{
+  Scene flat, yaml;
+  ASSERT_EQ(Read(PlateWithHole(), &flat), 0) << ErrorText();
+  PetscOptionsClear(nullptr);
+  const std::string file = TempFile(kPlateYAML);
+  ASSERT_EQ(PetscOptionsInsertFileYAML(PETSC_COMM_WORLD, nullptr, file.c_str(), PETSC_TRUE), 0);
+  RemoveFile(file);
+  ASSERT_EQ(bapd::SceneFromOptions(PETSC_COMM_WORLD, &yaml), 0) << ErrorText();
+  ExpectSameScene(flat, yaml);
+  EXPECT_EQ(bapd::CheckUnusedOptions(PETSC_COMM_WORLD), 0) << ErrorText();
+}
+
+TEST_F(SceneOptions, OptionsAfterTheFileOverrideIt)
+{
+  // What "bapd -options_file_yaml plate.yaml -material_mu 5000 ..." does: the file
+  // is inserted first, the later options replace its values.
+  PetscOptionsClear(nullptr);
+  const std::string file = TempFile(kPlateYAML);
+  ASSERT_EQ(PetscOptionsInsertFileYAML(PETSC_COMM_WORLD, nullptr, file.c_str(), PETSC_TRUE), 0);
+  RemoveFile(file);
+  ASSERT_EQ(PetscOptionsInsertString(nullptr, "-material_mu 5000 -load_top_y_scale 0.25 -load_schedule 0,1,4,2 -body_holes 0.04,0.08,0.02"), 0);
+  Scene scene;
+  ASSERT_EQ(bapd::SceneFromOptions(PETSC_COMM_WORLD, &scene), 0) << ErrorText();
+  EXPECT_EQ(scene.material.mu, 5000.0);
+  EXPECT_EQ(scene.material.D, 2.0 / (100.0 * 5000.0)); // the file's bulk ratio, the new mu
+  EXPECT_EQ(scene.loads[0].y_scale, 0.25);
+  EXPECT_EQ(scene.loads[1].y_scale, -0.5); // untouched
+  EXPECT_EQ(scene.schedule.time, (std::vector<double>{0, 4}));
+  EXPECT_EQ(scene.end_time, 4.0);
+  EXPECT_EQ(scene.body.holes[0].radius, 0.02);
+  EXPECT_EQ(scene.body.width, 0.08); // from the file
+}
+
+TEST_F(SceneOptions, WarnsAboutDoubtfulButUsableValues)
+{
+  Options o = PlateWithHole();
+  o["-load_top_x"] = "free";
+  o["-load_top_y"] = "free";
+  o.erase("-load_top_y_scale");
+  o["-time_step_safety"] = "1.5";
+  o["-horizon_factor"]   = "6";
+  Scene scene;
+  ASSERT_EQ(Read(o, &scene), 0) << ErrorText();
+  const std::vector<std::string> &w = bapd::SceneWarnings();
+  auto any = [&](const char *text) {
+    for (const std::string &m : w)
+      if (m.find(text) != std::string::npos) return true;
+    return false;
+  };
+  EXPECT_TRUE(any("load set 'top' holds neither component")) << ::testing::PrintToString(w);
+  EXPECT_TRUE(any("-time_step_safety 1.5")) << ::testing::PrintToString(w);
+  EXPECT_TRUE(any("-horizon_factor 6")) << ::testing::PrintToString(w);
+}
+
+// ----------------------------------------------------------------------------------
+// Invalid scenes: each is rejected, and the message names the option to change.
+
+struct Case {
+  const char *what;
+  Options     change;          // options set on top of the plate ("<erase>" removes one)
+  const char *option;          // must appear in the message
+  const char *detail = nullptr; // and so must this, if given
+};
+
+Options Apply(Options base, const Options &change)
+{
+  for (const auto &[name, value] : change) {
+    if (value == "<erase>") base.erase(name);
+    else base[name] = value;
+  }
+  return base;
+}
+
+TEST_F(SceneOptions, RejectsEachInvalidInputNamingItsOption)
+{
+  const std::vector<Case> cases = {
+    // body
+    {"width missing", {{"-body_width", "<erase>"}}, "-body_width", "required"},
+    {"height zero", {{"-body_height", "0"}}, "-body_height", "> 0"},
+    {"thickness negative", {{"-body_thickness", "-0.001"}}, "-body_thickness"},
+    {"dx zero", {{"-body_dx", "0"}}, "-body_dx"},
+    {"dx larger than the body", {{"-body_dx", "0.1"}}, "-body_dx", "larger than the body"},
+    {"width not a number", {{"-body_width", "8cm"}}, "-body_width", "not a number"},
+    {"width without value", {{"-body_width", ""}}, "-body_width", "needs a value"},
+    {"holes not triples", {{"-body_holes", "0.04,0.08"}}, "-body_holes", "multiple of 3"},
+    {"hole list malformed", {{"-body_holes", "0.04,x,0.01"}}, "-body_holes", "not a number"},
+    {"hole radius zero", {{"-body_holes", "0.04,0.08,0"}}, "-body_holes", "radius"},
+    {"hole through the edge", {{"-body_holes", "0.075,0.08,0.01"}}, "-body_holes", "not entirely inside"},
+    {"hole covers the body", {{"-body_holes", "0.04,0.08,1"}}, "-body_holes", "no material"},
+    {"notches not quadruples", {{"-body_notches", "0.01,0.02,0.03"}}, "-body_notches", "multiple of 4"},
+    {"notch end outside", {{"-body_notches", "0.05,0.02,0.09,0.02"}}, "-body_notches", "outside the body"},
+    {"notch of zero length", {{"-body_notches", "0.05,0.02,0.05,0.02"}}, "-body_notches", "zero length"},
+    {"notch across the width", {{"-body_notches", "0,0.02,0.08,0.02"}}, "-body_notches", "top and a bottom piece"},
+    {"notch across the height", {{"-body_notches", "0.02,0,0.02,0.16"}}, "-body_notches", "left and a right piece"},
+    {"two notches across", {{"-body_notches", "0,0.02,0.05,0.02,0.049,0.02,0.08,0.03"}}, "-body_notches", "together join"},
+    {"notches through the hole", {{"-body_notches", "0,0.08,0.031,0.08,0.049,0.08,0.08,0.08"}}, "-body_notches", "hole 1"},
+    {"holes across the width", {{"-body_holes", "0.02,0.08,0.02,0.06,0.08,0.02"}}, "-body_holes", "hole 1, hole 2 together join the left and right edges"},
+    {"notch cutting a corner", {{"-body_notches", "0,0.15,0.01,0.16"}}, "-body_notches", "top-left corner"},
+    {"horizon below one spacing", {{"-horizon_factor", "0.5"}}, "-horizon_factor"},
+    // material
+    {"unknown model", {{"-material_model", "mooney"}}, "-material_model", "gent or neo_hookean"},
+    {"unknown formulation", {{"-material_formulation", "3d"}}, "-material_formulation", "plane_stress or plane_strain"},
+    {"mu zero", {{"-material_mu", "0"}}, "-material_mu"},
+    {"mu negative", {{"-material_mu", "-4550"}}, "-material_mu"},
+    {"Jm zero", {{"-material_Jm", "0"}}, "-material_Jm"},
+    {"D negative", {{"-material_bulk_ratio", "<erase>"}, {"-material_D", "-1e-6"}}, "-material_D"},
+    {"D and bulk ratio", {{"-material_D", "1e-6"}}, "-material_bulk_ratio", "only one"},
+    {"bulk ratio zero", {{"-material_bulk_ratio", "0"}}, "-material_bulk_ratio"},
+    {"density zero", {{"-material_density", "0"}}, "-material_density"},
+    {"critical stretch below one", {{"-failure_critical_stretch", "0.9"}}, "-failure_critical_stretch", "> 1"},
+    // loading
+    {"set name with a dash", {{"-load_sets", "top-grip"}}, "-load_sets", "letters"},
+    {"set listed twice", {{"-load_sets", "top,bottom,top"}}, "-load_sets", "twice"},
+    {"region missing", {{"-load_top_region", "<erase>"}}, "-load_top_region", "required"},
+    {"unknown region", {{"-load_top_region", "middle"}}, "-load_top_region", "top, bottom, left, right or box"},
+    {"box missing", {{"-load_top_region", "box"}}, "-load_top_box", "required"},
+    {"box of three numbers", {{"-load_top_region", "box"}, {"-load_top_box", "0,0,1"}}, "-load_top_box", "four"},
+    {"box empty", {{"-load_top_region", "box"}, {"-load_top_box", "0,0.15,0,0.16"}}, "-load_top_box", "empty"},
+    {"box outside", {{"-load_top_region", "box"}, {"-load_top_box", "0.1,0.1,0.2,0.2"}}, "-load_top_box", "outside the body"},
+    {"box on an edge region", {{"-load_top_box", "0,0.15,0.08,0.16"}}, "-load_top_box", "region box"},
+    {"layers zero", {{"-load_top_layers", "0"}}, "-load_top_layers"},
+    {"layers not whole", {{"-load_top_layers", "1.5"}}, "-load_top_layers", "whole number"},
+    {"layers through the body", {{"-load_top_layers", "160"}}, "-load_top_layers", "fewer layers"},
+    {"unknown component load", {{"-load_top_x", "pull"}}, "-load_top_x", "free, fixed or stretch"},
+    {"scale on a fixed component", {{"-load_top_x_scale", "0.5"}}, "-load_top_x_scale", "stretch"},
+    {"stretch without schedule", {{"-load_schedule", "<erase>"}, {"-end_time", "1"}}, "-load_top_y", "-load_schedule"},
+    {"schedule odd count", {{"-load_schedule", "0,1,1"}}, "-load_schedule", "pairs"},
+    {"schedule times not increasing", {{"-load_schedule", "0,1,1,1.5,1,2"}}, "-load_schedule", "increase"},
+    {"schedule negative time", {{"-load_schedule", "-1,1,1,1.5"}}, "-load_schedule", "t >= 0"},
+    {"schedule stretch zero", {{"-load_schedule", "0,1,1,0"}}, "-load_schedule", "> 0"},
+    {"reference length zero", {{"-load_reference_length", "0"}}, "-load_reference_length"},
+    // probes
+    {"probe outside", {{"-probe_left_mid_at", "0.1,0.08"}}, "-probe_left_mid_at", "outside the body"},
+    {"probe in the hole", {{"-probe_left_mid_at", "0.04,0.08"}}, "-probe_left_mid_at", "inside hole 1"},
+    {"probe position missing", {{"-probe_left_mid_at", "<erase>"}}, "-probe_left_mid_at", "required"},
+    {"probe position of three numbers", {{"-probe_left_mid_at", "0,0.08,0"}}, "-probe_left_mid_at", "exactly two"},
+    {"probe listed twice", {{"-probes", "left_mid,left_mid"}}, "-probes", "twice"},
+    // output and time
+    {"output interval zero", {{"-output_interval", "0"}}, "-output_interval"},
+    {"time step negative", {{"-time_step", "-1e-5"}}, "-time_step"},
+    {"safety zero", {{"-time_step_safety", "0"}}, "-time_step_safety"},
+    {"damping negative", {{"-damping", "-1"}}, "-damping"},
+    {"end time negative", {{"-end_time", "-1"}}, "-end_time"},
+    {"progress interval negative", {{"-progress_interval", "-2"}}, "-progress_interval"},
+    {"no end time and no schedule",
+     {{"-load_schedule", "<erase>"}, {"-load_top_y", "fixed"}, {"-load_top_y_scale", "<erase>"}, {"-load_bottom_y", "fixed"}, {"-load_bottom_y_scale", "<erase>"}},
+     "-end_time",
+     "required"},
+  };
+  for (const Case &c : cases) {
+    const std::string message = Rejection(Apply(PlateWithHole(), c.change));
+    EXPECT_NE(message.find(c.option), std::string::npos) << c.what << ": message does not name " << c.option << ":\n  " << message;
+    if (c.detail) {
+      EXPECT_NE(message.find(c.detail), std::string::npos) << c.what << ": message lacks '" << c.detail << "':\n  " << message;
+    }
+  }
+}
+
+// ----------------------------------------------------------------------------------
+// Options that nothing read
+
+TEST_F(SceneOptions, UnusedOptionIsAnsweredWithTheNearestName)
+{
+  Options o          = PlateWithHole();
+  o["-material_muu"] = "5000";
+  Scene scene;
+  ASSERT_EQ(Read(o, &scene), 0) << ErrorText();
+  const PetscErrorCode ierr = bapd::CheckUnusedOptions(PETSC_COMM_WORLD);
+  EXPECT_EQ(ierr, PETSC_ERR_USER);
+  EXPECT_EQ(ErrorText(), "-material_muu is not a bapd option. Did you mean -material_mu? (run with -help to list every option)");
+}
+
+TEST_F(SceneOptions, UnusedOptionsOfAnUndeclaredSetNameTheSetList)
+{
+  Options o               = PlateWithHole();
+  o["-load_grip_region"]  = "left";
+  o["-probe_tipp_at"]     = "0,0";
+  o["-load_top_regoin"]   = "top";
+  Scene scene;
+  ASSERT_EQ(Read(o, &scene), 0) << ErrorText();
+  const PetscErrorCode ierr = bapd::CheckUnusedOptions(PETSC_COMM_WORLD);
+  EXPECT_EQ(ierr, PETSC_ERR_USER);
+  const std::string message = ErrorText();
+  EXPECT_NE(message.find("-load_grip_region is not a bapd option. 'grip' is not one of -load_sets"), std::string::npos) << message;
+  EXPECT_NE(message.find("-probe_tipp_at is not a bapd option. 'tipp' is not one of -probes"), std::string::npos) << message;
+  EXPECT_NE(message.find("-load_top_regoin is not a bapd option. Did you mean -load_top_region?"), std::string::npos) << message;
+}
+
+TEST_F(SceneOptions, PetscRuntimeOptionsAreNotTypos)
+{
+  Options o = PlateWithHole();
+  for (const char *name : {"-ts_type", "-ts_monitor", "-log_view", "-malloc_debug", "-options_left", "-info", "-on_error_abort",
+                           "-viewer_binary_skip_info", "-vec_type", "-snes_monitor", "-ksp_type", "-pc_type", "-mat_type"})
+    o[name] = "";
+  Scene scene;
+  ASSERT_EQ(Read(o, &scene), 0) << ErrorText();
+  EXPECT_EQ(bapd::CheckUnusedOptions(PETSC_COMM_WORLD), 0) << ErrorText();
+}
+
+} // namespace

@@ -1,0 +1,191 @@
+// Bond failure, damage and the geometry of broken bonds (paper eqs 7, 38; METHOD.md 2, 5).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "bapd/ba_force.hpp"
+#include "bapd/damage.hpp"
+#include "unit/test_models.hpp"
+
+namespace bapd {
+namespace {
+
+std::size_t position_of(const Families &f, std::size_t i, std::size_t j)
+{
+  for (std::size_t q = 0; q < f.size(i); ++q)
+    if (static_cast<std::size_t>(f.neighbour[f.offsets[i] + q]) == j) return q;
+  ADD_FAILURE() << j << " is not in the family of " << i;
+  return 0;
+}
+
+TEST(Damage, StretchedBondBreaksForBothCopiesAndStaysBrokenAfterUnloading)
+{
+  test::Discretisation d(test::plate(9, 9, 1.0));
+  const double         s_c = 1.3;
+  const std::size_t    p   = 4 * 9 + 4; // centre
+  std::vector<double>  y   = d.cloud.x;
+  y[2 * p] += 0.8; // pull the centre point to the right by 0.8 dx
+  std::vector<std::size_t> touched;
+  const std::size_t        broken = break_bonds(d.cloud, y.data(), d.families, s_c, d.state, touched);
+  // Expected: exactly the bonds of p whose stretch exceeds s_c, seen from both ends.
+  std::size_t expected = 0;
+  for (std::size_t q = 0; q < d.families.size(p); ++q) {
+    const std::size_t j = static_cast<std::size_t>(d.families.neighbour[d.families.offsets[p] + q]);
+    const double      s = std::hypot(y[2 * j] - y[2 * p], y[2 * j + 1] - y[2 * p + 1]) /
+                     std::hypot(d.cloud.x[2 * j] - d.cloud.x[2 * p], d.cloud.x[2 * j + 1] - d.cloud.x[2 * p + 1]);
+    const std::size_t r = position_of(d.families, j, p);
+    EXPECT_EQ(d.state.is_intact(p, q), s <= s_c);
+    EXPECT_EQ(d.state.is_intact(j, r), s <= s_c); // symmetric decision
+    if (s > s_c) {
+      ++expected;
+      EXPECT_TRUE(std::binary_search(touched.begin(), touched.end(), j));
+    }
+  }
+  ASSERT_GT(expected, 0u);
+  ASSERT_LT(expected, d.families.size(p));
+  EXPECT_EQ(broken, 2 * expected); // directed copies
+  EXPECT_TRUE(std::binary_search(touched.begin(), touched.end(), p));
+  EXPECT_TRUE(std::is_sorted(touched.begin(), touched.end()));
+  EXPECT_EQ(d.state.count_broken(d.families, d.size()), 2 * expected);
+  compute_bond_geometry(d.cloud, d.families, d.state, d.geometry, touched);
+  // Nothing more breaks under the same load.
+  EXPECT_EQ(break_bonds(d.cloud, y.data(), d.families, s_c, d.state, touched), 0u);
+
+  // Unload: nothing heals, nothing new breaks, and the body is force free again.
+  EXPECT_EQ(break_bonds(d.cloud, d.cloud.x.data(), d.families, s_c, d.state, touched), 0u);
+  EXPECT_TRUE(touched.empty());
+  EXPECT_EQ(d.state.count_broken(d.families, d.size()), 2 * expected);
+  test::SaintVenantKirchhoff2D svk;
+  std::vector<double>          t, f;
+  d.forces(svk, d.cloud.x, t, f);
+  // y = x: F = K K^{-1} = I + O(eps), so f is round-off: ~1e-16 of a unit-strain force
+  // (E / dx = 2.7e4 here, summed over ~56 terms).
+  for (double v : f) EXPECT_LT(std::abs(v), 1e-13 * svk.young_modulus() / 1.0);
+  // Reloading: the broken bonds carry nothing, their intact neighbours do.
+  d.forces(svk, y, t, f);
+  for (std::size_t q = 0; q < d.families.size(p); ++q) {
+    const std::size_t b = d.families.offsets[p] + q;
+    if (!d.state.is_intact(p, q)) EXPECT_EQ(std::hypot(t[2 * b], t[2 * b + 1]), 0.0);
+    else EXPECT_GT(std::hypot(t[2 * b], t[2 * b + 1]), 0.0);
+  }
+}
+
+TEST(Damage, PointDamageIsTheBrokenFractionOfTheFamilyVolume)
+{
+  test::Discretisation d(test::plate(7, 7, 0.5e-3)); // the centre has the whole 28-point family
+  const std::size_t    c = 3 * 7 + 3;
+  ASSERT_EQ(d.families.size(c), 28u);
+  std::vector<std::size_t> touched;
+  for (std::size_t q : {0u, 5u, 17u}) ASSERT_TRUE(break_bond(d.families, d.state, c, q, &touched));
+  EXPECT_FALSE(break_bond(d.families, d.state, c, 5, &touched)); // already broken
+  std::vector<double> damage(d.size());
+  point_damage(d.cloud, d.families, d.state, d.size(), damage.data());
+  // eq 38 with equal volumes: 3 of 28 (one rounding in the sum and one in the ratio).
+  EXPECT_NEAR(damage[c], 3.0 / 28.0, 4e-16);
+  for (std::size_t i = 0; i < d.size(); ++i) {
+    if (i == c) continue;
+    const bool partner = std::count(touched.begin(), touched.end(), i) > 0;
+    if (partner) EXPECT_NEAR(damage[i], 1.0 / static_cast<double>(d.families.size(i)), 4e-16);
+    else EXPECT_EQ(damage[i], 0.0); // same sum in the same order as V(H): exactly 1 - 1
+  }
+  EXPECT_EQ(d.state.count_broken(d.families, d.size()), 6u);
+}
+
+TEST(Damage, BreakingABondChangesTheShapeTensorsOfItsEndPointsOnly)
+{
+  test::Discretisation d(test::plate(20, 20, 1.0));
+  const std::size_t    i = 10 * 20 + 10, k = 11 * 20 + 12; // offset (2, 1)
+  const std::size_t    qk = position_of(d.families, i, k);
+  std::vector<BondShape> before(d.families.n_bonds());
+  for (std::size_t p = 0; p < d.size(); ++p)
+    for (std::size_t q = 0; q < d.families.size(p); ++q)
+      before[d.families.offsets[p] + q] = bond_shape(d.cloud, d.families, d.state, p, q);
+  std::vector<std::size_t> touched;
+  break_bond(d.families, d.state, i, qk, &touched);
+  ASSERT_EQ(touched.size(), 2u);
+  compute_bond_geometry(d.cloud, d.families, d.state, d.geometry, touched);
+  std::size_t changed = 0;
+  for (std::size_t q = 0; q < d.families.size(i); ++q) {
+    const std::size_t b     = d.families.offsets[i] + q;
+    const BondShape   after = bond_shape(d.cloud, d.families, d.state, i, q);
+    ASSERT_TRUE(d.families.ba(b)[q / 64] >> (q % 64) & 1u); // j in B_ij, always
+    const bool k_in = d.families.ba(b)[qk / 64] >> (qk % 64) & 1u;
+    if (q == qk) {
+      EXPECT_FALSE(d.geometry.is_usable(i, q)); // the broken bond itself
+      EXPECT_FALSE(after.usable);
+      continue;
+    }
+    double change = 0; // relative change of K^{-1}
+    for (int c = 0; c < 3; ++c)
+      change = std::max(change, std::abs(after.shape_tensor_inv[c] - before[b].shape_tensor_inv[c]) /
+                                    std::abs(before[b].shape_tensor_inv[0]));
+    // K_ij changes iff k was in B_ij: by O(1/|B_ij|) if so, else by round-off only
+    // (the sums may be formed as total minus complement, and the total lost k).
+    const bool diff = change > 1e-6;
+    EXPECT_EQ(diff, k_in) << "bond " << q;
+    if (!diff) {
+      EXPECT_LT(change, 1e-13);
+    }
+    EXPECT_EQ(after.volume_fraction < before[b].volume_fraction - 1e-6, k_in); // and so does phi_xi
+    changed += diff;
+    // Interior point: phi = 1/2, so the force scale is phi_xi.
+    EXPECT_DOUBLE_EQ(after.force_scale, after.volume_fraction);
+  }
+  EXPECT_GT(changed, 5u);
+  // Every other point keeps its geometry bit for bit.
+  for (std::size_t p = 0; p < d.size(); ++p) {
+    if (p == i || p == k) continue;
+    for (std::size_t q = 0; q < d.families.size(p); ++q) {
+      const BondShape after = bond_shape(d.cloud, d.families, d.state, p, q);
+      ASSERT_EQ(after.shape_tensor_inv, before[d.families.offsets[p] + q].shape_tensor_inv);
+      ASSERT_EQ(after.force_scale, before[d.families.offsets[p] + q].force_scale);
+    }
+  }
+  // Recomputing the touched points equals recomputing everything.
+  BondGeometry full;
+  compute_bond_geometry(d.cloud, d.families, d.state, full);
+  EXPECT_EQ(full.usable, d.geometry.usable);
+  EXPECT_EQ(full.singular, d.geometry.singular);
+}
+
+TEST(Damage, BondWithSingularShapeTensorCarriesNoForceAndIsCounted)
+{
+  test::Discretisation d(test::plate(20, 20, 1.0));
+  const std::size_t    i = 10 * 20 + 10;
+  // Keep only the bonds of i along its row: every remaining B_ij is collinear with i.
+  std::vector<std::size_t> touched;
+  for (std::size_t q = 0; q < d.families.size(i); ++q) {
+    const std::size_t j = static_cast<std::size_t>(d.families.neighbour[d.families.offsets[i] + q]);
+    if (d.cloud.x[2 * j + 1] != d.cloud.x[2 * i + 1]) break_bond(d.families, d.state, i, q, &touched);
+  }
+  touched.push_back(i);
+  const std::size_t not_usable = compute_bond_geometry(d.cloud, d.families, d.state, d.geometry, touched);
+  EXPECT_EQ(not_usable, 6u); // (+-1, 0), (+-2, 0), (+-3, 0)
+  EXPECT_EQ(d.geometry.count_unusable(d.size()), 6u);
+  test::SaintVenantKirchhoff2D svk;
+  std::vector<double>          y = d.affine({1.2, 0.3, 0.1, 0.9});
+  std::vector<double>          t, f;
+  const KernelStats            s = d.forces(svk, y, t, f);
+  EXPECT_EQ(s.unusable, 6u);
+  EXPECT_TRUE(s.ok());
+  for (std::size_t b = d.families.offsets[i]; b < d.families.offsets[i + 1]; ++b) {
+    EXPECT_EQ(t[2 * b], 0.0);
+    EXPECT_EQ(t[2 * b + 1], 0.0);
+  }
+  // Breaking one more bond (a usable reverse copy) keeps the count right.
+  EXPECT_EQ(compute_bond_geometry(d.cloud, d.families, d.state, d.geometry), 6u);
+}
+
+TEST(Damage, NotchBondsAreNotDamage)
+{
+  Body2D body = test::plate(20, 20, 1.0);
+  body.notches.push_back({20.0, 10.0, 10.0, 10.0});
+  test::Discretisation d(body);
+  std::vector<double>  damage(d.size());
+  point_damage(d.cloud, d.families, d.state, d.size(), damage.data());
+  for (double v : damage) EXPECT_EQ(v, 0.0);
+}
+
+} // namespace
+} // namespace bapd

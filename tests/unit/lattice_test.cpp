@@ -1,0 +1,59 @@
+// make_lattice: METHOD.md section 1.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "bapd/lattice.hpp"
+#include "unit/test_models.hpp"
+
+namespace bapd {
+namespace {
+
+TEST(Lattice, PointsSitAtCellCentresRowByRow)
+{
+  const Body2D     body  = test::plate(7, 4, 0.25, 2.0);
+  const PointCloud cloud = make_lattice(body);
+  ASSERT_EQ(cloud.size(), 28u);
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    const double ix = static_cast<double>(i % 7), iy = static_cast<double>(i / 7);
+    EXPECT_EQ(cloud.x[2 * i], (ix + 0.5) * 0.25);     // exact: same arithmetic as the spec
+    EXPECT_EQ(cloud.x[2 * i + 1], (iy + 0.5) * 0.25);
+    EXPECT_EQ(cloud.volume[i], 0.25 * 0.25 * 2.0);
+    EXPECT_EQ(cloud.natural_id[i], static_cast<int64_t>(i));
+  }
+  EXPECT_TRUE(cloud.family_volume.empty());
+}
+
+TEST(Lattice, GridSizeRoundsWidthOverDx)
+{
+  Body2D body = test::plate(1, 1, 1.0, 1.0);
+  body.width  = 10.4; // 10.4 cells -> 10
+  body.height = 2.6;  // 2.6 cells -> 3
+  EXPECT_EQ(make_lattice(body).size(), 30u);
+}
+
+TEST(Lattice, HoleRemovesPointsAndNaturalIdsStayCompact)
+{
+  Body2D body = test::plate(20, 20, 1.0, 1.0);
+  body.holes.push_back({10.0, 10.0, 3.0});
+  const PointCloud cloud = make_lattice(body);
+  std::size_t      removed = 0;
+  for (int iy = 0; iy < 20; ++iy)
+    for (int ix = 0; ix < 20; ++ix) removed += std::hypot(ix + 0.5 - 10.0, iy + 0.5 - 10.0) < 3.0;
+  EXPECT_EQ(cloud.size(), 400u - removed);
+  EXPECT_GT(removed, 20u);
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    EXPECT_EQ(cloud.natural_id[i], static_cast<int64_t>(i));
+    EXPECT_GE(std::hypot(cloud.x[2 * i] - 10.0, cloud.x[2 * i + 1] - 10.0), 3.0);
+  }
+}
+
+TEST(Lattice, RejectsNonPositiveSpacing)
+{
+  Body2D body = test::plate(4, 4);
+  body.dx     = 0.0;
+  EXPECT_THROW(make_lattice(body), std::invalid_argument);
+}
+
+} // namespace
+} // namespace bapd
