@@ -92,6 +92,14 @@ struct BondKernelWorkspace {
 
 namespace detail {
 
+// Out of the hot loop: keeps the loop's registers free of the rare path.
+[[gnu::noinline, gnu::cold]] inline void record_failure(KernelStats &stats, BondKernelWorkspace &ws, std::size_t i,
+                                                        std::size_t q, StressStatus status)
+{
+  stats.record(i, q, status);
+  ws.failed.push_back({i, q, status});
+}
+
 template <std::size_t Words, class Model>
 void bond_forces_range(const Model &model, const PointCloud &ref, const double *y, const Families &fam,
                        const BondGeometry &geo, const BondState &state, double *c33, double *bond_force,
@@ -108,7 +116,8 @@ void bond_forces_range(const Model &model, const PointCloud &ref, const double *
     const std::size_t    o = offsets[i], m = offsets[i + 1] - o;
     const std::uint64_t *intact = intact_all + i * W;
     const std::uint64_t *usable = usable_all + i * W;
-    gather_point<Words>(ref, y, fam, i, intact, s);
+    const PointTotals totals = gather_point<Words>(ref, y, fam, i, intact, s);
+    const double     *off = s.offset.data(), *fvk = s.family_volume.data();
     for (std::size_t q = 0; q < m; ++q) {
       const std::size_t   b     = o + q;
       double             *t     = bond_force + 2 * b;
@@ -119,8 +128,8 @@ void bond_forces_range(const Model &model, const PointCloud &ref, const double *
         t[0] = t[1] = 0.0;
         continue;
       }
-      const BondKinematics k = bond_kinematics<Words>(ba_all + b * W, intact, W, s);
-      if (!k.usable) { // K went singular since the geometry was computed
+      const BondKinematics k = bond_kinematics<Words>(ba_all + b * W, intact, W, s, totals);
+      if (__builtin_expect(!k.usable, 0)) { // K went singular since the geometry was computed
         ++unusable;
         t[0] = t[1] = 0.0;
         continue;
@@ -129,17 +138,16 @@ void bond_forces_range(const Model &model, const PointCloud &ref, const double *
       Mat2   P;
       ++evaluated;
       const StressStatus status = model.stress(k.F, c, P);
-      if (status != StressStatus::ok) {
-        stats.record(i, q, status);
-        ws.failed.push_back({i, q, status});
+      if (__builtin_expect(status != StressStatus::ok, 0)) {
+        record_failure(stats, ws, i, q, status);
         t[0] = t[1] = 0.0;
         continue;
       }
       if (c33) c33[b] = c;
       // g_ij = force_scale K^{-1} (x_j - x_i);  t_ij = P g_ij   (eq 23)
-      const double  f  = force_scale(k, s, q);
+      const double  f  = force_scale(k, totals, fvk[q]);
       const double *ki = k.shape_tensor_inv;
-      const double  d0 = s.offset[2 * q], d1 = s.offset[2 * q + 1];
+      const double  d0 = off[2 * q], d1 = off[2 * q + 1];
       const double  g0 = f * (ki[0] * d0 + ki[1] * d1), g1 = f * (ki[1] * d0 + ki[2] * d1);
       t[0]             = P[0] * g0 + P[1] * g1;
       t[1]             = P[2] * g0 + P[3] * g1;
@@ -226,15 +234,15 @@ double strain_energy(const Model &model, const PointCloud &ref, const double *y,
   for (std::size_t i = 0; i < n_points; ++i) {
     const std::size_t    o      = families.offsets[i], m = families.offsets[i + 1] - o;
     const std::uint64_t *intact = state.intact_mask(i);
-    if (W == 1) detail::gather_point<1>(ref, y, families, i, intact, s);
-    else detail::gather_point<0>(ref, y, families, i, intact, s);
-    double num = 0.0, den = 0.0;
+    const PointTotals totals = W == 1 ? detail::gather_point<1>(ref, y, families, i, intact, s)
+                                      : detail::gather_point<0>(ref, y, families, i, intact, s);
+    double            num = 0.0, den = 0.0;
     for (std::size_t q = 0; q < m; ++q) {
       if (!state.is_intact(i, q)) continue;
       const std::size_t    b = o + q;
       // the kernel's arithmetic, bit for bit
-      const BondKinematics k = W == 1 ? detail::bond_kinematics<1>(families.ba(b), intact, 1, s)
-                                      : detail::bond_kinematics<0>(families.ba(b), intact, W, s);
+      const BondKinematics k = W == 1 ? detail::bond_kinematics<1>(families.ba(b), intact, 1, s, totals)
+                                      : detail::bond_kinematics<0>(families.ba(b), intact, W, s, totals);
       if (!geometry.is_usable(i, q) || !k.usable) {
         ++local.unusable;
         continue;

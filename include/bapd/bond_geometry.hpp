@@ -59,9 +59,6 @@ struct PointScratch {
   std::vector<Quad>   shape;         // (x_k - x_i) (x) (x_k - x_i) V_k as xx, xy, yy; then V_k
   std::vector<double> offset;        // x_k - x_i, 2 per member
   std::vector<double> family_volume; // V(H_k)
-  Double4             deformation_total, shape_total; // sums over the intact members, in order
-  double              half_inverse_family_volume_squared = 0; // 1 / (2 V(H_i)^2)
-  double              family_volume_i                    = 0; // V(H_i)
 
   void reserve(std::size_t max_family_size)
   {
@@ -71,6 +68,14 @@ struct PointScratch {
     offset.resize(2 * max_family_size);
     family_volume.resize(max_family_size);
   }
+};
+
+// Per-point values that every bond of the point uses (kept in registers by the kernel).
+struct PointTotals {
+  Double4 deformation;                        // sum of deformation_k over the intact members, in order
+  Double4 shape;                              // sum of shape_k over the intact members, in order
+  double  family_volume;                      // V(H_i)
+  double  half_inverse_family_volume_squared; // 1 / (2 V(H_i)^2)
 };
 
 // What one bond needs, from the masked sums.
@@ -83,10 +88,10 @@ struct BondKinematics {
 
 namespace detail {
 
-// Fills the scratch for point i. Words: mask words known at compile time (1: up to 64
-// neighbours) or 0 (run-time count).
+// Fills the scratch for point i and returns its totals. Words: mask words known at
+// compile time (1: up to 64 neighbours) or 0 (run-time count).
 template <std::size_t Words>
-inline void gather_point(const PointCloud &ref, const double *y, const Families &fam, std::size_t i,
+inline PointTotals gather_point(const PointCloud &ref, const double *y, const Families &fam, std::size_t i,
                          const std::uint64_t *intact, PointScratch &s)
 {
   const std::size_t   o = fam.offsets[i], m = fam.offsets[i + 1] - o;
@@ -94,6 +99,7 @@ inline void gather_point(const PointCloud &ref, const double *y, const Families 
   const std::int32_t *nb  = fam.neighbour.data() + o;
   const double        xi0 = x[2 * i], xi1 = x[2 * i + 1], yi0 = y[2 * i], yi1 = y[2 * i + 1];
   Quad               *def = s.deformation.data(), *shp = s.shape.data();
+  double             *off = s.offset.data(), *fvk = s.family_volume.data();
   Double4             dt = {0.0, 0.0, 0.0, 0.0}, st = {0.0, 0.0, 0.0, 0.0};
   for (std::size_t p = 0; p < m; ++p) {
     const std::size_t k  = static_cast<std::size_t>(nb[p]);
@@ -101,9 +107,9 @@ inline void gather_point(const PointCloud &ref, const double *y, const Families 
     const double      d0 = x[2 * k] - xi0, d1 = x[2 * k + 1] - xi1;
     const double      e0 = y[2 * k] - yi0, e1 = y[2 * k + 1] - yi1;
     const double      a0 = d0 * v, a1 = d1 * v;
-    s.offset[2 * p]      = d0;
-    s.offset[2 * p + 1]  = d1;
-    s.family_volume[p]   = fv[k];
+    off[2 * p]           = d0;
+    off[2 * p + 1]       = d1;
+    fvk[p]               = fv[k];
     const Double4 dv     = {e0 * a0, e0 * a1, e1 * a0, e1 * a1};
     const Double4 sv     = {d0 * a0, d0 * a1, d1 * a1, v};
     def[p].v             = dv;
@@ -113,10 +119,7 @@ inline void gather_point(const PointCloud &ref, const double *y, const Families 
       st += sv;
     }
   }
-  s.deformation_total                  = dt;
-  s.shape_total                        = st;
-  s.family_volume_i                    = fv[i];
-  s.half_inverse_family_volume_squared = 0.5 / (fv[i] * fv[i]);
+  return {dt, st, fv[i], 0.5 / (fv[i] * fv[i])};
 }
 
 // Sums of deformation[p] and shape[p] over the set bits p of bits[0 .. words), in
@@ -151,7 +154,7 @@ inline void sum_selected(const std::uint64_t *bits, std::size_t words, const Qua
 // masks, so the result is the same on every rank.
 template <std::size_t Words>
 inline void masked_sums(const std::uint64_t *ba, const std::uint64_t *intact, std::size_t W, const PointScratch &s,
-                        Double4 &N, Double4 &R)
+                        const PointTotals &totals, Double4 &N, Double4 &R)
 {
   constexpr std::size_t cap   = Words ? Words : 16; // 16 words: up to 1024 neighbours
   const std::size_t     words = Words ? Words : W;
@@ -182,17 +185,17 @@ inline void masked_sums(const std::uint64_t *ba, const std::uint64_t *intact, st
   }
   Double4 n, r;
   sum_selected(out, words, def, shp, n, r);
-  N = s.deformation_total - n;
-  R = s.shape_total - r;
+  N = totals.deformation - n;
+  R = totals.shape - r;
 }
 
 // F, K^{-1} and V(B) of the bond at position q of the gathered point.
 template <std::size_t Words>
 inline BondKinematics bond_kinematics(const std::uint64_t *ba, const std::uint64_t *intact, std::size_t W,
-                                      const PointScratch &s)
+                                      const PointScratch &s, const PointTotals &totals)
 {
   Double4 N, R;
-  masked_sums<Words>(ba, intact, W, s, N, R);
+  masked_sums<Words>(ba, intact, W, s, totals, N, R);
   BondKinematics k;
   const double   det = R[0] * R[2] - R[1] * R[1], tr = R[0] + R[2];
   k.usable           = tr > 0.0 && det > shape_tensor_degeneracy * tr * tr;
@@ -208,9 +211,9 @@ inline BondKinematics bond_kinematics(const std::uint64_t *ba, const std::uint64
 }
 
 // 1/2 phi_xi / phi = 1/2 (V(B) / V(H_i)) (V(H_i) + V(H_j)) / V(H_i)   (eqs 11, 15, 23)
-inline double force_scale(const BondKinematics &k, const PointScratch &s, std::size_t q)
+inline double force_scale(const BondKinematics &k, const PointTotals &totals, double family_volume_j)
 {
-  return k.volume * (s.family_volume_i + s.family_volume[q]) * s.half_inverse_family_volume_squared;
+  return k.volume * (totals.family_volume + family_volume_j) * totals.half_inverse_family_volume_squared;
 }
 
 } // namespace detail

@@ -3,6 +3,7 @@
 // read the scene, build the body and its families, partition, set up the ghosted
 // state, pick the stable time step, then step with PETSc TS while loading, breaking
 // bonds and writing the history (STYLE.md: the shape of the code).
+#include <petscsf.h>
 #include <petscts.h>
 
 #include <cstdio>
@@ -82,6 +83,8 @@ private:
   PetscErrorCode InternalForce(const double *u_owned, double *force_density, double *c33);
   PetscErrorCode ApplyLoading(double t, double *u, double *v);
   PetscErrorCode BreakBonds();
+  PetscErrorCode CreateBondStateExchange();
+  PetscErrorCode SynchroniseGhostBondState(std::vector<std::size_t> *touched);
   PetscErrorCode CheckHealth(PetscInt step, double t, PetscBool *diverged);
   PetscErrorCode WriteHistoryRow(PetscInt step, double t);
   PetscErrorCode Progress(PetscInt step, double t, PetscBool force);
@@ -115,6 +118,8 @@ private:
   std::vector<LoadSetPoints>  load_points_;
   std::vector<ProbePoint>     probes_;
 
+  PetscSF bond_state_sf_ = nullptr; // owners' intact masks -> their ring-1 ghost copies
+  std::vector<std::uint64_t> ghost_masks_;
   Vec u_ghosted_ = nullptr; // displacement with two rings of ghosts
   Vec X_         = nullptr; // TS state
   IS  is_position_ = nullptr, is_momentum_ = nullptr;

@@ -39,10 +39,10 @@ Mat2 bond_deformation_gradient(const PointCloud &ref, const double *y, const Fam
   const std::uint64_t *intact = state.intact_mask(i);
   const std::size_t    b = families.offsets[i] + q, W = families.mask_words;
   // the same arithmetic as the kernel, bit for bit
-  if (W == 1) detail::gather_point<1>(ref, y, families, i, intact, s);
-  else detail::gather_point<0>(ref, y, families, i, intact, s);
-  const BondKinematics k = W == 1 ? detail::bond_kinematics<1>(families.ba(b), intact, 1, s)
-                                  : detail::bond_kinematics<0>(families.ba(b), intact, W, s);
+  const PointTotals    totals = W == 1 ? detail::gather_point<1>(ref, y, families, i, intact, s)
+                                       : detail::gather_point<0>(ref, y, families, i, intact, s);
+  const BondKinematics k = W == 1 ? detail::bond_kinematics<1>(families.ba(b), intact, 1, s, totals)
+                                  : detail::bond_kinematics<0>(families.ba(b), intact, W, s, totals);
   return k.usable ? k.F : Mat2{0.0, 0.0, 0.0, 0.0};
 }
 

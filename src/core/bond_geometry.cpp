@@ -44,14 +44,14 @@ std::size_t point_geometry(const PointCloud &cloud, const Families &fam, const B
   check_family_volume(cloud, i);
   for (std::size_t q = 0; q < m; ++q) check_family_volume(cloud, static_cast<std::size_t>(fam.neighbour[o + q]));
 
-  if (W == 1) detail::gather_point<1>(cloud, cloud.x.data(), fam, i, intact, scratch);
-  else detail::gather_point<0>(cloud, cloud.x.data(), fam, i, intact, scratch);
-  std::size_t not_usable = 0;
+  const PointTotals totals = W == 1 ? detail::gather_point<1>(cloud, cloud.x.data(), fam, i, intact, scratch)
+                                    : detail::gather_point<0>(cloud, cloud.x.data(), fam, i, intact, scratch);
+  std::size_t      not_usable = 0;
   for (std::size_t q = 0; q < m; ++q) {
     if (!state.is_intact(i, q)) continue;
     const std::uint64_t *ba = fam.ba(o + q);
-    const bool           ok = W == 1 ? detail::bond_kinematics<1>(ba, intact, 1, scratch).usable
-                                     : detail::bond_kinematics<0>(ba, intact, W, scratch).usable;
+    const bool           ok = W == 1 ? detail::bond_kinematics<1>(ba, intact, 1, scratch, totals).usable
+                                     : detail::bond_kinematics<0>(ba, intact, W, scratch, totals).usable;
     (ok ? usable : singular)[q / 64] |= std::uint64_t{1} << (q % 64);
     not_usable += !ok;
   }
@@ -104,15 +104,15 @@ BondShape bond_shape(const PointCloud &cloud, const Families &families, const Bo
   scratch.reserve(families.max_family_size);
   const std::size_t    W = families.mask_words, b = families.offsets[i] + q;
   const std::uint64_t *intact = state.intact_mask(i);
-  if (W == 1) detail::gather_point<1>(cloud, cloud.x.data(), families, i, intact, scratch);
-  else detail::gather_point<0>(cloud, cloud.x.data(), families, i, intact, scratch);
-  const BondKinematics k = W == 1 ? detail::bond_kinematics<1>(families.ba(b), intact, 1, scratch)
-                                  : detail::bond_kinematics<0>(families.ba(b), intact, W, scratch);
+  const PointTotals    totals = W == 1 ? detail::gather_point<1>(cloud, cloud.x.data(), families, i, intact, scratch)
+                                       : detail::gather_point<0>(cloud, cloud.x.data(), families, i, intact, scratch);
+  const BondKinematics k = W == 1 ? detail::bond_kinematics<1>(families.ba(b), intact, 1, scratch, totals)
+                                  : detail::bond_kinematics<0>(families.ba(b), intact, W, scratch, totals);
   if (!k.usable) return out;
   out.usable           = true;
   out.shape_tensor_inv = {k.shape_tensor_inv[0], k.shape_tensor_inv[1], k.shape_tensor_inv[2]};
   out.volume_fraction  = k.volume / cloud.family_volume[i];
-  out.force_scale      = detail::force_scale(k, scratch, q);
+  out.force_scale      = detail::force_scale(k, totals, scratch.family_volume[q]);
   const double d0 = scratch.offset[2 * q], d1 = scratch.offset[2 * q + 1], s = out.force_scale;
   out.force_vector = {s * (k.shape_tensor_inv[0] * d0 + k.shape_tensor_inv[1] * d1),
                       s * (k.shape_tensor_inv[1] * d0 + k.shape_tensor_inv[2] * d1)};

@@ -69,7 +69,7 @@ TEST(Conservation, FreeBodyKeepsItsLinearMomentum)
 // (docs/validation.md), not round-off.
 TEST(Conservation, UndampedVibrationKeepsItsEnergy)
 {
-  ASSERT_EQ(bapd_test::SetOptions(bapd_test::FreeSheetScene("conservation_output") + " -end_time 100"), 0);
+  ASSERT_EQ(bapd_test::SetOptions(bapd_test::FreeSheetScene("conservation_output") + " -end_time 100 " + std::string(getenv("EXTRA") ? getenv("EXTRA") : "")), 0);
   Simulation sim(PETSC_COMM_WORLD);
   ASSERT_EQ(sim.Setup(), 0);
   SetState(

@@ -12,13 +12,13 @@ scene=(-body_width 0.03 -body_height 0.012 -body_thickness 0.003 -body_dx 0.0005
        -material_mu 4.55e3 -material_Jm 162.6 -material_bulk_ratio 100 -material_density 1000
        -load_sets top,bottom -load_top_region top -load_top_x fixed -load_top_y stretch -load_top_y_scale 1
        -load_bottom_region bottom -load_bottom_x fixed -load_bottom_y fixed
-       -probes mouth -probe_mouth_at 0.03,0.0062 -damping 5 -output_interval 50 -progress_interval 100000
+       -probes mouth -probe_mouth_at 0.03,0.0062 -damping 40 -output_interval 50 -progress_interval 100000
        -output_final_state)
 if [ "$case" = fracture ]; then
   # Stretch the sheet fast enough that the notch opens and bonds break within the run.
-  scene+=(-load_schedule 0,1,0.06,3.0 -failure_critical_stretch 1.6)
+  scene+=(-load_schedule 0,1,0.2,1.6 -failure_critical_stretch 2.0)
 else
-  scene+=(-load_schedule 0,1,0.06,1.3)
+  scene+=(-load_schedule 0,1,0.1,1.3)
 fi
 for n in 1 2 3 4; do
   mpiexec -n $n --oversubscribe --bind-to none "$BAPD_EXE" "${scene[@]}" -output_dir "$work/np$n" > "$work/np$n.log" 2>&1 ||
