@@ -28,9 +28,10 @@ static PetscErrorCode RunScene()
 
 int main(int argc, char **argv)
 {
-  // A missing or malformed scene is reported before MPI and PETSc start, so the user
-  // sees one line instead of an error stack from inside PetscInitialize.
-  const std::string problem = bapd::CheckSceneFileArgument(argc, argv);
+  // A missing or malformed scene (or a stray word on the command line) is reported
+  // before MPI and PETSc start, so the user sees one line instead of an error stack
+  // from inside PetscInitialize.
+  const std::string problem = bapd::CheckArguments(argc, argv);
   if (!problem.empty()) {
     const char *rank = std::getenv("OMPI_COMM_WORLD_RANK");
     if (!rank || std::atoi(rank) == 0) std::fprintf(stderr, "bapd: error: %s\n", problem.c_str());
@@ -39,6 +40,9 @@ int main(int argc, char **argv)
   PetscCall(PetscInitialize(&argc, &argv, nullptr, help));
   PetscCall(bapd::PushUserErrorHandler());
   const PetscErrorCode ierr = RunScene();
+  // Every rank agrees on the outcome before finalising; a rank that failed alone
+  // (the others wait for it in a collective call) stops the job instead of hanging.
+  const int exit_code = bapd::FinishRun(ierr);
   PetscCall(PetscFinalize());
-  return ierr ? 1 : 0;
+  return exit_code;
 }

@@ -82,12 +82,21 @@ struct KernelStats {
   }
 };
 
-// Scratch space of the kernel, sized once for the largest family.
+// Scratch space of the kernels, sized once for the largest family.
 struct BondKernelWorkspace {
   PointScratch            point;  // per-member data of the point being processed
   std::vector<FailedBond> failed; // every failed bond of the last compute_bond_forces call
+  // Energy-consistent kernel only (ba_force_energy.hpp): V_j P(F_ij) K_ij^{-1} of the
+  // point's bonds, and which of them carry energy (mask_words words).
+  std::vector<Quad>          bond_stress;
+  std::vector<std::uint64_t> energetic;
 
-  void reserve(const Families &families) { point.reserve(families.max_family_size); }
+  void reserve(const Families &families)
+  {
+    point.reserve(families.max_family_size);
+    if (bond_stress.size() < families.max_family_size) bond_stress.resize(families.max_family_size);
+    if (energetic.size() < families.mask_words) energetic.resize(families.mask_words);
+  }
 };
 
 namespace detail {
@@ -216,8 +225,9 @@ Mat2 bond_deformation_gradient(const PointCloud &ref, const double *y, const Fam
 // both sums over the intact bonds of i with a usable K whose model energy succeeds
 // (W_i = 0 if there is none). W_i is the volume-weighted mean of the bond energy
 // densities of i, so for an affine motion (F_ij = A) W = Psi(A) * (volume of the
-// points with a usable bond): the continuum energy. It is a diagnostic: the bond
-// forces are not its derivative (the paper's bond-only form, METHOD.md section 3).
+// points with a usable bond): the continuum energy. The bond-only forces here are not
+// its derivative (the paper's form, METHOD.md section 3); the energy-consistent ones
+// (ba_force_energy.hpp) are: f_i = -(1/V_i) dW/dy_i.
 // c33 (may be nullptr) is read as a warm start, never written. Writes E_i to
 // point_energy[i] if given (for a reproducible sum over ranks) and returns W summed
 // in local order. Failed energies are counted in *stats if given, their bonds skipped.

@@ -17,11 +17,12 @@
 // A bond's two sums are one masked sum of both (BA mask AND intact mask) in family
 // order: its N, K and V(B) together. K^{-1} and force_scale are therefore formed per
 // bond per evaluation, not stored: storing them (32 bytes a bond) would cost 0.9 KB
-// per point at delta = 3.015 dx against a memory target of 2 KB per point, while
-// forming them costs ~4 ns a bond (an add per member in a loop that runs anyway, and
-// one division). It also means that a broken bond changes K at once, with nothing to
-// go stale. Both the kernel and the checks here use the same inline code, so they
-// agree bit for bit.
+// per point at delta = 3.015 dx against a memory target of 2 KB per point (2.1 KB
+// stored, 1.2 KB formed), while forming them costs ~6 ns a bond (a second add per
+// member in the loop that runs anyway, and one division; measured 12 -> 18 ns per
+// bond for the kernel alone, 85 -> 94 ns with Gent plane stress, bench/). It also
+// means that a broken bond changes K at once, with nothing to go stale. The kernel
+// and the checks here use the same inline code, so they agree bit for bit.
 //
 // Usable K: K_ij is symmetric positive semi-definite; with eigenvalues l1 >= l2,
 //   det K / (tr K)^2 = l1 l2 / (l1 + l2)^2 ~ l2 / l1 = 1 / cond(K).
@@ -122,71 +123,84 @@ inline PointTotals gather_point(const PointCloud &ref, const double *y, const Fa
   return {dt, st, fv[i], 0.5 / (fv[i] * fv[i])};
 }
 
-// Sums of deformation[p] and shape[p] over the set bits p of bits[0 .. words), in
-// increasing p. Two accumulators each, alternating: halves the add latency chain, and
-// the order is still fixed by the family alone.
-inline void sum_selected(const std::uint64_t *bits, std::size_t words, const Quad *def, const Quad *shp,
-                         Double4 &N, Double4 &R)
+// Sums of arrays[n][p] (n < N) over the set bits p of bits[0 .. words), in increasing
+// p. Two accumulators per array, alternating: halves the add latency chain, and the
+// order is still fixed by the family alone. N is 2 for a bond's kinematics
+// (deformation and shape) and 1 for the energy-consistent kernel's stress sums
+// (ba_force_energy.hpp): one loop, unrolled over N by the compiler.
+template <std::size_t N>
+inline void sum_selected(const std::uint64_t *bits, std::size_t words, const Quad *const *arrays, Double4 *sums)
 {
-  Double4 n0 = {0.0, 0.0, 0.0, 0.0}, n1 = n0, r0 = n0, r1 = n0;
+  Double4 s0[N], s1[N];
+  for (std::size_t n = 0; n < N; ++n) s0[n] = s1[n] = Double4{0.0, 0.0, 0.0, 0.0};
   for (std::size_t w = 0; w < words; ++w) {
-    std::uint64_t m = bits[w];
-    const Quad   *a = def + 64 * w, *c = shp + 64 * w;
+    std::uint64_t     m    = bits[w];
+    const std::size_t base = 64 * w;
     while (m) {
-      int p = __builtin_ctzll(m);
+      std::size_t p = base + static_cast<std::size_t>(__builtin_ctzll(m));
       m &= m - 1;
-      n0 += a[p].v;
-      r0 += c[p].v;
+      for (std::size_t n = 0; n < N; ++n) s0[n] += arrays[n][p].v;
       if (!m) break;
-      p = __builtin_ctzll(m);
+      p = base + static_cast<std::size_t>(__builtin_ctzll(m));
       m &= m - 1;
-      n1 += a[p].v;
-      r1 += c[p].v;
+      for (std::size_t n = 0; n < N; ++n) s1[n] += arrays[n][p].v;
     }
   }
-  N = n0 + n1;
-  R = r0 + r1;
+  for (std::size_t n = 0; n < N; ++n) sums[n] = s0[n] + s1[n];
 }
 
-// N and (K, V(B)) of a bond: sums over intact B_ij. When B_ij holds more than half of
-// the intact members they are formed as the totals minus the others (11 instead of
-// 15.6 terms on average at 3.015 dx). Which form a bond uses depends only on its
-// masks, so the result is the same on every rank.
-template <std::size_t Words>
-inline void masked_sums(const std::uint64_t *ba, const std::uint64_t *intact, std::size_t W, const PointScratch &s,
-                        const PointTotals &totals, Double4 &N, Double4 &R)
+// Sums of N per-member arrays over the members p that are in a BA family (bit p of
+// ba) and in the set `members` (the intact members, or a subset of them); totals[n]
+// is the sum of arrays[n] over all of `members`, in order. When the BA family holds
+// more than half of the members, the sums are formed as the totals minus the others
+// (11 instead of 15.6 terms on average at 3.015 dx). Which form a bond uses depends
+// only on its masks, so the result is the same on every rank.
+template <std::size_t Words, std::size_t N>
+inline void masked_sums(const std::uint64_t *ba, const std::uint64_t *members, std::size_t W,
+                        const Quad *const *arrays, const Double4 *totals, Double4 *sums)
 {
   constexpr std::size_t cap   = Words ? Words : 16; // 16 words: up to 1024 neighbours
   const std::size_t     words = Words ? Words : W;
-  const Quad           *def = s.deformation.data(), *shp = s.shape.data();
   if (Words == 0 && words > cap) { // (never on a lattice with delta < 18 dx) straight sum
-    N = Double4{0.0, 0.0, 0.0, 0.0};
-    R = N;
+    for (std::size_t n = 0; n < N; ++n) sums[n] = Double4{0.0, 0.0, 0.0, 0.0};
     for (std::size_t w = 0; w < words; ++w) {
-      const std::uint64_t m = ba[w] & intact[w];
-      Double4             n, r;
-      sum_selected(&m, 1, def + 64 * w, shp + 64 * w, n, r);
-      N += n;
-      R += r;
+      const std::uint64_t m = ba[w] & members[w];
+      const Quad         *shifted[N];
+      for (std::size_t n = 0; n < N; ++n) shifted[n] = arrays[n] + 64 * w;
+      Double4 part[N];
+      sum_selected<N>(&m, 1, shifted, part);
+      for (std::size_t n = 0; n < N; ++n) sums[n] += part[n];
     }
     return;
   }
   std::uint64_t in[cap], out[cap];
   int           n_in = 0, n_out = 0;
   for (std::size_t w = 0; w < words; ++w) {
-    in[w]  = ba[w] & intact[w];
-    out[w] = ~ba[w] & intact[w];
+    in[w]  = ba[w] & members[w];
+    out[w] = ~ba[w] & members[w];
     n_in += __builtin_popcountll(in[w]);
     n_out += __builtin_popcountll(out[w]);
   }
   if (n_in <= n_out) {
-    sum_selected(in, words, def, shp, N, R);
+    sum_selected<N>(in, words, arrays, sums);
     return;
   }
-  Double4 n, r;
-  sum_selected(out, words, def, shp, n, r);
-  N = totals.deformation - n;
-  R = totals.shape - r;
+  Double4 others[N];
+  sum_selected<N>(out, words, arrays, others);
+  for (std::size_t n = 0; n < N; ++n) sums[n] = totals[n] - others[n];
+}
+
+// N and (K, V(B)) of a bond: sums of deformation_k and shape_k over intact B_ij.
+template <std::size_t Words>
+inline void masked_sums(const std::uint64_t *ba, const std::uint64_t *intact, std::size_t W, const PointScratch &s,
+                        const PointTotals &totals, Double4 &N, Double4 &R)
+{
+  const Quad   *arrays[2] = {s.deformation.data(), s.shape.data()};
+  const Double4 total[2]  = {totals.deformation, totals.shape};
+  Double4       sums[2];
+  masked_sums<Words, 2>(ba, intact, W, arrays, total, sums);
+  N = sums[0];
+  R = sums[1];
 }
 
 // F, K^{-1} and V(B) of the bond at position q of the gathered point.

@@ -65,6 +65,7 @@ struct Scene {
   double   time_step        = 0.0;  // 0: use safety * stable step
   double   time_step_safety = 0.8;  // fraction of the computed stable step
   double   damping          = 0.0;  // mass-proportional damping coefficient [1/s]
+  double   static_tolerance = 0.0;  // hold ends once kinetic / internal energy < this (0: holds run out)
   double   end_time         = 0.0;  // default: the schedule's last knot
   PetscInt progress_interval = 0;   // steps between progress lines (0: about 20 lines a run)
 

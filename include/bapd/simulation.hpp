@@ -17,6 +17,7 @@
 #include "bapd/family.hpp"
 #include "bapd/layout.hpp"
 #include "bapd/scene.hpp"
+#include "bapd/simulation_output.hpp"
 
 namespace bapd {
 
@@ -90,11 +91,25 @@ private:
   PetscErrorCode Progress(PetscInt step, double t, PetscBool force);
   PetscErrorCode Summary();
   PetscErrorCode WriteFinalState();
+  PetscErrorCode CheckStaticHold(PetscInt step, double t);
 
   static PetscErrorCode RHSPosition(TS, PetscReal, Vec, Vec, void *);
   static PetscErrorCode RHSMomentum(TS, PetscReal, Vec, Vec, void *);
   static PetscErrorCode RHSFull(TS, PetscReal, Vec, Vec, void *);
   static PetscErrorCode PostStep(TS);
+
+  // Field output, checkpoints and restart (simulation_output.cpp).
+  PetscErrorCode ReadOutputOptions();
+  PetscErrorCode SetupOutput();
+  PetscErrorCode OutputAfterStep(PetscInt step, double t);
+  PetscErrorCode OutputOnDivergence();
+  PetscErrorCode OutputAtEnd(PetscInt step, double t);
+  PetscErrorCode CreateNaturalOrder();
+  PetscErrorCode SaveGoodState(PetscInt step, double t);
+  PetscErrorCode WriteFields(PetscInt step, double t);
+  PetscErrorCode WriteCheckpointFile(PetscInt step, double t, const char *reason);
+  PetscErrorCode RestoreCheckpoint();
+  PetscErrorCode RestoreSchedule(const CheckpointHeader &header);
 
   MPI_Comm    comm_;
   PetscMPIInt rank_ = 0, size_ = 1;
@@ -131,7 +146,13 @@ private:
   PetscInt total_broken_ = 0;
   bool   stopped_on_error_ = false;
   PetscBool write_final_state_ = PETSC_FALSE; // -output_final_state
+  // The latest history row, for the static-hold test.
+  double              last_kinetic_ = 0, last_internal_ = 0;
+  std::vector<double> last_reaction_, last_probe_u_;
+  PetscInt            static_hold_done_ = -1; // schedule knot whose hold already ended
+  FILE               *static_states_    = nullptr;
   std::string stop_reason_;
+  SimulationOutput output_; // fields, checkpoints, restart
 
   PetscLogStage stage_setup_ = 0, stage_partition_ = 0, stage_force_ = 0, stage_ghost_ = 0, stage_step_ = 0,
                 stage_output_ = 0;

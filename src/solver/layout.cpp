@@ -52,8 +52,6 @@ PetscErrorCode DistributePoints(MPI_Comm comm, const PointCloud &global_cloud, c
                                 const std::vector<int> &neighbours, Layout *layout)
 {
   PetscMPIInt rank, size;
-  // Message per rank: counts, then per point natural id, PETSc index, x, y, volume, family volume.
-  std::vector<PetscInt> counts(4 * 1, 0);
 
   PetscFunctionBegin;
   PetscCallMPI(MPI_Comm_rank(comm, &rank));

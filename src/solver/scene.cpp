@@ -479,6 +479,7 @@ PetscErrorCode ReadProbesOutputTime(MPI_Comm comm, Scene *scene, SceneInput *in)
     PetscCall(r.Real("-time_step", "Time step [s]; 0: time_step_safety x the estimated stable step", &scene->time_step));
     PetscCall(r.Real("-time_step_safety", "Fraction of the estimated stable step [-], in (0, 1]", &scene->time_step_safety));
     PetscCall(r.Real("-damping", "Mass-proportional damping coefficient [1/s], >= 0", &scene->damping));
+    PetscCall(r.Real("-static_tolerance", "A hold of the load schedule ends once kinetic/internal energy < this [-] (0: holds run their full length)", &scene->static_tolerance));
     PetscCall(r.Real("-end_time", "End of the run [s] (default: the schedule's last time)", &scene->end_time, &in->end_time_set));
     PetscCall(r.Int("-progress_interval", "Time steps between progress lines [-] (0: about 20 lines a run)", &scene->progress_interval));
     problem = r.problem();
@@ -858,6 +859,8 @@ PetscErrorCode CheckProbesOutputTime(MPI_Comm comm, const SceneInput &in, Scene 
                           scene->time_step_safety),
                    true));
   SceneCheck(scene->damping >= 0, comm, "-damping %g: the damping coefficient must be >= 0 1/s (0: undamped)", scene->damping);
+  SceneCheck(scene->static_tolerance >= 0 && scene->static_tolerance < 1, comm,
+             "-static_tolerance %g: use a small positive ratio such as 1e-6 (0: holds run their full length)", scene->static_tolerance);
   SceneCheck(scene->progress_interval >= 0, comm,
              "-progress_interval %" PetscInt_FMT ": give N >= 1 time steps between progress lines, or 0 for about 20 lines a run",
              scene->progress_interval);
@@ -1047,6 +1050,8 @@ PetscErrorCode SceneView(MPI_Comm comm, const Scene &s)
   if (s.time_step > 0) text += Format("  time      step %g s", s.time_step);
   else text += Format("  time      step %g x the stable step", s.time_step_safety);
   text += Format(", damping %g 1/s, end %g s\n", s.damping, s.end_time);
+  if (s.static_tolerance > 0)
+    text += Format("  static    a hold ends once kinetic energy < %g x internal energy (checked at every history row)\n", s.static_tolerance);
   text += Format("  output    %s/, history every %ld steps\n", s.output_dir.c_str(), (long)s.output_interval);
   PetscCall(PetscPrintf(comm, "%s", text.c_str()));
   PetscFunctionReturn(0);

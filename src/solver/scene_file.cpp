@@ -1,6 +1,8 @@
 #include "bapd/scene_file.hpp"
 
+#include <cctype>
 #include <cerrno>
+#include <cstdlib>
 #include <cstdio>
 #include <cstring>
 #include <yaml.h>
@@ -31,11 +33,48 @@ std::string CheckNode(yaml_document_t *doc, yaml_node_t *node, const std::string
   return "";
 }
 
+// PETSc's rule for an option name (PetscOptionsValidKey): one or two dashes, then a
+// letter, and not a number such as -inf.
+bool IsOptionName(const char *arg)
+{
+  if (arg[0] != '-') return false;
+  const char *key = arg[1] == '-' ? arg + 1 : arg;
+  if (!std::isalpha(static_cast<unsigned char>(key[1]))) return false;
+  char *end = nullptr;
+  (void)std::strtod(key, &end);
+  return end == key || *end == '_' || std::isalnum(static_cast<unsigned char>(*end));
+}
+
 } // namespace
+
+std::string CheckArguments(int argc, char **argv)
+{
+  // PETSc takes "-name [value]" pairs and silently skips any other word: a second
+  // word after a value (a scene file without -options_file_yaml, a value with a
+  // space in it) would be ignored, and the run would go on without it.
+  bool after_name = false;
+  for (int a = 1; a < argc; ++a) {
+    if (IsOptionName(argv[a])) after_name = true;
+    else if (after_name) after_name = false;
+    else
+      return std::string("unexpected argument '") + argv[a] + "'" + (a > 1 ? std::string(" after '") + argv[a - 1] + "'" : "") +
+             ": options are -name value pairs (one value each; lists are comma-separated without spaces, e.g. -body_holes "
+             "0.04,0.08,0.01) and a scene file is given as -options_file_yaml FILE";
+  }
+  return CheckSceneFileArgument(argc, argv);
+}
 
 std::string CheckSceneFileArgument(int argc, char **argv)
 {
   for (int a = 1; a < argc; ++a) {
+    if (std::strcmp(argv[a], "-options_file") == 0) {
+      // A plain PETSc options file: PETSc reads it; only its absence is checked here.
+      if (a + 1 >= argc) return "-options_file needs a file name";
+      FILE *fd = std::fopen(argv[a + 1], "rb");
+      if (!fd) return std::string("cannot open options file '") + argv[a + 1] + "': " + std::strerror(errno) + " (check the path given to -options_file)";
+      std::fclose(fd);
+      continue;
+    }
     if (std::strcmp(argv[a], "-options_file_yaml") != 0) continue;
     if (a + 1 >= argc) return "-options_file_yaml needs a file name";
     const char *file = argv[a + 1];

@@ -16,6 +16,7 @@ namespace bapd {
 Simulation::~Simulation()
 {
   if (history_) std::fclose(history_);
+  if (static_states_) std::fclose(static_states_);
   TSDestroy(&ts_);
   PetscSFDestroy(&bond_state_sf_);
   ISDestroy(&is_position_);
@@ -42,7 +43,9 @@ PetscErrorCode Simulation::Setup()
   wall_start_ = MPI_Wtime();
 
   PetscCall(PetscLogStagePush(stage_setup_));
+  PetscCall(CheckpointMergeOptions(comm_)); // -restart FILE: the checkpoint's options are the defaults
   PetscCall(SceneFromOptions(comm_, &scene_));
+  PetscCall(ReadOutputOptions()); // -output_fields..., -checkpoint_..., -restart
   if (scene_.help_only) {
     // -help without a scene: list the time stepper's options too, and stop.
     PetscCall(TSCreate(comm_, &ts_));
@@ -60,6 +63,7 @@ PetscErrorCode Simulation::Setup()
   PetscCall(SetupTimeStepper());
   PetscCall(CheckUnusedOptions(comm_));
   PetscCall(OpenHistory());
+  PetscCall(SetupOutput()); // restores the state with -restart
   PetscCall(PetscLogStagePop());
   PetscFunctionReturn(0);
 }
@@ -405,7 +409,7 @@ PetscErrorCode Simulation::SetupTimeStepper()
   PetscCall(TSRHSSplitSetRHSFunction(ts_, "momentum", nullptr, RHSMomentum, this));
   PetscCall(TSSetRHSFunction(ts_, nullptr, RHSFull, this));
   PetscCall(TSSetTimeStep(ts_, dt_));
-  const double end_time = scene_.end_time > 0 ? scene_.end_time : scene_.schedule.end_time();
+  const double end_time = scene_.end_time;
   PetscCall(TSSetMaxTime(ts_, end_time));
   PetscCall(TSSetMaxSteps(ts_, PETSC_MAX_INT));
   PetscCall(TSSetExactFinalTime(ts_, TS_EXACTFINALTIME_MATCHSTEP));
@@ -491,8 +495,7 @@ PetscErrorCode Simulation::BrokenBondCount(PetscInt *count)
 
 PetscErrorCode Simulation::WriteHistoryRow(PetscInt step, double t)
 {
-  const PetscInt n = layout_.n_owned;
-  const double  *x;
+  const double *x;
 
   PetscFunctionBegin;
   PetscCall(PetscLogStagePush(stage_output_));
@@ -522,6 +525,10 @@ PetscErrorCode Simulation::WriteHistoryRow(PetscInt step, double t)
   PetscCall(Energies(&kinetic, &internal));
   PetscInt broken;
   PetscCall(BrokenBondCount(&broken));
+  last_kinetic_  = kinetic;
+  last_internal_ = internal;
+  last_reaction_ = reaction;
+  last_probe_u_  = probe_u;
   if (rank_ == 0) {
     const double area = scene_.body.width * scene_.body.thickness;
     std::fprintf(history_, "%" PetscInt_FMT ",%.17g,%.17g", step, t, scene_.schedule.stretch_at(t));
@@ -630,6 +637,7 @@ PetscErrorCode Simulation::PostStep(TS ts)
   PetscBool diverged = PETSC_FALSE;
   PetscCall(sim->CheckHealth(step, t, &diverged));
   if (diverged) {
+    PetscCall(sim->OutputOnDivergence()); // checkpoint of the last good state
     PetscCall(TSSetConvergedReason(ts, TS_DIVERGED_NONLINEAR_SOLVE));
     PetscFunctionReturn(0);
   }
@@ -639,8 +647,12 @@ PetscErrorCode Simulation::PostStep(TS ts)
     PetscCall(VecRestoreArray(X, &x));
     PetscCall(sim->BreakBonds());
   }
-  if (step % sim->scene_.output_interval == 0) PetscCall(sim->WriteHistoryRow(step, t));
+  if (step % sim->scene_.output_interval == 0) {
+    PetscCall(sim->WriteHistoryRow(step, t));
+    PetscCall(sim->CheckStaticHold(step, t));
+  }
   PetscCall(sim->Progress(step, t, PETSC_FALSE));
+  PetscCall(sim->OutputAfterStep(step, t)); // fields, checkpoints, SIGTERM/SIGINT
   PetscFunctionReturn(0);
 }
 
@@ -693,11 +705,55 @@ PetscErrorCode Simulation::CheckHealth(PetscInt step, double t, PetscBool *diver
   PetscFunctionReturn(0);
 }
 
+// Ends a hold of the load schedule once the body is static (kinetic energy below
+// -static_tolerance times the internal energy, at a history row): records the static
+// state in static_states.csv and moves the rest of the schedule earlier, so that the
+// next ramp starts now. Every input to the test is a reproducible sum, so the same
+// steps end the same holds on any number of ranks.
+PetscErrorCode Simulation::CheckStaticHold(PetscInt step, double t)
+{
+  Schedule &s = scene_.schedule;
+
+  PetscFunctionBegin;
+  if (scene_.static_tolerance <= 0 || s.time.empty() || s.rate_at(t) != 0.0 || t < s.time.front()) PetscFunctionReturn(0);
+  PetscInt k = (PetscInt)(std::upper_bound(s.time.begin(), s.time.end(), t) - s.time.begin()) - 1; // t in [time[k], time[k+1])
+  if (k == static_hold_done_ || !(last_kinetic_ < scene_.static_tolerance * last_internal_)) PetscFunctionReturn(0);
+  static_hold_done_ = k;
+  const double lambda = s.stretch_at(t);
+  PetscCall(PetscPrintf(comm_, "Static at stretch %.5f: t = %.6e s, step %" PetscInt_FMT ", kinetic/internal energy %.3e < %.3e", lambda, t, step,
+                        last_kinetic_ / last_internal_, scene_.static_tolerance));
+  for (std::size_t p = 0; p < probes_.size(); ++p)
+    PetscCall(PetscPrintf(comm_, "; %s ux = %.6e m", scene_.probes[p].name.c_str(), last_probe_u_[2 * p]));
+  PetscCall(PetscPrintf(comm_, "\n"));
+  if (rank_ == 0) {
+    if (!static_states_) {
+      static_states_ = std::fopen((scene_.output_dir + "/static_states.csv").c_str(), "w");
+      PetscCheck(static_states_, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "Cannot write %s/static_states.csv: choose a writable -output_dir", scene_.output_dir.c_str());
+      std::fprintf(static_states_, "stretch,time_s,step,kinetic_over_internal");
+      for (const Probe &p : scene_.probes) std::fprintf(static_states_, ",%s_ux_m,%s_uy_m", p.name.c_str(), p.name.c_str());
+      for (const LoadSet &l : scene_.loads) std::fprintf(static_states_, ",%s_reaction_y_N", l.name.c_str());
+      std::fprintf(static_states_, "\n");
+    }
+    std::fprintf(static_states_, "%.17g,%.17g,%" PetscInt_FMT ",%.6e", lambda, t, step, last_kinetic_ / last_internal_);
+    for (std::size_t p = 0; p < probes_.size(); ++p) std::fprintf(static_states_, ",%.17g,%.17g", last_probe_u_[2 * p], last_probe_u_[2 * p + 1]);
+    for (std::size_t l = 0; l < scene_.loads.size(); ++l) std::fprintf(static_states_, ",%.17g", last_reaction_[2 * l + 1]);
+    std::fprintf(static_states_, "\n");
+    std::fflush(static_states_);
+  }
+  // Skip what is left of the hold.
+  const double hold_end  = k + 1 < (PetscInt)s.time.size() ? s.time[k + 1] : scene_.end_time;
+  const double remaining = std::max(0.0, hold_end - t);
+  for (std::size_t j = (std::size_t)k + 1; j < s.time.size(); ++j) s.time[j] -= remaining;
+  scene_.end_time = std::max(t, scene_.end_time - remaining);
+  PetscCall(TSSetMaxTime(ts_, scene_.end_time));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode Simulation::Progress(PetscInt step, double t, PetscBool force)
 {
   PetscFunctionBegin;
   if (!force && step % scene_.progress_interval != 0) PetscFunctionReturn(0);
-  const double end_time = scene_.end_time > 0 ? scene_.end_time : scene_.schedule.end_time();
+  const double end_time = scene_.end_time;
   const double wall     = MPI_Wtime() - wall_start_;
   if (scene_.failure) PetscCall(BrokenBondCount(&total_broken_));
   const double left     = t > 0 ? wall * (end_time - t) / t : 0.0;
@@ -718,6 +774,7 @@ PetscErrorCode Simulation::Run()
   PetscCall(TSGetStepNumber(ts_, &step));
   PetscCall(TSGetTime(ts_, &t));
   if (step % scene_.output_interval != 0 && !stopped_on_error_) PetscCall(WriteHistoryRow(step, t));
+  PetscCall(OutputAtEnd(step, t)); // the last field file (and checkpoint)
   PetscCall(Summary());
   if (write_final_state_) PetscCall(WriteFinalState());
   PetscCheck(!stopped_on_error_, comm_, PETSC_ERR_NOT_CONVERGED, "%s", stop_reason_.c_str());
@@ -854,7 +911,7 @@ PetscErrorCode Simulation::GatherBrokenBonds(std::vector<std::pair<int64_t, int6
   PetscFunctionBegin;
   std::vector<long long> mine;
   for (PetscInt i = 0; i < layout_.n_owned; ++i)
-    for (int b = families_.offsets[i]; b < families_.offsets[i + 1]; ++b)
+    for (std::size_t b = families_.offsets[i]; b < families_.offsets[i + 1]; ++b)
       if (!bond_state_.is_intact((std::size_t)i, (std::size_t)(b - families_.offsets[i]))) {
         mine.push_back(layout_.cloud.natural_id[i]);
         mine.push_back(layout_.cloud.natural_id[families_.neighbour[b]]);

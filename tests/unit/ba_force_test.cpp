@@ -12,10 +12,7 @@
 #include "bapd/damage.hpp"
 #include "unit/test_models.hpp"
 
-#if __has_include("bapd/gent.hpp")
 #include "bapd/gent.hpp"
-#define BAPD_TEST_HAVE_GENT 1
-#endif
 
 namespace bapd {
 namespace {
@@ -85,12 +82,11 @@ TEST(BaForce, AffineMotionGivesExactDeformationGradientOnEveryUsableBond)
   EXPECT_LT(worst, 1e-12);
 }
 
-TEST(BaForce, AffineMotionGivesZeroNetForceTwoHorizonsFromTheBoundary)
+template <class Model> void expect_zero_interior_force_under_affine_motion(const Model &model)
 {
-  test::Discretisation        d(test::plate(20, 20, kDx));
-  test::SaintVenantKirchhoff2D svk;
-  std::vector<double>          t, f;
-  const KernelStats s = d.forces(svk, d.affine(kLargeAffine, 3.7e-3, -1.2e-2), t, f);
+  test::Discretisation d(test::plate(20, 20, kDx));
+  std::vector<double>  t, f;
+  const KernelStats    s = d.forces(model, d.affine(kLargeAffine, 3.7e-3, -1.2e-2), t, f);
   EXPECT_TRUE(s.ok());
   EXPECT_EQ(s.evaluated, d.families.n_bonds());
   std::size_t interior = 0;
@@ -103,9 +99,127 @@ TEST(BaForce, AffineMotionGivesZeroNetForceTwoHorizonsFromTheBoundary)
     } else boundary_max = std::max(boundary_max, rel);
   }
   EXPECT_EQ(interior, 64u);
-  // 56 terms of relative round-off ~1e-16 each, in t_ij and in the sum.
+  // 56 terms with relative round-off ~1e-15 each (F = A + O(1e-15), and the plane-
+  // stress solve converges to 1e-12 of S33 but to the same C33 for equal F).
   EXPECT_LT(worst, 1e-13);
   EXPECT_GT(boundary_max, 1e-2); // not vacuous: the free surface is not in equilibrium
+}
+
+TEST(BaForce, AffineMotionGivesZeroNetForceTwoHorizonsFromTheBoundary)
+{
+  expect_zero_interior_force_under_affine_motion(test::SaintVenantKirchhoff2D{});
+  MaterialParameters p; // the paper's hydrogel, K = 100 mu
+  p.D = 2.0 / (100.0 * p.mu);
+  expect_zero_interior_force_under_affine_motion(GentPlaneStress{p});
+}
+
+// t_ij straight from METHOD.md sections 2-3 (eqs 8, 9, 11, 15, 23): loops over the
+// family, no masks, no reuse, no complement sums.
+template <class Model>
+Vec2 reference_bond_force(const test::Discretisation &d, const Model &model, const std::vector<double> &y,
+                          std::size_t i, std::size_t q)
+{
+  const Families   &f = d.families;
+  const PointCloud &c = d.cloud;
+  const std::size_t j = static_cast<std::size_t>(f.neighbour[f.offsets[i] + q]);
+  if (!d.state.is_intact(i, q)) return {0.0, 0.0};
+  double K[4] = {0, 0, 0, 0}, N[4] = {0, 0, 0, 0}, VB = 0, VHi = 0, VHj = 0;
+  for (std::size_t p = 0; p < f.size(i); ++p) VHi += c.volume[static_cast<std::size_t>(f.neighbour[f.offsets[i] + p])];
+  for (std::size_t p = 0; p < f.size(j); ++p) VHj += c.volume[static_cast<std::size_t>(f.neighbour[f.offsets[j] + p])];
+  for (std::size_t p = 0; p < f.size(i); ++p) {
+    const std::size_t k = static_cast<std::size_t>(f.neighbour[f.offsets[i] + p]);
+    if (!d.state.is_intact(i, p)) continue;                                                          // gamma = 0
+    if (std::hypot(c.x[2 * k] - c.x[2 * j], c.x[2 * k + 1] - c.x[2 * j + 1]) > d.horizon) continue; // not in B_ij
+    const double X[2] = {c.x[2 * k] - c.x[2 * i], c.x[2 * k + 1] - c.x[2 * i + 1]};
+    const double Y[2] = {y[2 * k] - y[2 * i], y[2 * k + 1] - y[2 * i + 1]};
+    for (int a = 0; a < 2; ++a)
+      for (int b = 0; b < 2; ++b) K[2 * a + b] += X[a] * X[b] * c.volume[k], N[2 * a + b] += Y[a] * X[b] * c.volume[k];
+    VB += c.volume[k];
+  }
+  const Mat2 Kinv = inverse(Mat2{K[0], K[1], K[2], K[3]});
+  const Mat2 F    = Mat2{N[0], N[1], N[2], N[3]} * Kinv;
+  double     c33  = 0;
+  Mat2       P;
+  model.stress(F, c33, P);
+  const double phi_xi = VB / VHi, phi = VHi / (VHi + VHj);
+  const Vec2   xi     = {c.x[2 * j] - c.x[2 * i], c.x[2 * j + 1] - c.x[2 * i + 1]};
+  const Vec2   g      = Kinv * xi;
+  const Vec2   t      = P * g;
+  return {0.5 * phi_xi / phi * t[0], 0.5 * phi_xi / phi * t[1]};
+}
+
+TEST(BaForce, BondForcesMatchAStraightforwardImplementationOfEq23)
+{
+  Body2D body = test::plate(20, 20, kDx);
+  body.holes.push_back({6.0 * kDx, 12.0 * kDx, 2.5 * kDx});
+  body.notches.push_back({20 * kDx, 10.0 * kDx, 11.0 * kDx, 10.0 * kDx});
+  test::Discretisation d(body);
+  std::mt19937         rng(11);
+  std::vector<double>  y = d.affine({1.3, 0.2, -0.1, 0.9});
+  for (double &v : y) v += test::random_between(rng, -0.1, 0.1) * kDx;
+  std::vector<std::size_t> touched;
+  for (std::size_t i = 0; i < d.size(); i += 3)
+    for (std::size_t q = 1; q < d.families.size(i); q += 5) break_bond(d.families, d.state, i, q, &touched);
+  compute_bond_geometry(d.cloud, d.families, d.state, d.geometry, touched);
+  test::SaintVenantKirchhoff2D svk;
+  std::vector<double>          t, f;
+  EXPECT_TRUE(d.forces(svk, y, t, f).ok());
+  double scale = 0;
+  for (double v : t) scale = std::max(scale, std::abs(v));
+  for (std::size_t i = 0; i < d.size(); ++i)
+    for (std::size_t q = 0; q < d.families.size(i); ++q) {
+      const std::size_t b = d.families.offsets[i] + q;
+      const Vec2        r = reference_bond_force(d, svk, y, i, q);
+      // Same mathematics, different summation orders and K^{-1} formulas: round-off,
+      // amplified by cond(K) (<= ~100 next to the cuts).
+      ASSERT_NEAR(t[2 * b], r[0], 1e-12 * scale) << i << " " << q;
+      ASSERT_NEAR(t[2 * b + 1], r[1], 1e-12 * scale) << i << " " << q;
+    }
+}
+
+// Largest |K_ab - K_ba^T| / max |K| over the 2x2 blocks K_ab = d f_a / d u_b of the
+// given points (central differences at u = 0; equal volumes, so V_a K_ab is the
+// Hessian-like matrix whose symmetry an energy would imply).
+double stiffness_asymmetry(const test::Discretisation &d, const std::vector<std::size_t> &points)
+{
+  test::SaintVenantKirchhoff2D svk;
+  svk.lambda = svk.mu = 1.0;
+  const double                     h = 1e-6 * d.cloud.x[0];
+  std::vector<std::vector<double>> column(2 * points.size());
+  for (std::size_t s = 0; s < 2 * points.size(); ++s) {
+    std::vector<double> t, fp, fm, y = d.cloud.x;
+    y[2 * points[s / 2] + s % 2] += h;
+    d.forces(svk, y, t, fp);
+    y[2 * points[s / 2] + s % 2] -= 2 * h;
+    d.forces(svk, y, t, fm);
+    for (std::size_t k = 0; k < fp.size(); ++k) fp[k] = (fp[k] - fm[k]) / (2 * h);
+    column[s] = fp;
+  }
+  double asym = 0, size = 0;
+  for (std::size_t r = 0; r < 2 * points.size(); ++r)
+    for (std::size_t s = 0; s < 2 * points.size(); ++s) {
+      const double k_rs = column[s][2 * points[r / 2] + r % 2], k_sr = column[r][2 * points[s / 2] + s % 2];
+      asym = std::max(asym, std::abs(k_rs - k_sr));
+      size = std::max(size, std::abs(k_rs));
+    }
+  return asym / size;
+}
+
+TEST(BaForce, BondOnlyStiffnessIsSymmetricInTheInteriorButNotAtAFreeEdge)
+{
+  // The bond-only form of eq 23 is not the gradient of an energy: its tangent is
+  // symmetric where the lattice symmetry makes it so (whole families), but not next to
+  // a free surface. There a non-symmetric stiffness has complex eigenvalues, and
+  // undamped explicit dynamics grows slowly whatever the time step (flutter): the
+  // solver needs some damping, or the energy-consistent variant (METHOD.md 3).
+  test::Discretisation     d(test::plate(20, 20, 1.0));
+  std::vector<std::size_t> interior, edge;
+  for (int iy = 8; iy <= 11; ++iy)
+    for (int ix = 8; ix <= 11; ++ix) interior.push_back(static_cast<std::size_t>(iy * 20 + ix));
+  for (int iy = 0; iy <= 1; ++iy)
+    for (int ix = 0; ix <= 5; ++ix) edge.push_back(static_cast<std::size_t>(iy * 20 + ix));
+  EXPECT_LT(stiffness_asymmetry(d, interior), 1e-6); // central differences: O(h^2) + round-off / h
+  EXPECT_GT(stiffness_asymmetry(d, edge), 1e-2);
 }
 
 TEST(BaForce, WideHorizonWithTwoMaskWordsPassesThePatchTest)
@@ -252,7 +366,6 @@ TEST(BaForce, SmallStrainInteriorStressMatchesLinearModulus)
     EXPECT_NEAR(ratio, m_xx, 3e-4);
     EXPECT_NEAR(ratio, 1.0, 0.05);
   }
-#ifdef BAPD_TEST_HAVE_GENT
   {
     MaterialParameters p;
     p.mu = 4.55e3;
@@ -265,7 +378,6 @@ TEST(BaForce, SmallStrainInteriorStressMatchesLinearModulus)
     EXPECT_NEAR(ratio, m_xx, 3e-4); // O(eps) nonlinearity again
     EXPECT_NEAR(ratio, 1.0, 0.05);
   }
-#endif
 }
 
 // Conventional point-associated NOSB force (paper eqs 2, 4, 5), for comparison only.

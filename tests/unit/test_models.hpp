@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "bapd/ba_force.hpp"
+#include "bapd/ba_force_energy.hpp"
 #include "bapd/body.hpp"
 #include "bapd/bond_geometry.hpp"
 #include "bapd/bond_state.hpp"
@@ -120,6 +121,20 @@ struct Discretisation {
     bond_force.assign(2 * families.n_bonds(), 0.0);
     const KernelStats s = compute_bond_forces(model, cloud, y.data(), families, geometry, state, nullptr,
                                               bond_force.data(), ws);
+    f.assign(2 * size(), 0.0);
+    assemble_force_density(families, cloud, bond_force.data(), size(), f.data());
+    return s;
+  }
+
+  // The same with the energy-consistent bond forces (ba_force_energy.hpp).
+  template <class Model> KernelStats energy_consistent_forces(const Model &model, const std::vector<double> &y,
+                                                              std::vector<double> &bond_force,
+                                                              std::vector<double> &f) const
+  {
+    BondKernelWorkspace ws;
+    bond_force.assign(2 * families.n_bonds(), 0.0);
+    const KernelStats s = compute_energy_consistent_bond_forces(model, cloud, y.data(), families, geometry, state,
+                                                                nullptr, bond_force.data(), ws);
     f.assign(2 * size(), 0.0);
     assemble_force_density(families, cloud, bond_force.data(), size(), f.data());
     return s;

@@ -1,0 +1,113 @@
+#pragma once
+// Checkpoints: one HDF5 file with everything a run needs to go on, bit for bit, on
+// any number of ranks (STYLE.md: ... -> fields / checkpoint). docs/options.md,
+// "Checkpoints and restart", is the user's view.
+//
+// File layout, format version 1 (every array in natural order, natural_order.hpp):
+//   /                 attributes format = "bapd checkpoint", format_version, step,
+//                     time_s, time_step_s, stretch, reason, ranks, content_hash
+//   /geometry         attributes points, bonds, dx_m, horizon_m, hash
+//   /points/displacement   (points, 2) m        /points/velocity (points, 2) m/s
+//   /points/family_size    (points) int32
+//   /bonds/intact          (bonds) uint8: 1 intact, 0 broken; bond order = (point,
+//                          then the natural order of its neighbours)
+//   /bonds/c33             (bonds): plane-stress warm start C33 of every bond
+//   /run/options           text: the options database (PetscOptionsGetAll)
+//   /run/history           text: history.csv up to this step
+//   /run/field_frames      (frames, 2): step and time of the field files so far
+//   /run/static_states     text: static_states.csv up to this step
+//   /run/schedule_original, /run/schedule_current (knots): the schedule's knot times
+//                          as the run read them and as static holds have moved them;
+//                          attributes end_time_original_s, end_time_s, static_hold_done
+// content_hash is an order-independent checksum of the arrays: a damaged file is
+// refused instead of silently continuing from wrong data.
+#include <petscsys.h>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "bapd/bond_state.hpp"
+#include "bapd/family.hpp"
+#include "bapd/layout.hpp"
+#include "bapd/natural_order.hpp"
+
+namespace bapd {
+
+constexpr std::int64_t kCheckpointFormatVersion = 1;
+
+// -checkpoint_interval, -checkpoint_on_error, -restart.
+struct CheckpointOptions {
+  PetscInt    step_interval = 0;   // steps between checkpoints (0: none)
+  double      wall_interval = 0;   // wall-clock seconds between checkpoints (0: none)
+  PetscBool   on_error      = PETSC_TRUE;
+  std::string restart;             // checkpoint to continue from ("" for a fresh run)
+  bool periodic() const { return step_interval > 0 || wall_interval > 0; }
+};
+// Reads (and registers) the options. Collective.
+PetscErrorCode CheckpointOptionsFromOptions(MPI_Comm comm, CheckpointOptions *options);
+
+// What identifies the body: a checkpoint only fits the same points and bonds.
+struct GeometryFingerprint {
+  std::int64_t  points = 0, bonds = 0;
+  double        dx = 0, horizon = 0;
+  std::uint64_t hash = 0; // of natural ids, reference positions and every family
+};
+PetscErrorCode ComputeGeometryFingerprint(MPI_Comm comm, const Layout &layout, const Families &families, double dx,
+                                          double horizon, GeometryFingerprint *fingerprint);
+bool SameGeometry(const GeometryFingerprint &a, const GeometryFingerprint &b);
+
+// The small part of a checkpoint, the same on every rank after ReadCheckpointHeader.
+struct CheckpointHeader {
+  std::int64_t        format_version = kCheckpointFormatVersion;
+  PetscInt            step = 0;
+  double              time = 0, time_step = 0, stretch = 1;
+  std::string         reason; // "interval", "interrupted", "last good state", "end"
+  std::int64_t        ranks = 1;
+  std::uint64_t       content_hash = 0;
+  GeometryFingerprint geometry;
+  std::string         options, history, static_states;
+  std::vector<double> field_frames; // step, time pairs
+  // Where the load schedule stands: static holds that end early move the later
+  // knots and the end time (Simulation::CheckStaticHold).
+  std::vector<double> schedule_original, schedule_current;
+  double              end_time_original = 0, end_time = 0;
+  std::int64_t        static_hold_done  = -1;
+};
+
+// The state of the rank layout, read from (written to) a checkpoint.
+struct CheckpointState {
+  double          *u = nullptr, *v = nullptr; // owned points, 2 each
+  BondState       *bonds = nullptr;           // family points (write: owned ones used)
+  double          *c33 = nullptr;             // bonds of family points
+};
+
+// Collective. Writes `path` through `path.tmp` and a rename, so the last good
+// checkpoint survives a crash while writing. header.content_hash is filled in.
+PetscErrorCode WriteCheckpoint(MPI_Comm comm, const std::string &path, const NaturalOrder &order, const Families &families,
+                               CheckpointHeader *header, const CheckpointState &state);
+
+// Collective. Checks that `path` is a readable bapd checkpoint of a version this
+// program reads and returns its header on every rank; refuses anything else with one
+// message (PETSC_ERR_FILE_OPEN / PETSC_ERR_FILE_UNEXPECTED).
+PetscErrorCode ReadCheckpointHeader(MPI_Comm comm, const std::string &path, CheckpointHeader *header);
+
+// Collective. Reads the state into the rank layout after checking the geometry
+// (PETSC_ERR_USER if it differs from `geometry`) and the checksum.
+PetscErrorCode ReadCheckpointState(MPI_Comm comm, const std::string &path, const NaturalOrder &order,
+                                   const Families &families, const CheckpointHeader &header,
+                                   const GeometryFingerprint &geometry, const CheckpointState &state);
+
+// -restart FILE, before the scene is read: the options stored in the checkpoint
+// become the defaults, so `bapd -restart FILE` alone continues the run; every option
+// given on the command line still wins. Collective; does nothing without -restart.
+PetscErrorCode CheckpointMergeOptions(MPI_Comm comm);
+
+// SIGTERM / SIGINT: the handler only records the signal; the driver asks, once per
+// step and collectively, whether any rank got one (Simulation::OutputAfterStep).
+// A second signal while the first is pending ends the process the default way.
+void InstallInterruptHandlers();
+void RestoreInterruptHandlers();
+int  PendingInterrupt(); // the signal number, 0 if none
+
+} // namespace bapd

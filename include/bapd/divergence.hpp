@@ -1,0 +1,77 @@
+#pragma once
+// Divergence by runaway energy: the signature of an explicit time step above the
+// stability limit, caught early and without false alarms (docs/options.md,
+// "Divergence").
+//
+// Velocity Verlet (and every explicit scheme) multiplies the amplitude of a mode whose
+// frequency exceeds 2/dt by a fixed factor |g| > 1 every step, so its energy grows
+// geometrically: from round-off to NaN within tens of steps. Before the NaN (and,
+// with failure enabled, before the bonds break and the body shatters, which NaN and
+// inverted-bond checks never see) the kinetic energy KE runs away. A legitimate run
+// can raise KE quickly too (a crack running converts stored strain energy into motion,
+// a vibration exchanges the two), but it cannot create energy: the total energy
+// KE + internal energy grows only by the work of the grips. Hence two stages:
+//
+//  1. Suspicion, every step, cheap (one sum over the owned points, one reduction):
+//     KE >= 1000 x its smallest value over the last 50 steps of the current loading
+//     segment (a schedule knot changes the grip speed, and so KE: the window restarts
+//     there), and KE above a floor: the kinetic energy of the whole body moving at
+//     the fastest grip speed of the schedule, or the highest KE already cleared.
+//  2. Confirmation, only while suspected (one internal-energy evaluation per step):
+//     the total energy grows tenfold within the next 10 steps. Otherwise the
+//     suspicion is cleared and its KE becomes the floor.
+#include <petscsys.h>
+
+#include <string>
+#include <vector>
+
+namespace bapd {
+
+class Simulation;
+
+struct RunawayCriterion {
+  PetscInt window         = 50;  // steps over which the growth of KE is measured
+  double   growth         = 1e3; // KE growth over the window that raises suspicion
+  PetscInt confirm_steps  = 10;  // steps within which the total energy must grow...
+  double   confirm_growth = 10;  // ...by this factor to confirm the divergence
+};
+
+// The decision, plain numbers in and out (no MPI: every rank feeds it the same
+// reduced values, so every rank reaches the same verdict at the same step).
+class RunawayEnergyMonitor {
+public:
+  enum class Verdict { fine, measure_total, diverged };
+
+  explicit RunawayEnergyMonitor(RunawayCriterion criterion = {});
+  // floor: the kinetic energy of the whole body moving at the fastest grip speed [J].
+  void Start(double floor);
+  bool started() const { return started_; }
+  // The kinetic energy after `step`; `segment` numbers the loading segment (schedule
+  // knots passed). measure_total: call Total with the total energy of this step.
+  Verdict Kinetic(PetscInt step, PetscInt segment, double kinetic);
+  Verdict Total(PetscInt step, double total);
+  // What was seen, for the message: "the kinetic energy grew from ... to ...".
+  std::string Describe() const;
+
+private:
+  RunawayCriterion    criterion_;
+  bool                started_ = false;
+  double              floor_   = 0;
+  PetscInt            segment_ = -1;
+  std::vector<double> kinetic_; // ring buffer of the last `window` values
+  std::vector<PetscInt> steps_;
+  std::size_t         head_ = 0, count_ = 0;
+  // The suspicion being confirmed.
+  bool     suspected_ = false;
+  PetscInt suspect_step_ = 0, low_step_ = 0, total_step_ = 0, now_step_ = 0;
+  double   suspect_kinetic_ = 0, low_kinetic_ = 0, first_total_ = -1, total_ = 0;
+};
+
+// The post-step check of a Simulation: sums KE over the owned points (one
+// MPI_Allreduce), feeds the monitor, measures the total energy while suspected
+// (Simulation::Energies) and, on divergence, fills *message with the step, the time,
+// the energies, the point moving fastest and the fix. Collective.
+PetscErrorCode CheckRunawayEnergy(Simulation &simulation, RunawayEnergyMonitor &monitor, PetscInt step, double t,
+                                  std::string *message);
+
+} // namespace bapd

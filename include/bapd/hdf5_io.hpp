@@ -1,0 +1,80 @@
+#pragma once
+// Small collective helpers over parallel HDF5 for the field and checkpoint files:
+// 1-D or 2-D datasets whose rows are split over the ranks in contiguous blocks
+// (natural_order.hpp), attributes, and text. Every function is collective over the
+// file's communicator and returns the same error on every rank (the ranks agree on
+// success before returning), so a failure never leaves a rank waiting.
+#include <hdf5.h>
+#include <petscsys.h>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace bapd {
+
+// Silences HDF5's own error stack while alive: bapd reports one clear message.
+class H5Quiet {
+public:
+  H5Quiet();
+  ~H5Quiet();
+  H5Quiet(const H5Quiet &)            = delete;
+  H5Quiet &operator=(const H5Quiet &) = delete;
+
+private:
+  H5E_auto2_t func_ = nullptr;
+  void       *data_ = nullptr;
+};
+
+// A parallel HDF5 file (MPI-IO driver, collective transfers).
+class H5ParallelFile {
+public:
+  H5ParallelFile() = default;
+  ~H5ParallelFile() { Close(); }
+  H5ParallelFile(const H5ParallelFile &)            = delete;
+  H5ParallelFile &operator=(const H5ParallelFile &) = delete;
+
+  // Creates (truncating) or opens read-only. Errors: PETSC_ERR_FILE_OPEN.
+  PetscErrorCode Create(MPI_Comm comm, const std::string &path);
+  PetscErrorCode Open(MPI_Comm comm, const std::string &path);
+  PetscErrorCode Close(); // collective; flushes and closes (also the destructor's job)
+
+  // rows x cols dataset (cols = 0: 1-D of `rows`); this rank writes or reads rows
+  // [start, start + count) from/to data (count * max(cols, 1) entries).
+  PetscErrorCode WriteBlock(const char *name, hid_t type, hsize_t rows, hsize_t cols, hsize_t start, hsize_t count,
+                            const void *data);
+  PetscErrorCode ReadBlock(const char *name, hid_t type, hsize_t rows, hsize_t cols, hsize_t start, hsize_t count,
+                           void *data);
+  // A 1-D dataset written by rank 0 alone (text, short tables): `root_data` is only
+  // read on rank 0; `length` must agree on every rank.
+  PetscErrorCode WriteRoot(const char *name, hid_t type, hsize_t length, const void *root_data);
+  PetscErrorCode WriteText(const char *name, const std::string &root_text); // rank 0's text
+  PetscErrorCode CreateGroup(const char *name);
+
+  // Attributes of the root group ("/") or of a group; the same value on every rank.
+  PetscErrorCode WriteAttribute(const char *object, const char *name, double value);
+  PetscErrorCode WriteAttribute(const char *object, const char *name, std::int64_t value);
+  PetscErrorCode WriteAttribute(const char *object, const char *name, std::uint64_t value);
+  PetscErrorCode WriteAttribute(const char *object, const char *name, const std::string &value);
+
+  hid_t id() const { return file_; }
+
+private:
+  PetscErrorCode Agree(bool ok, PetscErrorCode code, const char *what, const char *name);
+  MPI_Comm    comm_ = MPI_COMM_NULL;
+  hid_t       file_ = -1;
+  std::string path_;
+};
+
+// Serial reads (one rank) of a file another process wrote; false on any failure
+// (missing object, wrong type or shape), never an HDF5 error stack.
+bool H5ReadAttribute(hid_t file, const char *object, const char *name, double *value);
+bool H5ReadAttribute(hid_t file, const char *object, const char *name, std::int64_t *value);
+bool H5ReadAttribute(hid_t file, const char *object, const char *name, std::uint64_t *value);
+bool H5ReadAttribute(hid_t file, const char *object, const char *name, std::string *value);
+// Dimensions of a dataset (empty if it does not exist).
+std::vector<hsize_t> H5DatasetShape(hid_t file, const char *name);
+bool                 H5ReadText(hid_t file, const char *name, std::string *text);
+bool                 H5ReadDoubles(hid_t file, const char *name, std::vector<double> *values);
+
+} // namespace bapd

@@ -1,0 +1,45 @@
+#pragma once
+// What the driver keeps for field output, checkpoints and restart: the options, the
+// natural order (built on first use, so a run that asks for neither pays nothing),
+// the field files so far and a copy of the last good state. The Simulation members
+// that use it live in src/solver/simulation_output.cpp.
+#include <petscvec.h>
+
+#include <vector>
+
+#include "bapd/checkpoint.hpp"
+#include "bapd/fields.hpp"
+#include "bapd/natural_order.hpp"
+
+namespace bapd {
+
+struct SimulationOutput {
+  FieldOptions        fields;
+  CheckpointOptions   checkpoint;
+  NaturalOrder        order;    // created on the first field file or checkpoint
+  GeometryFingerprint geometry; // with the order
+  FieldSeries         series;
+  std::vector<double> schedule_original;   // the knot times as this run read them
+  double              end_time_original = 0;
+  double              last_checkpoint_wall = 0;  // MPI_Wtime of the last checkpoint (rank 0's decides)
+  PetscInt            last_checkpoint_step = -1;
+  // The state after the last completed step (-checkpoint_on_error): a step that
+  // diverges leaves X and c33 spoilt, but not the bond state (CheckHealth runs before
+  // BreakBonds), so these two are enough to write the last good state.
+  Vec                 good_state = nullptr;
+  std::vector<double> good_c33;
+  PetscInt            good_step = -1;
+  double              good_time = 0;
+  bool                handlers  = false;
+
+  SimulationOutput() = default;
+  ~SimulationOutput()
+  {
+    VecDestroy(&good_state);
+    if (handlers) RestoreInterruptHandlers();
+  }
+  SimulationOutput(const SimulationOutput &)            = delete;
+  SimulationOutput &operator=(const SimulationOutput &) = delete;
+};
+
+} // namespace bapd

@@ -1,0 +1,521 @@
+// Checkpoints: writing, checking and reading back (checkpoint.hpp has the format).
+#include "bapd/checkpoint.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fcntl.h>
+#include <filesystem>
+#include <unistd.h>
+
+#include "bapd/hdf5_io.hpp"
+#include "bapd/scene.hpp"
+
+namespace bapd {
+
+namespace {
+
+// splitmix64's finaliser: a cheap, well-mixed 64-bit hash step.
+std::uint64_t Mix(std::uint64_t z)
+{
+  z += 0x9E3779B97F4A7C15ULL;
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+  return z ^ (z >> 31);
+}
+
+std::uint64_t Bits(double x)
+{
+  std::uint64_t b;
+  std::memcpy(&b, &x, sizeof b);
+  return b;
+}
+
+// One entry of an order-independent checksum: the sum over entries (mod 2^64) does
+// not depend on which rank holds which entry.
+std::uint64_t Entry(std::uint64_t tag, std::uint64_t index, std::uint64_t bits) { return Mix(Mix(tag ^ Mix(index)) ^ bits); }
+
+PetscErrorCode BcastString(MPI_Comm comm, std::string *s)
+{
+  PetscFunctionBegin;
+  unsigned long long n = s->size();
+  PetscCallMPI(MPI_Bcast(&n, 1, MPI_UNSIGNED_LONG_LONG, 0, comm));
+  s->resize(n);
+  if (n) PetscCallMPI(MPI_Bcast(s->data(), (int)n, MPI_CHAR, 0, comm));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BcastDoubles(MPI_Comm comm, std::vector<double> *values)
+{
+  PetscFunctionBegin;
+  unsigned long long n = values->size();
+  PetscCallMPI(MPI_Bcast(&n, 1, MPI_UNSIGNED_LONG_LONG, 0, comm));
+  values->resize(n);
+  if (n) PetscCallMPI(MPI_Bcast(values->data(), (int)n, MPI_DOUBLE, 0, comm));
+  PetscFunctionReturn(0);
+}
+
+// The checksum of the arrays of this rank's block, summed over the ranks.
+PetscErrorCode ContentHash(MPI_Comm comm, const NaturalOrder &order, const double *u, const double *v,
+                           const std::int32_t *family_size, const unsigned char *intact, const double *c33,
+                           std::uint64_t *hash)
+{
+  PetscFunctionBegin;
+  std::uint64_t h = 0;
+  for (PetscInt k = 0; k < order.point_count; ++k) {
+    const std::uint64_t p = (std::uint64_t)(order.point_start + k);
+    for (int c = 0; c < 2; ++c) {
+      h += Entry(1, 2 * p + c, Bits(u[2 * k + c]));
+      h += Entry(2, 2 * p + c, Bits(v[2 * k + c]));
+    }
+    h += Entry(3, p, (std::uint64_t)family_size[k]);
+  }
+  for (PetscInt b = 0; b < order.bond_count; ++b) {
+    const std::uint64_t g = (std::uint64_t)(order.bond_start + b);
+    h += Entry(4, g, intact[b]);
+    h += Entry(5, g, Bits(c33[b]));
+  }
+  PetscCallMPI(MPI_Allreduce(&h, hash, 1, MPI_UINT64_T, MPI_SUM, comm));
+  PetscFunctionReturn(0);
+}
+
+// "600s", "10min", "2h" -> seconds; "1000" -> steps. False if neither.
+bool ParseInterval(const std::string &text, PetscInt *steps, double *seconds)
+{
+  *steps   = 0;
+  *seconds = 0;
+  if (text.empty()) return true;
+  char        *end   = nullptr;
+  const double value = std::strtod(text.c_str(), &end);
+  if (end == text.c_str() || !(value >= 0) || !std::isfinite(value)) return false;
+  std::string unit(end);
+  unit.erase(std::remove_if(unit.begin(), unit.end(), [](unsigned char c) { return std::isspace(c); }), unit.end());
+  if (unit.empty()) {
+    if (value != std::floor(value) || value > 1e15) return false;
+    *steps = (PetscInt)value;
+    return true;
+  }
+  if (unit == "s") *seconds = value;
+  else if (unit == "min") *seconds = 60 * value;
+  else if (unit == "h") *seconds = 3600 * value;
+  else return false;
+  return true;
+}
+
+} // namespace
+
+PetscErrorCode CheckpointOptionsFromOptions(MPI_Comm comm, CheckpointOptions *options)
+{
+  char      interval[128] = "", restart[PETSC_MAX_PATH_LEN] = "";
+  PetscBool has_interval = PETSC_FALSE, has_restart = PETSC_FALSE;
+
+  PetscFunctionBegin;
+  for (const char *name : {"-checkpoint_interval", "-checkpoint_on_error", "-restart"}) RegisterOptionName(name);
+  PetscOptionsBegin(comm, nullptr, "Checkpoints and restart", "bapd");
+  PetscCall(PetscOptionsString("-checkpoint_interval",
+                               "Between checkpoints (<output_dir>/checkpoint.h5): steps (1000) or wall-clock time (600s, 10min, 2h); "
+                               "absent: only on SIGTERM/SIGINT, on an error and none at the end",
+                               "docs/options.md", "", interval, sizeof interval, &has_interval));
+  PetscCall(PetscOptionsBool("-checkpoint_on_error", "On divergence, write the last good state as a checkpoint (keeps a copy of the state every step)",
+                             "docs/options.md", options->on_error, &options->on_error, nullptr));
+  PetscCall(PetscOptionsString("-restart", "Continue from this checkpoint file (its options are the defaults)", "docs/options.md", "", restart,
+                               sizeof restart, &has_restart));
+  PetscOptionsEnd();
+  const bool ok = ParseInterval(interval, &options->step_interval, &options->wall_interval);
+  PetscCheck(ok, comm, PETSC_ERR_USER,
+             "-checkpoint_interval %s: give a number of steps (e.g. 1000) or a wall-clock time with a unit (600s, 10min or 2h)", interval);
+  PetscCheck(!has_restart || restart[0], comm, PETSC_ERR_USER, "-restart needs the checkpoint file to continue from (e.g. -restart output/checkpoint.h5)");
+  options->restart = has_restart ? restart : "";
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ComputeGeometryFingerprint(MPI_Comm comm, const Layout &layout, const Families &families, double dx,
+                                          double horizon, GeometryFingerprint *fingerprint)
+{
+  PetscFunctionBegin;
+  std::uint64_t hash = 0;
+  long long     bonds = 0;
+  for (PetscInt i = 0; i < layout.n_owned; ++i) {
+    std::uint64_t h = Mix((std::uint64_t)layout.cloud.natural_id[i]);
+    h               = Mix(h ^ Bits(layout.cloud.x[2 * i]));
+    h               = Mix(h ^ Bits(layout.cloud.x[2 * i + 1]));
+    for (std::size_t b = families.offsets[i]; b < families.offsets[i + 1]; ++b) h = Mix(h ^ (std::uint64_t)layout.cloud.natural_id[families.neighbour[b]]);
+    hash += h;
+    bonds += (long long)families.size((std::size_t)i);
+  }
+  PetscCallMPI(MPI_Allreduce(&hash, &fingerprint->hash, 1, MPI_UINT64_T, MPI_SUM, comm));
+  long long total = 0;
+  PetscCallMPI(MPI_Allreduce(&bonds, &total, 1, MPI_LONG_LONG, MPI_SUM, comm));
+  fingerprint->points  = layout.n_global;
+  fingerprint->bonds   = total;
+  fingerprint->dx      = dx;
+  fingerprint->horizon = horizon;
+  PetscFunctionReturn(0);
+}
+
+bool SameGeometry(const GeometryFingerprint &a, const GeometryFingerprint &b)
+{
+  return a.points == b.points && a.bonds == b.bonds && a.dx == b.dx && a.horizon == b.horizon && a.hash == b.hash;
+}
+
+PetscErrorCode WriteCheckpoint(MPI_Comm comm, const std::string &path, const NaturalOrder &order, const Families &families,
+                               CheckpointHeader *header, const CheckpointState &state)
+{
+  PetscMPIInt  rank, size;
+  MPI_Datatype four;
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  // Owned data -> this rank's natural block.
+  PetscInt owned_points;
+  PetscCall(PetscSFGetGraph(order.owned_points, nullptr, &owned_points, nullptr, nullptr));
+  std::vector<double> uv_local(4 * owned_points), uv_block(4 * order.point_count);
+  for (PetscInt i = 0; i < owned_points; ++i)
+    for (int c = 0; c < 2; ++c) {
+      uv_local[4 * i + c]     = state.u[2 * i + c];
+      uv_local[4 * i + 2 + c] = state.v[2 * i + c];
+    }
+  PetscCallMPI(MPI_Type_contiguous(4, MPI_DOUBLE, &four));
+  PetscCallMPI(MPI_Type_commit(&four));
+  PetscCall(ToNaturalOrder(order.owned_points, four, uv_local.data(), uv_block.data()));
+  PetscCallMPI(MPI_Type_free(&four));
+  std::vector<double> u(2 * order.point_count), v(2 * order.point_count);
+  for (PetscInt k = 0; k < order.point_count; ++k)
+    for (int c = 0; c < 2; ++c) {
+      u[2 * k + c] = uv_block[4 * k + c];
+      v[2 * k + c] = uv_block[4 * k + 2 + c];
+    }
+  const std::size_t          owned_bonds = families.offsets[owned_points];
+  std::vector<unsigned char> intact_local(owned_bonds), intact(order.bond_count);
+  for (PetscInt i = 0; i < owned_points; ++i)
+    for (std::size_t b = families.offsets[i]; b < families.offsets[i + 1]; ++b)
+      intact_local[b] = state.bonds->is_intact((std::size_t)i, b - families.offsets[i]) ? 1 : 0;
+  std::vector<double> c33(order.bond_count);
+  PetscCall(ToNaturalOrder(order.owned_bonds, MPI_UNSIGNED_CHAR, intact_local.data(), intact.data()));
+  PetscCall(ToNaturalOrder(order.owned_bonds, MPI_DOUBLE, state.c33, c33.data()));
+  std::vector<std::int32_t> family_size(order.family_size.begin(), order.family_size.end());
+  PetscCall(ContentHash(comm, order, u.data(), v.data(), family_size.data(), intact.data(), c33.data(), &header->content_hash));
+  header->ranks = size;
+
+  const std::string tmp = path + ".tmp";
+  {
+    H5ParallelFile f;
+    PetscCall(f.Create(comm, tmp));
+    PetscCall(f.WriteAttribute("/", "format", std::string("bapd checkpoint")));
+    PetscCall(f.WriteAttribute("/", "format_version", header->format_version));
+    PetscCall(f.WriteAttribute("/", "step", (std::int64_t)header->step));
+    PetscCall(f.WriteAttribute("/", "time_s", header->time));
+    PetscCall(f.WriteAttribute("/", "time_step_s", header->time_step));
+    PetscCall(f.WriteAttribute("/", "stretch", header->stretch));
+    PetscCall(f.WriteAttribute("/", "reason", header->reason));
+    PetscCall(f.WriteAttribute("/", "ranks", header->ranks));
+    PetscCall(f.WriteAttribute("/", "content_hash", header->content_hash));
+    PetscCall(f.WriteAttribute("/", "end_time_original_s", header->end_time_original));
+    PetscCall(f.WriteAttribute("/", "end_time_s", header->end_time));
+    PetscCall(f.WriteAttribute("/", "static_hold_done", header->static_hold_done));
+    PetscCall(f.CreateGroup("/geometry"));
+    PetscCall(f.WriteAttribute("/geometry", "points", header->geometry.points));
+    PetscCall(f.WriteAttribute("/geometry", "bonds", header->geometry.bonds));
+    PetscCall(f.WriteAttribute("/geometry", "dx_m", header->geometry.dx));
+    PetscCall(f.WriteAttribute("/geometry", "horizon_m", header->geometry.horizon));
+    PetscCall(f.WriteAttribute("/geometry", "hash", header->geometry.hash));
+    const hsize_t P = (hsize_t)order.n_points, B = (hsize_t)order.n_bonds;
+    PetscCall(f.CreateGroup("/points"));
+    PetscCall(f.WriteBlock("/points/displacement", H5T_NATIVE_DOUBLE, P, 2, order.point_start, order.point_count, u.data()));
+    PetscCall(f.WriteBlock("/points/velocity", H5T_NATIVE_DOUBLE, P, 2, order.point_start, order.point_count, v.data()));
+    PetscCall(f.WriteBlock("/points/family_size", H5T_NATIVE_INT32, P, 0, order.point_start, order.point_count, family_size.data()));
+    PetscCall(f.CreateGroup("/bonds"));
+    PetscCall(f.WriteBlock("/bonds/intact", H5T_NATIVE_UCHAR, B, 0, order.bond_start, order.bond_count, intact.data()));
+    PetscCall(f.WriteBlock("/bonds/c33", H5T_NATIVE_DOUBLE, B, 0, order.bond_start, order.bond_count, c33.data()));
+    PetscCall(f.CreateGroup("/run"));
+    PetscCall(f.WriteText("/run/options", header->options));
+    PetscCall(f.WriteText("/run/history", header->history));
+    PetscCall(f.WriteText("/run/static_states", header->static_states));
+    PetscCall(f.WriteRoot("/run/schedule_original", H5T_NATIVE_DOUBLE, header->schedule_original.size(), header->schedule_original.data()));
+    PetscCall(f.WriteRoot("/run/schedule_current", H5T_NATIVE_DOUBLE, header->schedule_current.size(), header->schedule_current.data()));
+    const hsize_t frames = header->field_frames.size() / 2;
+    PetscCall(f.WriteBlock("/run/field_frames", H5T_NATIVE_DOUBLE, frames, 2, 0, rank == 0 ? frames : 0, header->field_frames.data()));
+    PetscCall(f.Close());
+  }
+  // Only a complete file takes the name: flushed to the disk, then renamed over the
+  // previous checkpoint in one step.
+  int ok = 1;
+  if (rank == 0) {
+    const int fd = ::open(tmp.c_str(), O_RDONLY);
+    if (fd >= 0) {
+      ::fsync(fd);
+      ::close(fd);
+    }
+    ok = std::rename(tmp.c_str(), path.c_str()) == 0;
+  }
+  PetscCallMPI(MPI_Bcast(&ok, 1, MPI_INT, 0, comm));
+  PetscCheck(ok, comm, PETSC_ERR_FILE_WRITE, "Cannot rename %s to %s", tmp.c_str(), path.c_str());
+  PetscFunctionReturn(0);
+}
+
+namespace {
+
+// Rank 0: everything about the file that can be checked without the scene.
+std::string ReadHeaderSerial(const std::string &path, CheckpointHeader *h)
+{
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec))
+    return "Cannot open checkpoint '" + path + "': no such file (check the path given to -restart)";
+  H5Quiet     quiet;
+  const hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  if (file < 0)
+    return "Checkpoint '" + path + "' cannot be read: it is not an HDF5 file, or it is truncated (a copy cut short?)";
+  std::string problem, format;
+  auto        damaged = [&](const std::string &what) {
+    if (problem.empty()) problem = "Checkpoint '" + path + "' is damaged: " + what + " (use an earlier checkpoint)";
+  };
+  if (!H5ReadAttribute(file, "/", "format", &format) || format != "bapd checkpoint")
+    problem = "'" + path + "' is not a bapd checkpoint (it has no format attribute \"bapd checkpoint\")";
+  else if (!H5ReadAttribute(file, "/", "format_version", &h->format_version))
+    damaged("attribute format_version is missing");
+  else if (h->format_version != kCheckpointFormatVersion) {
+    char msg[512];
+    std::snprintf(msg, sizeof msg, "Checkpoint '%s' has format version %lld; this bapd reads version %lld only: continue it with the bapd that wrote it",
+                  path.c_str(), (long long)h->format_version, (long long)kCheckpointFormatVersion);
+    problem = msg;
+  }
+  if (problem.empty()) {
+    std::int64_t step = 0;
+    if (!H5ReadAttribute(file, "/", "step", &step)) damaged("attribute step is missing");
+    h->step = (PetscInt)step;
+    if (!H5ReadAttribute(file, "/", "time_s", &h->time)) damaged("attribute time_s is missing");
+    if (!H5ReadAttribute(file, "/", "time_step_s", &h->time_step)) damaged("attribute time_step_s is missing");
+    if (!H5ReadAttribute(file, "/", "stretch", &h->stretch)) damaged("attribute stretch is missing");
+    if (!H5ReadAttribute(file, "/", "reason", &h->reason)) damaged("attribute reason is missing");
+    if (!H5ReadAttribute(file, "/", "ranks", &h->ranks)) damaged("attribute ranks is missing");
+    if (!H5ReadAttribute(file, "/", "content_hash", &h->content_hash)) damaged("attribute content_hash is missing");
+    if (!H5ReadAttribute(file, "/", "end_time_original_s", &h->end_time_original)) damaged("attribute end_time_original_s is missing");
+    if (!H5ReadAttribute(file, "/", "end_time_s", &h->end_time)) damaged("attribute end_time_s is missing");
+    if (!H5ReadAttribute(file, "/", "static_hold_done", &h->static_hold_done)) damaged("attribute static_hold_done is missing");
+    if (!H5ReadAttribute(file, "/geometry", "points", &h->geometry.points)) damaged("attribute /geometry/points is missing");
+    if (!H5ReadAttribute(file, "/geometry", "bonds", &h->geometry.bonds)) damaged("attribute /geometry/bonds is missing");
+    if (!H5ReadAttribute(file, "/geometry", "dx_m", &h->geometry.dx)) damaged("attribute /geometry/dx_m is missing");
+    if (!H5ReadAttribute(file, "/geometry", "horizon_m", &h->geometry.horizon)) damaged("attribute /geometry/horizon_m is missing");
+    if (!H5ReadAttribute(file, "/geometry", "hash", &h->geometry.hash)) damaged("attribute /geometry/hash is missing");
+  }
+  if (problem.empty()) {
+    const hsize_t P = (hsize_t)h->geometry.points, B = (hsize_t)h->geometry.bonds;
+    const struct {
+      const char          *name;
+      std::vector<hsize_t> shape;
+    } expected[] = {{"/points/displacement", {P, 2}}, {"/points/velocity", {P, 2}}, {"/points/family_size", {P}},
+                    {"/bonds/intact", {B}},         {"/bonds/c33", {B}}};
+    for (const auto &e : expected)
+      if (H5DatasetShape(file, e.name) != e.shape) damaged(std::string("dataset ") + e.name + " is missing or has the wrong shape");
+    const std::vector<hsize_t> frames = H5DatasetShape(file, "/run/field_frames");
+    if (frames.size() != 2 || frames[1] != 2) damaged("dataset /run/field_frames is missing or has the wrong shape");
+    if (problem.empty() && !H5ReadText(file, "/run/options", &h->options)) damaged("dataset /run/options cannot be read");
+    if (problem.empty() && !H5ReadText(file, "/run/history", &h->history)) damaged("dataset /run/history cannot be read");
+    if (problem.empty() && !H5ReadText(file, "/run/static_states", &h->static_states)) damaged("dataset /run/static_states cannot be read");
+    if (problem.empty() && !H5ReadDoubles(file, "/run/schedule_original", &h->schedule_original)) damaged("dataset /run/schedule_original cannot be read");
+    if (problem.empty() && !H5ReadDoubles(file, "/run/schedule_current", &h->schedule_current)) damaged("dataset /run/schedule_current cannot be read");
+    if (problem.empty() && h->schedule_original.size() != h->schedule_current.size()) damaged("the schedule datasets differ in length");
+    if (problem.empty() && frames.size() == 2 && frames[0] > 0 && !H5ReadDoubles(file, "/run/field_frames", &h->field_frames))
+      damaged("dataset /run/field_frames cannot be read");
+  }
+  H5Fclose(file);
+  return problem;
+}
+
+} // namespace
+
+PetscErrorCode ReadCheckpointHeader(MPI_Comm comm, const std::string &path, CheckpointHeader *header)
+{
+  PetscMPIInt rank;
+  std::string problem;
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  *header = CheckpointHeader();
+  if (rank == 0) problem = ReadHeaderSerial(path, header);
+  PetscCall(BcastString(comm, &problem));
+  PetscCheck(problem.empty(), comm, PETSC_ERR_FILE_UNEXPECTED, "%s", problem.c_str());
+  long long     ints[6]   = {(long long)header->step,            (long long)header->ranks,
+                             (long long)header->geometry.points, (long long)header->geometry.bonds,
+                             (long long)header->format_version,  (long long)header->static_hold_done};
+  double        reals[7]  = {header->time,        header->time_step,         header->stretch, header->geometry.dx,
+                             header->geometry.horizon, header->end_time_original, header->end_time};
+  std::uint64_t hashes[2] = {header->content_hash, header->geometry.hash};
+  PetscCallMPI(MPI_Bcast(ints, 6, MPI_LONG_LONG, 0, comm));
+  PetscCallMPI(MPI_Bcast(reals, 7, MPI_DOUBLE, 0, comm));
+  PetscCallMPI(MPI_Bcast(hashes, 2, MPI_UINT64_T, 0, comm));
+  header->step             = (PetscInt)ints[0];
+  header->ranks            = ints[1];
+  header->geometry.points  = ints[2];
+  header->geometry.bonds   = ints[3];
+  header->format_version   = ints[4];
+  header->static_hold_done = ints[5];
+  header->end_time_original = reals[5];
+  header->end_time          = reals[6];
+  header->time             = reals[0];
+  header->time_step        = reals[1];
+  header->stretch          = reals[2];
+  header->geometry.dx      = reals[3];
+  header->geometry.horizon = reals[4];
+  header->content_hash     = hashes[0];
+  header->geometry.hash    = hashes[1];
+  PetscCall(BcastString(comm, &header->reason));
+  PetscCall(BcastString(comm, &header->options));
+  PetscCall(BcastString(comm, &header->history));
+  PetscCall(BcastString(comm, &header->static_states));
+  PetscCall(BcastDoubles(comm, &header->field_frames));
+  PetscCall(BcastDoubles(comm, &header->schedule_original));
+  PetscCall(BcastDoubles(comm, &header->schedule_current));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ReadCheckpointState(MPI_Comm comm, const std::string &path, const NaturalOrder &order,
+                                   const Families &families, const CheckpointHeader &header,
+                                   const GeometryFingerprint &geometry, const CheckpointState &state)
+{
+  MPI_Datatype four;
+
+  PetscFunctionBegin;
+  const GeometryFingerprint &g = header.geometry;
+  PetscCheck(SameGeometry(g, geometry), comm, PETSC_ERR_USER,
+             "Checkpoint '%s' belongs to another body: it holds %lld points and %lld bonds (dx %g m, horizon %g m), this scene "
+             "%lld points and %lld bonds (dx %g m, horizon %g m)%s. Restart with the scene that wrote it: its options are "
+             "stored in the checkpoint and apply unless the command line overrides them",
+             path.c_str(), (long long)g.points, (long long)g.bonds, g.dx, g.horizon, (long long)geometry.points,
+             (long long)geometry.bonds, geometry.dx, geometry.horizon,
+             g.points == geometry.points && g.bonds == geometry.bonds && g.dx == geometry.dx && g.horizon == geometry.horizon
+               ? " and the same counts but other positions, holes or notches"
+               : "");
+  std::vector<double>        u(2 * order.point_count), v(2 * order.point_count), c33(order.bond_count);
+  std::vector<std::int32_t>  family_size(order.point_count);
+  std::vector<unsigned char> intact(order.bond_count);
+  {
+    H5ParallelFile f;
+    const hsize_t  P = (hsize_t)order.n_points, B = (hsize_t)order.n_bonds;
+    PetscCall(f.Open(comm, path));
+    PetscCall(f.ReadBlock("/points/displacement", H5T_NATIVE_DOUBLE, P, 2, order.point_start, order.point_count, u.data()));
+    PetscCall(f.ReadBlock("/points/velocity", H5T_NATIVE_DOUBLE, P, 2, order.point_start, order.point_count, v.data()));
+    PetscCall(f.ReadBlock("/points/family_size", H5T_NATIVE_INT32, P, 0, order.point_start, order.point_count, family_size.data()));
+    PetscCall(f.ReadBlock("/bonds/intact", H5T_NATIVE_UCHAR, B, 0, order.bond_start, order.bond_count, intact.data()));
+    PetscCall(f.ReadBlock("/bonds/c33", H5T_NATIVE_DOUBLE, B, 0, order.bond_start, order.bond_count, c33.data()));
+    PetscCall(f.Close());
+  }
+  std::uint64_t hash = 0;
+  PetscCall(ContentHash(comm, order, u.data(), v.data(), family_size.data(), intact.data(), c33.data(), &hash));
+  PetscCheck(hash == header.content_hash, comm, PETSC_ERR_FILE_UNEXPECTED,
+             "Checkpoint '%s' is corrupt: its data do not match the checksum written with them (use an earlier checkpoint)", path.c_str());
+
+  // Block -> layout: u, v of owned points; bond bits and C33 of every family point
+  // (ring-1 ghosts take their owner's values, as after every breaking pass).
+  PetscInt owned_points;
+  PetscCall(PetscSFGetGraph(order.owned_points, nullptr, &owned_points, nullptr, nullptr));
+  std::vector<double> uv_block(4 * order.point_count), uv_local(4 * owned_points);
+  for (PetscInt k = 0; k < order.point_count; ++k)
+    for (int c = 0; c < 2; ++c) {
+      uv_block[4 * k + c]     = u[2 * k + c];
+      uv_block[4 * k + 2 + c] = v[2 * k + c];
+    }
+  PetscCallMPI(MPI_Type_contiguous(4, MPI_DOUBLE, &four));
+  PetscCallMPI(MPI_Type_commit(&four));
+  PetscCall(FromNaturalOrder(order.owned_points, four, uv_block.data(), uv_local.data()));
+  PetscCallMPI(MPI_Type_free(&four));
+  for (PetscInt i = 0; i < owned_points; ++i)
+    for (int c = 0; c < 2; ++c) {
+      state.u[2 * i + c] = uv_local[4 * i + c];
+      state.v[2 * i + c] = uv_local[4 * i + 2 + c];
+    }
+  const std::size_t          family_bonds = families.offsets[families.n_family];
+  std::vector<unsigned char> intact_local(family_bonds);
+  PetscCall(FromNaturalOrder(order.family_bonds, MPI_UNSIGNED_CHAR, intact.data(), intact_local.data()));
+  PetscCall(FromNaturalOrder(order.family_bonds, MPI_DOUBLE, c33.data(), state.c33));
+  BondState        &bs = *state.bonds;
+  const std::size_t W  = bs.mask_words;
+  for (std::size_t i = 0; i < families.n_family; ++i) {
+    std::uint64_t *mask = bs.intact.data() + i * W;
+    std::fill(mask, mask + W, 0);
+    for (std::size_t b = families.offsets[i]; b < families.offsets[i + 1]; ++b) {
+      const std::size_t q = b - families.offsets[i];
+      if (intact_local[b]) mask[q / 64] |= std::uint64_t(1) << (q % 64);
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode CheckpointMergeOptions(MPI_Comm comm)
+{
+  char      path[PETSC_MAX_PATH_LEN] = "";
+  PetscBool has                      = PETSC_FALSE;
+
+  PetscFunctionBegin;
+  RegisterOptionName("-restart");
+  PetscCall(PetscOptionsGetString(nullptr, nullptr, "-restart", path, sizeof path, &has));
+  if (!has) PetscFunctionReturn(0);
+  PetscCheck(path[0], comm, PETSC_ERR_USER, "-restart needs the checkpoint file to continue from (e.g. -restart output/checkpoint.h5)");
+  CheckpointHeader header;
+  PetscCall(ReadCheckpointHeader(comm, path, &header));
+  // The stored database, parsed by PETSc itself; each of its options that the
+  // command line does not set is added.
+  PetscOptions stored;
+  PetscInt     n      = 0;
+  char       **names  = nullptr;
+  char       **values = nullptr;
+  PetscCall(PetscOptionsCreate(&stored));
+  PetscCall(PetscOptionsInsertString(stored, header.options.c_str()));
+  PetscCall(PetscOptionsLeftGet(stored, &n, &names, &values));
+  for (PetscInt k = 0; k < n; ++k) {
+    const std::string name = std::string("-") + names[k];
+    if (name == "-restart") continue;
+    PetscBool given = PETSC_FALSE;
+    PetscCall(PetscOptionsHasName(nullptr, nullptr, name.c_str(), &given));
+    if (!given) PetscCall(PetscOptionsSetValue(nullptr, name.c_str(), values[k]));
+  }
+  PetscCall(PetscOptionsLeftRestore(stored, &n, &names, &values));
+  PetscCall(PetscOptionsDestroy(&stored));
+  PetscFunctionReturn(0);
+}
+
+namespace {
+
+volatile std::sig_atomic_t interrupt_signal = 0;
+struct sigaction           previous_term, previous_int;
+int                        installed = 0;
+
+extern "C" void OnInterrupt(int signal)
+{
+  if (interrupt_signal) { // a second one: stop now, the default way
+    std::signal(signal, SIG_DFL);
+    std::raise(signal);
+    return;
+  }
+  interrupt_signal = signal;
+}
+
+} // namespace
+
+void InstallInterruptHandlers()
+{
+  if (installed++) return;
+  struct sigaction action;
+  std::memset(&action, 0, sizeof action);
+  action.sa_handler = OnInterrupt;
+  action.sa_flags   = SA_RESTART;
+  sigemptyset(&action.sa_mask);
+  sigaction(SIGTERM, &action, &previous_term);
+  sigaction(SIGINT, &action, &previous_int);
+}
+
+void RestoreInterruptHandlers()
+{
+  if (installed == 0 || --installed) return;
+  sigaction(SIGTERM, &previous_term, nullptr);
+  sigaction(SIGINT, &previous_int, nullptr);
+}
+
+int PendingInterrupt() { return (int)interrupt_signal; }
+
+} // namespace bapd

@@ -1,0 +1,178 @@
+// Divergence by runaway energy (include/bapd/divergence.hpp explains the criterion).
+#include "bapd/divergence.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include "bapd/simulation.hpp"
+
+namespace bapd {
+
+RunawayEnergyMonitor::RunawayEnergyMonitor(RunawayCriterion criterion)
+    : criterion_(criterion), kinetic_((std::size_t)std::max<PetscInt>(criterion.window, 1)), steps_(kinetic_.size())
+{
+}
+
+void RunawayEnergyMonitor::Start(double floor)
+{
+  started_   = true;
+  floor_     = floor;
+  segment_   = -1;
+  head_      = 0;
+  count_     = 0;
+  suspected_ = false;
+}
+
+RunawayEnergyMonitor::Verdict RunawayEnergyMonitor::Kinetic(PetscInt step, PetscInt segment, double kinetic)
+{
+  now_step_ = step;
+  if (segment != segment_) { // the grip speed changed: growth from here on is measured anew
+    segment_ = segment;
+    count_   = 0;
+  }
+  const std::size_t capacity = kinetic_.size();
+  kinetic_[head_]            = kinetic;
+  steps_[head_]              = step;
+  head_                      = (head_ + 1) % capacity;
+  count_                     = std::min(count_ + 1, capacity);
+  if (suspected_) return Verdict::measure_total;
+  if (!(kinetic > floor_)) return Verdict::fine;
+  // The smallest KE of the window (the newest value included: never below itself).
+  double   low      = kinetic;
+  PetscInt low_step = step;
+  for (std::size_t k = 0; k < count_; ++k)
+    if (kinetic_[k] < low) low = kinetic_[k], low_step = steps_[k];
+  if (!(kinetic >= criterion_.growth * low)) return Verdict::fine;
+  suspected_       = true;
+  suspect_step_    = step;
+  suspect_kinetic_ = kinetic;
+  low_step_        = low_step;
+  low_kinetic_     = low;
+  first_total_     = -1;
+  return Verdict::measure_total;
+}
+
+RunawayEnergyMonitor::Verdict RunawayEnergyMonitor::Total(PetscInt step, double total)
+{
+  if (!suspected_) return Verdict::fine;
+  total_step_ = step;
+  total_      = total;
+  if (first_total_ < 0) {
+    first_total_ = total;
+    return Verdict::fine;
+  }
+  if (total >= criterion_.confirm_growth * first_total_ || !std::isfinite(total)) return Verdict::diverged;
+  if (step - suspect_step_ >= criterion_.confirm_steps) {
+    // Energy moved between kinds but was not created (a crack, a vibration): clear the
+    // suspicion; KE must now rise past this level before the next one.
+    suspected_ = false;
+    floor_     = std::max(floor_, suspect_kinetic_);
+    count_     = 0;
+  }
+  return Verdict::fine;
+}
+
+std::string RunawayEnergyMonitor::Describe() const
+{
+  char text[512];
+  std::snprintf(text, sizeof text,
+                "the kinetic energy grew from %.3e J (step %" PetscInt_FMT ") to %.3e J (step %" PetscInt_FMT
+                "), and the total (kinetic + internal) energy, which only the grips' work can raise, from %.3e J to %.3e J within "
+                "%" PetscInt_FMT " steps",
+                low_kinetic_, low_step_, suspect_kinetic_, suspect_step_, first_total_, total_, total_step_ - suspect_step_);
+  return text;
+}
+
+namespace {
+
+// Kinetic energy of the whole body moving at the fastest grip speed of the schedule,
+// plus a round-off guard (every point moving a millionth of a spacing per step), so
+// a body at rest, whose KE is zero or noise, never raises suspicion.
+double KineticFloor(const Scene &scene, double mass, double dt)
+{
+  const Schedule &s        = scene.schedule;
+  double          max_rate = 0; // |d lambda / dt| over the schedule
+  for (std::size_t k = 1; k < s.time.size(); ++k) max_rate = std::max(max_rate, std::fabs((s.stretch[k] - s.stretch[k - 1]) / (s.time[k] - s.time[k - 1])));
+  double max_scale = 0;
+  for (const LoadSet &set : scene.loads) {
+    if (set.x == ComponentLoad::stretch) max_scale = std::max(max_scale, std::fabs(set.x_scale));
+    if (set.y == ComponentLoad::stretch) max_scale = std::max(max_scale, std::fabs(set.y_scale));
+  }
+  const double grip_speed = max_scale * max_rate * scene.reference_length;
+  const double guard      = 1e-6 * scene.body.dx / dt;
+  return 0.5 * mass * (grip_speed * grip_speed + guard * guard);
+}
+
+} // namespace
+
+PetscErrorCode CheckRunawayEnergy(Simulation &simulation, RunawayEnergyMonitor &monitor, PetscInt step, double t, std::string *message)
+{
+  const Scene   &scene = simulation.scene();
+  const Layout  &layout = simulation.layout();
+  const PetscInt n      = layout.n_owned;
+  MPI_Comm       comm;
+  const double  *x;
+  PetscReal      dt;
+
+  PetscFunctionBegin;
+  message->clear();
+  PetscCall(PetscObjectGetComm((PetscObject)simulation.ts(), &comm));
+  PetscCall(TSGetTimeStep(simulation.ts(), &dt));
+  if (!monitor.started()) {
+    double mass = 0;
+    for (PetscInt i = 0; i < n; ++i) mass += scene.density * layout.cloud.volume[i];
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &mass, 1, MPI_DOUBLE, MPI_SUM, comm));
+    monitor.Start(KineticFloor(scene, mass, dt));
+  }
+  // Kinetic energy and the fastest owned point (for the message), one pass.
+  PetscCall(VecGetArrayRead(simulation.state(), &x));
+  const double *v       = x + 2 * n;
+  double        kinetic = 0, fastest = -1;
+  PetscInt      fastest_i = -1;
+  for (PetscInt i = 0; i < n; ++i) {
+    const double e = 0.5 * scene.density * layout.cloud.volume[i] * (v[2 * i] * v[2 * i] + v[2 * i + 1] * v[2 * i + 1]);
+    kinetic += e;
+    if (e > fastest) fastest = e, fastest_i = i;
+  }
+  PetscCall(VecRestoreArrayRead(simulation.state(), &x));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &kinetic, 1, MPI_DOUBLE, MPI_SUM, comm));
+
+  const Schedule &s       = scene.schedule;
+  const PetscInt  segment = (PetscInt)(std::upper_bound(s.time.begin(), s.time.end(), t) - s.time.begin());
+  RunawayEnergyMonitor::Verdict verdict = monitor.Kinetic(step, segment, kinetic);
+  if (verdict == RunawayEnergyMonitor::Verdict::measure_total) {
+    double kin, internal;
+    PetscCall(simulation.Energies(&kin, &internal));
+    verdict = monitor.Total(step, kin + internal);
+  }
+  if (verdict != RunawayEnergyMonitor::Verdict::diverged) PetscFunctionReturn(0);
+
+  // Where: the owned point with the largest kinetic energy, over all ranks.
+  struct {
+    double value;
+    int    rank;
+  } mine = {fastest, 0}, best;
+  PetscCallMPI(MPI_Comm_rank(comm, &mine.rank));
+  PetscCallMPI(MPI_Allreduce(&mine, &best, 1, MPI_DOUBLE_INT, MPI_MAXLOC, comm));
+  double where[3] = {-1, 0, 0};
+  if (best.rank == mine.rank && fastest_i >= 0)
+    where[0] = (double)layout.cloud.natural_id[fastest_i], where[1] = layout.cloud.x[2 * fastest_i], where[2] = layout.cloud.x[2 * fastest_i + 1];
+  PetscCallMPI(MPI_Bcast(where, 3, MPI_DOUBLE, best.rank, comm));
+  const double stable = simulation.stable_time_step();
+  char         text[1024];
+  std::snprintf(text, sizeof text,
+                "the run diverged at step %" PetscInt_FMT " (t = %.6e s): %s. Fastest point: %.0f, reference position (%.6g, %.6g) m. "
+                "%s: lower -time_step or -time_step_safety (default 0.8)",
+                step, t, monitor.Describe().c_str(), where[0], where[1], where[2],
+                dt > stable ? "The time step is above the stable step, so the explicit scheme amplifies its fastest mode every step"
+                            : "The time step is below the stable step estimated at rest, but the material stiffens as it deforms");
+  std::string reason = text;
+  char        steps[160];
+  std::snprintf(steps, sizeof steps, " (dt = %.4e s, stable estimate %.4e s)", dt, stable);
+  *message = reason + steps;
+  PetscFunctionReturn(0);
+}
+
+} // namespace bapd

@@ -1,0 +1,355 @@
+#include "bapd/hdf5_io.hpp"
+
+#include <algorithm>
+
+namespace bapd {
+
+H5Quiet::H5Quiet()
+{
+  H5Eget_auto2(H5E_DEFAULT, &func_, &data_);
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+}
+
+H5Quiet::~H5Quiet() { H5Eset_auto2(H5E_DEFAULT, func_, data_); }
+
+PetscErrorCode H5ParallelFile::Agree(bool ok, PetscErrorCode code, const char *what, const char *name)
+{
+  int all = ok ? 1 : 0;
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &all, 1, MPI_INT, MPI_MIN, comm_));
+  PetscCheck(all, comm_, code, "HDF5 could not %s '%s' in %s (disk full, no permission, or a damaged file?)", what, name,
+             path_.c_str());
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode H5ParallelFile::Create(MPI_Comm comm, const std::string &path)
+{
+  H5Quiet quiet;
+
+  PetscFunctionBegin;
+  comm_       = comm;
+  path_       = path;
+  hid_t fapl  = H5Pcreate(H5P_FILE_ACCESS);
+  bool  ok    = fapl >= 0 && H5Pset_fapl_mpio(fapl, comm, MPI_INFO_NULL) >= 0;
+  file_       = ok ? H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl) : -1;
+  if (fapl >= 0) H5Pclose(fapl);
+  int all = file_ >= 0;
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &all, 1, MPI_INT, MPI_MIN, comm));
+  if (!all && file_ >= 0) {
+    H5Fclose(file_);
+    file_ = -1;
+  }
+  PetscCheck(all, comm, PETSC_ERR_FILE_OPEN, "Cannot create %s: choose a writable -output_dir", path.c_str());
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode H5ParallelFile::Open(MPI_Comm comm, const std::string &path)
+{
+  H5Quiet quiet;
+
+  PetscFunctionBegin;
+  comm_      = comm;
+  path_      = path;
+  hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
+  bool  ok   = fapl >= 0 && H5Pset_fapl_mpio(fapl, comm, MPI_INFO_NULL) >= 0;
+  file_      = ok ? H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl) : -1;
+  if (fapl >= 0) H5Pclose(fapl);
+  int all = file_ >= 0;
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &all, 1, MPI_INT, MPI_MIN, comm));
+  if (!all && file_ >= 0) {
+    H5Fclose(file_);
+    file_ = -1;
+  }
+  PetscCheck(all, comm, PETSC_ERR_FILE_OPEN, "Cannot open %s for reading (missing, truncated or not an HDF5 file)", path.c_str());
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode H5ParallelFile::Close()
+{
+  PetscFunctionBegin;
+  if (file_ < 0) PetscFunctionReturn(0);
+  H5Quiet    quiet;
+  const bool ok = H5Fclose(file_) >= 0;
+  file_         = -1;
+  PetscCall(Agree(ok, PETSC_ERR_FILE_WRITE, "close", "the file"));
+  PetscFunctionReturn(0);
+}
+
+namespace {
+
+// File and memory dataspaces selecting rows [start, start + count).
+struct BlockSpaces {
+  hid_t file = -1, memory = -1;
+  BlockSpaces(hsize_t rows, hsize_t cols, hsize_t start, hsize_t count)
+  {
+    const int     rank        = cols ? 2 : 1;
+    const hsize_t dims[2]     = {rows, cols};
+    const hsize_t offset[2]   = {start, 0};
+    const hsize_t extent[2]   = {count, cols};
+    const hsize_t mem_dims[2] = {std::max<hsize_t>(count, 1), cols};
+    file                      = H5Screate_simple(rank, dims, nullptr);
+    memory                    = H5Screate_simple(rank, mem_dims, nullptr);
+    if (count == 0 || rows == 0) {
+      H5Sselect_none(file);
+      H5Sselect_none(memory);
+    } else {
+      H5Sselect_hyperslab(file, H5S_SELECT_SET, offset, nullptr, extent, nullptr);
+    }
+  }
+  ~BlockSpaces()
+  {
+    if (file >= 0) H5Sclose(file);
+    if (memory >= 0) H5Sclose(memory);
+  }
+};
+
+hid_t CollectiveTransfer()
+{
+  hid_t dxpl = H5Pcreate(H5P_DATASET_XFER);
+  H5Pset_dxpl_mpio(dxpl, H5FD_MPIO_COLLECTIVE);
+  return dxpl;
+}
+
+} // namespace
+
+PetscErrorCode H5ParallelFile::WriteBlock(const char *name, hid_t type, hsize_t rows, hsize_t cols, hsize_t start,
+                                          hsize_t count, const void *data)
+{
+  H5Quiet quiet;
+
+  PetscFunctionBegin;
+  BlockSpaces spaces(rows, cols, start, count);
+  hid_t       dxpl = CollectiveTransfer();
+  hid_t       set  = H5Dcreate2(file_, name, type, spaces.file, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  bool        ok   = set >= 0;
+  if (ok && rows > 0) ok = H5Dwrite(set, type, spaces.memory, spaces.file, dxpl, data) >= 0;
+  if (set >= 0) ok = H5Dclose(set) >= 0 && ok;
+  H5Pclose(dxpl);
+  PetscCall(Agree(ok, PETSC_ERR_FILE_WRITE, "write", name));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode H5ParallelFile::ReadBlock(const char *name, hid_t type, hsize_t rows, hsize_t cols, hsize_t start,
+                                         hsize_t count, void *data)
+{
+  H5Quiet quiet;
+
+  PetscFunctionBegin;
+  BlockSpaces spaces(rows, cols, start, count);
+  hid_t       dxpl = CollectiveTransfer();
+  hid_t       set  = H5Dopen2(file_, name, H5P_DEFAULT);
+  bool        ok   = set >= 0;
+  if (ok && rows > 0) ok = H5Dread(set, type, spaces.memory, spaces.file, dxpl, data) >= 0;
+  if (set >= 0) ok = H5Dclose(set) >= 0 && ok;
+  H5Pclose(dxpl);
+  PetscCall(Agree(ok, PETSC_ERR_FILE_UNEXPECTED, "read", name));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode H5ParallelFile::WriteRoot(const char *name, hid_t type, hsize_t length, const void *root_data)
+{
+  PetscMPIInt rank;
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_rank(comm_, &rank));
+  PetscCall(WriteBlock(name, type, length, 0, 0, rank == 0 ? length : 0, root_data));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode H5ParallelFile::WriteText(const char *name, const std::string &root_text)
+{
+  PetscMPIInt rank;
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_rank(comm_, &rank));
+  unsigned long long length = root_text.size();
+  PetscCallMPI(MPI_Bcast(&length, 1, MPI_UNSIGNED_LONG_LONG, 0, comm_));
+  PetscCall(WriteRoot(name, H5T_NATIVE_CHAR, (hsize_t)length, root_text.data()));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode H5ParallelFile::CreateGroup(const char *name)
+{
+  H5Quiet quiet;
+
+  PetscFunctionBegin;
+  hid_t group = H5Gcreate2(file_, name, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  bool  ok    = group >= 0 && H5Gclose(group) >= 0;
+  PetscCall(Agree(ok, PETSC_ERR_FILE_WRITE, "create group", name));
+  PetscFunctionReturn(0);
+}
+
+namespace {
+
+bool WriteAttributeRaw(hid_t file, const char *object, const char *name, hid_t type, const void *value)
+{
+  hid_t space = H5Screate(H5S_SCALAR);
+  hid_t attr  = H5Acreate_by_name(file, object, name, type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  bool  ok    = attr >= 0 && H5Awrite(attr, type, value) >= 0;
+  if (attr >= 0) ok = H5Aclose(attr) >= 0 && ok;
+  H5Sclose(space);
+  return ok;
+}
+
+} // namespace
+
+PetscErrorCode H5ParallelFile::WriteAttribute(const char *object, const char *name, double value)
+{
+  H5Quiet quiet;
+  PetscFunctionBegin;
+  PetscCall(Agree(WriteAttributeRaw(file_, object, name, H5T_NATIVE_DOUBLE, &value), PETSC_ERR_FILE_WRITE, "write attribute", name));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode H5ParallelFile::WriteAttribute(const char *object, const char *name, std::int64_t value)
+{
+  H5Quiet quiet;
+  PetscFunctionBegin;
+  PetscCall(Agree(WriteAttributeRaw(file_, object, name, H5T_NATIVE_INT64, &value), PETSC_ERR_FILE_WRITE, "write attribute", name));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode H5ParallelFile::WriteAttribute(const char *object, const char *name, std::uint64_t value)
+{
+  H5Quiet quiet;
+  PetscFunctionBegin;
+  PetscCall(Agree(WriteAttributeRaw(file_, object, name, H5T_NATIVE_UINT64, &value), PETSC_ERR_FILE_WRITE, "write attribute", name));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode H5ParallelFile::WriteAttribute(const char *object, const char *name, const std::string &value)
+{
+  H5Quiet quiet;
+  PetscFunctionBegin;
+  hid_t type = H5Tcopy(H5T_C_S1);
+  H5Tset_size(type, std::max<std::size_t>(value.size(), 1));
+  H5Tset_strpad(type, H5T_STR_NULLPAD);
+  std::string padded = value.empty() ? std::string(1, '\0') : value;
+  const bool  ok     = WriteAttributeRaw(file_, object, name, type, padded.data());
+  H5Tclose(type);
+  PetscCall(Agree(ok, PETSC_ERR_FILE_WRITE, "write attribute", name));
+  PetscFunctionReturn(0);
+}
+
+namespace {
+
+hid_t OpenScalarAttribute(hid_t file, const char *object, const char *name, H5T_class_t type_class)
+{
+  H5Quiet quiet;
+  if (H5Aexists_by_name(file, object, name, H5P_DEFAULT) <= 0) return -1;
+  hid_t attr = H5Aopen_by_name(file, object, name, H5P_DEFAULT, H5P_DEFAULT);
+  if (attr < 0) return -1;
+  hid_t space = H5Aget_space(attr), type = H5Aget_type(attr);
+  const bool scalar = space >= 0 && H5Sget_simple_extent_npoints(space) == 1;
+  const bool klass  = type >= 0 && H5Tget_class(type) == type_class;
+  if (space >= 0) H5Sclose(space);
+  if (type >= 0) H5Tclose(type);
+  if (!scalar || !klass) {
+    H5Aclose(attr);
+    return -1;
+  }
+  return attr;
+}
+
+template <class T>
+bool ReadNumberAttribute(hid_t file, const char *object, const char *name, H5T_class_t type_class, hid_t memory_type, T *value)
+{
+  H5Quiet quiet;
+  hid_t   attr = OpenScalarAttribute(file, object, name, type_class);
+  if (attr < 0) return false;
+  const bool ok = H5Aread(attr, memory_type, value) >= 0;
+  H5Aclose(attr);
+  return ok;
+}
+
+} // namespace
+
+bool H5ReadAttribute(hid_t file, const char *object, const char *name, double *value)
+{
+  return ReadNumberAttribute(file, object, name, H5T_FLOAT, H5T_NATIVE_DOUBLE, value);
+}
+
+bool H5ReadAttribute(hid_t file, const char *object, const char *name, std::int64_t *value)
+{
+  return ReadNumberAttribute(file, object, name, H5T_INTEGER, H5T_NATIVE_INT64, value);
+}
+
+bool H5ReadAttribute(hid_t file, const char *object, const char *name, std::uint64_t *value)
+{
+  return ReadNumberAttribute(file, object, name, H5T_INTEGER, H5T_NATIVE_UINT64, value);
+}
+
+bool H5ReadAttribute(hid_t file, const char *object, const char *name, std::string *value)
+{
+  H5Quiet quiet;
+  hid_t   attr = OpenScalarAttribute(file, object, name, H5T_STRING);
+  if (attr < 0) return false;
+  hid_t       stored = H5Aget_type(attr);
+  const bool  is_var = H5Tis_variable_str(stored) > 0;
+  std::size_t size   = H5Tget_size(stored);
+  H5Tclose(stored);
+  bool ok = !is_var && size > 0 && size < (1u << 20);
+  if (ok) {
+    std::string text(size, '\0');
+    hid_t       type = H5Tcopy(H5T_C_S1);
+    H5Tset_size(type, size);
+    H5Tset_strpad(type, H5T_STR_NULLPAD);
+    ok = H5Aread(attr, type, text.data()) >= 0;
+    H5Tclose(type);
+    text.resize(std::min(text.size(), text.find('\0')));
+    *value = text;
+  }
+  H5Aclose(attr);
+  return ok;
+}
+
+std::vector<hsize_t> H5DatasetShape(hid_t file, const char *name)
+{
+  H5Quiet quiet;
+  if (H5Lexists(file, name, H5P_DEFAULT) <= 0) return {};
+  hid_t set = H5Dopen2(file, name, H5P_DEFAULT);
+  if (set < 0) return {};
+  hid_t                space = H5Dget_space(set);
+  const int            rank  = space >= 0 ? H5Sget_simple_extent_ndims(space) : -1;
+  std::vector<hsize_t> dims(rank > 0 ? rank : 0);
+  if (rank > 0) H5Sget_simple_extent_dims(space, dims.data(), nullptr);
+  if (rank == 0) dims.push_back(1); // scalar
+  if (space >= 0) H5Sclose(space);
+  H5Dclose(set);
+  return dims;
+}
+
+namespace {
+
+bool ReadWhole(hid_t file, const char *name, hid_t memory_type, std::size_t elements, void *data)
+{
+  H5Quiet quiet;
+  if (elements == 0) return true;
+  hid_t set = H5Dopen2(file, name, H5P_DEFAULT);
+  if (set < 0) return false;
+  const bool ok = H5Dread(set, memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) >= 0;
+  H5Dclose(set);
+  return ok;
+}
+
+} // namespace
+
+bool H5ReadText(hid_t file, const char *name, std::string *text)
+{
+  const std::vector<hsize_t> shape = H5DatasetShape(file, name);
+  if (shape.size() != 1) return false;
+  text->assign(shape[0], '\0');
+  return ReadWhole(file, name, H5T_NATIVE_CHAR, shape[0], text->data());
+}
+
+bool H5ReadDoubles(hid_t file, const char *name, std::vector<double> *values)
+{
+  const std::vector<hsize_t> shape = H5DatasetShape(file, name);
+  if (shape.empty()) return false;
+  std::size_t n = 1;
+  for (hsize_t d : shape) n *= d;
+  values->assign(n, 0.0);
+  return ReadWhole(file, name, H5T_NATIVE_DOUBLE, n, values->data());
+}
+
+} // namespace bapd

@@ -1,0 +1,362 @@
+// The driver's output after a step: field files, checkpoints (periodic, on a signal,
+// on divergence, at the end) and restart from a checkpoint. The formats live in
+// fields.cpp and checkpoint.cpp; this file only moves the Simulation's state in and
+// out of them.
+#include <petscts.h>
+
+#include <algorithm>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "bapd/damage.hpp"
+#include "bapd/simulation.hpp"
+
+namespace bapd {
+
+namespace {
+
+PetscLogEvent event_fields = 0, event_checkpoint = 0, event_restart = 0;
+
+PetscErrorCode RegisterEvents()
+{
+  static bool registered = false;
+  PetscFunctionBegin;
+  if (!registered) {
+    PetscClassId id;
+    PetscCall(PetscClassIdRegister("bapd output", &id));
+    PetscCall(PetscLogEventRegister("FieldOutput", id, &event_fields));
+    PetscCall(PetscLogEventRegister("Checkpoint", id, &event_checkpoint));
+    PetscCall(PetscLogEventRegister("Restart", id, &event_restart));
+    registered = true;
+  }
+  PetscFunctionReturn(0);
+}
+
+const char *SignalName(int signal) { return signal == SIGINT ? "SIGINT" : signal == SIGTERM ? "SIGTERM" : "a signal"; }
+
+// The step of a history.csv row ("step,time,...").
+long long RowStep(const std::string &line) { return std::atoll(line.c_str()); }
+
+} // namespace
+
+PetscErrorCode Simulation::ReadOutputOptions()
+{
+  PetscFunctionBegin;
+  PetscCall(FieldOptionsFromOptions(comm_, &output_.fields));
+  PetscCall(CheckpointOptionsFromOptions(comm_, &output_.checkpoint));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Simulation::SetupOutput()
+{
+  PetscFunctionBegin;
+  PetscCall(RegisterEvents());
+  output_.series.output_dir = scene_.output_dir;
+  if (output_.fields.interval == 0) {
+    const double end_time = scene_.end_time > 0 ? scene_.end_time : scene_.schedule.end_time();
+    output_.fields.interval = std::max<PetscInt>(1, (PetscInt)std::ceil(end_time / dt_ - 1e-9) / 20);
+  }
+  output_.schedule_original = scene_.schedule.time;
+  output_.end_time_original = scene_.end_time;
+  InstallInterruptHandlers();
+  output_.handlers             = true;
+  output_.last_checkpoint_wall = MPI_Wtime();
+  PetscInt  step = 0;
+  PetscReal t    = 0;
+  if (!output_.checkpoint.restart.empty()) {
+    PetscCall(RestoreCheckpoint());
+    PetscCall(TSGetStepNumber(ts_, &step));
+    PetscCall(TSGetTime(ts_, &t));
+  } else if (output_.fields.enabled) {
+    PetscCall(WriteFields(0, 0.0));
+  }
+  if (output_.checkpoint.on_error) {
+    PetscCall(VecDuplicate(X_, &output_.good_state));
+    PetscCall(SaveGoodState(step, t));
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Simulation::CreateNaturalOrder()
+{
+  PetscFunctionBegin;
+  if (output_.order.created()) PetscFunctionReturn(0);
+  PetscCall(NaturalOrderCreate(comm_, layout_, families_, &output_.order));
+  PetscCall(ComputeGeometryFingerprint(comm_, layout_, families_, scene_.body.dx, scene_.horizon(), &output_.geometry));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Simulation::SaveGoodState(PetscInt step, double t)
+{
+  PetscFunctionBegin;
+  PetscCall(VecCopy(X_, output_.good_state));
+  output_.good_c33.assign(c33_.begin(), c33_.end()); // same size every step: no allocation
+  output_.good_step = step;
+  output_.good_time = t;
+  PetscFunctionReturn(0);
+}
+
+// After PostStep's loading, health check, bond breaking and history row.
+PetscErrorCode Simulation::OutputAfterStep(PetscInt step, double t)
+{
+  PetscFunctionBegin;
+  if (output_.fields.enabled && step % output_.fields.interval == 0) PetscCall(WriteFields(step, t));
+  // One reduction a step: did any rank get SIGTERM/SIGINT, and is rank 0's clock
+  // past the wall-clock interval? Every rank then takes the same branch.
+  const CheckpointOptions &options = output_.checkpoint;
+  int flags[2] = {PendingInterrupt(), rank_ == 0 && options.wall_interval > 0 && MPI_Wtime() - output_.last_checkpoint_wall >= options.wall_interval};
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, flags, 2, MPI_INT, MPI_MAX, comm_));
+  if (flags[0]) {
+    if (output_.fields.enabled && (output_.series.frames.empty() || output_.series.frames.back().step != step)) PetscCall(WriteFields(step, t));
+    PetscCall(WriteCheckpointFile(step, t, "interrupted"));
+    const std::string path = scene_.output_dir + "/checkpoint.h5";
+    char              msg[1024];
+    std::snprintf(msg, sizeof msg, "interrupted by %s at step %" PetscInt_FMT " (t = %.6e s); the state is saved in %s: continue with -restart %s",
+                  SignalName(flags[0]), step, t, path.c_str(), path.c_str());
+    stop_reason_      = msg;
+    stopped_on_error_ = true;
+    PetscCall(TSSetConvergedReason(ts_, TS_CONVERGED_USER));
+    PetscFunctionReturn(0);
+  }
+  if ((options.step_interval > 0 && step % options.step_interval == 0) || flags[1]) PetscCall(WriteCheckpointFile(step, t, "interval"));
+  if (output_.checkpoint.on_error) PetscCall(SaveGoodState(step, t));
+  PetscFunctionReturn(0);
+}
+
+// CheckHealth stopped the run: put the last good state back, write it as a
+// checkpoint (and a field file), and say so in the stop message.
+PetscErrorCode Simulation::OutputOnDivergence()
+{
+  PetscFunctionBegin;
+  if (!output_.checkpoint.on_error || output_.good_step < 0) PetscFunctionReturn(0);
+  PetscCall(VecCopy(output_.good_state, X_));
+  std::copy(output_.good_c33.begin(), output_.good_c33.end(), c33_.begin());
+  PetscCall(TSSetStepNumber(ts_, output_.good_step));
+  PetscCall(TSSetTime(ts_, output_.good_time));
+  if (output_.fields.enabled) PetscCall(WriteFields(output_.good_step, output_.good_time));
+  PetscCall(WriteCheckpointFile(output_.good_step, output_.good_time, "last good state"));
+  const std::string path = scene_.output_dir + "/checkpoint.h5";
+  char              msg[512];
+  std::snprintf(msg, sizeof msg, " The last good state (step %" PetscInt_FMT ", t = %.6e s) is saved in %s: continue from it with -restart %s and a smaller -time_step_safety.",
+                output_.good_step, output_.good_time, path.c_str(), path.c_str());
+  stop_reason_ += msg;
+  PetscFunctionReturn(0);
+}
+
+// Run() after the last step: the last field file and, with periodic checkpoints, a
+// final checkpoint (to extend the run later with a later -end_time).
+PetscErrorCode Simulation::OutputAtEnd(PetscInt step, double t)
+{
+  PetscFunctionBegin;
+  if (stopped_on_error_) PetscFunctionReturn(0);
+  if (output_.fields.enabled && (output_.series.frames.empty() || output_.series.frames.back().step != step)) PetscCall(WriteFields(step, t));
+  if (output_.checkpoint.periodic() && output_.last_checkpoint_step != step) PetscCall(WriteCheckpointFile(step, t, "end"));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Simulation::WriteFields(PetscInt step, double t)
+{
+  const PetscInt n = layout_.n_owned;
+  const double  *x;
+
+  PetscFunctionBegin;
+  PetscCall(PetscLogStagePush(stage_output_));
+  PetscCall(PetscLogEventBegin(event_fields, 0, 0, 0, 0));
+  PetscCall(CreateNaturalOrder());
+  std::vector<double> damage(n), largest(n);
+  PetscCall(VecGetArrayRead(X_, &x));
+  PetscCall(UpdateGhostedPositions(x)); // y_ for the stretch; the next force evaluation sets it again
+  point_damage(layout_.cloud, families_, bond_state_, (std::size_t)n, damage.data());
+  largest_bond_stretch(layout_.cloud, y_.data(), families_, bond_state_, (std::size_t)n, largest.data());
+  PointFields fields;
+  fields.reference        = layout_.cloud.x.data();
+  fields.displacement     = x;
+  fields.velocity         = x + 2 * n;
+  fields.damage           = damage.data();
+  fields.max_bond_stretch = largest.data();
+  PetscCall(WriteFieldFrame(comm_, output_.order, &output_.series, step, t, scene_.schedule.stretch_at(t), fields));
+  PetscCall(VecRestoreArrayRead(X_, &x));
+  PetscCall(PetscLogEventEnd(event_fields, 0, 0, 0, 0));
+  PetscCall(PetscLogStagePop());
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Simulation::WriteCheckpointFile(PetscInt step, double t, const char *reason)
+{
+  const PetscInt n = layout_.n_owned;
+  double        *x;
+
+  PetscFunctionBegin;
+  PetscCall(PetscLogStagePush(stage_output_));
+  PetscCall(PetscLogEventBegin(event_checkpoint, 0, 0, 0, 0));
+  const double wall = MPI_Wtime();
+  PetscCall(CreateNaturalOrder());
+  CheckpointHeader header;
+  header.step      = step;
+  header.time      = t;
+  header.time_step = dt_;
+  header.stretch   = scene_.schedule.stretch_at(t);
+  header.reason    = reason;
+  header.geometry  = output_.geometry;
+  if (rank_ == 0) {
+    char *all = nullptr;
+    PetscCall(PetscOptionsGetAll(nullptr, &all));
+    header.options = all ? all : "";
+    PetscCall(PetscFree(all));
+    std::ifstream      in(scene_.output_dir + "/history.csv");
+    std::ostringstream text;
+    text << in.rdbuf();
+    header.history = text.str();
+    std::ifstream      states(scene_.output_dir + "/static_states.csv");
+    std::ostringstream states_text;
+    if (states) states_text << states.rdbuf();
+    header.static_states = states_text.str();
+  }
+  header.schedule_original = output_.schedule_original;
+  header.schedule_current  = scene_.schedule.time;
+  header.end_time_original = output_.end_time_original;
+  header.end_time          = scene_.end_time;
+  header.static_hold_done  = static_hold_done_;
+  for (const FieldFrame &frame : output_.series.frames) {
+    header.field_frames.push_back((double)frame.step);
+    header.field_frames.push_back(frame.time);
+  }
+  const std::string path = scene_.output_dir + "/checkpoint.h5";
+  PetscCall(VecGetArray(X_, &x));
+  CheckpointState state;
+  state.u     = x;
+  state.v     = x + 2 * n;
+  state.bonds = &bond_state_;
+  state.c33   = c33_.data();
+  PetscCall(WriteCheckpoint(comm_, path, output_.order, families_, &header, state));
+  PetscCall(VecRestoreArray(X_, &x));
+  output_.last_checkpoint_step = step;
+  output_.last_checkpoint_wall = MPI_Wtime();
+  double megabytes = 0;
+  if (rank_ == 0) {
+    std::error_code ec;
+    megabytes = (double)std::filesystem::file_size(path, ec) / 1e6;
+  }
+  PetscCall(PetscPrintf(comm_, "Checkpoint (%s): step %" PetscInt_FMT ", t = %.6e s -> %s (%.2f MB, %.3f s)\n", reason, step, t, path.c_str(),
+                        megabytes, MPI_Wtime() - wall));
+  PetscCall(PetscLogEventEnd(event_checkpoint, 0, 0, 0, 0));
+  PetscCall(PetscLogStagePop());
+  PetscFunctionReturn(0);
+}
+
+// Static holds that ended early moved the later knots and the end time; the same
+// schedule (the common case) takes the moved values exactly, a schedule or end time
+// changed on the restart command line takes the same shifts.
+PetscErrorCode Simulation::RestoreSchedule(const CheckpointHeader &header)
+{
+  Schedule &s = scene_.schedule;
+
+  PetscFunctionBegin;
+  if (header.schedule_current.size() == s.time.size()) {
+    for (std::size_t k = 0; k < s.time.size(); ++k)
+      s.time[k] = s.time[k] == header.schedule_original[k] ? header.schedule_current[k]
+                                                          : s.time[k] + (header.schedule_current[k] - header.schedule_original[k]);
+  } else if (header.schedule_current != header.schedule_original) {
+    PetscCall(PetscPrintf(comm_, "Note: the load schedule has other knots than the checkpoint's; the holds it ended early are not carried over\n"));
+  }
+  scene_.end_time = scene_.end_time == header.end_time_original ? header.end_time
+                                                               : std::max(header.time, scene_.end_time + (header.end_time - header.end_time_original));
+  PetscCall(TSSetMaxTime(ts_, scene_.end_time));
+  static_hold_done_ = (PetscInt)header.static_hold_done;
+  PetscFunctionReturn(0);
+}
+
+// -restart FILE: the options were merged before the scene was read
+// (CheckpointMergeOptions); here the state replaces the initial one.
+PetscErrorCode Simulation::RestoreCheckpoint()
+{
+  const PetscInt     n    = layout_.n_owned;
+  const std::string &path = output_.checkpoint.restart;
+  double            *x;
+
+  PetscFunctionBegin;
+  PetscCall(PetscLogEventBegin(event_restart, 0, 0, 0, 0));
+  CheckpointHeader header;
+  PetscCall(ReadCheckpointHeader(comm_, path, &header));
+  PetscCall(CreateNaturalOrder());
+  PetscCall(VecGetArray(X_, &x));
+  CheckpointState state;
+  state.u     = x;
+  state.v     = x + 2 * n;
+  state.bonds = &bond_state_;
+  state.c33   = c33_.data();
+  PetscCall(ReadCheckpointState(comm_, path, output_.order, families_, header, output_.geometry, state));
+  PetscCall(VecRestoreArray(X_, &x));
+  // The reference geometry of the families with their broken bonds, as the run had it.
+  compute_bond_geometry(layout_.cloud, families_, bond_state_, geometry_);
+  last_stats_ = KernelStats{};
+  PetscCall(TSSetStepNumber(ts_, header.step));
+  PetscCall(TSSetTime(ts_, header.time));
+  PetscCall(RestoreSchedule(header));
+  if (header.time_step != dt_)
+    PetscCall(PetscPrintf(comm_, "Note: the checkpoint was written with dt = %.6e s; this run uses dt = %.6e s\n", header.time_step, dt_));
+  PetscCall(BrokenBondCount(&total_broken_));
+
+  // history.csv: the checkpoint's rows, then this run's. A last row at the checkpoint
+  // step that is off the -output_interval grid was the end-of-run row of the run that
+  // wrote it: the continuation writes its own rows.
+  if (rank_ == 0) {
+    const std::string file = scene_.output_dir + "/history.csv";
+    std::string       current_header;
+    {
+      std::ifstream in(file);
+      std::getline(in, current_header);
+    }
+    std::vector<std::string> lines;
+    std::istringstream       in(header.history);
+    for (std::string line; std::getline(in, line);) lines.push_back(line);
+    if (lines.size() > 1 && RowStep(lines.back()) == header.step && header.step % scene_.output_interval != 0) lines.pop_back();
+    const bool same_columns = !lines.empty() && lines.front() == current_header;
+    std::fclose(history_);
+    history_ = std::fopen(file.c_str(), "w");
+    PetscCheck(history_, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "Cannot write %s: choose a writable -output_dir", file.c_str());
+    if (same_columns)
+      for (const std::string &line : lines) std::fprintf(history_, "%s\n", line.c_str());
+    else {
+      std::fprintf(history_, "%s\n", current_header.c_str());
+      std::fprintf(stderr, "bapd: warning: the history columns differ from the checkpoint's (other load sets or probes): %s starts at the restart step\n",
+                   file.c_str());
+    }
+    std::fflush(history_);
+    if (!header.static_states.empty()) { // static_states.csv goes on too
+      const std::string states = scene_.output_dir + "/static_states.csv";
+      if (static_states_) std::fclose(static_states_);
+      static_states_ = std::fopen(states.c_str(), "w");
+      PetscCheck(static_states_, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "Cannot write %s: choose a writable -output_dir", states.c_str());
+      std::fputs(header.static_states.c_str(), static_states_);
+      std::fflush(static_states_);
+    }
+  }
+
+  // Field files: those of the checkpoint's list that are here, listed again (a run
+  // killed after the checkpoint may have written later ones).
+  std::vector<int> present(header.field_frames.size() / 2, 0);
+  if (rank_ == 0)
+    for (std::size_t k = 0; k < present.size(); ++k) {
+      std::error_code ec;
+      present[k] = std::filesystem::exists(scene_.output_dir + "/" + FieldFileName((PetscInt)header.field_frames[2 * k]), ec);
+    }
+  if (!present.empty()) PetscCallMPI(MPI_Bcast(present.data(), (int)present.size(), MPI_INT, 0, comm_));
+  output_.series.frames.clear();
+  for (std::size_t k = 0; k < present.size(); ++k)
+    if (present[k]) output_.series.frames.push_back({(PetscInt)header.field_frames[2 * k], header.field_frames[2 * k + 1]});
+  if (output_.fields.enabled) PetscCall(WriteFieldIndex(comm_, output_.series, layout_.n_global));
+
+  PetscCall(PetscPrintf(comm_, "Restart from %s: step %" PetscInt_FMT ", t = %.6e s, stretch %.5f, %" PetscInt_FMT " broken bonds (written by %lld rank(s), %s)\n",
+                        path.c_str(), header.step, header.time, scene_.schedule.stretch_at(header.time), total_broken_,
+                        (long long)header.ranks, header.reason.c_str()));
+  PetscCall(PetscLogEventEnd(event_restart, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+} // namespace bapd

@@ -1,0 +1,572 @@
+// The energy-consistent BA force (ba_force_energy.hpp): it is minus the gradient of
+// strain_energy(), its tangent is symmetric, Verlet conserves its energy, and it keeps
+// the bond-only form's momentum balance, objectivity, patch test and rank-layout
+// independence.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <set>
+
+#include "bapd/ba_force_energy.hpp"
+#include "bapd/damage.hpp"
+#include "bapd/gent.hpp"
+#include "unit/test_models.hpp"
+
+namespace bapd {
+namespace {
+
+constexpr double kDx = 0.5e-3;
+constexpr double kPi = 3.141592653589793;
+
+Mat2 rotation(double deg)
+{
+  const double a = deg * kPi / 180.0;
+  return {std::cos(a), -std::sin(a), std::sin(a), std::cos(a)};
+}
+
+// The paper's hydrogel with K = 100 mu.
+GentPlaneStress hydrogel()
+{
+  MaterialParameters p;
+  p.D = 2.0 / (100.0 * p.mu);
+  return GentPlaneStress{p};
+}
+
+// A plate with a hole and a notch, deformed non-affinely (stretch, shear and noise of
+// `noise` dx), with every `stride`-th bond of every third point broken.
+struct CutPlate {
+  Body2D               body;
+  test::Discretisation d;
+  std::vector<double>  y;
+
+  CutPlate(int n, double noise, unsigned seed, double horizon_factor = 3.015)
+      : body(make_body(n)), d(body, horizon_factor)
+  {
+    std::mt19937 rng(seed);
+    y = d.affine({1.2, 0.15, -0.1, 0.92});
+    for (double &v : y) v += test::random_between(rng, -noise, noise) * kDx;
+    std::vector<std::size_t> touched;
+    for (std::size_t i = 0; i < d.size(); i += 3)
+      for (std::size_t q = 1; q < d.families.size(i); q += 5) break_bond(d.families, d.state, i, q, &touched);
+    compute_bond_geometry(d.cloud, d.families, d.state, d.geometry, touched);
+  }
+  static Body2D make_body(int n)
+  {
+    Body2D b = test::plate(n, n, kDx);
+    b.holes.push_back({0.3 * n * kDx, 0.6 * n * kDx, 2.5 * kDx});
+    b.notches.push_back({n * kDx, 0.5 * n * kDx, 0.55 * n * kDx, 0.5 * n * kDx});
+    return b;
+  }
+};
+
+// sum_j (|t_ij| + |t_ji|) V_j: the size of the terms that cancel in f_i.
+double force_terms(const test::Discretisation &d, const std::vector<double> &t, std::size_t i)
+{
+  double s = 0;
+  for (std::size_t b = d.families.offsets[i]; b < d.families.offsets[i + 1]; ++b) {
+    const std::size_t r = static_cast<std::size_t>(d.families.reverse[b]);
+    s += (std::hypot(t[2 * b], t[2 * b + 1]) + std::hypot(t[2 * r], t[2 * r + 1])) *
+         d.cloud.volume[static_cast<std::size_t>(d.families.neighbour[b])];
+  }
+  return s;
+}
+
+double max_abs(const std::vector<double> &v)
+{
+  double m = 0;
+  for (double a : v) m = std::max(m, std::abs(a));
+  return m;
+}
+
+TEST(BaForceEnergy, BaMasksAreSymmetricWithinAFamily)
+{
+  // The kernel's premise: p in B_iq iff q in B_ip, so the bonds whose BA family holds
+  // p are the set bits of bond (i -> p)'s own mask.
+  for (double factor : {3.015, 5.015}) {
+    CutPlate                   c(20, 0.0, 1, factor);
+    const Families            &f = c.d.families;
+    std::size_t                checked = 0;
+    for (std::size_t i = 0; i < c.d.size(); ++i)
+      for (std::size_t p = 0; p < f.size(i); ++p)
+        for (std::size_t q = 0; q < f.size(i); ++q) {
+          const bool pq = (f.ba(f.offsets[i] + q)[p / 64] >> (p % 64)) & 1u;
+          const bool qp = (f.ba(f.offsets[i] + p)[q / 64] >> (q % 64)) & 1u;
+          ASSERT_EQ(pq, qp) << "point " << i << " members " << p << ", " << q;
+          checked += pq;
+        }
+    EXPECT_GT(checked, 100000u);
+  }
+}
+
+// f = -(1/V) dW/dy straight from the definition of W (ba_force_energy.hpp): every
+// bond's dPsi/dF scattered to the members of its BA family (found by distance, not by
+// the masks) and to its origin. No symmetry of the masks, no complement sums.
+template <class Model>
+std::vector<double> reference_force(const test::Discretisation &d, const Model &model, const std::vector<double> &y)
+{
+  const Families     &fam = d.families;
+  const PointCloud   &c   = d.cloud;
+  std::vector<double> grad(2 * d.size(), 0.0);
+  for (std::size_t i = 0; i < d.size(); ++i) {
+    struct Term {
+      std::size_t q;
+      Mat2        P, Kinv;
+    };
+    std::vector<Term> terms;
+    double            den = 0;
+    for (std::size_t q = 0; q < fam.size(i); ++q) {
+      const BondShape shape = bond_shape(c, fam, d.state, i, q);
+      if (!d.state.is_intact(i, q) || !d.geometry.is_usable(i, q) || !shape.usable) continue;
+      const Mat2 F = bond_deformation_gradient(c, y.data(), fam, d.geometry, d.state, i, q);
+      double     c33 = 0;
+      Mat2       P;
+      if (model.stress(F, c33, P) != StressStatus::ok) continue;
+      const auto &k = shape.shape_tensor_inv;
+      terms.push_back({q, P, {k[0], k[1], k[1], k[2]}});
+      den += c.volume[static_cast<std::size_t>(fam.neighbour[fam.offsets[i] + q])];
+    }
+    for (const Term &t : terms) {
+      const std::size_t j = static_cast<std::size_t>(fam.neighbour[fam.offsets[i] + t.q]);
+      const double      w = c.volume[i] * c.volume[j] / den;
+      for (std::size_t p = 0; p < fam.size(i); ++p) {
+        const std::size_t m = static_cast<std::size_t>(fam.neighbour[fam.offsets[i] + p]);
+        if (!d.state.is_intact(i, p)) continue;
+        if (std::hypot(c.x[2 * m] - c.x[2 * j], c.x[2 * m + 1] - c.x[2 * j + 1]) > d.horizon) continue; // not in B_ij
+        const Vec2 g  = t.Kinv * Vec2{(c.x[2 * m] - c.x[2 * i]) * c.volume[m], (c.x[2 * m + 1] - c.x[2 * i + 1]) * c.volume[m]};
+        const Vec2 dW = t.P * g; // dPsi(F_ij)/dy_m
+        for (int a = 0; a < 2; ++a) {
+          grad[2 * m + a] += w * dW[a];
+          grad[2 * i + a] -= w * dW[a];
+        }
+      }
+    }
+  }
+  for (std::size_t k = 0; k < d.size(); ++k) grad[2 * k] /= -c.volume[k], grad[2 * k + 1] /= -c.volume[k];
+  return grad;
+}
+
+TEST(BaForceEnergy, ForceMatchesAStraightforwardGradientOfTheEnergy)
+{
+  for (double factor : {3.015, 5.015}) { // one and two mask words
+    CutPlate                     c(20, 0.1, 11, factor);
+    test::SaintVenantKirchhoff2D svk;
+    std::vector<double>          t, f;
+    const KernelStats            s = c.d.energy_consistent_forces(svk, c.y, t, f);
+    EXPECT_TRUE(s.ok());
+    ASSERT_GT(c.d.state.count_broken(c.d.families, c.d.size()), 500u);
+    const std::vector<double> r = reference_force(c.d, svk, c.y);
+    const double              scale = max_abs(r);
+    for (std::size_t k = 0; k < f.size(); ++k)
+      // Same sums in other orders, K^{-1} by other formulas: round-off of ~30^2 terms,
+      // amplified by cond(K) (<= ~100 next to the cuts).
+      ASSERT_NEAR(f[k], r[k], 1e-12 * scale) << "dof " << k << ", delta = " << factor << " dx";
+  }
+}
+
+// max_k |f_k + (1/V_k) dW/dy_k| / max |f| by central differences of strain_energy().
+template <class Model> double finite_difference_error(const CutPlate &c, const Model &model, double h)
+{
+  const test::Discretisation &d = c.d;
+  std::vector<double>         t, f, y = c.y;
+  EXPECT_TRUE(d.energy_consistent_forces(model, y, t, f).ok());
+  BondKernelWorkspace ws;
+  double              worst = 0;
+  for (std::size_t k = 0; k < y.size(); ++k) {
+    const double y0 = y[k];
+    y[k]            = y0 + h;
+    const double Wp = strain_energy(model, d.cloud, y.data(), d.families, d.geometry, d.state, nullptr, d.size(), ws);
+    y[k]            = y0 - h;
+    const double Wm = strain_energy(model, d.cloud, y.data(), d.families, d.geometry, d.state, nullptr, d.size(), ws);
+    y[k]            = y0;
+    const double fd = -(Wp - Wm) / (2 * h) / d.cloud.volume[k / 2];
+    worst           = std::max(worst, std::abs(fd - f[k]));
+  }
+  return worst / max_abs(f);
+}
+
+TEST(BaForceEnergy, ForceIsMinusTheEnergyGradientBySvkFiniteDifferences)
+{
+  const CutPlate c(16, 0.1, 5);
+  // h = 1e-4 dx: truncation (h/dx)^2 ~ 1e-8 of the force; round-off eps W / h over
+  // 256 points ~ 1e-10 of it.
+  EXPECT_LT(finite_difference_error(c, test::SaintVenantKirchhoff2D{}, 1e-4 * kDx), 1e-7);
+}
+
+TEST(BaForceEnergy, ForceIsMinusTheEnergyGradientByGentPlaneStressFiniteDifferences)
+{
+  const CutPlate c(16, 0.1, 6);
+  // As for SVK, plus the C33 solve: its residual enters the reduced energy at second
+  // order only (S33 = 0 is stationarity), ~1e-12 of Psi, i.e. ~1e-8 after / h.
+  EXPECT_LT(finite_difference_error(c, hydrogel(), 1e-4 * kDx), 1e-7);
+}
+
+TEST(BaForceEnergy, ConservesLinearMomentumWithNotchHoleAndBrokenBonds)
+{
+  const CutPlate c(20, 0.2, 42);
+  for (int model = 0; model < 2; ++model) {
+    std::vector<double> t, f;
+    if (model == 0) c.d.energy_consistent_forces(test::SaintVenantKirchhoff2D{}, c.y, t, f);
+    else c.d.energy_consistent_forces(hydrogel(), c.y, t, f);
+    double sum0 = 0, sum1 = 0, scale = 0;
+    for (std::size_t i = 0; i < c.d.size(); ++i) {
+      sum0 += f[2 * i] * c.d.cloud.volume[i];
+      sum1 += f[2 * i + 1] * c.d.cloud.volume[i];
+      scale += force_terms(c.d, t, i) * c.d.cloud.volume[i];
+    }
+    ASSERT_GT(scale, 0);
+    // Pairwise cancellation as in the bond-only form: round-off of ~2e4 summands.
+    EXPECT_LT(std::hypot(sum0, sum1), 1e-13 * scale);
+  }
+}
+
+TEST(BaForceEnergy, RigidRotationGivesZeroForceEverywhere)
+{
+  const CutPlate               c(20, 0.0, 1);
+  test::SaintVenantKirchhoff2D svk;
+  // The force a unit strain makes: that of a 1e-3 stretch, divided by 1e-3.
+  std::vector<double> t, f_unit;
+  c.d.energy_consistent_forces(svk, c.d.affine({1.001, 0.0, 0.0, 1.0}), t, f_unit);
+  const double unit = max_abs(f_unit) / 1e-3;
+  ASSERT_GT(unit, 0);
+  for (double deg : {90.0, 40.0, 180.0}) {
+    std::vector<double> f;
+    c.d.energy_consistent_forces(svk, c.d.affine(rotation(deg), 5.0e-3, -3.0e-3), t, f);
+    // F = R + O(eps |y| / dx) = R + O(1e-14): P is round-off times the modulus.
+    EXPECT_LT(max_abs(f), 1e-12 * unit) << "rotation " << deg;
+  }
+}
+
+TEST(BaForceEnergy, AffineMotionGivesZeroNetForceTwoHorizonsFromTheBoundary)
+{
+  const Mat2           A = rotation(40.0) * Mat2{3.0, 0.5, 0.0, 1.1};
+  test::Discretisation d(test::plate(20, 20, kDx));
+  for (int model = 0; model < 2; ++model) {
+    std::vector<double> t, f;
+    const KernelStats   s = model == 0 ? d.energy_consistent_forces(test::SaintVenantKirchhoff2D{}, d.affine(A, 3.7e-3, -1.2e-2), t, f)
+                                       : d.energy_consistent_forces(hydrogel(), d.affine({1.3, 0.1, 0.0, 0.9}), t, f);
+    EXPECT_TRUE(s.ok());
+    EXPECT_EQ(s.evaluated, d.families.n_bonds());
+    std::size_t interior = 0;
+    double      worst = 0, boundary_max = 0;
+    for (std::size_t i = 0; i < d.size(); ++i) {
+      const double x = d.cloud.x[2 * i], y = d.cloud.x[2 * i + 1];
+      const double rel = std::hypot(f[2 * i], f[2 * i + 1]) / force_terms(d, t, i);
+      if (std::min(std::min(x, 20 * kDx - x), std::min(y, 20 * kDx - y)) >= 2 * d.horizon) {
+        ++interior;
+        worst = std::max(worst, rel);
+      } else boundary_max = std::max(boundary_max, rel);
+    }
+    EXPECT_EQ(interior, 64u);
+    // Uniform P: the terms pair up by the lattice's point symmetry (t(xi) and t(-xi));
+    // what is left is the round-off of the ~56 terms and of the masked sums.
+    EXPECT_LT(worst, 1e-13);
+    EXPECT_GT(boundary_max, 1e-2); // not vacuous: the free surface is not in equilibrium
+  }
+}
+
+// Largest |K_rs - K_sr| / max |K| over the stiffness entries K_rs = -d f_r / d u_s
+// of the given points (central differences at u = 0; equal volumes, so V K is the
+// Hessian of W for the energy-consistent form and must be symmetric).
+template <class Forces>
+double stiffness_asymmetry(const test::Discretisation &d, const std::vector<std::size_t> &points, Forces forces)
+{
+  const double                     h = 1e-6 * d.cloud.x[0];
+  std::vector<std::vector<double>> column(2 * points.size());
+  for (std::size_t s = 0; s < 2 * points.size(); ++s) {
+    std::vector<double> fp, fm, y = d.cloud.x;
+    y[2 * points[s / 2] + s % 2] += h;
+    forces(y, fp);
+    y[2 * points[s / 2] + s % 2] -= 2 * h;
+    forces(y, fm);
+    for (std::size_t k = 0; k < fp.size(); ++k) fp[k] = (fp[k] - fm[k]) / (2 * h);
+    column[s] = fp;
+  }
+  double asym = 0, size = 0;
+  for (std::size_t r = 0; r < 2 * points.size(); ++r)
+    for (std::size_t s = 0; s < 2 * points.size(); ++s) {
+      const double k_rs = column[s][2 * points[r / 2] + r % 2], k_sr = column[r][2 * points[s / 2] + s % 2];
+      asym = std::max(asym, std::abs(k_rs - k_sr));
+      size = std::max(size, std::abs(k_rs));
+    }
+  return asym / size;
+}
+
+TEST(BaForceEnergy, StiffnessIsSymmetricAtFreeEdgesCornersAndNotchTipsWhereBondOnlyIsNot)
+{
+  Body2D body = test::plate(20, 20, 1.0);
+  body.notches.push_back({20.0, 10.0, 12.0, 10.0});
+  test::Discretisation         d(body);
+  test::SaintVenantKirchhoff2D svk;
+  svk.lambda = svk.mu = 1.0;
+  auto energy = [&](const std::vector<double> &y, std::vector<double> &f) {
+    std::vector<double> t;
+    d.energy_consistent_forces(svk, y, t, f);
+  };
+  auto bond_only = [&](const std::vector<double> &y, std::vector<double> &f) {
+    std::vector<double> t;
+    d.forces(svk, y, t, f);
+  };
+  auto index = [](int ix, int iy) { return static_cast<std::size_t>(iy * 20 + ix); };
+  std::vector<std::size_t> interior, edge, notch_tip;
+  for (int iy = 4; iy <= 7; ++iy)
+    for (int ix = 8; ix <= 11; ++ix) interior.push_back(index(ix, iy));
+  for (int iy = 0; iy <= 1; ++iy)
+    for (int ix = 0; ix <= 5; ++ix) edge.push_back(index(ix, iy)); // the corner and the bottom edge
+  for (int iy = 8; iy <= 11; ++iy)
+    for (int ix = 10; ix <= 14; ++ix) notch_tip.push_back(index(ix, iy)); // both faces of the notch and its tip
+  const double ec_interior = stiffness_asymmetry(d, interior, energy);
+  const double ec_edge     = stiffness_asymmetry(d, edge, energy);
+  const double ec_notch    = stiffness_asymmetry(d, notch_tip, energy);
+  const double bo_edge     = stiffness_asymmetry(d, edge, bond_only);
+  const double bo_notch    = stiffness_asymmetry(d, notch_tip, bond_only);
+  std::printf("stiffness asymmetry: energy-consistent interior %.1e, edge %.1e, notch %.1e; bond-only edge %.1e, notch %.1e\n",
+              ec_interior, ec_edge, ec_notch, bo_edge, bo_notch);
+  // Central differences of a linear map at u = 0: O(h^2) truncation + round-off / h.
+  EXPECT_LT(ec_interior, 1e-6);
+  EXPECT_LT(ec_edge, 1e-6);
+  EXPECT_LT(ec_notch, 1e-6);
+  EXPECT_GT(bo_edge, 1e-2); // the contrast: the bond-only tangent is far from symmetric there
+  EXPECT_GT(bo_notch, 1e-2);
+}
+
+// Velocity Verlet on a free 12 x 12 sheet (SVK, rho = 1000 kg/m^3), from a small
+// sinusoidal displacement at rest, dt = 0.5 x the stable step of the energy-consistent
+// form (power iteration). Returns max_n |H_n - H_0| / H_0 over the run, H = kinetic +
+// strain_energy(), sampled every 10 steps; *final_momentum gets |sum m v| / sum m |v|.
+struct VerletRun {
+  double max_drift = 0, final_drift = 0, final_momentum = 0, dt = 0, duration = 0;
+  bool   finite = true;
+};
+
+template <bool EnergyConsistent> VerletRun verlet(int steps)
+{
+  test::Discretisation         d(test::plate(12, 12, kDx));
+  test::SaintVenantKirchhoff2D svk;
+  const double                 rho = 1000.0, L = 12 * kDx;
+  const std::size_t            n   = d.size();
+  auto acceleration = [&](const std::vector<double> &y, std::vector<double> &a) {
+    std::vector<double> t;
+    if (EnergyConsistent) d.energy_consistent_forces(svk, y, t, a);
+    else d.forces(svk, y, t, a);
+    for (double &v : a) v /= rho;
+  };
+  // Stable step 2 / sqrt(lambda_max(M^{-1} K)), by power iteration as the solver does
+  // it (symmetric K: the Rayleigh quotient is real), padded by 10 %.
+  std::vector<double> v(2 * n), a, a0;
+  std::mt19937        rng(7);
+  for (double &c : v) c = test::random_between(rng, -0.5, 0.5);
+  acceleration(d.cloud.x, a0);
+  double lambda = 0;
+  for (int it = 0; it < 200; ++it) {
+    double norm = 0;
+    for (double c : v) norm += c * c;
+    norm = std::sqrt(norm);
+    std::vector<double> y = d.cloud.x;
+    const double        eps = 1e-7 * kDx;
+    for (std::size_t k = 0; k < y.size(); ++k) y[k] += eps * v[k] / norm;
+    acceleration(y, a);
+    lambda = 0;
+    for (std::size_t k = 0; k < a.size(); ++k) {
+      a[k] = -(a[k] - a0[k]) / eps;
+      lambda += a[k] * v[k] / norm;
+    }
+    v = a;
+  }
+  VerletRun run;
+  run.dt = 0.5 * 2.0 / std::sqrt(1.1 * lambda);
+  // u = 0.01 dx (sin(pi x/L) cos(2 pi y/L), cos(3 pi x/L) sin(pi y/L)): strains ~ 1e-4.
+  std::vector<double> y = d.cloud.x, vel(2 * n, 0.0);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double X = d.cloud.x[2 * i] / L, Y = d.cloud.x[2 * i + 1] / L;
+    y[2 * i] += 0.01 * kDx * std::sin(kPi * X) * std::cos(2 * kPi * Y);
+    y[2 * i + 1] += 0.01 * kDx * std::cos(3 * kPi * X) * std::sin(kPi * Y);
+  }
+  BondKernelWorkspace ws;
+  auto energy = [&]() {
+    double kinetic = 0;
+    for (std::size_t i = 0; i < n; ++i)
+      kinetic += 0.5 * rho * d.cloud.volume[i] * (vel[2 * i] * vel[2 * i] + vel[2 * i + 1] * vel[2 * i + 1]);
+    return kinetic + strain_energy(svk, d.cloud, y.data(), d.families, d.geometry, d.state, nullptr, n, ws);
+  };
+  const double H0 = energy();
+  acceleration(y, a);
+  for (int step = 1; step <= steps; ++step) {
+    for (std::size_t k = 0; k < y.size(); ++k) {
+      vel[k] += 0.5 * run.dt * a[k];
+      y[k] += run.dt * vel[k];
+    }
+    acceleration(y, a);
+    for (std::size_t k = 0; k < y.size(); ++k) vel[k] += 0.5 * run.dt * a[k];
+    if (step % 10 == 0 || step == steps) {
+      const double drift = std::abs(energy() - H0) / H0;
+      if (!std::isfinite(drift)) {
+        run.finite = false;
+        break;
+      }
+      run.max_drift   = std::max(run.max_drift, drift);
+      run.final_drift = drift;
+    }
+  }
+  run.duration = steps * run.dt;
+  double p0 = 0, p1 = 0, pabs = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double m = rho * d.cloud.volume[i];
+    p0 += m * vel[2 * i], p1 += m * vel[2 * i + 1], pabs += m * std::hypot(vel[2 * i], vel[2 * i + 1]);
+  }
+  run.final_momentum = std::hypot(p0, p1) / pabs;
+  return run;
+}
+
+TEST(BaForceEnergy, VelocityVerletConservesTheEnergyOfAFreeSheet)
+{
+  const int       steps = 10000;
+  const VerletRun ec    = verlet<true>(steps);
+  const VerletRun bo    = verlet<false>(steps);
+  std::printf("free 12 x 12 sheet, %d Verlet steps of %.3e s (%.3e s): max |H - H0| / H0 = %.2e (final %.2e) "
+              "energy-consistent, %.2e (final %.2e%s) bond-only\n",
+              steps, ec.dt, ec.duration, ec.max_drift, ec.final_drift, bo.max_drift, bo.final_drift,
+              bo.finite ? "" : ", blew up");
+  ASSERT_TRUE(ec.finite);
+  // Verlet conserves a modified energy H + O(dt^2): |H - H0| stays a bounded
+  // oscillation of relative size ~(omega dt)^2 / 8 over the excited modes, with no
+  // secular growth. The smooth initial shape excites low modes (omega dt << 1).
+  EXPECT_LT(ec.max_drift, 1e-3);
+  EXPECT_LT(ec.final_momentum, 1e-10); // sum f V = 0 to round-off every step
+}
+
+// One rank's view: owned points, ring-1 ghosts (bonded to an owned point), ring-2
+// ghosts (bonded to a ring-1 one), each group shuffled, with the global V(H) shipped
+// (as in ba_force_test.cpp).
+struct LocalView {
+  PointCloud               cloud;
+  std::size_t              n_owned = 0, n_family = 0;
+  std::vector<std::size_t> global; // local -> global index
+};
+
+LocalView local_view(const PointCloud &g, const Families &gf, const std::vector<bool> &owned, std::mt19937 &rng)
+{
+  const std::size_t        n = g.size();
+  std::vector<int>         ring(n, -1);
+  std::vector<std::size_t> groups[3];
+  for (std::size_t i = 0; i < n; ++i)
+    if (owned[i]) ring[i] = 0, groups[0].push_back(i);
+  for (int r = 1; r <= 2; ++r)
+    for (std::size_t i : std::vector<std::size_t>(groups[r - 1]))
+      for (std::size_t b = gf.offsets[i]; b < gf.offsets[i + 1]; ++b) {
+        const std::size_t j = static_cast<std::size_t>(gf.neighbour[b]);
+        if (ring[j] < 0) ring[j] = r, groups[r].push_back(j);
+      }
+  LocalView v;
+  for (auto &grp : groups) {
+    std::shuffle(grp.begin(), grp.end(), rng);
+    v.global.insert(v.global.end(), grp.begin(), grp.end());
+  }
+  v.n_owned  = groups[0].size();
+  v.n_family = groups[0].size() + groups[1].size();
+  for (std::size_t gi : v.global) {
+    v.cloud.x.push_back(g.x[2 * gi]);
+    v.cloud.x.push_back(g.x[2 * gi + 1]);
+    v.cloud.volume.push_back(g.volume[gi]);
+    v.cloud.natural_id.push_back(g.natural_id[gi]);
+    v.cloud.family_volume.push_back(g.family_volume[gi]); // shipped by the solver
+  }
+  return v;
+}
+
+TEST(BaForceEnergy, RankLocalCloudReproducesOneRankForcesBitForBit)
+{
+  Body2D body = test::plate(24, 24, kDx);
+  body.holes.push_back({7.0 * kDx, 15.0 * kDx, 2.5 * kDx});
+  body.notches.push_back({24 * kDx, 12.0 * kDx, 14.0 * kDx, 12.0 * kDx});
+  test::Discretisation d(body);
+  std::mt19937         rng(3);
+  std::vector<double>  y = d.affine({1.4, 0.1, 0.0, 0.95});
+  for (double &v : y) v += test::random_between(rng, -0.15, 0.15) * kDx;
+  const double             s_c = 1.45;
+  std::vector<std::size_t> touched;
+  ASSERT_GT(break_bonds(d.cloud, y.data(), d.families, s_c, d.state, touched), 10u);
+  compute_bond_geometry(d.cloud, d.families, d.state, d.geometry, touched);
+  const GentPlaneStress gent = hydrogel();
+  std::vector<double>   t, f, c33(d.families.n_bonds(), 0.0);
+  {
+    BondKernelWorkspace ws;
+    t.assign(2 * d.families.n_bonds(), 0.0);
+    ASSERT_TRUE(compute_energy_consistent_bond_forces(gent, d.cloud, y.data(), d.families, d.geometry, d.state,
+                                                      c33.data(), t.data(), ws).ok());
+    f.assign(2 * d.size(), 0.0);
+    assemble_force_density(d.families, d.cloud, t.data(), d.size(), f.data());
+  }
+
+  for (int part = 0; part < 2; ++part) {
+    std::vector<bool> owned(d.size());
+    for (std::size_t i = 0; i < d.size(); ++i)
+      owned[i] = ((d.cloud.x[2 * i] + 0.5 * d.cloud.x[2 * i + 1]) < 14 * kDx) == (part == 0);
+    LocalView           v  = local_view(d.cloud, d.families, owned, rng);
+    Families            lf = build_families(v.cloud, v.n_family, d.horizon, body.notches);
+    BondState           ls(lf);
+    std::vector<double> ly(2 * v.cloud.size());
+    for (std::size_t k = 0; k < v.global.size(); ++k) ly[2 * k] = y[2 * v.global[k]], ly[2 * k + 1] = y[2 * v.global[k] + 1];
+    std::vector<std::size_t> lt;
+    break_bonds(v.cloud, ly.data(), lf, s_c, ls, lt);
+    BondGeometry lg;
+    compute_bond_geometry(v.cloud, lf, ls, lg);
+    std::vector<double> lbf(2 * lf.n_bonds()), lfd(2 * v.n_owned), lc33(lf.n_bonds(), 0.0);
+    BondKernelWorkspace ws;
+    compute_energy_consistent_bond_forces(gent, v.cloud, ly.data(), lf, lg, ls, lc33.data(), lbf.data(), ws);
+    assemble_force_density(lf, v.cloud, lbf.data(), v.n_owned, lfd.data());
+    for (std::size_t k = 0; k < v.n_owned; ++k) {
+      const std::size_t gi = v.global[k];
+      ASSERT_EQ(lfd[2 * k], f[2 * gi]) << "natural id " << gi; // bit for bit
+      ASSERT_EQ(lfd[2 * k + 1], f[2 * gi + 1]) << "natural id " << gi;
+    }
+    for (std::size_t k = 0; k < v.n_family; ++k) // ring-1 ghosts' bond forces and c33 too
+      for (std::size_t q = 0; q < lf.size(k); ++q) {
+        const std::size_t gb = d.families.offsets[v.global[k]] + q, lb = lf.offsets[k] + q;
+        ASSERT_EQ(lbf[2 * lb], t[2 * gb]);
+        ASSERT_EQ(lbf[2 * lb + 1], t[2 * gb + 1]);
+        ASSERT_EQ(lc33[lb], c33[gb]);
+      }
+  }
+}
+
+TEST(BaForceEnergy, ModelFailuresAreReportedLikeTheBondOnlyKernelAndCarryNoEnergy)
+{
+  test::Discretisation d(test::plate(20, 20, kDx));
+  test::LimitedModel   model; // chain_limit once F_xx > 1.5
+  const double         L = 20 * kDx;
+  std::vector<double>  y = d.cloud.x;
+  for (std::size_t i = 0; i < d.size(); ++i) y[2 * i] += d.cloud.x[2 * i] * d.cloud.x[2 * i] / L; // F_xx = 1 + 2x/L
+  std::vector<double>  c33_bo(d.families.n_bonds(), 7.0), c33_ec(c33_bo), t(2 * d.families.n_bonds());
+  BondKernelWorkspace  ws_bo, ws_ec;
+  const KernelStats    bo = compute_bond_forces(model, d.cloud, y.data(), d.families, d.geometry, d.state,
+                                                c33_bo.data(), t.data(), ws_bo);
+  const KernelStats    ec = compute_energy_consistent_bond_forces(model, d.cloud, y.data(), d.families, d.geometry,
+                                                                  d.state, c33_ec.data(), t.data(), ws_ec);
+  ASSERT_GT(ec.chain_limit, 1000u);
+  EXPECT_EQ(ec.chain_limit, bo.chain_limit);
+  EXPECT_EQ(ec.evaluated, bo.evaluated);
+  EXPECT_EQ(ec.unusable, bo.unusable);
+  EXPECT_EQ(ec.first_point, bo.first_point);
+  EXPECT_EQ(ec.first_position, bo.first_position);
+  EXPECT_EQ(ec.first_status, StressStatus::chain_limit);
+  ASSERT_EQ(ws_ec.failed.size(), ws_bo.failed.size());
+  for (std::size_t k = 0; k < ws_ec.failed.size(); ++k) {
+    EXPECT_EQ(ws_ec.failed[k].point, ws_bo.failed[k].point);
+    EXPECT_EQ(ws_ec.failed[k].position, ws_bo.failed[k].position);
+  }
+  EXPECT_EQ(c33_ec, c33_bo); // failed solves keep the warm start; the others store 0.5
+
+  // Carry no energy: the force is the reference gradient with the failed bonds left
+  // out of W (their model's stress is absent from every sum and from omega).
+  std::vector<double>       f(2 * d.size());
+  assemble_force_density(d.families, d.cloud, t.data(), d.size(), f.data());
+  const std::vector<double> r     = reference_force(d, model, y);
+  const double              scale = max_abs(r);
+  for (std::size_t k = 0; k < f.size(); ++k) ASSERT_NEAR(f[k], r[k], 1e-12 * scale) << "dof " << k; // round-off
+}
+
+} // namespace
+} // namespace bapd
