@@ -5,8 +5,10 @@
 #   ./run_mpi.sh -n 4 examples/plate_hole.yaml     # a scene on 4 ranks
 #   ./run_mpi.sh -n 2 examples/pure_shear.yaml -material_mu 5e3 -log_view
 #
-# The first .yaml argument is the scene (passed as -options_file_yaml, first, so that
-# every later option overrides it); every other argument goes to bapd unchanged.
+# The first .yaml argument (or -options_file_yaml FILE) is the scene (passed as
+# -options_file_yaml, first, so that every later option overrides it); every other
+# argument goes to bapd unchanged. A scene that cannot be read, or a bad -n, is
+# reported before anything is installed or built.
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 ranks=2
@@ -14,13 +16,24 @@ scene=""
 args=()
 while (($#)); do
   case "$1" in
-    -n|-np) ranks="$2"; shift 2 ;;
+    -n|-np)
+      if (($# < 2)) || ! [[ "$2" =~ ^[1-9][0-9]*$ ]]; then
+        echo "run_mpi.sh: error: $1 needs a number of ranks, e.g. $1 4" >&2; exit 2
+      fi
+      ranks="$2"; shift 2 ;;
+    -options_file_yaml)
+      (($# >= 2)) || { echo "run_mpi.sh: error: -options_file_yaml needs a scene file, e.g. -options_file_yaml examples/pure_shear.yaml" >&2; exit 2; }
+      if [ -z "$scene" ]; then scene="$2"; else args+=("$1" "$2"); fi; shift 2 ;;
     *.yaml|*.yml) if [ -z "$scene" ]; then scene="$1"; else args+=("$1"); fi; shift ;;
     *) args+=("$1"); shift ;;
   esac
 done
 if [ -z "$scene" ] && ((${#args[@]} == 0)); then
   scene="$here/examples/default.yaml"
+fi
+if [ -n "$scene" ] && ! [ -f "$scene" -a -r "$scene" ]; then
+  echo "bapd: error: cannot open scene file '$scene': $([ -e "$scene" ] && echo "not a readable file" || echo "No such file or directory") (check the path given to run_mpi.sh)" >&2
+  exit 1
 fi
 if [ -z "${BAPD_EXE:-}" ]; then
   "$here/scripts/install-deps.sh"
@@ -30,4 +43,5 @@ fi
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 scene_args=()
 [ -n "$scene" ] && scene_args=(-options_file_yaml "$scene")
-exec mpiexec -n "$ranks" --oversubscribe --bind-to none "$BAPD_EXE" "${scene_args[@]}" "${args[@]}"
+# -q: no Open MPI banner after a failed run; bapd's own message is the explanation.
+exec mpiexec -q -n "$ranks" --oversubscribe --bind-to none "$BAPD_EXE" "${scene_args[@]}" "${args[@]}"

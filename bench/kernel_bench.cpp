@@ -1,150 +1,344 @@
-// Kernel benchmark: ns per bond evaluation of compute_bond_forces on a 300 x 300
-// lattice (delta = 3.015 dx), and the bytes per point of every per-point and per-bond
-// array the kernel and the solver's force evaluation use.
+// Force-kernel benchmark (issue 7, benchmark 1): bond evaluations per second per core
+// of the BA kernel (compute_bond_forces, ba_force.hpp) with the Gent plane-stress
+// model on a square lattice, and the pieces it is made of.
 //
-// Build from the repository root (Release, host-tuned, like the project), then run:
-//   g++ -std=c++17 -O3 -march=native -DNDEBUG -Iinclude -Itests bench/kernel_bench.cpp
+//   kernel_bench [--side N] [--factor f] [--reps r] [--callgrind] [--table]
+//
+//   --side N      N x N lattice points (default 300; 100, 316, 1000 give 1e4, 1e5, 1e6)
+//   --factor f    horizon delta = f dx (default 3.015)
+//   --reps r      timed repetitions per measurement, the minimum is reported (default 10)
+//   --callgrind   run every measured region once, between CALLGRIND_TOGGLE_COLLECT
+//                 markers, and dump one profile per region (CALLGRIND_DUMP_STATS_AT):
+//                 run under `valgrind --tool=callgrind --collect-atstart=no`
+//                 (bench/callgrind_kernel.sh does this and reads the profiles)
+//   --table       also print one machine-readable line, `RESULT key=value ...`
+//
+// What is measured (every time is the minimum over reps of the thread CPU time, which
+// a busy shared machine disturbs much less than wall clock; the minimum wall time is
+// printed beside it):
+//   gent_warm   the kernel as the solver calls it each step: Gent plane stress, c33
+//               warm-started from the previous evaluation at a slightly different y
+//               (the positions alternate between two states 1e-5 dx apart, about one
+//               time step's motion), so the S33 = 0 Newton solve starts near its root
+//   gent_cold   the same without warm start (c33 = 0: starts from 1/J~^2)
+//   gent_dynamics  as gent_warm with the two states 5e-4 dx apart (--dynamics-motion):
+//               the warm start is then as good as inside the solver, where a time step
+//               moves F by ~1e-3 and 73 % of the bonds need a second residual evaluation
+//   identity    the kernel with P = F: gather, masked sums, K^{-1}, F, force vector
+//               and stores, no constitutive cost
+//   model       GentPlaneStress::stress alone on every bond's F (warm c33)
+//   assemble    assemble_force_density, f_i = sum_j (t_ij - t_ji) V_j
+//   energy_warm compute_energy_consistent_bond_forces (ba_force_energy.hpp) as gent_warm:
+//               the energy-consistent form, assembled by the same assemble_force_density
+// "bond evaluation" = one intact bond with a usable K handed to the model (eq 23),
+// KernelStats::evaluated; a full force evaluation is gent_warm + assemble.
+//
+// Build: the `kernel_bench` target (bench/CMakeLists.txt), or standalone from the
+// repository root:
+//   g++ -std=c++17 -O3 -march=native -DNDEBUG -Iinclude bench/kernel_bench.cpp
 //       src/core/*.cpp -o /tmp/kernel_bench
-//   /tmp/kernel_bench [n = 300] [horizon_factor = 3.015]
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
+#include <ctime>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "bapd/ba_force.hpp"
+#include "bapd/ba_force_energy.hpp"
 #include "bapd/bond_geometry.hpp"
 #include "bapd/family.hpp"
-#include "bapd/lattice.hpp"
-#include "unit/test_models.hpp"
-
-#if __has_include("bapd/gent.hpp")
 #include "bapd/gent.hpp"
-#define BENCH_HAVE_GENT 1
+#include "bapd/lattice.hpp"
+
+#if defined(BAPD_BENCH_CALLGRIND) && __has_include(<valgrind/callgrind.h>)
+#include <valgrind/callgrind.h>
+#define BENCH_HAVE_CALLGRIND 1
+#else
+#define CALLGRIND_TOGGLE_COLLECT
+#define CALLGRIND_DUMP_STATS_AT(name) (void)(name)
 #endif
 
 using namespace bapd;
 
 namespace {
 
-// P = F: no constitutive cost, measures the kernel's own work (gather, masked sums,
-// K^{-1}, force vector, stores).
+// P = F: no constitutive cost, measures the kernel's own work.
 struct IdentityStress {
   StressStatus stress(const Mat2 &F, double &, Mat2 &P) const
   {
     P = F;
     return StressStatus::ok;
   }
-  StressStatus energy(const Mat2 &, double &, double &psi) const
-  {
-    psi = 0;
-    return StressStatus::ok;
-  }
 };
 
-template <class Model>
-void time_kernel(const char *name, const Model &model, const PointCloud &cloud, const std::vector<double> &y,
-                 const Families &fam, const BondGeometry &geo, const BondState &state, bool warm_start)
+double thread_seconds()
 {
-  std::vector<double> c33(fam.n_bonds(), 0.0), t(2 * fam.n_bonds());
-  BondKernelWorkspace ws;
-  KernelStats         s = compute_bond_forces(model, cloud, y.data(), fam, geo, state, warm_start ? c33.data() : nullptr,
-                                              t.data(), ws); // warm up, fill c33
-  const int           reps = 20;
-  double              best = 1e300, sum = 0;
+  timespec ts;
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+double wall_seconds() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
+
+struct Timing {
+  double cpu = 1e300, wall = 1e300; // minimum over the repetitions
+};
+
+// Runs body() reps times and keeps the minimum CPU and wall time.
+template <class Body> Timing time_min(int reps, Body &&body)
+{
+  Timing t;
   for (int r = 0; r < reps; ++r) {
-    const auto t0 = std::chrono::steady_clock::now();
-    s = compute_bond_forces(model, cloud, y.data(), fam, geo, state, warm_start ? c33.data() : nullptr, t.data(), ws);
-    const double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    best = std::min(best, sec);
-    sum += sec;
+    const double c0 = thread_seconds(), w0 = wall_seconds();
+    body(r);
+    const double c1 = thread_seconds(), w1 = wall_seconds();
+    t.cpu  = std::min(t.cpu, c1 - c0);
+    t.wall = std::min(t.wall, w1 - w0);
   }
-  double checksum = 0;
-  for (double v : t) checksum += v;
-  std::printf("%-34s %7.2f ns/bond (best), %7.2f mean, %6.1f M bonds/s, failed %zu, checksum %.6e\n", name,
-              1e9 * best / static_cast<double>(s.evaluated), 1e9 * sum / reps / static_cast<double>(s.evaluated),
-              static_cast<double>(s.evaluated) / best / 1e6, s.failed(), checksum);
+  return t;
+}
+
+// In --callgrind mode: one run of body() with collection on, dumped as `name`.
+template <class Body> void profile_region(const char *name, Body &&body)
+{
+  CALLGRIND_TOGGLE_COLLECT;
+  body(0);
+  CALLGRIND_TOGGLE_COLLECT;
+  CALLGRIND_DUMP_STATS_AT(name);
+}
+
+// Effective core clock: a chain of dependent integer adds retires one add per cycle
+// on every x86 core since the Pentium 4, so cycles = adds and f = adds / CPU time.
+double measure_clock_ghz()
+{
+  const long n    = 400000000;
+  double     best = 1e300;
+  for (int r = 0; r < 5; ++r) {
+    long         x  = 0;
+    const double t0 = thread_seconds();
+    for (long k = 0; k < n; k += 8) {
+      // 8 dependent adds per iteration; the asm keeps the compiler from folding them
+      asm volatile("add $1, %0\n\tadd $1, %0\n\tadd $1, %0\n\tadd $1, %0\n\t"
+                   "add $1, %0\n\tadd $1, %0\n\tadd $1, %0\n\tadd $1, %0"
+                   : "+r"(x));
+    }
+    best = std::min(best, thread_seconds() - t0);
+    if (x != n) std::abort();
+  }
+  return static_cast<double>(n) / best / 1e9;
+}
+
+struct Options {
+  int    side      = 300;
+  double factor    = 3.015;
+  int    reps      = 10;
+  bool   callgrind = false;
+  bool   table     = false;
+  bool   clock     = false;
+  double motion    = 1e-5; // dx: how far the two position states are apart (one time step's motion)
+  double dynamics  = 5e-4; // dx: the same for gent_dynamics
+};
+
+Options parse(int argc, char **argv)
+{
+  Options o;
+  for (int a = 1; a < argc; ++a) {
+    const std::string s    = argv[a];
+    auto              next = [&]() -> const char * {
+      if (a + 1 >= argc) {
+        std::fprintf(stderr, "kernel_bench: %s needs a value\n", s.c_str());
+        std::exit(2);
+      }
+      return argv[++a];
+    };
+    if (s == "--side") o.side = std::atoi(next());
+    else if (s == "--factor") o.factor = std::atof(next());
+    else if (s == "--reps") o.reps = std::max(1, std::atoi(next()));
+    else if (s == "--callgrind") o.callgrind = true;
+    else if (s == "--table") o.table = true;
+    else if (s == "--clock") o.clock = true;
+    else if (s == "--motion") o.motion = std::atof(next());
+    else if (s == "--dynamics-motion") o.dynamics = std::atof(next());
+    else {
+      std::fprintf(stderr, "kernel_bench: unknown argument %s (see the comment at the top of bench/kernel_bench.cpp)\n",
+                   s.c_str());
+      std::exit(2);
+    }
+  }
+  return o;
 }
 
 } // namespace
 
 int main(int argc, char **argv)
 {
-  const int    n      = argc > 1 ? std::atoi(argv[1]) : 300;
-  const double factor = argc > 2 ? std::atof(argv[2]) : 3.015;
-  const double dx     = 1e-3;
-  const Body2D body   = test::plate(n, n, dx, 1e-3);
-
-  auto             t0    = std::chrono::steady_clock::now();
-  PointCloud       cloud = make_lattice(body);
-  const Families   fam   = build_families(cloud, cloud.size(), factor * dx, body.notches);
-  compute_family_volumes(cloud, fam);
-  const BondState  state(fam);
-  BondGeometry     geo;
-  compute_bond_geometry(cloud, fam, state, geo);
-  const double setup = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  const double np = static_cast<double>(cloud.size()), nb = static_cast<double>(fam.n_bonds());
-  std::printf("%d x %d lattice, delta = %.3f dx: %zu points, %zu bonds (%.2f per point), mask words %zu; setup %.3f s\n",
-              n, n, factor, cloud.size(), fam.n_bonds(), nb / np, fam.mask_words, setup);
-
-  // A moderately large, non-affine deformation: stretch 1.5 x 0.8 plus 5 % dx noise.
-  std::mt19937        rng(1);
-  std::vector<double> y(cloud.x.size());
-  for (std::size_t i = 0; i < cloud.size(); ++i) {
-    y[2 * i]     = 1.5 * cloud.x[2 * i] + test::random_between(rng, -0.05, 0.05) * dx;
-    y[2 * i + 1] = 0.8 * cloud.x[2 * i + 1] + test::random_between(rng, -0.05, 0.05) * dx;
+  const Options o = parse(argc, argv);
+  if (o.clock) { // only the clock probe (bench/run_all.sh uses it for the peak estimate)
+    std::printf("RESULT clock_ghz=%.3f\n", measure_clock_ghz());
+    return 0;
   }
+#ifndef BENCH_HAVE_CALLGRIND
+  if (o.callgrind) {
+    std::fprintf(stderr, "kernel_bench: built without callgrind markers; use the kernel_profile target\n");
+    return 2;
+  }
+#endif
+  const double dx = 1e-3;
+  Body2D       body;
+  body.width = body.height = o.side * dx;
+  body.thickness           = 1e-3;
+  body.dx                  = dx;
 
-  time_kernel("kernel only (P = F)", IdentityStress{}, cloud, y, fam, geo, state, false);
-  time_kernel("Saint Venant-Kirchhoff 2D", test::SaintVenantKirchhoff2D{}, cloud, y, fam, geo, state, false);
-#ifdef BENCH_HAVE_GENT
-  MaterialParameters p;
+  const double   s0    = wall_seconds();
+  PointCloud     cloud = make_lattice(body);
+  const Families fam   = build_families(cloud, cloud.size(), o.factor * dx, body.notches);
+  compute_family_volumes(cloud, fam);
+  const BondState state(fam);
+  BondGeometry    geo;
+  compute_bond_geometry(cloud, fam, state, geo);
+  const double setup = wall_seconds() - s0;
+  const double np = static_cast<double>(cloud.size()), nb = static_cast<double>(fam.n_bonds());
+  std::printf("%d x %d lattice, delta = %.3f dx: %zu points, %zu bonds (%.2f per point), mask words %zu; setup %.2f s\n",
+              o.side, o.side, o.factor, cloud.size(), fam.n_bonds(), nb / np, fam.mask_words, setup);
+
+  // A moderately large, non-affine deformation: stretch 1.5 x 0.8 plus 5 % dx noise;
+  // y_b is y_a moved by --motion (1e-5) dx at random: a small time step's motion.
+  std::mt19937                           rng(1);
+  std::uniform_real_distribution<double> noise(-1.0, 1.0);
+  std::vector<double>                    y_a(cloud.x.size()), y_b(cloud.x.size()), y_c(cloud.x.size());
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    y_a[2 * i]     = 1.5 * cloud.x[2 * i] + 0.05 * dx * noise(rng);
+    y_a[2 * i + 1] = 0.8 * cloud.x[2 * i + 1] + 0.05 * dx * noise(rng);
+    y_b[2 * i]     = y_a[2 * i] + o.motion * dx * noise(rng);
+    y_b[2 * i + 1] = y_a[2 * i + 1] + o.motion * dx * noise(rng);
+  }
+  // gent_dynamics: the states are 5e-4 dx apart, so that the warm start needs about as
+  // many residual evaluations as inside the solver (callgrind on bapd, default scene:
+  // 1.73 per bond during time steps; 3e-4 dx gives 1.6 here, 1e-3 dx 1.9).
+  for (std::size_t k = 0; k < y_c.size(); ++k) y_c[k] = y_a[k] + o.dynamics * dx * noise(rng);
+  const double *ys[2] = {y_a.data(), y_b.data()}, *ys_dyn[2] = {y_a.data(), y_c.data()};
+
+  MaterialParameters p; // the paper's hydrogel (examples/*.yaml)
   p.mu = 4.55e3;
   p.Jm = 162.6;
   p.D  = 2.0 / (1000.0 * p.mu);
-  time_kernel("Gent plane stress, warm c33", GentPlaneStress{p}, cloud, y, fam, geo, state, true);
-  time_kernel("Gent plane stress, cold c33", GentPlaneStress{p}, cloud, y, fam, geo, state, false);
-#endif
+  const GentPlaneStress gent{p};
 
-#ifdef BENCH_HAVE_GENT
+  std::vector<double> c33(fam.n_bonds(), 0.0), t(2 * fam.n_bonds()), f(2 * cloud.size());
+  BondKernelWorkspace ws;
+  KernelStats         stats = compute_bond_forces(gent, cloud, ys[1], fam, geo, state, c33.data(), t.data(), ws);
+  const double        evaluated = static_cast<double>(stats.evaluated);
+  if (!stats.ok()) std::printf("warning: %zu bonds failed in the model\n", stats.failed());
+
+  // The model alone, on the F of every bond, for both position states.
+  std::vector<Mat2>   Fs[2];
+  std::vector<double> c_model;
+  for (int s = 0; s < 2; ++s) {
+    Fs[s].reserve(fam.n_bonds());
+    for (std::size_t i = 0; i < cloud.size(); ++i)
+      for (std::size_t q = 0; q < fam.size(i); ++q)
+        if (geo.is_usable(i, q)) Fs[s].push_back(bond_deformation_gradient(cloud, ys[s], fam, geo, state, i, q));
+  }
+  c_model.assign(Fs[0].size(), 0.0);
   {
-    // The model alone, on the F of every bond (warm c33 from a first pass): how much of
-    // the kernel's time is the constitutive law.
-    const GentPlaneStress gent{p};
-    std::vector<Mat2>     Fs;
-    for (std::size_t i = 0; i < cloud.size(); i += 7)
-      for (std::size_t q = 0; q < fam.size(i); ++q) Fs.push_back(bond_deformation_gradient(cloud, y.data(), fam, geo, state, i, q));
-    std::vector<double> c(Fs.size(), 0.0);
+    Mat2 P;
+    for (std::size_t k = 0; k < Fs[1].size(); ++k) gent.stress(Fs[1][k], c_model[k], P);
+  }
+  // Mean residual evaluations (one cbrt each) per bond, warm and cold.
+  double evals_warm = 0, evals_cold = 0;
+  for (std::size_t k = 0; k < Fs[0].size(); ++k) {
+    evals_warm += gent.solve(Fs[0][k], c_model[k]).evaluations;
+    evals_cold += gent.solve(Fs[0][k], 0.0).evaluations;
+  }
+  evals_warm /= static_cast<double>(Fs[0].size());
+  double evals_dyn = 0;
+  {
+    std::vector<double> c(Fs[0].size(), 0.0);
+    std::size_t         k = 0;
     Mat2                P;
-    for (std::size_t k = 0; k < Fs.size(); ++k) gent.stress(Fs[k], c[k], P);
-    for (int warm = 1; warm >= 0; --warm) {
-      double best = 1e300, sink = 0;
-      for (int r = 0; r < 10; ++r) {
-        const auto a = std::chrono::steady_clock::now();
-        for (std::size_t k = 0; k < Fs.size(); ++k) {
-          double cc = warm ? c[k] : 0.0;
-          gent.stress(Fs[k], cc, P);
-          sink += P[0];
-        }
-        best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - a).count());
-      }
-      std::printf("%-34s %7.2f ns/call (%s c33)%s\n", "GentPlaneStress::stress alone", 1e9 * best / static_cast<double>(Fs.size()),
-                  warm ? "warm" : "cold", sink == 12345.0 ? "!" : "");
-    }
+    for (std::size_t i = 0; i < cloud.size(); ++i)
+      for (std::size_t q = 0; q < fam.size(i); ++q)
+        if (geo.is_usable(i, q)) gent.stress(bond_deformation_gradient(cloud, y_c.data(), fam, geo, state, i, q), c[k++], P);
+    for (k = 0; k < Fs[0].size(); ++k) evals_dyn += gent.solve(Fs[0][k], c[k]).evaluations;
+    evals_dyn /= static_cast<double>(Fs[0].size());
   }
-#endif
+  evals_cold /= static_cast<double>(Fs[0].size());
 
-  {
-    std::vector<double> t(2 * fam.n_bonds(), 1.0), f(2 * cloud.size());
-    double              best = 1e300;
-    for (int r = 0; r < 20; ++r) {
-      const auto a = std::chrono::steady_clock::now();
-      assemble_force_density(fam, cloud, t.data(), cloud.size(), f.data());
-      best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - a).count());
+  double sink     = 0;
+  auto   gent_run = [&](int r) {
+    compute_bond_forces(gent, cloud, ys[r % 2], fam, geo, state, c33.data(), t.data(), ws);
+  };
+  std::vector<double> c33_dyn(fam.n_bonds(), 0.0);
+  compute_bond_forces(gent, cloud, ys_dyn[1], fam, geo, state, c33_dyn.data(), t.data(), ws);
+  auto dynamics_run = [&](int r) {
+    compute_bond_forces(gent, cloud, ys_dyn[r % 2], fam, geo, state, c33_dyn.data(), t.data(), ws);
+  };
+  std::vector<double> c33_energy(c33); // its own warm start, from the same state
+  auto                energy_run = [&](int r) {
+    compute_energy_consistent_bond_forces(gent, cloud, ys[r % 2], fam, geo, state, c33_energy.data(), t.data(), ws);
+  };
+  auto cold_run = [&](int r) {
+    compute_bond_forces(gent, cloud, ys[r % 2], fam, geo, state, nullptr, t.data(), ws);
+  };
+  auto identity_run = [&](int r) {
+    compute_bond_forces(IdentityStress{}, cloud, ys[r % 2], fam, geo, state, nullptr, t.data(), ws);
+  };
+  auto model_run = [&](int r) {
+    const std::vector<Mat2> &F = Fs[r % 2];
+    Mat2                     P;
+    for (std::size_t k = 0; k < F.size(); ++k) {
+      gent.stress(F[k], c_model[k], P);
+      sink += P[0];
     }
-    std::printf("%-34s %7.2f ns/bond\n", "assemble_force_density", 1e9 * best / nb);
+  };
+  auto assemble_run = [&](int) { assemble_force_density(fam, cloud, t.data(), cloud.size(), f.data()); };
+
+  if (o.callgrind) {
+    // Warm c33 is at y_b (last evaluation above); the profiled evaluation is at y_a.
+    profile_region("gent_warm", gent_run);
+    profile_region("assemble", assemble_run);
+    profile_region("identity", identity_run);
+    profile_region("model_warm", model_run);
+    profile_region("gent_cold", cold_run);
+    profile_region("gent_dynamics", dynamics_run); // c33 warm at y_c: evaluated at y_a
+    std::printf("callgrind regions dumped: gent_warm assemble identity model_warm gent_cold gent_dynamics (%zu bond evaluations "
+                "each, %zu model calls)\n",
+                stats.evaluated, Fs[0].size());
+    std::printf("RESULT side=%d factor=%.3f points=%zu bonds=%zu evaluated=%zu model_calls=%zu evals_warm=%.4f "
+                "evals_cold=%.4f\n",
+                o.side, o.factor, cloud.size(), fam.n_bonds(), stats.evaluated, Fs[0].size(), evals_warm, evals_cold);
+    return sink == 12345.0;
   }
+
+  const Timing gent_t     = time_min(o.reps, gent_run);
+  const Timing cold_t     = time_min(std::max(1, o.reps / 2), cold_run);
+  const Timing dyn_t      = time_min(o.reps, dynamics_run);
+  const Timing energy_t   = time_min(o.reps, energy_run);
+  const Timing identity_t = time_min(o.reps, identity_run);
+  const Timing model_t    = time_min(o.reps, model_run);
+  const Timing assemble_t = time_min(o.reps, assemble_run);
+  const double nm         = static_cast<double>(Fs[0].size());
+
+  auto line = [&](const char *name, const Timing &tm, double count, const char *unit) {
+    std::printf("  %-38s %8.2f ns/%s  %7.2f M/s  (wall: %8.2f ns)\n", name, 1e9 * tm.cpu / count, unit,
+                count / tm.cpu / 1e6, 1e9 * tm.wall / count);
+  };
+  std::printf("minimum of %d repetitions, thread CPU time:\n", o.reps);
+  line("Gent plane stress, warm c33 (kernel)", gent_t, evaluated, "bond");
+  line("Gent plane stress, cold c33 (kernel)", cold_t, evaluated, "bond");
+  line("Gent plane stress, dynamics (kernel)", dyn_t, evaluated, "bond");
+  line("  energy-consistent, warm c33", energy_t, evaluated, "bond");
+  line("kernel only (P = F)", identity_t, evaluated, "bond");
+  line("GentPlaneStress::stress alone, warm", model_t, nm, "call");
+  line("assemble_force_density", assemble_t, nb, "bond");
+  std::printf("  residual evaluations per bond: %.3f warm, %.3f dynamics, %.3f cold\n", evals_warm, evals_dyn, evals_cold);
+  const double force_cpu = gent_t.cpu + assemble_t.cpu;
+  std::printf("  full force evaluation (warm kernel + assembly): %.2f ns/bond, %.2f M bonds/s\n",
+              1e9 * force_cpu / evaluated, evaluated / force_cpu / 1e6);
 
   // Memory: every per-point and per-bond array of the force evaluation.
   const double W = static_cast<double>(fam.mask_words);
@@ -162,13 +356,20 @@ int main(int argc, char **argv)
       {"bond state intact masks", np * 8 * W},
       {"geometry usable + singular masks", np * 16 * W},
       {"bond forces t_ij", nb * 16},
-      {"c33 warm start (optional)", nb * 8},
+      {"c33 warm start", nb * 8},
   };
   double total = 0;
-  for (const Item &it : items) {
-    std::printf("  %-44s %7.1f B/point\n", it.name, it.bytes / np);
-    total += it.bytes;
-  }
-  std::printf("  %-44s %7.1f B/point (%.1f without c33)\n", "total", total / np, (total - nb * 8) / np);
-  return 0;
+  for (const Item &it : items) total += it.bytes;
+  std::printf("  kernel arrays: %.1f B/point\n", total / np);
+
+  if (o.table)
+    std::printf("RESULT side=%d factor=%.3f points=%zu bonds=%zu evaluated=%zu bonds_per_point=%.3f setup_s=%.3f "
+                "gent_warm_ns=%.3f gent_cold_ns=%.3f identity_ns=%.3f model_ns=%.3f assemble_ns=%.3f "
+                "gent_warm_wall_ns=%.3f evals_warm=%.4f evals_cold=%.4f kernel_bytes_per_point=%.1f energy_warm_ns=%.3f "
+                "gent_dynamics_ns=%.3f evals_dynamics=%.4f\n",
+                o.side, o.factor, cloud.size(), fam.n_bonds(), stats.evaluated, nb / np, setup,
+                1e9 * gent_t.cpu / evaluated, 1e9 * cold_t.cpu / evaluated, 1e9 * identity_t.cpu / evaluated,
+                1e9 * model_t.cpu / nm, 1e9 * assemble_t.cpu / nb, 1e9 * gent_t.wall / evaluated, evals_warm,
+                evals_cold, total / np, 1e9 * energy_t.cpu / evaluated, 1e9 * dyn_t.cpu / evaluated, evals_dyn);
+  return sink == 12345.0;
 }

@@ -19,8 +19,9 @@
 //   /run/schedule_original, /run/schedule_current (knots): the schedule's knot times
 //                          as the run read them and as static holds have moved them;
 //                          attributes end_time_original_s, end_time_s, static_hold_done
-// content_hash is an order-independent checksum of the arrays: a damaged file is
-// refused instead of silently continuing from wrong data.
+// content_hash is an order-independent checksum of the arrays and of the step, time
+// and schedule attributes: a damaged file is refused instead of silently continuing
+// from wrong data.
 #include <petscsys.h>
 
 #include <cstdint>
@@ -103,11 +104,15 @@ PetscErrorCode ReadCheckpointState(MPI_Comm comm, const std::string &path, const
 // given on the command line still wins. Collective; does nothing without -restart.
 PetscErrorCode CheckpointMergeOptions(MPI_Comm comm);
 
-// SIGTERM / SIGINT: the handler only records the signal; the driver asks, once per
-// step and collectively, whether any rank got one (Simulation::OutputAfterStep).
-// A second signal while the first is pending ends the process the default way.
+// Signals. SIGTERM / SIGINT: write a checkpoint and stop; SIGUSR1: write a
+// checkpoint and go on (Open MPI's mpiexec passes SIGUSR1 on to the ranks and leaves
+// them running, while after SIGTERM it kills them 1 s later). The handlers only
+// record the signal; the driver asks, once per step and collectively, whether any
+// rank got one (Simulation::OutputAfterStep). A second SIGTERM / SIGINT while the
+// first is pending ends the process the default way.
 void InstallInterruptHandlers();
 void RestoreInterruptHandlers();
-int  PendingInterrupt(); // the signal number, 0 if none
+int  PendingInterrupt();      // SIGTERM or SIGINT if one came, else 0
+bool TakeCheckpointRequest(); // a SIGUSR1 came since the last call
 
 } // namespace bapd

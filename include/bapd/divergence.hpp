@@ -12,14 +12,15 @@
 // a vibration exchanges the two), but it cannot create energy: the total energy
 // KE + internal energy grows only by the work of the grips. Hence two stages:
 //
-//  1. Suspicion, every step, cheap (one sum over the owned points, one reduction):
+//  1. Suspicion, every step, cheap (one sum over the owned points and its reduction):
 //     KE >= 1000 x its smallest value over the last 50 steps of the current loading
 //     segment (a schedule knot changes the grip speed, and so KE: the window restarts
 //     there), and KE above a floor: the kinetic energy of the whole body moving at
 //     the fastest grip speed of the schedule, or the highest KE already cleared.
 //  2. Confirmation, only while suspected (one internal-energy evaluation per step):
 //     the total energy grows tenfold within the next 10 steps. Otherwise the
-//     suspicion is cleared and its KE becomes the floor.
+//     suspicion is cleared, and the largest total energy measured becomes the floor:
+//     KE cannot exceed it unless the grips do more work (or the run blows up).
 #include <petscsys.h>
 
 #include <string>
@@ -41,6 +42,7 @@ struct RunawayCriterion {
 class RunawayEnergyMonitor {
 public:
   enum class Verdict { fine, measure_total, diverged };
+  static constexpr double overflow = 1e250; // [J] a kinetic energy past any physics: diverged
 
   explicit RunawayEnergyMonitor(RunawayCriterion criterion = {});
   // floor: the kinetic energy of the whole body moving at the fastest grip speed [J].
@@ -52,6 +54,8 @@ public:
   Verdict Total(PetscInt step, double total);
   // What was seen, for the message: "the kinetic energy grew from ... to ...".
   std::string Describe() const;
+  // Room for one value per owned point, kept between steps (CheckRunawayEnergy).
+  std::vector<double> &scratch() { return scratch_; }
 
 private:
   RunawayCriterion    criterion_;
@@ -63,12 +67,13 @@ private:
   std::size_t         head_ = 0, count_ = 0;
   // The suspicion being confirmed.
   bool     suspected_ = false;
-  PetscInt suspect_step_ = 0, low_step_ = 0, total_step_ = 0, now_step_ = 0;
-  double   suspect_kinetic_ = 0, low_kinetic_ = 0, first_total_ = -1, total_ = 0;
+  PetscInt suspect_step_ = 0, low_step_ = 0, total_step_ = 0;
+  double   suspect_kinetic_ = 0, low_kinetic_ = 0, first_total_ = -1, total_ = 0, max_total_ = 0;
+  std::vector<double> scratch_;
 };
 
-// The post-step check of a Simulation: sums KE over the owned points (one
-// MPI_Allreduce), feeds the monitor, measures the total energy while suspected
+// The post-step check of a Simulation: sums KE over the owned points (a reproducible
+// sum: the same bits on every rank and any rank count), feeds the monitor, measures the total energy while suspected
 // (Simulation::Energies) and, on divergence, fills *message with the step, the time,
 // the energies, the point moving fastest and the fix. Collective.
 PetscErrorCode CheckRunawayEnergy(Simulation &simulation, RunawayEnergyMonitor &monitor, PetscInt step, double t,

@@ -1,9 +1,10 @@
 #pragma once
-// Small collective helpers over parallel HDF5 for the field and checkpoint files:
-// 1-D or 2-D datasets whose rows are split over the ranks in contiguous blocks
-// (natural_order.hpp), attributes, and text. Every function is collective over the
-// file's communicator and returns the same error on every rank (the ranks agree on
-// success before returning), so a failure never leaves a rank waiting.
+// Small helpers over parallel HDF5 for the field and checkpoint files: 1-D or 2-D
+// datasets whose rows are split over the ranks in contiguous blocks
+// (natural_order.hpp), attributes, and text. Every rank makes the same calls, in the
+// same order. A failure is recorded and reported by Close(), on every rank alike
+// (one reduction per file), so it never leaves a rank waiting: check Close() before
+// using what was read.
 #include <hdf5.h>
 #include <petscsys.h>
 
@@ -30,14 +31,14 @@ private:
 class H5ParallelFile {
 public:
   H5ParallelFile() = default;
-  ~H5ParallelFile() { Close(); }
+  ~H5ParallelFile(); // closes without reporting (after an error elsewhere)
   H5ParallelFile(const H5ParallelFile &)            = delete;
   H5ParallelFile &operator=(const H5ParallelFile &) = delete;
 
   // Creates (truncating) or opens read-only. Errors: PETSC_ERR_FILE_OPEN.
   PetscErrorCode Create(MPI_Comm comm, const std::string &path);
   PetscErrorCode Open(MPI_Comm comm, const std::string &path);
-  PetscErrorCode Close(); // collective; flushes and closes (also the destructor's job)
+  PetscErrorCode Close(); // collective: flushes, closes, reports any failure (the destructor only closes)
 
   // rows x cols dataset (cols = 0: 1-D of `rows`); this rank writes or reads rows
   // [start, start + count) from/to data (count * max(cols, 1) entries).
@@ -60,10 +61,11 @@ public:
   hid_t id() const { return file_; }
 
 private:
-  PetscErrorCode Agree(bool ok, PetscErrorCode code, const char *what, const char *name);
+  void        Record(bool ok, const char *what, const char *name);
   MPI_Comm    comm_ = MPI_COMM_NULL;
   hid_t       file_ = -1;
-  std::string path_;
+  std::string path_, failed_; // the first failed call on this rank
+  bool        writing_ = true;
 };
 
 // Serial reads (one rank) of a file another process wrote; false on any failure

@@ -24,6 +24,12 @@ struct Schedule {
 
 enum class ComponentLoad { free, fixed, stretch };
 
+// Which bond force the kernel computes (-force_form): the paper's bond-only form
+// (eq 23, ba_force.hpp), or the energy-consistent one, minus the gradient of the
+// strain energy (ba_force_energy.hpp, METHOD.md section 3), whose undamped motion
+// conserves energy where the bond-only form's grows near free surfaces (flutter).
+enum class ForceForm { bond_only, energy_consistent };
+
 // A named set of points held by a grip. Per component: free, fixed (u = 0) or
 // following the stretch schedule, u = scale * (lambda(t) - 1) * reference_length.
 struct LoadSet {
@@ -47,6 +53,7 @@ struct Scene {
 
   ModelKind          model       = ModelKind::gent;
   Formulation        formulation = Formulation::plane_stress;
+  ForceForm          force_form  = ForceForm::bond_only;
   MaterialParameters material;
   double             density = 1000.0; // kg/m^3
 
@@ -127,5 +134,6 @@ PetscErrorCode ProbeLocate(MPI_Comm comm, const Probe &probe, const double *x, c
 
 const char *to_string(LoadSet::Region region);
 const char *to_string(ComponentLoad load);
+const char *to_string(ForceForm form);
 
 } // namespace bapd

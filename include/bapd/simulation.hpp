@@ -16,6 +16,7 @@
 #include "bapd/bond_state.hpp"
 #include "bapd/family.hpp"
 #include "bapd/layout.hpp"
+#include "bapd/divergence.hpp"
 #include "bapd/scene.hpp"
 #include "bapd/simulation_output.hpp"
 
@@ -152,6 +153,7 @@ private:
   PetscInt            static_hold_done_ = -1; // schedule knot whose hold already ended
   FILE               *static_states_    = nullptr;
   std::string stop_reason_;
+  RunawayEnergyMonitor energy_monitor_; // divergence by runaway energy (divergence.hpp)
   SimulationOutput output_; // fields, checkpoints, restart
 
   PetscLogStage stage_setup_ = 0, stage_partition_ = 0, stage_force_ = 0, stage_ghost_ = 0, stage_step_ = 0,

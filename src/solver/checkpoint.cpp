@@ -83,6 +83,16 @@ PetscErrorCode ContentHash(MPI_Comm comm, const NaturalOrder &order, const doubl
   PetscFunctionReturn(0);
 }
 
+// The header values that steer the continuation, folded into the checksum too.
+std::uint64_t HeaderHash(const CheckpointHeader &h)
+{
+  std::uint64_t sum = Entry(6, 0, (std::uint64_t)h.step) + Entry(6, 1, Bits(h.time)) + Entry(6, 2, Bits(h.time_step)) +
+                      Entry(6, 3, Bits(h.end_time)) + Entry(6, 4, Bits(h.end_time_original)) + Entry(6, 5, (std::uint64_t)h.static_hold_done);
+  for (std::size_t k = 0; k < h.schedule_current.size(); ++k) sum += Entry(7, k, Bits(h.schedule_current[k]));
+  for (std::size_t k = 0; k < h.schedule_original.size(); ++k) sum += Entry(8, k, Bits(h.schedule_original[k]));
+  return sum;
+}
+
 // "600s", "10min", "2h" -> seconds; "1000" -> steps. False if neither.
 bool ParseInterval(const std::string &text, PetscInt *steps, double *seconds)
 {
@@ -117,8 +127,8 @@ PetscErrorCode CheckpointOptionsFromOptions(MPI_Comm comm, CheckpointOptions *op
   for (const char *name : {"-checkpoint_interval", "-checkpoint_on_error", "-restart"}) RegisterOptionName(name);
   PetscOptionsBegin(comm, nullptr, "Checkpoints and restart", "bapd");
   PetscCall(PetscOptionsString("-checkpoint_interval",
-                               "Between checkpoints (<output_dir>/checkpoint.h5): steps (1000) or wall-clock time (600s, 10min, 2h); "
-                               "absent: only on SIGTERM/SIGINT, on an error and none at the end",
+                               "Between checkpoints (<output_dir>/checkpoint.h5, also written at the end): steps (1000) or wall-clock "
+                               "time (600s, 10min, 2h); absent: only on a signal (SIGTERM, SIGINT, SIGUSR1) or an error",
                                "docs/options.md", "", interval, sizeof interval, &has_interval));
   PetscCall(PetscOptionsBool("-checkpoint_on_error", "On divergence, write the last good state as a checkpoint (keeps a copy of the state every step)",
                              "docs/options.md", options->on_error, &options->on_error, nullptr));
@@ -200,6 +210,7 @@ PetscErrorCode WriteCheckpoint(MPI_Comm comm, const std::string &path, const Nat
   PetscCall(ToNaturalOrder(order.owned_bonds, MPI_DOUBLE, state.c33, c33.data()));
   std::vector<std::int32_t> family_size(order.family_size.begin(), order.family_size.end());
   PetscCall(ContentHash(comm, order, u.data(), v.data(), family_size.data(), intact.data(), c33.data(), &header->content_hash));
+  header->content_hash += HeaderHash(*header);
   header->ranks = size;
 
   const std::string tmp = path + ".tmp";
@@ -407,6 +418,7 @@ PetscErrorCode ReadCheckpointState(MPI_Comm comm, const std::string &path, const
   }
   std::uint64_t hash = 0;
   PetscCall(ContentHash(comm, order, u.data(), v.data(), family_size.data(), intact.data(), c33.data(), &hash));
+  hash += HeaderHash(header);
   PetscCheck(hash == header.content_hash, comm, PETSC_ERR_FILE_UNEXPECTED,
              "Checkpoint '%s' is corrupt: its data do not match the checksum written with them (use an earlier checkpoint)", path.c_str());
 
@@ -481,8 +493,8 @@ PetscErrorCode CheckpointMergeOptions(MPI_Comm comm)
 
 namespace {
 
-volatile std::sig_atomic_t interrupt_signal = 0;
-struct sigaction           previous_term, previous_int;
+volatile std::sig_atomic_t interrupt_signal = 0, checkpoint_requests = 0;
+struct sigaction           previous_term, previous_int, previous_usr1;
 int                        installed = 0;
 
 extern "C" void OnInterrupt(int signal)
@@ -494,6 +506,8 @@ extern "C" void OnInterrupt(int signal)
   }
   interrupt_signal = signal;
 }
+
+extern "C" void OnCheckpointRequest(int) { checkpoint_requests = checkpoint_requests + 1; }
 
 } // namespace
 
@@ -507,6 +521,8 @@ void InstallInterruptHandlers()
   sigemptyset(&action.sa_mask);
   sigaction(SIGTERM, &action, &previous_term);
   sigaction(SIGINT, &action, &previous_int);
+  action.sa_handler = OnCheckpointRequest;
+  sigaction(SIGUSR1, &action, &previous_usr1);
 }
 
 void RestoreInterruptHandlers()
@@ -514,8 +530,16 @@ void RestoreInterruptHandlers()
   if (installed == 0 || --installed) return;
   sigaction(SIGTERM, &previous_term, nullptr);
   sigaction(SIGINT, &previous_int, nullptr);
+  sigaction(SIGUSR1, &previous_usr1, nullptr);
 }
 
 int PendingInterrupt() { return (int)interrupt_signal; }
+
+bool TakeCheckpointRequest()
+{
+  if (!checkpoint_requests) return false;
+  checkpoint_requests = 0;
+  return true;
+}
 
 } // namespace bapd

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <limits>
 
+#include "bapd/reproducible_sum.hpp"
 #include "bapd/simulation.hpp"
 
 namespace bapd {
@@ -27,31 +28,32 @@ void RunawayEnergyMonitor::Start(double floor)
 
 RunawayEnergyMonitor::Verdict RunawayEnergyMonitor::Kinetic(PetscInt step, PetscInt segment, double kinetic)
 {
-  now_step_ = step;
   if (segment != segment_) { // the grip speed changed: growth from here on is measured anew
     segment_ = segment;
-    count_   = 0;
+    head_ = count_ = 0; // the window holds slots [0, count_) until it is full
   }
   const std::size_t capacity = kinetic_.size();
   kinetic_[head_]            = kinetic;
   steps_[head_]              = step;
   head_                      = (head_ + 1) % capacity;
   count_                     = std::min(count_ + 1, capacity);
-  if (suspected_) return Verdict::measure_total;
+  if (suspected_) return kinetic >= overflow ? Verdict::diverged : Verdict::measure_total;
   if (!(kinetic > floor_)) return Verdict::fine;
   // The smallest KE of the window (the newest value included: never below itself).
   double   low      = kinetic;
   PetscInt low_step = step;
   for (std::size_t k = 0; k < count_; ++k)
     if (kinetic_[k] < low) low = kinetic_[k], low_step = steps_[k];
-  if (!(kinetic >= criterion_.growth * low)) return Verdict::fine;
+  if (!(kinetic >= criterion_.growth * low) && kinetic < overflow) return Verdict::fine;
   suspected_       = true;
   suspect_step_    = step;
   suspect_kinetic_ = kinetic;
   low_step_        = low_step;
   low_kinetic_     = low;
   first_total_     = -1;
-  return Verdict::measure_total;
+  total_step_      = step;
+  // Energies this large overflow the internal-energy sum: no need to confirm.
+  return kinetic >= overflow ? Verdict::diverged : Verdict::measure_total;
 }
 
 RunawayEnergyMonitor::Verdict RunawayEnergyMonitor::Total(PetscInt step, double total)
@@ -60,16 +62,18 @@ RunawayEnergyMonitor::Verdict RunawayEnergyMonitor::Total(PetscInt step, double 
   total_step_ = step;
   total_      = total;
   if (first_total_ < 0) {
-    first_total_ = total;
+    first_total_ = max_total_ = total;
     return Verdict::fine;
   }
   if (total >= criterion_.confirm_growth * first_total_ || !std::isfinite(total)) return Verdict::diverged;
+  max_total_ = std::max(max_total_, total);
   if (step - suspect_step_ >= criterion_.confirm_steps) {
     // Energy moved between kinds but was not created (a crack, a vibration): clear the
-    // suspicion; KE must now rise past this level before the next one.
+    // suspicion. Kinetic energy cannot exceed the total one without new work, so the
+    // next suspicion needs KE past the total measured here.
     suspected_ = false;
-    floor_     = std::max(floor_, suspect_kinetic_);
-    count_     = 0;
+    floor_     = std::max(floor_, max_total_);
+    head_ = count_ = 0;
   }
   return Verdict::fine;
 }
@@ -77,11 +81,13 @@ RunawayEnergyMonitor::Verdict RunawayEnergyMonitor::Total(PetscInt step, double 
 std::string RunawayEnergyMonitor::Describe() const
 {
   char text[512];
-  std::snprintf(text, sizeof text,
-                "the kinetic energy grew from %.3e J (step %" PetscInt_FMT ") to %.3e J (step %" PetscInt_FMT
-                "), and the total (kinetic + internal) energy, which only the grips' work can raise, from %.3e J to %.3e J within "
-                "%" PetscInt_FMT " steps",
-                low_kinetic_, low_step_, suspect_kinetic_, suspect_step_, first_total_, total_, total_step_ - suspect_step_);
+  int  length = std::snprintf(text, sizeof text, "the kinetic energy grew from %.3e J (step %" PetscInt_FMT ") to %.3e J (step %" PetscInt_FMT ")",
+                              low_kinetic_, low_step_, suspect_kinetic_, suspect_step_);
+  if (first_total_ >= 0 && length > 0 && (std::size_t)length < sizeof text)
+    std::snprintf(text + length, sizeof text - (std::size_t)length,
+                  " and the total (kinetic + internal) energy, which only the grips' work can raise, from %.3e J to %.3e J in %" PetscInt_FMT
+                  " step(s)",
+                  first_total_, total_, total_step_ - suspect_step_);
   return text;
 }
 
@@ -126,18 +132,22 @@ PetscErrorCode CheckRunawayEnergy(Simulation &simulation, RunawayEnergyMonitor &
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &mass, 1, MPI_DOUBLE, MPI_SUM, comm));
     monitor.Start(KineticFloor(scene, mass, dt));
   }
-  // Kinetic energy and the fastest owned point (for the message), one pass.
+  // Kinetic energy and the fastest owned point (for the message), one pass. The sum is
+  // reproducible: the same bits on every rank and on any number of ranks, so every
+  // rank reaches the same verdict at the same step, whatever the layout.
+  std::vector<double> &per_point = monitor.scratch();
+  per_point.resize((std::size_t)n); // sized once: no allocation in later steps
   PetscCall(VecGetArrayRead(simulation.state(), &x));
   const double *v       = x + 2 * n;
   double        kinetic = 0, fastest = -1;
   PetscInt      fastest_i = -1;
   for (PetscInt i = 0; i < n; ++i) {
-    const double e = 0.5 * scene.density * layout.cloud.volume[i] * (v[2 * i] * v[2 * i] + v[2 * i + 1] * v[2 * i + 1]);
-    kinetic += e;
-    if (e > fastest) fastest = e, fastest_i = i;
+    per_point[i] = std::min(0.5 * scene.density * layout.cloud.volume[i] * (v[2 * i] * v[2 * i] + v[2 * i + 1] * v[2 * i + 1]),
+                            RunawayEnergyMonitor::overflow); // finite, whatever the speed
+    if (per_point[i] > fastest) fastest = per_point[i], fastest_i = i;
   }
   PetscCall(VecRestoreArrayRead(simulation.state(), &x));
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &kinetic, 1, MPI_DOUBLE, MPI_SUM, comm));
+  PetscCall(ReproducibleSum(comm, 1, n, per_point.data(), &kinetic));
 
   const Schedule &s       = scene.schedule;
   const PetscInt  segment = (PetscInt)(std::upper_bound(s.time.begin(), s.time.end(), t) - s.time.begin());
@@ -170,7 +180,7 @@ PetscErrorCode CheckRunawayEnergy(Simulation &simulation, RunawayEnergyMonitor &
                             : "The time step is below the stable step estimated at rest, but the material stiffens as it deforms");
   std::string reason = text;
   char        steps[160];
-  std::snprintf(steps, sizeof steps, " (dt = %.4e s, stable estimate %.4e s)", dt, stable);
+  std::snprintf(steps, sizeof steps, " (dt = %.4e s, stable estimate %.4e s).", dt, stable);
   *message = reason + steps;
   PetscFunctionReturn(0);
 }

@@ -1,6 +1,7 @@
 #include "bapd/hdf5_io.hpp"
 
 #include <algorithm>
+#include <cstdint>
 
 namespace bapd {
 
@@ -12,14 +13,13 @@ H5Quiet::H5Quiet()
 
 H5Quiet::~H5Quiet() { H5Eset_auto2(H5E_DEFAULT, func_, data_); }
 
-PetscErrorCode H5ParallelFile::Agree(bool ok, PetscErrorCode code, const char *what, const char *name)
+// A failed call is recorded, not reported at once: every rank makes the same calls
+// whatever their outcome, and Close() agrees on the outcome with one reduction (a
+// reduction per call costs more than the writing on a busy node).
+void H5ParallelFile::Record(bool ok, const char *what, const char *name)
 {
-  int all = ok ? 1 : 0;
-  PetscFunctionBegin;
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &all, 1, MPI_INT, MPI_MIN, comm_));
-  PetscCheck(all, comm_, code, "HDF5 could not %s '%s' in %s (disk full, no permission, or a damaged file?)", what, name,
-             path_.c_str());
-  PetscFunctionReturn(0);
+  if (ok || !failed_.empty()) return;
+  failed_ = std::string(what) + " '" + name + "'";
 }
 
 PetscErrorCode H5ParallelFile::Create(MPI_Comm comm, const std::string &path)
@@ -29,6 +29,8 @@ PetscErrorCode H5ParallelFile::Create(MPI_Comm comm, const std::string &path)
   PetscFunctionBegin;
   comm_       = comm;
   path_       = path;
+  writing_    = true;
+  failed_.clear();
   hid_t fapl  = H5Pcreate(H5P_FILE_ACCESS);
   bool  ok    = fapl >= 0 && H5Pset_fapl_mpio(fapl, comm, MPI_INFO_NULL) >= 0;
   file_       = ok ? H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl) : -1;
@@ -50,6 +52,8 @@ PetscErrorCode H5ParallelFile::Open(MPI_Comm comm, const std::string &path)
   PetscFunctionBegin;
   comm_      = comm;
   path_      = path;
+  writing_   = false;
+  failed_.clear();
   hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
   bool  ok   = fapl >= 0 && H5Pset_fapl_mpio(fapl, comm, MPI_INFO_NULL) >= 0;
   file_      = ok ? H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl) : -1;
@@ -64,15 +68,33 @@ PetscErrorCode H5ParallelFile::Open(MPI_Comm comm, const std::string &path)
   PetscFunctionReturn(0);
 }
 
+H5ParallelFile::~H5ParallelFile()
+{
+  if (file_ < 0) return;
+  H5Quiet quiet;
+  H5Fclose(file_);
+}
+
 PetscErrorCode H5ParallelFile::Close()
 {
   PetscFunctionBegin;
   if (file_ < 0) PetscFunctionReturn(0);
-  H5Quiet    quiet;
-  const bool ok = H5Fclose(file_) >= 0;
-  file_         = -1;
-  PetscCall(Agree(ok, PETSC_ERR_FILE_WRITE, "close", "the file"));
-  PetscFunctionReturn(0);
+  H5Quiet quiet;
+  Record(H5Fclose(file_) >= 0, "close", path_.c_str());
+  file_ = -1;
+  // Rank 0 prints: it names its own failure, or the lowest failing rank's.
+  int failing = failed_.empty() ? INT32_MAX : 0, rank, first = 0;
+  PetscCallMPI(MPI_Comm_rank(comm_, &rank));
+  if (failing == 0) failing = rank;
+  PetscCallMPI(MPI_Allreduce(&failing, &first, 1, MPI_INT, MPI_MIN, comm_));
+  if (first == INT32_MAX) PetscFunctionReturn(0);
+  std::string what = failed_;
+  unsigned long long n = what.size();
+  PetscCallMPI(MPI_Bcast(&n, 1, MPI_UNSIGNED_LONG_LONG, first, comm_));
+  what.resize(n);
+  PetscCallMPI(MPI_Bcast(what.data(), (int)n, MPI_CHAR, first, comm_));
+  SETERRQ(comm_, writing_ ? PETSC_ERR_FILE_WRITE : PETSC_ERR_FILE_UNEXPECTED, "HDF5 could not %s in %s (%s)", what.c_str(), path_.c_str(),
+          writing_ ? "disk full or no permission?" : "a damaged file?");
 }
 
 namespace {
@@ -103,10 +125,13 @@ struct BlockSpaces {
   }
 };
 
-hid_t CollectiveTransfer()
+// Each rank moves one contiguous block of every dataset: independent transfers do
+// that directly, without the two-phase shuffle of collective ones (which on a busy
+// node costs tens of ms per dataset).
+hid_t BlockTransfer()
 {
   hid_t dxpl = H5Pcreate(H5P_DATASET_XFER);
-  H5Pset_dxpl_mpio(dxpl, H5FD_MPIO_COLLECTIVE);
+  H5Pset_dxpl_mpio(dxpl, H5FD_MPIO_INDEPENDENT);
   return dxpl;
 }
 
@@ -119,13 +144,13 @@ PetscErrorCode H5ParallelFile::WriteBlock(const char *name, hid_t type, hsize_t 
 
   PetscFunctionBegin;
   BlockSpaces spaces(rows, cols, start, count);
-  hid_t       dxpl = CollectiveTransfer();
+  hid_t       dxpl = BlockTransfer();
   hid_t       set  = H5Dcreate2(file_, name, type, spaces.file, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
   bool        ok   = set >= 0;
   if (ok && rows > 0) ok = H5Dwrite(set, type, spaces.memory, spaces.file, dxpl, data) >= 0;
   if (set >= 0) ok = H5Dclose(set) >= 0 && ok;
   H5Pclose(dxpl);
-  PetscCall(Agree(ok, PETSC_ERR_FILE_WRITE, "write", name));
+  Record(ok, "write", name);
   PetscFunctionReturn(0);
 }
 
@@ -136,13 +161,13 @@ PetscErrorCode H5ParallelFile::ReadBlock(const char *name, hid_t type, hsize_t r
 
   PetscFunctionBegin;
   BlockSpaces spaces(rows, cols, start, count);
-  hid_t       dxpl = CollectiveTransfer();
+  hid_t       dxpl = BlockTransfer();
   hid_t       set  = H5Dopen2(file_, name, H5P_DEFAULT);
   bool        ok   = set >= 0;
   if (ok && rows > 0) ok = H5Dread(set, type, spaces.memory, spaces.file, dxpl, data) >= 0;
   if (set >= 0) ok = H5Dclose(set) >= 0 && ok;
   H5Pclose(dxpl);
-  PetscCall(Agree(ok, PETSC_ERR_FILE_UNEXPECTED, "read", name));
+  Record(ok, "read", name);
   PetscFunctionReturn(0);
 }
 
@@ -175,7 +200,7 @@ PetscErrorCode H5ParallelFile::CreateGroup(const char *name)
   PetscFunctionBegin;
   hid_t group = H5Gcreate2(file_, name, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
   bool  ok    = group >= 0 && H5Gclose(group) >= 0;
-  PetscCall(Agree(ok, PETSC_ERR_FILE_WRITE, "create group", name));
+  Record(ok, "create group", name);
   PetscFunctionReturn(0);
 }
 
@@ -197,7 +222,7 @@ PetscErrorCode H5ParallelFile::WriteAttribute(const char *object, const char *na
 {
   H5Quiet quiet;
   PetscFunctionBegin;
-  PetscCall(Agree(WriteAttributeRaw(file_, object, name, H5T_NATIVE_DOUBLE, &value), PETSC_ERR_FILE_WRITE, "write attribute", name));
+  Record(WriteAttributeRaw(file_, object, name, H5T_NATIVE_DOUBLE, &value), "write attribute", name);
   PetscFunctionReturn(0);
 }
 
@@ -205,7 +230,7 @@ PetscErrorCode H5ParallelFile::WriteAttribute(const char *object, const char *na
 {
   H5Quiet quiet;
   PetscFunctionBegin;
-  PetscCall(Agree(WriteAttributeRaw(file_, object, name, H5T_NATIVE_INT64, &value), PETSC_ERR_FILE_WRITE, "write attribute", name));
+  Record(WriteAttributeRaw(file_, object, name, H5T_NATIVE_INT64, &value), "write attribute", name);
   PetscFunctionReturn(0);
 }
 
@@ -213,7 +238,7 @@ PetscErrorCode H5ParallelFile::WriteAttribute(const char *object, const char *na
 {
   H5Quiet quiet;
   PetscFunctionBegin;
-  PetscCall(Agree(WriteAttributeRaw(file_, object, name, H5T_NATIVE_UINT64, &value), PETSC_ERR_FILE_WRITE, "write attribute", name));
+  Record(WriteAttributeRaw(file_, object, name, H5T_NATIVE_UINT64, &value), "write attribute", name);
   PetscFunctionReturn(0);
 }
 
@@ -227,7 +252,7 @@ PetscErrorCode H5ParallelFile::WriteAttribute(const char *object, const char *na
   std::string padded = value.empty() ? std::string(1, '\0') : value;
   const bool  ok     = WriteAttributeRaw(file_, object, name, type, padded.data());
   H5Tclose(type);
-  PetscCall(Agree(ok, PETSC_ERR_FILE_WRITE, "write attribute", name));
+  Record(ok, "write attribute", name);
   PetscFunctionReturn(0);
 }
 

@@ -11,15 +11,20 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <cmath>
 #include <cstdarg>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
+#include <filesystem>
 #include <initializer_list>
 #include <limits>
 #include <map>
 #include <numeric>
 #include <string>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include "bapd/option_suggest.hpp"
 
@@ -291,9 +296,9 @@ struct ProbeInput {
 struct SceneInput {
   bool                     width_set = false, height_set = false, thickness_set = false, dx_set = false;
   std::vector<double>      holes, notches;
-  std::string              model = "gent", formulation = "plane_stress";
+  std::string              model = "gent", formulation = "plane_stress", force_form = "bond_only";
   bool                     D_set = false, bulk_ratio_set = false;
-  double                   bulk_ratio = 100.0;
+  double                   bulk_ratio = 1000.0;
   bool                     critical_stretch_set = false;
   std::vector<std::string> load_names;
   std::vector<LoadInput>   loads;
@@ -352,12 +357,18 @@ PetscErrorCode ReadMaterial(MPI_Comm comm, Scene *scene, SceneInput *in)
     OptionReader r(PetscOptionsObject);
     PetscCall(r.String("-material_model", "Constitutive model: gent | neo_hookean (neo-hookean also accepted)", &in->model));
     PetscCall(r.String("-material_formulation", "2D reduction: plane_stress | plane_strain", &in->formulation));
+    PetscCall(r.String("-force_form",
+                       "Bond force: bond_only (the paper's eq 23) | energy_consistent (minus the gradient of the strain "
+                       "energy: conserves energy undamped)",
+                       &in->force_form));
     PetscCall(r.Real("-material_mu", "Shear modulus mu [Pa] (paper: 4.55e3)", &m.mu));
     PetscCall(r.Real("-material_Jm", "Gent chain-extension limit Jm [-] (paper: 162.6; unused by neo_hookean)", &m.Jm));
-    // Default compressibility: bulk modulus K = 2/D = 100 mu (METHOD.md section 4:
-    // the paper gives no D; K >= 100 mu keeps the gel nearly incompressible).
+    // Default compressibility: bulk modulus K = 2/D = 1000 mu (METHOD.md section 4:
+    // the paper gives no D). K = 100 mu already softens the pure-shear curve by 7 %
+    // at stretch 5.125 (the sheet thins less); 1000 mu keeps it within 1 %, and in
+    // plane stress a stiffer K does not shrink the stable step at rest.
     m.D = 2.0 / (in->bulk_ratio * m.mu);
-    PetscCall(r.Real("-material_D", "Compressibility D [1/Pa]; bulk modulus K = 2/D (default 2/(100 mu), i.e. K = 100 mu)", &m.D, &in->D_set));
+    PetscCall(r.Real("-material_D", "Compressibility D [1/Pa]; bulk modulus K = 2/D (default 2/(1000 mu), i.e. K = 1000 mu)", &m.D, &in->D_set));
     PetscCall(r.Real("-material_bulk_ratio", "Bulk to shear modulus ratio K/mu [-]; sets D = 2/(ratio mu) (give this or -material_D)",
                      &in->bulk_ratio, &in->bulk_ratio_set));
     PetscCall(r.Real("-material_density", "Mass density [kg/m^3]", &scene->density));
@@ -594,6 +605,45 @@ bool InsideHole(const Body2D &b, double x, double y, int *which)
   return false;
 }
 
+// " (-body_widht was given: is it a misspelling of -body_width?)" when an option that
+// nothing has read lies within typo distance of `option`, which is missing: a misspelt
+// required option otherwise reads as a forgotten one. "" when there is none.
+std::string MisspeltHint(const std::string &option)
+{
+  PetscInt    n      = 0;
+  char      **names  = nullptr;
+  char      **values = nullptr;
+  std::string hint;
+  if (PetscOptionsLeftGet(nullptr, &n, &names, &values)) return "";
+  for (PetscInt i = 0; i < n && hint.empty(); ++i) {
+    const std::string given = std::string("-") + names[i];
+    if (Lower(given) != Lower(option) && !SuggestOption(given, {option}).empty())
+      hint = " (" + given + " was given: is it a misspelling of " + option + "?)";
+  }
+  PetscOptionsLeftRestore(nullptr, &n, &names, &values);
+  return hint;
+}
+
+// Why rank 0 could not create files in `dir`, or "": the nearest existing ancestor
+// (dir itself when it exists) must be a directory this process may write into.
+// Nothing is created here; the history file is opened after the setup.
+std::string OutputDirProblem(const std::string &dir)
+{
+  std::filesystem::path path = dir;
+  while (true) {
+    struct stat info;
+    if (::stat(path.c_str(), &info) == 0) {
+      if (!S_ISDIR(info.st_mode)) return "'" + path.string() + "' is a file, not a directory";
+      if (::access(path.c_str(), W_OK | X_OK) != 0)
+        return "'" + path.string() + "' is not writable (" + std::strerror(errno) + ")";
+      return "";
+    }
+    if (!path.has_relative_path() || path.parent_path() == path) return "";
+    path = path.parent_path();
+    if (path.empty()) path = ".";
+  }
+}
+
 // ---------------------------------------------------------------------------------
 // Checks: the whole scene, component by component, first problem reported.
 
@@ -612,7 +662,7 @@ PetscErrorCode CheckBody(MPI_Comm comm, const SceneInput &in, Scene *scene)
     {in.dx_set, b.dx, "-body_dx", "the lattice spacing", "dx: 0.001"},
   };
   for (const auto &s : sizes) {
-    SceneCheck(s.set, comm, "%s is required: give %s in metres (YAML: body: {%s})", s.name, s.what, s.yaml);
+    SceneCheck(s.set, comm, "%s is required: give %s in metres (YAML: body: {%s})%s", s.name, s.what, s.yaml, MisspeltHint(s.name).c_str());
     SceneCheck(s.value > 0, comm, "%s %g: %s must be > 0 m", s.name, s.value, s.what);
   }
   SceneCheck(b.dx <= b.width && b.dx <= b.height, comm,
@@ -684,6 +734,13 @@ PetscErrorCode CheckMaterial(MPI_Comm comm, const SceneInput &in, Scene *scene)
   if (!parse(Lower(in.formulation), scene->formulation))
     SETERRQ(comm, PETSC_ERR_USER, "%s",
             Format("-material_formulation '%s' is not a formulation: choose plane_stress or plane_strain", in.formulation.c_str()).c_str());
+  std::string form = Lower(in.force_form);
+  std::replace(form.begin(), form.end(), '-', '_');
+  if (form == "bond_only") scene->force_form = ForceForm::bond_only;
+  else if (form == "energy_consistent") scene->force_form = ForceForm::energy_consistent;
+  else
+    SETERRQ(comm, PETSC_ERR_USER, "%s",
+            Format("-force_form '%s' is not a force form: choose bond_only (the paper's) or energy_consistent", in.force_form.c_str()).c_str());
 
   SceneCheck(!(in.D_set && in.bulk_ratio_set), comm,
              "-material_D and -material_bulk_ratio both set the compressibility (D = 2/(bulk_ratio mu)): give only one of them");
@@ -691,7 +748,7 @@ PetscErrorCode CheckMaterial(MPI_Comm comm, const SceneInput &in, Scene *scene)
     SceneCheck(in.bulk_ratio > 0, comm,
                "-material_bulk_ratio %g: the ratio K/mu must be > 0; a nearly incompressible gel has K/mu >= 100 (the default)", in.bulk_ratio);
     m.D = 2.0 / (in.bulk_ratio * m.mu);
-  } else if (!in.D_set) m.D = 2.0 / (100.0 * m.mu); // K = 100 mu, see ReadMaterial
+  } else if (!in.D_set) m.D = 2.0 / (1000.0 * m.mu); // K = 1000 mu, see ReadMaterial
   std::string problems = check_parameters(scene->model, m); // -material_mu, -material_Jm, -material_D
   if (!problems.empty() && problems.back() == '\n') problems.pop_back();
   PetscCheck(problems.empty(), comm, PETSC_ERR_USER, "%s", problems.c_str());
@@ -758,7 +815,8 @@ PetscErrorCode CheckLoading(MPI_Comm comm, const SceneInput &in, Scene *scene)
     LoadSet     set;
     const char *n = li.name.c_str();
     set.name      = li.name;
-    SceneCheck(li.region_set, comm, "-load_%s_region is required for load set '%s': choose top, bottom, left, right or box", n, n);
+    SceneCheck(li.region_set, comm, "-load_%s_region is required for load set '%s': choose top, bottom, left, right or box%s", n, n,
+               MisspeltHint("-load_" + li.name + "_region").c_str());
     const std::string region = Lower(li.region);
     if (region == "top") set.region = LoadSet::Region::top;
     else if (region == "bottom") set.region = LoadSet::Region::bottom;
@@ -768,7 +826,8 @@ PetscErrorCode CheckLoading(MPI_Comm comm, const SceneInput &in, Scene *scene)
     else SETERRQ(comm, PETSC_ERR_USER, "%s", Format("-load_%s_region '%s' is not a region: choose top, bottom, left, right or box", n, li.region.c_str()).c_str());
 
     if (set.region == LoadSet::Region::box) {
-      SceneCheck(li.box_set, comm, "-load_%s_box is required with -load_%s_region box: give xmin,ymin,xmax,ymax in m", n, n);
+      SceneCheck(li.box_set, comm, "-load_%s_box is required with -load_%s_region box: give xmin,ymin,xmax,ymax in m%s", n, n,
+                 MisspeltHint("-load_" + li.name + "_box").c_str());
       SceneCheck(li.box.size() == 4, comm, "-load_%s_box holds %zu numbers: give exactly four, xmin,ymin,xmax,ymax in m", n,
                  li.box.size());
       std::copy(li.box.begin(), li.box.end(), set.box);
@@ -808,8 +867,8 @@ PetscErrorCode CheckLoading(MPI_Comm comm, const SceneInput &in, Scene *scene)
       if (load != ComponentLoad::stretch) continue;
       SceneCheck(!schedule.time.empty(), comm,
                  "-load_%s_%c stretch needs a stretch schedule: give -load_schedule t0,lambda0,t1,lambda1,... (e.g. 0,1,10,2 ramps lambda "
-                 "from 1 to 2 over 10 s)",
-                 n, axis);
+                 "from 1 to 2 over 10 s)%s",
+                 n, axis, MisspeltHint("-load_schedule").c_str());
       if (scale == 0.0)
         PetscCall(Warn(comm, Format("-load_%s_%c_scale is 0: the stretch component never moves (same as -load_%s_%c fixed)", n, axis, n, axis)));
       (c == 0 ? set.x_scale : set.y_scale) = scale;
@@ -831,7 +890,8 @@ PetscErrorCode CheckProbesOutputTime(MPI_Comm comm, const SceneInput &in, Scene 
   scene->probes.clear();
   for (const ProbeInput &pi : in.probes) {
     const char *n = pi.name.c_str();
-    SceneCheck(pi.at_set, comm, "-probe_%s_at is required for probe '%s': give its position x,y in m", n, n);
+    SceneCheck(pi.at_set, comm, "-probe_%s_at is required for probe '%s': give its position x,y in m%s", n, n,
+               MisspeltHint("-probe_" + pi.name + "_at").c_str());
     SceneCheck(pi.at.size() == 2, comm, "-probe_%s_at holds %zu numbers: give exactly two, x,y in m", n, pi.at.size());
     const Probe p = {pi.name, pi.at[0], pi.at[1]};
     SceneCheck(p.x >= -tol && p.x <= b.width + tol && p.y >= -tol && p.y <= b.height + tol, comm,
@@ -844,6 +904,19 @@ PetscErrorCode CheckProbesOutputTime(MPI_Comm comm, const SceneInput &in, Scene 
   }
 
   SceneCheck(!scene->output_dir.empty(), comm, "-output_dir is empty: give a directory, e.g. -output_dir output");
+  {
+    // Rank 0 writes the output: it checks, every rank hears its verdict.
+    PetscMPIInt rank;
+    std::string problem;
+    PetscCallMPI(MPI_Comm_rank(comm, &rank));
+    if (rank == 0) problem = OutputDirProblem(scene->output_dir);
+    int length = static_cast<int>(problem.size());
+    PetscCallMPI(MPI_Bcast(&length, 1, MPI_INT, 0, comm));
+    problem.resize(static_cast<std::size_t>(length));
+    PetscCallMPI(MPI_Bcast(problem.data(), length, MPI_CHAR, 0, comm));
+    SceneCheck(problem.empty(), comm, "-output_dir %s cannot be created or written: %s; choose a writable directory, e.g. -output_dir output",
+               scene->output_dir.c_str(), problem.c_str());
+  }
   SceneCheck(scene->output_interval >= 1, comm,
              "-output_interval %" PetscInt_FMT ": history rows are written every N >= 1 time steps (default 100)", scene->output_interval);
 
@@ -871,7 +944,8 @@ PetscErrorCode CheckProbesOutputTime(MPI_Comm comm, const SceneInput &in, Scene 
       PetscCall(Warn(comm, Format("-end_time %g s stops the run before the end of -load_schedule (%g s)", scene->end_time, schedule_end)));
   } else {
     SceneCheck(schedule_end > 0, comm,
-               "-end_time is required when -load_schedule does not end after t = 0: give the run's end in s, e.g. -end_time 1");
+               "-end_time is required when -load_schedule does not end after t = 0: give the run's end in s, e.g. -end_time 1%s",
+               (MisspeltHint("-end_time") + MisspeltHint("-load_schedule")).c_str());
     scene->end_time = schedule_end;
   }
   PetscFunctionReturn(0);
@@ -965,6 +1039,15 @@ const char *to_string(ComponentLoad load)
   return "unknown";
 }
 
+const char *to_string(ForceForm form)
+{
+  switch (form) {
+  case ForceForm::bond_only: return "bond_only";
+  case ForceForm::energy_consistent: return "energy_consistent";
+  }
+  return "unknown";
+}
+
 const std::vector<std::string> &SceneWarnings() { return Warnings(); }
 
 void RegisterOptionName(const std::string &name) { Registry().emplace(Lower(name), name); }
@@ -1029,6 +1112,7 @@ PetscErrorCode SceneView(MPI_Comm comm, const Scene &s)
   text += Format("  material  %s, %s: mu %g Pa", to_string(s.model), to_string(s.formulation), s.material.mu);
   if (s.model == ModelKind::gent) text += Format(", Jm %g", s.material.Jm);
   text += Format(", D %g 1/Pa (bulk modulus K = 2/D = %g Pa = %g mu), density %g kg/m^3\n", s.material.D, K, K / s.material.mu, s.density);
+  text += Format("  force     %s\n", to_string(s.force_form));
   if (s.failure) text += Format("  failure   bonds break past stretch s_c = %g\n", s.critical_stretch);
   else text += "  failure   none\n";
   auto component = [](ComponentLoad c, double scale) {

@@ -1,11 +1,13 @@
 #include "bapd/simulation.hpp"
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <limits>
 
+#include "bapd/ba_force_energy.hpp"
 #include "bapd/damage.hpp"
 #include "bapd/models.hpp"
 #include "bapd/lattice.hpp"
@@ -104,9 +106,17 @@ PetscErrorCode Simulation::BuildBody()
   // type and the bond loop is compiled for it.
   with_model(scene_.model, scene_.formulation, scene_.material, [&](const auto &model) {
     using Model    = std::decay_t<decltype(model)>;
-    bond_forces_ = [this, m = Model(model)](const double *y, double *c33) {
-      return compute_bond_forces(m, layout_.cloud, y, families_, geometry_, bond_state_, c33, bond_force_.data(), workspace_);
-    };
+    // -force_form: both forms write t_ij per bond, and assemble_force_density turns
+    // either into f_i (the energy-consistent t_ij make it -(1/V_i) dW/dy_i).
+    if (scene_.force_form == ForceForm::energy_consistent)
+      bond_forces_ = [this, m = Model(model)](const double *y, double *c33) {
+        return compute_energy_consistent_bond_forces(m, layout_.cloud, y, families_, geometry_, bond_state_, c33,
+                                                     bond_force_.data(), workspace_);
+      };
+    else
+      bond_forces_ = [this, m = Model(model)](const double *y, double *c33) {
+        return compute_bond_forces(m, layout_.cloud, y, families_, geometry_, bond_state_, c33, bond_force_.data(), workspace_);
+      };
     point_energies_ = [this, m = Model(model)](const double *y, double *energy) {
       strain_energy(m, layout_.cloud, y, families_, geometry_, bond_state_, c33_.data(), (std::size_t)layout_.n_owned,
                     workspace_, nullptr, energy);
@@ -141,9 +151,23 @@ PetscErrorCode Simulation::BuildLoads()
     PetscCall(LoadSetSelect(scene_, set, layout_.cloud.x.data(), layout_.n_owned, &selected));
     PetscInt count = (PetscInt)selected.size();
     PetscCallMPI(MPI_Allreduce(&count, &load_points_[s].global_count, 1, MPIU_INT, MPI_SUM, comm_));
-    PetscCheck(load_points_[s].global_count > 0, comm_, PETSC_ERR_USER,
-               "Load set '%s' selects no material point: widen -load_%s_box or raise -load_%s_layers", set.name.c_str(),
-               set.name.c_str(), set.name.c_str());
+    if (load_points_[s].global_count == 0) {
+      // Points sit at cell centres ((i + 1/2) dx, (j + 1/2) dx): a thin box can miss
+      // them all, and a hole can empty an edge layer.
+      const char *n = set.name.c_str();
+      char        msg[512];
+      if (set.region == LoadSet::Region::box)
+        std::snprintf(msg, sizeof msg,
+                      "-load_%s_box %g,%g,%g,%g selects no material point for load set '%s': widen it to hold a lattice point "
+                      "(points sit at ((i + 1/2) dx, (j + 1/2) dx), dx = %g m)",
+                      n, set.box[0], set.box[1], set.box[2], set.box[3], n, scene_.body.dx);
+      else
+        std::snprintf(msg, sizeof msg,
+                      "-load_%s_region %s selects no material point for load set '%s' (its %d edge layer(s) hold none, e.g. cut away "
+                      "by a hole): raise -load_%s_layers or move the hole",
+                      n, to_string(set.region), n, set.layers, n);
+      SETERRQ(comm_, PETSC_ERR_USER, "%s", msg);
+    }
     load_points_[s].points = selected;
     for (PetscInt p : selected)
       for (int c = 0; c < 2; ++c) {
@@ -438,16 +462,19 @@ PetscErrorCode Simulation::SetupTimeStepper()
 PetscErrorCode Simulation::OpenHistory()
 {
   PetscFunctionBegin;
-  int ok = 1;
+  int         ok = 1;
+  std::string why; // rank 0, which prints the message
   if (rank_ == 0) {
     std::error_code ec;
     std::filesystem::create_directories(scene_.output_dir, ec);
     const std::string path = scene_.output_dir + "/history.csv";
     history_               = ec ? nullptr : std::fopen(path.c_str(), "w");
     ok                     = history_ != nullptr;
+    if (!ok) why = ec ? "cannot create the directory: " + ec.message() : std::string(std::strerror(errno));
   }
   PetscCallMPI(MPI_Bcast(&ok, 1, MPI_INT, 0, comm_));
-  PetscCheck(ok, comm_, PETSC_ERR_FILE_OPEN, "Cannot write %s/history.csv: choose a writable -output_dir", scene_.output_dir.c_str());
+  PetscCheck(ok, comm_, PETSC_ERR_FILE_OPEN, "-output_dir %s: cannot write %s/history.csv (%s): choose a writable directory, e.g. -output_dir output",
+             scene_.output_dir.c_str(), scene_.output_dir.c_str(), why.c_str());
   if (rank_ == 0) {
     std::fprintf(history_, "step,time_s,stretch");
     for (const LoadSet &s : scene_.loads)
@@ -636,6 +663,12 @@ PetscErrorCode Simulation::PostStep(TS ts)
 
   PetscBool diverged = PETSC_FALSE;
   PetscCall(sim->CheckHealth(step, t, &diverged));
+  if (!diverged) {
+    // Runaway energy: an unstable time step caught before NaN or shattering (divergence.hpp).
+    std::string runaway;
+    PetscCall(CheckRunawayEnergy(*sim, sim->energy_monitor_, step, t, &runaway));
+    if (!runaway.empty()) sim->stop_reason_ = runaway, sim->stopped_on_error_ = true, diverged = PETSC_TRUE;
+  }
   if (diverged) {
     PetscCall(sim->OutputOnDivergence()); // checkpoint of the last good state
     PetscCall(TSSetConvergedReason(ts, TS_DIVERGED_NONLINEAR_SOLVE));
@@ -694,11 +727,11 @@ PetscErrorCode Simulation::CheckHealth(PetscInt step, double t, PetscBool *diver
     *diverged = PETSC_TRUE;
     char msg[512];
     if (global[0])
-      std::snprintf(msg, sizeof msg, "the solution became NaN/Inf at step %" PetscInt_FMT " (t = %.6e s). The time step %.4e s is probably too large: lower -time_step or -time_step_safety (stable estimate %.4e s)", step, t, dt_, stable_dt_);
+      std::snprintf(msg, sizeof msg, "the solution became NaN/Inf at step %" PetscInt_FMT " (t = %.6e s). The time step %.4e s is probably too large: lower -time_step or -time_step_safety (stable estimate %.4e s).", step, t, dt_, stable_dt_);
     else if (global[1])
-      std::snprintf(msg, sizeof msg, "%d bond(s) inverted (det F <= 0) at step %" PetscInt_FMT " (t = %.6e s): the run is unstable; lower -time_step or -time_step_safety (stable estimate %.4e s)", global[1], step, t, stable_dt_);
+      std::snprintf(msg, sizeof msg, "%d bond(s) inverted (det F <= 0) at step %" PetscInt_FMT " (t = %.6e s): the run is unstable; lower -time_step or -time_step_safety (stable estimate %.4e s).", global[1], step, t, stable_dt_);
     else
-      std::snprintf(msg, sizeof msg, "%d bond(s) reached the Gent chain-extension limit (I1bar - 3 >= Jm) at step %" PetscInt_FMT " (t = %.6e s), where the model has no finite energy: raise -material_Jm, lower the load, or enable failure (-failure_critical_stretch) so such bonds break", global[2], step, t);
+      std::snprintf(msg, sizeof msg, "%d bond(s) reached the Gent chain-extension limit (I1bar - 3 >= Jm) at step %" PetscInt_FMT " (t = %.6e s), where the model has no finite energy: raise -material_Jm, lower the load, or enable failure (-failure_critical_stretch) so such bonds break.", global[2], step, t);
     stop_reason_      = std::string(msg) + at;
     stopped_on_error_ = true;
   }
@@ -816,8 +849,9 @@ PetscErrorCode Simulation::Summary()
   }
   PetscCall(ComputeForceDensity(x, force_.data()));
   PetscCall(VecRestoreArrayRead(X_, &x));
-  PetscCall(PetscPrintf(comm_, "\nFinished: %" PetscInt_FMT " steps, t = %.6e s, stretch %.5f, wall %.1f s\n", step, t,
-                        scene_.schedule.stretch_at(t), MPI_Wtime() - wall_start_));
+  PetscCall(PetscPrintf(comm_, "\n%s: %" PetscInt_FMT " steps, t = %.6e s, stretch %.5f, wall %.1f s\n",
+                        stopped_on_error_ ? "Stopped (see the error below)" : "Finished", step, t, scene_.schedule.stretch_at(t),
+                        MPI_Wtime() - wall_start_));
   for (std::size_t p = 0; p < probes_.size(); ++p)
     PetscCall(PetscPrintf(comm_, "probe %-16s ux = %+.6e m  uy = %+.6e m\n", scene_.probes[p].name.c_str(), probe_u[2 * p], probe_u[2 * p + 1]));
   for (std::size_t s = 0; s < scene_.loads.size(); ++s) {

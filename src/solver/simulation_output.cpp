@@ -49,6 +49,8 @@ PetscErrorCode Simulation::ReadOutputOptions()
   PetscFunctionBegin;
   PetscCall(FieldOptionsFromOptions(comm_, &output_.fields));
   PetscCall(CheckpointOptionsFromOptions(comm_, &output_.checkpoint));
+  if (!output_.handlers) InstallInterruptHandlers(); // a signal during the set-up acts at the first step
+  output_.handlers = true;
   PetscFunctionReturn(0);
 }
 
@@ -63,8 +65,6 @@ PetscErrorCode Simulation::SetupOutput()
   }
   output_.schedule_original = scene_.schedule.time;
   output_.end_time_original = scene_.end_time;
-  InstallInterruptHandlers();
-  output_.handlers             = true;
   output_.last_checkpoint_wall = MPI_Wtime();
   PetscInt  step = 0;
   PetscReal t    = 0;
@@ -106,11 +106,12 @@ PetscErrorCode Simulation::OutputAfterStep(PetscInt step, double t)
 {
   PetscFunctionBegin;
   if (output_.fields.enabled && step % output_.fields.interval == 0) PetscCall(WriteFields(step, t));
-  // One reduction a step: did any rank get SIGTERM/SIGINT, and is rank 0's clock
-  // past the wall-clock interval? Every rank then takes the same branch.
+  // One reduction a step: did any rank get SIGTERM/SIGINT or SIGUSR1, and is rank 0's
+  // clock past the wall-clock interval? Every rank then takes the same branch.
   const CheckpointOptions &options = output_.checkpoint;
-  int flags[2] = {PendingInterrupt(), rank_ == 0 && options.wall_interval > 0 && MPI_Wtime() - output_.last_checkpoint_wall >= options.wall_interval};
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, flags, 2, MPI_INT, MPI_MAX, comm_));
+  int flags[3] = {PendingInterrupt(), rank_ == 0 && options.wall_interval > 0 && MPI_Wtime() - output_.last_checkpoint_wall >= options.wall_interval,
+                  TakeCheckpointRequest() ? 1 : 0};
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, flags, 3, MPI_INT, MPI_MAX, comm_));
   if (flags[0]) {
     if (output_.fields.enabled && (output_.series.frames.empty() || output_.series.frames.back().step != step)) PetscCall(WriteFields(step, t));
     PetscCall(WriteCheckpointFile(step, t, "interrupted"));
@@ -123,7 +124,8 @@ PetscErrorCode Simulation::OutputAfterStep(PetscInt step, double t)
     PetscCall(TSSetConvergedReason(ts_, TS_CONVERGED_USER));
     PetscFunctionReturn(0);
   }
-  if ((options.step_interval > 0 && step % options.step_interval == 0) || flags[1]) PetscCall(WriteCheckpointFile(step, t, "interval"));
+  if (flags[2]) PetscCall(WriteCheckpointFile(step, t, "SIGUSR1"));
+  else if ((options.step_interval > 0 && step % options.step_interval == 0) || flags[1]) PetscCall(WriteCheckpointFile(step, t, "interval"));
   if (output_.checkpoint.on_error) PetscCall(SaveGoodState(step, t));
   PetscFunctionReturn(0);
 }

@@ -1,7 +1,9 @@
 // Conservation laws of the explicit dynamics on a free body, on any rank layout.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
+#include <string>
 
 #include "bapd/reproducible_sum.hpp"
 #include "bapd/simulation.hpp"
@@ -42,52 +44,87 @@ void Momentum(Simulation &sim, double p[2])
 
 } // namespace
 
-// Internal forces sum to zero (paper eq 23 is antisymmetric in i, j), so a free body
-// keeps its linear momentum whatever its deformation.
+// Internal forces sum to zero (f_i = sum_j (t_ij - t_ji) V_j is antisymmetric in i, j
+// for both force forms), so a free body keeps its linear momentum whatever its
+// deformation. The paper's bond-only form flutters undamped next to the notch tip
+// (its stiffness is not symmetric there): at the amplitude used for the energy-
+// consistent form it inverts bonds at step ~260 (at 1/10 of it: ~410; the motion
+// grows ~40 1/s), so it runs at 1/1000 of it.
 TEST(Conservation, FreeBodyKeepsItsLinearMomentum)
 {
-  ASSERT_EQ(bapd_test::SetOptions(bapd_test::FreeSheetScene("conservation_output") + " -end_time 100"), 0);
-  Simulation sim(PETSC_COMM_WORLD);
-  ASSERT_EQ(sim.Setup(), 0);
-  // Drift plus a non-uniform, finite-amplitude velocity and displacement.
-  SetState(
-    sim, [](double x, double y) { return std::array<double, 2>{1e-4 * std::sin(400 * y), 2e-4 * std::cos(300 * x) * y / 0.02}; },
-    [](double x, double y) { return std::array<double, 2>{0.03 + 0.01 * std::sin(500 * x * y / 0.02), -0.02 + 0.01 * std::cos(200 * y)}; });
-  double p0[2], p1[2];
-  Momentum(sim, p0);
-  ASSERT_EQ(sim.Advance(500), 0);
-  Momentum(sim, p1);
-  const double scale = std::hypot(p0[0], p0[1]);
-  // Each step adds dt * sum f_i V_i, zero up to round-off of ~10^4 terms per step.
-  EXPECT_NEAR(p1[0], p0[0], 1e-10 * scale);
-  EXPECT_NEAR(p1[1], p0[1], 1e-10 * scale);
+  for (const char *form : {"energy_consistent", "bond_only"}) {
+    const double amplitude = std::string(form) == "bond_only" ? 1e-3 : 1.0;
+    ASSERT_EQ(bapd_test::SetOptions(bapd_test::FreeSheetScene("conservation_output") + " -end_time 100 -force_form " + form), 0);
+    Simulation sim(PETSC_COMM_WORLD);
+    ASSERT_EQ(sim.Setup(), 0);
+    // Drift plus a non-uniform, finite-amplitude velocity and displacement.
+    SetState(
+      sim,
+      [&](double x, double y) {
+        return std::array<double, 2>{amplitude * 1e-4 * std::sin(400 * y), amplitude * 2e-4 * std::cos(300 * x) * y / 0.02};
+      },
+      [&](double x, double y) {
+        return std::array<double, 2>{0.03 + amplitude * 0.01 * std::sin(500 * x * y / 0.02), -0.02 + amplitude * 0.01 * std::cos(200 * y)};
+      });
+    double p0[2], p1[2];
+    Momentum(sim, p0);
+    ASSERT_EQ(sim.Advance(500), 0) << form;
+    Momentum(sim, p1);
+    const double scale = std::hypot(p0[0], p0[1]);
+    // Each step adds dt * sum f_i V_i, zero up to round-off of ~10^4 terms per step.
+    EXPECT_NEAR(p1[0], p0[0], 1e-10 * scale) << form;
+    EXPECT_NEAR(p1[1], p0[1], 1e-10 * scale) << form;
+  }
 }
 
-// An undamped elastic vibration at the default time step (0.8 x the stable step):
-// the total energy stays put. The bond-only force form of the paper (eq 23) is not
-// the exact gradient of the stored energy, so the tolerance is a measured bound
-// (docs/validation.md), not round-off.
+// An undamped elastic vibration of the free sheet with the energy-consistent force
+// form, whose force is exactly minus the gradient of the stored energy that
+// Energies() reports (ba_force_energy.hpp). Velocity Verlet then conserves a modified
+// energy H + O(dt^2): the measured E = kinetic + internal oscillates about E0 and does
+// not drift. Per mode of frequency omega the oscillation of the measured energy is
+// about (omega dt)^2/4 / (1 - (omega dt)^2/4) of the mode's energy: 1.4 for the
+// highest mode at the default step (0.8 x stable, omega_max dt = 1.5), 0.04 at
+// 0.2 x stable. The free edges, the hole and the notch put part of the energy in high
+// modes, so the bounds are measured ones: max |E - E0|/E0 = 0.38 at 0.8 x stable
+// (0.23 at 1/100 of the amplitude: mostly linear) and 8.7e-3 at 0.2 x stable.
+// (The paper's bond-only form is not the gradient of an energy: here its motion grows
+// next to the notch tip and inverts bonds within ~260 steps at 0.8 x stable.)
 TEST(Conservation, UndampedVibrationKeepsItsEnergy)
 {
-  ASSERT_EQ(bapd_test::SetOptions(bapd_test::FreeSheetScene("conservation_output") + " -end_time 100 " + std::string(getenv("EXTRA") ? getenv("EXTRA") : "")), 0);
-  Simulation sim(PETSC_COMM_WORLD);
-  ASSERT_EQ(sim.Setup(), 0);
-  SetState(
-    sim, [](double x, double y) { return std::array<double, 2>{2e-4 * std::sin(M_PI * x / 0.02) * std::cos(M_PI * y / 0.02), 1e-4 * std::sin(M_PI * y / 0.02)}; },
-    [](double, double) { return std::array<double, 2>{0.0, 0.0}; });
-  double k0, w0;
-  ASSERT_EQ(sim.Energies(&k0, &w0), 0);
-  const double e0 = k0 + w0;
-  ASSERT_GT(w0, 0.0);
-  double worst = 0, kmax = 0;
-  for (int chunk = 0; chunk < 20; ++chunk) {
-    ASSERT_EQ(sim.Advance(500), 0);
-    double k, w;
-    ASSERT_EQ(sim.Energies(&k, &w), 0);
-    worst = std::max(worst, std::fabs(k + w - e0) / e0);
-    kmax  = std::max(kmax, k);
+  struct Case {
+    double safety;  // -time_step_safety
+    int    samples; // every 100 steps
+    double bound;   // on max |E - E0| / E0
+  } cases[] = {{0.8, 100, 0.5}, {0.2, 50, 0.02}};
+  for (const Case &c : cases) {
+    ASSERT_EQ(bapd_test::SetOptions(bapd_test::FreeSheetScene("conservation_output") +
+                                    " -end_time 100 -force_form energy_consistent -time_step_safety " + std::to_string(c.safety)),
+              0);
+    Simulation sim(PETSC_COMM_WORLD);
+    ASSERT_EQ(sim.Setup(), 0);
+    SetState(
+      sim, [](double x, double y) { return std::array<double, 2>{2e-4 * std::sin(M_PI * x / 0.02) * std::cos(M_PI * y / 0.02), 1e-4 * std::sin(M_PI * y / 0.02)}; },
+      [](double, double) { return std::array<double, 2>{0.0, 0.0}; });
+    double k0, w0;
+    ASSERT_EQ(sim.Energies(&k0, &w0), 0);
+    const double e0 = k0 + w0;
+    ASSERT_GT(w0, 0.0);
+    double first_half = 0, second_half = 0, kmax = 0;
+    for (int sample = 0; sample < c.samples; ++sample) {
+      ASSERT_EQ(sim.Advance(100), 0);
+      double k, w;
+      ASSERT_EQ(sim.Energies(&k, &w), 0);
+      double &worst = 2 * sample < c.samples ? first_half : second_half;
+      worst         = std::max(worst, std::fabs(k + w - e0) / e0);
+      kmax          = std::max(kmax, k);
+    }
+    PetscPrintf(PETSC_COMM_WORLD,
+                "energy at %.1f x stable: E0 = %.6e J, max |E - E0|/E0 = %.3e over steps 1-%d, %.3e over the rest; max kinetic %.3e J\n",
+                c.safety, e0, first_half, 50 * c.samples, second_half, kmax);
+    EXPECT_GT(kmax, 0.1 * e0); // it really vibrates
+    EXPECT_LT(std::max(first_half, second_half), c.bound);
+    // Bounded, not drifting: no larger in the second half of the run than in the first
+    // (measured ratios 1.02 and 1.03; 10 % allows for the sampling of the peaks).
+    EXPECT_LT(second_half, 1.1 * first_half);
   }
-  PetscPrintf(PETSC_COMM_WORLD, "energy: E0 = %.6e J, max |E - E0|/E0 over 10000 steps = %.3e, max kinetic %.3e J\n", e0, worst, kmax);
-  EXPECT_GT(kmax, 0.1 * e0); // it really vibrates
-  EXPECT_LT(worst, 0.02);
 }

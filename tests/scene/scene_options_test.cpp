@@ -259,7 +259,7 @@ TEST_F(SceneOptions, ReadsThePlateWithAHoleWithItsDefaults)
   EXPECT_EQ(scene.formulation, bapd::Formulation::plane_stress);
   EXPECT_EQ(scene.material.mu, 4.55e3);
   EXPECT_EQ(scene.material.Jm, 162.6);
-  EXPECT_EQ(scene.material.D, 2.0 / (100.0 * 4.55e3)); // K = 2/D = 100 mu, same expression: exact
+  EXPECT_EQ(scene.material.D, 2.0 / (100.0 * 4.55e3)); // the scene's K = 2/D = 100 mu, same expression: exact
   EXPECT_EQ(scene.density, 1000.0);
   EXPECT_FALSE(scene.failure);
   EXPECT_EQ(scene.reference_length, 0.16); // the body height
@@ -291,6 +291,17 @@ TEST_F(SceneOptions, ReadsThePlateWithAHoleWithItsDefaults)
   EXPECT_EQ(scene.output_interval, 200);
   EXPECT_TRUE(bapd::SceneWarnings().empty());
   EXPECT_EQ(bapd::SceneView(PETSC_COMM_WORLD, scene), 0);
+}
+
+// Without -material_D or -material_bulk_ratio the gel is nearly incompressible,
+// K = 2/D = 1000 mu (docs/options.md explains the choice).
+TEST_F(SceneOptions, DefaultsToABulkModulusOfAThousandShearModuli)
+{
+  Options o = PlateWithHole();
+  o.erase("-material_bulk_ratio");
+  Scene scene;
+  ASSERT_EQ(Read(o, &scene), 0) << ErrorText();
+  EXPECT_EQ(scene.material.D, 2.0 / (1000.0 * 4.55e3)); // same expression as the default: exact
 }
 
 TEST_F(SceneOptions, ReadsEveryOtherChoice)

@@ -1,0 +1,104 @@
+#!/usr/bin/env bash
+# Bad input (issue 6): each mistake, run through run_mpi.sh on RANKS ranks, must stop
+# with a non-zero exit code within 60 s, print exactly one error line that contains the
+# expected text (the option and the fix), and print no PETSc error stack, no crash.
+#   bad_input.sh RANKS        (ctest sets BAPD_EXE and BAPD_SOURCE_DIR)
+set -uo pipefail
+ranks="$1"
+source_dir="$BAPD_SOURCE_DIR"
+fixtures="$source_dir/tests/input"
+run_mpi="$source_dir/run_mpi.sh"
+work="input_bad_input_np$ranks"
+rm -rf "$work" && mkdir -p "$work" && cd "$work" || exit 1
+scene="$fixtures/tiny.yaml"
+failures=0
+
+# expect_error NAME TEXT ARGS...: run_mpi.sh -n RANKS ARGS... must fail as described.
+expect_error() {
+  local name="$1" text="$2" rc problems=""
+  shift 2
+  timeout 60 "$run_mpi" -n "$ranks" "$@" > "$name.log" 2>&1
+  rc=$?
+  if ((rc == 124)); then problems+=" timed out (hang?);"
+  elif ((rc == 0)); then problems+=" exit code 0;"
+  elif ((rc >= 128)); then problems+=" killed by signal $((rc - 128));"
+  fi
+  grep -qF -- "$text" "$name.log" || problems+=" no '$text' in the output;"
+  local errors
+  errors=$(grep -c "error:" "$name.log")
+  ((errors == 1)) || problems+=" $errors error lines instead of 1;"
+  grep -q "PETSC ERROR" "$name.log" && problems+=" a PETSc error stack;"
+  grep -qiE "Segmentation|core dumped|Caught signal|MPI_ABORT" "$name.log" && problems+=" a crash or an abort;"
+  if [ -n "$problems" ]; then
+    echo "FAIL $name (np $ranks, exit $rc):$problems"
+    sed 's/^/    | /' "$name.log"
+    failures=$((failures + 1))
+  else
+    echo "ok   $name: $(grep "error:" "$name.log")"
+  fi
+}
+
+# The scene file and the command line
+expect_error missing_scene "cannot open scene file 'no_such_scene.yaml'" no_such_scene.yaml
+expect_error missing_second_scene "cannot open scene file 'no_such_scene.yaml'" "$scene" -options_file_yaml no_such_scene.yaml
+expect_error missing_options_file "cannot open options file 'no_such_options.txt'" "$scene" -options_file no_such_options.txt
+expect_error yaml_syntax "is not valid YAML" "$fixtures/bad_syntax.yaml"
+expect_error stray_argument "unexpected argument 'scene.txt'" "$scene" scene.txt
+expect_error bad_rank_count "-n needs a number of ranks" "$scene" -n two
+
+# Unknown options: the nearest real name
+expect_error unknown_option "-material_muu is not a bapd option. Did you mean -material_mu?" "$scene" -material_muu 5e3
+expect_error misspelt_required "(-body_widht was given: is it a misspelling of -body_width?)" "$fixtures/misspelt_width.yaml"
+
+# Wrong types, bapd's options and PETSc's
+expect_error real_not_number "-body_dx 'abc' is not a number" "$scene" -body_dx abc
+expect_error int_not_whole "-output_interval '1.5' is not a whole number" "$scene" -output_interval 1.5
+expect_error list_not_numbers "-body_holes '0.005,x,0.001': 'x' is not a number" "$scene" -body_holes 0.005,x,0.001
+expect_error petsc_real "-ts_dt 'abc' is not valid: give a number" "$scene" -ts_dt abc
+expect_error petsc_int "-ts_max_steps '1.5' is not valid: give a whole number" "$scene" -ts_max_steps 1.5
+expect_error petsc_bool "-output_final_state 'maybe' is not valid: give true or false" "$scene" -output_final_state maybe
+
+# Non-physical values
+expect_error negative_dx "-body_dx -0.0005: the lattice spacing must be > 0 m" "$scene" -body_dx -0.0005
+expect_error zero_width "-body_width 0: the sheet width along x must be > 0 m" "$scene" -body_width 0
+expect_error negative_thickness "-body_thickness -0.001: the sheet thickness must be > 0 m" "$scene" -body_thickness -0.001
+expect_error zero_output_interval "-output_interval 0" "$scene" -output_interval 0
+expect_error critical_stretch_one "-failure_critical_stretch 1: a bond breaks once stretched past s_c, so s_c must be > 1" "$scene" -failure_critical_stretch 1
+expect_error critical_stretch_below "-failure_critical_stretch 0.5" "$scene" -failure_critical_stretch 0.5
+expect_error horizon_below_dx "-horizon_factor 0.5 is below 1" "$scene" -horizon_factor 0.5
+
+# Geometry
+expect_error hole_covers_body "-body_holes: hole 1 (centre (0.005, 0.005) m, radius 0.02 m) covers the whole body" "$scene" -body_holes 0.005,0.005,0.02
+expect_error hole_sticks_out "-body_holes: hole 1 (centre (0.005, 0.005) m, radius 0.006 m) is not entirely inside the body" "$scene" -body_holes 0.005,0.005,0.006
+expect_error notch_outside "-body_notches: notch 1 ends at (0.02, 0.005) m, outside the body" "$scene" -body_notches 0.02,0.005,0.008,0.005
+expect_error dx_above_body "-body_dx 0.02 m is larger than the body" "$scene" -body_dx 0.02
+expect_error empty_load_set "-load_mid_box 0.001,0.001,0.0011,0.0011 selects no material point for load set 'mid'" \
+  "$scene" -load_sets top,bottom,mid -load_mid_region box -load_mid_box 0.001,0.001,0.0011,0.0011 -load_mid_x fixed
+
+# Output that cannot be written
+expect_error output_dir_proc "-output_dir /proc/forbidden" "$scene" -output_dir /proc/forbidden
+expect_error output_dir_under_file "-output_dir $fixtures/tiny.yaml/out cannot be created or written: '$fixtures/tiny.yaml' is a file" \
+  "$scene" -output_dir "$fixtures/tiny.yaml/out"
+
+# Restart files that do not fit
+expect_error restart_missing "-restart" "$scene" -restart no_such_checkpoint.h5
+if [ -f "$source_dir/include/bapd/checkpoint.hpp" ]; then
+  # A good checkpoint of the tiny scene, then a copy cut short and a run of another body.
+  if timeout 60 "$run_mpi" -n "$ranks" "$scene" -output_dir good -checkpoint_interval 20 > good.log 2>&1 && [ -f good/checkpoint.h5 ]; then
+    head -c 20000 good/checkpoint.h5 > truncated.h5
+    expect_error restart_truncated "Checkpoint 'truncated.h5' cannot be read" "$scene" -restart truncated.h5 -output_dir truncated
+    expect_error restart_not_hdf5 "Checkpoint '$scene' cannot be read" "$scene" -restart "$scene" -output_dir not_hdf5
+    expect_error restart_other_body "Checkpoint 'good/checkpoint.h5' belongs to another body" \
+      "$scene" -restart good/checkpoint.h5 -body_dx 0.001 -end_time 0.02 -output_dir other
+  else
+    echo "FAIL checkpoint: the tiny scene did not write good/checkpoint.h5"
+    cat good.log
+    failures=$((failures + 1))
+  fi
+fi
+
+if ((failures)); then
+  echo "$failures case(s) failed"
+  exit 1
+fi
+echo "every bad input was refused cleanly on $ranks rank(s)"

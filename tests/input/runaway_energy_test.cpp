@@ -1,0 +1,120 @@
+// The runaway-energy criterion (include/bapd/divergence.hpp) on energy histories of
+// known shape: a geometric blow-up is caught within a few steps; a vibration, a crack
+// releasing stored energy and a loading ramp, which move energy without creating it,
+// never are.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "bapd/divergence.hpp"
+
+using namespace bapd;
+using Verdict = RunawayEnergyMonitor::Verdict;
+
+namespace {
+
+// Feeds the monitor kinetic(step) and total(step) for steps 1..steps, measuring the
+// total energy whenever it asks. Returns the step of divergence (0: none) and counts
+// the total-energy measurements.
+template <class Kinetic, class Total>
+PetscInt Feed(RunawayEnergyMonitor &monitor, PetscInt steps, Kinetic kinetic, Total total, int *measurements = nullptr)
+{
+  int count = 0;
+  for (PetscInt step = 1; step <= steps; ++step) {
+    Verdict verdict = monitor.Kinetic(step, 0, kinetic(step));
+    if (verdict == Verdict::measure_total) {
+      ++count;
+      verdict = monitor.Total(step, total(step));
+    }
+    if (verdict == Verdict::diverged) {
+      if (measurements) *measurements = count;
+      return step;
+    }
+  }
+  if (measurements) *measurements = count;
+  return 0;
+}
+
+} // namespace
+
+// The unstable mode of velocity Verlet 10 % above the stability limit multiplies its
+// amplitude by |g| = 2.4 a step (omega dt = 2.2), its energy by 5.9: from 1e-12 J to
+// the 1e3 growth in 4 steps, past the floor, then tenfold in the total within 2 more.
+TEST(RunawayEnergy, CatchesAGeometricBlowUpWithinAFewSteps)
+{
+  RunawayEnergyMonitor monitor;
+  monitor.Start(1e-9); // J
+  const auto energy = [](PetscInt step) { return 1e-12 * std::pow(5.9, (double)step); };
+  const PetscInt stop = Feed(monitor, 100, energy, [&](PetscInt step) { return 2 * energy(step); });
+  EXPECT_GT(stop, 0);
+  EXPECT_LE(stop, 12); // 5.9^n > 1e3 and > 1e-9 J at n = 9, confirmed at n = 10
+  EXPECT_NE(monitor.Describe().find("kinetic energy grew"), std::string::npos);
+}
+
+// Slower: 1 % above the limit (omega dt = 2.02, energy x 1.76 a step).
+TEST(RunawayEnergy, CatchesASlowBlowUp)
+{
+  RunawayEnergyMonitor monitor;
+  monitor.Start(1e-9);
+  const auto energy = [](PetscInt step) { return 1e-12 * std::pow(1.76, (double)step); };
+  const PetscInt stop = Feed(monitor, 200, energy, [&](PetscInt step) { return 2 * energy(step); });
+  EXPECT_GT(stop, 0);
+  EXPECT_LE(stop, 40);
+}
+
+// An undamped vibration: KE = E sin^2(omega t) passes through (nearly) zero twice a
+// period, so its growth over a window is unbounded, but the total energy is constant.
+TEST(RunawayEnergy, LetsAnUndampedVibrationRun)
+{
+  RunawayEnergyMonitor monitor;
+  monitor.Start(1e-12);
+  const double E        = 1e-6; // J
+  int          measured = 0;
+  const PetscInt stop = Feed(monitor, 20000, [&](PetscInt step) { return E * std::pow(std::sin(0.01 * (double)step), 2); },
+                            [&](PetscInt) { return E; }, &measured);
+  EXPECT_EQ(stop, 0);
+  // Each cleared suspicion raises the floor to its level: a handful, not one a period.
+  EXPECT_LT(measured, 100);
+}
+
+// A crack running through a loaded sheet held at rest: KE rises from damped round-off
+// to a large share of the stored energy within 30 steps; the total does not grow.
+TEST(RunawayEnergy, LetsACrackRun)
+{
+  RunawayEnergyMonitor monitor;
+  monitor.Start(1e-10);
+  const double stored = 1e-3; // J
+  const auto   kinetic = [&](PetscInt step) {
+    return step < 100 ? 1e-18 : stored * 0.5 * std::min(1.0, std::pow((double)(step - 100) / 30.0, 2));
+  };
+  EXPECT_EQ(Feed(monitor, 400, kinetic, [&](PetscInt step) { return stored + 0.01 * stored * (double)step / 400; }), 0);
+}
+
+// A ramp from rest: the grips' work raises both energies as a power of time.
+TEST(RunawayEnergy, LetsALoadingRampRun)
+{
+  RunawayEnergyMonitor monitor;
+  monitor.Start(1e-12);
+  EXPECT_EQ(Feed(monitor, 5000, [](PetscInt step) { return 1e-12 * (double)step * (double)step; },
+                [](PetscInt step) { return 1e-11 * std::pow((double)step, 3); }),
+            0);
+}
+
+// The kinetic energy jumps at a schedule knot (the grip speed changes): a new window.
+TEST(RunawayEnergy, RestartsTheWindowAtAScheduleKnot)
+{
+  RunawayEnergyMonitor monitor;
+  monitor.Start(1e-12);
+  EXPECT_EQ(monitor.Kinetic(1, 0, 1e-15), Verdict::fine);
+  EXPECT_EQ(monitor.Kinetic(2, 1, 1e-9), Verdict::fine); // x 1e6, but a new segment
+  EXPECT_EQ(monitor.Kinetic(3, 1, 1.1e-9), Verdict::fine);
+}
+
+// Energies that overflow the internal-energy sum need no confirmation.
+TEST(RunawayEnergy, StopsAtOnceOnAnAbsurdKineticEnergy)
+{
+  RunawayEnergyMonitor monitor;
+  monitor.Start(1e-12);
+  EXPECT_EQ(monitor.Kinetic(1, 0, 1.0), Verdict::fine);
+  EXPECT_EQ(monitor.Kinetic(2, 0, RunawayEnergyMonitor::overflow), Verdict::diverged);
+}

@@ -1,0 +1,103 @@
+#!/usr/bin/python3
+"""Reads a bapd field series the way ParaView does, through its XDMF index, and
+checks it: a temporal collection of Polyvertex point clouds whose data items name
+datasets of the right shape in existing HDF5 files; reference positions on the
+lattice in natural order; no displacement at t = 0 (no velocity off the grips); position = reference + displacement;
+damage in [0, 1], zero at first and non-zero at the end; bond stretch 1 at rest."""
+import argparse
+import os
+import sys
+import xml.etree.ElementTree as ET
+
+import h5py
+import numpy as np
+
+
+def fail(message):
+    print("FAILED:", message)
+    sys.exit(1)
+
+
+def read_item(base, item, n):
+    """The array a DataItem names ("file.h5:/dataset"), checked against its Dimensions."""
+    if item.get("Format") != "HDF":
+        fail(f"DataItem format {item.get('Format')}")
+    path, dataset = item.text.strip().split(":")
+    dims = tuple(int(d) for d in item.get("Dimensions").split())
+    if dims[0] != n:
+        fail(f"{item.text.strip()}: {dims[0]} rows for {n} points")
+    with h5py.File(os.path.join(base, path), "r") as f:
+        data = f[dataset][()]
+    if data.shape != dims:
+        fail(f"{item.text.strip()}: shape {data.shape}, the XDMF says {dims}")
+    return data
+
+
+def main():
+    p = argparse.ArgumentParser()
+    p.add_argument("--dx", type=float, required=True)
+    p.add_argument("--nx", type=int, required=True)
+    p.add_argument("--ny", type=int, required=True)
+    p.add_argument("--interval", type=int, required=True)
+    p.add_argument("--last", type=int, required=True, help="the run's last step")
+    p.add_argument("xdmf")
+    args = p.parse_args()
+    base = os.path.dirname(os.path.abspath(args.xdmf))
+    n = args.nx * args.ny
+
+    root = ET.parse(args.xdmf).getroot()
+    series = root.find("Domain/Grid")
+    if series.get("GridType") != "Collection" or series.get("CollectionType") != "Temporal":
+        fail("the top grid is not a temporal collection")
+    frames = []
+    for grid in series.findall("Grid"):
+        topology = grid.find("Topology")
+        if topology.get("TopologyType") != "Polyvertex" or int(topology.get("NumberOfElements")) != n:
+            fail(f"{grid.get('Name')}: topology {topology.attrib}")
+        if grid.find("Geometry").get("GeometryType") != "XYZ":
+            fail(f"{grid.get('Name')}: geometry type")
+        fields = {"position": read_item(base, grid.find("Geometry/DataItem"), n)}
+        for attribute in grid.findall("Attribute"):
+            fields[attribute.get("Name")] = read_item(base, attribute.find("DataItem"), n)
+        frames.append((float(grid.find("Time").get("Value")), grid.get("Name"), fields))
+    expected = list(range(0, args.last + 1, args.interval))
+    if expected[-1] != args.last:
+        expected.append(args.last)
+    names = [name for _, name, _ in frames]
+    if names != [f"step {s}" for s in expected]:
+        fail(f"frames {names}, expected steps {expected}")
+    times = [t for t, _, _ in frames]
+    if times[0] != 0 or any(b <= a for a, b in zip(times, times[1:])):
+        fail(f"times {times} do not increase from 0")
+
+    # Natural order is lattice order: x fastest, cell centres (i + 1/2) dx.
+    i, j = np.meshgrid(np.arange(args.nx), np.arange(args.ny))
+    lattice = np.column_stack([(i.ravel() + 0.5) * args.dx, (j.ravel() + 0.5) * args.dx, np.zeros(n)])
+    for t, name, f in frames:
+        if not np.allclose(f["reference_position"], lattice, rtol=0, atol=1e-15):  # round-off of (i + 1/2) dx
+            fail(f"{name}: reference positions are not the lattice in natural order")
+        if not np.array_equal(f["position"], f["reference_position"] + f["displacement"]):
+            fail(f"{name}: position != reference + displacement")
+        if np.any(f["displacement"][:, 2] != 0) or np.any(f["velocity"][:, 2] != 0):
+            fail(f"{name}: out-of-plane components")
+        d = f["damage"]
+        if not (np.all(d >= 0) and np.all(d <= 1)):
+            fail(f"{name}: damage outside [0, 1]: {d.min()} .. {d.max()}")
+        if not np.all(np.isfinite(f["max_bond_stretch"])) or np.any(f["max_bond_stretch"] < 0):
+            fail(f"{name}: bad max_bond_stretch")
+    first, last = frames[0][2], frames[-1][2]
+    if np.any(first["displacement"] != 0):
+        fail("the displacement at t = 0 is not zero")
+    inside = (j.ravel() > 0) & (j.ravel() < args.ny - 1)  # off the grips, which move from t = 0
+    if np.any(first["velocity"][inside] != 0):
+        fail("the velocity at t = 0 is not zero off the grips")
+    if np.any(first["damage"] != 0) or not np.allclose(first["max_bond_stretch"], 1, rtol=0, atol=1e-15):
+        fail("the body at t = 0 is not intact and unstretched")
+    if not last["damage"].max() > 0:
+        fail("no damage at the end of a run whose crack has run")
+    print(f"{len(frames)} frames of {n} points, t = 0 .. {times[-1]:.6g} s; final damage up to {last['damage'].max():.3f}, "
+          f"largest bond stretch {last['max_bond_stretch'].max():.3f}")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,34 @@
+# Shared by the restart tests (sourced): the scene and a runner.
+#
+# A notched sheet pulled apart, as in tests/mpi/rank_invariance.sh: plane-stress
+# Gent, 60 x 24 points, coarse enough to run in seconds. With -failure_critical_stretch
+# 2.0 and the ramp to 1.6 over 0.2 s the first bonds break near step 400 and the crack
+# runs across the sheet between steps 600 and 800.
+NOTCHED=(-body_width 0.03 -body_height 0.012 -body_thickness 0.003 -body_dx 0.0005
+         -body_notches 0.02,0.006,0.03,0.006 -horizon_factor 3.015
+         -material_mu 4.55e3 -material_Jm 162.6 -material_bulk_ratio 100 -material_density 1000
+         -load_sets top,bottom -load_top_region top -load_top_x fixed -load_top_y stretch -load_top_y_scale 1
+         -load_bottom_region bottom -load_bottom_x fixed -load_bottom_y fixed
+         -probes mouth -probe_mouth_at 0.03,0.0062 -damping 40 -output_interval 50 -progress_interval 100000
+         -output_final_state)
+FRACTURE=(-load_schedule 0,1,0.2,1.6 -failure_critical_stretch 2.0)
+
+# h5py, numpy and matplotlib are Debian's (scripts/install-deps.sh).
+PYTHON=/usr/bin/python3
+
+# run RANKS DIR OPTIONS...: bapd on RANKS ranks writing to DIR (log in DIR.log);
+# prints the log and fails the test if bapd fails.
+run() {
+  local ranks="$1" dir="$2"
+  shift 2
+  mpiexec -n "$ranks" --oversubscribe --bind-to none "$BAPD_EXE" "$@" -output_dir "$dir" > "$dir.log" 2>&1 ||
+    { cat "$dir.log"; echo "FAILED: bapd on $ranks rank(s) -> $dir"; exit 1; }
+}
+
+# history_column DIR STEP COLUMN: a value of history.csv's row for STEP.
+history_column() {
+  awk -F, -v step="$2" -v name="$3" 'NR == 1 { for (i = 1; i <= NF; ++i) if ($i == name) c = i }
+                                      NR > 1 && $1 == step { print $c }' "$1/history.csv"
+}
+
+fail() { echo "FAILED: $*"; exit 1; }
