@@ -1,0 +1,327 @@
+// What a run reports: history.csv, static states, progress lines, the summary and
+// the layout-independent final state.
+#include "bapd/simulation.hpp"
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <limits>
+
+#include "bapd/ba_force_energy.hpp"
+#include "bapd/damage.hpp"
+#include "bapd/models.hpp"
+#include "bapd/lattice.hpp"
+#include "bapd/reproducible_sum.hpp"
+
+namespace bapd {
+
+PetscErrorCode Simulation::OpenHistory()
+{
+  PetscFunctionBegin;
+  int         ok = 1;
+  std::string why; // rank 0, which prints the message
+  if (rank_ == 0) {
+    std::error_code ec;
+    std::filesystem::create_directories(scene_.output_dir, ec);
+    const std::string path = scene_.output_dir + "/history.csv";
+    history_               = ec ? nullptr : std::fopen(path.c_str(), "w");
+    ok                     = history_ != nullptr;
+    if (!ok) why = ec ? "cannot create the directory: " + ec.message() : std::string(std::strerror(errno));
+  }
+  PetscCallMPI(MPI_Bcast(&ok, 1, MPI_INT, 0, comm_));
+  PetscCheck(ok, comm_, PETSC_ERR_FILE_OPEN, "-output_dir %s: cannot write %s/history.csv (%s): choose a writable directory, e.g. -output_dir output",
+             scene_.output_dir.c_str(), scene_.output_dir.c_str(), why.c_str());
+  if (rank_ == 0) {
+    std::fprintf(history_, "step,time_s,stretch");
+    for (const LoadSet &s : scene_.loads)
+      std::fprintf(history_, ",%s_reaction_x_N,%s_reaction_y_N,%s_nominal_stress_Pa", s.name.c_str(), s.name.c_str(), s.name.c_str());
+    for (const Probe &p : scene_.probes) std::fprintf(history_, ",%s_ux_m,%s_uy_m", p.name.c_str(), p.name.c_str());
+    std::fprintf(history_, ",kinetic_energy_J,internal_energy_J,broken_bonds\n");
+  }
+  PetscCall(WriteHistoryRow(0, 0.0));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Simulation::Energies(double *kinetic, double *internal)
+{
+  const PetscInt n = layout_.n_owned;
+  const double  *x;
+  std::vector<double> per_point(2 * n);
+
+  PetscFunctionBegin;
+  PetscCall(VecGetArrayRead(X_, &x));
+  PetscCall(UpdateGhostedPositions(x));
+  const double *v = x + 2 * n;
+  for (PetscInt i = 0; i < n; ++i) {
+    const double m = scene_.density * layout_.cloud.volume[i];
+    per_point[2 * i] = 0.5 * m * (v[2 * i] * v[2 * i] + v[2 * i + 1] * v[2 * i + 1]);
+  }
+  PetscCall(VecRestoreArrayRead(X_, &x));
+  std::vector<double> energy(n);
+  point_energies_(y_.data(), energy.data());
+  for (PetscInt i = 0; i < n; ++i) per_point[2 * i + 1] = energy[i];
+  double sums[2];
+  PetscCall(ReproducibleSum(comm_, 2, n, per_point.data(), sums));
+  *kinetic  = sums[0];
+  *internal = sums[1];
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Simulation::BrokenBondCount(PetscInt *count)
+{
+  PetscFunctionBegin;
+  PetscInt local = (PetscInt)count_broken_bonds(families_, bond_state_, (std::size_t)layout_.n_owned);
+  PetscCallMPI(MPI_Allreduce(&local, count, 1, MPIU_INT, MPI_SUM, comm_));
+  *count /= 2; // each broken bond is seen from both of its end points
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Simulation::WriteHistoryRow(PetscInt step, double t)
+{
+  const double *x;
+
+  PetscFunctionBegin;
+  PetscCall(PetscLogStagePush(stage_output_));
+  PetscCall(VecGetArrayRead(X_, &x));
+  PetscCall(ComputeForceDensity(x, force_.data()));
+  // Reactions: the grip holds its points still, so it supplies minus the internal force.
+  std::vector<double> reaction(2 * scene_.loads.size(), 0.0);
+  for (std::size_t s = 0; s < scene_.loads.size(); ++s) {
+    const std::vector<PetscInt> &pts = load_points_[s].points;
+    std::vector<double>          terms(2 * pts.size());
+    for (std::size_t k = 0; k < pts.size(); ++k) {
+      terms[2 * k]     = -force_[2 * pts[k]] * layout_.cloud.volume[pts[k]];
+      terms[2 * k + 1] = -force_[2 * pts[k] + 1] * layout_.cloud.volume[pts[k]];
+    }
+    PetscCall(ReproducibleSum(comm_, 2, (PetscInt)pts.size(), terms.data(), &reaction[2 * s]));
+  }
+  std::vector<double> probe_u(2 * probes_.size(), 0.0);
+  for (std::size_t p = 0; p < probes_.size(); ++p) {
+    if (probes_[p].owner_rank == rank_) {
+      probe_u[2 * p]     = x[2 * probes_[p].local_index];
+      probe_u[2 * p + 1] = x[2 * probes_[p].local_index + 1];
+    }
+    PetscCallMPI(MPI_Bcast(&probe_u[2 * p], 2, MPI_DOUBLE, probes_[p].owner_rank, comm_));
+  }
+  PetscCall(VecRestoreArrayRead(X_, &x));
+  double kinetic, internal;
+  PetscCall(Energies(&kinetic, &internal));
+  PetscInt broken;
+  PetscCall(BrokenBondCount(&broken));
+  last_kinetic_  = kinetic;
+  last_internal_ = internal;
+  last_reaction_ = reaction;
+  last_probe_u_  = probe_u;
+  if (rank_ == 0) {
+    const double area = scene_.body.width * scene_.body.thickness;
+    std::fprintf(history_, "%" PetscInt_FMT ",%.17g,%.17g", step, t, scene_.schedule.stretch_at(t));
+    for (std::size_t s = 0; s < scene_.loads.size(); ++s)
+      std::fprintf(history_, ",%.17g,%.17g,%.17g", reaction[2 * s], reaction[2 * s + 1], reaction[2 * s + 1] / area);
+    for (std::size_t p = 0; p < probes_.size(); ++p) std::fprintf(history_, ",%.17g,%.17g", probe_u[2 * p], probe_u[2 * p + 1]);
+    std::fprintf(history_, ",%.17g,%.17g,%" PetscInt_FMT "\n", kinetic, internal, broken);
+    std::fflush(history_);
+  }
+  PetscCall(PetscLogStagePop());
+  PetscFunctionReturn(0);
+}
+
+// Ends a hold of the load schedule once the body is static (kinetic energy below
+// -static_tolerance times the internal energy, at a history row): records the static
+// state in static_states.csv and moves the rest of the schedule earlier, so that the
+// next ramp starts now. Every input to the test is a reproducible sum, so the same
+// steps end the same holds on any number of ranks.
+PetscErrorCode Simulation::CheckStaticHold(PetscInt step, double t)
+{
+  Schedule &s = scene_.schedule;
+
+  PetscFunctionBegin;
+  if (scene_.static_tolerance <= 0 || s.time.empty() || s.rate_at(t) != 0.0 || t < s.time.front()) PetscFunctionReturn(0);
+  PetscInt k = (PetscInt)(std::upper_bound(s.time.begin(), s.time.end(), t) - s.time.begin()) - 1; // t in [time[k], time[k+1])
+  if (k == static_hold_done_ || !(last_kinetic_ < scene_.static_tolerance * last_internal_)) PetscFunctionReturn(0);
+  static_hold_done_ = k;
+  const double lambda = s.stretch_at(t);
+  PetscCall(PetscPrintf(comm_, "Static at stretch %.5f: t = %.6e s, step %" PetscInt_FMT ", kinetic/internal energy %.3e < %.3e", lambda, t, step,
+                        last_kinetic_ / last_internal_, scene_.static_tolerance));
+  for (std::size_t p = 0; p < probes_.size(); ++p)
+    PetscCall(PetscPrintf(comm_, "; %s ux = %.6e m", scene_.probes[p].name.c_str(), last_probe_u_[2 * p]));
+  PetscCall(PetscPrintf(comm_, "\n"));
+  if (rank_ == 0) {
+    if (!static_states_) {
+      static_states_ = std::fopen((scene_.output_dir + "/static_states.csv").c_str(), "w");
+      PetscCheck(static_states_, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "Cannot write %s/static_states.csv: choose a writable -output_dir", scene_.output_dir.c_str());
+      std::fprintf(static_states_, "stretch,time_s,step,kinetic_over_internal");
+      for (const Probe &p : scene_.probes) std::fprintf(static_states_, ",%s_ux_m,%s_uy_m", p.name.c_str(), p.name.c_str());
+      for (const LoadSet &l : scene_.loads) std::fprintf(static_states_, ",%s_reaction_y_N", l.name.c_str());
+      std::fprintf(static_states_, "\n");
+    }
+    std::fprintf(static_states_, "%.17g,%.17g,%" PetscInt_FMT ",%.6e", lambda, t, step, last_kinetic_ / last_internal_);
+    for (std::size_t p = 0; p < probes_.size(); ++p) std::fprintf(static_states_, ",%.17g,%.17g", last_probe_u_[2 * p], last_probe_u_[2 * p + 1]);
+    for (std::size_t l = 0; l < scene_.loads.size(); ++l) std::fprintf(static_states_, ",%.17g", last_reaction_[2 * l + 1]);
+    std::fprintf(static_states_, "\n");
+    std::fflush(static_states_);
+  }
+  // Skip what is left of the hold.
+  const double hold_end  = k + 1 < (PetscInt)s.time.size() ? s.time[k + 1] : scene_.end_time;
+  const double remaining = std::max(0.0, hold_end - t);
+  for (std::size_t j = (std::size_t)k + 1; j < s.time.size(); ++j) s.time[j] -= remaining;
+  scene_.end_time = std::max(t, scene_.end_time - remaining);
+  PetscCall(TSSetMaxTime(ts_, scene_.end_time));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Simulation::Progress(PetscInt step, double t, PetscBool force)
+{
+  PetscFunctionBegin;
+  if (!force && step % scene_.progress_interval != 0) PetscFunctionReturn(0);
+  const double end_time = scene_.end_time;
+  const double wall     = MPI_Wtime() - wall_start_;
+  if (scene_.failure) PetscCall(BrokenBondCount(&total_broken_));
+  const double left     = t > 0 ? wall * (end_time - t) / t : 0.0;
+  PetscCall(PetscPrintf(comm_, "step %8" PetscInt_FMT "  t %.4e s  stretch %.4f  broken %" PetscInt_FMT "  wall %.1f s  left ~%.1f s\n", step, t,
+                        scene_.schedule.stretch_at(t), total_broken_, wall, left));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Simulation::Summary()
+{
+  PetscInt  step;
+  PetscReal t;
+
+  PetscFunctionBegin;
+  PetscCall(TSGetStepNumber(ts_, &step));
+  PetscCall(TSGetTime(ts_, &t));
+  const double *x;
+  std::vector<double> probe_u(2 * probes_.size(), 0.0);
+  PetscCall(VecGetArrayRead(X_, &x));
+  for (std::size_t p = 0; p < probes_.size(); ++p) {
+    if (probes_[p].owner_rank == rank_) {
+      probe_u[2 * p]     = x[2 * probes_[p].local_index];
+      probe_u[2 * p + 1] = x[2 * probes_[p].local_index + 1];
+    }
+    PetscCallMPI(MPI_Bcast(&probe_u[2 * p], 2, MPI_DOUBLE, probes_[p].owner_rank, comm_));
+  }
+  PetscCall(ComputeForceDensity(x, force_.data()));
+  PetscCall(VecRestoreArrayRead(X_, &x));
+  PetscCall(PetscPrintf(comm_, "\n%s: %" PetscInt_FMT " steps, t = %.6e s, stretch %.5f, wall %.1f s\n",
+                        stopped_on_error_ ? "Stopped (see the error below)" : "Finished", step, t, scene_.schedule.stretch_at(t),
+                        MPI_Wtime() - wall_start_));
+  for (std::size_t p = 0; p < probes_.size(); ++p)
+    PetscCall(PetscPrintf(comm_, "probe %-16s ux = %+.6e m  uy = %+.6e m\n", scene_.probes[p].name.c_str(), probe_u[2 * p], probe_u[2 * p + 1]));
+  for (std::size_t s = 0; s < scene_.loads.size(); ++s) {
+    std::vector<double> terms(2 * load_points_[s].points.size());
+    for (std::size_t k = 0; k < load_points_[s].points.size(); ++k) {
+      const PetscInt i = load_points_[s].points[k];
+      terms[2 * k]     = -force_[2 * i] * layout_.cloud.volume[i];
+      terms[2 * k + 1] = -force_[2 * i + 1] * layout_.cloud.volume[i];
+    }
+    double r[2];
+    PetscCall(ReproducibleSum(comm_, 2, (PetscInt)load_points_[s].points.size(), terms.data(), r));
+    PetscCall(PetscPrintf(comm_, "load set %-12s reaction y = %+.6e N  nominal stress = %+.6e Pa\n", scene_.loads[s].name.c_str(), r[1],
+                          r[1] / (scene_.body.width * scene_.body.thickness)));
+  }
+  PetscInt broken;
+  PetscCall(BrokenBondCount(&broken));
+  if (scene_.failure) PetscCall(PetscPrintf(comm_, "broken bonds: %" PetscInt_FMT "\n", broken));
+  PetscCall(PetscPrintf(comm_, "history: %s/history.csv\n", scene_.output_dir.c_str()));
+  PetscFunctionReturn(0);
+}
+
+// final_state.csv (natural id, reference position, displacement) and
+// broken_bonds.csv (directed pairs of natural ids), in natural order: files that do
+// not depend on the rank layout, for comparisons across runs.
+PetscErrorCode Simulation::WriteFinalState()
+{
+  std::vector<double>                      u;
+  std::vector<std::pair<int64_t, int64_t>> broken;
+
+  PetscFunctionBegin;
+  PetscCall(GatherDisplacement(&u));
+  PetscCall(GatherBrokenBonds(&broken));
+  if (rank_ == 0) {
+    const PointCloud global = make_lattice(scene_.body);
+    FILE            *f      = std::fopen((scene_.output_dir + "/final_state.csv").c_str(), "w");
+    PetscCheck(f, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "Cannot write %s/final_state.csv", scene_.output_dir.c_str());
+    std::fprintf(f, "natural_id,x_m,y_m,ux_m,uy_m\n");
+    for (std::size_t i = 0; i < global.size(); ++i)
+      std::fprintf(f, "%zu,%.17g,%.17g,%.17g,%.17g\n", i, global.x[2 * i], global.x[2 * i + 1], u[2 * i], u[2 * i + 1]);
+    std::fclose(f);
+    f = std::fopen((scene_.output_dir + "/broken_bonds.csv").c_str(), "w");
+    PetscCheck(f, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "Cannot write %s/broken_bonds.csv", scene_.output_dir.c_str());
+    std::fprintf(f, "i,j\n");
+    for (const auto &b : broken) std::fprintf(f, "%lld,%lld\n", (long long)b.first, (long long)b.second);
+    std::fclose(f);
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Simulation::GatherDisplacement(std::vector<double> *u_natural)
+{
+  const PetscInt n = layout_.n_owned;
+  const double  *x;
+
+  PetscFunctionBegin;
+  std::vector<double> mine(3 * n);
+  PetscCall(VecGetArrayRead(X_, &x));
+  for (PetscInt i = 0; i < n; ++i) {
+    mine[3 * i]     = (double)layout_.cloud.natural_id[i];
+    mine[3 * i + 1] = x[2 * i];
+    mine[3 * i + 2] = x[2 * i + 1];
+  }
+  PetscCall(VecRestoreArrayRead(X_, &x));
+  std::vector<int> counts(size_), displs(size_);
+  int              m = (int)mine.size();
+  PetscCallMPI(MPI_Gather(&m, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm_));
+  std::vector<double> all;
+  if (rank_ == 0) {
+    int total = 0;
+    for (int r = 0; r < size_; ++r) {
+      displs[r] = total;
+      total += counts[r];
+    }
+    all.resize(total);
+  }
+  PetscCallMPI(MPI_Gatherv(mine.data(), m, MPI_DOUBLE, all.data(), counts.data(), displs.data(), MPI_DOUBLE, 0, comm_));
+  u_natural->clear();
+  if (rank_ == 0) {
+    u_natural->assign(2 * layout_.n_global, 0.0);
+    for (std::size_t k = 0; k < all.size(); k += 3) {
+      const std::size_t id = (std::size_t)all[k];
+      (*u_natural)[2 * id]     = all[k + 1];
+      (*u_natural)[2 * id + 1] = all[k + 2];
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Simulation::GatherBrokenBonds(std::vector<std::pair<int64_t, int64_t>> *bonds)
+{
+  PetscFunctionBegin;
+  std::vector<long long> mine;
+  for (PetscInt i = 0; i < layout_.n_owned; ++i)
+    for (std::size_t b = families_.offsets[i]; b < families_.offsets[i + 1]; ++b)
+      if (!bond_state_.is_intact((std::size_t)i, (std::size_t)(b - families_.offsets[i]))) {
+        mine.push_back(layout_.cloud.natural_id[i]);
+        mine.push_back(layout_.cloud.natural_id[families_.neighbour[b]]);
+      }
+  std::vector<int> counts(size_), displs(size_);
+  int              m = (int)mine.size();
+  PetscCallMPI(MPI_Gather(&m, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm_));
+  std::vector<long long> all;
+  if (rank_ == 0) {
+    int total = 0;
+    for (int r = 0; r < size_; ++r) {
+      displs[r] = total;
+      total += counts[r];
+    }
+    all.resize(total);
+  }
+  PetscCallMPI(MPI_Gatherv(mine.data(), m, MPI_LONG_LONG, all.data(), counts.data(), displs.data(), MPI_LONG_LONG, 0, comm_));
+  bonds->clear();
+  for (std::size_t k = 0; k + 1 < all.size(); k += 2) bonds->push_back({all[k], all[k + 1]});
+  std::sort(bonds->begin(), bonds->end());
+  PetscFunctionReturn(0);
+}
+
+} // namespace bapd
