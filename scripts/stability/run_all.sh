@@ -5,7 +5,7 @@
 #
 #   scripts/stability/run_all.sh [OUTPUT_DIR] [SECTION ...]
 #
-# Sections: spectrum shear timestep bulk horizon broken (default: all). Each run
+# Sections: spectrum shear rows timestep bulk horizon fracture (default: all). Each run
 # is small (hundreds to a few thousand points, one rank) and is skipped when OUTPUT_DIR
 # already holds it (delete OUTPUT_DIR/NAME to redo one). BAPD_EXE and BAPD_BUILD_DIR
 # as in run_mpi.sh; the spectra need the build's tests/stability/stability_spectrum.
@@ -15,7 +15,7 @@ here="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 out="${1:-$here/output/stability}"
 shift || true
 sections=("$@")
-((${#sections[@]})) || sections=(spectrum shear timestep bulk horizon broken)
+((${#sections[@]})) || sections=(spectrum shear rows timestep bulk horizon fracture)
 build="${BAPD_BUILD_DIR:-$here/build}"
 if [ -z "${BAPD_EXE:-}" ]; then
   "$here/scripts/install-deps.sh"
@@ -60,18 +60,113 @@ for section in "${sections[@]}"; do
   spectrum)
     # Eigenvalues of the linearised equations of motion along the pure shear path
     # (report.py: flutter growth rates, the damping they need, the stable step).
-    for form in bond_only energy_consistent; do
-      run "spectrum_shear_$form" "$spectrum_exe" "${shear[@]}" -force_form "$form" -damping 200 \
-        -spectrum_stretches 1,1.5,2,3,4,5,6,8,10,12
+    # A small step (safety 0.2) so that the run reaches the large stretches.
+    run spectrum_shear_bond_only "$spectrum_exe" "${shear[@]}" -force_form bond_only -damping 200 -time_step_safety 0.2 \
+      -spectrum_stretches 1,1.5,2,2.5,3,4,5,6,7,8,9,9.5,10,10.5,11,11.5,12,12.5,13
+    run spectrum_shear_energy_consistent "$spectrum_exe" "${shear[@]}" -force_form energy_consistent -damping 200 \
+      -time_step_safety 0.2 -spectrum_stretches 1,1.5,2,2.5,3,3.5,4,4.25,4.5,4.75,5,6,8,10,12
+    # How the flutter scales with the grid: a 20 mm wide pure shear sheet at dx = 1 and 0.5 mm.
+    for dx in 0.001 0.0005; do
+      run "spectrum_narrow_dx$dx" "$spectrum_exe" "${shear[@]}" -body_width 0.02 -body_dx "$dx" -force_form bond_only \
+        -damping 200 -time_step_safety 0.4 -probe_right_mid_at 0.02,0.005 -spectrum_stretches 1,2,2.5,3,4
     done
+    # Scene 1 (4 mm grid): small horizons, plane strain.
+    for h in 1.5 2 3.015; do
+      for form in bond_only energy_consistent; do
+        run "spectrum_plate_h${h}_$form" "$spectrum_exe" "${plate[@]}" -horizon_factor "$h" -force_form "$form" \
+          -spectrum_stretches 1,1.25,1.5
+      done
+    done
+    run spectrum_plate_plane_strain_k100 "$spectrum_exe" "${plate[@]}" -material_formulation plane_strain \
+      -material_bulk_ratio 100 -time_step_safety 0.4 -spectrum_stretches 1,1.1,1.2,1.3,1.4,1.5
     run spectrum_broken "$spectrum_exe" -body_width 0.02 -body_height 0.02 -body_thickness 0.001 -body_dx 0.001 \
       -material_bulk_ratio 1000 -end_time 1 -spectrum_broken_fractions 0,0.1,0.3,0.5,0.7
     ;;
   shear)
     for c in 0 50 100 150 200 300; do bapd "shear_bond_only_c$c" "${shear[@]}" -force_form bond_only -damping "$c"; done
     for c in 0 50 200; do bapd "shear_energy_consistent_c$c" "${shear[@]}" -force_form energy_consistent -damping "$c"; done
-    bapd shear_bond_only_c200_s0.4 "${shear[@]}" -force_form bond_only -damping 200 -time_step_safety 0.4
+    for safety in 0.4 0.2 0.1; do
+      bapd "shear_bond_only_c200_s$safety" "${shear[@]}" -force_form bond_only -damping 200 -time_step_safety "$safety"
+      bapd "shear_energy_consistent_c200_s$safety" "${shear[@]}" -force_form energy_consistent -damping 200 -time_step_safety "$safety"
+    done
+    ;;
+  rows)
+    # The order of the point rows next to the grips (row_order.py), from field files.
+    for dx in 0.001 0.0005; do
+      for form in bond_only energy_consistent; do
+        bapd "rows_dx${dx}_$form" "${shear[@]}" -body_dx "$dx" -force_form "$form" -damping 200 -time_step_safety 0.4 \
+          -end_time 0.75 -output_fields -output_fields_interval 0
+      done
+    done
+    # Grips one horizon deep (3 point layers) on a taller sheet (the same free height).
+    bapd rows_dx0.001_layers3 "${shear[@]}" -body_height 0.016 -load_top_layers 3 -load_bottom_layers 3 -damping 200 \
+      -load_reference_length 0.01 -time_step_safety 0.4 -end_time 0.75 -output_fields -output_fields_interval 0
+    ;;
+  fracture)
+    # torn_sheet.sh's scene (tests/stability) at several steps, with and without the
+    # isolated point, and paper scene 3 on a 1 mm grid as the example sets it.
+    island=0.0009,0.002,0.0016,0.002,0.0016,0.002,0.0016,0.0027,0.0016,0.0027,0.0009,0.0027,0.0009,0.0027,0.0009,0.002
+    torn=(-body_width 0.01 -body_height 0.01 -body_thickness 0.001 -body_dx 0.0005 -failure_critical_stretch 2
+          -load_sets top,bottom -load_top_region top -load_top_x fixed -load_top_y stretch -load_bottom_region bottom
+          -load_bottom_x fixed -load_bottom_y fixed -load_schedule 0,1,0.1,2,0.2,3 -damping 200
+          -probes above,below -probe_above_at 0.005,0.0055 -probe_below_at 0.005,0.0045 -output_interval 1
+          -progress_interval 1000000 -output_final_state)
+    for safety in 0.8 0.6 0.5 0.4 0.3 0.2; do
+      bapd "torn_s$safety" "${torn[@]}" -body_notches 0,0.005,0.003,0.005 -time_step_safety "$safety"
+      bapd "torn_island_s$safety" "${torn[@]}" -body_notches "0,0.005,0.003,0.005,$island" -time_step_safety "$safety"
+      bapd "torn_energy_consistent_s$safety" "${torn[@]}" -body_notches 0,0.005,0.003,0.005 -time_step_safety "$safety" \
+        -force_form energy_consistent
+    done
+    # Variants whose cracks run differently: a more brittle sheet (critical stretch 1.5),
+    # a softer bulk (K = 100 mu) and an island cut by a box whose corners lie on the
+    # bond diagonals (so the point keeps four bonds).
+    diagonal=0.001,0.002,0.0015,0.002,0.0015,0.002,0.0015,0.0025,0.0015,0.0025,0.001,0.0025,0.001,0.0025,0.001,0.002
+    for safety in 0.8 0.4 0.2; do
+      bapd "torn_brittle_s$safety" "${torn[@]}" -body_notches 0,0.005,0.003,0.005 -failure_critical_stretch 1.5 \
+        -time_step_safety "$safety"
+      bapd "torn_k100_s$safety" "${torn[@]}" -body_notches 0,0.005,0.003,0.005 -material_bulk_ratio 100 \
+        -failure_critical_stretch 1.5 -time_step_safety "$safety"
+      bapd "torn_diagonal_s$safety" "${torn[@]}" -body_notches "0,0.005,0.003,0.005,$diagonal" -time_step_safety "$safety"
+    done
+    for safety in 0.8 0.4; do
+      bapd "notched_dx0.001_s$safety" -options_file_yaml "$here/examples/notched_pure_shear.yaml" -body_dx 0.001 \
+        -time_step_safety "$safety" -output_final_state -progress_interval 1000000
+    done
+    ;;
+  timestep)
+    # The step as a multiple of the estimated stable one (which is padded by 10 %: the
+    # true limit of this scene sits near sqrt(1.1) = 1.05). With failure enabled an
+    # unstable step breaks bonds instead of inverting them: the runaway-energy test
+    # must stop it.
+    for safety in 0.5 0.8 0.9 1.0 1.05 1.1 1.2 1.5; do
+      bapd "timestep_s$safety" "${plate[@]}" -time_step_safety "$safety" -output_interval 1
+    done
+    for safety in 1.1 1.2 1.5; do
+      bapd "timestep_failure_s$safety" "${plate[@]}" -time_step_safety "$safety" -failure_critical_stretch 7.2 -output_interval 1
+    done
+    ;;
+  bulk)
+    # Plane strain stiffens as it stretches (section 4): at the default safety 0.8 it
+    # diverges before stretch 1.5 for every K; at 0.4 it reaches the static state.
+    for ratio in 10 100 1000 10000; do
+      bapd "bulk_plane_stress_k$ratio" "${plate[@]}" -material_bulk_ratio "$ratio"
+      bapd "bulk_plane_strain_k$ratio" "${plate[@]}" -material_bulk_ratio "$ratio" -material_formulation plane_strain
+      bapd "bulk_plane_strain_k${ratio}_s0.4" "${plate[@]}" -material_bulk_ratio "$ratio" -material_formulation plane_strain \
+        -time_step_safety 0.4
+    done
+    ;;
+  horizon)
+    for h in 1.5 2 2.515 3.015 3.515 4 5; do
+      bapd "horizon_plate_h$h" "${plate[@]}" -horizon_factor "$h"
+      bapd "horizon_plate_energy_consistent_h$h" "${plate[@]}" -horizon_factor "$h" -force_form energy_consistent
+      # Paper scene 3 on a 1 mm grid (notch from the right edge): one step, for the count.
+      bapd "horizon_notched_h$h" -options_file_yaml "$here/examples/notched_pure_shear.yaml" -body_dx 0.001 \
+        -horizon_factor "$h" -end_time 1e-4
+    done
     ;;
   esac
 done
-/usr/bin/python3 "$here/scripts/stability/report.py" "$out" "$here/docs/stability.md"
+# BAPD_STABILITY_REPORT=0: runs only (e.g. sections run side by side), tables later.
+if [ "${BAPD_STABILITY_REPORT:-1}" != 0 ]; then
+  /usr/bin/python3 "$here/scripts/stability/report.py" "$out" "$here/docs/stability.md"
+fi

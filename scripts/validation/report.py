@@ -26,7 +26,11 @@ def read_csv(path):
 
 
 def wall_time(root, name):
-    with open(os.path.join(root, name, "done")) as f:
+    """(ranks, seconds) of a finished case; (ranks, nan) for one that stopped early."""
+    path = os.path.join(root, name, "done")
+    if not os.path.exists(path):
+        return 0, float("nan")
+    with open(path) as f:
         ranks, seconds = f.read().split()
     return int(ranks), float(seconds)
 
@@ -42,7 +46,7 @@ def plate(root, docs, lines):
     found = []
     for name, dx, h in cases:
         path = os.path.join(root, name, "static_states.csv")
-        if not os.path.exists(path):
+        if not os.path.exists(path) or not os.path.exists(os.path.join(root, name, "done")):
             continue
         states = {round(r["stretch"], 3): -1e3 * r["left_mid_ux_m"] if r["left_mid_ux_m"] < 0 else 1e3 * r["left_mid_ux_m"]
                   for r in read_csv(path)}
@@ -150,8 +154,14 @@ def notched(root, docs, lines):
     ax.set_xlabel("stretch"), ax.set_ylabel("nominal stress (kPa)"), ax2.set_ylabel("broken bonds", color="r")
     fig.tight_layout()
     fig.savefig(os.path.join(docs, "img", "notched_pure_shear.png"), dpi=110)
-    lines += ["## 3. Notched pure shear (s_c = 7.2)", "",
-              f"- peak nominal stress {peak['top_nominal_stress_Pa'] / 1e3:.2f} kPa at stretch {peak['stretch']:.3f} "
+    lines += ["## 3. Notched pure shear (s_c = 7.2)", ""]
+    if math.isnan(seconds):
+        with open(os.path.join(root, "notched_pure_shear.log")) as f:
+            error = [l.strip() for l in f if l.startswith("bapd: error")]
+        lines += [f"**This run stopped early, at stretch {hist[-1]['stretch']:.3f}:** "
+                  + (error[-1][:400] + " ..." if error else "no error line") + "", "",
+                  "The figures below are from the part before the stop.", ""]
+    lines += [f"- peak nominal stress {peak['top_nominal_stress_Pa'] / 1e3:.2f} kPa at stretch {peak['stretch']:.3f} "
               "(paper: 10.05 kPa; experiment 10.25 kPa)",
               f"- the crack starts to run (20 broken bonds) at stretch {start['stretch']:.3f} (paper: once stretch > 3)"
               if start else "- no crack in this run",

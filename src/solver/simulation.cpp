@@ -137,6 +137,15 @@ PetscErrorCode Simulation::BuildBody()
     for (std::size_t q = 0; q < families_.size((std::size_t)i); ++q) unusable += !geometry_.is_usable((std::size_t)i, q);
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &unusable, 1, MPIU_INT, MPI_SUM, comm_));
   if (unusable) PetscCall(PetscPrintf(comm_, "Bonds with a singular shape tensor (carry no force): %" PetscInt_FMT "\n", unusable));
+  // Below delta = sqrt(2) dx every bond-associated family of a square lattice is
+  // collinear: no bond carries force, and the stable-step estimate would fail with a
+  // misleading message (docs/stability.md, section 6).
+  char factor[32];
+  std::snprintf(factor, sizeof factor, "%g", scene_.horizon_factor); // PETSc's %g would print "1."
+  PetscCheck(bonds_global == 0 || unusable < bonds_global, comm_, PETSC_ERR_USER,
+             "-horizon_factor %s: every bond's shape tensor is singular (its bond-associated family is collinear), so no bond "
+             "carries force: raise -horizon_factor (at least 1.5; the paper uses 3.015)",
+             factor);
   PetscFunctionReturn(0);
 }
 

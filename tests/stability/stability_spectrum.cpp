@@ -21,6 +21,8 @@
 //   -spectrum_broken_fractions p1,p2,... no run: the body at rest with a random
 //                                         fraction p of its bonds broken (seeded),
 //                                         both force forms.
+//   -spectrum_dump_forces                 also write <output_dir>/forces.csv, the
+//                                         force density of the (last) state.
 // Writes <output_dir>/spectrum.csv (one row per state) and
 // <output_dir>/eigenvalues_<label>.csv (every eigenvalue).
 #include <petscsys.h>
@@ -156,7 +158,7 @@ PetscErrorCode WriteState(FILE *summary, const std::string &dir, const std::stri
 }
 
 // The scene's run, analysed at each listed stretch of its schedule.
-PetscErrorCode AlongTheRun(const std::vector<double> &stretches, FILE *summary, const std::string &dir)
+PetscErrorCode AlongTheRun(const std::vector<double> &stretches, FILE *summary, const std::string &dir, bool dump_forces)
 {
   bapd::Simulation sim(PETSC_COMM_SELF);
   PetscReal        dt;
@@ -208,6 +210,16 @@ PetscErrorCode AlongTheRun(const std::vector<double> &stretches, FILE *summary, 
     PetscCall(VecGetArrayRead(sim.state(), &x));
     std::vector<double> u(x, x + 2 * n_owned);
     PetscCall(VecRestoreArrayRead(sim.state(), &x));
+    if (dump_forces) { // the force density of the state, per point (diagnosis)
+      std::vector<double> f;
+      PetscCall(forces(u, f));
+      FILE *out = std::fopen((dir + "/forces.csv").c_str(), "w");
+      std::fprintf(out, "natural_id,x_m,y_m,ux_m,uy_m,fx_N_m3,fy_N_m3\n");
+      for (PetscInt i = 0; i < n_owned; ++i)
+        std::fprintf(out, "%lld,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", (long long)layout.cloud.natural_id[i], layout.cloud.x[2 * i],
+                     layout.cloud.x[2 * i + 1], u[2 * i], u[2 * i + 1], f[2 * i], f[2 * i + 1]);
+      std::fclose(out);
+    }
     std::vector<double> A;
     PetscCall(BuildOperator(forces, u, free_dofs, scene.density, 1e-5 * scene.body.dx, &A));
     Spectrum sp;
@@ -309,7 +321,9 @@ PetscErrorCode Main()
   std::fprintf(summary, "label,stretch,broken_fraction,force_form,free_dofs,singular_bonds,lambda_max_re_1_s2,abs_lambda_max_1_s2,"
                         "stable_dt_s,solver_rest_stable_dt_s,min_re_lambda_1_s2,growth_rate_1_s,critical_damping_1_s,asymmetry,mode_x_m,"
                         "mode_y_m,omega_max_1_s\n");
-  PetscErrorCode ierr = have_stretches ? AlongTheRun(std::vector<double>(stretches, stretches + n_stretches), summary, dir)
+  PetscBool dump_forces = PETSC_FALSE;
+  PetscCall(PetscOptionsGetBool(nullptr, nullptr, "-spectrum_dump_forces", &dump_forces, nullptr));
+  PetscErrorCode ierr = have_stretches ? AlongTheRun(std::vector<double>(stretches, stretches + n_stretches), summary, dir, dump_forces)
                                        : BrokenBonds(std::vector<double>(fractions, fractions + n_fractions), summary, dir);
   std::fclose(summary);
   PetscCall(ierr);
