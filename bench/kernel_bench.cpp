@@ -23,7 +23,7 @@
 //   gent_cold   the same without warm start (c33 = 0: starts from 1/J~^2)
 //   gent_dynamics  as gent_warm with the two states 5e-4 dx apart (--dynamics-motion):
 //               the warm start is then as good as inside the solver, where a time step
-//               moves F by ~1e-3 and 73 % of the bonds need a second residual evaluation
+//               moves F by ~1e-3 and 71 % of the bonds need a second residual evaluation
 //   identity    the kernel with P = F: gather, masked sums, K^{-1}, F, force vector
 //               and stores, no constitutive cost
 //   model       GentPlaneStress::stress alone on every bond's F (warm c33)
@@ -218,7 +218,7 @@ int main(int argc, char **argv)
   }
   // gent_dynamics: the states are 5e-4 dx apart, so that the warm start needs about as
   // many residual evaluations as inside the solver (callgrind on bapd, default scene:
-  // 1.73 per bond during time steps; 3e-4 dx gives 1.6 here, 1e-3 dx 1.9).
+  // 1.71 per bond during time steps; 3e-4 dx gives 1.6 here, 1e-3 dx 1.9).
   for (std::size_t k = 0; k < y_c.size(); ++k) y_c[k] = y_a[k] + o.dynamics * dx * noise(rng);
   const double *ys[2] = {y_a.data(), y_b.data()}, *ys_dyn[2] = {y_a.data(), y_c.data()};
 

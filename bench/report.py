@@ -191,7 +191,7 @@ def main():
                   ["points", "delta/dx", "bonds/pt", "BA warm", "BA dynamics", "BA cold", "BA P=F", "BA force eval",
                    "LAMMPS peri/lps", "LAMMPS bonds/pt", "BA/LAMMPS", "flops/bond", "GFLOP/s", "% peak"],
                   "BA warm/dynamics/cold: the kernel with c33 warm-started after a 1e-5 dx / 5e-4 dx move (1.0 / 1.75 "
-                  "residual evaluations per bond; the solver does 1.73) or not at all (2.0). BA force eval = dynamics "
+                  "residual evaluations per bond; the solver does 1.71) or not at all (2.0). BA force eval = dynamics "
                   "kernel + assemble_force_density: what a time step costs per bond. LAMMPS = Pair time (all three "
                   "peri/lps loops) per directed bond on a simple cubic lattice with the same number of bonds, CPU-use "
                   "corrected. BA/LAMMPS = BA force eval / LAMMPS. flops/bond (callgrind, 100 x 100 points), GFLOP/s "
@@ -259,6 +259,11 @@ def main():
             by[(r["points"], r["ranks"])] = r
             t.add(r["points"], r["ranks"], r["peak_rss_mb"], r["stepping_rss_mb"],
                   r["peak_rss_mb"] * 2**20 / r["points"], r["stepping_rss_mb"] * 2**20 / r["points"])
+        for label, r in sorted(runs(d, "memory_").items()):  # variants (e.g. -checkpoint_on_error false)
+            if r.get("points"):
+                t.add(r["points"], f"{r['ranks']} ({label.split('_np')[-1].split('_', 1)[-1]})", r["peak_rss_mb"],
+                      r["stepping_rss_mb"], r["peak_rss_mb"] * 2**20 / r["points"],
+                      r["stepping_rss_mb"] * 2**20 / r["points"])
         ones = sorted((p, r) for (p, n), r in by.items() if n == 1)
         if len(ones) >= 2:
             (p0, r0), (p1, r1) = ones[0], ones[-1]

@@ -188,6 +188,9 @@ if want scaling; then
         -output_interval 100000 -progress_interval 100000 -output_dir "$out/runs/o_scaling_${name}_np$n" -log_view
     done
   done
+  # What the every-step "last good state" copy (-checkpoint_on_error) costs in memory.
+  run_bapd "memory_1e5_np1_no_good_state" 1 "$here/examples/default.yaml" -body_dx 3.5334e-4 -ts_max_steps 10 \
+    -checkpoint_on_error false -output_interval 100000 -progress_interval 100000 -output_dir "$out/runs/o_memory_ng"
 fi
 
 if want scenes; then
