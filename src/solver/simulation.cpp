@@ -257,16 +257,14 @@ PetscErrorCode Simulation::PostStep(TS ts)
   PetscCall(TSGetSolution(ts, &X));
   const PetscInt n = 2 * sim->layout_.n_owned;
   PetscCall(VecGetArray(X, &x));
-  PetscCall(sim->ApplyLoading(t, x, x + n));
   if (sim->scene_.damping > 0) {
     // Mass-proportional damping, integrated exactly over the step (operator split):
-    // works with every TS type and never destabilises the step.
+    // works with every TS type and never destabilises the step. The grips' speeds
+    // are set again just below.
     const double decay = std::exp(-sim->scene_.damping * sim->dt_);
-    std::vector<char> held(n, 0);
-    for (const ConstrainedDof &d : sim->constrained_) held[d.dof] = 1;
-    for (PetscInt k = 0; k < n; ++k)
-      if (!held[k]) x[n + k] *= decay;
+    for (PetscInt k = 0; k < n; ++k) x[n + k] *= decay;
   }
+  PetscCall(sim->ApplyLoading(t, x, x + n));
   PetscCall(VecRestoreArray(X, &x));
 
   PetscBool diverged = PETSC_FALSE;
