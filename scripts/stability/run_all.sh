@@ -79,6 +79,8 @@ for section in "${sections[@]}"; do
     done
     run spectrum_plate_plane_strain_k100 "$spectrum_exe" "${plate[@]}" -material_formulation plane_strain \
       -material_bulk_ratio 100 -time_step_safety 0.4 -spectrum_stretches 1,1.1,1.2,1.3,1.4,1.5
+    run spectrum_plate_plane_strain_k1000 "$spectrum_exe" "${plate[@]}" -material_formulation plane_strain \
+      -material_bulk_ratio 1000 -time_step_safety 0.4 -spectrum_stretches 1,1.05,1.1,1.12
     run spectrum_broken "$spectrum_exe" -body_width 0.02 -body_height 0.02 -body_thickness 0.001 -body_dx 0.001 \
       -material_bulk_ratio 1000 -end_time 1 -spectrum_broken_fractions 0,0.1,0.3,0.5,0.7
     ;;
@@ -129,8 +131,10 @@ for section in "${sections[@]}"; do
       bapd "torn_diagonal_s$safety" "${torn[@]}" -body_notches "0,0.005,0.003,0.005,$diagonal" -time_step_safety "$safety"
     done
     for safety in 0.8 0.4; do
-      bapd "notched_dx0.001_s$safety" -options_file_yaml "$here/examples/notched_pure_shear.yaml" -body_dx 0.001 \
-        -time_step_safety "$safety" -output_final_state -progress_interval 1000000
+      for form in bond_only energy_consistent; do
+        bapd "notched_dx0.001_${form}_s$safety" -options_file_yaml "$here/examples/notched_pure_shear.yaml" -body_dx 0.001 \
+          -force_form "$form" -time_step_safety "$safety" -output_final_state -progress_interval 1000000
+      done
     done
     ;;
   timestep)
