@@ -11,7 +11,7 @@
 # as in run_mpi.sh; the spectra need the build's tests/stability/stability_spectrum.
 # About 40 minutes on one quiet core.
 set -uo pipefail
-here="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
+here="${BAPD_SOURCE_DIR:-$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)}"
 out="${1:-$here/output/stability}"
 shift || true
 sections=("$@")

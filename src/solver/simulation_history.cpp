@@ -17,6 +17,32 @@
 
 namespace bapd {
 
+namespace {
+
+// Concatenates every rank's values on rank 0, in rank order (callers sort or index
+// them by natural id, so the order does not matter).
+template <class T> PetscErrorCode GatherOnRankZero(MPI_Comm comm, const std::vector<T> &mine, MPI_Datatype type, std::vector<T> *all)
+{
+  PetscMPIInt rank, size;
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  std::vector<int> counts(size), displs(size, 0);
+  int              m = (int)mine.size();
+  PetscCallMPI(MPI_Gather(&m, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm));
+  all->clear();
+  if (rank == 0) {
+    for (int r = 1; r < size; ++r) displs[r] = displs[r - 1] + counts[r - 1];
+    all->resize(displs[size - 1] + counts[size - 1]);
+  }
+  PetscCallMPI(MPI_Gatherv(mine.data(), m, type, all->data(), counts.data(), displs.data(), type, 0, comm));
+  PetscFunctionReturn(0);
+}
+
+} // namespace
+
+
 PetscErrorCode Simulation::OpenHistory()
 {
   PetscFunctionBegin;
@@ -270,19 +296,8 @@ PetscErrorCode Simulation::GatherDisplacement(std::vector<double> *u_natural)
     mine[3 * i + 2] = x[2 * i + 1];
   }
   PetscCall(VecRestoreArrayRead(X_, &x));
-  std::vector<int> counts(size_), displs(size_);
-  int              m = (int)mine.size();
-  PetscCallMPI(MPI_Gather(&m, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm_));
   std::vector<double> all;
-  if (rank_ == 0) {
-    int total = 0;
-    for (int r = 0; r < size_; ++r) {
-      displs[r] = total;
-      total += counts[r];
-    }
-    all.resize(total);
-  }
-  PetscCallMPI(MPI_Gatherv(mine.data(), m, MPI_DOUBLE, all.data(), counts.data(), displs.data(), MPI_DOUBLE, 0, comm_));
+  PetscCall(GatherOnRankZero(comm_, mine, MPI_DOUBLE, &all));
   u_natural->clear();
   if (rank_ == 0) {
     u_natural->assign(2 * layout_.n_global, 0.0);
@@ -305,19 +320,8 @@ PetscErrorCode Simulation::GatherBrokenBonds(std::vector<std::pair<int64_t, int6
         mine.push_back(layout_.cloud.natural_id[i]);
         mine.push_back(layout_.cloud.natural_id[families_.neighbour[b]]);
       }
-  std::vector<int> counts(size_), displs(size_);
-  int              m = (int)mine.size();
-  PetscCallMPI(MPI_Gather(&m, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm_));
   std::vector<long long> all;
-  if (rank_ == 0) {
-    int total = 0;
-    for (int r = 0; r < size_; ++r) {
-      displs[r] = total;
-      total += counts[r];
-    }
-    all.resize(total);
-  }
-  PetscCallMPI(MPI_Gatherv(mine.data(), m, MPI_LONG_LONG, all.data(), counts.data(), displs.data(), MPI_LONG_LONG, 0, comm_));
+  PetscCall(GatherOnRankZero(comm_, mine, MPI_LONG_LONG, &all));
   bonds->clear();
   for (std::size_t k = 0; k + 1 < all.size(); k += 2) bonds->push_back({all[k], all[k + 1]});
   std::sort(bonds->begin(), bonds->end());
