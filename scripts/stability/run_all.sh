@@ -8,8 +8,11 @@
 # Sections: spectrum shear rows timestep bulk horizon fracture (default: all). Each run
 # is small (hundreds to a few thousand points, one rank) and is skipped when OUTPUT_DIR
 # already holds it (delete OUTPUT_DIR/NAME to redo one). BAPD_EXE and BAPD_BUILD_DIR
-# as in run_mpi.sh; the spectra need the build's tests/stability/stability_spectrum.
-# About 40 minutes on one quiet core.
+# as in run_mpi.sh; the spectra need the build's tests/stability/stability_spectrum
+# (BAPD_SPECTRUM_EXE). BAPD_STABILITY_REPORT=0 skips the tables (e.g. to run sections
+# side by side, then once more for the tables); BAPD_SOURCE_DIR lets a copy of this
+# script run outside the source tree (bash reads a script as it runs: do not edit one
+# that is running). About 80 minutes of runs (measured under load).
 set -uo pipefail
 here="${BAPD_SOURCE_DIR:-$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)}"
 out="${1:-$here/output/stability}"
@@ -130,6 +133,12 @@ for section in "${sections[@]}"; do
         -failure_critical_stretch 1.5 -time_step_safety "$safety"
       bapd "torn_diagonal_s$safety" "${torn[@]}" -body_notches "0,0.005,0.003,0.005,$diagonal" -time_step_safety "$safety"
     done
+    # Scene 3 on the paper's grid (dx = 1/3 mm, 6 300 points), to stretch 3.4: the crack
+    # starts near 2.9. The example's safety (0.25) and 0.4; about 6 and 4 minutes.
+    for safety in 0.25 0.4; do
+      bapd "notched_paper_s$safety" -options_file_yaml "$here/examples/notched_pure_shear.yaml" -time_step_safety "$safety" \
+        -end_time 0.6 -progress_interval 1000
+    done
     for safety in 0.8 0.4; do
       for form in bond_only energy_consistent; do
         bapd "notched_dx0.001_${form}_s$safety" -options_file_yaml "$here/examples/notched_pure_shear.yaml" -body_dx 0.001 \
@@ -157,6 +166,12 @@ for section in "${sections[@]}"; do
       bapd "bulk_plane_strain_k$ratio" "${plate[@]}" -material_bulk_ratio "$ratio" -material_formulation plane_strain
       bapd "bulk_plane_strain_k${ratio}_s0.4" "${plate[@]}" -material_bulk_ratio "$ratio" -material_formulation plane_strain \
         -time_step_safety 0.4
+    done
+    # The bond-only form is statically unstable at rest in plane strain with K = 1000 mu
+    # (section 1); the energy-consistent one is not.
+    for ratio in 1000 10000; do
+      bapd "bulk_plane_strain_k${ratio}_energy_consistent_s0.4" "${plate[@]}" -material_bulk_ratio "$ratio" \
+        -material_formulation plane_strain -force_form energy_consistent -time_step_safety 0.4
     done
     ;;
   horizon)
