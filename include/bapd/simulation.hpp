@@ -93,6 +93,7 @@ private:
   PetscErrorCode Summary();
   PetscErrorCode WriteFinalState();
   PetscErrorCode CheckStaticHold(PetscInt step, double t);
+  PetscErrorCode AdaptTimeStep();
 
   static PetscErrorCode RHSPosition(TS, PetscReal, Vec, Vec, void *);
   static PetscErrorCode RHSMomentum(TS, PetscReal, Vec, Vec, void *);
@@ -141,7 +142,11 @@ private:
   IS  is_position_ = nullptr, is_momentum_ = nullptr;
   TS  ts_        = nullptr;
 
-  double stable_dt_ = 0, dt_ = 0;
+  double stable_dt_ = 0;
+  double base_dt_   = 0; // the step chosen at setup (safety x stable, or -time_step)
+  double dt_        = 0; // the step being taken: base_dt_, or less while points fly (-time_step_travel)
+  PetscInt shortened_steps_ = 0;   // steps taken shorter than base_dt_
+  double   shortest_dt_     = 0;   // the shortest of them
   double wall_start_ = 0;
   FILE  *history_    = nullptr;
   PetscInt total_broken_ = 0;

@@ -489,6 +489,7 @@ PetscErrorCode ReadProbesOutputTime(MPI_Comm comm, Scene *scene, SceneInput *in)
     OptionReader r(PetscOptionsObject);
     PetscCall(r.Real("-time_step", "Time step [s]; 0: time_step_safety x the estimated stable step", &scene->time_step));
     PetscCall(r.Real("-time_step_safety", "Fraction of the estimated stable step [-], in (0, 1]", &scene->time_step_safety));
+    PetscCall(r.Real("-time_step_travel", "Largest distance a point with bonds may move in one step [dx]; the step shrinks while points move fast (snapping bonds), 0: never", &scene->time_step_travel));
     PetscCall(r.Real("-damping", "Mass-proportional damping coefficient [1/s], >= 0", &scene->damping));
     PetscCall(r.Real("-static_tolerance", "A hold of the load schedule ends once kinetic/internal energy < this [-] (0: holds run their full length)", &scene->static_tolerance));
     PetscCall(r.Real("-end_time", "End of the run [s] (default: the schedule's last time)", &scene->end_time, &in->end_time_set));
@@ -931,6 +932,9 @@ PetscErrorCode CheckProbesOutputTime(MPI_Comm comm, const SceneInput &in, Scene 
                           "may blow up; use a value in (0, 1] (default 0.8)",
                           scene->time_step_safety),
                    true));
+  SceneCheck(scene->time_step_travel >= 0, comm,
+             "-time_step_travel %g must be >= 0: it is the largest distance, in dx, that a point with bonds may move in one step (default 0.1; 0: off)",
+             scene->time_step_travel);
   SceneCheck(scene->damping >= 0, comm, "-damping %g: the damping coefficient must be >= 0 1/s (0: undamped)", scene->damping);
   SceneCheck(scene->static_tolerance >= 0 && scene->static_tolerance < 1, comm,
              "-static_tolerance %g: use a small positive ratio such as 1e-6 (0: holds run their full length)", scene->static_tolerance);
@@ -1133,6 +1137,7 @@ PetscErrorCode SceneView(MPI_Comm comm, const Scene &s)
   for (const Probe &p : s.probes) text += Format("  probe     %s at (%g, %g) m\n", p.name.c_str(), p.x, p.y);
   if (s.time_step > 0) text += Format("  time      step %g s", s.time_step);
   else text += Format("  time      step %g x the stable step", s.time_step_safety);
+  if (s.time_step_travel > 0) text += Format(" (shorter while a point with bonds would move > %g dx a step)", s.time_step_travel);
   text += Format(", damping %g 1/s, end %g s\n", s.damping, s.end_time);
   if (s.static_tolerance > 0)
     text += Format("  static    a hold ends once kinetic energy < %g x internal energy (checked at every history row)\n", s.static_tolerance);

@@ -286,6 +286,7 @@ PetscErrorCode Simulation::PostStep(TS ts)
     PetscCall(VecRestoreArray(X, &x));
     PetscCall(sim->BreakBonds());
   }
+  PetscCall(sim->AdaptTimeStep()); // before any checkpoint: a restart takes the same next step
   if (step % sim->scene_.output_interval == 0) {
     PetscCall(sim->WriteHistoryRow(step, t));
     PetscCall(sim->CheckStaticHold(step, t));

@@ -141,6 +141,7 @@ PetscErrorCode Simulation::EstimateStableTimeStep()
   // The Rayleigh quotient approaches lambda_max from below: pad it by 10 %.
   stable_dt_ = 2.0 / std::sqrt(1.1 * lambda);
   dt_        = scene_.time_step > 0 ? scene_.time_step : scene_.time_step_safety * stable_dt_;
+  base_dt_   = dt_;
   PetscCall(PetscPrintf(comm_, "Stable time step %.4e s (power iteration, lambda_max = %.4e 1/s^2); using dt = %.4e s (%.3g x stable)\n",
                         stable_dt_, lambda, dt_, dt_ / stable_dt_));
   if (dt_ > stable_dt_)
@@ -231,7 +232,7 @@ PetscErrorCode Simulation::SetupTimeStepper()
     PetscReal dt;
     PetscCall(TSGetTimeStep(ts_, &dt));
     if (dt != dt_) {
-      dt_ = dt;
+      dt_ = base_dt_ = dt;
       PetscCall(PetscPrintf(comm_, "Time step set by -ts_dt: %.4e s (%.3g x stable)\n", dt_, dt_ / stable_dt_));
       if (dt_ > stable_dt_)
         PetscCall(PetscPrintf(comm_, "\n*** WARNING: -ts_dt %.4e s is LARGER than the stable step %.4e s: expect the run to blow up.\n\n", dt_, stable_dt_));
@@ -239,6 +240,49 @@ PetscErrorCode Simulation::SetupTimeStepper()
     const PetscInt steps = (PetscInt)std::ceil(end_time / dt_ - 1e-9);
     PetscCall(PetscPrintf(comm_, "Time stepping: %s, dt = %.4e s, end time %.4e s, about %" PetscInt_FMT " steps\n", type, dt_, end_time, steps));
     if (scene_.progress_interval <= 0) scene_.progress_interval = std::max<PetscInt>(1, steps / 20);
+  }
+  PetscFunctionReturn(0);
+}
+
+// The step for the next step. Bonds that snap at a large stretch fling their points at
+// many times the wave speed at rest; a step that lets such a point travel a sizeable
+// part of dx carries it past its neighbours, and the inverted bond-associated F that
+// follows gives a huge stress and a blow-up within a step (docs/stability.md,
+// section 5). So the step shrinks until no point that still has a bond moves more
+// than -time_step_travel dx, and returns to base_dt_ once they slow down. Points
+// without bonds move freely and do not count. The maximum is exact (MPI_MAX of
+// doubles), so the step is the same on any number of ranks.
+PetscErrorCode Simulation::AdaptTimeStep()
+{
+  PetscFunctionBegin;
+  if (scene_.time_step_travel <= 0) PetscFunctionReturn(0);
+  Vec           X;
+  const double *x;
+  const PetscInt n = 2 * layout_.n_owned;
+  PetscCall(TSGetSolution(ts_, &X));
+  PetscCall(VecGetArrayRead(X, &x));
+  const std::size_t W = families_.mask_words;
+  double            v2_max = 0.0;
+  for (PetscInt i = 0; i < layout_.n_owned; ++i) {
+    const std::uint64_t *intact = bond_state_.intact_mask((std::size_t)i);
+    std::uint64_t        any    = 0;
+    for (std::size_t w = 0; w < W; ++w) any |= intact[w];
+    if (!any) continue;
+    const double vx = x[n + 2 * i], vy = x[n + 2 * i + 1];
+    v2_max = std::max(v2_max, vx * vx + vy * vy);
+  }
+  PetscCall(VecRestoreArrayRead(X, &x));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &v2_max, 1, MPI_DOUBLE, MPI_MAX, comm_));
+  const double travel = scene_.time_step_travel * scene_.body.dx;
+  double       dt     = base_dt_;
+  if (v2_max * dt * dt > travel * travel) dt = travel / std::sqrt(v2_max);
+  if (dt != dt_) {
+    dt_ = dt;
+    PetscCall(TSSetTimeStep(ts_, dt_));
+  }
+  if (dt_ < base_dt_) {
+    ++shortened_steps_;
+    shortest_dt_ = shortest_dt_ > 0 ? std::min(shortest_dt_, dt_) : dt_;
   }
   PetscFunctionReturn(0);
 }

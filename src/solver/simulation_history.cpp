@@ -205,8 +205,10 @@ PetscErrorCode Simulation::Progress(PetscInt step, double t, PetscBool force)
   const double wall     = MPI_Wtime() - wall_start_;
   if (scene_.failure) PetscCall(BrokenBondCount(&total_broken_));
   const double left     = t > 0 ? wall * (end_time - t) / t : 0.0;
-  PetscCall(PetscPrintf(comm_, "step %8" PetscInt_FMT "  t %.4e s  stretch %.4f  broken %" PetscInt_FMT "  wall %.1f s  left ~%.1f s\n", step, t,
-                        scene_.schedule.stretch_at(t), total_broken_, wall, left));
+  char shortened[64] = "";
+  if (dt_ < base_dt_) PetscCall(PetscSNPrintf(shortened, sizeof shortened, "  dt %.3g x (fast points)", dt_ / base_dt_));
+  PetscCall(PetscPrintf(comm_, "step %8" PetscInt_FMT "  t %.4e s  stretch %.4f  broken %" PetscInt_FMT "  wall %.1f s  left ~%.1f s%s\n", step, t,
+                        scene_.schedule.stretch_at(t), total_broken_, wall, left, shortened));
   PetscFunctionReturn(0);
 }
 
@@ -250,6 +252,9 @@ PetscErrorCode Simulation::Summary()
   PetscInt broken;
   PetscCall(BrokenBondCount(&broken));
   if (scene_.failure) PetscCall(PetscPrintf(comm_, "broken bonds: %" PetscInt_FMT "\n", broken));
+  if (shortened_steps_ > 0)
+    PetscCall(PetscPrintf(comm_, "time step: %" PetscInt_FMT " step(s) shortened by -time_step_travel %g (fast points), the shortest %.4e s = %.3g x the full %.4e s\n",
+                          shortened_steps_, scene_.time_step_travel, shortest_dt_, shortest_dt_ / base_dt_, base_dt_));
   PetscCall(PetscPrintf(comm_, "history: %s/history.csv\n", scene_.output_dir.c_str()));
   PetscFunctionReturn(0);
 }

@@ -300,6 +300,12 @@ PetscErrorCode Simulation::RestoreCheckpoint()
   PetscCall(TSSetStepNumber(ts_, header.step));
   PetscCall(TSSetTime(ts_, header.time));
   PetscCall(RestoreSchedule(header));
+  // A step shortened by -time_step_travel goes on as it was: the continuation is then
+  // the uninterrupted run. A new, shorter base step (a smaller -time_step_safety) wins.
+  if (header.time_step > 0 && header.time_step < base_dt_) {
+    dt_ = header.time_step;
+    PetscCall(TSSetTimeStep(ts_, dt_));
+  }
   if (header.time_step != dt_)
     PetscCall(PetscPrintf(comm_, "Note: the checkpoint was written with dt = %.6e s; this run uses dt = %.6e s\n", header.time_step, dt_));
   PetscCall(BrokenBondCount(&total_broken_));
