@@ -9,7 +9,7 @@
 // 2010, eq 25: c = 2 sqrt(u^T K u / u^T u) with a local stiffness from consecutive
 // force densities) estimates it from the motion itself. Here the estimate is the
 // Rayleigh quotient of the secant stiffness along the latest displacement increment,
-// from the two force evaluations of the step (velocity Verlet: a(u^n), a(u^{n+1})):
+// from the last two force evaluations (velocity Verlet: those of this step and the last):
 //
 //     omega^2 = - sum_i V_i (du_i . da_i) / sum_i V_i |du_i|^2     (free dofs only)
 //
@@ -20,8 +20,9 @@
 // -damping (which keeps the bond-only form's edge flutter down, docs/stability.md)
 // and omega_max = 2/dt_stable; c = c_floor when the quotient is not positive (no
 // motion, round-off). Both sums are reproducible sums, so c is the same on any
-// number of ranks; c depends on this step's evaluations only, so a restart from a
-// checkpoint continues bit for bit with no extra state.
+// number of ranks. PETSc's velocity Verlet evaluates the force once a step (at the
+// half-step position), so the pair spans two steps: the latest evaluation is saved in
+// checkpoints (/relaxation, checkpoint.hpp) and a restart continues bit for bit.
 #include <petscsys.h>
 
 #include <vector>
@@ -47,6 +48,13 @@ public:
   // The damping coefficient for this step (1/s). Collective.
   PetscErrorCode Damping(MPI_Comm comm, double *c);
   // Range of the coefficient so far (for the summary).
+  // Checkpoints: the latest evaluation is the state carried from step to step (the
+  // next step's quotient is formed against it). RestoreLatest: latest_u()/latest_a()
+  // were filled from a checkpoint that had `records` evaluations.
+  int     records() const { return recorded_; }
+  double *latest_u() { return u_[latest_].data(); }
+  double *latest_a() { return a_[latest_].data(); }
+  void    RestoreLatest(int records) { recorded_ = records > 0 ? 1 : 0; }
   double last() const { return last_; }
   double smallest() const { return smallest_; }
   double largest() const { return largest_; }

@@ -252,7 +252,7 @@ PetscErrorCode Simulation::SetupRelaxation()
   for (const ConstrainedDof &d : constrained_) held.push_back(d.dof);
   relaxation_.Setup(relaxation_kind_, (std::size_t)layout_.n_owned, layout_.cloud.volume.data(), held, scene_.damping, stable_dt_);
   if (relaxation_.active())
-    PetscCall(PetscPrintf(comm_, "Relaxation: adaptive, damping c = 2 omega every step (Rayleigh quotient of the step's increment), "
+    PetscCall(PetscPrintf(comm_, "Relaxation: adaptive, damping c = 2 omega every step (Rayleigh quotient of the latest increment), "
                                  "between %g (-damping) and %.4g 1/s\n", scene_.damping, 4.0 / stable_dt_));
   PetscFunctionReturn(0);
 }
