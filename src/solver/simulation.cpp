@@ -251,9 +251,11 @@ PetscErrorCode Simulation::SetupRelaxation()
   std::vector<PetscInt> held;
   for (const ConstrainedDof &d : constrained_) held.push_back(d.dof);
   relaxation_.Setup(relaxation_kind_, (std::size_t)layout_.n_owned, layout_.cloud.volume.data(), held, scene_.damping, stable_dt_);
-  if (relaxation_.active())
-    PetscCall(PetscPrintf(comm_, "Relaxation: adaptive, damping c = 2 omega every step (Rayleigh quotient of the latest increment), "
-                                 "between %g (-damping) and %.4g 1/s\n", scene_.damping, 4.0 / stable_dt_));
+  if (relaxation_.active()) {
+    char range[96]; // PETSc's %g would print "50."
+    std::snprintf(range, sizeof range, "between %g (-damping) and %.4g 1/s", scene_.damping, 4.0 / stable_dt_);
+    PetscCall(PetscPrintf(comm_, "Relaxation: adaptive, damping c = 2 omega every step (Rayleigh quotient of the latest increment), %s\n", range));
+  }
   PetscFunctionReturn(0);
 }
 
