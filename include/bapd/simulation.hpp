@@ -79,6 +79,7 @@ private:
   PetscErrorCode EstimateStableTimeStep();
   PetscErrorCode SetupTimeStepper();
   PetscErrorCode OpenHistory();
+  PetscErrorCode SetupRelaxation(); // -relaxation (relaxation.hpp)
 
   // The acceleration of the owned points for displacement u (owned, 2 per point).
   PetscErrorCode Acceleration(const double *u_owned, double *a_owned);
@@ -94,7 +95,6 @@ private:
   PetscErrorCode Summary();
   PetscErrorCode WriteFinalState();
   PetscErrorCode CheckStaticHold(PetscInt step, double t);
-  PetscErrorCode SetupRelaxation();
 
   static PetscErrorCode RHSPosition(TS, PetscReal, Vec, Vec, void *);
   static PetscErrorCode RHSMomentum(TS, PetscReal, Vec, Vec, void *);
