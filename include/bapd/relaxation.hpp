@@ -1,6 +1,6 @@
 #pragma once
 // Adaptive dynamic relaxation: a faster route to the static states of a slowly loaded
-// body (METHOD.md section 6; docs/options.md, "Static states").
+// body (METHOD.md section 6; docs/options.md, "Static states faster").
 //
 // Damped explicit dynamics reaches a static state fastest when its slowest mode is
 // critically damped, c = 2 omega_min (mass-proportional damping: every underdamped
@@ -9,7 +9,7 @@
 // 2010, eq 25: c = 2 sqrt(u^T K u / u^T u) with a local stiffness from consecutive
 // force densities) estimates it from the motion itself. Here the estimate is the
 // Rayleigh quotient of the secant stiffness along the latest displacement increment,
-// from the last two force evaluations (velocity Verlet: those of this step and the last):
+// from the last two force evaluations (velocity Verlet: this step's and the last one's):
 //
 //     omega^2 = - sum_i V_i (du_i . da_i) / sum_i V_i |du_i|^2     (free dofs only)
 //
