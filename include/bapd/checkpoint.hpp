@@ -3,7 +3,8 @@
 // any number of ranks (STYLE.md: ... -> fields / checkpoint). docs/options.md,
 // "Checkpoints and restart", is the user's view.
 //
-// File layout, format version 1 (every array in natural order, natural_order.hpp):
+// File layout, format version 2 (every array in natural order, natural_order.hpp;
+// version 1 is version 2 without /relaxation, and is still read):
 //   /                 attributes format = "bapd checkpoint", format_version, step,
 //                     time_s, time_step_s, stretch, reason, ranks, content_hash
 //   /geometry         attributes points, bonds, dx_m, horizon_m, hash
@@ -19,6 +20,10 @@
 //   /run/schedule_original, /run/schedule_current (knots): the schedule's knot times
 //                          as the run read them and as static holds have moved them;
 //                          attributes end_time_original_s, end_time_s, static_hold_done
+//   /relaxation            only with -relaxation adaptive (relaxation.hpp): attribute
+//                          records; /relaxation/displacement, /relaxation/acceleration
+//                          (points, 2): the latest force evaluation, which the next
+//                          step's damping coefficient is computed against
 // content_hash is an order-independent checksum of the arrays and of the step, time
 // and schedule attributes: a damaged file is refused instead of silently continuing
 // from wrong data.
@@ -35,7 +40,8 @@
 
 namespace bapd {
 
-constexpr std::int64_t kCheckpointFormatVersion = 1;
+constexpr std::int64_t kCheckpointFormatVersion       = 2;
+constexpr std::int64_t kCheckpointOldestFormatVersion = 1; // still read
 
 // -checkpoint_interval, -checkpoint_on_error, -restart.
 struct CheckpointOptions {
@@ -74,6 +80,8 @@ struct CheckpointHeader {
   std::vector<double> schedule_original, schedule_current;
   double              end_time_original = 0, end_time = 0;
   std::int64_t        static_hold_done  = -1;
+  // -relaxation adaptive: force evaluations recorded (0: no /relaxation group).
+  std::int64_t        relaxation_records = 0;
 };
 
 // The state of the rank layout, read from (written to) a checkpoint.
@@ -81,6 +89,9 @@ struct CheckpointState {
   double          *u = nullptr, *v = nullptr; // owned points, 2 each
   BondState       *bonds = nullptr;           // family points (write: owned ones used)
   double          *c33 = nullptr;             // bonds of family points
+  // -relaxation adaptive: the latest recorded evaluation, owned points, 2 each
+  // (write: used when header.relaxation_records > 0; read: filled when the file has it).
+  double          *relaxation_u = nullptr, *relaxation_a = nullptr;
 };
 
 // Collective. Writes `path` through `path.tmp` and a rename, so the last good

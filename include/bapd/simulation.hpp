@@ -17,6 +17,7 @@
 #include "bapd/family.hpp"
 #include "bapd/layout.hpp"
 #include "bapd/divergence.hpp"
+#include "bapd/relaxation.hpp"
 #include "bapd/scene.hpp"
 #include "bapd/simulation_output.hpp"
 
@@ -78,6 +79,7 @@ private:
   PetscErrorCode EstimateStableTimeStep();
   PetscErrorCode SetupTimeStepper();
   PetscErrorCode OpenHistory();
+  PetscErrorCode SetupRelaxation(); // -relaxation (relaxation.hpp)
 
   // The acceleration of the owned points for displacement u (owned, 2 per point).
   PetscErrorCode Acceleration(const double *u_owned, double *a_owned);
@@ -160,6 +162,8 @@ private:
   std::string stop_reason_;
   RunawayEnergyMonitor energy_monitor_; // divergence by runaway energy (divergence.hpp)
   SimulationOutput output_; // fields, checkpoints, restart
+  RelaxationKind     relaxation_kind_ = RelaxationKind::none; // -relaxation
+  AdaptiveRelaxation relaxation_;                             // its damping coefficient (relaxation.hpp)
 
   PetscLogStage stage_setup_ = 0, stage_partition_ = 0, stage_force_ = 0, stage_ghost_ = 0, stage_step_ = 0,
                 stage_output_ = 0;

@@ -83,6 +83,59 @@ PetscErrorCode ContentHash(MPI_Comm comm, const NaturalOrder &order, const doubl
   PetscFunctionReturn(0);
 }
 
+// The checksum of the -relaxation adaptive arrays of this rank's block (relaxation.hpp).
+PetscErrorCode RelaxationHash(MPI_Comm comm, const NaturalOrder &order, const double *u, const double *a, std::uint64_t *hash)
+{
+  PetscFunctionBegin;
+  std::uint64_t h = 0;
+  for (PetscInt k = 0; k < order.point_count; ++k)
+    for (int c = 0; c < 2; ++c) {
+      const std::uint64_t i = 2 * (std::uint64_t)(order.point_start + k) + c;
+      h += Entry(9, i, Bits(u[2 * k + c])) + Entry(10, i, Bits(a[2 * k + c]));
+    }
+  PetscCallMPI(MPI_Allreduce(&h, hash, 1, MPI_UINT64_T, MPI_SUM, comm));
+  PetscFunctionReturn(0);
+}
+
+// Two arrays of 2 per owned point -> this rank's natural block (or back).
+PetscErrorCode PairToNatural(const NaturalOrder &order, PetscInt owned_points, const double *a_local, const double *b_local,
+                             std::vector<double> *a_block, std::vector<double> *b_block)
+{
+  MPI_Datatype four;
+
+  PetscFunctionBegin;
+  std::vector<double> local(4 * owned_points), block(4 * order.point_count);
+  for (PetscInt i = 0; i < owned_points; ++i)
+    for (int c = 0; c < 2; ++c) local[4 * i + c] = a_local[2 * i + c], local[4 * i + 2 + c] = b_local[2 * i + c];
+  PetscCallMPI(MPI_Type_contiguous(4, MPI_DOUBLE, &four));
+  PetscCallMPI(MPI_Type_commit(&four));
+  PetscCall(ToNaturalOrder(order.owned_points, four, local.data(), block.data()));
+  PetscCallMPI(MPI_Type_free(&four));
+  a_block->resize(2 * order.point_count);
+  b_block->resize(2 * order.point_count);
+  for (PetscInt k = 0; k < order.point_count; ++k)
+    for (int c = 0; c < 2; ++c) (*a_block)[2 * k + c] = block[4 * k + c], (*b_block)[2 * k + c] = block[4 * k + 2 + c];
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode PairFromNatural(const NaturalOrder &order, PetscInt owned_points, const std::vector<double> &a_block,
+                               const std::vector<double> &b_block, double *a_local, double *b_local)
+{
+  MPI_Datatype four;
+
+  PetscFunctionBegin;
+  std::vector<double> local(4 * owned_points), block(4 * order.point_count);
+  for (PetscInt k = 0; k < order.point_count; ++k)
+    for (int c = 0; c < 2; ++c) block[4 * k + c] = a_block[2 * k + c], block[4 * k + 2 + c] = b_block[2 * k + c];
+  PetscCallMPI(MPI_Type_contiguous(4, MPI_DOUBLE, &four));
+  PetscCallMPI(MPI_Type_commit(&four));
+  PetscCall(FromNaturalOrder(order.owned_points, four, block.data(), local.data()));
+  PetscCallMPI(MPI_Type_free(&four));
+  for (PetscInt i = 0; i < owned_points; ++i)
+    for (int c = 0; c < 2; ++c) a_local[2 * i + c] = local[4 * i + c], b_local[2 * i + c] = local[4 * i + 2 + c];
+  PetscFunctionReturn(0);
+}
+
 // The header values that steer the continuation, folded into the checksum too.
 std::uint64_t HeaderHash(const CheckpointHeader &h)
 {
@@ -90,6 +143,7 @@ std::uint64_t HeaderHash(const CheckpointHeader &h)
                       Entry(6, 3, Bits(h.end_time)) + Entry(6, 4, Bits(h.end_time_original)) + Entry(6, 5, (std::uint64_t)h.static_hold_done);
   for (std::size_t k = 0; k < h.schedule_current.size(); ++k) sum += Entry(7, k, Bits(h.schedule_current[k]));
   for (std::size_t k = 0; k < h.schedule_original.size(); ++k) sum += Entry(8, k, Bits(h.schedule_original[k]));
+  if (h.relaxation_records > 0) sum += Entry(11, 0, (std::uint64_t)h.relaxation_records); // absent in version 1
   return sum;
 }
 
@@ -210,6 +264,13 @@ PetscErrorCode WriteCheckpoint(MPI_Comm comm, const std::string &path, const Nat
   PetscCall(ToNaturalOrder(order.owned_bonds, MPI_DOUBLE, state.c33, c33.data()));
   std::vector<std::int32_t> family_size(order.family_size.begin(), order.family_size.end());
   PetscCall(ContentHash(comm, order, u.data(), v.data(), family_size.data(), intact.data(), c33.data(), &header->content_hash));
+  std::vector<double> relax_u, relax_a;
+  if (header->relaxation_records > 0) {
+    std::uint64_t relax_hash = 0;
+    PetscCall(PairToNatural(order, owned_points, state.relaxation_u, state.relaxation_a, &relax_u, &relax_a));
+    PetscCall(RelaxationHash(comm, order, relax_u.data(), relax_a.data(), &relax_hash));
+    header->content_hash += relax_hash;
+  }
   header->content_hash += HeaderHash(*header);
   header->ranks = size;
 
@@ -249,6 +310,12 @@ PetscErrorCode WriteCheckpoint(MPI_Comm comm, const std::string &path, const Nat
     PetscCall(f.WriteText("/run/static_states", header->static_states));
     PetscCall(f.WriteRoot("/run/schedule_original", H5T_NATIVE_DOUBLE, header->schedule_original.size(), header->schedule_original.data()));
     PetscCall(f.WriteRoot("/run/schedule_current", H5T_NATIVE_DOUBLE, header->schedule_current.size(), header->schedule_current.data()));
+    if (header->relaxation_records > 0) {
+      PetscCall(f.CreateGroup("/relaxation"));
+      PetscCall(f.WriteAttribute("/relaxation", "records", header->relaxation_records));
+      PetscCall(f.WriteBlock("/relaxation/displacement", H5T_NATIVE_DOUBLE, P, 2, order.point_start, order.point_count, relax_u.data()));
+      PetscCall(f.WriteBlock("/relaxation/acceleration", H5T_NATIVE_DOUBLE, P, 2, order.point_start, order.point_count, relax_a.data()));
+    }
     const hsize_t frames = header->field_frames.size() / 2;
     PetscCall(f.WriteBlock("/run/field_frames", H5T_NATIVE_DOUBLE, frames, 2, 0, rank == 0 ? frames : 0, header->field_frames.data()));
     PetscCall(f.Close());
@@ -289,10 +356,10 @@ std::string ReadHeaderSerial(const std::string &path, CheckpointHeader *h)
     problem = "'" + path + "' is not a bapd checkpoint (it has no format attribute \"bapd checkpoint\")";
   else if (!H5ReadAttribute(file, "/", "format_version", &h->format_version))
     damaged("attribute format_version is missing");
-  else if (h->format_version != kCheckpointFormatVersion) {
+  else if (h->format_version < kCheckpointOldestFormatVersion || h->format_version > kCheckpointFormatVersion) {
     char msg[512];
-    std::snprintf(msg, sizeof msg, "Checkpoint '%s' has format version %lld; this bapd reads version %lld only: continue it with the bapd that wrote it",
-                  path.c_str(), (long long)h->format_version, (long long)kCheckpointFormatVersion);
+    std::snprintf(msg, sizeof msg, "Checkpoint '%s' has format version %lld; this bapd reads versions %lld to %lld: continue it with the bapd that wrote it",
+                  path.c_str(), (long long)h->format_version, (long long)kCheckpointOldestFormatVersion, (long long)kCheckpointFormatVersion);
     problem = msg;
   }
   if (problem.empty()) {
@@ -333,6 +400,13 @@ std::string ReadHeaderSerial(const std::string &path, CheckpointHeader *h)
     if (problem.empty() && h->schedule_original.size() != h->schedule_current.size()) damaged("the schedule datasets differ in length");
     if (problem.empty() && frames.size() == 2 && frames[0] > 0 && !H5ReadDoubles(file, "/run/field_frames", &h->field_frames))
       damaged("dataset /run/field_frames cannot be read");
+    // -relaxation adaptive (version 2): optional.
+    if (problem.empty() && H5Lexists(file, "/relaxation", H5P_DEFAULT) > 0) {
+      if (!H5ReadAttribute(file, "/relaxation", "records", &h->relaxation_records) || h->relaxation_records < 1)
+        damaged("attribute /relaxation/records is missing");
+      for (const char *name : {"/relaxation/displacement", "/relaxation/acceleration"})
+        if (H5DatasetShape(file, name) != std::vector<hsize_t>{P, 2}) damaged(std::string("dataset ") + name + " is missing or has the wrong shape");
+    }
   }
   H5Fclose(file);
   return problem;
@@ -351,13 +425,14 @@ PetscErrorCode ReadCheckpointHeader(MPI_Comm comm, const std::string &path, Chec
   if (rank == 0) problem = ReadHeaderSerial(path, header);
   PetscCall(BcastString(comm, &problem));
   PetscCheck(problem.empty(), comm, PETSC_ERR_FILE_UNEXPECTED, "%s", problem.c_str());
-  long long     ints[6]   = {(long long)header->step,            (long long)header->ranks,
+  long long     ints[7]   = {(long long)header->step,            (long long)header->ranks,
                              (long long)header->geometry.points, (long long)header->geometry.bonds,
-                             (long long)header->format_version,  (long long)header->static_hold_done};
+                             (long long)header->format_version,  (long long)header->static_hold_done,
+                             (long long)header->relaxation_records};
   double        reals[7]  = {header->time,        header->time_step,         header->stretch, header->geometry.dx,
                              header->geometry.horizon, header->end_time_original, header->end_time};
   std::uint64_t hashes[2] = {header->content_hash, header->geometry.hash};
-  PetscCallMPI(MPI_Bcast(ints, 6, MPI_LONG_LONG, 0, comm));
+  PetscCallMPI(MPI_Bcast(ints, 7, MPI_LONG_LONG, 0, comm));
   PetscCallMPI(MPI_Bcast(reals, 7, MPI_DOUBLE, 0, comm));
   PetscCallMPI(MPI_Bcast(hashes, 2, MPI_UINT64_T, 0, comm));
   header->step             = (PetscInt)ints[0];
@@ -366,6 +441,7 @@ PetscErrorCode ReadCheckpointHeader(MPI_Comm comm, const std::string &path, Chec
   header->geometry.bonds   = ints[3];
   header->format_version   = ints[4];
   header->static_hold_done = ints[5];
+  header->relaxation_records = ints[6];
   header->end_time_original = reals[5];
   header->end_time          = reals[6];
   header->time             = reals[0];
@@ -403,6 +479,7 @@ PetscErrorCode ReadCheckpointState(MPI_Comm comm, const std::string &path, const
                ? " and the same counts but other positions, holes or notches"
                : "");
   std::vector<double>        u(2 * order.point_count), v(2 * order.point_count), c33(order.bond_count);
+  std::vector<double>        relax_u, relax_a; // -relaxation adaptive, when the file has it
   std::vector<std::int32_t>  family_size(order.point_count);
   std::vector<unsigned char> intact(order.bond_count);
   {
@@ -414,10 +491,21 @@ PetscErrorCode ReadCheckpointState(MPI_Comm comm, const std::string &path, const
     PetscCall(f.ReadBlock("/points/family_size", H5T_NATIVE_INT32, P, 0, order.point_start, order.point_count, family_size.data()));
     PetscCall(f.ReadBlock("/bonds/intact", H5T_NATIVE_UCHAR, B, 0, order.bond_start, order.bond_count, intact.data()));
     PetscCall(f.ReadBlock("/bonds/c33", H5T_NATIVE_DOUBLE, B, 0, order.bond_start, order.bond_count, c33.data()));
+    if (header.relaxation_records > 0) {
+      relax_u.resize(2 * order.point_count);
+      relax_a.resize(2 * order.point_count);
+      PetscCall(f.ReadBlock("/relaxation/displacement", H5T_NATIVE_DOUBLE, P, 2, order.point_start, order.point_count, relax_u.data()));
+      PetscCall(f.ReadBlock("/relaxation/acceleration", H5T_NATIVE_DOUBLE, P, 2, order.point_start, order.point_count, relax_a.data()));
+    }
     PetscCall(f.Close());
   }
   std::uint64_t hash = 0;
   PetscCall(ContentHash(comm, order, u.data(), v.data(), family_size.data(), intact.data(), c33.data(), &hash));
+  if (header.relaxation_records > 0) {
+    std::uint64_t relax_hash = 0;
+    PetscCall(RelaxationHash(comm, order, relax_u.data(), relax_a.data(), &relax_hash));
+    hash += relax_hash;
+  }
   hash += HeaderHash(header);
   PetscCheck(hash == header.content_hash, comm, PETSC_ERR_FILE_UNEXPECTED,
              "Checkpoint '%s' is corrupt: its data do not match the checksum written with them (use an earlier checkpoint)", path.c_str());
@@ -441,6 +529,8 @@ PetscErrorCode ReadCheckpointState(MPI_Comm comm, const std::string &path, const
       state.u[2 * i + c] = uv_local[4 * i + c];
       state.v[2 * i + c] = uv_local[4 * i + 2 + c];
     }
+  if (header.relaxation_records > 0 && state.relaxation_u)
+    PetscCall(PairFromNatural(order, owned_points, relax_u, relax_a, state.relaxation_u, state.relaxation_a));
   const std::size_t          family_bonds = families.offsets[families.n_family];
   std::vector<unsigned char> intact_local(family_bonds);
   PetscCall(FromNaturalOrder(order.family_bonds, MPI_UNSIGNED_CHAR, intact.data(), intact_local.data()));

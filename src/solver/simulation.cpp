@@ -48,6 +48,7 @@ PetscErrorCode Simulation::Setup()
   PetscCall(CheckpointMergeOptions(comm_)); // -restart FILE: the checkpoint's options are the defaults
   PetscCall(SceneFromOptions(comm_, &scene_));
   PetscCall(ReadOutputOptions()); // -output_fields..., -checkpoint_..., -restart
+  PetscCall(RelaxationFromOptions(comm_, &relaxation_kind_)); // -relaxation
   if (scene_.help_only) {
     // -help without a scene: list the time stepper's options too, and stop.
     PetscCall(TSCreate(comm_, &ts_));
@@ -62,6 +63,7 @@ PetscErrorCode Simulation::Setup()
   PetscCall(BuildLoads());
   PetscCall(BuildProbes());
   PetscCall(EstimateStableTimeStep());
+  PetscCall(SetupRelaxation());
   PetscCall(SetupTimeStepper());
   PetscCall(CheckUnusedOptions(comm_));
   PetscCall(OpenHistory());
@@ -242,6 +244,21 @@ PetscErrorCode Simulation::BuildProbes()
   PetscFunctionReturn(0);
 }
 
+// -relaxation adaptive: the damping coefficient follows the slowest mode (relaxation.hpp).
+PetscErrorCode Simulation::SetupRelaxation()
+{
+  PetscFunctionBegin;
+  std::vector<PetscInt> held;
+  for (const ConstrainedDof &d : constrained_) held.push_back(d.dof);
+  relaxation_.Setup(relaxation_kind_, (std::size_t)layout_.n_owned, layout_.cloud.volume.data(), held, scene_.damping, stable_dt_);
+  if (relaxation_.active()) {
+    char range[96]; // PETSc's %g would print "50."
+    std::snprintf(range, sizeof range, "between %g (-damping) and %.4g 1/s", scene_.damping, 4.0 / stable_dt_);
+    PetscCall(PetscPrintf(comm_, "Relaxation: adaptive, damping c = 2 omega every step (Rayleigh quotient of the latest increment), %s\n", range));
+  }
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode Simulation::PostStep(TS ts)
 {
   Simulation *sim;
@@ -257,11 +274,13 @@ PetscErrorCode Simulation::PostStep(TS ts)
   PetscCall(TSGetSolution(ts, &X));
   const PetscInt n = 2 * sim->layout_.n_owned;
   PetscCall(VecGetArray(X, &x));
-  if (sim->scene_.damping > 0) {
+  double damping = sim->scene_.damping;
+  PetscCall(sim->relaxation_.Damping(sim->comm_, &damping)); // -relaxation adaptive: recomputed every step
+  if (damping > 0) {
     // Mass-proportional damping, integrated exactly over the step (operator split):
     // works with every TS type and never destabilises the step. The grips' speeds
     // are set again just below.
-    const double decay = std::exp(-sim->scene_.damping * sim->dt_);
+    const double decay = std::exp(-damping * sim->dt_);
     for (PetscInt k = 0; k < n; ++k) x[n + k] *= decay;
   }
   PetscCall(sim->ApplyLoading(t, x, x + n));

@@ -73,6 +73,7 @@ PetscErrorCode Simulation::Acceleration(const double *u_owned, double *a_owned)
   const double inv_rho = 1.0 / scene_.density;
   for (PetscInt k = 0; k < 2 * layout_.n_owned; ++k) a_owned[k] *= inv_rho;
   for (const ConstrainedDof &d : constrained_) a_owned[d.dof] = 0.0; // the grip moves them
+  relaxation_.Record(u_owned, a_owned); // -relaxation adaptive: the last two evaluations
   PetscFunctionReturn(0);
 }
 

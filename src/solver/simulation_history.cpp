@@ -172,6 +172,7 @@ PetscErrorCode Simulation::CheckStaticHold(PetscInt step, double t)
                         last_kinetic_ / last_internal_, scene_.static_tolerance));
   for (std::size_t p = 0; p < probes_.size(); ++p)
     PetscCall(PetscPrintf(comm_, "; %s ux = %.6e m", scene_.probes[p].name.c_str(), last_probe_u_[2 * p]));
+  if (relaxation_.active()) PetscCall(PetscPrintf(comm_, "; damping %.4g 1/s", relaxation_.last()));
   PetscCall(PetscPrintf(comm_, "\n"));
   if (rank_ == 0) {
     if (!static_states_) {
@@ -255,6 +256,9 @@ PetscErrorCode Simulation::Summary()
   if (shortened_steps_ > 0)
     PetscCall(PetscPrintf(comm_, "time step: %" PetscInt_FMT " step(s) shortened by -time_step_travel %g (fast points), the shortest %.4e s = %.3g x the full %.4e s\n",
                           shortened_steps_, scene_.time_step_travel, shortest_dt_, shortest_dt_ / base_dt_, base_dt_));
+  if (relaxation_.active())
+    PetscCall(PetscPrintf(comm_, "adaptive relaxation: damping %.4g 1/s now, %.4g to %.4g 1/s over the run\n", relaxation_.last(),
+                          relaxation_.smallest(), relaxation_.largest()));
   PetscCall(PetscPrintf(comm_, "history: %s/history.csv\n", scene_.output_dir.c_str()));
   PetscFunctionReturn(0);
 }

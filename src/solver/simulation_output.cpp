@@ -235,6 +235,14 @@ PetscErrorCode Simulation::WriteCheckpointFile(PetscInt step, double t, const ch
   state.v     = x + 2 * n;
   state.bonds = &bond_state_;
   state.c33   = c33_.data();
+  // -relaxation adaptive: the latest force evaluation, which the next step's damping
+  // is computed against (not for the last good state of a diverged run: the
+  // continuation then starts the estimate afresh, at the -damping floor for one step).
+  if (relaxation_.active() && std::strcmp(reason, "last good state") != 0) {
+    header.relaxation_records = relaxation_.records();
+    state.relaxation_u        = relaxation_.latest_u();
+    state.relaxation_a        = relaxation_.latest_a();
+  }
   PetscCall(WriteCheckpoint(comm_, path, output_.order, families_, &header, state));
   PetscCall(VecRestoreArray(X_, &x));
   output_.last_checkpoint_step = step;
@@ -292,7 +300,12 @@ PetscErrorCode Simulation::RestoreCheckpoint()
   state.v     = x + 2 * n;
   state.bonds = &bond_state_;
   state.c33   = c33_.data();
+  if (relaxation_.active()) {
+    state.relaxation_u = relaxation_.latest_u();
+    state.relaxation_a = relaxation_.latest_a();
+  }
   PetscCall(ReadCheckpointState(comm_, path, output_.order, families_, header, output_.geometry, state));
+  if (relaxation_.active()) relaxation_.RestoreLatest((int)header.relaxation_records);
   PetscCall(VecRestoreArray(X_, &x));
   // The reference geometry of the families with their broken bonds, as the run had it.
   compute_bond_geometry(layout_.cloud, families_, bond_state_, geometry_);

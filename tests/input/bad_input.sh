@@ -66,6 +66,7 @@ expect_error zero_output_interval "-output_interval 0" "$scene" -output_interval
 expect_error critical_stretch_one "-failure_critical_stretch 1: a bond breaks once stretched past s_c, so s_c must be > 1" "$scene" -failure_critical_stretch 1
 expect_error critical_stretch_below "-failure_critical_stretch 0.5" "$scene" -failure_critical_stretch 0.5
 expect_error horizon_below_dx "-horizon_factor 0.5 is below 1" "$scene" -horizon_factor 0.5
+expect_error bad_relaxation "-relaxation 'fast' is not a relaxation route: choose none (fixed -damping) or adaptive" "$scene" -relaxation fast
 
 # Geometry
 expect_error hole_covers_body "-body_holes: hole 1 (centre (0.005, 0.005) m, radius 0.02 m) covers the whole body" "$scene" -body_holes 0.005,0.005,0.02
