@@ -277,6 +277,9 @@ PetscErrorCode Simulation::RestoreSchedule(const CheckpointHeader &header)
   scene_.end_time = scene_.end_time == header.end_time_original ? header.end_time
                                                                : std::max(header.time, scene_.end_time + (header.end_time - header.end_time_original));
   PetscCall(TSSetMaxTime(ts_, scene_.end_time));
+  if (scene_.end_time <= header.time)
+    PetscCall(PetscPrintf(comm_, "\n*** WARNING: the checkpoint is at t = %.6e s, already at the end time %.6e s: this run takes no step. "
+                                 "Give a later -end_time to go on.\n\n", header.time, scene_.end_time));
   static_hold_done_ = (PetscInt)header.static_hold_done;
   PetscFunctionReturn(0);
 }
@@ -313,6 +316,14 @@ PetscErrorCode Simulation::RestoreCheckpoint()
   PetscCall(TSSetStepNumber(ts_, header.step));
   PetscCall(TSSetTime(ts_, header.time));
   PetscCall(RestoreSchedule(header));
+  {
+    PetscInt max_steps;
+    PetscCall(TSGetMaxSteps(ts_, &max_steps));
+    if (max_steps <= header.step)
+      PetscCall(PetscPrintf(comm_, "\n*** WARNING: the checkpoint is at step %" PetscInt_FMT ", already at -ts_max_steps %" PetscInt_FMT
+                                   " (the options stored in the checkpoint count): this run takes no step. Give a larger -ts_max_steps.\n\n",
+                            (PetscInt)header.step, max_steps));
+  }
   // A step shortened by -time_step_travel goes on as it was: the continuation is then
   // the uninterrupted run. A new, shorter base step (a smaller -time_step_safety) wins.
   if (header.time_step > 0 && header.time_step < base_dt_) {
