@@ -22,6 +22,7 @@ struct Gent {
     G[1]                 = G[0] * inv_gap;
     G[2]                 = 2.0 * G[1] * inv_gap;
     G[3]                 = 3.0 * G[2] * inv_gap;
+    G[4]                 = 4.0 * G[3] * inv_gap;
     return true;
   }
 

@@ -10,7 +10,7 @@
 //   static constexpr bool has_limit;         // Psi_iso finite only for I1bar < limit
 //   static double I1bar_limit(const MaterialParameters &);              (has_limit)
 //   static bool modulus(const MaterialParameters &, double I1bar, Modulus &G);
-//                                              // G[n] = d^n G / dI1bar^n, n = 0..3
+//                                              // G[n] = d^n G / dI1bar^n, n = 0..4
 //   static bool energy(const MaterialParameters &, double I1bar, double &psi_iso);
 // modulus and energy return false where the law is locked (I1bar >= limit).
 //
@@ -21,6 +21,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
 
 #include "bapd/material.hpp"
@@ -28,9 +30,9 @@
 
 namespace bapd {
 
-// G = 2 dPsi_iso/dI1bar and its first three I1bar-derivatives (the plane-stress solve
+// G = 2 dPsi_iso/dI1bar and its first four I1bar-derivatives (the plane-stress solve
 // uses them; Compressible3D and PlaneStrain read G[0] only).
-using Modulus = std::array<double, 4>;
+using Modulus = std::array<double, 5>;
 
 // (J^2 - 1)/2 - ln J = D U(J). Near J = 1 both terms are O(J - 1) and cancel to
 // O((J - 1)^2), so there it is summed as e^2/2 + (e - ln(1 + e)), e = J - 1, with
@@ -44,6 +46,27 @@ inline double volumetric_energy_times_D(double J)
   double       odd = u * u2, series = 0.0; // u^3/3 + u^5/5 + ... ; u^17 < 1e-22 here
   for (int n = 3; n <= 17; n += 2, odd *= u2) series += odd / n;
   return 0.5 * e * e + e * e / (2.0 + e) - 2.0 * series;
+}
+
+// x^(1/3) for a normal x > 0 to a relative error below 4e-7, without a division or a
+// call: x^(-1/3) from the exponent bits (the bit pattern is ~ 2^52 log2 x, so
+// C - bits/3 is ~ x^(-1/3) to 3.5 %), one step of r <- r (1 - e)^(-1/3) with
+// e = 1 - x r^3 and the series of (1 - e)^(-1/3) to e^5 (error ~ 0.11 e^6 < 2e-7 for
+// |e| < 0.1), then x^(1/3) = x r^2. About 12 dependent operations where libm's cbrt
+// is ~95 cycles; the plane-stress solve uses it for a starting point only, where any
+// value near the root does.
+inline double approximate_cbrt(double x)
+{
+  std::uint64_t bits;
+  std::memcpy(&bits, &x, sizeof bits);
+  bits = 0x553ef10000000000ull - bits / 3;
+  double r;
+  std::memcpy(&r, &bits, sizeof r);
+  const double e = std::fma(-x * r, r * r, 1.0), e2 = e * e;
+  const double series = 1.0 + e * (1.0 / 3.0) + e2 * ((2.0 / 9.0) + e * (14.0 / 81.0)) +
+                        e2 * e2 * ((35.0 / 243.0) + e * (91.0 / 729.0));
+  r *= series;
+  return x * r * r;
 }
 
 // ---------------------------------------------------------------------------------
@@ -148,21 +171,39 @@ template <class Law> struct PlaneStrain {
 //   I1bar is beyond the limit, no thickness helps: chain_limit.
 //
 // The solve: Newton on f inside that bracket, bisecting when a step leaves it or
-// fails to halve the step before last (Numerical Recipes' rtsafe); where the
-// second-order (Chebyshev) correction -f'' dc^2 / (2 f') to a Newton step dc = -f/f'
-// is small it is added, which makes the iteration cubic. It starts from the incoming
-// c33 when that lies in the bracket (the previous step's value), else from the
-// incompressible 1/k. It stops when
-//   |f| <= 1e-13 (|Gbar t| + |(ck - 1)/D|) + 1e-12 mu c + 4 eps f' c,
+// fails to halve the step before last (Numerical Recipes' rtsafe). A Newton step
+// h = -f/f' is corrected by the series reversion of the Taylor polynomial of f:
+//   delta = h (1 - A2 h + (2 A2^2 - A3) h^2),   A_n = f^(n) / (n! f'),
+// which leaves |f(c + delta)| = |f' h^4 (5 A2 (A2^2 - A3) + A4)| + O(h^5) (fourth
+// order); far from the root (|A2 h| > 0.1) only the Chebyshev term -A2 h^2 is added,
+// and beyond |A2 h| > 0.5 none. It starts from the incoming c33 when that lies in the
+// bracket (the previous step's value), else from the incompressible 1/k. It stops when
+//   |f| <= tol = 1e-13 (|Gbar t| + |(ck - 1)/D|) + 1e-12 mu c + 4 eps f' c,
 // i.e. 1e-13 of the two terms that cancel at the root, or 1e-12 mu in S33 = f/c, plus
-// the round-off floor set by the spacing of doubles near c. It also stops, without
-// evaluating again, when the corrected step delta is small (|delta| <= 1e-4 c and G
-// changes by under 1e-3 over it) and the residual it leaves,
-// |dc^3 (f'''/6 - f''^2 / (2 f'))|, is below a quarter of that tolerance: then c + delta
-// is taken and Gbar is carried to it by its third-order Taylor series (error
-// O((delta/c)^4) < 1e-16). A warm start from the previous time step with F changed
-// by up to ~1e-5 thus costs one evaluation (one cbrt and two or three divisions);
+// the round-off floor set by the spacing of doubles near c.
+//
+// It also stops without evaluating again (the warm-started time step's usual exit):
+// when the step is small, |delta| <= 1e-3 c and G changes by at most 1e-3 G over it,
+// and the fourth-order term bounds what it leaves by tol / 2, i.e.
+//   |f' h^4| (5 |A2| (A2^2 + |A3|) + |A4|) <= tol / 2
+// (each term in absolute value, so a cancellation between them cannot hide a large
+// one). Why that is a bound: f is built from powers of c (q, w, t, ck) and from
+// G(I1bar), whose Taylor series in c converge with ratio |delta|/c (powers of c) and
+// |delta| |dI1bar/dc| / gap = |delta| |dG/dc| / G (Gent: G = mu Jm / gap, so
+// G^(n)/n! = G / gap^n); so every order beyond the fourth is at most ~1e-3 of the one
+// before, and the O(h^5) rest is below 1e-2 of the bound. The point c + delta thus
+// satisfies |f| <= tol, the stopping test of an evaluated point, and Gbar is carried
+// to it by its fourth-order Taylor series (relative error (1e-3)^5 ~ 1e-15, below the
+// O(tol) of the solve). The error of the warm start does not accumulate over time
+// steps: each call evaluates f at its start. A warm start from the previous time step
+// with F changed by up to ~5e-4 (|dc| / c up to ~5e-4) thus costs one evaluation;
 // 1e-2 changes and cold starts take two or three.
+//
+// No cube root on the chain: the iterate is the pair (c, s), s = (ck)^{1/3} = J^{2/3},
+// c = s^3 / k, so that J^{-2/3} = 1/s and 1/c = k/s^3 (one division). The start is the
+// stored c33 moved to approximate_cbrt's s (by < 1.2e-6 of c; c33 is only a guess) or
+// s = 1; a Newton point gets s from (1 + delta/c)^{1/3} by its series; only bisections
+// and large steps (rare: cold starts, locked points) call libm's cbrt.
 //
 // Near the Gent limit with a finite D: past the incompressible limit the sheet
 // thickens (J > 1) to keep I1bar < Jm + 3, and the stress rises on the bulk scale
@@ -171,11 +212,11 @@ template <class Law> struct PlaneStrain {
 // unstable there. (Paper parameters, K = 1e4 mu, pure shear: max |dP~/dF~| is 4 mu at
 // rest, 1.6 mu at lambda = 5.125, 10 mu at 10 and 174 mu at 12.5.)
 
-// f and its first three c-derivatives, and Gbar with its own.
+// f and its first four c-derivatives, and Gbar with its own.
 struct PlaneStressResidual {
   bool                  admissible = false; // false: the law is locked at this c (f = -inf/+inf)
-  std::array<double, 4> f{};                // d^n f / dc^n
-  std::array<double, 4> shear{};            // d^n Gbar / dc^n
+  std::array<double, 5> f{};                // d^n f / dc^n
+  std::array<double, 5> shear{};            // d^n Gbar / dc^n
   double                scale     = 0;      // |Gbar t| + |(c k - 1)/D|
   double                dG_dc     = 0;      // |dG/dI1bar dI1bar/dc|: G changes by this per unit c
   double                G         = 0;      // G (at this c)
@@ -185,7 +226,7 @@ struct PlaneStressSolution {
   StressStatus status      = StressStatus::ok;
   double       c33         = 0.0; // C33 = lambda_3^2 with S33 = 0
   double       shear       = 0.0; // Gbar = G J^{-2/3}: P~ = Gbar (F~ - C33 F~^{-T})
-  int          evaluations = 0;   // residual evaluations, one cbrt each (the iteration count)
+  int          evaluations = 0;   // residual evaluations (the iteration count)
 };
 
 template <class Law> struct PlaneStress {
@@ -198,28 +239,43 @@ template <class Law> struct PlaneStress {
   // Leibniz; f = Gbar t + (ck - 1)/D with t' = 2/3, t'' = 0.
   PlaneStressResidual residual(double a, double k, double inv_k, double inv_D, double c) const
   {
+    (void)inv_k;
+    return residual_at(a, k, inv_D, c, std::cbrt(c * k));
+  }
+
+  // The same with s = (ck)^{1/3} given (the solve carries it along with c = s^3 / k):
+  // q = 1/s and 1/c = k q^3, one division and no cube root.
+  PlaneStressResidual residual_at(double a, double k, double inv_D, double c, double s) const
+  {
     PlaneStressResidual r;
-    const double        u = 1.0 / c, s = std::cbrt(c * k); // independent: they overlap
-    const double        q = s * s * u * inv_k;               // (ck)^{2/3} / (ck) = J^{-2/3}
-    const double        w = c * q;
+    const double        q = 1.0 / s, u = k * q * q * q, w = c * q;
     Modulus             G;
     if (!Law::modulus(p, a * q + w, G)) return r;
     r.admissible    = true;
-    const double q1 = -q * u * (1.0 / 3.0), q2 = q * u * u * (4.0 / 9.0), q3 = -q * u * u * u * (28.0 / 27.0);
+    const double u2 = u * u, u3 = u2 * u, u4 = u2 * u2;
+    // q ~ c^{-1/3}, w ~ c^{2/3}: q^(n) = q u^n prod_{m<n} (-1/3 - m), w^(n) likewise
+    const double q1 = q * u * (-1.0 / 3.0), q2 = q * u2 * (4.0 / 9.0), q3 = q * u3 * (-28.0 / 27.0),
+                 q4 = q * u4 * (280.0 / 81.0);
     const double I1 = a * q1 + w * u * (2.0 / 3.0);
-    const double I2 = a * q2 - w * u * u * (2.0 / 9.0);
-    const double I3 = a * q3 + w * u * u * u * (8.0 / 27.0);
-    const double H0 = G[0], H1 = G[1] * I1, H2 = G[2] * I1 * I1 + G[1] * I2; // d^n G(I1bar(c)) / dc^n
+    const double I2 = a * q2 + w * u2 * (-2.0 / 9.0);
+    const double I3 = a * q3 + w * u3 * (8.0 / 27.0);
+    const double I4 = a * q4 + w * u4 * (-56.0 / 81.0);
+    // d^n G(I1bar(c)) / dc^n (Faa di Bruno)
+    const double H0 = G[0], H1 = G[1] * I1, H2 = G[2] * I1 * I1 + G[1] * I2;
     const double H3 = G[3] * I1 * I1 * I1 + 3.0 * G[2] * I1 * I2 + G[1] * I3;
-    r.shear         = {H0 * q, H1 * q + H0 * q1, H2 * q + 2.0 * H1 * q1 + H0 * q2,
-                       H3 * q + 3.0 * H2 * q1 + 3.0 * H1 * q2 + H0 * q3};
+    const double H4 = G[4] * (I1 * I1) * (I1 * I1) + 6.0 * G[3] * I1 * I1 * I2 +
+                      G[2] * (3.0 * I2 * I2 + 4.0 * I1 * I3) + G[1] * I4;
+    r.shear = {H0 * q, H1 * q + H0 * q1, H2 * q + 2.0 * H1 * q1 + H0 * q2,
+               H3 * q + 3.0 * H2 * q1 + 3.0 * H1 * q2 + H0 * q3,
+               H4 * q + 4.0 * H3 * q1 + 6.0 * H2 * q2 + 4.0 * H1 * q3 + H0 * q4};
     const double t = (2.0 * c - a) * (1.0 / 3.0);
     const double iso = r.shear[0] * t, vol = (c * k - 1.0) * inv_D;
-    r.f         = {iso + vol, r.shear[1] * t + (2.0 / 3.0) * r.shear[0] + k * inv_D,
-                   r.shear[2] * t + (4.0 / 3.0) * r.shear[1], r.shear[3] * t + 2.0 * r.shear[2]};
-    r.scale     = std::abs(iso) + std::abs(vol);
-    r.dG_dc     = std::abs(H1);
-    r.G         = G[0];
+    r.f     = {iso + vol, r.shear[1] * t + (2.0 / 3.0) * r.shear[0] + k * inv_D,
+               r.shear[2] * t + (4.0 / 3.0) * r.shear[1], r.shear[3] * t + 2.0 * r.shear[2],
+               r.shear[4] * t + (8.0 / 3.0) * r.shear[3]};
+    r.scale = std::abs(iso) + std::abs(vol);
+    r.dG_dc = std::abs(H1);
+    r.G     = G[0];
     return r;
   }
 
@@ -279,13 +335,18 @@ private:
     }
     const double inv_D = 1.0 / p.D, c_iso = 0.5 * a;
     double       lo = std::min(c_iso, inv_k), hi = std::max(c_iso, inv_k);
-    double       c  = (c33_guess >= lo && c33_guess <= hi) ? c33_guess : inv_k;
+    // the iterate (c, s), c = s^3 / k (see above): the warm start, else c = 1/k, s = 1
+    double c = inv_k, s = 1.0;
+    if (c33_guess >= lo && c33_guess <= hi) {
+      const double s_guess = approximate_cbrt(c33_guess * k), c_guess = s_guess * s_guess * s_guess * inv_k;
+      if (c_guess >= lo && c_guess <= hi) c = c_guess, s = s_guess;
+    }
 
     constexpr double eps    = std::numeric_limits<double>::epsilon();
     auto             middle = [](double l, double h) { return h > 4.0 * l ? std::sqrt(l * h) : 0.5 * (l + h); };
     double           step_before_last = hi - lo, last_step = hi - lo;
     for (int it = 1; it <= max_iterations; ++it) {
-      const PlaneStressResidual r = residual(a, k, inv_k, inv_D, c);
+      const PlaneStressResidual r = residual_at(a, k, inv_D, c, s);
       out.evaluations             = it;
       double next;
       if (!r.admissible) {
@@ -307,23 +368,48 @@ private:
         if (r.f[0] < 0.0) lo = c;
         else hi = c;
         const double inv_df = 1.0 / r.f[1];
-        const double dc     = -r.f[0] * inv_df;
-        const double bend   = 0.5 * r.f[2] * dc * inv_df; // Chebyshev: delta = dc (1 - bend)
-        const double delta  = std::abs(bend) <= 0.5 ? dc * (1.0 - bend) : dc;
-        next                = c + delta;
-        const bool inside   = next > lo && next < hi;
-        if (inside && std::abs(delta) <= 1e-4 * c && std::abs(delta) * r.dG_dc <= 1e-3 * r.G &&
-            std::abs(dc * dc * dc * (r.f[3] * (1.0 / 6.0) - 0.5 * r.f[2] * r.f[2] * inv_df)) <= 0.25 * tol) {
-          out.c33   = next; // the residual left is below tol / 4: take the step unevaluated
-          out.shear = r.shear[0] +
-                      delta * (r.shear[1] + delta * (0.5 * r.shear[2] + delta * (1.0 / 6.0) * r.shear[3]));
-          return out;
+        const double h      = -r.f[0] * inv_df;                  // Newton
+        const double A2 = 0.5 * r.f[2] * inv_df, A3 = (1.0 / 6.0) * r.f[3] * inv_df;
+        const double A4 = (1.0 / 24.0) * r.f[4] * inv_df, bend = A2 * h;
+        const double delta = std::abs(bend) <= 0.1   ? h * (1.0 - bend + (2.0 * A2 * A2 - A3) * h * h)
+                             : std::abs(bend) <= 0.5 ? h * (1.0 - bend)
+                                                     : h;
+        next              = c + delta;
+        const bool inside = next > lo && next < hi;
+        if (inside && std::abs(delta) <= 1e-3 * c && std::abs(delta) * r.dG_dc <= 1e-3 * r.G) {
+          const double h2 = h * h;
+          const double left =
+              std::abs(r.f[1]) * h2 * h2 * (5.0 * std::abs(A2) * (A2 * A2 + std::abs(A3)) + std::abs(A4));
+          if (left <= 0.5 * tol) {
+            out.c33   = next; // |f| <= tol there (see above): take the step unevaluated
+            out.shear = r.shear[0] + delta * (r.shear[1] + delta * ((1.0 / 2.0) * r.shear[2] +
+                                                                    delta * ((1.0 / 6.0) * r.shear[3] +
+                                                                             delta * (1.0 / 24.0) * r.shear[4])));
+            return out;
+          }
         }
         if (!inside || 2.0 * std::abs(r.f[0]) > std::abs(step_before_last * r.f[1])) next = middle(lo, hi);
+        else if (std::abs(delta) <= 0.1 * c) {
+          // s at the Newton point: (1 + x)^{1/3} = 1 + x/3 - x^2/9 + 5x^3/81 - ..., x = delta/c,
+          // and c moved to s^3 / k, by O(x^4) <= 4e-6 of c: below the error the step
+          // itself leaves, so the iteration keeps its order. Outside the bracket: bisect.
+          const double x = delta / c, s_next = s * (1.0 + x * ((1.0 / 3.0) + x * ((-1.0 / 9.0) + x * (5.0 / 81.0))));
+          const double c_next = s_next * s_next * s_next * inv_k;
+          if (c_next > lo && c_next < hi) {
+            step_before_last = last_step;
+            last_step        = std::abs(c_next - c);
+            c                = c_next;
+            s                = s_next;
+            continue;
+          }
+          next = middle(lo, hi);
+        }
       }
+      // a bisection, a large Newton step or a locked point: s from libm's cbrt (rare)
       step_before_last = last_step;
       last_step        = std::abs(next - c);
       c                = next;
+      s                = std::cbrt(c * k);
     }
     out.status = StressStatus::no_convergence;
     return out;

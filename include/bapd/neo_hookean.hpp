@@ -11,7 +11,7 @@ struct NeoHookean {
 
   static bool modulus(const MaterialParameters &p, double, Modulus &G)
   {
-    G = {p.mu, 0.0, 0.0, 0.0};
+    G = {p.mu, 0.0, 0.0, 0.0, 0.0};
     return true;
   }
 
