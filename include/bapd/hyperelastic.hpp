@@ -313,9 +313,9 @@ template <class Law> struct PlaneStress {
   }
 
   // Four bonds at once (AVX2): F as four lanes per component, c33 the warm starts
-  // (<= 0: none). Runs the first evaluation of solve() in every lane, with the same
-  // arithmetic as solve() (so a lane's C33 and P are bit for bit those of stress()),
-  // and returns the lanes where that evaluation ends the solve (converged, or the step
+  // (<= 0: none). Runs the first one or two evaluations of solve() in every lane, with
+  // the same arithmetic as solve() (so a lane's C33 and P are bit for bit those of
+  // stress()), and returns the lanes where they end the solve (converged, or the step
   // accepted unevaluated: a warm-started time step's usual case). There P and c33
   // are written; every other lane (failure, locked point, a solve that needs more
   // evaluations) must go through stress(). Lanes may hold anything finite or not:
@@ -334,12 +334,35 @@ template <class Law> struct PlaneStress {
     const Lanes inv_k  = inv_Jt * inv_Jt;
     Lanes       lo, hi, c, s;
     start(a, k, inv_k, c33, lo, hi, c, s);
-    const PlaneStressResidualOf<Lanes> r  = residual_at(a, k, 1.0 / p.D, c, s);
-    const PlaneStressStepOf<Lanes>     st = step(r, c, lo, hi);
-    const LaneMask                     done = ok & r.admissible & (st.converged | st.accepted);
-    c33                                     = select(done, st.c33, c33);
-    const Lanes g = st.shear, b = st.shear * st.c33 * inv_Jt;
-    P             = {g * F[0] - b * F[3], g * F[1] + b * F[2], g * F[2] + b * F[1], g * F[3] - b * F[0]};
+    const double                       inv_D = 1.0 / p.D;
+    const PlaneStressResidualOf<Lanes> r     = residual_at(a, k, inv_D, c, s);
+    const PlaneStressStepOf<Lanes>     st    = step(r, c, lo, hi);
+    LaneMask                           done  = ok & r.admissible & (st.converged | st.accepted);
+    Lanes                              root = st.c33, shear = st.shear;
+    const LaneMask                     more = ok & r.admissible & ~done;
+    if (any(more)) {
+      // A second evaluation, where solve() makes it at a Newton point (the larger time
+      // steps): the same tests and arithmetic as its loop. Anything else (bisection, a
+      // large step) is left to stress().
+      const Lanes x = st.delta / c, next = c + st.delta;
+      LaneMask    newton = more & (next > st.lo) & (next < st.hi) &
+                        (2.0 * lane_abs(r.f[0]) <= lane_abs((hi - lo) * r.f[1])) & (lane_abs(st.delta) <= 0.1 * c);
+      const Lanes s_next = s * (1.0 + x * ((1.0 / 3.0) + x * ((-1.0 / 9.0) + x * (5.0 / 81.0))));
+      const Lanes c_next = s_next * s_next * s_next * inv_k;
+      newton &= (c_next > st.lo) & (c_next < st.hi);
+      if (any(newton)) {
+        const Lanes                        c2  = select(newton, c_next, c), s2 = select(newton, s_next, s);
+        const PlaneStressResidualOf<Lanes> r2  = residual_at(a, k, inv_D, c2, s2);
+        const PlaneStressStepOf<Lanes>     st2 = step(r2, c2, st.lo, st.hi);
+        const LaneMask                     done2 = newton & r2.admissible & (st2.converged | st2.accepted);
+        root                                     = select(done2, st2.c33, root);
+        shear                                    = select(done2, st2.shear, shear);
+        done |= done2;
+      }
+    }
+    c33           = select(done, root, c33);
+    const Lanes b = shear * root * inv_Jt;
+    P = {shear * F[0] - b * F[3], shear * F[1] + b * F[2], shear * F[2] + b * F[1], shear * F[3] - b * F[0]};
     return done;
   }
 

@@ -135,12 +135,9 @@ TYPED_TEST(PlaneStressFastPath, LanesGiveBitForBitTheScalarStress)
         if (group % 17 == 0) guess[l] = l == 0 ? 0.0 : l == 1 ? -1.0 : l == 2 ? 1e300 : guess[l];
       }
       if (group % 23 == 0) F[1] = {1.0, 2.0, 2.0, 1.0}; // inverted
-      std::array<Lanes, 4> FL{}, PL{};
-      Lanes                c{};
-      for (int l = 0; l < 4; ++l) {
-        for (int comp = 0; comp < 4; ++comp) FL[comp][l] = F[l][comp];
-        c[l] = guess[l];
-      }
+      std::array<Lanes, 4> FL, PL;
+      for (int comp = 0; comp < 4; ++comp) FL[comp] = Lanes{F[0][comp], F[1][comp], F[2][comp], F[3][comp]};
+      Lanes c = {guess[0], guess[1], guess[2], guess[3]};
       const LaneMask done = model.stress_lanes(FL, c, PL);
       for (int l = 0; l < 4; ++l) {
         ++lanes;
