@@ -12,7 +12,10 @@
 // model's stress is inlined into it. Per point i, the outer products
 // (y_k - y_i) (x) (x_k - x_i) V_k and (x_k - x_i) (x) (x_k - x_i) V_k are formed once
 // per family member; each bond's F and K are then one masked sum of them (BA mask AND
-// intact mask), in family order (bond_geometry.hpp). Nothing is allocated per call
+// intact mask), in family order (bond_geometry.hpp). A model with stress_lanes
+// (has_lanes, material.hpp: PlaneStress) is run four bonds at a time: the point's
+// bonds are collected first (F, warm start, force vector g), then model_lanes hands
+// them to it in family order. Nothing is allocated per call
 // (the workspace is sized once), except the list of failed bonds in the rare call
 // where a model fails.
 //

@@ -9,10 +9,13 @@
 // static functions:
 //   static constexpr bool has_limit;         // Psi_iso finite only for I1bar < limit
 //   static double I1bar_limit(const MaterialParameters &);              (has_limit)
-//   static bool modulus(const MaterialParameters &, double I1bar, Modulus &G);
+//   template <class T> static MaskOf<T> modulus(const MaterialParameters &, T I1bar,
+//                                             ModulusOf<T> &G);
 //                                              // G[n] = d^n G / dI1bar^n, n = 0..4
 //   static bool energy(const MaterialParameters &, double I1bar, double &psi_iso);
-// modulus and energy return false where the law is locked (I1bar >= limit).
+// modulus and energy return false where the law is locked (I1bar >= limit). modulus is
+// a template over T = double (one bond) or Lanes (four, lanes.hpp: PlaneStress runs
+// four bonds at a time in the bond kernel) and must keep the locked lanes finite.
 //
 // This file turns a law into the three stress functions: Compressible3D (3x3 F),
 // PlaneStrain (F33 = 1) and PlaneStress (S33 = 0, C33 solved per call). All of them
