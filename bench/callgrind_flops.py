@@ -64,7 +64,7 @@ def function_ranges(path):
         lines = open(path).read().splitlines()
     except OSError:
         return ranges
-    decl = re.compile(r"^\s*(?:static\s+|inline\s+|constexpr\s+|\[\[[^\]]*\]\]\s*)*"
+    decl = re.compile(r"^\s*(?:template\s*<[^>]*>\s*)?(?:static\s+|inline\s+|constexpr\s+|\[\[[^\]]*\]\]\s*)*"
                       r"[A-Za-z_][\w:<>,]*(?:\s*[&*])?\s+[&*]?(\w+)\s*\(")
     for k, text in enumerate(lines, start=1):
         s = text.strip()
@@ -90,7 +90,7 @@ def part_of(path, fn_name, line, ranges_cache):
     base = path.rsplit("/", 1)[-1] if path else ""
     if fn_name and ("cbrt" in fn_name or fn_name in ("frexp", "__scalbn", "scalbn", "ldexp", "__ldexp")):
         return "model: libm cbrt"
-    if base in ("hyperelastic.hpp", "gent.hpp", "neo_hookean.hpp", "tensor.hpp"):
+    if base in ("hyperelastic.hpp", "gent.hpp", "neo_hookean.hpp", "tensor.hpp", "lanes.hpp"):
         if base == "hyperelastic.hpp":
             if path not in ranges_cache:
                 ranges_cache[path] = function_ranges(path)

@@ -22,11 +22,14 @@
 //               time step's motion), so the S33 = 0 Newton solve starts near its root
 //   gent_cold   the same without warm start (c33 = 0: starts from 1/J~^2)
 //   gent_dynamics  as gent_warm with the two states 5e-4 dx apart (--dynamics-motion):
-//               the warm start is then as good as inside the solver, where a time step
-//               moves F by ~1e-3 and 71 % of the bonds need a second residual evaluation
+//               a time step's motion in the solver, where F moves by up to ~1e-3 (up to
+//               commit ea828f1 the solve then needed 1.75 residual evaluations per bond,
+//               as in the solver's time loop, 1.71; since the fourth-order warm step,
+//               1.00 here and 1.05-1.14 in the solver; --dynamics-motion 1e-3: 1.08)
 //   identity    the kernel with P = F: gather, masked sums, K^{-1}, F, force vector
 //               and stores, no constitutive cost
-//   model       GentPlaneStress::stress alone on every bond's F (warm c33)
+//   model       GentPlaneStress::stress alone on every bond's F (warm c33): the scalar
+//               solve, one bond at a time (the bond kernel runs stress_lanes, four)
 //   assemble    assemble_force_density, f_i = sum_j (t_ij - t_ji) V_j
 //   energy_warm compute_energy_consistent_bond_forces (ba_force_energy.hpp) as gent_warm:
 //               the energy-consistent form, assembled by the same assemble_force_density
@@ -216,9 +219,9 @@ int main(int argc, char **argv)
     y_b[2 * i]     = y_a[2 * i] + o.motion * dx * noise(rng);
     y_b[2 * i + 1] = y_a[2 * i + 1] + o.motion * dx * noise(rng);
   }
-  // gent_dynamics: the states are 5e-4 dx apart, so that the warm start needs about as
-  // many residual evaluations as inside the solver (callgrind on bapd, default scene:
-  // 1.71 per bond during time steps; 3e-4 dx gives 1.6 here, 1e-3 dx 1.9).
+  // gent_dynamics: the states are 5e-4 dx apart, about a time step's motion in the
+  // solver (up to ea828f1 this needed as many residual evaluations as the solver's time
+  // loop, 1.75 against 1.71; now 1.00 here, 1.08 at 1e-3 dx, 1.32 at 2e-3 dx).
   for (std::size_t k = 0; k < y_c.size(); ++k) y_c[k] = y_a[k] + o.dynamics * dx * noise(rng);
   const double *ys[2] = {y_a.data(), y_b.data()}, *ys_dyn[2] = {y_a.data(), y_c.data()};
 

@@ -12,22 +12,29 @@
 // model's stress is inlined into it. Per point i, the outer products
 // (y_k - y_i) (x) (x_k - x_i) V_k and (x_k - x_i) (x) (x_k - x_i) V_k are formed once
 // per family member; each bond's F and K are then one masked sum of them (BA mask AND
-// intact mask), in family order (bond_geometry.hpp). Nothing is allocated per call
+// intact mask), in family order (bond_geometry.hpp). A model with stress_lanes
+// (has_lanes, material.hpp: PlaneStress) is run four bonds at a time: the point's
+// bonds are collected first (F, warm start, force vector g), then model_lanes hands
+// them to it in family order. Nothing is allocated per call
 // (the workspace is sized once), except the list of failed bonds in the rare call
 // where a model fails.
 //
 // Determinism: every sum runs in family order (families are sorted by natural id) and
 // nothing depends on the local numbering, so a rank's owned points get bit-for-bit
 // the same bond forces and force densities as a one-rank run.
+#include <array>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <limits>
+#include <type_traits>
 #include <vector>
 
 #include "bapd/body.hpp"
 #include "bapd/bond_geometry.hpp"
 #include "bapd/bond_state.hpp"
 #include "bapd/family.hpp"
+#include "bapd/lanes.hpp"
 #include "bapd/material.hpp"
 #include "bapd/tensor.hpp"
 
@@ -90,12 +97,26 @@ struct BondKernelWorkspace {
   // point's bonds, and which of them carry energy (mask_words words).
   std::vector<Quad>          bond_stress;
   std::vector<std::uint64_t> energetic;
+  // Models evaluated four bonds at a time (has_lanes, e.g. PlaneStress): the point's
+  // bonds waiting for the model, in family order: F by component (4 arrays of
+  // `lane_stride`), the warm start, the force vector g (2 per bond), the position q.
+  std::size_t              lane_stride = 0; // max_family_size rounded up to 4
+  std::vector<double>      pending_F, pending_c33, pending_g;
+  std::vector<std::size_t> pending_q;
 
   void reserve(const Families &families)
   {
     point.reserve(families.max_family_size);
     if (bond_stress.size() < families.max_family_size) bond_stress.resize(families.max_family_size);
     if (energetic.size() < families.mask_words) energetic.resize(families.mask_words);
+    const std::size_t stride = (families.max_family_size + 3) / 4 * 4;
+    if (lane_stride < stride) {
+      lane_stride = stride;
+      pending_F.assign(4 * stride, 0.0);
+      pending_c33.assign(stride, 0.0);
+      pending_g.assign(2 * stride, 0.0);
+      pending_q.assign(stride, 0);
+    }
   }
 };
 
@@ -107,6 +128,70 @@ namespace detail {
 {
   stats.record(i, q, status);
   ws.failed.push_back({i, q, status});
+}
+
+template <class M, class = void> struct HasLanes : std::false_type {};
+template <class M> struct HasLanes<M, std::enable_if_t<M::has_lanes>> : std::true_type {};
+
+// A bond that stress_lanes did not finish: the scalar solve (rare, out of the loop's
+// registers; bench/callgrind_calls.py counts its calls).
+template <class Model>
+[[gnu::noinline, gnu::cold]] StressStatus model_lane_fallback(const Model &model, const Mat2 &F, double &c33, Mat2 &P)
+{
+  return model.stress(F, c33, P);
+}
+
+inline Lanes load_lanes(const double *p)
+{
+  Lanes v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+
+// The model over the n bonds of point i collected in ws.pending_*, four at a time
+// (Model::stress_lanes); a lane that its first evaluation does not finish goes through
+// the scalar stress(), which gives bit for bit what stress_lanes gives where that
+// finishes (hyperelastic.hpp), so a bond's result does not depend on its lane. Bonds
+// are taken in family order: failures are recorded in loop order.
+template <class Model>
+void model_lanes(const Model &model, BondKernelWorkspace &ws, std::size_t n, std::size_t i, std::size_t o,
+                 double *c33, double *bond_force, KernelStats &stats)
+{
+  const std::size_t S  = ws.lane_stride;
+  double           *Fc = ws.pending_F.data(), *cw = ws.pending_c33.data();
+  for (std::size_t l = n; l < (n + 3) / 4 * 4; ++l) { // unused lanes: the rest state
+    Fc[l] = Fc[3 * S + l] = 1.0;
+    Fc[S + l] = Fc[2 * S + l] = cw[l] = 0.0;
+  }
+  for (std::size_t j = 0; j < n; j += 4) {
+    const std::array<Lanes, 4> F = {load_lanes(Fc + j), load_lanes(Fc + S + j), load_lanes(Fc + 2 * S + j),
+                                    load_lanes(Fc + 3 * S + j)};
+    Lanes                      c = load_lanes(cw + j);
+    std::array<Lanes, 4>       P;
+    const LaneMask             done = model.stress_lanes(F, c, P);
+    for (std::size_t l = 0; l < 4 && j + l < n; ++l) {
+      const std::size_t q = ws.pending_q[j + l], b = o + q;
+      double           *t = bond_force + 2 * b;
+      double            cb;
+      Mat2              Pb;
+      if (done[l]) {
+        cb = c[l];
+        Pb = {P[0][l], P[1][l], P[2][l], P[3][l]};
+      } else {
+        cb                        = cw[j + l];
+        const StressStatus status = model_lane_fallback(model, {F[0][l], F[1][l], F[2][l], F[3][l]}, cb, Pb);
+        if (__builtin_expect(status != StressStatus::ok, 0)) {
+          record_failure(stats, ws, i, q, status);
+          t[0] = t[1] = 0.0;
+          continue;
+        }
+      }
+      if (c33) c33[b] = cb;
+      const double g0 = ws.pending_g[2 * (j + l)], g1 = ws.pending_g[2 * (j + l) + 1];
+      t[0]            = Pb[0] * g0 + Pb[1] * g1;
+      t[1]            = Pb[2] * g0 + Pb[3] * g1;
+    }
+  }
 }
 
 template <std::size_t Words, class Model>
@@ -127,6 +212,7 @@ void bond_forces_range(const Model &model, const PointCloud &ref, const double *
     const std::uint64_t *usable = usable_all + i * W;
     const PointTotals totals = gather_point<Words>(ref, y, fam, i, intact, s);
     const double     *off = s.offset.data(), *fvk = s.family_volume.data();
+    std::size_t       pending = 0; // bonds collected for the model (HasLanes)
     for (std::size_t q = 0; q < m; ++q) {
       const std::size_t   b     = o + q;
       double             *t     = bond_force + 2 * b;
@@ -144,8 +230,21 @@ void bond_forces_range(const Model &model, const PointCloud &ref, const double *
         continue;
       }
       double c = c33 ? c33[b] : 0.0; // <= 0: no warm start
-      Mat2   P;
       ++evaluated;
+      if constexpr (HasLanes<Model>::value) {
+        // g_ij now, the model for four bonds at a time after the loop (model_lanes)
+        const std::size_t S  = ws.lane_stride;
+        const double      f  = force_scale(k, totals, fvk[q]);
+        const double     *ki = k.shape_tensor_inv;
+        const double      d0 = off[2 * q], d1 = off[2 * q + 1];
+        for (int comp = 0; comp < 4; ++comp) ws.pending_F[comp * S + pending] = k.F[comp];
+        ws.pending_c33[pending]       = c;
+        ws.pending_g[2 * pending]     = f * (ki[0] * d0 + ki[1] * d1);
+        ws.pending_g[2 * pending + 1] = f * (ki[1] * d0 + ki[2] * d1);
+        ws.pending_q[pending++]       = q;
+        continue;
+      }
+      Mat2               P;
       const StressStatus status = model.stress(k.F, c, P);
       if (__builtin_expect(status != StressStatus::ok, 0)) {
         record_failure(stats, ws, i, q, status);
@@ -161,6 +260,7 @@ void bond_forces_range(const Model &model, const PointCloud &ref, const double *
       t[0]             = P[0] * g0 + P[1] * g1;
       t[1]             = P[2] * g0 + P[3] * g1;
     }
+    if constexpr (HasLanes<Model>::value) model_lanes(model, ws, pending, i, o, c33, bond_force, stats);
   }
   stats.evaluated += evaluated;
   stats.unusable += unusable;

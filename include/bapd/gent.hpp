@@ -12,17 +12,19 @@ struct Gent {
   static constexpr bool has_limit = true;
   static double         I1bar_limit(const MaterialParameters &p) { return p.Jm + 3.0; }
 
-  // G = mu Jm / gap, gap = Jm + 3 - I1bar: d^n G / dI1bar^n = n! G / gap^n
-  static bool modulus(const MaterialParameters &p, double I1bar, Modulus &G)
+  // G = mu Jm / gap, gap = Jm + 3 - I1bar: d^n G / dI1bar^n = n! G / gap^n. T = double
+  // or Lanes; false where locked (or NaN), and there G is finite and meaningless.
+  template <class T> static MaskOf<T> modulus(const MaterialParameters &p, T I1bar, ModulusOf<T> &G)
   {
-    const double gap = p.Jm + 3.0 - I1bar;
-    if (!(gap > 0.0)) return false; // locked (or NaN)
-    const double inv_gap = 1.0 / gap;
-    G[0]                 = p.mu * p.Jm * inv_gap;
-    G[1]                 = G[0] * inv_gap;
-    G[2]                 = 2.0 * G[1] * inv_gap;
-    G[3]                 = 3.0 * G[2] * inv_gap;
-    return true;
+    const T    gap     = p.Jm + 3.0 - I1bar;
+    const auto ok      = gap > 0.0;
+    const T    inv_gap = 1.0 / select(ok, gap, T{} + 1.0);
+    G[0]               = p.mu * p.Jm * inv_gap;
+    G[1]               = G[0] * inv_gap;
+    G[2]               = 2.0 * G[1] * inv_gap;
+    G[3]               = 3.0 * G[2] * inv_gap;
+    G[4]               = 4.0 * G[3] * inv_gap;
+    return ok;
   }
 
   static bool energy(const MaterialParameters &p, double I1bar, double &psi)

@@ -10,7 +10,11 @@
 // when the status is ok (a failed call leaves the warm start alone); plane-strain
 // models set it to 1. P is zeroed and psi left alone unless the status is ok. Models
 // are picked at run time once, outside the hot loops (with_model in bapd/models.hpp),
-// and are concrete types inside them.
+// and are concrete types inside them. A model may also provide, with
+// `static constexpr bool has_lanes = true`,
+//   LaneMask stress_lanes(const std::array<Lanes, 4> &F, Lanes &c33, std::array<Lanes, 4> &P) const;
+// four bonds at a time (lanes.hpp), giving bit for bit what stress() gives in the lanes
+// it reports done; the bond kernel (ba_force.hpp) then uses it (PlaneStress does).
 //
 // Where the files are:
 //   bapd/hyperelastic.hpp  Psi = Psi_iso(I1bar) + U(J): Compressible3D, PlaneStrain,

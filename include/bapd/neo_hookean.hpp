@@ -9,10 +9,10 @@ namespace bapd {
 struct NeoHookean {
   static constexpr bool has_limit = false;
 
-  static bool modulus(const MaterialParameters &p, double, Modulus &G)
+  template <class T> static MaskOf<T> modulus(const MaterialParameters &p, T I1bar, ModulusOf<T> &G)
   {
-    G = {p.mu, 0.0, 0.0, 0.0};
-    return true;
+    G = {T{} + p.mu, T{}, T{}, T{}, T{}};
+    return (I1bar == I1bar) | (I1bar != I1bar); // never locked
   }
 
   static bool energy(const MaterialParameters &p, double I1bar, double &psi)
