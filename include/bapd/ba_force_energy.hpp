@@ -93,7 +93,7 @@ void energy_consistent_range(const Model &model, const PointCloud &ref, const do
         record_failure(stats, ws, i, q, status);
         continue;
       }
-      if (c33) c33[b] = c;
+      if (c33 && !ws.keep_warm_start) c33[b] = c;
       const double *ki = k.shape_tensor_inv;
       const double  v  = shp[q].v[3]; // V_q
       const Double4 mq = {v * (P[0] * ki[0] + P[1] * ki[1]), v * (P[0] * ki[1] + P[1] * ki[2]),

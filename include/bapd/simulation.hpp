@@ -127,7 +127,6 @@ private:
   std::vector<double> bond_force_; // t_ij, 2 per bond
   std::vector<double> y_;          // current positions, 2 per local point
   std::vector<double> force_;      // force density, 2 per owned point
-  std::vector<double> c33_scratch_; // warm start copy for output evaluations
   std::function<KernelStats(const double *y, double *c33)> bond_forces_; // the model, chosen once
   std::function<void(const double *y, double *energy)> point_energies_; // V_i W_i of owned points
   BondKernelWorkspace workspace_;

@@ -179,6 +179,10 @@ PetscErrorCode CheckRunawayEnergy(Simulation &simulation, RunawayEnergyMonitor &
                 dt > stable ? "The time step is above the stable step, so the explicit scheme amplifies its fastest mode every step"
                             : "The time step is below the stable step estimated at rest, but the material stiffens as it deforms");
   std::string reason = text;
+  // With failure, the usual culprit is a running crack: bonds that snap at a large
+  // stretch fling their points through their neighbours within one full step.
+  if (scene.failure && scene.time_step_travel <= 0)
+    reason += "; if bonds were breaking (a running crack), give -time_step_travel 0.1 instead, which shortens only the steps in which points fly (docs/stability.md, section 5)";
   char        steps[160];
   std::snprintf(steps, sizeof steps, " (dt = %.4e s, stable estimate %.4e s).", dt, stable);
   *message = reason + steps;

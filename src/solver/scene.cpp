@@ -933,7 +933,7 @@ PetscErrorCode CheckProbesOutputTime(MPI_Comm comm, const SceneInput &in, Scene 
                           scene->time_step_safety),
                    true));
   SceneCheck(scene->time_step_travel >= 0, comm,
-             "-time_step_travel %g must be >= 0: it is the largest distance, in dx, that a point with bonds may move in one step (default 0.1; 0: off)",
+             "-time_step_travel %g must be >= 0: it is the largest distance, in dx, that a point with bonds may move in one step (0, the default: off; 0.1 for running cracks)",
              scene->time_step_travel);
   SceneCheck(scene->damping >= 0, comm, "-damping %g: the damping coefficient must be >= 0 1/s (0: undamped)", scene->damping);
   SceneCheck(scene->static_tolerance >= 0 && scene->static_tolerance < 1, comm,
