@@ -128,8 +128,10 @@ def main():
     ap.add_argument("args", nargs=argparse.REMAINDER)
     a = ap.parse_args()
     args = a.args[1:] if a.args and a.args[0] == "--" else a.args
-    scene = [x for x in args if x.endswith((".yaml", ".yml"))]
-    rest = [x for x in args if x not in scene]
+    # The first bare .yaml is the scene; an overlay given as "-options_file_yaml FILE"
+    # later stays where it is, after the scene (it is read after it).
+    scene = [x for k, x in enumerate(args) if x.endswith((".yaml", ".yml")) and (k == 0 or args[k - 1] != "-options_file_yaml")]
+    rest = [x for x in args if x not in scene[:1]]
     cmd = ["mpiexec", "-n", str(a.ranks), "--oversubscribe", "--bind-to", "none", a.exe]
     if scene:
         cmd += ["-options_file_yaml", scene[0]]

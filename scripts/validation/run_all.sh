@@ -35,7 +35,7 @@ want() { [ "$only" = all ] || [[ " $only " == *" $1 "* ]]; }
 
 # Scene 2: pure shear to stretch 5.125; scene 3: notched pure shear with failure.
 run pure_shear "$here/examples/pure_shear.yaml"
-run notched_pure_shear "$here/examples/notched_pure_shear.yaml" -output_fields -output_fields_interval 500
+run notched_pure_shear "$here/examples/notched_pure_shear.yaml" -output_fields -output_fields_interval 500 -output_interval 50
 # Scene 1: plate with a hole, static states at stretch 1.5, 1.75, 2.0 by the fast
 # route (examples/plate_hole_fast.yaml: 0.05 s ramps, adaptive dynamic relaxation,
 # holds end once kinetic energy < 1e-10 x internal energy).

@@ -326,7 +326,7 @@ PetscErrorCode Simulation::RestoreCheckpoint()
   }
   // A step shortened by -time_step_travel goes on as it was: the continuation is then
   // the uninterrupted run. A new, shorter base step (a smaller -time_step_safety) wins.
-  if (header.time_step > 0 && header.time_step < base_dt_) {
+  if (scene_.time_step_travel > 0 && header.time_step > 0 && header.time_step < base_dt_) {
     dt_ = header.time_step;
     PetscCall(TSSetTimeStep(ts_, dt_));
   }
