@@ -255,6 +255,13 @@ PetscErrorCode Simulation::SetupRelaxation()
     char range[96]; // PETSc's %g would print "50."
     std::snprintf(range, sizeof range, "between %g (-damping) and %.4g 1/s", scene_.damping, 4.0 / stable_dt_);
     PetscCall(PetscPrintf(comm_, "Relaxation: adaptive, damping c = 2 omega every step (Rayleigh quotient of the latest increment), %s\n", range));
+    // With bonds breaking, the state depends on the loading path and on the dynamics:
+    // a route that shortcuts both answers another question.
+    if (scene_.failure)
+      PetscCall(PetscFPrintf(comm_, PETSC_STDERR,
+                             "bapd: warning: -relaxation adaptive with failure (-failure_critical_stretch): the fast route assumes a "
+                             "static state that does not depend on the loading path, which breaking bonds make false; use it "
+                             "for runs without failure\n"));
   }
   PetscFunctionReturn(0);
 }
