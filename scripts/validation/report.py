@@ -114,21 +114,23 @@ def plate(root, docs, lines):
                   f"Same static u_max (to the difference above), {t_slow / t_fast:.1f} x faster.", ""]
 
 
-def steps(root, name):
-    """Time steps of a run, from its 'Finished: N steps' line."""
+def log_field(root, name, prefix, default):
+    """The second word of the first line of a run's log that starts with prefix."""
     with open(os.path.join(root, name + ".log")) as f:
         for line in f:
-            if line.startswith("Finished:"):
+            if line.startswith(prefix):
                 return line.split()[1]
-    return "-"
+    return default
+
+
+def steps(root, name):
+    """Time steps of a run, from its 'Finished: N steps' line."""
+    return log_field(root, name, "Finished:", "-")
 
 
 def points(root, name):
-    with open(os.path.join(root, name + ".log")) as f:
-        for line in f:
-            if line.startswith("Body:"):
-                return line.split()[1]
-    return "?"
+    """Points of a run, from its 'Body: N points' line."""
+    return log_field(root, name, "Body:", "?")
 
 
 def pure_shear(root, docs, lines):

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <random>
 
+#include "bapd/hyperelastic.hpp"
 #include "bapd/tensor.hpp"
 
 namespace bapd::test {
@@ -18,6 +19,12 @@ inline double uniform(std::mt19937 &rng, double lo, double hi)
 }
 // Stretch between 1/max and max, log-uniform, so compression and tension are equally likely.
 inline double stretch(std::mt19937 &rng, double max) { return std::exp(uniform(rng, -std::log(max), std::log(max))); }
+
+// The law of a plane-stress model (typed tests run over models, some checks need the law).
+template <class Model> struct LawOf;
+template <class Law> struct LawOf<PlaneStress<Law>> {
+  using type = Law;
+};
 
 inline Mat2 rotation2(double theta) { return {std::cos(theta), -std::sin(theta), std::sin(theta), std::cos(theta)}; }
 

@@ -64,14 +64,10 @@ template <class Model> class PlaneStressFastPath : public ::testing::Test {};
 using Models = ::testing::Types<GentPlaneStress, NeoHookeanPlaneStress>;
 TYPED_TEST_SUITE(PlaneStressFastPath, Models);
 
-template <class Model> struct LawOf;
-template <class Law> struct LawOf<PlaneStress<Law>> {
-  using type = Law;
-};
 
 TYPED_TEST(PlaneStressFastPath, WarmStepMatchesTightlyConvergedReferenceAlongLoadingPaths)
 {
-  using Law = typename LawOf<TypeParam>::type;
+  using Law = typename test::LawOf<TypeParam>::type;
   for (double K_over_mu : {10.0, 1e3, 1e4}) {
     const MaterialParameters p{mu, Jm, 2.0 / (K_over_mu * mu)};
     const TypeParam          model{p};

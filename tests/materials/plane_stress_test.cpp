@@ -43,14 +43,10 @@ template <class Model> class PlaneStressModels : public ::testing::Test {};
 using Models = ::testing::Types<GentPlaneStress, NeoHookeanPlaneStress>;
 TYPED_TEST_SUITE(PlaneStressModels, Models);
 
-template <class Model> struct LawOf;
-template <class Law> struct LawOf<PlaneStress<Law>> {
-  using type = Law;
-};
 
 TYPED_TEST(PlaneStressModels, SatisfiesZeroOutOfPlaneStress)
 {
-  using Law = typename LawOf<TypeParam>::type;
+  using Law = typename test::LawOf<TypeParam>::type;
   std::mt19937 rng(42);
   for (double K_over_mu : {10.0, 100.0, 1e3, 1e4}) {
     const MaterialParameters p{mu, Jm, 2.0 / (K_over_mu * mu)};
@@ -134,7 +130,7 @@ std::vector<std::pair<std::string, Mat2>> deformation_sweep()
 
 TYPED_TEST(PlaneStressModels, NewtonSolveConvergesUpToStretchTenForAllCompressibilities)
 {
-  using Law = typename LawOf<TypeParam>::type;
+  using Law = typename test::LawOf<TypeParam>::type;
   int max_cold = 0, total_cold = 0, solves = 0;
   for (double K_over_mu : {10.0, 100.0, 1e3, 1e4}) {
     const MaterialParameters p{mu, Jm, 2.0 / (K_over_mu * mu)};
