@@ -211,6 +211,6 @@ PetscErrorCode CheckBody(MPI_Comm comm, const SceneInput &in, Scene *scene)
   PetscFunctionReturn(0);
 }
 
-PetscInt ScenePointEstimate(const Scene &scene) { return static_cast<PetscInt>(lattice_point_count(scene.body)); }
+int64_t ScenePointEstimate(const Scene &scene) { return lattice_point_count(scene.body); }
 
 } // namespace bapd
