@@ -63,6 +63,8 @@ expect_error negative_dx "-body_dx -0.0005: the lattice spacing must be > 0 m" "
 expect_error zero_width "-body_width 0: the sheet width along x must be > 0 m" "$scene" -body_width 0
 expect_error negative_thickness "-body_thickness -0.001: the sheet thickness must be > 0 m" "$scene" -body_thickness -0.001
 expect_error zero_output_interval "-output_interval 0" "$scene" -output_interval 0
+expect_error critical_stretch_inf "-failure_critical_stretch 'inf' is not a finite number: give one value in SI units, e.g. -failure_critical_stretch 7.2" "$scene" -failure_critical_stretch inf
+expect_error huge_modulus "-material_mu 1e+308 Pa is too large" "$scene" -material_mu 1e308
 expect_error critical_stretch_one "-failure_critical_stretch 1: a bond breaks once stretched past s_c, so s_c must be > 1" "$scene" -failure_critical_stretch 1
 expect_error critical_stretch_below "-failure_critical_stretch 0.5" "$scene" -failure_critical_stretch 0.5
 expect_error horizon_below_dx "-horizon_factor 0.5 is below 1" "$scene" -horizon_factor 0.5
