@@ -21,7 +21,8 @@ struct LatticeCells {
 LatticeCells lattice_cells(const Body2D &body);
 
 // How many points make_lattice keeps, counted without building them (cells less the
-// centres inside holes). Cost: one test per cell, only when the body has holes.
+// centres inside holes), exactly, row by row (one chord per hole and row). Beyond
+// 1e8 row-hole pairs (a body no machine holds) it estimates from the hole areas.
 int64_t lattice_point_count(const Body2D &body);
 
 // Points at ((ix + 0.5) dx, (iy + 0.5) dx) for ix < nx = round(width / dx),

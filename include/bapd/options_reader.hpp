@@ -42,7 +42,8 @@ public:
   explicit OptionReader(PetscOptionItems *items) : items_(items) {}
   const std::string &problem() const { return problem_; }
 
-  PetscErrorCode Real(const char *name, const char *help, double *value, bool *set = nullptr);
+  // `example`: a valid value shown in the message for a malformed one (default 0.01).
+  PetscErrorCode Real(const char *name, const char *help, double *value, bool *set = nullptr, const char *example = "0.01");
   PetscErrorCode Int(const char *name, const char *help, PetscInt *value, bool *set = nullptr);
   PetscErrorCode String(const char *name, const char *help, std::string *value, bool *set = nullptr);
   PetscErrorCode RealArray(const char *name, const char *help, std::vector<double> *values, bool *set = nullptr);
@@ -52,7 +53,7 @@ private:
   std::string    Full(const char *name) const; // "-" + prefix + name without its '-'
   void           Fail(const std::string &message);
   // How a malformed scalar is described: "NAME needs a value: <needs>, e.g. NAME
-  // <example>" or "NAME 'TEXT' is not <kind>: <fix>, e.g. NAME <example>".
+  // <example>" or "NAME 'TEXT' is not a [finite] <kind>: <fix>, e.g. NAME <example>".
   struct Wording {
     const char *needs, *kind, *fix, *example;
   };

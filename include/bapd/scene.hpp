@@ -84,7 +84,8 @@ const std::vector<std::string> &SceneWarnings();
 // How many material points the body holds, counted by make_lattice's rule
 // (lattice.hpp) without building them: round(width/dx) x round(height/dx) cell
 // centres, less those inside a hole (hole_containing, lattice.hpp).
-PetscInt ScenePointEstimate(const Scene &scene);
+// 64-bit: a fine -body_dx can ask for more than 2^31 points (refused, see below).
+int64_t ScenePointEstimate(const Scene &scene);
 
 const char *to_string(ForceForm form);
 

@@ -178,7 +178,13 @@ PetscErrorCode OptionReader::Number(const char *name, const char *help, T *value
     PetscFunctionReturn(0);
   }
   if (present && !parses(text)) {
-    Fail(Format("%s '%s' is not %s: %s, e.g. %s %s", full.c_str(), text.c_str(), w.kind, w.fix, full.c_str(), w.example));
+    // strtod reads "inf" and "nan", which no option takes: say why they are refused.
+    char        *end       = nullptr;
+    const double v         = std::strtod(text.c_str(), &end);
+    const bool   infinite  = end != text.c_str() && *end == '\0' && !std::isfinite(v);
+    const char  *qualifier = infinite ? " finite" : "";
+    Fail(Format("%s '%s' is not a%s %s: %s, e.g. %s %s", full.c_str(), text.c_str(), qualifier, w.kind, w.fix, full.c_str(),
+                w.example));
     PetscFunctionReturn(0);
   }
   PetscBool flg = PETSC_FALSE;
@@ -187,14 +193,14 @@ PetscErrorCode OptionReader::Number(const char *name, const char *help, T *value
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode OptionReader::Real(const char *name, const char *help, double *value, bool *set)
+PetscErrorCode OptionReader::Real(const char *name, const char *help, double *value, bool *set, const char *example)
 {
-  return Number(name, help, value, set, IsReal, {"give a number in SI units", "a number", "give one value in SI units", "0.01"});
+  return Number(name, help, value, set, IsReal, {"give a number in SI units", "number", "give one value in SI units", example});
 }
 
 PetscErrorCode OptionReader::Int(const char *name, const char *help, PetscInt *value, bool *set)
 {
-  return Number(name, help, value, set, IsInt, {"give a whole number", "a whole number", "give an integer", "10"});
+  return Number(name, help, value, set, IsInt, {"give a whole number", "whole number", "give an integer", "10"});
 }
 
 PetscErrorCode OptionReader::String(const char *name, const char *help, std::string *value, bool *set)

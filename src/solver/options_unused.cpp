@@ -44,6 +44,24 @@ std::string UndeclaredName(const std::string &name, const char *head, std::initi
   return "";
 }
 
+// A YAML value written as a mapping (dx: {value: 0.001}) reaches PETSc as the option
+// -body_dx_value. "in YAML, 'value' is nested ..." when `given` is a known option, an
+// underscore and more; the longest such option is named. "" otherwise.
+std::string NestedKeyHint(const std::string &given, const std::vector<std::string> &known)
+{
+  const std::string lower = Lower(given);
+  std::string       parent;
+  for (const std::string &option : known) {
+    const std::string o = Lower(option);
+    if (lower.size() > o.size() + 1 && lower.compare(0, o.size(), o) == 0 && lower[o.size()] == '_' && option.size() > parent.size())
+      parent = option;
+  }
+  if (parent.empty()) return "";
+  const std::string key = given.substr(parent.size() + 1);
+  return "in YAML, '" + key + "' is nested under the key of " + parent + ", which takes one value: write key: 0.001, not key: {" + key +
+         ": 0.001}";
+}
+
 std::string UnusedMessage(const std::string &name)
 {
   const std::string suggestion = SuggestOption(name, KnownOptionNames());
@@ -53,6 +71,10 @@ std::string UnusedMessage(const std::string &name)
   if (!set.empty()) message += " '" + set + "' is not one of -load_sets: add it there, or fix the name.";
   else if (!probe.empty()) message += " '" + probe + "' is not one of -probes: add it there, or fix the name.";
   if (!suggestion.empty()) message += " Did you mean " + suggestion + "?";
+  else if (std::string nested = NestedKeyHint(name, KnownOptionNames()); !nested.empty()) {
+    nested[0] = 'I'; // "In YAML, ..." starts a sentence here
+    message += " " + nested + ".";
+  }
   return message;
 }
 
@@ -72,6 +94,8 @@ std::string MisspeltHint(const std::string &option)
     const std::string given = std::string("-") + names[i];
     if (Lower(given) != Lower(option) && !SuggestOption(given, {option}).empty())
       hint = " (" + given + " was given: is it a misspelling of " + option + "?)";
+    else if (!NestedKeyHint(given, {option}).empty())
+      hint = " (" + given + " was given: " + NestedKeyHint(given, {option}) + ")";
   }
   PetscOptionsLeftRestore(nullptr, &n, &names, &values);
   return hint;

@@ -4,6 +4,8 @@
 // of lattice.hpp, the same rule make_lattice applies.
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstdio>
 #include <numeric>
 #include <string>
 #include <vector>
@@ -111,6 +113,57 @@ std::string FindCut(const Body2D &b)
   return "";
 }
 
+// Bytes the machine can still give, from /proc/meminfo's MemAvailable (Linux); 0 when
+// it cannot be read (then nothing is refused).
+double AvailableMemoryBytes()
+{
+  std::FILE *file = std::fopen("/proc/meminfo", "r");
+  if (!file) return 0;
+  char   line[256];
+  double kib = 0;
+  while (std::fgets(line, sizeof(line), file))
+    if (std::sscanf(line, "MemAvailable: %lf kB", &kib) == 1) break;
+  std::fclose(file);
+  return kib * 1024.0;
+}
+
+// Refuses, before anything is built, a lattice that cannot fit: the points, their
+// bonds (about pi x horizon_factor^2 a point) and the memory they need, against what
+// the node of rank 0 has available for the ranks it runs. The cost per point is the
+// one measured at delta = 3.015 dx (docs/performance.md section 2: 1.83 KB, 27.9
+// bonds a point), scaled with the bonds a point has.
+PetscErrorCode CheckMemory(MPI_Comm comm, const Scene &scene, int64_t points)
+{
+  const double bytes_per_point_paper = 1.9e3, horizon_factor_paper = 3.015;
+  const double bonds_per_point       = M_PI * scene.horizon_factor * scene.horizon_factor;
+  const double bytes_per_point = bytes_per_point_paper * bonds_per_point / (M_PI * horizon_factor_paper * horizon_factor_paper);
+  PetscMPIInt  size, rank, node_ranks;
+  MPI_Comm     node;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCallMPI(MPI_Comm_split_type(comm, MPI_COMM_TYPE_SHARED, rank, MPI_INFO_NULL, &node));
+  PetscCallMPI(MPI_Comm_size(node, &node_ranks));
+  PetscCallMPI(MPI_Comm_free(&node));
+  double available = rank == 0 ? AvailableMemoryBytes() : 0.0;
+  PetscCallMPI(MPI_Bcast(&available, 1, MPI_DOUBLE, 0, comm));
+  PetscCallMPI(MPI_Bcast(&node_ranks, 1, MPI_INT, 0, comm));
+  const double per_rank = static_cast<double>(points) * bytes_per_point / size;
+  const double needed   = per_rank * node_ranks; // on rank 0's node
+  if (available <= 0 || needed <= available) PetscFunctionReturn(0);
+  const double gb = 1e9;
+  // Points go as 1/dx^2: the spacing at which the estimate just fits.
+  const double dx_fit = scene.body.dx * std::sqrt(needed / available);
+  SETERRQ(comm, PETSC_ERR_USER, "%s",
+          Format("-body_dx %g m asks for about %lld material points and %.3g bonds, about %.3g GB (%.3g GB on each of %d rank(s); "
+                 "%.2g KB a point at delta = %g dx), but this machine has %.3g GB available (MemAvailable, /proc/meminfo): choose "
+                 "-body_dx %.2g or coarser, or run on more machines",
+                 scene.body.dx, static_cast<long long>(points), static_cast<double>(points) * bonds_per_point,
+                 static_cast<double>(points) * bytes_per_point / gb, per_rank / gb, size, bytes_per_point / 1e3,
+                 scene.horizon_factor, available / gb, 1.05 * dx_fit)
+            .c_str());
+}
+
 } // namespace
 
 PetscErrorCode ReadBody(MPI_Comm comm, Scene *scene, SceneInput *in)
@@ -129,7 +182,7 @@ PetscErrorCode ReadBody(MPI_Comm comm, Scene *scene, SceneInput *in)
 
   PetscCall(ReadOptionBlock(comm, nullptr, "Horizon", [&](OptionReader &r) -> PetscErrorCode {
     PetscCall(r.Real("-horizon_factor", "Horizon over lattice spacing, delta/dx [-] (paper: 3.015; 2.515 and 3.515 also studied)",
-                     &scene->horizon_factor));
+                     &scene->horizon_factor, nullptr, "3.015"));
     return 0;
   }));
   PetscFunctionReturn(0);
@@ -197,7 +250,8 @@ PetscErrorCode CheckBody(MPI_Comm comm, const SceneInput &in, Scene *scene)
   }
   const std::string cut = FindCut(b);
   PetscCheck(cut.empty(), comm, PETSC_ERR_USER, "%s", cut.c_str());
-  SceneCheck(ScenePointEstimate(*scene) > 0, comm,
+  const int64_t points = ScenePointEstimate(*scene);
+  SceneCheck(points > 0, comm,
              "-body_holes: the holes leave no material point on the lattice of spacing -body_dx %g m: reduce their radii or dx", b.dx);
 
   SceneCheck(scene->horizon_factor >= 1, comm,
@@ -208,9 +262,10 @@ PetscErrorCode CheckBody(MPI_Comm comm, const SceneInput &in, Scene *scene)
     PetscCall(Warn(comm, Format("-horizon_factor %g is outside [2, 5]: too few neighbours make the shape tensor fragile, too many "
                                 "smooth the solution and cost time; the paper uses 3.015",
                                 scene->horizon_factor)));
+  PetscCall(CheckMemory(comm, *scene, points));
   PetscFunctionReturn(0);
 }
 
-PetscInt ScenePointEstimate(const Scene &scene) { return static_cast<PetscInt>(lattice_point_count(scene.body)); }
+int64_t ScenePointEstimate(const Scene &scene) { return lattice_point_count(scene.body); }
 
 } // namespace bapd

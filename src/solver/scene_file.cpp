@@ -5,6 +5,9 @@
 #include <cstdlib>
 #include <cstdio>
 #include <cstring>
+#include <string>
+#include <utility>
+#include <vector>
 #include <yaml.h>
 
 namespace bapd {
@@ -15,11 +18,19 @@ std::string CheckNode(yaml_document_t *doc, yaml_node_t *node, const std::string
 {
   if (!node) return "";
   if (node->type == YAML_MAPPING_NODE) {
+    // libyaml keeps both of two equal keys and PETSc would silently take the last.
+    std::vector<std::pair<std::string, std::size_t>> seen; // key, line
     for (yaml_node_pair_t *pair = node->data.mapping.pairs.start; pair < node->data.mapping.pairs.top; ++pair) {
       yaml_node_t *key = yaml_document_get_node(doc, pair->key);
       yaml_node_t *val = yaml_document_get_node(doc, pair->value);
       if (!key || key->type != YAML_SCALAR_NODE) return "a mapping key under '" + path + "' is not a plain name";
       const std::string name = (const char *)key->data.scalar.value;
+      const std::size_t line = key->start_mark.line + 1;
+      for (const auto &[other, other_line] : seen)
+        if (other == name)
+          return "key '" + name + "' is given twice " + (path.empty() ? std::string("at the top level") : "under '" + path + "'") +
+                 " (lines " + std::to_string(other_line) + " and " + std::to_string(line) + "): give each key once";
+      seen.emplace_back(name, line);
       std::string       err  = CheckNode(doc, val, path.empty() ? name : path + "_" + name);
       if (!err.empty()) return err;
     }

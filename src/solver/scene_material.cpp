@@ -3,6 +3,7 @@
 // (-material_*, -force_form, -failure_critical_stretch). Read in one block, checked
 // once the model is known (check_parameters, material.hpp, names the parameters).
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "bapd/options_reader.hpp"
@@ -37,7 +38,7 @@ PetscErrorCode ReadMaterial(MPI_Comm comm, Scene *scene, SceneInput *in)
 
   PetscCall(ReadOptionBlock(comm, nullptr, "Failure (no option: bonds never break)", [&](OptionReader &r) -> PetscErrorCode {
     PetscCall(r.Real("-failure_critical_stretch", "Critical bond stretch s_c [-], > 1 (paper: 7.2); absent: no failure",
-                     &scene->critical_stretch, &in->critical_stretch_set));
+                     &scene->critical_stretch, &in->critical_stretch_set, "7.2"));
     return 0;
   }));
   PetscFunctionReturn(0);
@@ -69,6 +70,13 @@ PetscErrorCode CheckMaterial(MPI_Comm comm, const SceneInput &in, Scene *scene)
                "-material_bulk_ratio %g: the ratio K/mu must be > 0; a nearly incompressible gel has K/mu >= 100 (the default)", in.bulk_ratio);
     m.D = 2.0 / (in.bulk_ratio * m.mu);
   } else if (!in.D_set) m.D = 2.0 / (1000.0 * m.mu); // K = 1000 mu, see ReadMaterial
+  // A modulus so large that D = 2/(ratio mu) underflows would be reported below as a
+  // -material_D 0 nobody gave: name the modulus instead.
+  if (!in.D_set && m.mu > 0 && std::isfinite(m.mu))
+    SceneCheck(std::isnormal(m.D), comm,
+               "-material_mu %g Pa is too large: the compressibility D = 2/(%g mu) it implies underflows to %g; give the shear modulus in "
+               "Pa, e.g. -material_mu 4.55e3 (the paper's gel; stiff solids are below 1e12)",
+               m.mu, in.bulk_ratio_set ? in.bulk_ratio : 1000.0, m.D);
   std::string problems = check_parameters(scene->model, m); // -material_mu, -material_Jm, -material_D
   if (!problems.empty() && problems.back() == '\n') problems.pop_back();
   PetscCheck(problems.empty(), comm, PETSC_ERR_USER, "%s", problems.c_str());

@@ -2,9 +2,12 @@
 // -time_step, -time_step_safety, -time_step_travel, -damping, -static_tolerance,
 // -end_time, -progress_interval). Rank 0 checks that the output directory can be
 // written before any work is done.
+#include <algorithm>
 #include <cerrno>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <limits>
 #include <string>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -34,6 +37,32 @@ std::string OutputDirProblem(const std::string &dir)
     path = path.parent_path();
     if (path.empty()) path = ".";
   }
+}
+
+// Refuses an end time whose time steps no run can count (PetscInt) or finish. The
+// step is not known before the body is built (power iteration, METHOD.md section 5),
+// so the count is bounded from below with a generous upper bound on the step: the
+// stable step of the explicit scheme is about dx over the fastest wave speed, and the
+// shear wave speed sqrt(mu / rho) is the slowest (measured: 1.1 dx / sqrt(mu / rho)
+// on the tiny test scene); three times that bounds it.
+PetscErrorCode CheckStepCount(MPI_Comm comm, const Scene &scene, bool end_time_set)
+{
+  PetscFunctionBeginUser;
+  const double      max_steps  = static_cast<double>(std::numeric_limits<PetscInt>::max());
+  const double      shear_wave = std::sqrt(scene.material.mu / scene.density);
+  const bool        given      = scene.time_step > 0;
+  const double      step_bound = given ? scene.time_step : 3.0 * scene.time_step_safety * scene.body.dx / shear_wave;
+  const double      steps      = scene.end_time / step_bound;
+  const std::string how        = given ? Format("-time_step %g s", scene.time_step)
+                                       : Format("the step, at most about %g s here (3 x %g x dx / sqrt(mu / rho))", step_bound,
+                                                scene.time_step_safety);
+  const double      longest    = max_steps * step_bound;
+  const std::string head       = end_time_set ? Format("-end_time %g s", scene.end_time)
+                                              : Format("-load_schedule ends at %g s, which", scene.end_time);
+  SceneCheck(steps <= max_steps, comm,
+             "%s needs %s%.3g time steps with %s, more than a run can count (%.0f): end the run by %.3g s, e.g. -end_time %g",
+             head.c_str(), given ? "" : "at least ", steps, how.c_str(), max_steps, longest, std::min(1.0, 0.5 * longest));
+  PetscFunctionReturn(0);
 }
 
 } // namespace
@@ -111,6 +140,7 @@ PetscErrorCode CheckOutputTime(MPI_Comm comm, const SceneInput &in, Scene *scene
                (MisspeltHint("-end_time") + MisspeltHint("-load_schedule")).c_str());
     scene->end_time = schedule_end;
   }
+  PetscCall(CheckStepCount(comm, *scene, in.end_time_set));
   PetscFunctionReturn(0);
 }
 

@@ -48,6 +48,9 @@ expect_error bad_rank_count "-n needs a number of ranks" "$scene" -n two
 
 # Unknown options: the nearest real name
 expect_error unknown_option "-material_muu is not a bapd option. Did you mean -material_mu?" "$scene" -material_muu 5e3
+expect_error nested_key "(-body_dx_value was given: in YAML, 'value' is nested under the key of -body_dx" "$fixtures/nested_key.yaml"
+expect_error nested_optional_key "-material_mu_value is not a bapd option. In YAML, 'value' is nested under the key of -material_mu" "$scene" -material_mu_value 3
+expect_error duplicate_key "key 'width' is given twice under 'body' (lines 3 and 7): give each key once" "$fixtures/duplicate_key.yaml"
 expect_error misspelt_required "(-body_widht was given: is it a misspelling of -body_width?)" "$fixtures/misspelt_width.yaml"
 
 # Wrong types, bapd's options and PETSc's
@@ -63,6 +66,10 @@ expect_error negative_dx "-body_dx -0.0005: the lattice spacing must be > 0 m" "
 expect_error zero_width "-body_width 0: the sheet width along x must be > 0 m" "$scene" -body_width 0
 expect_error negative_thickness "-body_thickness -0.001: the sheet thickness must be > 0 m" "$scene" -body_thickness -0.001
 expect_error zero_output_interval "-output_interval 0" "$scene" -output_interval 0
+expect_error critical_stretch_inf "-failure_critical_stretch 'inf' is not a finite number: give one value in SI units, e.g. -failure_critical_stretch 7.2" "$scene" -failure_critical_stretch inf
+expect_error huge_modulus "-material_mu 1e+308 Pa is too large" "$scene" -material_mu 1e308
+expect_error end_time_huge "-end_time 1e+300 s needs at least" "$scene" -end_time 1e300
+expect_error end_time_huge_step "-end_time 1e+06 s needs 1e+15 time steps with -time_step 1e-09 s" "$scene" -end_time 1e6 -time_step 1e-9
 expect_error critical_stretch_one "-failure_critical_stretch 1: a bond breaks once stretched past s_c, so s_c must be > 1" "$scene" -failure_critical_stretch 1
 expect_error critical_stretch_below "-failure_critical_stretch 0.5" "$scene" -failure_critical_stretch 0.5
 expect_error horizon_below_dx "-horizon_factor 0.5 is below 1" "$scene" -horizon_factor 0.5
@@ -72,6 +79,7 @@ expect_error bad_relaxation "-relaxation 'fast' is not a relaxation route: choos
 expect_error hole_covers_body "-body_holes: hole 1 (centre (0.005, 0.005) m, radius 0.02 m) covers the whole body" "$scene" -body_holes 0.005,0.005,0.02
 expect_error hole_sticks_out "-body_holes: hole 1 (centre (0.005, 0.005) m, radius 0.006 m) is not entirely inside the body" "$scene" -body_holes 0.005,0.005,0.006
 expect_error notch_outside "-body_notches: notch 1 ends at (0.02, 0.005) m, outside the body" "$scene" -body_notches 0.02,0.005,0.008,0.005
+expect_error dx_needs_more_memory "-body_dx 1e-07 m asks for about 10000000000 material points" "$scene" -body_dx 1e-7
 expect_error dx_above_body "-body_dx 0.02 m is larger than the body" "$scene" -body_dx 0.02
 expect_error empty_load_set "-load_mid_box 0.001,0.001,0.0011,0.0011 selects no material point for load set 'mid'" \
   "$scene" -load_sets top,bottom,mid -load_mid_region box -load_mid_box 0.001,0.001,0.0011,0.0011 -load_mid_x fixed

@@ -69,6 +69,16 @@ TEST(Lattice, PointCountMatchesWhatIsBuilt)
   EXPECT_LT(lattice_point_count(body), 400 - 20);
 }
 
+TEST(Lattice, PointCountMatchesWithOverlappingHolesOnCellCentres)
+{
+  // Radii that put cell centres exactly on rims (distance == radius keeps the point),
+  // overlapping holes and holes touching the edges: the row-by-row count must agree
+  // with the cell-by-cell rule to the last point.
+  Body2D body = test::plate(37, 23, 0.5, 1.0);
+  body.holes  = {{5.0, 5.0, 2.5}, {6.25, 5.25, 1.5}, {12.0, 8.0, 3.5}, {2.25, 9.25, 2.25}, {17.0, 2.0, 1.0}, {9.0, 6.0, 0.1}};
+  EXPECT_EQ(lattice_point_count(body), static_cast<int64_t>(make_lattice(body).size()));
+}
+
 TEST(Lattice, CellCountsAre64Bit)
 {
   // 1e5 x 1e5 cells: 1e10 points, beyond int32; counted, never built.
