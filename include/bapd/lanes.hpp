@@ -3,8 +3,9 @@
 // template over the lane type: T = double (one bond) or T = Lanes (four bonds). The
 // arithmetic operators act lane by lane with the same IEEE rounding as the scalar
 // code, so a lane gets bit for bit the result the scalar instantiation gets for the
-// same input (no FMA contraction: the build is ISO C++, -ffp-contract=off, and the
-// code calls std::fma / lane_fma explicitly where it wants one).
+// same input. That needs no FMA contraction, which GCC does by default for C++ (even
+// with -std=c++17): the top-level CMakeLists.txt sets -ffp-contract=off for the whole
+// build, and the code calls std::fma / lane_fma explicitly where it wants one.
 #include <cmath>
 #include <cstdint>
 #include <cstring>
