@@ -44,4 +44,22 @@ export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 scene_args=()
 [ -n "$scene" ] && scene_args=(-options_file_yaml "$scene")
 # -q: no Open MPI banner after a failed run; bapd's own message is the explanation.
-exec mpiexec -q -n "$ranks" --oversubscribe --bind-to none "$BAPD_EXE" "${scene_args[@]}" "${args[@]}"
+# mpiexec runs as a child so that a rank killed by a signal (which bapd cannot report
+# itself) still gets one line; the signals a user or a batch system sends to this
+# script (SIGTERM, SIGINT, SIGUSR1: checkpoint and stop, or checkpoint and go on) are
+# passed on to mpiexec, which passes them on to the ranks.
+mpiexec -q -n "$ranks" --oversubscribe --bind-to none "$BAPD_EXE" "${scene_args[@]}" "${args[@]}" &
+child=$!
+for sig in TERM INT USR1 HUP; do trap "kill -$sig $child 2> /dev/null" "$sig"; done
+status=0
+while :; do
+  wait "$child" && status=0 || status=$?
+  kill -0 "$child" 2> /dev/null || break # a trapped signal ends wait early: wait again
+done
+if ((status > 128)); then
+  signal="$(kill -l $((status - 128)) 2> /dev/null || echo $((status - 128)))"
+  echo "bapd: error: a bapd process was killed by SIG$signal (exit status $status) before it could report anything" \
+       "(SIGKILL is how the out-of-memory killer and batch time limits stop a run): the output directory keeps what" \
+       "was written before; continue from its checkpoint with -restart <output_dir>/checkpoint.h5 if one was written" >&2
+fi
+exit "$status"

@@ -39,6 +39,21 @@ def frames_of(xdmf):
     return frames
 
 
+def marker_size(fig, ax, position, width, height):
+    """Marker area [points^2] for discs about as wide as the point spacing on screen.
+
+    The spacing is estimated from the points' bounding box and count (a uniform
+    lattice: sqrt(area / N)); with an equal aspect ratio the axes' scale is the
+    smaller of the two directions' points per metre."""
+    spacing = np.sqrt(width * height / max(len(position), 1))
+    ax.apply_aspect()  # the box the equal aspect ratio leaves, not the one asked for
+    box = ax.get_position()
+    fig_w, fig_h = fig.get_size_inches()
+    points_per_metre = 72.0 * min(box.width * fig_w / width, box.height * fig_h / height)
+    diameter = 0.95 * spacing * points_per_metre
+    return float(np.clip(diameter * diameter, 0.05, 400.0))
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("run", help="the run's -output_dir, or its fields.xdmf")
@@ -48,7 +63,7 @@ def main():
     which.add_argument("--time", type=float, help="output time nearest to this [s]")
     which.add_argument("--step", type=int, help="the output of this step")
     p.add_argument("--output", help="PNG to write (default: <field>_step<N>.png beside fields.xdmf)")
-    p.add_argument("--size", type=float, default=0, help="marker size [points^2] (default: from the point count)")
+    p.add_argument("--size", type=float, default=0, help="marker size [points^2] (default: the point spacing on screen)")
     p.add_argument("--dpi", type=int, default=150)
     args = p.parse_args()
 
@@ -85,10 +100,9 @@ def main():
     height = np.ptp(position[:, 1]) or 1.0
     fig_width = 7.0
     fig, ax = plt.subplots(figsize=(fig_width, max(2.5, min(12.0, fig_width * height / width))))
-    size = args.size or float(np.clip(1.5e4 / len(values), 0.3, 30.0))
     order = np.argsort(values, kind="stable")  # the largest values drawn last, on top
     vmin, vmax = (0.0, 1.0) if args.field == "damage" else (None, None)
-    art = ax.scatter(position[order, 0], position[order, 1], c=values[order], s=size, cmap="viridis",
+    art = ax.scatter(position[order, 0], position[order, 1], c=values[order], s=1.0, cmap="viridis",
                      vmin=vmin, vmax=vmax, linewidths=0)
     fig.colorbar(art, ax=ax, label=label)
     ax.set_aspect("equal")
@@ -96,6 +110,7 @@ def main():
     ax.set_ylabel("y [m]")
     ax.set_title(f"{args.field} at the deformed positions\nstep {step}, t = {time:.4g} s, stretch {stretch:.4f}", fontsize=10)
     fig.tight_layout()
+    art.set_sizes([args.size or marker_size(fig, ax, position, width, height)])  # once the layout is final
     output = args.output or os.path.join(os.path.dirname(os.path.abspath(xdmf)), f"{args.field}_step{step}.png")
     fig.savefig(output, dpi=args.dpi)
     print(f"{output}: {args.field} at step {step}, t = {time:.6g} s")

@@ -48,6 +48,39 @@ TEST(Lattice, HoleRemovesPointsAndNaturalIdsStayCompact)
   }
 }
 
+TEST(Lattice, PointOnAHoleRimIsMaterial)
+{
+  Body2D body = test::plate(4, 4, 1.0, 1.0);
+  body.holes.push_back({2.0, 2.0, 1.0});
+  body.holes.push_back({2.0, 2.0, 1.5}); // overlaps the first: the first one is named
+  EXPECT_EQ(hole_containing(body, 2.5, 2.0), 0);
+  EXPECT_EQ(hole_containing(body, 3.25, 2.0), 1);
+  EXPECT_EQ(hole_containing(body, 3.5, 2.0), -1); // distance == radius: on the rim
+  EXPECT_EQ(hole_containing(body, 0.5, 0.5), -1);
+}
+
+TEST(Lattice, PointCountMatchesWhatIsBuilt)
+{
+  Body2D body = test::plate(20, 20, 1.0, 1.0);
+  EXPECT_EQ(lattice_point_count(body), 400);
+  body.holes.push_back({10.0, 10.0, 3.0});
+  body.holes.push_back({4.0, 15.0, 2.5});
+  EXPECT_EQ(lattice_point_count(body), static_cast<int64_t>(make_lattice(body).size()));
+  EXPECT_LT(lattice_point_count(body), 400 - 20);
+}
+
+TEST(Lattice, CellCountsAre64Bit)
+{
+  // 1e5 x 1e5 cells: 1e10 points, beyond int32; counted, never built.
+  Body2D body = test::plate(1, 1, 1.0, 1.0);
+  body.width = body.height = 1.0;
+  body.dx                  = 1e-5;
+  const LatticeCells cells = lattice_cells(body);
+  EXPECT_EQ(cells.nx, 100000);
+  EXPECT_EQ(cells.ny, 100000);
+  EXPECT_EQ(lattice_point_count(body), int64_t{10000000000});
+}
+
 TEST(Lattice, RejectsNonPositiveSpacing)
 {
   Body2D body = test::plate(4, 4);

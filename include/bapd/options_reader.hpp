@@ -1,0 +1,82 @@
+#pragma once
+// The options framework behind the scene (internal to src/solver/scene*.cpp and
+// options_*.cpp): one OptionReader per PetscOptionsBegin block, the registry of names
+// it fills, warnings, and the message helpers every section shares.
+#include <petscsys.h>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace bapd {
+
+// Lower-case copy (option names and choices are case-insensitive).
+std::string Lower(std::string s);
+// printf into a std::string (the C library's %g: PETSc's printf writes 4550 as "4550.").
+std::string Format(const char *format, ...) __attribute__((format(printf, 1, 2)));
+
+// Records a warning for SceneWarnings() and prints it on rank 0, to stderr; `loud`
+// sets it off with blank lines and capitals for a warning that may cost the run.
+PetscErrorCode Warn(MPI_Comm comm, const std::string &message, bool loud = false);
+// Forgets the warnings of the previous SceneFromOptions.
+void ClearWarnings();
+
+// Every option name registered so far, as documented (sorted case-insensitively).
+std::vector<std::string> KnownOptionNames();
+
+// Rejects names (of load sets, probes) that cannot be part of an option name or that
+// repeat, naming `option` (the list they came from) and `what` they name.
+PetscErrorCode CheckNames(MPI_Comm comm, const std::vector<std::string> &names, const char *option, const char *what);
+
+// " (-body_widht was given: is it a misspelling of -body_width?)" when an option that
+// nothing has read lies within typo distance of `option`, which is missing: a misspelt
+// required option otherwise reads as a forgotten one. "" when there is none.
+std::string MisspeltHint(const std::string &option);
+
+// Reading: one OptionReader per PetscOptionsBegin block. Each call registers the
+// name, checks that the text is well formed (so a malformed number is reported
+// naming its option, not as PETSc's "Input string has no numeric value"), and then
+// reads it through PETSc so that -help lists it. The first malformed value is kept
+// and reported after the block (BAPD_CHECK_READ).
+class OptionReader {
+public:
+  explicit OptionReader(PetscOptionItems *items) : items_(items) {}
+  const std::string &problem() const { return problem_; }
+
+  PetscErrorCode Real(const char *name, const char *help, double *value, bool *set = nullptr);
+  PetscErrorCode Int(const char *name, const char *help, PetscInt *value, bool *set = nullptr);
+  PetscErrorCode String(const char *name, const char *help, std::string *value, bool *set = nullptr);
+  PetscErrorCode RealArray(const char *name, const char *help, std::vector<double> *values, bool *set = nullptr);
+  PetscErrorCode StringArray(const char *name, const char *help, std::vector<std::string> *values, bool *set = nullptr);
+
+private:
+  std::string    Full(const char *name) const; // "-" + prefix + name without its '-'
+  void           Fail(const std::string &message);
+  // How a malformed scalar is described: "NAME needs a value: <needs>, e.g. NAME
+  // <example>" or "NAME 'TEXT' is not <kind>: <fix>, e.g. NAME <example>".
+  struct Wording {
+    const char *needs, *kind, *fix, *example;
+  };
+  // Reads one number; an empty or malformed text is recorded, worded by `wording`.
+  template <class T>
+  PetscErrorCode Number(const char *name, const char *help, T *value, bool *set, bool (*parses)(const std::string &),
+                        const Wording &wording);
+  PetscErrorCode Raw(const char *name, std::string *text, bool *present);
+
+  PetscOptionItems *items_;
+  std::string       problem_;
+};
+
+// One PetscOptionsBegin block titled `title` (options prefixed by `prefix`, or
+// none): `read` reads its options through the OptionReader (PETSc may run it more
+// than once, e.g. for -help); the first malformed value is then reported.
+PetscErrorCode ReadOptionBlock(MPI_Comm comm, const char *prefix, const char *title,
+                               const std::function<PetscErrorCode(OptionReader &)> &read);
+
+} // namespace bapd
+
+// PetscCheck with the message formatted by the C library: PETSc's printf writes
+// 4550 as "4550.", which reads oddly in a message about an option value.
+#define SceneCheck(cond, comm, ...) PetscCheck(cond, comm, PETSC_ERR_USER, "%s", ::bapd::Format(__VA_ARGS__).c_str())
+
+#define BAPD_CHECK_READ(reader_problem, comm) \
+  PetscCheck((reader_problem).empty(), comm, PETSC_ERR_USER, "%s", (reader_problem).c_str())

@@ -1,0 +1,64 @@
+#pragma once
+// The scene's sections (internal to src/solver/scene*.cpp): what the options said
+// before the checks, and the read and check pass of each section. SceneFromOptions
+// (scene.cpp) runs every Read* (so that -help lists every block), then every Check*,
+// which turns the raw input into the Scene's values, first problem reported.
+#include <petscsys.h>
+#include <string>
+#include <vector>
+
+#include "bapd/scene.hpp"
+
+namespace bapd {
+
+// What the options said, beyond the values that go straight into the Scene: which
+// were given, and the raw text of lists and choices, for the checks.
+struct LoadInput {
+  std::string         name, region, x = "free", y = "free";
+  bool                region_set = false, box_set = false, layers_set = false, x_scale_set = false, y_scale_set = false;
+  std::vector<double> box;
+  PetscInt            layers  = 1;
+  double              x_scale = 1.0, y_scale = 1.0;
+};
+
+struct ProbeInput {
+  std::string         name;
+  std::vector<double> at;
+  bool                at_set = false;
+};
+
+struct SceneInput {
+  bool                     width_set = false, height_set = false, thickness_set = false, dx_set = false;
+  std::vector<double>      holes, notches;
+  std::string              model = "gent", formulation = "plane_stress", force_form = "bond_only";
+  bool                     D_set = false, bulk_ratio_set = false;
+  double                   bulk_ratio = 1000.0;
+  bool                     critical_stretch_set = false;
+  std::vector<std::string> load_names;
+  std::vector<LoadInput>   loads;
+  std::vector<double>      schedule;
+  bool                     schedule_set = false, reference_length_set = false;
+  std::vector<std::string> probe_names;
+  std::vector<ProbeInput>  probes;
+  bool                     end_time_set = false;
+};
+
+// Body (scene_body.cpp): -body_* and -horizon_factor.
+PetscErrorCode ReadBody(MPI_Comm comm, Scene *scene, SceneInput *in);
+PetscErrorCode CheckBody(MPI_Comm comm, const SceneInput &in, Scene *scene);
+// Material and failure (scene_material.cpp): -material_*, -force_form, -failure_*.
+PetscErrorCode ReadMaterial(MPI_Comm comm, Scene *scene, SceneInput *in);
+PetscErrorCode CheckMaterial(MPI_Comm comm, const SceneInput &in, Scene *scene);
+// Loading (scene_loading.cpp): -load_sets, -load_schedule, -load_NAME_*.
+PetscErrorCode ReadLoading(MPI_Comm comm, Scene *scene, SceneInput *in);
+PetscErrorCode CheckLoading(MPI_Comm comm, const SceneInput &in, Scene *scene);
+// Probes (scene_probes.cpp): -probes, -probe_NAME_at.
+PetscErrorCode ReadProbes(MPI_Comm comm, SceneInput *in);
+PetscErrorCode CheckProbes(MPI_Comm comm, const SceneInput &in, Scene *scene);
+// Output and time stepping (scene_run.cpp): -output_*, -time_step*, -damping,
+// -static_tolerance, -end_time, -progress_interval. Checked after the loading (the
+// end time defaults to the schedule's).
+PetscErrorCode ReadOutputTime(MPI_Comm comm, Scene *scene, SceneInput *in);
+PetscErrorCode CheckOutputTime(MPI_Comm comm, const SceneInput &in, Scene *scene);
+
+} // namespace bapd

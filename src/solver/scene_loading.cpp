@@ -1,0 +1,190 @@
+// The loading section: the grips (-load_sets, each set's -load_NAME_region, box,
+// layers and components) and the stretch schedule (-load_schedule,
+// -load_reference_length) that moves them. Which points a set holds at run time:
+// LoadSetSelect (scene_selection.cpp).
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "bapd/options_reader.hpp"
+#include "bapd/scene_input.hpp"
+
+namespace bapd {
+
+namespace {
+
+bool ParseComponent(const std::string &text, ComponentLoad *load)
+{
+  const std::string t = Lower(text);
+  if (t == "free") *load = ComponentLoad::free;
+  else if (t == "fixed") *load = ComponentLoad::fixed;
+  else if (t == "stretch") *load = ComponentLoad::stretch;
+  else return false;
+  return true;
+}
+
+} // namespace
+
+PetscErrorCode ReadLoading(MPI_Comm comm, Scene *scene, SceneInput *in)
+{
+  PetscFunctionBeginUser;
+  PetscCall(ReadOptionBlock(comm, nullptr, "Loading: grips (load sets) following a stretch schedule", [&](OptionReader &r) -> PetscErrorCode {
+    PetscCall(r.StringArray("-load_sets", "Names of the load sets name1,name2,... (each set S is configured by -load_S_...)", &in->load_names));
+    PetscCall(r.RealArray("-load_schedule", "Stretch schedule t0,lambda0,t1,lambda1,... [s, -], piecewise linear (default: none)", &in->schedule,
+                          &in->schedule_set));
+    PetscCall(r.Real("-load_reference_length", "Length L in u = scale (lambda - 1) L [m] (default: body height)", &scene->reference_length,
+                     &in->reference_length_set));
+    return 0;
+  }));
+  PetscCall(CheckNames(comm, in->load_names, "-load_sets", "load set"));
+
+  for (const std::string &name : in->load_names) {
+    LoadInput         set;
+    const std::string prefix = "load_" + name + "_";
+    const std::string title  = "Load set " + name;
+    set.name                 = name;
+    PetscCall(ReadOptionBlock(comm, prefix.c_str(), title.c_str(), [&](OptionReader &r) -> PetscErrorCode {
+      PetscCall(r.String("-region", "Points held: top | bottom | left | right (edge layers) | box (required)", &set.region, &set.region_set));
+      PetscCall(r.RealArray("-box", "Region box xmin,ymin,xmax,ymax [m] (region box)", &set.box, &set.box_set));
+      PetscCall(r.Int("-layers", "Point layers taken from the edge, each dx thick [-]", &set.layers, &set.layers_set));
+      PetscCall(r.String("-x", "x component: free | fixed (u = 0) | stretch (follows the schedule)", &set.x));
+      PetscCall(r.String("-y", "y component: free | fixed (u = 0) | stretch (follows the schedule)", &set.y));
+      PetscCall(r.Real("-x_scale", "Scale of a stretch x component: u = scale (lambda - 1) L [-]", &set.x_scale, &set.x_scale_set));
+      PetscCall(r.Real("-y_scale", "Scale of a stretch y component: u = scale (lambda - 1) L [-]", &set.y_scale, &set.y_scale_set));
+      return 0;
+    }));
+    in->loads.push_back(set);
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode CheckLoading(MPI_Comm comm, const SceneInput &in, Scene *scene)
+{
+  const Body2D &b = scene->body;
+  Schedule     &schedule = scene->schedule;
+  PetscFunctionBeginUser;
+  // The schedule: pairs (t, lambda), times strictly increasing from t >= 0.
+  schedule.time.clear();
+  schedule.stretch.clear();
+  if (in.schedule_set) {
+    SceneCheck(!in.schedule.empty() && in.schedule.size() % 2 == 0, comm,
+               "-load_schedule holds %zu numbers: give pairs time,stretch t0,lambda0,t1,lambda1,... (e.g. 0,1,10,2 ramps lambda from 1 "
+               "to 2 over 10 s)",
+               in.schedule.size());
+    for (std::size_t k = 0; 2 * k < in.schedule.size(); ++k) {
+      const double t = in.schedule[2 * k], lambda = in.schedule[2 * k + 1];
+      SceneCheck(t >= 0, comm, "-load_schedule: knot %zu has time %g s: times count from the start of the run, t >= 0", k + 1, t);
+      if (k > 0)
+        SceneCheck(t > schedule.time.back(), comm,
+                   "-load_schedule: times must increase strictly, but knot %zu has t = %g s after t = %g s: a hold is two knots with "
+                   "the same stretch at different times",
+                   k + 1, t, schedule.time.back());
+      SceneCheck(lambda > 0, comm, "-load_schedule: knot %zu has stretch %g: a stretch (current / initial length) must be > 0",
+                 k + 1, lambda);
+      schedule.time.push_back(t);
+      schedule.stretch.push_back(lambda);
+    }
+    if (std::fabs(schedule.stretch_at(0.0) - 1.0) > 1e-12)
+      PetscCall(Warn(comm, Format("-load_schedule starts at stretch %g, not 1: the grips jump at t = 0", schedule.stretch_at(0.0))));
+  }
+  if (in.reference_length_set)
+    SceneCheck(scene->reference_length > 0, comm,
+               "-load_reference_length %g: the length that turns stretch into displacement must be > 0 m (default: the body height)",
+               scene->reference_length);
+  else scene->reference_length = b.height;
+
+  scene->loads.clear();
+  for (const LoadInput &li : in.loads) {
+    LoadSet     set;
+    const char *n = li.name.c_str();
+    set.name      = li.name;
+    SceneCheck(li.region_set, comm, "-load_%s_region is required for load set '%s': choose top, bottom, left, right or box%s", n, n,
+               MisspeltHint("-load_" + li.name + "_region").c_str());
+    const std::string region = Lower(li.region);
+    if (region == "top") set.region = LoadSet::Region::top;
+    else if (region == "bottom") set.region = LoadSet::Region::bottom;
+    else if (region == "left") set.region = LoadSet::Region::left;
+    else if (region == "right") set.region = LoadSet::Region::right;
+    else if (region == "box") set.region = LoadSet::Region::box;
+    else SETERRQ(comm, PETSC_ERR_USER, "%s", Format("-load_%s_region '%s' is not a region: choose top, bottom, left, right or box", n, li.region.c_str()).c_str());
+
+    if (set.region == LoadSet::Region::box) {
+      SceneCheck(li.box_set, comm, "-load_%s_box is required with -load_%s_region box: give xmin,ymin,xmax,ymax in m%s", n, n,
+                 MisspeltHint("-load_" + li.name + "_box").c_str());
+      SceneCheck(li.box.size() == 4, comm, "-load_%s_box holds %zu numbers: give exactly four, xmin,ymin,xmax,ymax in m", n,
+                 li.box.size());
+      std::copy(li.box.begin(), li.box.end(), set.box);
+      SceneCheck(set.box[0] < set.box[2] && set.box[1] < set.box[3], comm,
+                 "-load_%s_box %g,%g,%g,%g is empty: the order is xmin,ymin,xmax,ymax with xmin < xmax and ymin < ymax", n, set.box[0],
+                 set.box[1], set.box[2], set.box[3]);
+      SceneCheck(set.box[2] >= 0 && set.box[0] <= b.width && set.box[3] >= 0 && set.box[1] <= b.height, comm,
+                 "-load_%s_box %g,%g,%g,%g lies outside the body [0, %g] x [0, %g] m: move it onto the body", n, set.box[0], set.box[1],
+                 set.box[2], set.box[3], b.width, b.height);
+      SceneCheck(!li.layers_set, comm,
+                 "-load_%s_layers is set but load set '%s' is a box: layers count from an edge; remove it or choose an edge region", n, n);
+    } else {
+      SceneCheck(!li.box_set, comm,
+                 "-load_%s_box is set but -load_%s_region is %s: the box is only used with region box; remove it or set the region to box",
+                 n, n, to_string(set.region));
+      SceneCheck(li.layers >= 1, comm, "-load_%s_layers %" PetscInt_FMT ": take at least one point layer (the default, 1)", n,
+                 li.layers);
+      const bool   vertical = set.region == LoadSet::Region::top || set.region == LoadSet::Region::bottom;
+      const double across   = vertical ? b.height : b.width;
+      SceneCheck(li.layers * b.dx < across, comm,
+                 "-load_%s_layers %" PetscInt_FMT " is %g m deep, the whole body %s (%g m): use fewer layers", n, li.layers, li.layers * b.dx,
+                 vertical ? "height" : "width", across);
+      set.layers = static_cast<int>(li.layers);
+    }
+
+    SceneCheck(ParseComponent(li.x, &set.x), comm, "-load_%s_x '%s' is not a choice: choose free, fixed or stretch", n, li.x.c_str());
+    SceneCheck(ParseComponent(li.y, &set.y), comm, "-load_%s_y '%s' is not a choice: choose free, fixed or stretch", n, li.y.c_str());
+    for (int c = 0; c < 2; ++c) {
+      const char          axis  = c == 0 ? 'x' : 'y';
+      const ComponentLoad load  = c == 0 ? set.x : set.y;
+      const bool          given = c == 0 ? li.x_scale_set : li.y_scale_set;
+      const double        scale = c == 0 ? li.x_scale : li.y_scale;
+      SceneCheck(load == ComponentLoad::stretch || !given, comm,
+                 "-load_%s_%c_scale is set but -load_%s_%c is %s: the scale applies to a stretch component only; remove it or set "
+                 "-load_%s_%c stretch",
+                 n, axis, n, axis, to_string(load), n, axis);
+      if (load != ComponentLoad::stretch) continue;
+      SceneCheck(!schedule.time.empty(), comm,
+                 "-load_%s_%c stretch needs a stretch schedule: give -load_schedule t0,lambda0,t1,lambda1,... (e.g. 0,1,10,2 ramps lambda "
+                 "from 1 to 2 over 10 s)%s",
+                 n, axis, MisspeltHint("-load_schedule").c_str());
+      if (scale == 0.0)
+        PetscCall(Warn(comm, Format("-load_%s_%c_scale is 0: the stretch component never moves (same as -load_%s_%c fixed)", n, axis, n, axis)));
+      (c == 0 ? set.x_scale : set.y_scale) = scale;
+    }
+    if (set.x == ComponentLoad::free && set.y == ComponentLoad::free)
+      PetscCall(Warn(comm, Format("load set '%s' holds neither component (-load_%s_x and -load_%s_y are free): it does nothing; set "
+                                  "one of them to fixed or stretch",
+                                  n, n, n)));
+    scene->loads.push_back(set);
+  }
+  PetscFunctionReturn(0);
+}
+
+const char *to_string(LoadSet::Region region)
+{
+  switch (region) {
+  case LoadSet::Region::top: return "top";
+  case LoadSet::Region::bottom: return "bottom";
+  case LoadSet::Region::left: return "left";
+  case LoadSet::Region::right: return "right";
+  case LoadSet::Region::box: return "box";
+  }
+  return "unknown";
+}
+
+const char *to_string(ComponentLoad load)
+{
+  switch (load) {
+  case ComponentLoad::free: return "free";
+  case ComponentLoad::fixed: return "fixed";
+  case ComponentLoad::stretch: return "stretch";
+  }
+  return "unknown";
+}
+
+} // namespace bapd

@@ -1,0 +1,88 @@
+// The material section: the constitutive model and its parameters, the 2D
+// reduction, the bond force form, the density and the failure criterion
+// (-material_*, -force_form, -failure_critical_stretch). Read in one block, checked
+// once the model is known (check_parameters, material.hpp, names the parameters).
+#include <algorithm>
+#include <string>
+
+#include "bapd/options_reader.hpp"
+#include "bapd/scene_input.hpp"
+
+namespace bapd {
+
+PetscErrorCode ReadMaterial(MPI_Comm comm, Scene *scene, SceneInput *in)
+{
+  MaterialParameters &m = scene->material;
+  PetscFunctionBeginUser;
+  PetscCall(ReadOptionBlock(comm, nullptr, "Material", [&](OptionReader &r) -> PetscErrorCode {
+    PetscCall(r.String("-material_model", "Constitutive model: gent | neo_hookean (neo-hookean also accepted)", &in->model));
+    PetscCall(r.String("-material_formulation", "2D reduction: plane_stress | plane_strain", &in->formulation));
+    PetscCall(r.String("-force_form",
+                       "Bond force: bond_only (the paper's eq 23) | energy_consistent (minus the gradient of the strain "
+                       "energy: conserves energy undamped)",
+                       &in->force_form));
+    PetscCall(r.Real("-material_mu", "Shear modulus mu [Pa] (paper: 4.55e3)", &m.mu));
+    PetscCall(r.Real("-material_Jm", "Gent chain-extension limit Jm [-] (paper: 162.6; unused by neo_hookean)", &m.Jm));
+    // Default compressibility: bulk modulus K = 2/D = 1000 mu (METHOD.md section 4:
+    // the paper gives no D). K = 100 mu already softens the pure-shear curve by 7 %
+    // at stretch 5.125 (the sheet thins less); 1000 mu keeps it within 1 %, and in
+    // plane stress a stiffer K does not shrink the stable step at rest.
+    m.D = 2.0 / (in->bulk_ratio * m.mu);
+    PetscCall(r.Real("-material_D", "Compressibility D [1/Pa]; bulk modulus K = 2/D (default 2/(1000 mu), i.e. K = 1000 mu)", &m.D, &in->D_set));
+    PetscCall(r.Real("-material_bulk_ratio", "Bulk to shear modulus ratio K/mu [-]; sets D = 2/(ratio mu) (give this or -material_D)",
+                     &in->bulk_ratio, &in->bulk_ratio_set));
+    PetscCall(r.Real("-material_density", "Mass density [kg/m^3]", &scene->density));
+    return 0;
+  }));
+
+  PetscCall(ReadOptionBlock(comm, nullptr, "Failure (no option: bonds never break)", [&](OptionReader &r) -> PetscErrorCode {
+    PetscCall(r.Real("-failure_critical_stretch", "Critical bond stretch s_c [-], > 1 (paper: 7.2); absent: no failure",
+                     &scene->critical_stretch, &in->critical_stretch_set));
+    return 0;
+  }));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode CheckMaterial(MPI_Comm comm, const SceneInput &in, Scene *scene)
+{
+  MaterialParameters &m = scene->material;
+  PetscFunctionBeginUser;
+  std::string model = Lower(in.model);
+  std::replace(model.begin(), model.end(), '-', '_'); // "neo-hookean" as the paper writes it
+  if (!parse(model, scene->model))
+    SETERRQ(comm, PETSC_ERR_USER, "%s", Format("-material_model '%s' is not a model: choose gent or neo_hookean", in.model.c_str()).c_str());
+  if (!parse(Lower(in.formulation), scene->formulation))
+    SETERRQ(comm, PETSC_ERR_USER, "%s",
+            Format("-material_formulation '%s' is not a formulation: choose plane_stress or plane_strain", in.formulation.c_str()).c_str());
+  std::string form = Lower(in.force_form);
+  std::replace(form.begin(), form.end(), '-', '_');
+  if (form == "bond_only") scene->force_form = ForceForm::bond_only;
+  else if (form == "energy_consistent") scene->force_form = ForceForm::energy_consistent;
+  else
+    SETERRQ(comm, PETSC_ERR_USER, "%s",
+            Format("-force_form '%s' is not a force form: choose bond_only (the paper's) or energy_consistent", in.force_form.c_str()).c_str());
+
+  SceneCheck(!(in.D_set && in.bulk_ratio_set), comm,
+             "-material_D and -material_bulk_ratio both set the compressibility (D = 2/(bulk_ratio mu)): give only one of them");
+  if (in.bulk_ratio_set) {
+    SceneCheck(in.bulk_ratio > 0, comm,
+               "-material_bulk_ratio %g: the ratio K/mu must be > 0; a nearly incompressible gel has K/mu >= 100 (the default)", in.bulk_ratio);
+    m.D = 2.0 / (in.bulk_ratio * m.mu);
+  } else if (!in.D_set) m.D = 2.0 / (1000.0 * m.mu); // K = 1000 mu, see ReadMaterial
+  std::string problems = check_parameters(scene->model, m); // -material_mu, -material_Jm, -material_D
+  if (!problems.empty() && problems.back() == '\n') problems.pop_back();
+  PetscCheck(problems.empty(), comm, PETSC_ERR_USER, "%s", problems.c_str());
+  SceneCheck(scene->density > 0, comm, "-material_density %g: the density must be > 0 kg/m^3 (a hydrogel: about 1000)",
+             scene->density);
+
+  scene->failure = in.critical_stretch_set;
+  if (scene->failure)
+    SceneCheck(scene->critical_stretch > 1, comm,
+               "-failure_critical_stretch %g: a bond breaks once stretched past s_c, so s_c must be > 1 (paper: 7.2); leave the option "
+               "out for no failure",
+               scene->critical_stretch);
+  else scene->critical_stretch = 0.0;
+  PetscFunctionReturn(0);
+}
+
+} // namespace bapd
