@@ -16,7 +16,7 @@ instruction is then
     moves and conversions are 0 (the convention of hardware FLOP counters);
   * given a part: the function of the header it came from (bond_geometry.hpp's
     gather_point, sum_selected/masked_sums, bond_kinematics, force_scale; the model in
-    hyperelastic.hpp/gent.hpp/tensor.hpp and libm's cbrt; the loop in ba_force.hpp;
+    hyperelastic.hpp/plane_stress.hpp/gent.hpp/tensor.hpp and libm's cbrt; the loop in ba_force.hpp;
     assemble_force_density).
 Deterministic: the same binary and inputs give the same counts on any x86-64 machine.
 """
@@ -90,8 +90,10 @@ def part_of(path, fn_name, line, ranges_cache):
     base = path.rsplit("/", 1)[-1] if path else ""
     if fn_name and ("cbrt" in fn_name or fn_name in ("frexp", "__scalbn", "scalbn", "ldexp", "__ldexp")):
         return "model: libm cbrt"
-    if base in ("hyperelastic.hpp", "gent.hpp", "neo_hookean.hpp", "tensor.hpp", "lanes.hpp"):
-        if base == "hyperelastic.hpp":
+    model_files = ("hyperelastic.hpp", "plane_stress.hpp", "hyperelastic_numerics.hpp", "gent.hpp",
+                   "neo_hookean.hpp", "tensor.hpp", "lanes.hpp")
+    if base in model_files:
+        if base in ("hyperelastic.hpp", "plane_stress.hpp", "hyperelastic_numerics.hpp"):
             if path not in ranges_cache:
                 ranges_cache[path] = function_ranges(path)
             return "model: " + enclosing(ranges_cache[path], line)

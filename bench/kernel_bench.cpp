@@ -38,7 +38,7 @@
 //
 // Build: the `kernel_bench` target (bench/CMakeLists.txt), or standalone from the
 // repository root:
-//   g++ -std=c++17 -O3 -march=native -DNDEBUG -Iinclude bench/kernel_bench.cpp
+//   g++ -std=c++17 -O3 -march=native -DNDEBUG -ffp-contract=off -Iinclude bench/kernel_bench.cpp
 //       src/core/*.cpp -o /tmp/kernel_bench
 #include <algorithm>
 #include <chrono>
@@ -55,6 +55,7 @@
 #include "bapd/bond_geometry.hpp"
 #include "bapd/family.hpp"
 #include "bapd/gent.hpp"
+#include "bapd/material.hpp"
 #include "bapd/lattice.hpp"
 
 #if defined(BAPD_BENCH_CALLGRIND) && __has_include(<valgrind/callgrind.h>)

@@ -13,7 +13,7 @@
 // (y_k - y_i) (x) (x_k - x_i) V_k and (x_k - x_i) (x) (x_k - x_i) V_k are formed once
 // per family member; each bond's F and K are then one masked sum of them (BA mask AND
 // intact mask), in family order (bond_geometry.hpp). A model with stress_lanes
-// (has_lanes, material.hpp: PlaneStress) is run four bonds at a time: the point's
+// (has_lanes, material.hpp: PlaneStress, plane_stress.hpp) is run four bonds at a time: the point's
 // bonds are collected first (F, warm start, force vector g), then model_lanes hands
 // them to it in family order. Nothing is allocated per call
 // (the workspace is sized once), except the list of failed bonds in the rare call
@@ -35,7 +35,7 @@
 #include "bapd/bond_state.hpp"
 #include "bapd/family.hpp"
 #include "bapd/lanes.hpp"
-#include "bapd/material.hpp"
+#include "bapd/stress_status.hpp"
 #include "bapd/tensor.hpp"
 
 namespace bapd {
@@ -155,7 +155,7 @@ inline Lanes load_lanes(const double *p)
 // The model over the n bonds of point i collected in ws.pending_*, four at a time
 // (Model::stress_lanes); a lane that its first evaluation does not finish goes through
 // the scalar stress(), which gives bit for bit what stress_lanes gives where that
-// finishes (hyperelastic.hpp), so a bond's result does not depend on its lane. Bonds
+// finishes (plane_stress.hpp), so a bond's result does not depend on its lane. Bonds
 // are taken in family order: failures are recorded in loop order.
 template <class Model>
 void model_lanes(const Model &model, BondKernelWorkspace &ws, std::size_t n, std::size_t i, std::size_t o,

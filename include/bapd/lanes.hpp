@@ -3,11 +3,18 @@
 // template over the lane type: T = double (one bond) or T = Lanes (four bonds). The
 // arithmetic operators act lane by lane with the same IEEE rounding as the scalar
 // code, so a lane gets bit for bit the result the scalar instantiation gets for the
-// same input (no FMA contraction: the build is ISO C++, -ffp-contract=off, and the
-// code calls std::fma / lane_fma explicitly where it wants one).
+// same input. That needs no FMA contraction, which GCC does by default for C++ (even
+// with -std=c++17), and GCC 12's SLP vectorizer fuses a*b - c*d, e*f + g*h pairs even
+// without it: the top-level CMakeLists.txt sets -ffp-contract=off and
+// -fno-tree-slp-vectorize for the whole build (tests/unit/ba_force_lanes_test.cpp
+// checks the result), and the code calls std::fma / lane_fma explicitly where it
+// wants one.
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#ifdef __FMA__
+#include <immintrin.h>
+#endif
 
 namespace bapd {
 
@@ -23,8 +30,12 @@ inline Lanes  lane_abs(Lanes x) { return (Lanes)((LaneBits)x & (LaneBits{} + 0x7
 inline double lane_fma(double a, double b, double c) { return std::fma(a, b, c); }
 inline Lanes  lane_fma(Lanes a, Lanes b, Lanes c)
 {
+#ifdef __FMA__
+  return (Lanes)_mm256_fmadd_pd((__m256d)a, (__m256d)b, (__m256d)c); // one vfmadd231pd
+#else
   return Lanes{std::fma(a[0], b[0], c[0]), std::fma(a[1], b[1], c[1]), std::fma(a[2], b[2], c[2]),
-               std::fma(a[3], b[3], c[3])}; // vfmadd231pd: GCC folds the four
+               std::fma(a[3], b[3], c[3])}; // the same, lane by lane (fma rounds once either way)
+#endif
 }
 inline double select(bool m, double a, double b) { return m ? a : b; }
 inline Lanes  select(LaneMask m, Lanes a, Lanes b) { return m ? a : b; }

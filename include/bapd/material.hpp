@@ -16,12 +16,16 @@
 // four bonds at a time (lanes.hpp), giving bit for bit what stress() gives in the lanes
 // it reports done; the bond kernel (ba_force.hpp) then uses it (PlaneStress does).
 //
-// Where the files are:
-//   bapd/hyperelastic.hpp  Psi = Psi_iso(I1bar) + U(J): Compressible3D, PlaneStrain,
-//                          PlaneStress (the S33 = 0 solve), numerical_tangent
-//   bapd/gent.hpp          the Gent law (paper eq 24) and its aliases
-//   bapd/neo_hookean.hpp   the neo-Hookean law and its aliases
-//   bapd/models.hpp        with_model: ModelKind x Formulation -> concrete model
+// A model is a formulation of a law. Where the files are:
+//   bapd/law.hpp            what a law is (on I1bar, I2bar; the shared U(J)), and
+//                           what a formulation may refuse
+//   bapd/gent.hpp           the Gent law (paper eq 24) and its aliases
+//   bapd/neo_hookean.hpp    the neo-Hookean law and its aliases
+//   bapd/law_registry.hpp   the list of laws: ModelKind, MaterialParameters, entries
+//   bapd/hyperelastic.hpp   Compressible3D, PlaneStrain
+//   bapd/plane_stress.hpp   PlaneStress (the S33 = 0 solve) and what it requires
+//   bapd/hyperelastic_numerics.hpp, bapd/numerical_tangent.hpp  their helpers
+//   bapd/models.hpp         with_model: ModelKind x Formulation -> concrete model
 //
 // The Gent chain-extension limit. Gent has no finite energy once I1bar - 3 >= Jm;
 // a model evaluated there returns StressStatus::chain_limit and writes no stress.
@@ -30,28 +34,17 @@
 // In plane stress with a finite D the limit is reached only when even the least
 // I1bar over all thickness stretches, 3 (trC~ / (2 J~))^{2/3}, is beyond it: short
 // of that the sheet thickens (J > 1) and the stress rises on the bulk-modulus scale
-// K = 2/D instead (see PlaneStress in hyperelastic.hpp).
+// K = 2/D instead (see PlaneStress in plane_stress.hpp).
 #include <string>
 
+#include "bapd/law.hpp"
+#include "bapd/law_registry.hpp"
+#include "bapd/stress_status.hpp"
 #include "bapd/tensor.hpp"
 
 namespace bapd {
 
-enum class StressStatus : int {
-  ok             = 0,
-  chain_limit    = 1, // I1bar - 3 >= Jm: the Gent model has no finite energy here
-  inverted       = 2, // det F <= 0
-  no_convergence = 3  // the plane-stress C33 solve did not converge
-};
-// Short name ("ok", "chain_limit", ...), for logs and CSV.
-const char *to_string(StressStatus s);
-// One sentence for a run that must stop: what happened and which option changes it.
-const char *describe(StressStatus s);
-
-enum class ModelKind { gent, neo_hookean };
-enum class Formulation { plane_stress, plane_strain };
-
-// Names as written in options (-material_model gent|neo_hookean,
+// Names as written in options (-material_model gent|neo_hookean, from the registry;
 // -material_formulation plane_stress|plane_strain).
 const char *to_string(ModelKind k);
 const char *to_string(Formulation f);
@@ -59,14 +52,12 @@ const char *to_string(Formulation f);
 bool parse(const std::string &name, ModelKind &k);
 bool parse(const std::string &name, Formulation &f);
 
-struct MaterialParameters {
-  double mu = 4.55e3; // shear modulus [Pa]
-  double Jm = 162.6;  // Gent chain-extension limit [-] (ignored by neo-Hookean)
-  double D  = 0.0;    // compressibility [1/Pa]; bulk modulus at rest K = 2/D
-};
-
 // Empty when the parameters are usable by the model; otherwise one message per bad
-// value, naming the option (-material_mu, -material_Jm, -material_D) and the fix.
+// value, naming the option (-material_mu, the law's own such as -material_Jm,
+// -material_D) and the fix.
 std::string check_parameters(ModelKind k, const MaterialParameters &p);
+// check_parameters, and then whether the law runs in formulation f (law.hpp:
+// formulation_refusal): empty when the model can be built.
+std::string check_model(ModelKind k, Formulation f, const MaterialParameters &p);
 
 } // namespace bapd

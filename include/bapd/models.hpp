@@ -5,25 +5,39 @@
 //     ... loop over bonds calling model.stress(F, c33, P) ...
 //   });
 //
-// The lambda is instantiated once per concrete model, so inside it every call is
-// inline. Every branch must return the same type. A new law adds one header and one
-// line here.
-#include "bapd/gent.hpp"
+// The lambda is instantiated once per concrete model (every registered law,
+// law_registry.hpp, in every formulation that accepts it), so inside it every call is
+// inline. Every branch must return the same type. A formulation that refuses the law
+// (formulation_refusal, law.hpp) is never instantiated for it: choosing it throws
+// std::invalid_argument with the refusal, which check_model reports up front.
+#include <cstddef>
+#include <stdexcept>
+
+#include "bapd/hyperelastic.hpp"
+#include "bapd/law_registry.hpp"
 #include "bapd/material.hpp"
-#include "bapd/neo_hookean.hpp"
+#include "bapd/plane_stress.hpp"
 
 namespace bapd {
+
+namespace detail {
+template <std::size_t I, class Fn>
+decltype(auto) with_law(ModelKind kind, Formulation formulation, const MaterialParameters &p, Fn &fn)
+{
+  using Law = std::tuple_element_t<I, RegisteredLaws>;
+  if constexpr (I + 1 < registered_law_count)
+    if (kind != static_cast<ModelKind>(I)) return with_law<I + 1>(kind, formulation, p, fn);
+  if constexpr (accepts_plane_stress<Law>)
+    if (formulation == Formulation::plane_stress) return fn(PlaneStress<Law>{p});
+  if (formulation != Formulation::plane_strain) throw std::invalid_argument(formulation_refusal<Law>(formulation));
+  return fn(PlaneStrain<Law>{p});
+}
+} // namespace detail
 
 template <class Fn>
 decltype(auto) with_model(ModelKind kind, Formulation formulation, const MaterialParameters &p, Fn &&fn)
 {
-  const bool plane_strain = formulation == Formulation::plane_strain;
-  if (kind == ModelKind::neo_hookean) {
-    if (plane_strain) return fn(NeoHookeanPlaneStrain{p});
-    return fn(NeoHookeanPlaneStress{p});
-  }
-  if (plane_strain) return fn(GentPlaneStrain{p});
-  return fn(GentPlaneStress{p});
+  return detail::with_law<0>(kind, formulation, p, fn);
 }
 
 } // namespace bapd

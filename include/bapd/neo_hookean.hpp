@@ -1,23 +1,39 @@
 #pragma once
 // The compressible neo-Hookean law: Psi_iso = (mu/2)(I1bar - 3), G = mu, with the
 // same volumetric term as Gent. It is Gent's Jm -> infinity limit, which makes it the
-// reference for small strains and for checks that must not see the chain limit.
+// reference for small strains and for checks that must not see the chain limit. The
+// law interface is described in law.hpp; the registry line is in law_registry.hpp.
+#include <array>
+#include <string>
+
 #include "bapd/hyperelastic.hpp"
+#include "bapd/law.hpp"
+#include "bapd/plane_stress.hpp"
 
 namespace bapd {
 
 struct NeoHookean {
-  static constexpr bool has_limit = false;
+  static constexpr const char *name  = "neo_hookean";
+  static constexpr const char *title = "compressible neo-Hookean (Gent with Jm -> infinity)";
 
-  template <class T> static MaskOf<T> modulus(const MaterialParameters &p, T I1bar, ModulusOf<T> &G)
+  struct Parameters {}; // mu and D only
+  static constexpr std::array<LawOption<Parameters>, 0> options = {};
+  static std::string check(const ParametersOf<NeoHookean> &) { return ""; }
+
+  static constexpr LawVariables variables         = LawVariables::invariants;
+  static constexpr bool         uses_I2bar        = false;
+  static constexpr bool         convex_increasing = true; // linear in I1bar with G = mu > 0
+  static constexpr bool         has_limit         = false;
+
+  template <class T> static MaskOf<T> modulus(const ParametersOf<NeoHookean> &p, const InvariantsOf<T> &inv, ModulusOf<T> &G)
   {
     G = {T{} + p.mu, T{}, T{}, T{}, T{}};
-    return (I1bar == I1bar) | (I1bar != I1bar); // never locked
+    return (inv.I1bar == inv.I1bar) | (inv.I1bar != inv.I1bar); // never locked
   }
 
-  static bool energy(const MaterialParameters &p, double I1bar, double &psi)
+  static bool energy(const ParametersOf<NeoHookean> &p, const Invariants &inv, double &psi)
   {
-    psi = 0.5 * p.mu * (I1bar - 3.0);
+    psi = 0.5 * p.mu * (inv.I1bar - 3.0);
     return true;
   }
 };

@@ -35,15 +35,17 @@ const char *describe(StressStatus s)
   return "unknown stress status";
 }
 
-const char *to_string(ModelKind k) { return k == ModelKind::neo_hookean ? "neo_hookean" : "gent"; }
+const char *to_string(ModelKind k) { return law_entry(k).name; }
 const char *to_string(Formulation f) { return f == Formulation::plane_strain ? "plane_strain" : "plane_stress"; }
 
 bool parse(const std::string &name, ModelKind &k)
 {
-  if (name == "gent") k = ModelKind::gent;
-  else if (name == "neo_hookean") k = ModelKind::neo_hookean;
-  else return false;
-  return true;
+  for (const LawEntry &law : registered_laws())
+    if (name == law.name) {
+      k = law.kind;
+      return true;
+    }
+  return false;
 }
 
 bool parse(const std::string &name, Formulation &f)
@@ -54,19 +56,27 @@ bool parse(const std::string &name, Formulation &f)
   return true;
 }
 
+// mu and D, which every law has, around the law's own checks (in option order).
 std::string check_parameters(ModelKind k, const MaterialParameters &p)
 {
   std::ostringstream msg;
   if (!(p.mu > 0.0) || !std::isfinite(p.mu))
     msg << "-material_mu " << p.mu << ": the shear modulus must be a positive number of Pa (paper: 4.55e3)\n";
-  if (k == ModelKind::gent && (!(p.Jm > 0.0) || !std::isfinite(p.Jm)))
-    msg << "-material_Jm " << p.Jm << ": the Gent chain-extension limit must be > 0 (paper: 162.6)\n";
+  msg << law_entry(k).check(p);
   if (!(p.D > 0.0) || !std::isfinite(p.D)) {
     msg << "-material_D " << p.D << ": the compressibility must be > 0 (bulk modulus K = 2/D); e.g. ";
     if (p.mu > 0.0) msg << "-material_D " << 2.0 / (100.0 * p.mu) << " for K = 100 mu\n";
     else msg << "K = 100 mu\n";
   }
   return msg.str();
+}
+
+std::string check_model(ModelKind k, Formulation f, const MaterialParameters &p)
+{
+  std::string problems = check_parameters(k, p);
+  const std::string refusal = law_entry(k).refusal(f);
+  if (!refusal.empty()) problems += refusal + "\n";
+  return problems;
 }
 
 } // namespace bapd

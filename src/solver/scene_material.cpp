@@ -1,29 +1,64 @@
 // The material section: the constitutive model and its parameters, the 2D
 // reduction, the bond force form, the density and the failure criterion
 // (-material_*, -force_form, -failure_critical_stretch). Read in one block, checked
-// once the model is known (check_parameters, material.hpp, names the parameters).
+// once the model is known (check_model, material.hpp, names the parameters). The
+// laws, their own options, help texts, defaults and checks come from the law registry
+// (law_registry.hpp): a new law needs nothing here.
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <vector>
 
+#include "bapd/law_registry.hpp"
 #include "bapd/options_reader.hpp"
 #include "bapd/scene_input.hpp"
 
 namespace bapd {
+namespace {
+
+// "gent | neo_hookean (neo-hookean also accepted)": the registered names, and the
+// spelling with '-' that CheckMaterial also reads.
+std::string ModelHelp()
+{
+  std::string names, dashed;
+  for (const LawEntry &law : registered_laws()) {
+    names += std::string(names.empty() ? "" : " | ") + law.name;
+    std::string d = law.name;
+    std::replace(d.begin(), d.end(), '_', '-');
+    if (d != law.name) dashed += std::string(dashed.empty() ? "" : ", ") + d;
+  }
+  return "Constitutive model: " + names + (dashed.empty() ? "" : " (" + dashed + " also accepted)");
+}
+
+// "gent or neo_hookean" (a, b or c for three).
+std::string ModelChoices()
+{
+  const std::vector<LawEntry> &laws = registered_laws();
+  std::string                  text;
+  for (std::size_t k = 0; k < laws.size(); ++k)
+    text += std::string(k == 0 ? "" : k + 1 == laws.size() ? " or " : ", ") + laws[k].name;
+  return text;
+}
+
+} // namespace
 
 PetscErrorCode ReadMaterial(MPI_Comm comm, Scene *scene, SceneInput *in)
 {
-  MaterialParameters &m = scene->material;
+  MaterialParameters &m          = scene->material;
+  const std::string   model_help = ModelHelp(); // (outlives the block that lists it)
   PetscFunctionBeginUser;
   PetscCall(ReadOptionBlock(comm, nullptr, "Material", [&](OptionReader &r) -> PetscErrorCode {
-    PetscCall(r.String("-material_model", "Constitutive model: gent | neo_hookean (neo-hookean also accepted)", &in->model));
+    PetscCall(r.String("-material_model", model_help.c_str(), &in->model));
     PetscCall(r.String("-material_formulation", "2D reduction: plane_stress | plane_strain", &in->formulation));
     PetscCall(r.String("-force_form",
                        "Bond force: bond_only (the paper's eq 23) | energy_consistent (minus the gradient of the strain "
                        "energy: conserves energy undamped)",
                        &in->force_form));
     PetscCall(r.Real("-material_mu", "Shear modulus mu [Pa] (paper: 4.55e3)", &m.mu));
-    PetscCall(r.Real("-material_Jm", "Gent chain-extension limit Jm [-] (paper: 162.6; unused by neo_hookean)", &m.Jm));
+    // every law's own parameters (defaults: the members' initialisers), listed for all
+    // laws so that -help shows them and a file may carry them whatever the model
+    for (const LawEntry &law : registered_laws())
+      for (const LawOptionEntry &o : law.options) PetscCall(r.Real(o.name, o.help, &(m.*o.value)));
     // Default compressibility: bulk modulus K = 2/D = 1000 mu (METHOD.md section 4:
     // the paper gives no D). K = 100 mu already softens the pure-shear curve by 7 %
     // at stretch 5.125 (the sheet thins less); 1000 mu keeps it within 1 %, and in
@@ -51,7 +86,8 @@ PetscErrorCode CheckMaterial(MPI_Comm comm, const SceneInput &in, Scene *scene)
   std::string model = Lower(in.model);
   std::replace(model.begin(), model.end(), '-', '_'); // "neo-hookean" as the paper writes it
   if (!parse(model, scene->model))
-    SETERRQ(comm, PETSC_ERR_USER, "%s", Format("-material_model '%s' is not a model: choose gent or neo_hookean", in.model.c_str()).c_str());
+    SETERRQ(comm, PETSC_ERR_USER, "%s",
+            Format("-material_model '%s' is not a model: choose %s", in.model.c_str(), ModelChoices().c_str()).c_str());
   if (!parse(Lower(in.formulation), scene->formulation))
     SETERRQ(comm, PETSC_ERR_USER, "%s",
             Format("-material_formulation '%s' is not a formulation: choose plane_stress or plane_strain", in.formulation.c_str()).c_str());
@@ -77,7 +113,9 @@ PetscErrorCode CheckMaterial(MPI_Comm comm, const SceneInput &in, Scene *scene)
                "-material_mu %g Pa is too large: the compressibility D = 2/(%g mu) it implies underflows to %g; give the shear modulus in "
                "Pa, e.g. -material_mu 4.55e3 (the paper's gel; stiff solids are below 1e12)",
                m.mu, in.bulk_ratio_set ? in.bulk_ratio : 1000.0, m.D);
-  std::string problems = check_parameters(scene->model, m); // -material_mu, -material_Jm, -material_D
+  // -material_mu, the law's own (-material_Jm), -material_D; then whether the law runs in
+  // the formulation (the plane-stress solve refuses laws it cannot solve)
+  std::string problems = check_model(scene->model, scene->formulation, m);
   if (!problems.empty() && problems.back() == '\n') problems.pop_back();
   PetscCheck(problems.empty(), comm, PETSC_ERR_USER, "%s", problems.c_str());
   SceneCheck(scene->density > 0, comm, "-material_density %g: the density must be > 0 kg/m^3 (a hydrogel: about 1000)",

@@ -6,7 +6,8 @@
 #include <cstdint>
 #include <random>
 
-#include "bapd/hyperelastic.hpp"
+#include "bapd/material.hpp"
+#include "bapd/plane_stress.hpp"
 #include "bapd/tensor.hpp"
 
 namespace bapd::test {
@@ -17,6 +18,16 @@ inline double uniform(std::mt19937 &rng, double lo, double hi)
 {
   return lo + (hi - lo) * (static_cast<double>(rng()) / 4294967296.0);
 }
+// The paper's hydrogel parameters, or others, in the order the tests think of them.
+inline MaterialParameters parameters(double mu, double Jm, double D)
+{
+  MaterialParameters p;
+  p.mu = mu;
+  p.Jm = Jm;
+  p.D  = D;
+  return p;
+}
+
 // Stretch between 1/max and max, log-uniform, so compression and tension are equally likely.
 inline double stretch(std::mt19937 &rng, double max) { return std::exp(uniform(rng, -std::log(max), std::log(max))); }
 

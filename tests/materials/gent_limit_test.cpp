@@ -8,6 +8,7 @@
 #include <cstring>
 
 #include "bapd/models.hpp"
+#include "materials/deformations.hpp"
 
 namespace bapd {
 namespace {
@@ -29,7 +30,7 @@ Mat3 isochoric_uniaxial(double l) { return {l, 0, 0, 0, 1 / std::sqrt(l), 0, 0, 
 
 TEST(GentLimit, Gent3DBeyondChainLimitReturnsChainLimit)
 {
-  const Gent3D model{{mu, Jm, 2.0 / (1e4 * mu)}};
+  const Gent3D model{test::parameters(mu, Jm, 2.0 / (1e4 * mu))};
   const double l = uniaxial_limit_stretch() * (1.0 + 1e-6);
   Mat3         P;
   P[0] = 1.0;
@@ -41,7 +42,7 @@ TEST(GentLimit, Gent3DBeyondChainLimitReturnsChainLimit)
 
 TEST(GentLimit, Gent3DJustBelowChainLimitGivesFiniteLargeStress)
 {
-  const MaterialParameters p{mu, Jm, 2.0 / (1e4 * mu)};
+  const MaterialParameters p = test::parameters(mu, Jm, 2.0 / (1e4 * mu));
   const double             l = uniaxial_limit_stretch() * (1.0 - 1e-4);
   Mat3                     P, P_nh;
   ASSERT_EQ(Gent3D{p}.stress(isochoric_uniaxial(l), P), StressStatus::ok);
@@ -63,7 +64,7 @@ const double r_limit = std::sqrt(std::pow(Jm + 3.0, 3) / 27.0);
 TEST(GentLimit, PlaneStressBeyondLimitForEveryThicknessReturnsChainLimit)
 {
   for (double K_over_mu : {10.0, 1e4}) {
-    const GentPlaneStress model{{mu, Jm, 2.0 / (K_over_mu * mu)}};
+    const GentPlaneStress model{test::parameters(mu, Jm, 2.0 / (K_over_mu * mu))};
     const double          l   = pure_shear_stretch_for(r_limit * (1.0 + 1e-6)); // about 820
     double                c33 = 0.3, psi = 0.0;
     Mat2                  P   = {1, 1, 1, 1};
@@ -77,7 +78,7 @@ TEST(GentLimit, PlaneStressBeyondLimitForEveryThicknessReturnsChainLimit)
 TEST(GentLimit, PlaneStressJustBelowLimitGivesFiniteLargeStress)
 {
   for (double K_over_mu : {10.0, 1e4}) {
-    const MaterialParameters p{mu, Jm, 2.0 / (K_over_mu * mu)};
+    const MaterialParameters p = test::parameters(mu, Jm, 2.0 / (K_over_mu * mu));
     const Mat2               F = {1.0, 0.0, 0.0, pure_shear_stretch_for(r_limit * (1.0 - 1e-4))};
     double                   c33 = 0.0, c33_nh = 0.0;
     Mat2                     P, P_nh;
@@ -96,7 +97,7 @@ TEST(GentLimit, PlaneStressPastIncompressibleLimitThickensAndStiffensOnBulkScale
   // Incompressible pure shear locks at l^2 + l^-2 + 1 = Jm + 3 (l ~ 12.8). With a
   // finite D the sheet thickens instead (J > 1) and the stress is set by K = 2/D.
   const double l = 13.0, K = 1e4 * mu;
-  const GentPlaneStress model{{mu, Jm, 2.0 / K}};
+  const GentPlaneStress model{test::parameters(mu, Jm, 2.0 / K)};
   double                c33 = 0.0;
   Mat2                  P, P_below;
   ASSERT_EQ(model.stress({1.0, 0.0, 0.0, l}, c33, P), StressStatus::ok);

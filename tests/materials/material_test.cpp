@@ -5,6 +5,8 @@
 #include <type_traits>
 
 #include "bapd/models.hpp"
+#include "bapd/numerical_tangent.hpp"
+#include "materials/deformations.hpp"
 
 namespace bapd {
 namespace {
@@ -33,19 +35,27 @@ TEST(Material, NamesRoundTrip)
 
 TEST(Material, CheckParametersNamesEveryBadOption)
 {
-  EXPECT_EQ(check_parameters(ModelKind::gent, {4.55e3, 162.6, 4.4e-6}), "");
-  const std::string zero_D = check_parameters(ModelKind::gent, {4.55e3, 162.6, 0.0});
+  EXPECT_EQ(check_parameters(ModelKind::gent, test::parameters(4.55e3, 162.6, 4.4e-6)), "");
+  const std::string zero_D = check_parameters(ModelKind::gent, test::parameters(4.55e3, 162.6, 0.0));
   EXPECT_NE(zero_D.find("-material_D"), std::string::npos);
-  const std::string all_bad = check_parameters(ModelKind::gent, {-1.0, 0.0, -1.0});
-  for (const char *option : {"-material_mu", "-material_Jm", "-material_D"})
-    EXPECT_NE(all_bad.find(option), std::string::npos) << option;
+  const std::string all_bad = check_parameters(ModelKind::gent, test::parameters(-1.0, 0.0, -1.0));
+  // one line per bad value, in option order
+  EXPECT_LT(all_bad.find("-material_mu"), all_bad.find("-material_Jm"));
+  EXPECT_LT(all_bad.find("-material_Jm"), all_bad.find("-material_D"));
+  EXPECT_NE(all_bad.find("-material_D"), std::string::npos);
   // neo-Hookean ignores Jm
-  EXPECT_EQ(check_parameters(ModelKind::neo_hookean, {4.55e3, 0.0, 4.4e-6}), "");
+  EXPECT_EQ(check_parameters(ModelKind::neo_hookean, test::parameters(4.55e3, 0.0, 4.4e-6)), "");
+  // check_model adds the formulation: both registered laws run in both
+  for (Formulation f : {Formulation::plane_stress, Formulation::plane_strain}) {
+    EXPECT_EQ(check_model(ModelKind::gent, f, test::parameters(4.55e3, 162.6, 4.4e-6)), "");
+    EXPECT_EQ(check_model(ModelKind::gent, f, test::parameters(4.55e3, 0.0, 4.4e-6)),
+              check_parameters(ModelKind::gent, test::parameters(4.55e3, 0.0, 4.4e-6)));
+  }
 }
 
 TEST(Material, WithModelBuildsTheChosenConcreteModel)
 {
-  const MaterialParameters p{4.55e3, 162.6, 4.4e-6};
+  const MaterialParameters p = test::parameters(4.55e3, 162.6, 4.4e-6);
   auto which = [](const auto &model) {
     using M = std::decay_t<decltype(model)>;
     if (std::is_same_v<M, GentPlaneStress>) return 0;
@@ -89,7 +99,7 @@ TEST(Material, NumericalTangentIsSymmetricAndMatchesPlaneStrainAtRest)
 {
   // At rest the plane-strain tangent is the small-strain elasticity tensor with
   // lambda = K - 2mu/3, K = 2/D (U''(1) = 2/D): A_xxxx = lambda + 2 mu, A_xxyy = lambda, A_xyxy = mu.
-  const MaterialParameters p{4.55e3, 162.6, 2.0 / (100.0 * 4.55e3)};
+  const MaterialParameters p = test::parameters(4.55e3, 162.6, 2.0 / (100.0 * 4.55e3));
   Tangent2                 A;
   ASSERT_EQ(numerical_tangent(GentPlaneStrain{p}, identity2(), 1.0, A), StressStatus::ok);
   const double K = 2.0 / p.D, lambda = K - 2.0 * p.mu / 3.0;
@@ -101,7 +111,7 @@ TEST(Material, NumericalTangentIsSymmetricAndMatchesPlaneStrainAtRest)
   for (int i = 0; i < 4; ++i)
     for (int j = 0; j < 4; ++j) EXPECT_NEAR(A[4 * i + j], A[4 * j + i], tol); // hyperelastic: major symmetry
   // Plane stress at rest, D -> 0: E = 3 mu, nu = 1/2, A_xxxx = E/(1 - nu^2) = 4 mu.
-  ASSERT_EQ(numerical_tangent(NeoHookeanPlaneStress{{p.mu, p.Jm, 2.0 / (1e6 * p.mu)}}, identity2(), 0.0, A),
+  ASSERT_EQ(numerical_tangent(NeoHookeanPlaneStress{test::parameters(p.mu, p.Jm, 2.0 / (1e6 * p.mu))}, identity2(), 0.0, A),
             StressStatus::ok);
   EXPECT_NEAR(A[0], 4.0 * p.mu, 1e-5 * 4.0 * p.mu); // + O(mu/K) = 1e-6 compressible correction
   EXPECT_NEAR(A[3], 2.0 * p.mu, 1e-5 * 4.0 * p.mu);

@@ -1,4 +1,4 @@
-// The plane-stress solve's fast paths (hyperelastic.hpp): the warm-started step taken
+// The plane-stress solve's fast paths (plane_stress.hpp): the warm-started step taken
 // without a second evaluation, and the four-bond stress_lanes that the bond kernel
 // runs. Both must give what a tightly converged solve gives, to the solve's own
 // tolerance, and stress_lanes exactly what stress() gives.
@@ -40,7 +40,7 @@ template <class Law> double relative_out_of_plane_stress(const MaterialParameter
   const double a = F[0] * F[0] + F[1] * F[1] + F[2] * F[2] + F[3] * F[3], k = det(F) * det(F);
   const double q = 1.0 / std::cbrt(c * k);
   Modulus      G{};
-  EXPECT_TRUE(Law::modulus(p, (a + c) * q, G));
+  EXPECT_TRUE(Law::modulus(p, Invariants{(a + c) * q}, G));
   const double scale = std::abs(G[0] * q * (2.0 * c - a) / 3.0) / c + std::abs((c * k - 1.0) / p.D) / c + p.mu;
   Mat3         P;
   EXPECT_EQ(Compressible3D<Law>{p}.stress(embed(F, std::sqrt(c)), P), StressStatus::ok);
@@ -69,7 +69,7 @@ TYPED_TEST(PlaneStressFastPath, WarmStepMatchesTightlyConvergedReferenceAlongLoa
 {
   using Law = typename test::LawOf<TypeParam>::type;
   for (double K_over_mu : {10.0, 1e3, 1e4}) {
-    const MaterialParameters p{mu, Jm, 2.0 / (K_over_mu * mu)};
+    const MaterialParameters p = test::parameters(mu, Jm, 2.0 / (K_over_mu * mu));
     const TypeParam          model{p};
     // 1e-3 per step: the larger time steps of the solver (|dC33|/C33 up to ~1e-3, the
     // accepted step's limit); 1e-4: the usual ones
@@ -117,7 +117,7 @@ TYPED_TEST(PlaneStressFastPath, LanesGiveBitForBitTheScalarStress)
 {
   std::mt19937 rng(23);
   for (double K_over_mu : {10.0, 1e3, 1e4}) {
-    const TypeParam model{{mu, Jm, 2.0 / (K_over_mu * mu)}};
+    const TypeParam model{test::parameters(mu, Jm, 2.0 / (K_over_mu * mu))};
     int             done_lanes = 0, lanes = 0;
     for (int group = 0; group < 400; ++group) {
       std::array<Mat2, 4>   F;

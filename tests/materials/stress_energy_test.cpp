@@ -13,7 +13,7 @@ constexpr double mu = 4.55e3, Jm = 162.6;
 // Bulk moduli K = 2/D from soft (100 mu) to nearly incompressible (1e4 mu).
 const double compressibilities[] = {2.0 / (100.0 * mu), 2.0 / (1e4 * mu)};
 
-MaterialParameters parameters(double D) { return {mu, Jm, D}; }
+MaterialParameters parameters(double D) { return test::parameters(mu, Jm, D); }
 
 // ---------------------------------------------------------------------------------
 // The 2D models, as the bond kernel sees them.

@@ -13,6 +13,7 @@
 #include "bapd/ba_force_energy.hpp"
 #include "bapd/damage.hpp"
 #include "bapd/gent.hpp"
+#include "unit/kernel_fixtures.hpp"
 #include "unit/test_models.hpp"
 
 namespace bapd {
@@ -21,65 +22,12 @@ namespace {
 constexpr double kDx = 0.5e-3;
 constexpr double kPi = 3.141592653589793;
 
-Mat2 rotation(double deg)
-{
-  const double a = deg * kPi / 180.0;
-  return {std::cos(a), -std::sin(a), std::sin(a), std::cos(a)};
-}
-
-// The paper's hydrogel with K = 100 mu.
-GentPlaneStress hydrogel()
-{
-  MaterialParameters p;
-  p.D = 2.0 / (100.0 * p.mu);
-  return GentPlaneStress{p};
-}
-
-// A plate with a hole and a notch, deformed non-affinely (stretch, shear and noise of
-// `noise` dx), with every `stride`-th bond of every third point broken.
-struct CutPlate {
-  Body2D               body;
-  test::Discretisation d;
-  std::vector<double>  y;
-
-  CutPlate(int n, double noise, unsigned seed, double horizon_factor = 3.015)
-      : body(make_body(n)), d(body, horizon_factor)
-  {
-    std::mt19937 rng(seed);
-    y = d.affine({1.2, 0.15, -0.1, 0.92});
-    for (double &v : y) v += test::random_between(rng, -noise, noise) * kDx;
-    std::vector<std::size_t> touched;
-    for (std::size_t i = 0; i < d.size(); i += 3)
-      for (std::size_t q = 1; q < d.families.size(i); q += 5) break_bond(d.families, d.state, i, q, &touched);
-    compute_bond_geometry(d.cloud, d.families, d.state, d.geometry, touched);
-  }
-  static Body2D make_body(int n)
-  {
-    Body2D b = test::plate(n, n, kDx);
-    b.holes.push_back({0.3 * n * kDx, 0.6 * n * kDx, 2.5 * kDx});
-    b.notches.push_back({n * kDx, 0.5 * n * kDx, 0.55 * n * kDx, 0.5 * n * kDx});
-    return b;
-  }
-};
-
-// sum_j (|t_ij| + |t_ji|) V_j: the size of the terms that cancel in f_i.
-double force_terms(const test::Discretisation &d, const std::vector<double> &t, std::size_t i)
-{
-  double s = 0;
-  for (std::size_t b = d.families.offsets[i]; b < d.families.offsets[i + 1]; ++b) {
-    const std::size_t r = static_cast<std::size_t>(d.families.reverse[b]);
-    s += (std::hypot(t[2 * b], t[2 * b + 1]) + std::hypot(t[2 * r], t[2 * r + 1])) *
-         d.cloud.volume[static_cast<std::size_t>(d.families.neighbour[b])];
-  }
-  return s;
-}
-
-double max_abs(const std::vector<double> &v)
-{
-  double m = 0;
-  for (double a : v) m = std::max(m, std::abs(a));
-  return m;
-}
+using test::CutPlate;
+using test::force_terms;
+using test::hydrogel;
+using test::max_abs;
+using test::rotation;
+using test::stiffness_asymmetry;
 
 TEST(BaForceEnergy, BaMasksAreSymmetricWithinAFamily)
 {
@@ -284,33 +232,6 @@ TEST(BaForceEnergy, AffineMotionGivesZeroNetForceTwoHorizonsFromTheBoundary)
   }
 }
 
-// Largest |K_rs - K_sr| / max |K| over the stiffness entries K_rs = -d f_r / d u_s
-// of the given points (central differences at u = 0; equal volumes, so V K is the
-// Hessian of W for the energy-consistent form and must be symmetric).
-template <class Forces>
-double stiffness_asymmetry(const test::Discretisation &d, const std::vector<std::size_t> &points, Forces forces)
-{
-  const double                     h = 1e-6 * d.cloud.x[0];
-  std::vector<std::vector<double>> column(2 * points.size());
-  for (std::size_t s = 0; s < 2 * points.size(); ++s) {
-    std::vector<double> fp, fm, y = d.cloud.x;
-    y[2 * points[s / 2] + s % 2] += h;
-    forces(y, fp);
-    y[2 * points[s / 2] + s % 2] -= 2 * h;
-    forces(y, fm);
-    for (std::size_t k = 0; k < fp.size(); ++k) fp[k] = (fp[k] - fm[k]) / (2 * h);
-    column[s] = fp;
-  }
-  double asym = 0, size = 0;
-  for (std::size_t r = 0; r < 2 * points.size(); ++r)
-    for (std::size_t s = 0; s < 2 * points.size(); ++s) {
-      const double k_rs = column[s][2 * points[r / 2] + r % 2], k_sr = column[r][2 * points[s / 2] + s % 2];
-      asym = std::max(asym, std::abs(k_rs - k_sr));
-      size = std::max(size, std::abs(k_rs));
-    }
-  return asym / size;
-}
-
 TEST(BaForceEnergy, StiffnessIsSymmetricAtFreeEdgesCornersAndNotchTipsWhereBondOnlyIsNot)
 {
   Body2D body = test::plate(20, 20, 1.0);
@@ -471,99 +392,14 @@ TEST(BaForceEnergy, VelocityVerletConservesTheEnergyOfAFreeSheetWhereBondOnlyFlu
   EXPECT_NEAR(bo_half.blow_up * bo_half.dt / (bo.blow_up * bo.dt), 1.0, 0.2);
 }
 
-// One rank's view: owned points, ring-1 ghosts (bonded to an owned point), ring-2
-// ghosts (bonded to a ring-1 one), each group shuffled, with the global V(H) shipped
-// (as in ba_force_test.cpp).
-struct LocalView {
-  PointCloud               cloud;
-  std::size_t              n_owned = 0, n_family = 0;
-  std::vector<std::size_t> global; // local -> global index
-};
-
-LocalView local_view(const PointCloud &g, const Families &gf, const std::vector<bool> &owned, std::mt19937 &rng)
-{
-  const std::size_t        n = g.size();
-  std::vector<int>         ring(n, -1);
-  std::vector<std::size_t> groups[3];
-  for (std::size_t i = 0; i < n; ++i)
-    if (owned[i]) ring[i] = 0, groups[0].push_back(i);
-  for (int r = 1; r <= 2; ++r)
-    for (std::size_t i : std::vector<std::size_t>(groups[r - 1]))
-      for (std::size_t b = gf.offsets[i]; b < gf.offsets[i + 1]; ++b) {
-        const std::size_t j = static_cast<std::size_t>(gf.neighbour[b]);
-        if (ring[j] < 0) ring[j] = r, groups[r].push_back(j);
-      }
-  LocalView v;
-  for (auto &grp : groups) {
-    std::shuffle(grp.begin(), grp.end(), rng);
-    v.global.insert(v.global.end(), grp.begin(), grp.end());
-  }
-  v.n_owned  = groups[0].size();
-  v.n_family = groups[0].size() + groups[1].size();
-  for (std::size_t gi : v.global) {
-    v.cloud.x.push_back(g.x[2 * gi]);
-    v.cloud.x.push_back(g.x[2 * gi + 1]);
-    v.cloud.volume.push_back(g.volume[gi]);
-    v.cloud.natural_id.push_back(g.natural_id[gi]);
-    v.cloud.family_volume.push_back(g.family_volume[gi]); // shipped by the solver
-  }
-  return v;
-}
-
 TEST(BaForceEnergy, RankLocalCloudReproducesOneRankForcesBitForBit)
 {
-  Body2D body = test::plate(24, 24, kDx);
-  body.holes.push_back({7.0 * kDx, 15.0 * kDx, 2.5 * kDx});
-  body.notches.push_back({24 * kDx, 12.0 * kDx, 14.0 * kDx, 12.0 * kDx});
-  test::Discretisation d(body);
-  std::mt19937         rng(3);
-  std::vector<double>  y = d.affine({1.4, 0.1, 0.0, 0.95});
-  for (double &v : y) v += test::random_between(rng, -0.15, 0.15) * kDx;
-  const double             s_c = 1.45;
-  std::vector<std::size_t> touched;
-  ASSERT_GT(break_bonds(d.cloud, y.data(), d.families, s_c, d.state, touched), 10u);
-  compute_bond_geometry(d.cloud, d.families, d.state, d.geometry, touched);
   const GentPlaneStress gent = hydrogel();
-  std::vector<double>   t, f, c33(d.families.n_bonds(), 0.0);
-  {
-    BondKernelWorkspace ws;
-    t.assign(2 * d.families.n_bonds(), 0.0);
-    ASSERT_TRUE(compute_energy_consistent_bond_forces(gent, d.cloud, y.data(), d.families, d.geometry, d.state,
-                                                      c33.data(), t.data(), ws).ok());
-    f.assign(2 * d.size(), 0.0);
-    assemble_force_density(d.families, d.cloud, t.data(), d.size(), f.data());
-  }
-
-  for (int part = 0; part < 2; ++part) {
-    std::vector<bool> owned(d.size());
-    for (std::size_t i = 0; i < d.size(); ++i)
-      owned[i] = ((d.cloud.x[2 * i] + 0.5 * d.cloud.x[2 * i + 1]) < 14 * kDx) == (part == 0);
-    LocalView           v  = local_view(d.cloud, d.families, owned, rng);
-    Families            lf = build_families(v.cloud, v.n_family, d.horizon, body.notches);
-    BondState           ls(lf);
-    std::vector<double> ly(2 * v.cloud.size());
-    for (std::size_t k = 0; k < v.global.size(); ++k) ly[2 * k] = y[2 * v.global[k]], ly[2 * k + 1] = y[2 * v.global[k] + 1];
-    std::vector<std::size_t> lt;
-    break_bonds(v.cloud, ly.data(), lf, s_c, ls, lt);
-    BondGeometry lg;
-    compute_bond_geometry(v.cloud, lf, ls, lg);
-    std::vector<double> lbf(2 * lf.n_bonds()), lfd(2 * v.n_owned), lc33(lf.n_bonds(), 0.0);
-    BondKernelWorkspace ws;
-    compute_energy_consistent_bond_forces(gent, v.cloud, ly.data(), lf, lg, ls, lc33.data(), lbf.data(), ws);
-    assemble_force_density(lf, v.cloud, lbf.data(), v.n_owned, lfd.data());
-    for (std::size_t k = 0; k < v.n_owned; ++k) {
-      const std::size_t gi = v.global[k];
-      ASSERT_EQ(lfd[2 * k], f[2 * gi]) << "natural id " << gi; // bit for bit
-      ASSERT_EQ(lfd[2 * k + 1], f[2 * gi + 1]) << "natural id " << gi;
-    }
-    for (std::size_t k = 0; k < v.n_family; ++k) // ring-1 ghosts' bond forces and c33 too
-      for (std::size_t q = 0; q < lf.size(k); ++q) {
-        const std::size_t gb = d.families.offsets[v.global[k]] + q, lb = lf.offsets[k] + q;
-        ASSERT_EQ(lbf[2 * lb], t[2 * gb]);
-        ASSERT_EQ(lbf[2 * lb + 1], t[2 * gb + 1]);
-        ASSERT_EQ(lc33[lb], c33[gb]);
-      }
-  }
+  test::expect_rank_local_views_reproduce_one_rank([&](const PointCloud &cloud, const double *y, const Families &f,
+                                                       const BondGeometry &g, const BondState &s, double *c33,
+                                                       double *t, BondKernelWorkspace &ws) {
+    return compute_energy_consistent_bond_forces(gent, cloud, y, f, g, s, c33, t, ws);
+  });
 }
 
 TEST(BaForceEnergy, ModelFailuresAreReportedLikeTheBondOnlyKernelAndCarryNoEnergy)

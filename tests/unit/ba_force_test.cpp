@@ -10,36 +10,19 @@
 
 #include "bapd/ba_force.hpp"
 #include "bapd/damage.hpp"
-#include "unit/test_models.hpp"
-
 #include "bapd/gent.hpp"
+#include "unit/kernel_fixtures.hpp"
+#include "unit/test_models.hpp"
 
 namespace bapd {
 namespace {
 
 constexpr double kDx = 0.5e-3;
-constexpr double kPi = 3.141592653589793;
-
-Mat2 rotation(double deg)
-{
-  const double a = deg * kPi / 180.0;
-  return {std::cos(a), -std::sin(a), std::sin(a), std::cos(a)};
-}
+using test::force_terms;
+using test::rotation;
 
 // A large affine map: stretch 3, shear, rotation by 40 degrees.
 const Mat2 kLargeAffine = rotation(40.0) * Mat2{3.0, 0.5, 0.0, 1.1};
-
-// sum_j (|t_ij| + |t_ji|) V_j: the size of the terms that cancel in f_i.
-double force_terms(const test::Discretisation &d, const std::vector<double> &t, std::size_t i)
-{
-  double s = 0;
-  for (std::size_t b = d.families.offsets[i]; b < d.families.offsets[i + 1]; ++b) {
-    const std::size_t r = static_cast<std::size_t>(d.families.reverse[b]);
-    s += (std::hypot(t[2 * b], t[2 * b + 1]) + std::hypot(t[2 * r], t[2 * r + 1])) *
-         d.cloud.volume[static_cast<std::size_t>(d.families.neighbour[b])];
-  }
-  return s;
-}
 
 // sum_j (|g_ij| + |g_ji|) V_j times a modulus: the force density a unit strain makes.
 double unit_strain_force(const test::Discretisation &d, std::size_t i, double modulus)
@@ -177,34 +160,6 @@ TEST(BaForce, BondForcesMatchAStraightforwardImplementationOfEq23)
     }
 }
 
-// Largest |K_ab - K_ba^T| / max |K| over the 2x2 blocks K_ab = d f_a / d u_b of the
-// given points (central differences at u = 0; equal volumes, so V_a K_ab is the
-// Hessian-like matrix whose symmetry an energy would imply).
-double stiffness_asymmetry(const test::Discretisation &d, const std::vector<std::size_t> &points)
-{
-  test::SaintVenantKirchhoff2D svk;
-  svk.lambda = svk.mu = 1.0;
-  const double                     h = 1e-6 * d.cloud.x[0];
-  std::vector<std::vector<double>> column(2 * points.size());
-  for (std::size_t s = 0; s < 2 * points.size(); ++s) {
-    std::vector<double> t, fp, fm, y = d.cloud.x;
-    y[2 * points[s / 2] + s % 2] += h;
-    d.forces(svk, y, t, fp);
-    y[2 * points[s / 2] + s % 2] -= 2 * h;
-    d.forces(svk, y, t, fm);
-    for (std::size_t k = 0; k < fp.size(); ++k) fp[k] = (fp[k] - fm[k]) / (2 * h);
-    column[s] = fp;
-  }
-  double asym = 0, size = 0;
-  for (std::size_t r = 0; r < 2 * points.size(); ++r)
-    for (std::size_t s = 0; s < 2 * points.size(); ++s) {
-      const double k_rs = column[s][2 * points[r / 2] + r % 2], k_sr = column[r][2 * points[s / 2] + s % 2];
-      asym = std::max(asym, std::abs(k_rs - k_sr));
-      size = std::max(size, std::abs(k_rs));
-    }
-  return asym / size;
-}
-
 TEST(BaForce, BondOnlyStiffnessIsSymmetricInTheInteriorButNotAtAFreeEdge)
 {
   // The bond-only form of eq 23 is not the gradient of an energy: its tangent is
@@ -212,14 +167,20 @@ TEST(BaForce, BondOnlyStiffnessIsSymmetricInTheInteriorButNotAtAFreeEdge)
   // a free surface. There a non-symmetric stiffness has complex eigenvalues, and
   // undamped explicit dynamics grows slowly whatever the time step (flutter): the
   // solver needs some damping, or the energy-consistent variant (METHOD.md 3).
-  test::Discretisation     d(test::plate(20, 20, 1.0));
+  test::Discretisation         d(test::plate(20, 20, 1.0));
+  test::SaintVenantKirchhoff2D svk;
+  svk.lambda = svk.mu = 1.0;
+  auto bond_only = [&](const std::vector<double> &y, std::vector<double> &f) {
+    std::vector<double> t;
+    d.forces(svk, y, t, f);
+  };
   std::vector<std::size_t> interior, edge;
   for (int iy = 8; iy <= 11; ++iy)
     for (int ix = 8; ix <= 11; ++ix) interior.push_back(static_cast<std::size_t>(iy * 20 + ix));
   for (int iy = 0; iy <= 1; ++iy)
     for (int ix = 0; ix <= 5; ++ix) edge.push_back(static_cast<std::size_t>(iy * 20 + ix));
-  EXPECT_LT(stiffness_asymmetry(d, interior), 1e-6); // central differences: O(h^2) + round-off / h
-  EXPECT_GT(stiffness_asymmetry(d, edge), 1e-2);
+  EXPECT_LT(test::stiffness_asymmetry(d, interior, bond_only), 1e-6); // central differences: O(h^2) + round-off / h
+  EXPECT_GT(test::stiffness_asymmetry(d, edge, bond_only), 1e-2);
 }
 
 TEST(BaForce, WideHorizonWithTwoMaskWordsPassesThePatchTest)
@@ -535,92 +496,14 @@ TEST(BaForce, ModelFailureIsCountedReportedAndCarriesNoForce)
   }
 }
 
-// One rank's view: owned points, ring-1 ghosts (bonded to an owned point), ring-2
-// ghosts (bonded to a ring-1 one), each group shuffled, with the global V(H) shipped.
-struct LocalView {
-  PointCloud               cloud;
-  std::size_t              n_owned = 0, n_family = 0;
-  std::vector<std::size_t> global; // local -> global index
-};
-
-LocalView local_view(const PointCloud &g, const Families &gf, const std::vector<bool> &owned, std::mt19937 &rng)
-{
-  const std::size_t        n = g.size();
-  std::vector<int>         ring(n, -1);
-  std::vector<std::size_t> groups[3];
-  for (std::size_t i = 0; i < n; ++i)
-    if (owned[i]) ring[i] = 0, groups[0].push_back(i);
-  for (int r = 1; r <= 2; ++r)
-    for (std::size_t i : std::vector<std::size_t>(groups[r - 1]))
-      for (std::size_t b = gf.offsets[i]; b < gf.offsets[i + 1]; ++b) {
-        const std::size_t j = static_cast<std::size_t>(gf.neighbour[b]);
-        if (ring[j] < 0) ring[j] = r, groups[r].push_back(j);
-      }
-  LocalView v;
-  for (auto &grp : groups) {
-    std::shuffle(grp.begin(), grp.end(), rng);
-    v.global.insert(v.global.end(), grp.begin(), grp.end());
-  }
-  v.n_owned  = groups[0].size();
-  v.n_family = groups[0].size() + groups[1].size();
-  for (std::size_t gi : v.global) {
-    v.cloud.x.push_back(g.x[2 * gi]);
-    v.cloud.x.push_back(g.x[2 * gi + 1]);
-    v.cloud.volume.push_back(g.volume[gi]);
-    v.cloud.natural_id.push_back(g.natural_id[gi]);
-    v.cloud.family_volume.push_back(g.family_volume[gi]); // shipped by the solver
-  }
-  return v;
-}
-
 TEST(BaForce, RankLocalCloudReproducesOneRankForcesBitForBit)
 {
-  Body2D body = test::plate(24, 24, kDx);
-  body.holes.push_back({7.0 * kDx, 15.0 * kDx, 2.5 * kDx});
-  body.notches.push_back({24 * kDx, 12.0 * kDx, 14.0 * kDx, 12.0 * kDx});
-  test::Discretisation d(body);
-  std::mt19937         rng(3);
-  std::vector<double>  y = d.affine({1.4, 0.1, 0.0, 0.95});
-  for (double &v : y) v += test::random_between(rng, -0.15, 0.15) * kDx;
-  const double s_c = 1.45;
-  // One rank: break by stretch, recompute, forces.
-  std::vector<std::size_t> touched;
-  const std::size_t        broken = break_bonds(d.cloud, y.data(), d.families, s_c, d.state, touched);
-  ASSERT_GT(broken, 10u);
-  compute_bond_geometry(d.cloud, d.families, d.state, d.geometry, touched);
-  test::SaintVenantKirchhoff2D svk;
-  std::vector<double>          t, f;
-  d.forces(svk, y, t, f);
-
-  // Two "ranks": a band and its complement, in scrambled local orders.
-  for (int part = 0; part < 2; ++part) {
-    std::vector<bool> owned(d.size());
-    for (std::size_t i = 0; i < d.size(); ++i) owned[i] = ((d.cloud.x[2 * i] + 0.5 * d.cloud.x[2 * i + 1]) < 14 * kDx) == (part == 0);
-    LocalView v = local_view(d.cloud, d.families, owned, rng);
-    Families  lf = build_families(v.cloud, v.n_family, d.horizon, body.notches);
-    BondState ls(lf);
-    std::vector<double> ly(2 * v.cloud.size());
-    for (std::size_t k = 0; k < v.global.size(); ++k) ly[2 * k] = y[2 * v.global[k]], ly[2 * k + 1] = y[2 * v.global[k] + 1];
-    std::vector<std::size_t> lt;
-    break_bonds(v.cloud, ly.data(), lf, s_c, ls, lt);
-    BondGeometry lg;
-    compute_bond_geometry(v.cloud, lf, ls, lg);
-    std::vector<double> lbf(2 * lf.n_bonds()), lfd(2 * v.n_owned);
-    BondKernelWorkspace ws;
-    compute_bond_forces(svk, v.cloud, ly.data(), lf, lg, ls, nullptr, lbf.data(), ws);
-    assemble_force_density(lf, v.cloud, lbf.data(), v.n_owned, lfd.data());
-    for (std::size_t k = 0; k < v.n_owned; ++k) {
-      const std::size_t gi = v.global[k];
-      ASSERT_EQ(lfd[2 * k], f[2 * gi]) << "natural id " << gi; // bit for bit
-      ASSERT_EQ(lfd[2 * k + 1], f[2 * gi + 1]) << "natural id " << gi;
-    }
-    for (std::size_t k = 0; k < v.n_family; ++k) // ring-1 ghosts' bond forces too
-      for (std::size_t q = 0; q < lf.size(k); ++q) {
-        const std::size_t gb = d.families.offsets[v.global[k]] + q, lb = lf.offsets[k] + q;
-        ASSERT_EQ(lbf[2 * lb], t[2 * gb]);
-        ASSERT_EQ(lbf[2 * lb + 1], t[2 * gb + 1]);
-      }
-  }
+  const test::SaintVenantKirchhoff2D svk;
+  test::expect_rank_local_views_reproduce_one_rank([&](const PointCloud &cloud, const double *y, const Families &f,
+                                                       const BondGeometry &g, const BondState &s, double *c33,
+                                                       double *t, BondKernelWorkspace &ws) {
+    return compute_bond_forces(svk, cloud, y, f, g, s, c33, t, ws);
+  });
 }
 
 TEST(BaForce, AssemblyRejectsOwnedPointsWithoutGhostFamilies)

@@ -173,7 +173,7 @@ TEST(Damage, BondWithSingularShapeTensorCarriesNoForceAndIsCounted)
     EXPECT_EQ(t[2 * b], 0.0);
     EXPECT_EQ(t[2 * b + 1], 0.0);
   }
-  // Breaking one more bond (a usable reverse copy) keeps the count right.
+  // Recomputing every point's geometry finds the same six: the count is of the state.
   EXPECT_EQ(compute_bond_geometry(d.cloud, d.families, d.state, d.geometry), 6u);
 }
 

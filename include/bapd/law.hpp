@@ -1,0 +1,125 @@
+#pragma once
+// What a hyperelastic law is (METHOD.md section 4), for the formulations that turn it
+// into a stress (hyperelastic.hpp: Compressible3D, PlaneStrain; plane_stress.hpp:
+// PlaneStress) and for the registry that offers it to the user (law_registry.hpp).
+//
+//   Psi(F) = Psi_iso(I1bar, I2bar) + U(J),   C = F^T F,  J = det F,
+//   I1bar = tr(C) J^{-2/3},  I2bar = ((tr C)^2 - tr(C^2))/2 J^{-4/3},
+//   U(J)  = (1/D) ((J^2 - 1)/2 - ln J)       (paper eq 24, the same for every law)
+//
+// A law is a struct of static members, one header per law (gent.hpp, neo_hookean.hpp):
+//
+//   static constexpr const char *name;        // -material_model value, e.g. "gent"
+//   static constexpr const char *title;       // one line for logs and -help
+//   struct Parameters { double Jm = 162.6; }; // its own values, with their defaults
+//                                             // (mu and D are shared: ElasticConstants)
+//   static constexpr LawOption<Parameters> options[]; // option name, help with units
+//   static std::string check(const ParametersOf<Law> &); // one line per bad value
+//   static constexpr LawVariables variables = LawVariables::invariants;
+//   static constexpr bool uses_I2bar;         // Psi_iso depends on I2bar
+//   static constexpr bool convex_increasing;  // Psi_iso convex and increasing in I1bar
+//                                             // for every value check() accepts
+//   static constexpr bool has_limit;          // Psi_iso finite only for I1bar < limit
+//   static double I1bar_limit(const ParametersOf<Law> &);                (has_limit)
+//   template <class T> static MaskOf<T> modulus(const ParametersOf<Law> &,
+//                                 const InvariantsOf<T> &, ModulusOf<T> &G);
+//                          // G[n] = d^n G / dI1bar^n, n = 0..4, G = 2 dPsi_iso/dI1bar
+//   static bool energy(const ParametersOf<Law> &, const Invariants &, double &psi_iso);
+//   (uses_I2bar only) static double modulus_I2bar(const ParametersOf<Law> &, const Invariants &);
+//                          // H = 2 dPsi_iso/dI2bar
+//
+// modulus and energy return false where the law is locked (I1bar >= limit). modulus is
+// a template over T = double (one bond) or Lanes (four, lanes.hpp: PlaneStress runs
+// four bonds at a time in the bond kernel) and must keep the locked lanes finite.
+// All of it is inline and allocation-free: it runs per bond per step. A formulation
+// fills I2bar only for a law with uses_I2bar (it costs a tr(C^2) otherwise).
+//
+// What each formulation needs of a law is stated where it is written (PlaneStress:
+// plane_stress.hpp); formulation_refusal() below says, in one message, why a law
+// cannot be run in a formulation, and the registry refuses such a choice up front.
+//
+// Seams for later laws: Mooney-Rivlin (uses_I2bar, modulus_I2bar), Yeoh and
+// Arruda-Boyce (I1bar only, like Gent) fit this interface as it is. Ogden-type laws work
+// on the principal stretches: they declare LawVariables::principal_stretches, which no
+// formulation accepts yet (each static_asserts invariants); such a law needs its own
+// stress path (the eigenvalues of C) beside these.
+#include <array>
+#include <string>
+#include <type_traits>
+
+#include "bapd/lanes.hpp"
+#include "bapd/stress_status.hpp"
+
+namespace bapd {
+
+enum class Formulation { plane_stress, plane_strain };
+
+// What every law shares: the shear modulus at rest and the compressibility of U(J).
+struct ElasticConstants {
+  double mu = 4.55e3; // shear modulus at rest [Pa] (paper: 4.55e3)
+  double D  = 0.0;    // compressibility [1/Pa]; bulk modulus at rest K = 2/D
+};
+
+// The values a model of one law reads: the shared constants and the law's own. Made
+// from any holder of both (MaterialParameters, material.hpp, holds every law's).
+template <class Law> struct ParametersOf : ElasticConstants, Law::Parameters {
+  ParametersOf() = default;
+  template <class All, class = std::enable_if_t<std::is_base_of_v<ElasticConstants, All> &&
+                                                std::is_base_of_v<typename Law::Parameters, All>>>
+  ParametersOf(const All &all) : ElasticConstants(all), Law::Parameters(all)
+  {
+  }
+};
+
+// One parameter of a law as an option: its name, its help text (with units and the
+// paper's value) and where its value lives. The default is the member's initialiser.
+template <class Parameters> struct LawOption {
+  const char *name;
+  const char *help;
+  double Parameters::*value;
+};
+
+// What a law's energy is written in.
+enum class LawVariables { invariants, principal_stretches };
+
+// The invariants a law is evaluated at (T = double or Lanes). I2bar is 0 unless the
+// law uses it (uses_I2bar).
+template <class T> struct InvariantsOf {
+  T I1bar{};
+  T I2bar{};
+};
+using Invariants = InvariantsOf<double>;
+
+// G = 2 dPsi_iso/dI1bar and its first four I1bar-derivatives (the plane-stress solve
+// uses them; Compressible3D and PlaneStrain read G[0] only).
+template <class T> using ModulusOf = std::array<T, 5>; // T = double or Lanes (four bonds)
+using Modulus                      = ModulusOf<double>;
+
+// Empty when Law can be run in formulation f, else why not (one sentence, naming the
+// requirement and the formulation that would do). Plane stress: see plane_stress.hpp.
+template <class Law> std::string formulation_refusal(Formulation f)
+{
+  const std::string law = Law::name;
+  if (Law::variables != LawVariables::invariants)
+    return "-material_model " + law +
+           ": the law is written in principal stretches, and no formulation of bapd evaluates those yet";
+  if (f != Formulation::plane_stress) return "";
+  if (Law::uses_I2bar)
+    return "-material_model " + law +
+           " with -material_formulation plane_stress: the plane-stress C33 solve (S33 = 0) differentiates Psi_iso "
+           "along I1bar only, and this law depends on I2bar; use -material_formulation plane_strain";
+  if (!Law::convex_increasing)
+    return "-material_model " + law +
+           " with -material_formulation plane_stress: the plane-stress C33 solve (S33 = 0) needs an isochoric "
+           "energy that is convex and increasing in I1bar (then S33 = 0 has one root, bracketed), and this law's "
+           "is not; use -material_formulation plane_strain";
+  return "";
+}
+
+// The same as a constant, for `if constexpr` (models.hpp instantiates PlaneStress<Law>
+// only where it holds).
+template <class Law>
+inline constexpr bool accepts_plane_stress =
+    Law::variables == LawVariables::invariants && !Law::uses_I2bar && Law::convex_increasing;
+
+} // namespace bapd

@@ -1,0 +1,120 @@
+// The bond kernel's four-bond path (ba_force.hpp: model_lanes, PlaneStress::stress_lanes)
+// on a non-affine field with Gent: bit for bit the bond forces and C33 of the same
+// kernel run one bond at a time, both with cold and with warm starts; and the
+// workspace's keep_warm_start, which evaluates without writing C33 back.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cmath>
+#include <cstring>
+#include <random>
+#include <vector>
+
+#include "bapd/ba_force.hpp"
+#include "bapd/ba_force_energy.hpp"
+#include "bapd/gent.hpp"
+#include "bapd/material.hpp"
+#include "unit/kernel_fixtures.hpp"
+#include "unit/test_models.hpp"
+
+namespace bapd {
+namespace {
+
+// Gent plane stress without stress_lanes: the kernel's one-bond-at-a-time path.
+struct ScalarGent {
+  GentPlaneStress gent;
+  StressStatus    stress(const Mat2 &F, double &c33, Mat2 &P) const { return gent.stress(F, c33, P); }
+};
+
+// Gent plane stress that counts its scalar calls: with lanes, those are the bonds that
+// stress_lanes did not finish (the fallback).
+struct CountingGent : GentPlaneStress {
+  mutable std::size_t scalar_calls = 0;
+  StressStatus        stress(const Mat2 &F, double &c33, Mat2 &P) const
+  {
+    ++scalar_calls;
+    return GentPlaneStress::stress(F, c33, P);
+  }
+};
+
+bool same_bits(const std::vector<double> &a, const std::vector<double> &b)
+{
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
+}
+
+// Bond forces of one kernel call (bond-only or energy-consistent) from the warm starts
+// c33, which the call updates unless keep_warm_start.
+template <class Model>
+std::vector<double> bond_forces(const Model &model, const test::Discretisation &d, const std::vector<double> &y,
+                                std::vector<double> &c33, bool keep_warm_start = false, bool energy_consistent = false)
+{
+  std::vector<double> t(2 * d.families.n_bonds(), 0.0);
+  BondKernelWorkspace ws;
+  ws.keep_warm_start = keep_warm_start;
+  const KernelStats s =
+      energy_consistent
+          ? compute_energy_consistent_bond_forces(model, d.cloud, y.data(), d.families, d.geometry, d.state, c33.data(),
+                                                  t.data(), ws)
+          : compute_bond_forces(model, d.cloud, y.data(), d.families, d.geometry, d.state, c33.data(), t.data(), ws);
+  EXPECT_TRUE(s.ok());
+  EXPECT_GT(s.evaluated, d.families.n_bonds() / 2); // most bonds are intact and usable
+  return t;
+}
+
+TEST(BaForceLanes, NonAffineGentFieldGivesBitForBitTheScalarKernelColdAndWarm)
+{
+  const test::CutPlate  c(20, 0.15, 17);
+  const GentPlaneStress gent = test::hydrogel();
+  CountingGent          counting{gent};
+  const ScalarGent      scalar{gent};
+  // Four "time steps": from cold (C33 = 0) at y; warm at y moved by up to 1e-4 dx (a
+  // time step's motion); warm at y moved by up to 1e-2 dx (larger steps: a second
+  // evaluation in the lanes); and from warm starts scrambled by a factor in [1/2, 2]
+  // (far guesses: the scalar fallback, with its bisections).
+  std::mt19937        rng(5);
+  std::vector<double> y1 = c.y, y2 = c.y;
+  for (double &v : y1) v += test::random_between(rng, -1e-4, 1e-4) * test::kPlateDx;
+  for (double &v : y2) v += test::random_between(rng, -1e-2, 1e-2) * test::kPlateDx;
+  const std::vector<double> *fields[4] = {&c.y, &y1, &y2, &c.y};
+  std::vector<double>        c_lanes(c.d.families.n_bonds(), 0.0), c_scalar(c_lanes);
+  std::size_t                fallbacks[4] = {0, 0, 0, 0};
+  for (int step = 0; step < 4; ++step) {
+    if (step == 3)
+      for (std::size_t b = 0; b < c_lanes.size(); ++b) c_scalar[b] = c_lanes[b] *= std::exp2(test::random_between(rng, -1.0, 1.0));
+    counting.scalar_calls         = 0;
+    const std::vector<double> t   = bond_forces(counting, c.d, *fields[step], c_lanes);
+    const std::vector<double> ref = bond_forces(scalar, c.d, *fields[step], c_scalar);
+    fallbacks[step]               = counting.scalar_calls;
+    EXPECT_TRUE(same_bits(t, ref)) << "step " << step;
+    EXPECT_TRUE(same_bits(c_lanes, c_scalar)) << "step " << step;
+  }
+  const std::size_t bonds = c.d.families.n_bonds();
+  std::printf("scalar fallbacks of %zu bonds: cold %zu, warm 1e-4 dx %zu, warm 1e-2 dx %zu, scrambled %zu\n", bonds,
+              fallbacks[0], fallbacks[1], fallbacks[2], fallbacks[3]);
+  // Not vacuous: the lanes finish the usual steps, and the far guesses reach the
+  // fallback for a good share of the bonds, so both paths were compared.
+  EXPECT_LT(fallbacks[1], bonds / 100);
+  EXPECT_GT(fallbacks[3], bonds / 10);
+}
+
+TEST(BaForceLanes, KeepWarmStartLeavesC33AndGivesTheSameForces)
+{
+  const test::CutPlate  c(16, 0.1, 9);
+  const GentPlaneStress gent = test::hydrogel();
+  std::vector<double>   c33(c.d.families.n_bonds(), 0.0);
+  bond_forces(gent, c.d, c.y, c33); // the converged C33 at y
+  std::vector<double> y = c.y;
+  std::mt19937        rng(2);
+  for (double &v : y) v += test::random_between(rng, -1e-3, 1e-3) * test::kPlateDx;
+  for (bool energy_consistent : {false, true}) {
+    std::vector<double>       kept = c33, written = c33;
+    const std::vector<double> t_kept    = bond_forces(gent, c.d, y, kept, true, energy_consistent);
+    const std::vector<double> t_written = bond_forces(gent, c.d, y, written, false, energy_consistent);
+    EXPECT_TRUE(same_bits(kept, c33)) << "keep_warm_start writes nothing back";
+    EXPECT_FALSE(same_bits(written, c33)) << "not vacuous: without it the solved C33 is stored";
+    EXPECT_TRUE(same_bits(t_kept, t_written)) << "the same warm starts give the same forces";
+  }
+}
+
+} // namespace
+} // namespace bapd
