@@ -76,7 +76,7 @@ struct CheckpointHeader {
   std::string         options, history, static_states;
   std::vector<double> field_frames; // step, time pairs
   // Where the load schedule stands: static holds that end early move the later
-  // knots and the end time (Simulation::CheckStaticHold).
+  // knots and the end time (Loading::EndHold, loading.hpp).
   std::vector<double> schedule_original, schedule_current;
   double              end_time_original = 0, end_time = 0;
   std::int64_t        static_hold_done  = -1;

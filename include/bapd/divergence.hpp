@@ -21,14 +21,16 @@
 //     the total energy grows tenfold within the next 10 steps. Otherwise the
 //     suspicion is cleared, and the largest total energy measured becomes the floor:
 //     KE cannot exceed it unless the grips do more work (or the run blows up).
-#include <petscsys.h>
+#include <petscvec.h>
 
+#include <functional>
 #include <string>
 #include <vector>
 
-namespace bapd {
+#include "bapd/layout.hpp"
+#include "bapd/scene.hpp"
 
-class Simulation;
+namespace bapd {
 
 struct RunawayCriterion {
   PetscInt window         = 50;  // steps over which the growth of KE is measured
@@ -72,11 +74,23 @@ private:
   std::vector<double> scratch_;
 };
 
-// The post-step check of a Simulation: sums KE over the owned points (a reproducible
-// sum: the same bits on every rank and any rank count), feeds the monitor, measures the total energy while suspected
-// (Simulation::Energies) and, on divergence, fills *message with the step, the time,
-// the energies, the point moving fastest and the fix. Collective.
-PetscErrorCode CheckRunawayEnergy(Simulation &simulation, RunawayEnergyMonitor &monitor, PetscInt step, double t,
+// What the post-step check reads, handed to it by the driver.
+struct RunawayInputs {
+  MPI_Comm        comm     = MPI_COMM_NULL;
+  const Scene    *scene    = nullptr; // density, loads, failure options
+  const Schedule *schedule = nullptr; // as it stands (static holds move it: loading.hpp)
+  const Layout   *layout   = nullptr;
+  Vec             state    = nullptr; // [u, v] of the owned points
+  double          dt = 0, stable_dt = 0;
+  // Kinetic and internal energy of the state, reproducible sums (collective).
+  std::function<PetscErrorCode(double *kinetic, double *internal)> energies;
+};
+
+// The post-step check: sums KE over the owned points (a reproducible sum: the same
+// bits on every rank and any rank count), feeds the monitor, measures the total
+// energy while suspected (inputs.energies) and, on divergence, fills *message with
+// the step, the time, the energies, the point moving fastest and the fix. Collective.
+PetscErrorCode CheckRunawayEnergy(const RunawayInputs &inputs, RunawayEnergyMonitor &monitor, PetscInt step, double t,
                                   std::string *message);
 
 } // namespace bapd

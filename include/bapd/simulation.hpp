@@ -2,7 +2,12 @@
 // The program a user runs, as a class whose Run() reads like the method:
 // read the scene, build the body and its families, partition, set up the ghosted
 // state, pick the stable time step, then step with PETSc TS while loading, breaking
-// bonds and writing the history (STYLE.md: the shape of the code).
+// bonds and writing the history (STYLE.md: the shape of the code). The concerns are
+// objects with their own data (docs/architecture.md): the force operator
+// (force_operator.hpp), loading (loading.hpp), failure (failure.hpp) and time-step
+// control (time_step_control.hpp); the Simulation holds the body's data, which they
+// share, and the reporting and output that read it. The scene is read once and only
+// read afterwards.
 #include <petscsf.h>
 #include <petscts.h>
 
@@ -14,26 +19,18 @@
 #include "bapd/ba_force.hpp"
 #include "bapd/bond_geometry.hpp"
 #include "bapd/bond_state.hpp"
-#include "bapd/family.hpp"
-#include "bapd/layout.hpp"
 #include "bapd/divergence.hpp"
+#include "bapd/failure.hpp"
+#include "bapd/family.hpp"
+#include "bapd/force_operator.hpp"
+#include "bapd/layout.hpp"
+#include "bapd/loading.hpp"
 #include "bapd/relaxation.hpp"
 #include "bapd/scene.hpp"
 #include "bapd/simulation_output.hpp"
+#include "bapd/time_step_control.hpp"
 
 namespace bapd {
-
-// One loaded component of one owned point.
-struct ConstrainedDof {
-  PetscInt      dof;   // 2 * owned point + component
-  ComponentLoad kind;  // fixed or stretch
-  double        scale; // u = scale * (lambda - 1) * reference_length
-};
-
-struct LoadSetPoints {
-  std::vector<PetscInt> points; // owned local indices
-  PetscInt              global_count = 0;
-};
 
 struct ProbePoint {
   PetscInt owner_rank  = -1; // rank that owns the point
@@ -61,7 +58,7 @@ public:
   const Layout &layout() const { return layout_; }
   Vec           state() const { return X_; } // [u (2 per owned point), v (2 per owned point)]
   TS            ts() const { return ts_; }
-  double        stable_time_step() const { return stable_dt_; }
+  double        stable_time_step() const { return step_control_.stable(); }
   // Force density (2 per owned point) for the owned displacements u_owned.
   PetscErrorCode ComputeForceDensity(const double *u_owned, double *force_density);
   // Total energy pieces and broken bonds, reproducible across rank layouts.
@@ -74,28 +71,22 @@ public:
 
 private:
   PetscErrorCode BuildBody();
-  PetscErrorCode BuildLoads();
   PetscErrorCode BuildProbes();
-  PetscErrorCode EstimateStableTimeStep();
   PetscErrorCode SetupTimeStepper();
   PetscErrorCode OpenHistory();
   PetscErrorCode SetupRelaxation(); // -relaxation (relaxation.hpp)
 
   // The acceleration of the owned points for displacement u (owned, 2 per point).
   PetscErrorCode Acceleration(const double *u_owned, double *a_owned);
-  PetscErrorCode UpdateGhostedPositions(const double *u_owned);
-  PetscErrorCode InternalForce(const double *u_owned, double *force_density, double *c33);
-  PetscErrorCode ApplyLoading(double t, double *u, double *v);
-  PetscErrorCode BreakBonds();
-  PetscErrorCode CreateBondStateExchange();
-  PetscErrorCode SynchroniseGhostBondState(std::vector<std::size_t> *touched);
   PetscErrorCode CheckHealth(PetscInt step, double t, PetscBool *diverged);
+  PetscErrorCode CheckRunaway(PetscInt step, double t, std::string *message);
+  PetscErrorCode ReadProbes(const double *u_owned, double *probe_u);
+  PetscErrorCode GatherNatural(const double *values, std::vector<double> *natural);
   PetscErrorCode WriteHistoryRow(PetscInt step, double t);
   PetscErrorCode Progress(PetscInt step, double t, PetscBool force);
   PetscErrorCode Summary();
   PetscErrorCode WriteFinalState();
   PetscErrorCode CheckStaticHold(PetscInt step, double t);
-  PetscErrorCode AdaptTimeStep();
 
   static PetscErrorCode RHSPosition(TS, PetscReal, Vec, Vec, void *);
   static PetscErrorCode RHSMomentum(TS, PetscReal, Vec, Vec, void *);
@@ -117,37 +108,29 @@ private:
 
   MPI_Comm    comm_;
   PetscMPIInt rank_ = 0, size_ = 1;
-  Scene       scene_;
+  Scene       scene_; // read once in Setup, only read afterwards
   Layout      layout_;
 
-  Families            families_;
-  BondState           bond_state_;
-  BondGeometry        geometry_;
-  std::vector<double> c33_;        // plane-stress warm start, 1 per bond
-  std::vector<double> bond_force_; // t_ij, 2 per bond
-  std::vector<double> y_;          // current positions, 2 per local point
-  std::vector<double> force_;      // force density, 2 per owned point
-  std::function<KernelStats(const double *y, double *c33)> bond_forces_; // the model, chosen once
-  std::function<void(const double *y, double *energy)> point_energies_; // V_i W_i of owned points
-  BondKernelWorkspace workspace_;
-  KernelStats         last_stats_;
+  // The body's bonds, shared by the objects below (failure changes the last two).
+  Families     families_;
+  BondState    bond_state_;
+  BondGeometry geometry_;
 
-  std::vector<ConstrainedDof> constrained_;
-  std::vector<LoadSetPoints>  load_points_;
-  std::vector<ProbePoint>     probes_;
+  ForceOperator   force_;        // u -> f (force_operator.hpp)
+  Loading         loading_;      // grips, schedule, reactions (loading.hpp)
+  Failure         failure_;      // breaking and its exchange (failure.hpp)
+  TimeStepControl step_control_; // stable step, travel limit (time_step_control.hpp)
+  std::vector<ProbePoint> probes_;
 
-  PetscSF bond_state_sf_ = nullptr; // owners' intact masks -> their ring-1 ghost copies
-  std::vector<std::uint64_t> ghost_masks_;
-  Vec u_ghosted_ = nullptr; // displacement with two rings of ghosts
   Vec X_         = nullptr; // TS state
   IS  is_position_ = nullptr, is_momentum_ = nullptr;
   TS  ts_        = nullptr;
 
-  double stable_dt_ = 0;
-  double base_dt_   = 0; // the step chosen at setup (safety x stable, or -time_step)
-  double dt_        = 0; // the step being taken: base_dt_, or less while points fly (-time_step_travel)
-  PetscInt shortened_steps_ = 0;   // steps taken shorter than base_dt_
-  double   shortest_dt_     = 0;   // the shortest of them
+  // Reporting: scratch sized at set-up, so a history row allocates nothing.
+  std::vector<double> force_density_;   // 2 per owned point
+  std::vector<double> per_point_;       // 2 per owned point: kinetic, internal energy
+  std::vector<double> point_energy_;    // 1 per owned point
+  PetscInt            progress_interval_ = 0; // steps between progress lines
   double wall_start_ = 0;
   FILE  *history_    = nullptr;
   PetscInt total_broken_ = 0;
@@ -156,7 +139,6 @@ private:
   // The latest history row, for the static-hold test.
   double              last_kinetic_ = 0, last_internal_ = 0;
   std::vector<double> last_reaction_, last_probe_u_;
-  PetscInt            static_hold_done_ = -1; // schedule knot whose hold already ended
   FILE               *static_states_    = nullptr;
   std::string stop_reason_;
   RunawayEnergyMonitor energy_monitor_; // divergence by runaway energy (divergence.hpp)

@@ -19,13 +19,11 @@ struct SimulationOutput {
   NaturalOrder        order;    // created on the first field file or checkpoint
   GeometryFingerprint geometry; // with the order
   FieldSeries         series;
-  std::vector<double> schedule_original;   // the knot times as this run read them
-  double              end_time_original = 0;
   double              last_checkpoint_wall = 0;  // MPI_Wtime of the last checkpoint (rank 0's decides)
   PetscInt            last_checkpoint_step = -1;
   // The state after the last completed step (-checkpoint_on_error): a step that
   // diverges leaves X and c33 spoilt, but not the bond state (CheckHealth runs before
-  // BreakBonds), so these two are enough to write the last good state.
+  // Failure::Break), so these two are enough to write the last good state.
   Vec                 good_state = nullptr;
   std::vector<double> good_c33;
   PetscInt            good_step = -1;

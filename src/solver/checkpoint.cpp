@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -579,57 +578,6 @@ PetscErrorCode CheckpointMergeOptions(MPI_Comm comm)
   PetscCall(PetscOptionsLeftRestore(stored, &n, &names, &values));
   PetscCall(PetscOptionsDestroy(&stored));
   PetscFunctionReturn(0);
-}
-
-namespace {
-
-volatile std::sig_atomic_t interrupt_signal = 0, checkpoint_requests = 0;
-struct sigaction           previous_term, previous_int, previous_usr1;
-int                        installed = 0;
-
-extern "C" void OnInterrupt(int signal)
-{
-  if (interrupt_signal) { // a second one: stop now, the default way
-    std::signal(signal, SIG_DFL);
-    std::raise(signal);
-    return;
-  }
-  interrupt_signal = signal;
-}
-
-extern "C" void OnCheckpointRequest(int) { checkpoint_requests = checkpoint_requests + 1; }
-
-} // namespace
-
-void InstallInterruptHandlers()
-{
-  if (installed++) return;
-  struct sigaction action;
-  std::memset(&action, 0, sizeof action);
-  action.sa_handler = OnInterrupt;
-  action.sa_flags   = SA_RESTART;
-  sigemptyset(&action.sa_mask);
-  sigaction(SIGTERM, &action, &previous_term);
-  sigaction(SIGINT, &action, &previous_int);
-  action.sa_handler = OnCheckpointRequest;
-  sigaction(SIGUSR1, &action, &previous_usr1);
-}
-
-void RestoreInterruptHandlers()
-{
-  if (installed == 0 || --installed) return;
-  sigaction(SIGTERM, &previous_term, nullptr);
-  sigaction(SIGINT, &previous_int, nullptr);
-  sigaction(SIGUSR1, &previous_usr1, nullptr);
-}
-
-int PendingInterrupt() { return (int)interrupt_signal; }
-
-bool TakeCheckpointRequest()
-{
-  if (!checkpoint_requests) return false;
-  checkpoint_requests = 0;
-  return true;
 }
 
 } // namespace bapd

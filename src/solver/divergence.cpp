@@ -7,7 +7,6 @@
 #include <limits>
 
 #include "bapd/reproducible_sum.hpp"
-#include "bapd/simulation.hpp"
 
 namespace bapd {
 
@@ -96,9 +95,8 @@ namespace {
 // Kinetic energy of the whole body moving at the fastest grip speed of the schedule,
 // plus a round-off guard (every point moving a millionth of a spacing per step), so
 // a body at rest, whose KE is zero or noise, never raises suspicion.
-double KineticFloor(const Scene &scene, double mass, double dt)
+double KineticFloor(const Scene &scene, const Schedule &s, double mass, double dt)
 {
-  const Schedule &s        = scene.schedule;
   double          max_rate = 0; // |d lambda / dt| over the schedule
   for (std::size_t k = 1; k < s.time.size(); ++k) max_rate = std::max(max_rate, std::fabs((s.stretch[k] - s.stretch[k - 1]) / (s.time[k] - s.time[k - 1])));
   double max_scale = 0;
@@ -113,31 +111,29 @@ double KineticFloor(const Scene &scene, double mass, double dt)
 
 } // namespace
 
-PetscErrorCode CheckRunawayEnergy(Simulation &simulation, RunawayEnergyMonitor &monitor, PetscInt step, double t, std::string *message)
+PetscErrorCode CheckRunawayEnergy(const RunawayInputs &inputs, RunawayEnergyMonitor &monitor, PetscInt step, double t, std::string *message)
 {
-  const Scene   &scene = simulation.scene();
-  const Layout  &layout = simulation.layout();
+  const Scene   &scene  = *inputs.scene;
+  const Layout  &layout = *inputs.layout;
   const PetscInt n      = layout.n_owned;
-  MPI_Comm       comm;
+  MPI_Comm       comm   = inputs.comm;
   const double  *x;
-  PetscReal      dt;
+  const double   dt = inputs.dt;
 
   PetscFunctionBegin;
   message->clear();
-  PetscCall(PetscObjectGetComm((PetscObject)simulation.ts(), &comm));
-  PetscCall(TSGetTimeStep(simulation.ts(), &dt));
   if (!monitor.started()) {
     double mass = 0;
     for (PetscInt i = 0; i < n; ++i) mass += scene.density * layout.cloud.volume[i];
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &mass, 1, MPI_DOUBLE, MPI_SUM, comm));
-    monitor.Start(KineticFloor(scene, mass, dt));
+    monitor.Start(KineticFloor(scene, *inputs.schedule, mass, dt));
   }
   // Kinetic energy and the fastest owned point (for the message), one pass. The sum is
   // reproducible: the same bits on every rank and on any number of ranks, so every
   // rank reaches the same verdict at the same step, whatever the layout.
   std::vector<double> &per_point = monitor.scratch();
   per_point.resize((std::size_t)n); // sized once: no allocation in later steps
-  PetscCall(VecGetArrayRead(simulation.state(), &x));
+  PetscCall(VecGetArrayRead(inputs.state, &x));
   const double *v       = x + 2 * n;
   double        kinetic = 0, fastest = -1;
   PetscInt      fastest_i = -1;
@@ -146,15 +142,15 @@ PetscErrorCode CheckRunawayEnergy(Simulation &simulation, RunawayEnergyMonitor &
                             RunawayEnergyMonitor::overflow); // finite, whatever the speed
     if (per_point[i] > fastest) fastest = per_point[i], fastest_i = i;
   }
-  PetscCall(VecRestoreArrayRead(simulation.state(), &x));
+  PetscCall(VecRestoreArrayRead(inputs.state, &x));
   PetscCall(ReproducibleSum(comm, 1, n, per_point.data(), &kinetic));
 
-  const Schedule &s       = scene.schedule;
+  const Schedule &s       = *inputs.schedule;
   const PetscInt  segment = (PetscInt)(std::upper_bound(s.time.begin(), s.time.end(), t) - s.time.begin());
   RunawayEnergyMonitor::Verdict verdict = monitor.Kinetic(step, segment, kinetic);
   if (verdict == RunawayEnergyMonitor::Verdict::measure_total) {
     double kin, internal;
-    PetscCall(simulation.Energies(&kin, &internal));
+    PetscCall(inputs.energies(&kin, &internal));
     verdict = monitor.Total(step, kin + internal);
   }
   if (verdict != RunawayEnergyMonitor::Verdict::diverged) PetscFunctionReturn(0);
@@ -170,7 +166,7 @@ PetscErrorCode CheckRunawayEnergy(Simulation &simulation, RunawayEnergyMonitor &
   if (best.rank == mine.rank && fastest_i >= 0)
     where[0] = (double)layout.cloud.natural_id[fastest_i], where[1] = layout.cloud.x[2 * fastest_i], where[2] = layout.cloud.x[2 * fastest_i + 1];
   PetscCallMPI(MPI_Bcast(where, 3, MPI_DOUBLE, best.rank, comm));
-  const double stable = simulation.stable_time_step();
+  const double stable = inputs.stable_dt;
   char         text[1024];
   std::snprintf(text, sizeof text,
                 "the run diverged at step %" PetscInt_FMT " (t = %.6e s): %s. Fastest point: %.0f, reference position (%.6g, %.6g) m. "

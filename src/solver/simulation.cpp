@@ -7,11 +7,7 @@
 #include <filesystem>
 #include <limits>
 
-#include "bapd/ba_force_energy.hpp"
-#include "bapd/damage.hpp"
-#include "bapd/models.hpp"
 #include "bapd/lattice.hpp"
-#include "bapd/reproducible_sum.hpp"
 
 namespace bapd {
 
@@ -20,11 +16,9 @@ Simulation::~Simulation()
   if (history_) std::fclose(history_);
   if (static_states_) std::fclose(static_states_);
   TSDestroy(&ts_);
-  PetscSFDestroy(&bond_state_sf_);
   ISDestroy(&is_position_);
   ISDestroy(&is_momentum_);
   VecDestroy(&X_);
-  VecDestroy(&u_ghosted_);
 }
 
 PetscErrorCode Simulation::Setup()
@@ -60,9 +54,11 @@ PetscErrorCode Simulation::Setup()
   PetscCall(PetscOptionsGetBool(nullptr, nullptr, "-output_final_state", &write_final_state_, nullptr));
   PetscCall(SceneView(comm_, scene_));
   PetscCall(BuildBody());
-  PetscCall(BuildLoads());
+  PetscCall(loading_.Setup(comm_, scene_, layout_));
   PetscCall(BuildProbes());
-  PetscCall(EstimateStableTimeStep());
+  last_reaction_.assign(2 * scene_.loads.size(), 0.0);
+  last_probe_u_.assign(2 * scene_.probes.size(), 0.0);
+  PetscCall(step_control_.EstimateStable(comm_, scene_, layout_, loading_, force_));
   PetscCall(SetupRelaxation());
   PetscCall(SetupTimeStepper());
   PetscCall(CheckUnusedOptions(comm_));
@@ -98,35 +94,11 @@ PetscErrorCode Simulation::BuildBody()
   bond_state_ = make_bond_state(families_);
   compute_bond_geometry(layout_.cloud, families_, bond_state_, geometry_);
 
-  const std::size_t nbonds = families_.neighbour.size();
-  c33_.assign(nbonds, 0.0);
-  bond_force_.assign(2 * nbonds, 0.0);
-  y_.assign(layout_.cloud.x.begin(), layout_.cloud.x.end());
-  force_.assign(2 * layout_.n_owned, 0.0);
-
-  // The constitutive model is chosen here, once; inside the closure it is a concrete
-  // type and the bond loop is compiled for it.
-  with_model(scene_.model, scene_.formulation, scene_.material, [&](const auto &model) {
-    using Model    = std::decay_t<decltype(model)>;
-    // -force_form: both forms write t_ij per bond, and assemble_force_density turns
-    // either into f_i (the energy-consistent t_ij make it -(1/V_i) dW/dy_i).
-    if (scene_.force_form == ForceForm::energy_consistent)
-      bond_forces_ = [this, m = Model(model)](const double *y, double *c33) {
-        return compute_energy_consistent_bond_forces(m, layout_.cloud, y, families_, geometry_, bond_state_, c33,
-                                                     bond_force_.data(), workspace_);
-      };
-    else
-      bond_forces_ = [this, m = Model(model)](const double *y, double *c33) {
-        return compute_bond_forces(m, layout_.cloud, y, families_, geometry_, bond_state_, c33, bond_force_.data(), workspace_);
-      };
-    point_energies_ = [this, m = Model(model)](const double *y, double *energy) {
-      strain_energy(m, layout_.cloud, y, families_, geometry_, bond_state_, c33_.data(), (std::size_t)layout_.n_owned,
-                    workspace_, nullptr, energy);
-    };
-  });
-
-  PetscCall(CreateGhostedVector(comm_, layout_, &u_ghosted_));
-  if (scene_.failure) PetscCall(CreateBondStateExchange());
+  PetscCall(force_.Setup(comm_, scene_, layout_, families_, geometry_, bond_state_, stage_ghost_, stage_force_));
+  if (scene_.failure) PetscCall(failure_.Setup(comm_, layout_, families_, scene_.critical_stretch));
+  force_density_.assign(2 * layout_.n_owned, 0.0);
+  per_point_.assign(2 * layout_.n_owned, 0.0);
+  point_energy_.assign(layout_.n_owned, 0.0);
   PetscInt bonds_local = (PetscInt)families_.offsets[layout_.n_owned], bonds_global = 0;
   PetscCallMPI(MPI_Allreduce(&bonds_local, &bonds_global, 1, MPIU_INT, MPI_SUM, comm_));
   PetscInt ghost_max = layout_.n_ghost(), owned_min = layout_.n_owned;
@@ -151,95 +123,25 @@ PetscErrorCode Simulation::BuildBody()
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode Simulation::BuildLoads()
-{
-  PetscFunctionBegin;
-  load_points_.assign(scene_.loads.size(), {});
-  std::vector<int> claimed(2 * layout_.n_owned, -1);
-  for (std::size_t s = 0; s < scene_.loads.size(); ++s) {
-    const LoadSet        &set = scene_.loads[s];
-    std::vector<PetscInt> selected;
-    PetscCall(LoadSetSelect(scene_, set, layout_.cloud.x.data(), layout_.n_owned, &selected));
-    PetscInt count = (PetscInt)selected.size();
-    PetscCallMPI(MPI_Allreduce(&count, &load_points_[s].global_count, 1, MPIU_INT, MPI_SUM, comm_));
-    if (load_points_[s].global_count == 0) {
-      // Points sit at cell centres ((i + 1/2) dx, (j + 1/2) dx): a thin box can miss
-      // them all, and a hole can empty an edge layer.
-      const char *n = set.name.c_str();
-      char        msg[512];
-      if (set.region == LoadSet::Region::box)
-        std::snprintf(msg, sizeof msg,
-                      "-load_%s_box %g,%g,%g,%g selects no material point for load set '%s': widen it to hold a lattice point "
-                      "(points sit at ((i + 1/2) dx, (j + 1/2) dx), dx = %g m)",
-                      n, set.box[0], set.box[1], set.box[2], set.box[3], n, scene_.body.dx);
-      else
-        std::snprintf(msg, sizeof msg,
-                      "-load_%s_region %s selects no material point for load set '%s' (its %d edge layer(s) hold none, e.g. cut away "
-                      "by a hole): raise -load_%s_layers or move the hole",
-                      n, to_string(set.region), n, set.layers, n);
-      SETERRQ(comm_, PETSC_ERR_USER, "%s", msg);
-    }
-    load_points_[s].points = selected;
-    for (PetscInt p : selected)
-      for (int c = 0; c < 2; ++c) {
-        const ComponentLoad kind = c == 0 ? set.x : set.y;
-        if (kind == ComponentLoad::free) continue;
-        claimed[2 * p + c] = (int)s;
-        constrained_.push_back({2 * p + c, kind, c == 0 ? set.x_scale : set.y_scale});
-      }
-  }
-  // A point in two sets is held by the one named last; keep one entry per dof.
-  std::vector<ConstrainedDof> unique;
-  for (const ConstrainedDof &d : constrained_) {
-    auto it = std::find_if(unique.begin(), unique.end(), [&](const ConstrainedDof &e) { return e.dof == d.dof; });
-    if (it == unique.end()) unique.push_back(d);
-    else *it = d;
-  }
-  constrained_ = std::move(unique);
-  PetscFunctionReturn(0);
-}
-
+// Each probe reads the point ProbeLocate picks (scene.hpp: nearest, ties to the
+// lowest natural id, so the same point on any layout).
 PetscErrorCode Simulation::BuildProbes()
 {
   PetscFunctionBegin;
   probes_.assign(scene_.probes.size(), {});
   for (std::size_t p = 0; p < scene_.probes.size(); ++p) {
-    // Nearest owned point; ties go to the smaller natural id, so the choice does not
-    // depend on the layout.
-    struct {
-      double  d2;
-      int64_t id;
-    } best = {std::numeric_limits<double>::max(), std::numeric_limits<int64_t>::max()};
-    PetscInt best_local = -1;
-    for (PetscInt i = 0; i < layout_.n_owned; ++i) {
-      const double dx = layout_.cloud.x[2 * i] - scene_.probes[p].x, dy = layout_.cloud.x[2 * i + 1] - scene_.probes[p].y;
-      const double d2 = dx * dx + dy * dy;
-      const int64_t id = layout_.cloud.natural_id[i];
-      if (d2 < best.d2 || (d2 == best.d2 && id < best.id)) {
-        best       = {d2, id};
-        best_local = i;
-      }
-    }
-    double d2min = best.d2;
-    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &d2min, 1, MPI_DOUBLE, MPI_MIN, comm_));
-    long long id = best.d2 == d2min ? (long long)best.id : std::numeric_limits<long long>::max();
-    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &id, 1, MPI_LONG_LONG, MPI_MIN, comm_));
+    ProbeLocation where;
+    PetscCall(ProbeLocate(comm_, scene_.probes[p], layout_.cloud.x.data(), layout_.cloud.natural_id.data(), layout_.n_owned, &where));
     ProbePoint &pp = probes_[p];
-    pp.natural_id  = id;
-    int mine = (best_local >= 0 && best.id == id) ? rank_ : -1;
-    int owner = -1;
-    PetscCallMPI(MPI_Allreduce(&mine, &owner, 1, MPI_INT, MPI_MAX, comm_));
-    pp.owner_rank  = owner;
-    pp.local_index = owner == rank_ ? best_local : -1;
+    pp.natural_id  = where.natural_id;
+    pp.owner_rank  = where.owner;
+    pp.local_index = where.local_index;
     double xy[2]   = {0, 0};
-    if (owner == rank_) {
-      xy[0] = layout_.cloud.x[2 * best_local];
-      xy[1] = layout_.cloud.x[2 * best_local + 1];
-    }
-    PetscCallMPI(MPI_Bcast(xy, 2, MPI_DOUBLE, owner, comm_));
+    if (where.owner == rank_) xy[0] = layout_.cloud.x[2 * where.local_index], xy[1] = layout_.cloud.x[2 * where.local_index + 1];
+    PetscCallMPI(MPI_Bcast(xy, 2, MPI_DOUBLE, where.owner, comm_));
     pp.x = xy[0];
     pp.y = xy[1];
-    PetscCall(PetscPrintf(comm_, "Probe %s: point %lld at (%g, %g) m\n", scene_.probes[p].name.c_str(), id, pp.x, pp.y));
+    PetscCall(PetscPrintf(comm_, "Probe %s: point %lld at (%g, %g) m\n", scene_.probes[p].name.c_str(), (long long)pp.natural_id, pp.x, pp.y));
   }
   PetscFunctionReturn(0);
 }
@@ -248,12 +150,12 @@ PetscErrorCode Simulation::BuildProbes()
 PetscErrorCode Simulation::SetupRelaxation()
 {
   PetscFunctionBegin;
-  std::vector<PetscInt> held;
-  for (const ConstrainedDof &d : constrained_) held.push_back(d.dof);
-  relaxation_.Setup(relaxation_kind_, (std::size_t)layout_.n_owned, layout_.cloud.volume.data(), held, scene_.damping, stable_dt_);
+  const double stable_dt = step_control_.stable();
+  relaxation_.Setup(relaxation_kind_, (std::size_t)layout_.n_owned, layout_.cloud.volume.data(), loading_.held_dofs(), scene_.damping,
+                    stable_dt);
   if (relaxation_.active()) {
     char range[96]; // PETSc's %g would print "50."
-    std::snprintf(range, sizeof range, "between %g (-damping) and %.4g 1/s", scene_.damping, 4.0 / stable_dt_);
+    std::snprintf(range, sizeof range, "between %g (-damping) and %.4g 1/s", scene_.damping, 4.0 / stable_dt);
     PetscCall(PetscPrintf(comm_, "Relaxation: adaptive, damping c = 2 omega every step (Rayleigh quotient of the latest increment), %s\n", range));
     // With bonds breaking, the state depends on the loading path and on the dynamics:
     // a route that shortcuts both answers another question.
@@ -287,10 +189,10 @@ PetscErrorCode Simulation::PostStep(TS ts)
     // Mass-proportional damping, integrated exactly over the step (operator split):
     // works with every TS type and never destabilises the step. The grips' speeds
     // are set again just below.
-    const double decay = std::exp(-damping * sim->dt_);
+    const double decay = std::exp(-damping * sim->step_control_.current());
     for (PetscInt k = 0; k < n; ++k) x[n + k] *= decay;
   }
-  PetscCall(sim->ApplyLoading(t, x, x + n));
+  sim->loading_.Apply(t, x, x + n);
   PetscCall(VecRestoreArray(X, &x));
 
   PetscBool diverged = PETSC_FALSE;
@@ -298,7 +200,7 @@ PetscErrorCode Simulation::PostStep(TS ts)
   if (!diverged) {
     // Runaway energy: an unstable time step caught before NaN or shattering (divergence.hpp).
     std::string runaway;
-    PetscCall(CheckRunawayEnergy(*sim, sim->energy_monitor_, step, t, &runaway));
+    PetscCall(sim->CheckRunaway(step, t, &runaway));
     if (!runaway.empty()) sim->stop_reason_ = runaway, sim->stopped_on_error_ = true, diverged = PETSC_TRUE;
   }
   if (diverged) {
@@ -308,11 +210,17 @@ PetscErrorCode Simulation::PostStep(TS ts)
   }
   if (sim->scene_.failure) {
     PetscCall(VecGetArray(X, &x));
-    PetscCall(sim->UpdateGhostedPositions(x));
+    PetscCall(sim->force_.UpdatePositions(x));
     PetscCall(VecRestoreArray(X, &x));
-    PetscCall(sim->BreakBonds());
+    PetscCall(sim->failure_.Break(sim->force_.positions(), sim->force_.failed_bonds(), sim->bond_state_, sim->geometry_));
   }
-  PetscCall(sim->AdaptTimeStep()); // before any checkpoint: a restart takes the same next step
+  {
+    // Before any checkpoint: a restart takes the same next step.
+    const double *xr;
+    PetscCall(VecGetArrayRead(X, &xr));
+    PetscCall(sim->step_control_.AdaptToTravel(sim->comm_, sim->layout_, sim->families_, sim->bond_state_, xr + n, ts));
+    PetscCall(VecRestoreArrayRead(X, &xr));
+  }
   if (step % sim->scene_.output_interval == 0) {
     PetscCall(sim->WriteHistoryRow(step, t));
     PetscCall(sim->CheckStaticHold(step, t));

@@ -4,15 +4,10 @@
 
 #include <algorithm>
 #include <cerrno>
-#include <cmath>
 #include <cstring>
 #include <filesystem>
-#include <limits>
 
-#include "bapd/ba_force_energy.hpp"
 #include "bapd/damage.hpp"
-#include "bapd/models.hpp"
-#include "bapd/lattice.hpp"
 #include "bapd/reproducible_sum.hpp"
 
 namespace bapd {
@@ -70,28 +65,40 @@ PetscErrorCode Simulation::OpenHistory()
   PetscFunctionReturn(0);
 }
 
+// Kinetic and internal energy, reproducible sums; no allocation (scratch sized at set-up).
 PetscErrorCode Simulation::Energies(double *kinetic, double *internal)
 {
   const PetscInt n = layout_.n_owned;
   const double  *x;
-  std::vector<double> per_point(2 * n);
 
   PetscFunctionBegin;
   PetscCall(VecGetArrayRead(X_, &x));
-  PetscCall(UpdateGhostedPositions(x));
+  PetscCall(force_.PointEnergies(x, point_energy_.data()));
   const double *v = x + 2 * n;
   for (PetscInt i = 0; i < n; ++i) {
-    const double m = scene_.density * layout_.cloud.volume[i];
-    per_point[2 * i] = 0.5 * m * (v[2 * i] * v[2 * i] + v[2 * i + 1] * v[2 * i + 1]);
+    const double m     = scene_.density * layout_.cloud.volume[i];
+    per_point_[2 * i]     = 0.5 * m * (v[2 * i] * v[2 * i] + v[2 * i + 1] * v[2 * i + 1]);
+    per_point_[2 * i + 1] = point_energy_[i];
   }
   PetscCall(VecRestoreArrayRead(X_, &x));
-  std::vector<double> energy(n);
-  point_energies_(y_.data(), energy.data());
-  for (PetscInt i = 0; i < n; ++i) per_point[2 * i + 1] = energy[i];
   double sums[2];
-  PetscCall(ReproducibleSum(comm_, 2, n, per_point.data(), sums));
+  PetscCall(ReproducibleSum(comm_, 2, n, per_point_.data(), sums));
   *kinetic  = sums[0];
   *internal = sums[1];
+  PetscFunctionReturn(0);
+}
+
+// The displacement of every probe's point, on every rank (2 per probe).
+PetscErrorCode Simulation::ReadProbes(const double *u_owned, double *probe_u)
+{
+  PetscFunctionBegin;
+  for (std::size_t p = 0; p < probes_.size(); ++p) {
+    if (probes_[p].owner_rank == rank_) {
+      probe_u[2 * p]     = u_owned[2 * probes_[p].local_index];
+      probe_u[2 * p + 1] = u_owned[2 * probes_[p].local_index + 1];
+    }
+    PetscCallMPI(MPI_Bcast(&probe_u[2 * p], 2, MPI_DOUBLE, probes_[p].owner_rank, comm_));
+  }
   PetscFunctionReturn(0);
 }
 
@@ -104,6 +111,7 @@ PetscErrorCode Simulation::BrokenBondCount(PetscInt *count)
   PetscFunctionReturn(0);
 }
 
+// One row of history.csv; keeps the values for the static-hold test. No allocation.
 PetscErrorCode Simulation::WriteHistoryRow(PetscInt step, double t)
 {
   const double *x;
@@ -111,42 +119,21 @@ PetscErrorCode Simulation::WriteHistoryRow(PetscInt step, double t)
   PetscFunctionBegin;
   PetscCall(PetscLogStagePush(stage_output_));
   PetscCall(VecGetArrayRead(X_, &x));
-  PetscCall(ComputeForceDensity(x, force_.data()));
-  // Reactions: the grip holds its points still, so it supplies minus the internal force.
-  std::vector<double> reaction(2 * scene_.loads.size(), 0.0);
-  for (std::size_t s = 0; s < scene_.loads.size(); ++s) {
-    const std::vector<PetscInt> &pts = load_points_[s].points;
-    std::vector<double>          terms(2 * pts.size());
-    for (std::size_t k = 0; k < pts.size(); ++k) {
-      terms[2 * k]     = -force_[2 * pts[k]] * layout_.cloud.volume[pts[k]];
-      terms[2 * k + 1] = -force_[2 * pts[k] + 1] * layout_.cloud.volume[pts[k]];
-    }
-    PetscCall(ReproducibleSum(comm_, 2, (PetscInt)pts.size(), terms.data(), &reaction[2 * s]));
-  }
-  std::vector<double> probe_u(2 * probes_.size(), 0.0);
-  for (std::size_t p = 0; p < probes_.size(); ++p) {
-    if (probes_[p].owner_rank == rank_) {
-      probe_u[2 * p]     = x[2 * probes_[p].local_index];
-      probe_u[2 * p + 1] = x[2 * probes_[p].local_index + 1];
-    }
-    PetscCallMPI(MPI_Bcast(&probe_u[2 * p], 2, MPI_DOUBLE, probes_[p].owner_rank, comm_));
-  }
+  PetscCall(ComputeForceDensity(x, force_density_.data()));
+  PetscCall(loading_.Reactions(force_density_.data(), last_reaction_.data()));
+  PetscCall(ReadProbes(x, last_probe_u_.data()));
   PetscCall(VecRestoreArrayRead(X_, &x));
-  double kinetic, internal;
-  PetscCall(Energies(&kinetic, &internal));
+  PetscCall(Energies(&last_kinetic_, &last_internal_));
   PetscInt broken;
   PetscCall(BrokenBondCount(&broken));
-  last_kinetic_  = kinetic;
-  last_internal_ = internal;
-  last_reaction_ = reaction;
-  last_probe_u_  = probe_u;
+  const std::vector<double> &reaction = last_reaction_, &probe_u = last_probe_u_;
   if (rank_ == 0) {
     const double area = scene_.body.width * scene_.body.thickness;
-    std::fprintf(history_, "%" PetscInt_FMT ",%.17g,%.17g", step, t, scene_.schedule.stretch_at(t));
+    std::fprintf(history_, "%" PetscInt_FMT ",%.17g,%.17g", step, t, loading_.stretch_at(t));
     for (std::size_t s = 0; s < scene_.loads.size(); ++s)
       std::fprintf(history_, ",%.17g,%.17g,%.17g", reaction[2 * s], reaction[2 * s + 1], reaction[2 * s + 1] / area);
     for (std::size_t p = 0; p < probes_.size(); ++p) std::fprintf(history_, ",%.17g,%.17g", probe_u[2 * p], probe_u[2 * p + 1]);
-    std::fprintf(history_, ",%.17g,%.17g,%" PetscInt_FMT "\n", kinetic, internal, broken);
+    std::fprintf(history_, ",%.17g,%.17g,%" PetscInt_FMT "\n", last_kinetic_, last_internal_, broken);
     std::fflush(history_);
   }
   PetscCall(PetscLogStagePop());
@@ -160,14 +147,11 @@ PetscErrorCode Simulation::WriteHistoryRow(PetscInt step, double t)
 // steps end the same holds on any number of ranks.
 PetscErrorCode Simulation::CheckStaticHold(PetscInt step, double t)
 {
-  Schedule &s = scene_.schedule;
-
   PetscFunctionBegin;
-  if (scene_.static_tolerance <= 0 || s.time.empty() || s.rate_at(t) != 0.0 || t < s.time.front()) PetscFunctionReturn(0);
-  PetscInt k = (PetscInt)(std::upper_bound(s.time.begin(), s.time.end(), t) - s.time.begin()) - 1; // t in [time[k], time[k+1])
-  if (k == static_hold_done_ || !(last_kinetic_ < scene_.static_tolerance * last_internal_)) PetscFunctionReturn(0);
-  static_hold_done_ = k;
-  const double lambda = s.stretch_at(t);
+  if (scene_.static_tolerance <= 0) PetscFunctionReturn(0);
+  const PetscInt k = loading_.HoldAt(t); // a hold that has not ended yet, or -1
+  if (k < 0 || !(last_kinetic_ < scene_.static_tolerance * last_internal_)) PetscFunctionReturn(0);
+  const double lambda = loading_.stretch_at(t);
   PetscCall(PetscPrintf(comm_, "Static at stretch %.5f: t = %.6e s, step %" PetscInt_FMT ", kinetic/internal energy %.3e < %.3e", lambda, t, step,
                         last_kinetic_ / last_internal_, scene_.static_tolerance));
   for (std::size_t p = 0; p < probes_.size(); ++p)
@@ -190,26 +174,24 @@ PetscErrorCode Simulation::CheckStaticHold(PetscInt step, double t)
     std::fflush(static_states_);
   }
   // Skip what is left of the hold.
-  const double hold_end  = k + 1 < (PetscInt)s.time.size() ? s.time[k + 1] : scene_.end_time;
-  const double remaining = std::max(0.0, hold_end - t);
-  for (std::size_t j = (std::size_t)k + 1; j < s.time.size(); ++j) s.time[j] -= remaining;
-  scene_.end_time = std::max(t, scene_.end_time - remaining);
-  PetscCall(TSSetMaxTime(ts_, scene_.end_time));
+  loading_.EndHold(k, t);
+  PetscCall(TSSetMaxTime(ts_, loading_.end_time()));
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode Simulation::Progress(PetscInt step, double t, PetscBool force)
 {
   PetscFunctionBegin;
-  if (!force && step % scene_.progress_interval != 0) PetscFunctionReturn(0);
-  const double end_time = scene_.end_time;
+  if (!force && step % progress_interval_ != 0) PetscFunctionReturn(0);
+  const double end_time = loading_.end_time();
   const double wall     = MPI_Wtime() - wall_start_;
   if (scene_.failure) PetscCall(BrokenBondCount(&total_broken_));
   const double left     = t > 0 ? wall * (end_time - t) / t : 0.0;
   char shortened[64] = "";
-  if (dt_ < base_dt_) PetscCall(PetscSNPrintf(shortened, sizeof shortened, "  dt %.3g x (fast points)", dt_ / base_dt_));
+  const double dt = step_control_.current(), base = step_control_.base();
+  if (dt < base) PetscCall(PetscSNPrintf(shortened, sizeof shortened, "  dt %.3g x (fast points)", dt / base));
   PetscCall(PetscPrintf(comm_, "step %8" PetscInt_FMT "  t %.4e s  stretch %.4f  broken %" PetscInt_FMT "  wall %.1f s  left ~%.1f s%s\n", step, t,
-                        scene_.schedule.stretch_at(t), total_broken_, wall, left, shortened));
+                        loading_.stretch_at(t), total_broken_, wall, left, shortened));
   PetscFunctionReturn(0);
 }
 
@@ -222,40 +204,27 @@ PetscErrorCode Simulation::Summary()
   PetscCall(TSGetStepNumber(ts_, &step));
   PetscCall(TSGetTime(ts_, &t));
   const double *x;
-  std::vector<double> probe_u(2 * probes_.size(), 0.0);
+  std::vector<double> probe_u(2 * probes_.size(), 0.0), reaction(2 * scene_.loads.size(), 0.0);
   PetscCall(VecGetArrayRead(X_, &x));
-  for (std::size_t p = 0; p < probes_.size(); ++p) {
-    if (probes_[p].owner_rank == rank_) {
-      probe_u[2 * p]     = x[2 * probes_[p].local_index];
-      probe_u[2 * p + 1] = x[2 * probes_[p].local_index + 1];
-    }
-    PetscCallMPI(MPI_Bcast(&probe_u[2 * p], 2, MPI_DOUBLE, probes_[p].owner_rank, comm_));
-  }
-  PetscCall(ComputeForceDensity(x, force_.data()));
+  PetscCall(ReadProbes(x, probe_u.data()));
+  PetscCall(ComputeForceDensity(x, force_density_.data()));
+  PetscCall(loading_.Reactions(force_density_.data(), reaction.data()));
   PetscCall(VecRestoreArrayRead(X_, &x));
   PetscCall(PetscPrintf(comm_, "\n%s: %" PetscInt_FMT " steps, t = %.6e s, stretch %.5f, wall %.1f s\n",
-                        stopped_on_error_ ? "Stopped (see the error below)" : "Finished", step, t, scene_.schedule.stretch_at(t),
+                        stopped_on_error_ ? "Stopped (see the error below)" : "Finished", step, t, loading_.stretch_at(t),
                         MPI_Wtime() - wall_start_));
   for (std::size_t p = 0; p < probes_.size(); ++p)
     PetscCall(PetscPrintf(comm_, "probe %-16s ux = %+.6e m  uy = %+.6e m\n", scene_.probes[p].name.c_str(), probe_u[2 * p], probe_u[2 * p + 1]));
-  for (std::size_t s = 0; s < scene_.loads.size(); ++s) {
-    std::vector<double> terms(2 * load_points_[s].points.size());
-    for (std::size_t k = 0; k < load_points_[s].points.size(); ++k) {
-      const PetscInt i = load_points_[s].points[k];
-      terms[2 * k]     = -force_[2 * i] * layout_.cloud.volume[i];
-      terms[2 * k + 1] = -force_[2 * i + 1] * layout_.cloud.volume[i];
-    }
-    double r[2];
-    PetscCall(ReproducibleSum(comm_, 2, (PetscInt)load_points_[s].points.size(), terms.data(), r));
-    PetscCall(PetscPrintf(comm_, "load set %-12s reaction y = %+.6e N  nominal stress = %+.6e Pa\n", scene_.loads[s].name.c_str(), r[1],
-                          r[1] / (scene_.body.width * scene_.body.thickness)));
-  }
+  for (std::size_t s = 0; s < scene_.loads.size(); ++s)
+    PetscCall(PetscPrintf(comm_, "load set %-12s reaction y = %+.6e N  nominal stress = %+.6e Pa\n", scene_.loads[s].name.c_str(),
+                          reaction[2 * s + 1], reaction[2 * s + 1] / (scene_.body.width * scene_.body.thickness)));
   PetscInt broken;
   PetscCall(BrokenBondCount(&broken));
   if (scene_.failure) PetscCall(PetscPrintf(comm_, "broken bonds: %" PetscInt_FMT "\n", broken));
-  if (shortened_steps_ > 0)
+  if (step_control_.shortened_steps() > 0)
     PetscCall(PetscPrintf(comm_, "time step: %" PetscInt_FMT " step(s) shortened by -time_step_travel %g (fast points), the shortest %.4e s = %.3g x the full %.4e s\n",
-                          shortened_steps_, scene_.time_step_travel, shortest_dt_, shortest_dt_ / base_dt_, base_dt_));
+                          step_control_.shortened_steps(), scene_.time_step_travel, step_control_.shortest(),
+                          step_control_.shortest() / step_control_.base(), step_control_.base()));
   if (relaxation_.active())
     PetscCall(PetscPrintf(comm_, "adaptive relaxation: damping %.4g 1/s now, %.4g to %.4g 1/s over the run\n", relaxation_.last(),
                           relaxation_.smallest(), relaxation_.largest()));
@@ -268,19 +237,19 @@ PetscErrorCode Simulation::Summary()
 // not depend on the rank layout, for comparisons across runs.
 PetscErrorCode Simulation::WriteFinalState()
 {
-  std::vector<double>                      u;
+  std::vector<double>                      u, reference;
   std::vector<std::pair<int64_t, int64_t>> broken;
 
   PetscFunctionBegin;
   PetscCall(GatherDisplacement(&u));
+  PetscCall(GatherNatural(layout_.cloud.x.data(), &reference)); // the layout's copies of the lattice positions
   PetscCall(GatherBrokenBonds(&broken));
   if (rank_ == 0) {
-    const PointCloud global = make_lattice(scene_.body);
-    FILE            *f      = std::fopen((scene_.output_dir + "/final_state.csv").c_str(), "w");
+    FILE *f = std::fopen((scene_.output_dir + "/final_state.csv").c_str(), "w");
     PetscCheck(f, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "Cannot write %s/final_state.csv", scene_.output_dir.c_str());
     std::fprintf(f, "natural_id,x_m,y_m,ux_m,uy_m\n");
-    for (std::size_t i = 0; i < global.size(); ++i)
-      std::fprintf(f, "%zu,%.17g,%.17g,%.17g,%.17g\n", i, global.x[2 * i], global.x[2 * i + 1], u[2 * i], u[2 * i + 1]);
+    for (std::size_t i = 0; i < (std::size_t)layout_.n_global; ++i)
+      std::fprintf(f, "%zu,%.17g,%.17g,%.17g,%.17g\n", i, reference[2 * i], reference[2 * i + 1], u[2 * i], u[2 * i + 1]);
     std::fclose(f);
     f = std::fopen((scene_.output_dir + "/broken_bonds.csv").c_str(), "w");
     PetscCheck(f, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "Cannot write %s/broken_bonds.csv", scene_.output_dir.c_str());
@@ -293,27 +262,37 @@ PetscErrorCode Simulation::WriteFinalState()
 
 PetscErrorCode Simulation::GatherDisplacement(std::vector<double> *u_natural)
 {
+  const double *x;
+
+  PetscFunctionBegin;
+  PetscCall(VecGetArrayRead(X_, &x));
+  const PetscErrorCode ierr = GatherNatural(x, u_natural);
+  PetscCall(VecRestoreArrayRead(X_, &x));
+  PetscCall(ierr);
+  PetscFunctionReturn(0);
+}
+
+// Two values per owned point, gathered on rank 0 in natural order (2 per point).
+PetscErrorCode Simulation::GatherNatural(const double *values, std::vector<double> *natural)
+{
   const PetscInt n = layout_.n_owned;
-  const double  *x;
 
   PetscFunctionBegin;
   std::vector<double> mine(3 * n);
-  PetscCall(VecGetArrayRead(X_, &x));
   for (PetscInt i = 0; i < n; ++i) {
     mine[3 * i]     = (double)layout_.cloud.natural_id[i];
-    mine[3 * i + 1] = x[2 * i];
-    mine[3 * i + 2] = x[2 * i + 1];
+    mine[3 * i + 1] = values[2 * i];
+    mine[3 * i + 2] = values[2 * i + 1];
   }
-  PetscCall(VecRestoreArrayRead(X_, &x));
   std::vector<double> all;
   PetscCall(GatherOnRankZero(comm_, mine, MPI_DOUBLE, &all));
-  u_natural->clear();
+  natural->clear();
   if (rank_ == 0) {
-    u_natural->assign(2 * layout_.n_global, 0.0);
+    natural->assign(2 * layout_.n_global, 0.0);
     for (std::size_t k = 0; k < all.size(); k += 3) {
       const std::size_t id = (std::size_t)all[k];
-      (*u_natural)[2 * id]     = all[k + 1];
-      (*u_natural)[2 * id + 1] = all[k + 2];
+      (*natural)[2 * id]     = all[k + 1];
+      (*natural)[2 * id + 1] = all[k + 2];
     }
   }
   PetscFunctionReturn(0);

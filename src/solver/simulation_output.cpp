@@ -60,11 +60,9 @@ PetscErrorCode Simulation::SetupOutput()
   PetscCall(RegisterEvents());
   output_.series.output_dir = scene_.output_dir;
   if (output_.fields.interval == 0) {
-    const double end_time = scene_.end_time > 0 ? scene_.end_time : scene_.schedule.end_time();
-    output_.fields.interval = std::max<PetscInt>(1, (PetscInt)std::ceil(end_time / dt_ - 1e-9) / 20);
+    const double end_time = loading_.end_time() > 0 ? loading_.end_time() : loading_.schedule().end_time();
+    output_.fields.interval = std::max<PetscInt>(1, (PetscInt)std::ceil(end_time / step_control_.current() - 1e-9) / 20);
   }
-  output_.schedule_original = scene_.schedule.time;
-  output_.end_time_original = scene_.end_time;
   output_.last_checkpoint_wall = MPI_Wtime();
   PetscInt  step = 0;
   PetscReal t    = 0;
@@ -95,7 +93,7 @@ PetscErrorCode Simulation::SaveGoodState(PetscInt step, double t)
 {
   PetscFunctionBegin;
   PetscCall(VecCopy(X_, output_.good_state));
-  output_.good_c33.assign(c33_.begin(), c33_.end()); // same size every step: no allocation
+  output_.good_c33.assign(force_.warm_start().begin(), force_.warm_start().end()); // same size every step: no allocation
   output_.good_step = step;
   output_.good_time = t;
   PetscFunctionReturn(0);
@@ -137,7 +135,7 @@ PetscErrorCode Simulation::OutputOnDivergence()
   PetscFunctionBegin;
   if (!output_.checkpoint.on_error || output_.good_step < 0) PetscFunctionReturn(0);
   PetscCall(VecCopy(output_.good_state, X_));
-  std::copy(output_.good_c33.begin(), output_.good_c33.end(), c33_.begin());
+  std::copy(output_.good_c33.begin(), output_.good_c33.end(), force_.warm_start().begin());
   PetscCall(TSSetStepNumber(ts_, output_.good_step));
   PetscCall(TSSetTime(ts_, output_.good_time));
   if (output_.fields.enabled) PetscCall(WriteFields(output_.good_step, output_.good_time));
@@ -172,16 +170,16 @@ PetscErrorCode Simulation::WriteFields(PetscInt step, double t)
   PetscCall(CreateNaturalOrder());
   std::vector<double> damage(n), largest(n);
   PetscCall(VecGetArrayRead(X_, &x));
-  PetscCall(UpdateGhostedPositions(x)); // y_ for the stretch; the next force evaluation sets it again
+  PetscCall(force_.UpdatePositions(x)); // y for the stretch; the next force evaluation sets it again
   point_damage(layout_.cloud, families_, bond_state_, (std::size_t)n, damage.data());
-  largest_bond_stretch(layout_.cloud, y_.data(), families_, bond_state_, (std::size_t)n, largest.data());
+  largest_bond_stretch(layout_.cloud, force_.positions(), families_, bond_state_, (std::size_t)n, largest.data());
   PointFields fields;
   fields.reference        = layout_.cloud.x.data();
   fields.displacement     = x;
   fields.velocity         = x + 2 * n;
   fields.damage           = damage.data();
   fields.max_bond_stretch = largest.data();
-  PetscCall(WriteFieldFrame(comm_, output_.order, &output_.series, step, t, scene_.schedule.stretch_at(t), fields));
+  PetscCall(WriteFieldFrame(comm_, output_.order, &output_.series, step, t, loading_.stretch_at(t), fields));
   PetscCall(VecRestoreArrayRead(X_, &x));
   PetscCall(PetscLogEventEnd(event_fields, 0, 0, 0, 0));
   PetscCall(PetscLogStagePop());
@@ -201,8 +199,8 @@ PetscErrorCode Simulation::WriteCheckpointFile(PetscInt step, double t, const ch
   CheckpointHeader header;
   header.step      = step;
   header.time      = t;
-  header.time_step = dt_;
-  header.stretch   = scene_.schedule.stretch_at(t);
+  header.time_step = step_control_.current();
+  header.stretch   = loading_.stretch_at(t);
   header.reason    = reason;
   header.geometry  = output_.geometry;
   if (rank_ == 0) {
@@ -219,11 +217,11 @@ PetscErrorCode Simulation::WriteCheckpointFile(PetscInt step, double t, const ch
     if (states) states_text << states.rdbuf();
     header.static_states = states_text.str();
   }
-  header.schedule_original = output_.schedule_original;
-  header.schedule_current  = scene_.schedule.time;
-  header.end_time_original = output_.end_time_original;
-  header.end_time          = scene_.end_time;
-  header.static_hold_done  = static_hold_done_;
+  header.schedule_original = loading_.schedule_original();
+  header.schedule_current  = loading_.schedule().time;
+  header.end_time_original = loading_.end_time_original();
+  header.end_time          = loading_.end_time();
+  header.static_hold_done  = loading_.hold_done();
   for (const FieldFrame &frame : output_.series.frames) {
     header.field_frames.push_back((double)frame.step);
     header.field_frames.push_back(frame.time);
@@ -234,7 +232,7 @@ PetscErrorCode Simulation::WriteCheckpointFile(PetscInt step, double t, const ch
   state.u     = x;
   state.v     = x + 2 * n;
   state.bonds = &bond_state_;
-  state.c33   = c33_.data();
+  state.c33   = force_.warm_start().data();
   // -relaxation adaptive: the latest force evaluation, which the next step's damping
   // is computed against (not for the last good state of a diverged run: the
   // continuation then starts the estimate afresh, at the -damping floor for one step).
@@ -259,28 +257,16 @@ PetscErrorCode Simulation::WriteCheckpointFile(PetscInt step, double t, const ch
   PetscFunctionReturn(0);
 }
 
-// Static holds that ended early moved the later knots and the end time; the same
-// schedule (the common case) takes the moved values exactly, a schedule or end time
-// changed on the restart command line takes the same shifts.
+// The schedule as the checkpoint left it (Loading::Restore), and the TS's end time.
 PetscErrorCode Simulation::RestoreSchedule(const CheckpointHeader &header)
 {
-  Schedule &s = scene_.schedule;
-
   PetscFunctionBegin;
-  if (header.schedule_current.size() == s.time.size()) {
-    for (std::size_t k = 0; k < s.time.size(); ++k)
-      s.time[k] = s.time[k] == header.schedule_original[k] ? header.schedule_current[k]
-                                                          : s.time[k] + (header.schedule_current[k] - header.schedule_original[k]);
-  } else if (header.schedule_current != header.schedule_original) {
-    PetscCall(PetscPrintf(comm_, "Note: the load schedule has other knots than the checkpoint's; the holds it ended early are not carried over\n"));
-  }
-  scene_.end_time = scene_.end_time == header.end_time_original ? header.end_time
-                                                               : std::max(header.time, scene_.end_time + (header.end_time - header.end_time_original));
-  PetscCall(TSSetMaxTime(ts_, scene_.end_time));
-  if (scene_.end_time <= header.time)
+  PetscCall(loading_.Restore(header.schedule_original, header.schedule_current, header.end_time_original, header.end_time, header.time,
+                             (PetscInt)header.static_hold_done));
+  PetscCall(TSSetMaxTime(ts_, loading_.end_time()));
+  if (loading_.end_time() <= header.time)
     PetscCall(PetscPrintf(comm_, "\n*** WARNING: the checkpoint is at t = %.6e s, already at the end time %.6e s: this run takes no step. "
-                                 "Give a later -end_time to go on.\n\n", header.time, scene_.end_time));
-  static_hold_done_ = (PetscInt)header.static_hold_done;
+                                 "Give a later -end_time to go on.\n\n", header.time, loading_.end_time()));
   PetscFunctionReturn(0);
 }
 
@@ -302,7 +288,7 @@ PetscErrorCode Simulation::RestoreCheckpoint()
   state.u     = x;
   state.v     = x + 2 * n;
   state.bonds = &bond_state_;
-  state.c33   = c33_.data();
+  state.c33   = force_.warm_start().data();
   if (relaxation_.active()) {
     state.relaxation_u = relaxation_.latest_u();
     state.relaxation_a = relaxation_.latest_a();
@@ -312,7 +298,7 @@ PetscErrorCode Simulation::RestoreCheckpoint()
   PetscCall(VecRestoreArray(X_, &x));
   // The reference geometry of the families with their broken bonds, as the run had it.
   compute_bond_geometry(layout_.cloud, families_, bond_state_, geometry_);
-  last_stats_ = KernelStats{};
+  force_.ForgetStats();
   PetscCall(TSSetStepNumber(ts_, header.step));
   PetscCall(TSSetTime(ts_, header.time));
   PetscCall(RestoreSchedule(header));
@@ -326,12 +312,10 @@ PetscErrorCode Simulation::RestoreCheckpoint()
   }
   // A step shortened by -time_step_travel goes on as it was: the continuation is then
   // the uninterrupted run. A new, shorter base step (a smaller -time_step_safety) wins.
-  if (scene_.time_step_travel > 0 && header.time_step > 0 && header.time_step < base_dt_) {
-    dt_ = header.time_step;
-    PetscCall(TSSetTimeStep(ts_, dt_));
-  }
-  if (header.time_step != dt_)
-    PetscCall(PetscPrintf(comm_, "Note: the checkpoint was written with dt = %.6e s; this run uses dt = %.6e s\n", header.time_step, dt_));
+  PetscCall(step_control_.ContinueShortened(header.time_step, ts_));
+  if (header.time_step != step_control_.current())
+    PetscCall(PetscPrintf(comm_, "Note: the checkpoint was written with dt = %.6e s; this run uses dt = %.6e s\n", header.time_step,
+                          step_control_.current()));
   PetscCall(BrokenBondCount(&total_broken_));
 
   // history.csv: the checkpoint's rows, then this run's. A last row at the checkpoint
@@ -385,7 +369,7 @@ PetscErrorCode Simulation::RestoreCheckpoint()
   if (output_.fields.enabled) PetscCall(WriteFieldIndex(comm_, output_.series, layout_.n_global));
 
   PetscCall(PetscPrintf(comm_, "Restart from %s: step %" PetscInt_FMT ", t = %.6e s, stretch %.5f, %" PetscInt_FMT " broken bonds (written by %lld rank(s), %s)\n",
-                        path.c_str(), header.step, header.time, scene_.schedule.stretch_at(header.time), total_broken_,
+                        path.c_str(), header.step, header.time, loading_.stretch_at(header.time), total_broken_,
                         (long long)header.ranks, header.reason.c_str()));
   PetscCall(PetscLogEventEnd(event_restart, 0, 0, 0, 0));
   PetscFunctionReturn(0);

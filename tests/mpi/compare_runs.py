@@ -27,7 +27,7 @@ def max_relative_difference(a, b, columns):
 
 def main():
     p = argparse.ArgumentParser()
-    p.add_argument("--tolerance", type=float, default=1e-10)
+    p.add_argument("--tolerance", type=float, default=0.0)
     p.add_argument("--expect-broken", action="store_true", help="fail if no bond broke")
     p.add_argument("dirs", nargs="+")
     args = p.parse_args()

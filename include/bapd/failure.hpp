@@ -1,0 +1,46 @@
+#pragma once
+// Failure: bonds break past the critical stretch (paper eq 37) or when their model
+// fails (the Gent chain limit), and the owners' bond states are copied to their
+// ring-1 ghosts so every rank layout holds the same bond state (README, "Parallel
+// design"). Everything a breaking pass uses is allocated at set-up; only the
+// recomputation of the geometry of the points whose bonds broke allocates (in the
+// core, compute_bond_geometry), and only in a step where a bond breaks.
+#include <petscsf.h>
+
+#include <vector>
+
+#include "bapd/ba_force.hpp"
+#include "bapd/bond_geometry.hpp"
+#include "bapd/bond_state.hpp"
+#include "bapd/family.hpp"
+#include "bapd/layout.hpp"
+
+namespace bapd {
+
+class Failure {
+public:
+  Failure() = default;
+  ~Failure();
+  Failure(const Failure &)            = delete;
+  Failure &operator=(const Failure &) = delete;
+
+  // Collective: the exchange of intact masks from owners to ring-1 ghosts.
+  PetscErrorCode Setup(MPI_Comm comm, const Layout &layout, const Families &families, double critical_stretch);
+  // One breaking pass after a step at positions y (every local point), with the
+  // bonds whose model failed in the step's force evaluation (cleared here); updates
+  // the bond state and the geometry of the points whose bonds broke. Collective.
+  PetscErrorCode Break(const double *y, std::vector<FailedBond> &failed, BondState &state, BondGeometry &geometry);
+
+private:
+  PetscErrorCode SynchroniseGhosts(BondState &state);
+
+  const Layout            *layout_   = nullptr;
+  const Families          *families_ = nullptr;
+  double                   critical_stretch_ = 0;
+  PetscSF                  sf_   = nullptr;      // owners' intact masks -> their ring-1 ghost copies
+  MPI_Datatype             mask_ = MPI_DATATYPE_NULL; // one point's intact mask
+  std::vector<std::uint64_t> ghost_masks_;
+  std::vector<std::size_t> touched_, stretched_; // reserved at set-up
+};
+
+} // namespace bapd

@@ -1,0 +1,62 @@
+// Signals (checkpoint.hpp): SIGTERM / SIGINT ask for a checkpoint and a stop, SIGUSR1
+// for a checkpoint and going on. The handlers only record the signal; the driver
+// asks once per step, collectively (Simulation::OutputAfterStep).
+#include <csignal>
+#include <cstring>
+
+#include "bapd/checkpoint.hpp"
+
+namespace bapd {
+
+namespace {
+
+volatile std::sig_atomic_t interrupt_signal = 0, checkpoint_requests = 0;
+struct sigaction           previous_term, previous_int, previous_usr1;
+int                        installed = 0;
+
+extern "C" void OnInterrupt(int signal)
+{
+  if (interrupt_signal) { // a second one: stop now, the default way
+    std::signal(signal, SIG_DFL);
+    std::raise(signal);
+    return;
+  }
+  interrupt_signal = signal;
+}
+
+extern "C" void OnCheckpointRequest(int) { checkpoint_requests = checkpoint_requests + 1; }
+
+} // namespace
+
+void InstallInterruptHandlers()
+{
+  if (installed++) return;
+  struct sigaction action;
+  std::memset(&action, 0, sizeof action);
+  action.sa_handler = OnInterrupt;
+  action.sa_flags   = SA_RESTART;
+  sigemptyset(&action.sa_mask);
+  sigaction(SIGTERM, &action, &previous_term);
+  sigaction(SIGINT, &action, &previous_int);
+  action.sa_handler = OnCheckpointRequest;
+  sigaction(SIGUSR1, &action, &previous_usr1);
+}
+
+void RestoreInterruptHandlers()
+{
+  if (installed == 0 || --installed) return;
+  sigaction(SIGTERM, &previous_term, nullptr);
+  sigaction(SIGINT, &previous_int, nullptr);
+  sigaction(SIGUSR1, &previous_usr1, nullptr);
+}
+
+int PendingInterrupt() { return (int)interrupt_signal; }
+
+bool TakeCheckpointRequest()
+{
+  if (!checkpoint_requests) return false;
+  checkpoint_requests = 0;
+  return true;
+}
+
+} // namespace bapd

@@ -1,0 +1,147 @@
+// Loading (loading.hpp): grips, prescribed values, reactions, the moving schedule.
+#include "bapd/loading.hpp"
+
+#include <algorithm>
+#include <cstdio>
+
+#include "bapd/reproducible_sum.hpp"
+
+namespace bapd {
+
+PetscErrorCode Loading::Setup(MPI_Comm comm, const Scene &scene, const Layout &layout)
+{
+  PetscFunctionBegin;
+  comm_              = comm;
+  layout_            = &layout;
+  reference_length_  = scene.reference_length;
+  schedule_          = scene.schedule;
+  end_time_          = scene.end_time;
+  schedule_original_ = scene.schedule.time;
+  end_time_original_ = scene.end_time;
+  load_points_.assign(scene.loads.size(), {});
+  constrained_.clear();
+  std::size_t most = 0;
+  for (std::size_t s = 0; s < scene.loads.size(); ++s) {
+    const LoadSet        &set = scene.loads[s];
+    std::vector<PetscInt> selected;
+    PetscCall(LoadSetSelect(scene, set, layout.cloud.x.data(), layout.n_owned, &selected));
+    PetscInt count = (PetscInt)selected.size();
+    PetscCallMPI(MPI_Allreduce(&count, &load_points_[s].global_count, 1, MPIU_INT, MPI_SUM, comm));
+    if (load_points_[s].global_count == 0) {
+      // Points sit at cell centres ((i + 1/2) dx, (j + 1/2) dx): a thin box can miss
+      // them all, and a hole can empty an edge layer.
+      const char *n = set.name.c_str();
+      char        msg[512];
+      if (set.region == LoadSet::Region::box)
+        std::snprintf(msg, sizeof msg,
+                      "-load_%s_box %g,%g,%g,%g selects no material point for load set '%s': widen it to hold a lattice point "
+                      "(points sit at ((i + 1/2) dx, (j + 1/2) dx), dx = %g m)",
+                      n, set.box[0], set.box[1], set.box[2], set.box[3], n, scene.body.dx);
+      else
+        std::snprintf(msg, sizeof msg,
+                      "-load_%s_region %s selects no material point for load set '%s' (its %d edge layer(s) hold none, e.g. cut away "
+                      "by a hole): raise -load_%s_layers or move the hole",
+                      n, to_string(set.region), n, set.layers, n);
+      SETERRQ(comm, PETSC_ERR_USER, "%s", msg);
+    }
+    most                   = std::max(most, selected.size());
+    load_points_[s].points = selected;
+    for (PetscInt p : selected)
+      for (int c = 0; c < 2; ++c) {
+        const ComponentLoad kind = c == 0 ? set.x : set.y;
+        if (kind == ComponentLoad::free) continue;
+        constrained_.push_back({2 * p + c, kind, c == 0 ? set.x_scale : set.y_scale});
+      }
+  }
+  // A point in two sets is held by the one named last; keep one entry per dof.
+  std::vector<ConstrainedDof> unique;
+  for (const ConstrainedDof &d : constrained_) {
+    auto it = std::find_if(unique.begin(), unique.end(), [&](const ConstrainedDof &e) { return e.dof == d.dof; });
+    if (it == unique.end()) unique.push_back(d);
+    else *it = d;
+  }
+  constrained_ = std::move(unique);
+  terms_.assign(2 * most, 0.0);
+  PetscFunctionReturn(0);
+}
+
+std::vector<PetscInt> Loading::held_dofs() const
+{
+  std::vector<PetscInt> held;
+  for (const ConstrainedDof &d : constrained_) held.push_back(d.dof);
+  return held;
+}
+
+void Loading::Apply(double t, double *u, double *v) const
+{
+  const double L = reference_length_, lambda = schedule_.stretch_at(t), rate = schedule_.rate_at(t);
+  for (const ConstrainedDof &d : constrained_) {
+    if (d.kind == ComponentLoad::fixed) {
+      u[d.dof] = 0.0;
+      if (v) v[d.dof] = 0.0;
+    } else {
+      u[d.dof] = d.scale * (lambda - 1.0) * L;
+      if (v) v[d.dof] = d.scale * rate * L;
+    }
+  }
+}
+
+PetscErrorCode Loading::Reactions(const double *force_density, double *reaction)
+{
+  const double *volume = layout_->cloud.volume.data();
+
+  PetscFunctionBegin;
+  for (std::size_t s = 0; s < load_points_.size(); ++s) {
+    const std::vector<PetscInt> &pts = load_points_[s].points;
+    for (std::size_t k = 0; k < pts.size(); ++k) {
+      terms_[2 * k]     = -force_density[2 * pts[k]] * volume[pts[k]];
+      terms_[2 * k + 1] = -force_density[2 * pts[k] + 1] * volume[pts[k]];
+    }
+    PetscCall(ReproducibleSum(comm_, 2, (PetscInt)pts.size(), terms_.data(), &reaction[2 * s]));
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscInt Loading::segment_at(double t) const
+{
+  return (PetscInt)(std::upper_bound(schedule_.time.begin(), schedule_.time.end(), t) - schedule_.time.begin());
+}
+
+PetscInt Loading::HoldAt(double t) const
+{
+  const Schedule &s = schedule_;
+  if (s.time.empty() || s.rate_at(t) != 0.0 || t < s.time.front()) return -1;
+  const PetscInt k = segment_at(t) - 1; // t in [time[k], time[k+1])
+  return k == hold_done_ ? -1 : k;
+}
+
+void Loading::EndHold(PetscInt k, double t)
+{
+  Schedule    &s         = schedule_;
+  const double hold_end  = k + 1 < (PetscInt)s.time.size() ? s.time[k + 1] : end_time_;
+  const double remaining = std::max(0.0, hold_end - t);
+  for (std::size_t j = (std::size_t)k + 1; j < s.time.size(); ++j) s.time[j] -= remaining;
+  end_time_  = std::max(t, end_time_ - remaining);
+  hold_done_ = k;
+}
+
+// Static holds that ended early moved the later knots and the end time; the same
+// schedule (the common case) takes the moved values exactly, a schedule or end time
+// changed on the restart command line takes the same shifts.
+PetscErrorCode Loading::Restore(const std::vector<double> &original, const std::vector<double> &current, double end_original,
+                                double end_current, double t, PetscInt hold_done)
+{
+  Schedule &s = schedule_;
+
+  PetscFunctionBegin;
+  if (current.size() == s.time.size()) {
+    for (std::size_t k = 0; k < s.time.size(); ++k) s.time[k] = s.time[k] == original[k] ? current[k] : s.time[k] + (current[k] - original[k]);
+  } else if (current != original) {
+    PetscCall(PetscPrintf(comm_, "Note: the load schedule has other knots than the checkpoint's; the holds it ended early are not carried over\n"));
+  }
+  end_time_  = end_time_ == end_original ? end_current : std::max(t, end_time_ + (end_current - end_original));
+  hold_done_ = hold_done;
+  PetscFunctionReturn(0);
+}
+
+} // namespace bapd
