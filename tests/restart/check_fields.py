@@ -8,7 +8,7 @@ frame; no displacement at t = 0 (no velocity off the grips); position = referenc
 displacement; damage in [0, 1], zero at first and non-zero at the end; bond stretch 1
 at rest; volume dx^2 thickness; no stress, energy or thickness change at rest; the
 Cauchy stress P F^T / J of the written nominal stress and deformation gradient, whose
-F_33 is the thickness stretch."""
+F_33 is the thickness stretch; sum V W = the internal energy of history.csv."""
 import argparse
 import os
 import sys
@@ -124,6 +124,20 @@ def main():
             fail(f"{name}: cauchy_stress != P F^T / J")
         if np.any(f["strain_energy_density"] < 0) or np.any(f["force_density"][:, 2] != 0):
             fail(f"{name}: negative energy density or out-of-plane force")
+    # sum_i V_i W_i is the history's internal energy (the same per-point energies; the
+    # history sums them reproducibly, numpy in another order: round-off only).
+    history = os.path.join(base, "history.csv")
+    compared = 0
+    if os.path.exists(history):
+        rows = np.genfromtxt(history, delimiter=",", names=True)
+        energy = {int(r["step"]): r["internal_energy_J"] for r in np.atleast_1d(rows)}
+        for _, name, f in frames:
+            step = int(name.split()[-1])
+            if step in energy:
+                total = float(np.sum(f["volume"] * f["strain_energy_density"]))
+                if abs(total - energy[step]) > 1e-12 * max(abs(energy[step]), 1e-18):  # (1e-18 J: an energy of 0 at rest)
+                    fail(f"{name}: sum V W = {total!r} J, history.csv says internal_energy_J = {energy[step]!r}")
+                compared += 1
     first, last = frames[0][2], frames[-1][2]
     if np.any(first["displacement"] != 0):
         fail("the displacement at t = 0 is not zero")
@@ -143,7 +157,8 @@ def main():
         fail("no damage at the end of a run whose crack has run")
     print(f"{len(frames)} frames of {n} points, t = 0 .. {times[-1]:.6g} s; final damage up to {last['damage'].max():.3f}, "
           f"largest bond stretch {last['max_bond_stretch'].max():.3f}, largest Cauchy stress {np.abs(last['cauchy_stress']).max():.4g} Pa, "
-          f"thickness stretch {last['thickness_stretch'][last['thickness_stretch'] > 0].min():.3f} .. {last['thickness_stretch'].max():.3f}")
+          f"thickness stretch {last['thickness_stretch'][last['thickness_stretch'] > 0].min():.3f} .. {last['thickness_stretch'].max():.3f}; "
+          f"sum V W = the history's internal energy at {compared} frames")
 
 
 if __name__ == "__main__":
