@@ -10,6 +10,7 @@ packages=(
   libgtest-dev                               # unit tests
   libyaml-dev                                # scene files are checked before PETSc reads them
   python3 python3-numpy python3-matplotlib python3-h5py python3-yaml  # plots, readers
+  python3-paraview xvfb xauth               # tests/paraview: pvpython opens fields.xdmf under Xvfb (xvfb-run)
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -8,8 +8,11 @@ points at their deformed positions, coloured by the field.
 
 RUN is the run's -output_dir or its fields.xdmf. The time shown is the output time
 nearest to --time (or the file of --step); without either, the last one. Fields:
-damage, max_bond_stretch, displacement, velocity, reference_position (vectors: their
-magnitude, or --component x / y). Needs h5py, numpy and matplotlib (Debian's
+the scalars damage, max_bond_stretch, thickness_stretch, strain_energy_density,
+volume, rank, natural_id; the vectors displacement, velocity, force_density,
+reference_position (their magnitude, or --component x / y); the tensors
+nominal_stress, cauchy_stress, deformation_gradient (the in-plane Frobenius norm, or
+--component xx / xy / yx / yy). Needs h5py, numpy and matplotlib (Debian's
 python3-h5py, python3-numpy, python3-matplotlib; scripts/install-deps.sh).
 """
 import argparse
@@ -24,7 +27,10 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-UNITS = {"damage": "-", "max_bond_stretch": "-", "displacement": "m", "velocity": "m/s", "reference_position": "m"}
+UNITS = {"damage": "-", "max_bond_stretch": "-", "displacement": "m", "velocity": "m/s", "reference_position": "m",
+         "thickness_stretch": "-", "strain_energy_density": "J/m^3", "volume": "m^3", "rank": "-", "natural_id": "-",
+         "force_density": "N/m^3", "nominal_stress": "Pa", "cauchy_stress": "Pa", "deformation_gradient": "-"}
+TENSOR_COMPONENTS = {"xx": 0, "xy": 1, "yx": 3, "yy": 4}  # of the row-major 3x3 in the file
 
 
 def frames_of(xdmf):
@@ -58,7 +64,8 @@ def main():
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("run", help="the run's -output_dir, or its fields.xdmf")
     p.add_argument("--field", default="damage", choices=sorted(UNITS))
-    p.add_argument("--component", choices=["magnitude", "x", "y"], default="magnitude", help="of a vector field")
+    p.add_argument("--component", choices=["magnitude", "x", "y", *TENSOR_COMPONENTS], default="magnitude",
+                   help="of a vector (x, y) or tensor (xx, xy, yx, yy) field")
     which = p.add_mutually_exclusive_group()
     which.add_argument("--time", type=float, help="output time nearest to this [s]")
     which.add_argument("--step", type=int, help="the output of this step")
@@ -88,7 +95,18 @@ def main():
         values = f[args.field][()]
         stretch = float(f.attrs.get("stretch", np.nan))
     label = f"{args.field} [{UNITS[args.field]}]"
-    if values.ndim == 2:
+    if values.ndim == 2 and values.shape[1] == 9:  # a tensor
+        if args.component == "magnitude":
+            values = np.linalg.norm(values[:, [0, 1, 3, 4]], axis=1)
+            label = f"|{args.field}| [{UNITS[args.field]}]"
+        elif args.component in TENSOR_COMPONENTS:
+            values = values[:, TENSOR_COMPONENTS[args.component]]
+            label = f"{args.field} {args.component} [{UNITS[args.field]}]"
+        else:
+            sys.exit(f"plot_fields.py: {args.field} is a tensor: give --component xx, xy, yx or yy (or magnitude)")
+    elif values.ndim == 2:
+        if args.component in TENSOR_COMPONENTS:
+            sys.exit(f"plot_fields.py: {args.field} is a vector: give --component x or y (or magnitude)")
         if args.component == "magnitude":
             values = np.linalg.norm(values[:, :2], axis=1)
             label = f"|{args.field}| [{UNITS[args.field]}]"

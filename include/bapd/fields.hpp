@@ -3,17 +3,33 @@
 // fields). docs/options.md, "Field output", is the user's view.
 //
 // Every -output_fields_interval steps one HDF5 file <output_dir>/fields/step_NNNNNNNN.h5
-// holds, in natural-id order (natural_order.hpp; the same file on any rank layout):
-//   /reference_position (points, 3) m     x, y, 0 (3 components: XDMF vectors have 3)
-//   /position           (points, 3) m     current position x + u
-//   /displacement       (points, 3) m
-//   /velocity           (points, 3) m/s
-//   /damage             (points)    -     eq 38: 1 - intact family volume / V(H_i)
-//   /max_bond_stretch   (points)    -     largest |y_j - y_i| / |x_j - x_i| over the
-//                                         point's intact bonds (0 if none is left);
-//                                         a bond breaks past -failure_critical_stretch
+// holds, in natural-id order (natural_order.hpp; the same file on any rank layout
+// except /rank). Vectors have 3 components and tensors 9 (row-major 3x3) because XDMF's
+// do; the out-of-plane ones are 0 unless said.
+//   /natural_id            (points)    -     the point's lattice index (= the row); also
+//                                            the Polyvertex connectivity of the XDMF
+//   /rank                  (points)    -     the rank that owned the point (int32)
+//   /reference_position    (points, 3) m     x, y, 0
+//   /position              (points, 3) m     current position x + u
+//   /displacement          (points, 3) m
+//   /velocity              (points, 3) m/s
+//   /volume                (points)    m^3   V_i = dx^2 thickness
+//   /force_density         (points, 3) N/m^3 internal force density f_i (eq 1)
+//   /damage                (points)    -     eq 38: 1 - intact family volume / V(H_i)
+//   /max_bond_stretch      (points)    -     largest |y_j - y_i| / |x_j - x_i| over the
+//                                            point's intact bonds (0 if none is left);
+//                                            a bond breaks past -failure_critical_stretch
+//   /nominal_stress        (points, 9) Pa    P_i, mean of the bond-associated P(F_ij)
+//                                            with the force's weights (point_quantities.hpp)
+//   /cauchy_stress         (points, 9) Pa    sigma_i = P_i F_i^T / J_i
+//   /deformation_gradient  (points, 9) -     F_i (same weights), F_33 = lambda_3
+//   /thickness_stretch     (points)    -     lambda_3 = sqrt(C33) (plane stress; 1 in plane strain)
+//   /strain_energy_density (points)    J/m^3 W_i (sum V_i W_i is history.csv's internal energy)
 // with attributes step, time_s, stretch (the applied lambda). <output_dir>/fields.xdmf
-// lists the files as a time series of Polyvertex point clouds at the current positions.
+// lists the files as a time series of Polyvertex point clouds with an explicit
+// connectivity (every ParaView reader then makes one cell per point), the run state
+// (time_s, step, stretch) as one-value Grid attributes (ParaView's field data), and the
+// current or the reference positions as the geometry (-output_fields_geometry).
 #include <petscsys.h>
 
 #include <string>
@@ -23,35 +39,45 @@
 #include "bapd/bond_state.hpp"
 #include "bapd/family.hpp"
 #include "bapd/natural_order.hpp"
+#include "bapd/point_quantities.hpp"
 
 namespace bapd {
 
-// -output_fields, -output_fields_interval.
+// The positions the XDMF draws the points at.
+enum class FieldGeometry { current, reference };
+
+// -output_fields, -output_fields_interval, -output_fields_geometry.
 struct FieldOptions {
-  PetscBool enabled  = PETSC_FALSE;
-  PetscInt  interval = 0; // steps between files; 0: about 20 files a run
+  PetscBool     enabled  = PETSC_FALSE;
+  PetscInt      interval = 0; // steps between files; 0: about 20 files a run
+  FieldGeometry geometry = FieldGeometry::current;
 };
 PetscErrorCode FieldOptionsFromOptions(MPI_Comm comm, FieldOptions *options);
 
 struct FieldFrame {
-  PetscInt step = 0;
-  double   time = 0;
+  PetscInt step    = 0;
+  double   time    = 0;
+  double   stretch = -1; // < 0: not known here (a frame listed again on restart): read from its file
 };
 
 // The files written so far and where they go.
 struct FieldSeries {
   std::string             output_dir;
+  FieldGeometry           geometry = FieldGeometry::current;
   std::vector<FieldFrame> frames;
   std::vector<double>     reference; // this rank's natural block, 2 per point (set on the first write)
 };
 
 // The fields of the owned points, in local order.
 struct PointFields {
-  const double *reference        = nullptr; // 2 per point
-  const double *displacement     = nullptr; // 2 per point
-  const double *velocity         = nullptr; // 2 per point
-  const double *damage           = nullptr; // 1 per point
-  const double *max_bond_stretch = nullptr; // 1 per point
+  const double          *reference        = nullptr; // 2 per point
+  const double          *displacement     = nullptr; // 2 per point
+  const double          *velocity         = nullptr; // 2 per point
+  const double          *damage           = nullptr; // 1 per point
+  const double          *max_bond_stretch = nullptr; // 1 per point
+  const double          *volume           = nullptr; // 1 per point
+  const double          *force_density    = nullptr; // 2 per point
+  const PointQuantities *quantities       = nullptr; // stress, F, lambda_3, W of the owned points
 };
 
 // Largest stretch over the intact bonds of points [0, n) (y: current positions of

@@ -2,6 +2,7 @@
 #include "bapd/fields.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -11,18 +12,141 @@
 
 namespace bapd {
 
+namespace {
+
+// One owned point's numbers, sent to the natural block in one exchange.
+enum Packed : int {
+  kDisplacement = 0, kVelocity = 2, kDamage = 4, kLargestStretch = 5, kVolume = 6, kForce = 7,
+  kNominal = 9, kCauchy = 13, kDeformation = 17, kThickness = 21, kEnergy = 22, kRank = 23, kPacked = 24
+};
+
+enum class Shape { scalar, vector, tensor }; // 1, 3, 9 components in the file
+int components(Shape s) { return s == Shape::scalar ? 1 : s == Shape::vector ? 3 : 9; }
+
+// The datasets of a field file, in the order the XDMF lists them. source: the first
+// packed number (a vector's x, a tensor's xx), or one of the special sources below.
+constexpr int kNaturalId = -1, kRankInt = -2, kReference = -3, kPosition = -4;
+struct FieldArray {
+  const char *name;
+  Shape       shape;
+  int         source;
+  int         out_of_plane = -1; // tensors: the packed number that is the 33 component (-1: 0)
+  bool        integer() const { return source == kNaturalId || source == kRankInt; }
+  int         precision() const { return source == kRankInt ? 4 : 8; } // int32 rank, else 8 bytes
+};
+constexpr FieldArray kArrays[] = {
+    {"natural_id", Shape::scalar, kNaturalId},
+    {"rank", Shape::scalar, kRankInt},
+    {"reference_position", Shape::vector, kReference},
+    {"position", Shape::vector, kPosition},
+    {"displacement", Shape::vector, kDisplacement},
+    {"velocity", Shape::vector, kVelocity},
+    {"volume", Shape::scalar, kVolume},
+    {"force_density", Shape::vector, kForce},
+    {"damage", Shape::scalar, kDamage},
+    {"max_bond_stretch", Shape::scalar, kLargestStretch},
+    {"nominal_stress", Shape::tensor, kNominal},
+    {"cauchy_stress", Shape::tensor, kCauchy},
+    {"deformation_gradient", Shape::tensor, kDeformation, kThickness},
+    {"thickness_stretch", Shape::scalar, kThickness},
+    {"strain_energy_density", Shape::scalar, kEnergy},
+};
+
+const FieldArray &Array(const char *name)
+{
+  for (const FieldArray &a : kArrays)
+    if (std::string(a.name) == name) return a;
+  return kArrays[0]; // (every caller names one of the table)
+}
+
+// The dataset of a floating-point array from the natural block (kPacked per point).
+void FromBlock(const FieldArray &a, const std::vector<double> &block, const std::vector<double> &reference,
+               PetscInt count, std::vector<double> &out)
+{
+  const int c = components(a.shape);
+  out.assign((std::size_t)(c * count), 0.0);
+  for (PetscInt k = 0; k < count; ++k) {
+    const double *row = block.data() + kPacked * k;
+    double       *o   = out.data() + c * k;
+    if (a.source == kReference || a.source == kPosition) {
+      for (int d = 0; d < 2; ++d) o[d] = reference[2 * k + d] + (a.source == kPosition ? row[kDisplacement + d] : 0.0);
+    } else if (a.shape == Shape::scalar) {
+      o[0] = row[a.source];
+    } else if (a.shape == Shape::vector) {
+      o[0] = row[a.source];
+      o[1] = row[a.source + 1];
+    } else { // 2x2 (xx, xy, yx, yy) -> row-major 3x3
+      o[0] = row[a.source];
+      o[1] = row[a.source + 1];
+      o[3] = row[a.source + 2];
+      o[4] = row[a.source + 3];
+      if (a.out_of_plane >= 0) o[8] = row[a.out_of_plane];
+    }
+  }
+}
+
+// One owned point's numbers in the order of Packed.
+void Pack(const PointFields &fields, int rank, PetscInt i, double *row)
+{
+  const PointQuantities &q = *fields.quantities;
+  for (int d = 0; d < 2; ++d) {
+    row[kDisplacement + d] = fields.displacement[2 * i + d];
+    row[kVelocity + d]     = fields.velocity[2 * i + d];
+    row[kForce + d]        = fields.force_density[2 * i + d];
+  }
+  for (int c = 0; c < 4; ++c) {
+    row[kNominal + c]     = q.nominal_stress[4 * i + c];
+    row[kCauchy + c]      = q.cauchy_stress[4 * i + c];
+    row[kDeformation + c] = q.deformation_gradient[4 * i + c];
+  }
+  row[kDamage]         = fields.damage[i];
+  row[kLargestStretch] = fields.max_bond_stretch[i];
+  row[kVolume]         = fields.volume[i];
+  row[kThickness]      = q.thickness_stretch[i];
+  row[kEnergy]         = q.strain_energy_density[i];
+  row[kRank]           = rank;
+}
+
+// The applied stretch of a frame listed again on restart (FieldFrame::stretch < 0):
+// its file's attribute; false if the file cannot tell.
+bool StretchFromFile(const std::string &path, double *stretch)
+{
+  H5Quiet     quiet;
+  const hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  if (file < 0) return false;
+  const bool ok = H5ReadAttribute(file, "/", "stretch", stretch);
+  H5Fclose(file);
+  return ok;
+}
+
+} // namespace
+
 PetscErrorCode FieldOptionsFromOptions(MPI_Comm comm, FieldOptions *options)
 {
+  char      geometry[32] = "current";
+  PetscBool set          = PETSC_FALSE;
+
   PetscFunctionBegin;
-  for (const char *name : {"-output_fields", "-output_fields_interval"}) RegisterOptionName(name);
+  for (const char *name : {"-output_fields", "-output_fields_interval", "-output_fields_geometry"}) RegisterOptionName(name);
   PetscOptionsBegin(comm, nullptr, "Field output (HDF5 + XDMF for ParaView)", "bapd");
   PetscCall(PetscOptionsBool("-output_fields", "Write the point fields (<output_dir>/fields/*.h5 and fields.xdmf)", "docs/options.md",
                              options->enabled, &options->enabled, nullptr));
   PetscCall(PetscOptionsInt("-output_fields_interval", "Time steps between field files [-]; 0: about 20 a run", "docs/options.md",
                             options->interval, &options->interval, nullptr));
+  PetscCall(PetscOptionsString("-output_fields_geometry", "Where fields.xdmf draws the points: current (deformed) or reference positions",
+                               "docs/options.md", geometry, geometry, sizeof geometry, &set));
   PetscOptionsEnd();
   PetscCheck(options->interval >= 0, comm, PETSC_ERR_USER, "-output_fields_interval %" PetscInt_FMT ": give a number of steps >= 1 (or 0 for about 20 files a run)",
              options->interval);
+  std::string value(geometry);
+  for (char &ch : value) ch = (char)std::tolower((unsigned char)ch);
+  if (value == "current") options->geometry = FieldGeometry::current;
+  else if (value == "reference") options->geometry = FieldGeometry::reference;
+  else
+    SETERRQ(comm, PETSC_ERR_USER,
+            "-output_fields_geometry '%s' is not a geometry: choose current (the deformed positions) or reference (the undeformed "
+            "ones; warp by displacement in ParaView to see the deformation)",
+            geometry);
   PetscFunctionReturn(0);
 }
 
@@ -69,19 +193,12 @@ PetscErrorCode WriteFieldFrame(MPI_Comm comm, const NaturalOrder &order, FieldSe
   PetscCallMPI(MPI_Bcast(&ok, 1, MPI_INT, 0, comm));
   PetscCheck(ok, comm, PETSC_ERR_FILE_OPEN, "Cannot create %s/fields: choose a writable -output_dir", series->output_dir.c_str());
 
-  // Owned points -> natural block, 6 numbers per point in one exchange (the
+  // Owned points -> natural block, kPacked numbers per point in one exchange (the
   // reference positions once per run).
   const PetscInt      count = order.point_count;
-  std::vector<double> local(6 * owned), block(6 * count);
-  for (PetscInt i = 0; i < owned; ++i) {
-    local[6 * i]     = fields.displacement[2 * i];
-    local[6 * i + 1] = fields.displacement[2 * i + 1];
-    local[6 * i + 2] = fields.velocity[2 * i];
-    local[6 * i + 3] = fields.velocity[2 * i + 1];
-    local[6 * i + 4] = fields.damage[i];
-    local[6 * i + 5] = fields.max_bond_stretch[i];
-  }
-  PetscCallMPI(MPI_Type_contiguous(6, MPI_DOUBLE, &unit));
+  std::vector<double> local(kPacked * owned), block(kPacked * count);
+  for (PetscInt i = 0; i < owned; ++i) Pack(fields, rank, i, local.data() + kPacked * i);
+  PetscCallMPI(MPI_Type_contiguous(kPacked, MPI_DOUBLE, &unit));
   PetscCallMPI(MPI_Type_commit(&unit));
   PetscCall(ToNaturalOrder(order.owned_points, unit, local.data(), block.data()));
   PetscCallMPI(MPI_Type_free(&unit));
@@ -92,18 +209,6 @@ PetscErrorCode WriteFieldFrame(MPI_Comm comm, const NaturalOrder &order, FieldSe
     PetscCall(ToNaturalOrder(order.owned_points, unit, fields.reference, series->reference.data()));
     PetscCallMPI(MPI_Type_free(&unit));
   }
-  std::vector<double> reference(3 * count), position(3 * count), u(3 * count), v(3 * count), damage(count), largest(count);
-  for (PetscInt k = 0; k < count; ++k) {
-    for (int c = 0; c < 2; ++c) {
-      reference[3 * k + c] = series->reference[2 * k + c];
-      u[3 * k + c]         = block[6 * k + c];
-      v[3 * k + c]         = block[6 * k + 2 + c];
-      position[3 * k + c]  = reference[3 * k + c] + u[3 * k + c];
-    }
-    reference[3 * k + 2] = position[3 * k + 2] = u[3 * k + 2] = v[3 * k + 2] = 0.0;
-    damage[k]                                                             = block[6 * k + 4];
-    largest[k]                                                            = block[6 * k + 5];
-  }
 
   const std::string path = series->output_dir + "/" + FieldFileName(step);
   const hsize_t     N = (hsize_t)order.n_points, start = (hsize_t)order.point_start, n = (hsize_t)count;
@@ -111,20 +216,31 @@ PetscErrorCode WriteFieldFrame(MPI_Comm comm, const NaturalOrder &order, FieldSe
     H5ParallelFile f;
     PetscCall(f.Create(comm, path));
     PetscCall(f.WriteAttribute("/", "format", std::string("bapd fields")));
-    PetscCall(f.WriteAttribute("/", "format_version", (std::int64_t)1));
+    PetscCall(f.WriteAttribute("/", "format_version", (std::int64_t)2));
     PetscCall(f.WriteAttribute("/", "step", (std::int64_t)step));
     PetscCall(f.WriteAttribute("/", "time_s", time));
     PetscCall(f.WriteAttribute("/", "stretch", stretch));
-    PetscCall(f.WriteBlock("/reference_position", H5T_NATIVE_DOUBLE, N, 3, start, n, reference.data()));
-    PetscCall(f.WriteBlock("/position", H5T_NATIVE_DOUBLE, N, 3, start, n, position.data()));
-    PetscCall(f.WriteBlock("/displacement", H5T_NATIVE_DOUBLE, N, 3, start, n, u.data()));
-    PetscCall(f.WriteBlock("/velocity", H5T_NATIVE_DOUBLE, N, 3, start, n, v.data()));
-    PetscCall(f.WriteBlock("/damage", H5T_NATIVE_DOUBLE, N, 0, start, n, damage.data()));
-    PetscCall(f.WriteBlock("/max_bond_stretch", H5T_NATIVE_DOUBLE, N, 0, start, n, largest.data()));
+    std::vector<double> data;
+    for (const FieldArray &a : kArrays) {
+      const std::string name = std::string("/") + a.name;
+      if (a.source == kNaturalId) {
+        std::vector<std::int64_t> id(count);
+        for (PetscInt k = 0; k < count; ++k) id[k] = (std::int64_t)(order.point_start + k);
+        PetscCall(f.WriteBlock(name.c_str(), H5T_NATIVE_INT64, N, 0, start, n, id.data()));
+      } else if (a.source == kRankInt) {
+        std::vector<std::int32_t> owner(count);
+        for (PetscInt k = 0; k < count; ++k) owner[k] = (std::int32_t)block[kPacked * k + kRank];
+        PetscCall(f.WriteBlock(name.c_str(), H5T_NATIVE_INT32, N, 0, start, n, owner.data()));
+      } else {
+        FromBlock(a, block, series->reference, count, data);
+        const int c = components(a.shape);
+        PetscCall(f.WriteBlock(name.c_str(), H5T_NATIVE_DOUBLE, N, c > 1 ? (hsize_t)c : 0, start, n, data.data()));
+      }
+    }
     PetscCall(f.Close());
   }
   while (!series->frames.empty() && series->frames.back().step >= step) series->frames.pop_back();
-  series->frames.push_back({step, time});
+  series->frames.push_back({step, time, stretch});
   PetscCall(WriteFieldIndex(comm, *series, order.n_points));
   PetscFunctionReturn(0);
 }
@@ -141,33 +257,50 @@ PetscErrorCode WriteFieldIndex(MPI_Comm comm, const FieldSeries &series, PetscIn
     FILE             *f    = std::fopen(tmp.c_str(), "w");
     ok                     = f != nullptr;
     if (f) {
-      const long long N = (long long)n_points;
+      const long long   N        = (long long)n_points;
+      const char *const geometry = series.geometry == FieldGeometry::reference ? "reference_position" : "position";
       std::fprintf(f, "<?xml version=\"1.0\" ?>\n<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n<Xdmf Version=\"2.0\">\n <Domain>\n");
       std::fprintf(f, "  <Grid Name=\"bapd\" GridType=\"Collection\" CollectionType=\"Temporal\">\n");
       for (const FieldFrame &frame : series.frames) {
         const std::string file = FieldFileName(frame.step);
-        auto item = [&](const char *dataset, int components) {
-          if (components > 1)
-            std::fprintf(f, "     <DataItem Dimensions=\"%lld %d\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/%s</DataItem>\n",
-                         N, components, file.c_str(), dataset);
-          else
-            std::fprintf(f, "     <DataItem Dimensions=\"%lld\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/%s</DataItem>\n",
-                         N, file.c_str(), dataset);
+        auto item = [&](const FieldArray &a) {
+          const int c = components(a.shape);
+          std::fprintf(f, "     <DataItem Dimensions=\"%lld", N);
+          if (c > 1) std::fprintf(f, " %d", c);
+          std::fprintf(f, "\" NumberType=\"%s\" Precision=\"%d\" Format=\"HDF\">%s:/%s</DataItem>\n", a.integer() ? "Int" : "Float",
+                       a.precision(), file.c_str(), a.name);
+        };
+        auto run_state = [&](const char *name, const char *type, const char *value) {
+          std::fprintf(f, "    <Attribute Name=\"%s\" AttributeType=\"Scalar\" Center=\"Grid\">\n", name);
+          std::fprintf(f, "     <DataItem Dimensions=\"1\" NumberType=\"%s\" Precision=\"8\" Format=\"XML\">%s</DataItem>\n", type, value);
+          std::fprintf(f, "    </Attribute>\n");
         };
         std::fprintf(f, "   <Grid Name=\"step %lld\" GridType=\"Uniform\">\n", (long long)frame.step);
         std::fprintf(f, "    <Time Value=\"%.17g\"/>\n", frame.time);
-        std::fprintf(f, "    <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"%lld\" NodesPerElement=\"1\"/>\n", N);
-        std::fprintf(f, "    <Geometry GeometryType=\"XYZ\">\n");
-        item("position", 3);
+        // An explicit connectivity: without it Xdmf3ReaderS (ParaView's default)
+        // makes no cells and the default views draw nothing.
+        std::fprintf(f, "    <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"%lld\" NodesPerElement=\"1\">\n", N);
+        item(Array("natural_id"));
+        std::fprintf(f, "    </Topology>\n    <Geometry GeometryType=\"XYZ\">\n");
+        item(Array(geometry));
         std::fprintf(f, "    </Geometry>\n");
-        for (const char *name : {"displacement", "velocity", "reference_position"}) {
-          std::fprintf(f, "    <Attribute Name=\"%s\" AttributeType=\"Vector\" Center=\"Node\">\n", name);
-          item(name, 3);
-          std::fprintf(f, "    </Attribute>\n");
+        // The run state as one value per grid: field data in both ParaView readers
+        // (an XDMF <Information> is not shown by all of them).
+        char value[64];
+        std::snprintf(value, sizeof value, "%.17g", frame.time);
+        run_state("time_s", "Float", value);
+        std::snprintf(value, sizeof value, "%lld", (long long)frame.step);
+        run_state("step", "Int", value);
+        double stretch = frame.stretch;
+        if (stretch >= 0 || StretchFromFile(series.output_dir + "/" + file, &stretch)) {
+          std::snprintf(value, sizeof value, "%.17g", stretch);
+          run_state("stretch", "Float", value);
         }
-        for (const char *name : {"damage", "max_bond_stretch"}) {
-          std::fprintf(f, "    <Attribute Name=\"%s\" AttributeType=\"Scalar\" Center=\"Node\">\n", name);
-          item(name, 1);
+        static const char *const type[] = {"Scalar", "Vector", "Tensor"};
+        for (const FieldArray &a : kArrays) {
+          if (&a == &Array(geometry)) continue;
+          std::fprintf(f, "    <Attribute Name=\"%s\" AttributeType=\"%s\" Center=\"Node\">\n", a.name, type[(int)a.shape]);
+          item(a);
           std::fprintf(f, "    </Attribute>\n");
         }
         std::fprintf(f, "   </Grid>\n");

@@ -59,6 +59,7 @@ PetscErrorCode Simulation::SetupOutput()
   PetscFunctionBegin;
   PetscCall(RegisterEvents());
   output_.series.output_dir = scene_.output_dir;
+  output_.series.geometry   = output_.fields.geometry; // -output_fields_geometry (fields.hpp)
   if (output_.fields.interval == 0) {
     const double end_time = loading_.end_time() > 0 ? loading_.end_time() : loading_.schedule().end_time();
     output_.fields.interval = std::max<PetscInt>(1, (PetscInt)std::ceil(end_time / step_control_.current() - 1e-9) / 20);
@@ -179,6 +180,17 @@ PetscErrorCode Simulation::WriteFields(PetscInt step, double t)
   fields.velocity         = x + 2 * n;
   fields.damage           = damage.data();
   fields.max_bond_stretch = largest.data();
+  // Force density, volume, stress, F, lambda_3, W (point_quantities.hpp): read the
+  // state (and the C33 warm start) without changing it.
+  std::vector<double> force(2 * n);
+  PointQuantities     quantities;
+  PetscCall(ComputeForceDensity(x, force.data())); // leaves the warm starts as they were
+  point_quantities(scene_.model, scene_.formulation, scene_.material, layout_.cloud, force_.positions(), families_, geometry_,
+                   bond_state_, force_.warm_start().data(), (std::size_t)n,
+                   scene_.force_form == ForceForm::energy_consistent ? StressWeights::bond_energy : StressWeights::bond_force, quantities);
+  fields.volume        = layout_.cloud.volume.data();
+  fields.force_density = force.data();
+  fields.quantities    = &quantities;
   PetscCall(WriteFieldFrame(comm_, output_.order, &output_.series, step, t, loading_.stretch_at(t), fields));
   PetscCall(VecRestoreArrayRead(X_, &x));
   PetscCall(PetscLogEventEnd(event_fields, 0, 0, 0, 0));

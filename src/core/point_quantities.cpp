@@ -1,0 +1,18 @@
+// Per-point stress, deformation and energy for output (point_quantities.hpp).
+#include "bapd/point_quantities.hpp"
+
+#include "bapd/models.hpp"
+
+namespace bapd {
+
+void point_quantities(ModelKind kind, Formulation formulation, const MaterialParameters &material,
+                      const PointCloud &cloud, const double *y, const Families &families, const BondGeometry &geometry,
+                      const BondState &state, const double *c33, std::size_t n_points, StressWeights weights,
+                      PointQuantities &out)
+{
+  with_model(kind, formulation, material, [&](const auto &model) {
+    point_quantities(model, cloud, y, families, geometry, state, c33, n_points, weights, out);
+  });
+}
+
+} // namespace bapd
