@@ -36,8 +36,8 @@ public:
   H5ParallelFile &operator=(const H5ParallelFile &) = delete;
 
   // Creates (truncating) or opens read-only. Errors: PETSC_ERR_FILE_OPEN.
-  PetscErrorCode Create(MPI_Comm comm, const std::string &path);
-  PetscErrorCode Open(MPI_Comm comm, const std::string &path);
+  PetscErrorCode Create(MPI_Comm comm, const std::string &path) { return Begin(comm, path, true); }
+  PetscErrorCode Open(MPI_Comm comm, const std::string &path) { return Begin(comm, path, false); }
   PetscErrorCode Close(); // collective: flushes, closes, reports any failure (the destructor only closes)
 
   // rows x cols dataset (cols = 0: 1-D of `rows`); this rank writes or reads rows
@@ -61,6 +61,7 @@ public:
   hid_t id() const { return file_; }
 
 private:
+  PetscErrorCode Begin(MPI_Comm comm, const std::string &path, bool writing); // Create or Open
   void        Record(bool ok, const char *what, const char *name);
   MPI_Comm    comm_ = MPI_COMM_NULL;
   hid_t       file_ = -1;

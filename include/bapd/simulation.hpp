@@ -103,6 +103,7 @@ private:
   PetscErrorCode SaveGoodState(PetscInt step, double t);
   PetscErrorCode WriteFields(PetscInt step, double t);
   PetscErrorCode WriteCheckpointFile(PetscInt step, double t, const char *reason);
+  CheckpointState CheckpointView(double *x); // u, v, bond states and C33 as a checkpoint holds them
   PetscErrorCode RestoreCheckpoint();
   PetscErrorCode RestoreSchedule(const CheckpointHeader &header);
 

@@ -22,41 +22,21 @@ void H5ParallelFile::Record(bool ok, const char *what, const char *name)
   failed_ = std::string(what) + " '" + name + "'";
 }
 
-PetscErrorCode H5ParallelFile::Create(MPI_Comm comm, const std::string &path)
-{
-  H5Quiet quiet;
-
-  PetscFunctionBegin;
-  comm_       = comm;
-  path_       = path;
-  writing_    = true;
-  failed_.clear();
-  hid_t fapl  = H5Pcreate(H5P_FILE_ACCESS);
-  bool  ok    = fapl >= 0 && H5Pset_fapl_mpio(fapl, comm, MPI_INFO_NULL) >= 0;
-  file_       = ok ? H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl) : -1;
-  if (fapl >= 0) H5Pclose(fapl);
-  int all = file_ >= 0;
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &all, 1, MPI_INT, MPI_MIN, comm));
-  if (!all && file_ >= 0) {
-    H5Fclose(file_);
-    file_ = -1;
-  }
-  PetscCheck(all, comm, PETSC_ERR_FILE_OPEN, "Cannot create %s: choose a writable -output_dir", path.c_str());
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode H5ParallelFile::Open(MPI_Comm comm, const std::string &path)
+// Creates (writing) or opens read-only, collectively: every rank agrees on the outcome
+// before anyone reports it, and a rank that did open the file closes it again.
+PetscErrorCode H5ParallelFile::Begin(MPI_Comm comm, const std::string &path, bool writing)
 {
   H5Quiet quiet;
 
   PetscFunctionBegin;
   comm_      = comm;
   path_      = path;
-  writing_   = false;
+  writing_   = writing;
   failed_.clear();
   hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
   bool  ok   = fapl >= 0 && H5Pset_fapl_mpio(fapl, comm, MPI_INFO_NULL) >= 0;
-  file_      = ok ? H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl) : -1;
+  if (!ok) file_ = -1;
+  else file_ = writing ? H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl) : H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl);
   if (fapl >= 0) H5Pclose(fapl);
   int all = file_ >= 0;
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &all, 1, MPI_INT, MPI_MIN, comm));
@@ -64,6 +44,7 @@ PetscErrorCode H5ParallelFile::Open(MPI_Comm comm, const std::string &path)
     H5Fclose(file_);
     file_ = -1;
   }
+  PetscCheck(all || !writing, comm, PETSC_ERR_FILE_OPEN, "Cannot create %s: choose a writable -output_dir", path.c_str());
   PetscCheck(all, comm, PETSC_ERR_FILE_OPEN, "Cannot open %s for reading (missing, truncated or not an HDF5 file)", path.c_str());
   PetscFunctionReturn(0);
 }

@@ -198,9 +198,20 @@ PetscErrorCode Simulation::WriteFields(PetscInt step, double t)
   PetscFunctionReturn(0);
 }
 
+// What a checkpoint holds of the state X = [u, v] (owned, 2 per point each): written
+// from it, or read back into it.
+CheckpointState Simulation::CheckpointView(double *x)
+{
+  CheckpointState state;
+  state.u     = x;
+  state.v     = x + 2 * layout_.n_owned;
+  state.bonds = &bond_state_;
+  state.c33   = force_.warm_start().data();
+  return state;
+}
+
 PetscErrorCode Simulation::WriteCheckpointFile(PetscInt step, double t, const char *reason)
 {
-  const PetscInt n = layout_.n_owned;
   double        *x;
 
   PetscFunctionBegin;
@@ -240,11 +251,7 @@ PetscErrorCode Simulation::WriteCheckpointFile(PetscInt step, double t, const ch
   }
   const std::string path = scene_.output_dir + "/checkpoint.h5";
   PetscCall(VecGetArray(X_, &x));
-  CheckpointState state;
-  state.u     = x;
-  state.v     = x + 2 * n;
-  state.bonds = &bond_state_;
-  state.c33   = force_.warm_start().data();
+  CheckpointState state = CheckpointView(x);
   // -relaxation adaptive: the latest force evaluation, which the next step's damping
   // is computed against (not for the last good state of a diverged run: the
   // continuation then starts the estimate afresh, at the -damping floor for one step).
@@ -286,7 +293,6 @@ PetscErrorCode Simulation::RestoreSchedule(const CheckpointHeader &header)
 // (CheckpointMergeOptions); here the state replaces the initial one.
 PetscErrorCode Simulation::RestoreCheckpoint()
 {
-  const PetscInt     n    = layout_.n_owned;
   const std::string &path = output_.checkpoint.restart;
   double            *x;
 
@@ -296,11 +302,7 @@ PetscErrorCode Simulation::RestoreCheckpoint()
   PetscCall(ReadCheckpointHeader(comm_, path, &header));
   PetscCall(CreateNaturalOrder());
   PetscCall(VecGetArray(X_, &x));
-  CheckpointState state;
-  state.u     = x;
-  state.v     = x + 2 * n;
-  state.bonds = &bond_state_;
-  state.c33   = force_.warm_start().data();
+  CheckpointState state = CheckpointView(x);
   if (relaxation_.active()) {
     state.relaxation_u = relaxation_.latest_u();
     state.relaxation_a = relaxation_.latest_a();

@@ -7,6 +7,7 @@
 
 #include "bapd/gent.hpp"
 #include "bapd/point_quantities.hpp"
+#include "materials/deformations.hpp"
 #include "unit/test_models.hpp"
 
 namespace bapd {
@@ -14,7 +15,7 @@ namespace {
 
 constexpr double kPi = 3.141592653589793;
 
-const MaterialParameters kGel{4.55e3, 162.6, 2.0 / (100 * 4.55e3)}; // K = 100 mu, as the scenes
+const MaterialParameters kGel = test::parameters(4.55e3, 162.6, 2.0 / (100 * 4.55e3)); // K = 100 mu, as the scenes
 const Mat2               kStretch = {1.6, 0.3, -0.1, 0.8};            // large, sheared, not symmetric
 
 Mat2 rotation(double deg)
