@@ -239,6 +239,11 @@ struct BondGeometry {
   std::size_t                mask_words = 1;
   std::vector<std::uint64_t> usable;   // mask_words per family point; bit q: intact and K usable
   std::vector<std::uint64_t> singular; // mask_words per family point; bit q: intact, K not usable
+  // Work space of compute_bond_geometry, sized with the geometry, so that a time step
+  // in which bonds break allocates nothing (STYLE.md, "Data").
+  PointScratch               scratch;
+  std::vector<std::uint32_t> done_in_pass; // per family point: the last recomputation that did it
+  std::uint32_t              pass = 0;
 
   bool is_usable(std::size_t i, std::size_t q) const { return (usable[i * mask_words + q / 64] >> (q % 64)) & 1u; }
   // Intact bonds of points [0, n_points) that carry no force for want of a usable K.
@@ -258,9 +263,9 @@ std::size_t compute_bond_geometry(const PointCloud &cloud, const Families &famil
                                   BondGeometry &geometry);
 
 // Recomputes the listed points only (after break_bond / break_bonds). A geometry not
-// yet sized for these families is sized first. Duplicates in points are harmless
-// (each point is done once). Returns the number of intact bonds of those points
-// whose K is not usable.
+// yet sized for these families is sized first (the only allocation). Duplicates in
+// points are harmless (each point is done once). Returns the number of intact bonds
+// of those points whose K is not usable.
 std::size_t compute_bond_geometry(const PointCloud &cloud, const Families &families, const BondState &state,
                                   BondGeometry &geometry, const std::vector<std::size_t> &points);
 

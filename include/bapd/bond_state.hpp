@@ -28,13 +28,6 @@ struct BondState {
   std::size_t count_broken(const Families &families, std::size_t n_points) const;
 };
 
-// The same two operations as free functions.
-inline BondState   make_bond_state(const Families &families) { return BondState(families); }
-inline std::size_t count_broken_bonds(const Families &families, const BondState &state, std::size_t n_points)
-{
-  return state.count_broken(families, n_points);
-}
-
 // Breaks bond q of point i and, when its other end j has a family here (j < n_family),
 // the reverse copy (j -> i), so both directed copies agree. Appends i (and j) to
 // *touched: their bond geometry must be recomputed. Returns false (and touches

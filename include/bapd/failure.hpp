@@ -2,9 +2,10 @@
 // Failure: bonds break past the critical stretch (paper eq 37) or when their model
 // fails (the Gent chain limit), and the owners' bond states are copied to their
 // ring-1 ghosts so every rank layout holds the same bond state (README, "Parallel
-// design"). Everything a breaking pass uses is allocated at set-up; only the
-// recomputation of the geometry of the points whose bonds broke allocates (in the
-// core, compute_bond_geometry), and only in a step where a bond breaks.
+// design"). Everything a breaking pass uses is allocated at set-up (the geometry's
+// recomputation uses the work space of BondGeometry), so a step in which bonds break
+// allocates nothing, as long as the bonds whose model failed in one step are fewer
+// than 1.5 times the local family points (touched_ is reserved for that).
 #include <petscsf.h>
 
 #include <vector>

@@ -30,12 +30,16 @@ void size_geometry(const Families &families, BondGeometry &geometry)
   geometry.mask_words = families.mask_words;
   geometry.usable.assign(families.n_family * families.mask_words, 0);
   geometry.singular.assign(families.n_family * families.mask_words, 0);
+  geometry.scratch.reserve(families.max_family_size);
+  geometry.done_in_pass.assign(families.n_family, 0);
+  geometry.pass = 0;
 }
 
 // Usable bits of point i (y = x: only K matters); returns the intact bonds not usable.
 std::size_t point_geometry(const PointCloud &cloud, const Families &fam, const BondState &state, BondGeometry &geo,
-                           std::size_t i, PointScratch &scratch)
+                           std::size_t i)
 {
+  PointScratch        &scratch = geo.scratch;
   const std::size_t    W = fam.mask_words, o = fam.offsets[i], m = fam.size(i);
   const std::uint64_t *intact = state.intact_mask(i);
   std::uint64_t       *usable = geo.usable.data() + i * W, *singular = geo.singular.data() + i * W;
@@ -65,11 +69,9 @@ std::size_t compute_bond_geometry(const PointCloud &cloud, const Families &famil
 {
   check_state(families, state);
   size_geometry(families, geometry);
-  PointScratch scratch;
-  scratch.reserve(families.max_family_size);
   std::size_t not_usable = 0;
   for (std::size_t i = 0; i < families.n_family; ++i)
-    not_usable += point_geometry(cloud, families, state, geometry, i, scratch);
+    not_usable += point_geometry(cloud, families, state, geometry, i);
   return not_usable;
 }
 
@@ -79,18 +81,21 @@ std::size_t compute_bond_geometry(const PointCloud &cloud, const Families &famil
   check_state(families, state);
   if (geometry.mask_words != families.mask_words || geometry.usable.size() != families.n_family * families.mask_words)
     size_geometry(families, geometry);
-  // Unique points, so that the count is right and no point is done twice (this runs
-  // only when bonds break: the copy is fine).
-  std::vector<std::size_t> unique(points);
-  std::sort(unique.begin(), unique.end());
-  unique.erase(std::unique(unique.begin(), unique.end()), unique.end());
-  PointScratch scratch;
-  scratch.reserve(families.max_family_size);
-  std::size_t not_usable = 0;
-  for (std::size_t i : unique) {
+  for (std::size_t i : points)
     if (i >= families.n_family)
       throw std::out_of_range("compute_bond_geometry: point " + std::to_string(i) + " has no family");
-    not_usable += point_geometry(cloud, families, state, geometry, i, scratch);
+  // Each point once, so that the count is right: a point is marked with the number of
+  // this pass (no copy of the list, no clearing; a pass that throws leaves marks that
+  // the next pass does not read).
+  if (++geometry.pass == 0) {
+    std::fill(geometry.done_in_pass.begin(), geometry.done_in_pass.end(), 0);
+    geometry.pass = 1;
+  }
+  std::size_t not_usable = 0;
+  for (std::size_t i : points) {
+    if (geometry.done_in_pass[i] == geometry.pass) continue;
+    geometry.done_in_pass[i] = geometry.pass;
+    not_usable += point_geometry(cloud, families, state, geometry, i);
   }
   return not_usable;
 }

@@ -91,7 +91,7 @@ PetscErrorCode Simulation::BuildBody()
   // Every rank finds the same families for its owned and ring-1 points as rank 0
   // did: their whole neighbourhood lies in the two rings it holds.
   families_ = build_families(layout_.cloud, (std::size_t)layout_.n_family(), horizon, scene_.body.notches);
-  bond_state_ = make_bond_state(families_);
+  bond_state_ = BondState(families_);
   compute_bond_geometry(layout_.cloud, families_, bond_state_, geometry_);
 
   PetscCall(force_.Setup(comm_, scene_, layout_, families_, geometry_, bond_state_, stage_ghost_, stage_force_));

@@ -105,7 +105,7 @@ PetscErrorCode Simulation::ReadProbes(const double *u_owned, double *probe_u)
 PetscErrorCode Simulation::BrokenBondCount(PetscInt *count)
 {
   PetscFunctionBegin;
-  PetscInt local = (PetscInt)count_broken_bonds(families_, bond_state_, (std::size_t)layout_.n_owned);
+  PetscInt local = (PetscInt)bond_state_.count_broken(families_, (std::size_t)layout_.n_owned);
   PetscCallMPI(MPI_Allreduce(&local, count, 1, MPIU_INT, MPI_SUM, comm_));
   *count /= 2; // each broken bond is seen from both of its end points
   PetscFunctionReturn(0);

@@ -30,15 +30,15 @@ template <class F> long CountAllocations(F &&work)
   return allocations;
 }
 
-// The grips pull the free test sheet apart; bonds may break past a stretch of 3 (none
-// does in these few steps, so the breaking pass and the ring-1 exchange run and find
-// nothing to do).
-std::string LoadedSheet(const std::string &form)
+// The grips pull the free test sheet apart; bonds break past the critical stretch
+// (with 3, none does in the first steps, so the breaking pass and the ring-1 exchange
+// run and find nothing to do; a critical stretch just above 1 breaks bonds at once).
+std::string LoadedSheet(const std::string &form, const std::string &critical_stretch = "3")
 {
   return bapd_test::FreeSheetScene("allocation_output") +
          " -load_sets top,bottom -load_top_region top -load_top_x fixed -load_top_y stretch -load_top_y_scale 1"
          " -load_bottom_region bottom -load_bottom_x fixed -load_bottom_y fixed -load_schedule 0,1,0.1,1.3"
-         " -failure_critical_stretch 3 -probes tip -probe_tip_at 0.012,0.0065 -output_interval 1 -force_form " +
+         " -failure_critical_stretch " + critical_stretch + " -probes tip -probe_tip_at 0.012,0.0065 -output_interval 1 -force_form " +
          form;
 }
 
@@ -99,5 +99,26 @@ TEST(Allocation, TimeStepsWithFailureAndHistoryAllocateNothing)
     PetscInt step;
     ASSERT_EQ(TSGetStepNumber(sim.ts(), &step), 0);
     EXPECT_EQ(step, 25);
+  }
+}
+
+TEST(Allocation, TimeStepsInWhichBondsBreakAllocateNothing)
+{
+  // The breaking pass, the ring-1 exchange of intact masks and the recomputation of
+  // the geometry of the points whose bonds broke (compute_bond_geometry) use only
+  // work space sized at set-up.
+  for (const char *form : {"bond_only", "energy_consistent"}) {
+    ASSERT_EQ(bapd_test::SetOptions(LoadedSheet(form, "1.001")), 0);
+    bapd::Simulation sim(PETSC_COMM_WORLD);
+    ASSERT_EQ(sim.Setup(), 0);
+    ASSERT_EQ(sim.Advance(5), 0); // warm-up
+    PetscInt before, after;
+    ASSERT_EQ(sim.BrokenBondCount(&before), 0);
+    PetscErrorCode ierr  = 0;
+    const long     count = CountAllocations([&] { ierr = sim.Advance(6); });
+    ASSERT_EQ(ierr, 0);
+    ASSERT_EQ(sim.BrokenBondCount(&after), 0);
+    EXPECT_GT(after, before) << form << ": no bond broke in the counted steps";
+    EXPECT_EQ(count, 0) << form << ": operator new calls in 6 time steps in which bonds break";
   }
 }
