@@ -63,6 +63,9 @@ public:
 private:
   PetscErrorCode Begin(MPI_Comm comm, const std::string &path, bool writing); // Create or Open
   void        Record(bool ok, const char *what, const char *name);
+  // WriteBlock (write: create the dataset and write) and ReadBlock (open and read).
+  PetscErrorCode Block(const char *name, hid_t type, hsize_t rows, hsize_t cols, hsize_t start, hsize_t count, bool write,
+                       void *data);
   MPI_Comm    comm_ = MPI_COMM_NULL;
   hid_t       file_ = -1;
   std::string path_, failed_; // the first failed call on this rank

@@ -62,6 +62,13 @@ private:
   PetscErrorCode Number(const char *name, const char *help, T *value, bool *set, bool (*parses)(const std::string &),
                         const Wording &wording);
   PetscErrorCode Raw(const char *name, std::string *text, bool *present);
+  // The text of a list option and its comma-separated items (none if absent).
+  struct ListText {
+    std::string              text;
+    std::vector<std::string> items;
+    bool                     present = false;
+  };
+  PetscErrorCode List(const char *name, ListText *list);
 
   PetscOptionItems *items_;
   std::string       problem_;

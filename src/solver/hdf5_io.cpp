@@ -118,38 +118,37 @@ hid_t BlockTransfer()
 
 } // namespace
 
-PetscErrorCode H5ParallelFile::WriteBlock(const char *name, hid_t type, hsize_t rows, hsize_t cols, hsize_t start,
-                                          hsize_t count, const void *data)
+PetscErrorCode H5ParallelFile::Block(const char *name, hid_t type, hsize_t rows, hsize_t cols, hsize_t start,
+                                     hsize_t count, bool write, void *data)
 {
   H5Quiet quiet;
 
   PetscFunctionBegin;
   BlockSpaces spaces(rows, cols, start, count);
   hid_t       dxpl = BlockTransfer();
-  hid_t       set  = H5Dcreate2(file_, name, type, spaces.file, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  hid_t       set  = write ? H5Dcreate2(file_, name, type, spaces.file, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT)
+                           : H5Dopen2(file_, name, H5P_DEFAULT);
   bool        ok   = set >= 0;
-  if (ok && rows > 0) ok = H5Dwrite(set, type, spaces.memory, spaces.file, dxpl, data) >= 0;
+  if (ok && rows > 0)
+    ok = (write ? H5Dwrite(set, type, spaces.memory, spaces.file, dxpl, data)
+                : H5Dread(set, type, spaces.memory, spaces.file, dxpl, data)) >= 0;
   if (set >= 0) ok = H5Dclose(set) >= 0 && ok;
   H5Pclose(dxpl);
-  Record(ok, "write", name);
+  Record(ok, write ? "write" : "read", name);
   PetscFunctionReturn(0);
+}
+
+PetscErrorCode H5ParallelFile::WriteBlock(const char *name, hid_t type, hsize_t rows, hsize_t cols, hsize_t start,
+                                          hsize_t count, const void *data)
+{
+  // H5Dwrite only reads the buffer.
+  return Block(name, type, rows, cols, start, count, true, const_cast<void *>(data));
 }
 
 PetscErrorCode H5ParallelFile::ReadBlock(const char *name, hid_t type, hsize_t rows, hsize_t cols, hsize_t start,
                                          hsize_t count, void *data)
 {
-  H5Quiet quiet;
-
-  PetscFunctionBegin;
-  BlockSpaces spaces(rows, cols, start, count);
-  hid_t       dxpl = BlockTransfer();
-  hid_t       set  = H5Dopen2(file_, name, H5P_DEFAULT);
-  bool        ok   = set >= 0;
-  if (ok && rows > 0) ok = H5Dread(set, type, spaces.memory, spaces.file, dxpl, data) >= 0;
-  if (set >= 0) ok = H5Dclose(set) >= 0 && ok;
-  H5Pclose(dxpl);
-  Record(ok, "read", name);
-  PetscFunctionReturn(0);
+  return Block(name, type, rows, cols, start, count, false, data);
 }
 
 PetscErrorCode H5ParallelFile::WriteRoot(const char *name, hid_t type, hsize_t length, const void *root_data)

@@ -222,23 +222,21 @@ PetscErrorCode OptionReader::String(const char *name, const char *help, std::str
 PetscErrorCode OptionReader::RealArray(const char *name, const char *help, std::vector<double> *values, bool *set)
 {
   PetscOptionItems *PetscOptionsObject = items_;
-  std::string       text;
-  bool              present = false;
+  ListText          list;
   PetscFunctionBeginUser;
-  PetscCall(Raw(name, &text, &present));
-  const std::vector<std::string> items = SplitList(text);
-  for (const std::string &item : items) {
+  PetscCall(List(name, &list));
+  for (const std::string &item : list.items) {
     double parsed = 0;
     if (!ParseReal(item, &parsed)) {
       Fail(Format("%s '%s': '%s' is not a number: give comma-separated numbers in SI units (YAML: a list [a, b, ...])",
-                  Full(name).c_str(), text.c_str(), item.c_str()));
+                  Full(name).c_str(), list.text.c_str(), item.c_str()));
       PetscFunctionReturn(0);
     }
   }
   // PETSc reads at most n values: size the buffer from the text. Absent, it holds
   // the current values, which -help shows.
-  std::vector<PetscReal> buffer(present ? items.size() : values->size());
-  if (!present) std::copy(values->begin(), values->end(), buffer.begin());
+  std::vector<PetscReal> buffer(list.present ? list.items.size() : values->size());
+  if (!list.present) std::copy(values->begin(), values->end(), buffer.begin());
   PetscInt n = static_cast<PetscInt>(buffer.size());
   buffer.push_back(0.0); // never empty: -help prints the first entry
   PetscBool flg = PETSC_FALSE;
@@ -251,14 +249,12 @@ PetscErrorCode OptionReader::RealArray(const char *name, const char *help, std::
 PetscErrorCode OptionReader::StringArray(const char *name, const char *help, std::vector<std::string> *values, bool *set)
 {
   PetscOptionItems *PetscOptionsObject = items_;
-  std::string       text;
-  bool              present = false;
+  ListText          list;
   PetscFunctionBeginUser;
-  PetscCall(Raw(name, &text, &present));
-  const std::vector<std::string> items = SplitList(text);
-  std::vector<char *>            buffer(items.size() + 1, nullptr);
-  PetscInt                       n   = static_cast<PetscInt>(items.size());
-  PetscBool                      flg = PETSC_FALSE;
+  PetscCall(List(name, &list));
+  std::vector<char *> buffer(list.items.size() + 1, nullptr);
+  PetscInt            n   = static_cast<PetscInt>(list.items.size());
+  PetscBool           flg = PETSC_FALSE;
   PetscCall(PetscOptionsStringArray(name, help, "docs/options.md", buffer.data(), &n, &flg));
   if (flg) {
     values->clear();
@@ -307,6 +303,14 @@ PetscErrorCode OptionReader::Raw(const char *name, std::string *text, bool *pres
   PetscCall(PetscOptionsFindPair(items_->options, items_->prefix, name, &value, &flg));
   *present = flg;
   *text    = value ? value : "";
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode OptionReader::List(const char *name, ListText *list)
+{
+  PetscFunctionBeginUser;
+  PetscCall(Raw(name, &list->text, &list->present));
+  list->items = SplitList(list->text);
   PetscFunctionReturn(0);
 }
 
