@@ -198,23 +198,34 @@ void model_lanes(const Model &model, BondKernelWorkspace &ws, std::size_t n, std
   }
 }
 
+// What both kernels (this and energy_consistent_range) set up for point i before
+// its bonds: where its bonds start and how many, its intact and usable masks, and
+// the scratch and totals of gather_point.
+struct KernelPoint {
+  std::size_t          offset, size;
+  const std::uint64_t *intact, *usable;
+  PointTotals          totals;
+};
+template <std::size_t Words>
+inline KernelPoint begin_point(const PointCloud &ref, const double *y, const Families &fam, const BondGeometry &geo,
+                               const BondState &state, std::size_t W, std::size_t i, PointScratch &s)
+{
+  const std::size_t    o      = fam.offsets[i];
+  const std::uint64_t *intact = state.intact.data() + i * W;
+  return {o, fam.offsets[i + 1] - o, intact, geo.usable.data() + i * W, gather_point<Words>(ref, y, fam, i, intact, s)};
+}
+
 template <std::size_t Words, class Model>
 void bond_forces_range(const Model &model, const PointCloud &ref, const double *y, const Families &fam,
                        const BondGeometry &geo, const BondState &state, double *c33, double *bond_force,
                        BondKernelWorkspace &ws, std::size_t begin, std::size_t end, KernelStats &stats)
 {
-  const std::size_t    W          = Words ? Words : fam.mask_words;
-  const std::size_t   *offsets    = fam.offsets.data();
-  const std::uint64_t *ba_all     = fam.ba_mask.data();
-  const std::uint64_t *intact_all = state.intact.data();
-  const std::uint64_t *usable_all = geo.usable.data();
-  PointScratch        &s          = ws.point;
+  const std::size_t    W      = Words ? Words : fam.mask_words;
+  const std::uint64_t *ba_all = fam.ba_mask.data();
+  PointScratch        &s      = ws.point;
   std::size_t          evaluated = 0, unusable = 0;
   for (std::size_t i = begin; i < end; ++i) {
-    const std::size_t    o = offsets[i], m = offsets[i + 1] - o;
-    const std::uint64_t *intact = intact_all + i * W;
-    const std::uint64_t *usable = usable_all + i * W;
-    const PointTotals totals = gather_point<Words>(ref, y, fam, i, intact, s);
+    const auto [o, m, intact, usable, totals] = begin_point<Words>(ref, y, fam, geo, state, W, i, s);
     const double     *off = s.offset.data(), *fvk = s.family_volume.data();
     std::size_t       pending = 0; // bonds collected for the model (HasLanes)
     for (std::size_t q = 0; q < m; ++q) {

@@ -51,22 +51,16 @@ void energy_consistent_range(const Model &model, const PointCloud &ref, const do
                              const BondGeometry &geo, const BondState &state, double *c33, double *bond_force,
                              BondKernelWorkspace &ws, std::size_t begin, std::size_t end, KernelStats &stats)
 {
-  const std::size_t    W          = Words ? Words : fam.mask_words;
-  const std::size_t   *offsets    = fam.offsets.data();
-  const std::uint64_t *ba_all     = fam.ba_mask.data();
-  const std::uint64_t *intact_all = state.intact.data();
-  const std::uint64_t *usable_all = geo.usable.data();
-  PointScratch        &s          = ws.point;
-  Quad                *M          = ws.bond_stress.data();
-  std::uint64_t       *energetic  = ws.energetic.data();
+  const std::size_t    W         = Words ? Words : fam.mask_words;
+  const std::uint64_t *ba_all    = fam.ba_mask.data();
+  PointScratch        &s         = ws.point;
+  Quad                *M         = ws.bond_stress.data();
+  std::uint64_t       *energetic = ws.energetic.data();
   std::size_t          evaluated = 0, unusable = 0;
   for (std::size_t i = begin; i < end; ++i) {
-    const std::size_t    o = offsets[i], m = offsets[i + 1] - o;
-    const std::uint64_t *intact = intact_all + i * W;
-    const std::uint64_t *usable = usable_all + i * W;
-    const PointTotals    totals = gather_point<Words>(ref, y, fam, i, intact, s);
-    const double        *off    = s.offset.data();
-    const Quad          *shp    = s.shape.data();
+    const auto [o, m, intact, usable, totals] = begin_point<Words>(ref, y, fam, geo, state, W, i, s);
+    const double *off = s.offset.data();
+    const Quad   *shp = s.shape.data();
     for (std::size_t w = 0; w < W; ++w) energetic[w] = 0;
     // Pass 1: M_iq = V_q P(F_iq) K_iq^{-1} of every bond that carries energy, their
     // sum in family order, and sum_q V_q (omega_i = 1 / that).
