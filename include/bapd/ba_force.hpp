@@ -199,20 +199,23 @@ void model_lanes(const Model &model, BondKernelWorkspace &ws, std::size_t n, std
 }
 
 // What both kernels (this and energy_consistent_range) set up for point i before
-// its bonds: where its bonds start and how many, its intact and usable masks, and
-// the scratch and totals of gather_point.
+// its bonds: the mask words, where its bonds start and how many, its BA, intact and
+// usable masks, and the scratch and totals of gather_point.
 struct KernelPoint {
-  std::size_t          offset, size;
-  const std::uint64_t *intact, *usable;
+  std::size_t          W, offset, size;
+  const std::uint64_t *ba, *intact, *usable; // ba: of the point's first bond
+  PointScratch        &s;
   PointTotals          totals;
 };
 template <std::size_t Words>
 inline KernelPoint begin_point(const PointCloud &ref, const double *y, const Families &fam, const BondGeometry &geo,
-                               const BondState &state, std::size_t W, std::size_t i, PointScratch &s)
+                               const BondState &state, std::size_t i, BondKernelWorkspace &ws)
 {
-  const std::size_t    o      = fam.offsets[i];
+  const std::size_t    W = Words ? Words : fam.mask_words, o = fam.offsets[i];
   const std::uint64_t *intact = state.intact.data() + i * W;
-  return {o, fam.offsets[i + 1] - o, intact, geo.usable.data() + i * W, gather_point<Words>(ref, y, fam, i, intact, s)};
+  return {W,      o,        fam.offsets[i + 1] - o,
+          fam.ba_mask.data() + o * W, intact, geo.usable.data() + i * W,
+          ws.point, gather_point<Words>(ref, y, fam, i, intact, ws.point)};
 }
 
 template <std::size_t Words, class Model>
@@ -220,12 +223,9 @@ void bond_forces_range(const Model &model, const PointCloud &ref, const double *
                        const BondGeometry &geo, const BondState &state, double *c33, double *bond_force,
                        BondKernelWorkspace &ws, std::size_t begin, std::size_t end, KernelStats &stats)
 {
-  const std::size_t    W      = Words ? Words : fam.mask_words;
-  const std::uint64_t *ba_all = fam.ba_mask.data();
-  PointScratch        &s      = ws.point;
-  std::size_t          evaluated = 0, unusable = 0;
+  std::size_t evaluated = 0, unusable = 0;
   for (std::size_t i = begin; i < end; ++i) {
-    const auto [o, m, intact, usable, totals] = begin_point<Words>(ref, y, fam, geo, state, W, i, s);
+    const auto [W, o, m, ba, intact, usable, s, totals] = begin_point<Words>(ref, y, fam, geo, state, i, ws);
     const double     *off = s.offset.data(), *fvk = s.family_volume.data();
     std::size_t       pending = 0; // bonds collected for the model (HasLanes)
     for (std::size_t q = 0; q < m; ++q) {
@@ -238,7 +238,7 @@ void bond_forces_range(const Model &model, const PointCloud &ref, const double *
         t[0] = t[1] = 0.0;
         continue;
       }
-      const BondKinematics k = bond_kinematics<Words>(ba_all + b * W, intact, W, s, totals);
+      const BondKinematics k = bond_kinematics<Words>(ba + q * W, intact, W, s, totals);
       if (__builtin_expect(!k.usable, 0)) { // K went singular since the geometry was computed
         ++unusable;
         t[0] = t[1] = 0.0;

@@ -51,14 +51,11 @@ void energy_consistent_range(const Model &model, const PointCloud &ref, const do
                              const BondGeometry &geo, const BondState &state, double *c33, double *bond_force,
                              BondKernelWorkspace &ws, std::size_t begin, std::size_t end, KernelStats &stats)
 {
-  const std::size_t    W         = Words ? Words : fam.mask_words;
-  const std::uint64_t *ba_all    = fam.ba_mask.data();
-  PointScratch        &s         = ws.point;
-  Quad                *M         = ws.bond_stress.data();
-  std::uint64_t       *energetic = ws.energetic.data();
-  std::size_t          evaluated = 0, unusable = 0;
+  Quad          *M         = ws.bond_stress.data();
+  std::uint64_t *energetic = ws.energetic.data();
+  std::size_t    evaluated = 0, unusable = 0;
   for (std::size_t i = begin; i < end; ++i) {
-    const auto [o, m, intact, usable, totals] = begin_point<Words>(ref, y, fam, geo, state, W, i, s);
+    const auto [W, o, m, ba, intact, usable, s, totals] = begin_point<Words>(ref, y, fam, geo, state, i, ws);
     const double *off = s.offset.data();
     const Quad   *shp = s.shape.data();
     for (std::size_t w = 0; w < W; ++w) energetic[w] = 0;
@@ -74,7 +71,7 @@ void energy_consistent_range(const Model &model, const PointCloud &ref, const do
         unusable += alive;
         continue;
       }
-      const BondKinematics k = bond_kinematics<Words>(ba_all + b * W, intact, W, s, totals);
+      const BondKinematics k = bond_kinematics<Words>(ba + q * W, intact, W, s, totals);
       if (__builtin_expect(!k.usable, 0)) { // K went singular since the geometry was computed
         ++unusable;
         continue;
@@ -111,7 +108,7 @@ void energy_consistent_range(const Model &model, const PointCloud &ref, const do
         continue;
       }
       Double4 S;
-      masked_sums<Words, 1>(ba_all + (o + p) * W, energetic, W, arrays, &stress_total, &S);
+      masked_sums<Words, 1>(ba + p * W, energetic, W, arrays, &stress_total, &S);
       const double d0 = off[2 * p], d1 = off[2 * p + 1];
       t[2 * p]        = omega * (S[0] * d0 + S[1] * d1);
       t[2 * p + 1]    = omega * (S[2] * d0 + S[3] * d1);
