@@ -11,6 +11,7 @@
 #include <cstdlib>
 
 #include "bapd/errors.hpp"
+#include "bapd/help.hpp"
 #include "bapd/scene_file.hpp"
 #include "bapd/simulation.hpp"
 
@@ -28,6 +29,8 @@ static PetscErrorCode RunScene()
 
 int main(int argc, char **argv)
 {
+  // -help, -h, --help: bapd's options alone; -help all: PETSc's too (help.hpp).
+  bapd::TakeHelpArguments(&argc, &argv);
   // A missing or malformed scene (or a stray word on the command line) is reported
   // before MPI and PETSc start, so the user sees one line instead of an error stack
   // from inside PetscInitialize.
@@ -39,6 +42,7 @@ int main(int argc, char **argv)
   }
   PetscCall(PetscInitialize(&argc, &argv, nullptr, help));
   PetscCall(bapd::PushUserErrorHandler());
+  PetscCall(bapd::BeginHelp(PETSC_COMM_WORLD));
   const PetscErrorCode ierr = RunScene();
   // Every rank agrees on the outcome before finalising; a rank that failed alone
   // (the others wait for it in a collective call) stops the job instead of hanging.

@@ -49,7 +49,7 @@ enum class FieldGeometry { current, reference };
 // -output_fields, -output_fields_interval, -output_fields_geometry.
 struct FieldOptions {
   PetscBool     enabled  = PETSC_FALSE;
-  PetscInt      interval = 0; // steps between files; 0: about 20 files a run
+  PetscInt      interval = 0; // steps between files; 0: every end time / 20 of simulated time (cadence.hpp)
   FieldGeometry geometry = FieldGeometry::current;
 };
 PetscErrorCode FieldOptionsFromOptions(MPI_Comm comm, FieldOptions *options);

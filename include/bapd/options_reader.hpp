@@ -46,6 +46,7 @@ public:
   PetscErrorCode Real(const char *name, const char *help, double *value, bool *set = nullptr, const char *example = "0.01");
   PetscErrorCode Int(const char *name, const char *help, PetscInt *value, bool *set = nullptr);
   PetscErrorCode String(const char *name, const char *help, std::string *value, bool *set = nullptr);
+  PetscErrorCode Bool(const char *name, const char *help, bool *value);
   PetscErrorCode RealArray(const char *name, const char *help, std::vector<double> *values, bool *set = nullptr);
   PetscErrorCode StringArray(const char *name, const char *help, std::vector<std::string> *values, bool *set = nullptr);
 

@@ -47,6 +47,7 @@ struct Scene {
 
   std::string output_dir      = "output";
   PetscInt    output_interval = 100; // steps between history rows
+  bool        output_final_state = false; // final_state.csv and broken_bonds.csv at the end
 
   double   time_step        = 0.0;  // 0: use safety * stable step
   double   time_step_safety = 0.8;  // fraction of the computed stable step

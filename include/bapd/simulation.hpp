@@ -19,6 +19,7 @@
 #include "bapd/ba_force.hpp"
 #include "bapd/bond_geometry.hpp"
 #include "bapd/bond_state.hpp"
+#include "bapd/cadence.hpp"
 #include "bapd/divergence.hpp"
 #include "bapd/failure.hpp"
 #include "bapd/family.hpp"
@@ -70,6 +71,7 @@ public:
   PetscErrorCode GatherBrokenBonds(std::vector<std::pair<int64_t, int64_t>> *bonds);
 
 private:
+  PetscErrorCode CheckOptionsEarly(); // before the body is built
   PetscErrorCode BuildBody();
   PetscErrorCode BuildProbes();
   PetscErrorCode SetupTimeStepper();
@@ -85,6 +87,7 @@ private:
   PetscErrorCode WriteHistoryRow(PetscInt step, double t);
   PetscErrorCode Progress(PetscInt step, double t, PetscBool force);
   PetscErrorCode Summary();
+  PetscErrorCode ListOutputFiles(); // rank 0: every file written, with its size
   PetscErrorCode WriteFinalState();
   PetscErrorCode CheckStaticHold(PetscInt step, double t);
 
@@ -131,12 +134,11 @@ private:
   std::vector<double> force_density_;   // 2 per owned point
   std::vector<double> per_point_;       // 2 per owned point: kinetic, internal energy
   std::vector<double> point_energy_;    // 1 per owned point
-  PetscInt            progress_interval_ = 0; // steps between progress lines
+  Cadence             progress_times_; // -progress_interval 0: a line every end time / 20 of simulated time
   double wall_start_ = 0;
   FILE  *history_    = nullptr;
   PetscInt total_broken_ = 0;
   bool   stopped_on_error_ = false;
-  PetscBool write_final_state_ = PETSC_FALSE; // -output_final_state
   // The latest history row, for the static-hold test.
   double              last_kinetic_ = 0, last_internal_ = 0;
   std::vector<double> last_reaction_, last_probe_u_;

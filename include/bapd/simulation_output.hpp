@@ -7,6 +7,7 @@
 
 #include <vector>
 
+#include "bapd/cadence.hpp"
 #include "bapd/checkpoint.hpp"
 #include "bapd/fields.hpp"
 #include "bapd/natural_order.hpp"
@@ -19,6 +20,7 @@ struct SimulationOutput {
   NaturalOrder        order;    // created on the first field file or checkpoint
   GeometryFingerprint geometry; // with the order
   FieldSeries         series;
+  Cadence             field_times; // -output_fields_interval 0: every end time / 20 of simulated time
   double              last_checkpoint_wall = 0;  // MPI_Wtime of the last checkpoint (rank 0's decides)
   PetscInt            last_checkpoint_step = -1;
   // The state after the last completed step (-checkpoint_on_error): a step that

@@ -63,7 +63,7 @@ std::string Explain(const char *message)
     {"Input string ", " has no numeric value", "give a number"},
     {"Input string ", " has no integer value", "give a whole number"},
     {"Unknown logical value: ", "", "give true or false (or 1 or 0)"},
-    {"Unknown TS type: ", "", "choose one that -help lists (e.g. basicsymplectic, rk, euler)"},
+    {"Unknown TS type: ", "", "choose one that -help all lists (e.g. basicsymplectic, rk, euler)"},
   };
   for (const Pattern &pattern : patterns) {
     const std::size_t lh = std::strlen(pattern.head), lt = std::strlen(pattern.tail);

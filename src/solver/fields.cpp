@@ -131,7 +131,7 @@ PetscErrorCode FieldOptionsFromOptions(MPI_Comm comm, FieldOptions *options)
   PetscOptionsBegin(comm, nullptr, "Field output (HDF5 + XDMF for ParaView)", "bapd");
   PetscCall(PetscOptionsBool("-output_fields", "Write the point fields (<output_dir>/fields/*.h5 and fields.xdmf)", "docs/options.md",
                              options->enabled, &options->enabled, nullptr));
-  PetscCall(PetscOptionsInt("-output_fields_interval", "Time steps between field files [-]; 0: about 20 a run", "docs/options.md",
+  PetscCall(PetscOptionsInt("-output_fields_interval", "Time steps between field files [-]; 0: every end time / 20 of simulated time", "docs/options.md",
                             options->interval, &options->interval, nullptr));
   PetscCall(PetscOptionsString("-output_fields_geometry", "Where fields.xdmf draws the points: current (deformed) or reference positions",
                                "docs/options.md", geometry, geometry, sizeof geometry, &set));

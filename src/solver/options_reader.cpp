@@ -219,6 +219,19 @@ PetscErrorCode OptionReader::String(const char *name, const char *help, std::str
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode OptionReader::Bool(const char *name, const char *help, bool *value)
+{
+  PetscOptionItems *PetscOptionsObject = items_;
+  std::string       text;
+  bool              present = false;
+  PetscFunctionBeginUser;
+  PetscCall(Raw(name, &text, &present));
+  PetscBool v = *value ? PETSC_TRUE : PETSC_FALSE;
+  PetscCall(PetscOptionsBool(name, help, "docs/options.md", v, &v, nullptr));
+  *value = v;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode OptionReader::RealArray(const char *name, const char *help, std::vector<double> *values, bool *set)
 {
   PetscOptionItems *PetscOptionsObject = items_;

@@ -73,6 +73,8 @@ PetscErrorCode ReadOutputTime(MPI_Comm comm, Scene *scene, SceneInput *in)
   PetscCall(ReadOptionBlock(comm, nullptr, "Output", [&](OptionReader &r) -> PetscErrorCode {
     PetscCall(r.String("-output_dir", "Directory for history and fields", &scene->output_dir));
     PetscCall(r.Int("-output_interval", "Time steps between history rows [-], >= 1", &scene->output_interval));
+    PetscCall(r.Bool("-output_final_state", "Also write final_state.csv (every point's displacement) and broken_bonds.csv at the end",
+                     &scene->output_final_state));
     return 0;
   }));
 
@@ -83,7 +85,7 @@ PetscErrorCode ReadOutputTime(MPI_Comm comm, Scene *scene, SceneInput *in)
     PetscCall(r.Real("-damping", "Mass-proportional damping coefficient [1/s], >= 0", &scene->damping));
     PetscCall(r.Real("-static_tolerance", "A hold of the load schedule ends once kinetic/internal energy < this [-] (0: holds run their full length)", &scene->static_tolerance));
     PetscCall(r.Real("-end_time", "End of the run [s] (default: the schedule's last time)", &scene->end_time, &in->end_time_set));
-    PetscCall(r.Int("-progress_interval", "Time steps between progress lines [-] (0: about 20 lines a run)", &scene->progress_interval));
+    PetscCall(r.Int("-progress_interval", "Time steps between progress lines [-] (0: every end time / 20 of simulated time)", &scene->progress_interval));
     return 0;
   }));
   PetscFunctionReturn(0);

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <limits>
 
+#include "bapd/help.hpp"
 #include "bapd/lattice.hpp"
 
 namespace bapd {
@@ -44,14 +45,16 @@ PetscErrorCode Simulation::Setup()
   PetscCall(ReadOutputOptions()); // -output_fields..., -checkpoint_..., -restart
   PetscCall(RelaxationFromOptions(comm_, &relaxation_kind_)); // -relaxation
   if (scene_.help_only) {
-    // -help without a scene: list the time stepper's options too, and stop.
-    PetscCall(TSCreate(comm_, &ts_));
-    PetscCall(TSSetType(ts_, TSBASICSYMPLECTIC));
-    PetscCall(TSSetFromOptions(ts_));
+    // -help all: list the time stepper's options too (PETSc's), and stop.
+    if (CurrentHelpMode() != HelpMode::bapd) {
+      PetscCall(TSCreate(comm_, &ts_));
+      PetscCall(TSSetType(ts_, TSBASICSYMPLECTIC));
+      PetscCall(TSSetFromOptions(ts_));
+    }
     PetscCall(PetscLogStagePop());
     PetscFunctionReturn(0);
   }
-  PetscCall(PetscOptionsGetBool(nullptr, nullptr, "-output_final_state", &write_final_state_, nullptr));
+  PetscCall(CheckOptionsEarly());
   PetscCall(SceneView(comm_, scene_));
   PetscCall(BuildBody());
   PetscCall(loading_.Setup(comm_, scene_, layout_));
@@ -61,10 +64,31 @@ PetscErrorCode Simulation::Setup()
   PetscCall(step_control_.EstimateStable(comm_, scene_, layout_, loading_, force_));
   PetscCall(SetupRelaxation());
   PetscCall(SetupTimeStepper());
-  PetscCall(CheckUnusedOptions(comm_));
   PetscCall(OpenHistory());
   PetscCall(SetupOutput()); // restores the state with -restart
+  {
+    PetscReal t;
+    PetscCall(TSGetTime(ts_, &t));
+    progress_times_.Start(loading_.end_time() / 20, t);
+  }
   PetscCall(PetscLogStagePop());
+  PetscFunctionReturn(0);
+}
+
+// Every option is checked before any work (docs/options.md): the time stepper's on a
+// throw-away TS (a bad -ts_type or -ts_max_steps value fails here, not after the body
+// and the stable step are built), then an option nothing read (a typo) is refused.
+PetscErrorCode Simulation::CheckOptionsEarly()
+{
+  TS probe;
+
+  PetscFunctionBegin;
+  PetscCall(TSCreate(comm_, &probe));
+  PetscErrorCode ierr = TSSetType(probe, TSBASICSYMPLECTIC);
+  if (!ierr) ierr = TSSetFromOptions(probe);
+  PetscCall(TSDestroy(&probe));
+  PetscCall(ierr);
+  PetscCall(CheckUnusedOptions(comm_));
   PetscFunctionReturn(0);
 }
 
@@ -243,8 +267,8 @@ PetscErrorCode Simulation::Run()
   PetscCall(TSGetTime(ts_, &t));
   if (step % scene_.output_interval != 0 && !stopped_on_error_) PetscCall(WriteHistoryRow(step, t));
   PetscCall(OutputAtEnd(step, t)); // the last field file (and checkpoint)
+  if (scene_.output_final_state) PetscCall(WriteFinalState());
   PetscCall(Summary());
-  if (write_final_state_) PetscCall(WriteFinalState());
   PetscCheck(!stopped_on_error_, comm_, PETSC_ERR_NOT_CONVERGED, "%s", stop_reason_.c_str());
   PetscFunctionReturn(0);
 }

@@ -119,7 +119,6 @@ PetscErrorCode Simulation::SetupTimeStepper()
     const PetscInt steps = (PetscInt)std::ceil(end_time / step_control_.current() - 1e-9);
     PetscCall(PetscPrintf(comm_, "Time stepping: %s, dt = %.4e s, end time %.4e s, about %" PetscInt_FMT " steps\n", type, step_control_.current(),
                           end_time, steps));
-    progress_interval_ = scene_.progress_interval > 0 ? scene_.progress_interval : std::max<PetscInt>(1, steps / 20);
   }
   PetscFunctionReturn(0);
 }

@@ -8,6 +8,8 @@
 #include <filesystem>
 
 #include "bapd/damage.hpp"
+#include "bapd/fields.hpp"
+#include "bapd/options_reader.hpp"
 #include "bapd/reproducible_sum.hpp"
 
 namespace bapd {
@@ -179,19 +181,24 @@ PetscErrorCode Simulation::CheckStaticHold(PetscInt step, double t)
   PetscFunctionReturn(0);
 }
 
+// A progress line every -progress_interval steps, or (0) every end time / 20 of
+// simulated time: step, time, step size, stretch, energies, broken bonds, wall time.
 PetscErrorCode Simulation::Progress(PetscInt step, double t, PetscBool force)
 {
   PetscFunctionBegin;
-  if (!force && step % progress_interval_ != 0) PetscFunctionReturn(0);
+  const bool due = scene_.progress_interval > 0 ? step % scene_.progress_interval == 0 : progress_times_.Due(t);
+  if (!force && !due) PetscFunctionReturn(0);
   const double end_time = loading_.end_time();
   const double wall     = MPI_Wtime() - wall_start_;
   if (scene_.failure) PetscCall(BrokenBondCount(&total_broken_));
-  const double left     = t > 0 ? wall * (end_time - t) / t : 0.0;
+  double kinetic, internal;
+  PetscCall(Energies(&kinetic, &internal));
+  const double left     = t > 0 ? std::max(0.0, wall * (end_time - t) / t) : 0.0;
   char shortened[64] = "";
   const double dt = step_control_.current(), base = step_control_.base();
-  if (dt < base) PetscCall(PetscSNPrintf(shortened, sizeof shortened, "  dt %.3g x (fast points)", dt / base));
-  PetscCall(PetscPrintf(comm_, "step %8" PetscInt_FMT "  t %.4e s  stretch %.4f  broken %" PetscInt_FMT "  wall %.1f s  left ~%.1f s%s\n", step, t,
-                        loading_.stretch_at(t), total_broken_, wall, left, shortened));
+  if (dt < base) PetscCall(PetscSNPrintf(shortened, sizeof shortened, " (%.3g x, fast points)", dt / base));
+  PetscCall(PetscPrintf(comm_, "step %8" PetscInt_FMT "  t %.4e s  dt %.3e s%s  stretch %.4f  KE %.3e J  IE %.3e J  broken %" PetscInt_FMT "  wall %.1f s  left ~%.1f s\n",
+                        step, t, dt, shortened, loading_.stretch_at(t), kinetic, internal, total_broken_, wall, left));
   PetscFunctionReturn(0);
 }
 
@@ -228,7 +235,63 @@ PetscErrorCode Simulation::Summary()
   if (relaxation_.active())
     PetscCall(PetscPrintf(comm_, "adaptive relaxation: damping %.4g 1/s now, %.4g to %.4g 1/s over the run\n", relaxation_.last(),
                           relaxation_.smallest(), relaxation_.largest()));
-  PetscCall(PetscPrintf(comm_, "history: %s/history.csv\n", scene_.output_dir.c_str()));
+  PetscCall(ListOutputFiles());
+  PetscFunctionReturn(0);
+}
+
+namespace {
+
+std::string Size(std::uintmax_t bytes)
+{
+  char text[32];
+  if (bytes < 1000) std::snprintf(text, sizeof text, "%ju B", bytes);
+  else if (bytes < 1000000) std::snprintf(text, sizeof text, "%.1f kB", bytes / 1e3);
+  else if (bytes < 1000000000) std::snprintf(text, sizeof text, "%.1f MB", bytes / 1e6);
+  else std::snprintf(text, sizeof text, "%.2f GB", bytes / 1e9);
+  return text;
+}
+
+} // namespace
+
+// The end of the summary: every file this run wrote (or extended, after a restart),
+// with its size, so that nothing written goes unnoticed and nothing missing is named.
+PetscErrorCode Simulation::ListOutputFiles()
+{
+  PetscFunctionBegin;
+  if (rank_ != 0) PetscFunctionReturn(0);
+  const std::string dir = scene_.output_dir + "/";
+  std::string       text;
+  std::uintmax_t    total = 0;
+  auto line = [&](const std::string &name, const std::string &what) {
+    std::error_code      ec;
+    const std::uintmax_t bytes = std::filesystem::file_size(dir + name, ec);
+    if (ec) return; // not written (or gone: the run's own checks say so)
+    total += bytes;
+    text += Format("  %-22s %10s  %s\n", name.c_str(), Size(bytes).c_str(), what.c_str());
+  };
+  line("history.csv", "a row every -output_interval steps (scripts/plot_history.py)");
+  if (static_states_) line("static_states.csv", "one row per static state");
+  if (output_.fields.enabled) {
+    std::uintmax_t bytes = 0;
+    std::size_t    files = 0;
+    for (const FieldFrame &frame : output_.series.frames) {
+      std::error_code      ec;
+      const std::uintmax_t b = std::filesystem::file_size(dir + FieldFileName(frame.step), ec);
+      if (!ec) bytes += b, ++files;
+    }
+    total += bytes;
+    line("fields.xdmf", "open in ParaView");
+    text += Format("  %-22s %10s  %zu field file(s), t = %.4g to %.4g s\n", "fields/", Size(bytes).c_str(), files,
+                   output_.series.frames.empty() ? 0.0 : output_.series.frames.front().time,
+                   output_.series.frames.empty() ? 0.0 : output_.series.frames.back().time);
+  }
+  if (output_.last_checkpoint_step >= 0)
+    line("checkpoint.h5", Format("step %" PetscInt_FMT ": continue with -restart %scheckpoint.h5", output_.last_checkpoint_step, dir.c_str()));
+  if (scene_.output_final_state) {
+    line("final_state.csv", "every point's displacement, natural order");
+    line("broken_bonds.csv", "broken bonds as pairs of natural ids");
+  }
+  PetscCall(PetscPrintf(PETSC_COMM_SELF, "Output in %s (%s):\n%s", dir.c_str(), Size(total).c_str(), text.c_str()));
   PetscFunctionReturn(0);
 }
 

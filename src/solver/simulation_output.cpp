@@ -60,10 +60,9 @@ PetscErrorCode Simulation::SetupOutput()
   PetscCall(RegisterEvents());
   output_.series.output_dir = scene_.output_dir;
   output_.series.geometry   = output_.fields.geometry; // -output_fields_geometry (fields.hpp)
-  if (output_.fields.interval == 0) {
-    const double end_time = loading_.end_time() > 0 ? loading_.end_time() : loading_.schedule().end_time();
-    output_.fields.interval = std::max<PetscInt>(1, (PetscInt)std::ceil(end_time / step_control_.current() - 1e-9) / 20);
-  }
+  // The end time as the scene gives it (before a restart or an ended hold moves it), so
+  // that a continuation writes the field files the uninterrupted run writes.
+  const double end_time = loading_.end_time() > 0 ? loading_.end_time() : loading_.schedule().end_time();
   output_.last_checkpoint_wall = MPI_Wtime();
   PetscInt  step = 0;
   PetscReal t    = 0;
@@ -71,7 +70,9 @@ PetscErrorCode Simulation::SetupOutput()
     PetscCall(RestoreCheckpoint());
     PetscCall(TSGetStepNumber(ts_, &step));
     PetscCall(TSGetTime(ts_, &t));
-  } else if (output_.fields.enabled) {
+  }
+  if (output_.fields.interval == 0) output_.field_times.Start(end_time / 20, t);
+  if (output_.checkpoint.restart.empty() && output_.fields.enabled) {
     PetscCall(WriteFields(0, 0.0));
   }
   if (output_.checkpoint.on_error) {
@@ -104,7 +105,8 @@ PetscErrorCode Simulation::SaveGoodState(PetscInt step, double t)
 PetscErrorCode Simulation::OutputAfterStep(PetscInt step, double t)
 {
   PetscFunctionBegin;
-  if (output_.fields.enabled && step % output_.fields.interval == 0) PetscCall(WriteFields(step, t));
+  const bool fields_due = output_.fields.interval > 0 ? step % output_.fields.interval == 0 : output_.field_times.Due(t);
+  if (output_.fields.enabled && fields_due) PetscCall(WriteFields(step, t));
   // One reduction a step: did any rank get SIGTERM/SIGINT or SIGUSR1, and is rank 0's
   // clock past the wall-clock interval? Every rank then takes the same branch.
   const CheckpointOptions &options = output_.checkpoint;

@@ -59,6 +59,7 @@ expect_error int_not_whole "-output_interval '1.5' is not a whole number" "$scen
 expect_error list_not_numbers "-body_holes '0.005,x,0.001': 'x' is not a number" "$scene" -body_holes 0.005,x,0.001
 expect_error petsc_real "-ts_dt 'abc' is not valid: give a number" "$scene" -ts_dt abc
 expect_error petsc_int "-ts_max_steps '1.5' is not valid: give a whole number" "$scene" -ts_max_steps 1.5
+expect_error petsc_ts_type "Unknown TS type" "$scene" -ts_type nosuch
 expect_error petsc_bool "-output_final_state 'maybe' is not valid: give true or false" "$scene" -output_final_state maybe
 
 # Non-physical values
@@ -105,6 +106,15 @@ if [ -f "$source_dir/include/bapd/checkpoint.hpp" ]; then
     failures=$((failures + 1))
   fi
 fi
+
+# Options are checked before any work (docs/options.md): a typo or a bad -ts_* value
+# stops the run before the scene is shown and the body is built.
+for name in unknown_option nested_optional_key petsc_real petsc_int petsc_ts_type; do
+  if [ -f "$name.log" ] && grep -qE "^(Scene$|Body: [0-9])" "$name.log"; then
+    echo "FAIL $name: reported only after the body was built"
+    failures=$((failures + 1))
+  fi
+done
 
 if ((failures)); then
   echo "$failures case(s) failed"
