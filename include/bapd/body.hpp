@@ -3,6 +3,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "bapd/shape.hpp"
+
 namespace bapd {
 
 struct Circle {
@@ -12,10 +14,12 @@ struct Segment {
   double x0, y0, x1, y1;
 };
 
-// A 2D plane sheet [0, width] x [0, height], cut by circular holes and pre-notches.
+// A 2D plane sheet [0, width] x [0, height], cut by circular holes (which may reach
+// outside it), then shaped by `shapes` in order (shape.hpp), and cut by pre-notches.
 struct Body2D {
   double width = 0, height = 0, thickness = 0, dx = 0;
   std::vector<Circle>  holes;
+  std::vector<Shape>   shapes;  // subtract / add / intersect, in order
   std::vector<Segment> notches; // bonds that cross one are never created
 };
 

@@ -21,6 +21,14 @@ struct LoadInput {
   double              x_scale = 1.0, y_scale = 1.0;
 };
 
+struct ShapeInput {
+  std::string         name, type, op = "subtract";
+  bool                type_set = false;
+  std::vector<double> box, centre, radii, points;
+  double              radius = 0, angle = 0; // angle in degrees, as given
+  bool                radius_set = false;
+};
+
 struct ProbeInput {
   std::string         name;
   std::vector<double> at;
@@ -30,6 +38,8 @@ struct ProbeInput {
 struct SceneInput {
   bool                     width_set = false, height_set = false, thickness_set = false, dx_set = false;
   std::vector<double>      holes, notches;
+  std::vector<std::string> shape_names;
+  std::vector<ShapeInput>  shapes;
   std::string              model = "gent", formulation = "plane_stress", force_form = "bond_only";
   bool                     D_set = false, bulk_ratio_set = false;
   double                   bulk_ratio = 1000.0;

@@ -16,6 +16,11 @@ int hole_containing(const Body2D &body, double x, double y)
   return -1;
 }
 
+bool is_material(const Body2D &body, double x, double y)
+{
+  return hole_containing(body, x, y) < 0 && (body.shapes.empty() || shape_removing(body.shapes, x, y) < 0);
+}
+
 LatticeCells lattice_cells(const Body2D &body)
 {
   if (!(body.dx > 0) || !(body.width > 0) || !(body.height > 0)) return {};
@@ -46,10 +51,24 @@ static void hole_row_cells(const Body2D &body, const Circle &h, int64_t nx, doub
   *hi = b;
 }
 
+// Bodies with shapes: every cell tested, or a regular sample of them scaled up.
+static int64_t shaped_point_count(const Body2D &body, const LatticeCells &cells)
+{
+  const double  total  = static_cast<double>(cells.nx) * static_cast<double>(cells.ny);
+  const int64_t sx     = total > 2e8 ? std::max<int64_t>(1, cells.nx / 4000) : 1;
+  const int64_t sy     = total > 2e8 ? std::max<int64_t>(1, cells.ny / 4000) : 1;
+  int64_t       kept = 0, tested = 0;
+  for (int64_t iy = 0; iy < cells.ny; iy += sy)
+    for (int64_t ix = 0; ix < cells.nx; ix += sx, ++tested) kept += is_material(body, cell_centre(ix, body.dx), cell_centre(iy, body.dx));
+  if (sx == 1 && sy == 1) return kept;
+  return static_cast<int64_t>(total * static_cast<double>(kept) / static_cast<double>(tested));
+}
+
 int64_t lattice_point_count(const Body2D &body)
 {
   const LatticeCells cells = lattice_cells(body);
   if (cells.nx < 1 || cells.ny < 1) return 0;
+  if (!body.shapes.empty()) return shaped_point_count(body, cells);
   if (body.holes.empty()) return cells.nx * cells.ny;
   // Row by row, one chord per hole: O(ny x holes). A body of more rows than that can
   // afford has far more points than any machine holds: the hole areas estimate it.
@@ -82,6 +101,62 @@ int64_t lattice_point_count(const Body2D &body)
   return count;
 }
 
+// Whether the link between the centres (ax, ay) and (bx, by) of two neighbouring
+// cells crosses a notch (then no bond joins them either).
+static bool notch_cuts(const Body2D &body, double ax, double ay, double bx, double by)
+{
+  for (const Segment &g : body.notches) {
+    auto side = [](double px, double py, double qx, double qy, double rx, double ry) {
+      return (qx - px) * (ry - py) - (qy - py) * (rx - px);
+    };
+    const double d1 = side(g.x0, g.y0, g.x1, g.y1, ax, ay), d2 = side(g.x0, g.y0, g.x1, g.y1, bx, by);
+    const double d3 = side(ax, ay, bx, by, g.x0, g.y0), d4 = side(ax, ay, bx, by, g.x1, g.y1);
+    if (((d1 > 0) != (d2 > 0)) && ((d3 > 0) != (d4 > 0))) return true;
+  }
+  return false;
+}
+
+LatticePieces lattice_pieces(const Body2D &body)
+{
+  LatticePieces      pieces;
+  const LatticeCells cells = lattice_cells(body);
+  if (cells.nx < 1 || cells.ny < 1 || static_cast<double>(cells.nx) * static_cast<double>(cells.ny) > 2e7) return pieces;
+  const int64_t        nx = cells.nx, n = cells.nx * cells.ny;
+  std::vector<int8_t>  state(static_cast<std::size_t>(n), 0); // 0 void, 1 material, 2 reached
+  for (int64_t c = 0; c < n; ++c) state[c] = is_material(body, cell_centre(c % nx, body.dx), cell_centre(c / nx, body.dx));
+  std::vector<int64_t> stack;
+  pieces.smallest_points = n + 1;
+  for (int64_t seed = 0; seed < n; ++seed) {
+    if (state[seed] != 1) continue;
+    int64_t size = 0;
+    state[seed]  = 2;
+    stack.assign(1, seed);
+    while (!stack.empty()) {
+      const int64_t c = stack.back();
+      stack.pop_back();
+      ++size;
+      const int64_t ix = c % nx, iy = c / nx;
+      const double  x = cell_centre(ix, body.dx), y = cell_centre(iy, body.dx);
+      const int64_t next[4][2] = {{ix - 1, iy}, {ix + 1, iy}, {ix, iy - 1}, {ix, iy + 1}};
+      for (const auto &q : next) {
+        if (q[0] < 0 || q[0] >= nx || q[1] < 0 || q[1] >= cells.ny) continue;
+        const int64_t k = q[1] * nx + q[0];
+        if (state[k] != 1 || notch_cuts(body, x, y, cell_centre(q[0], body.dx), cell_centre(q[1], body.dx))) continue;
+        state[k] = 2;
+        stack.push_back(k);
+      }
+    }
+    ++pieces.count;
+    if (size < pieces.smallest_points) {
+      pieces.smallest_points = size;
+      pieces.smallest_x      = cell_centre(seed % nx, body.dx);
+      pieces.smallest_y      = cell_centre(seed / nx, body.dx);
+    }
+  }
+  if (pieces.count == 0) pieces.smallest_points = 0;
+  return pieces;
+}
+
 PointCloud make_lattice(const Body2D &body)
 {
   if (!(body.dx > 0) || !(body.width > 0) || !(body.height > 0) || !(body.thickness > 0))
@@ -103,7 +178,7 @@ PointCloud make_lattice(const Body2D &body)
     const double py = cell_centre(iy, body.dx);
     for (int64_t ix = 0; ix < nx; ++ix) {
       const double px = cell_centre(ix, body.dx);
-      if (hole_containing(body, px, py) >= 0) continue;
+      if (!is_material(body, px, py)) continue;
       cloud.natural_id.push_back(static_cast<int64_t>(cloud.volume.size()));
       cloud.x.push_back(px);
       cloud.x.push_back(py);

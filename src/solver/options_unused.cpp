@@ -67,9 +67,11 @@ std::string UnusedMessage(const std::string &name)
   const std::string suggestion = SuggestOption(name, KnownOptionNames());
   const std::string set        = UndeclaredName(Lower(name), "-load_", {"_x_scale", "_y_scale", "_region", "_box", "_layers", "_x", "_y"});
   const std::string probe      = UndeclaredName(Lower(name), "-probe_", {"_at"});
+  const std::string shape      = UndeclaredName(Lower(name), "-body_", {"_type", "_op", "_box", "_centre", "_radius", "_radii", "_angle", "_points"});
   std::string       message    = name + " is not a bapd option.";
   if (!set.empty()) message += " '" + set + "' is not one of -load_sets: add it there, or fix the name.";
   else if (!probe.empty()) message += " '" + probe + "' is not one of -probes: add it there, or fix the name.";
+  else if (!shape.empty()) message += " '" + shape + "' is not one of -body_shapes: add it there, or fix the name.";
   if (!suggestion.empty()) message += " Did you mean " + suggestion + "?";
   else if (std::string nested = NestedKeyHint(name, KnownOptionNames()); !nested.empty()) {
     nested[0] = 'I'; // "In YAML, ..." starts a sentence here

@@ -75,6 +75,19 @@ PetscErrorCode SceneView(MPI_Comm comm, const Scene &s)
                  b.height, b.thickness, b.dx, std::lround(b.width / b.dx), std::lround(b.height / b.dx), (long)ScenePointEstimate(s),
                  b.holes.size(), b.notches.size());
   for (const Circle &c : b.holes) text += Format("            hole centre (%g, %g) m, radius %g m\n", c.cx, c.cy, c.radius);
+  for (const Shape &sh : b.shapes) {
+    std::string where;
+    switch (sh.kind) {
+    case Shape::Kind::rectangle: where = Format("[%g, %g] x [%g, %g] m", sh.box[0], sh.box[2], sh.box[1], sh.box[3]); break;
+    case Shape::Kind::circle: where = Format("centre (%g, %g) m, radius %g m", sh.cx, sh.cy, sh.a); break;
+    case Shape::Kind::ellipse:
+      where = Format("centre (%g, %g) m, semi-axes %g m, %g m at %g deg", sh.cx, sh.cy, sh.a, sh.b, sh.angle * 180.0 / M_PI);
+      break;
+    case Shape::Kind::polygon: where = Format("%zu vertices, area %g m^2", sh.vertices.size() / 2, shape_area(sh)); break;
+    }
+    const char *article = sh.kind == Shape::Kind::ellipse ? "an" : "a";
+    text += Format("            shape %s: %s %s %s, %s\n", sh.name.c_str(), to_string(sh.op), article, to_string(sh.kind), where.c_str());
+  }
   for (const Segment &g : b.notches) text += Format("            notch (%g, %g)-(%g, %g) m\n", g.x0, g.y0, g.x1, g.y1);
   text += Format("  horizon   delta = %g dx = %g m\n", s.horizon_factor, s.horizon());
   const double K = 2.0 / s.material.D;

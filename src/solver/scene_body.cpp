@@ -164,21 +164,125 @@ PetscErrorCode CheckMemory(MPI_Comm comm, const Scene &scene, int64_t points)
             .c_str());
 }
 
+// One shape of -body_shapes, checked and converted (angles to radians).
+PetscErrorCode CheckShape(MPI_Comm comm, const ShapeInput &in, const Body2D &b, std::vector<Shape> *shapes)
+{
+  Shape       s;
+  const char *n = in.name.c_str();
+  PetscFunctionBeginUser;
+  s.name = in.name;
+  static const char *reserved[] = {"width", "height", "thickness", "dx", "holes", "notches", "shapes"};
+  for (const char *word : reserved)
+    SceneCheck(Lower(in.name) != word, comm, "-body_shapes: '%s' is the name of a body option (-body_%s): give the shape another name", n, word);
+  SceneCheck(in.type_set, comm, "-body_%s_type is required for shape '%s': rectangle, circle, ellipse or polygon%s", n, n,
+             MisspeltHint("-body_" + in.name + "_type").c_str());
+  const std::string type = Lower(in.type), op = Lower(in.op);
+  if (type == "rectangle") s.kind = Shape::Kind::rectangle;
+  else if (type == "circle") s.kind = Shape::Kind::circle;
+  else if (type == "ellipse") s.kind = Shape::Kind::ellipse;
+  else if (type == "polygon") s.kind = Shape::Kind::polygon;
+  else SceneCheck(false, comm, "-body_%s_type '%s' is not a shape: give rectangle, circle, ellipse or polygon", n, in.type.c_str());
+  if (op == "subtract") s.op = Shape::Op::subtract;
+  else if (op == "add") s.op = Shape::Op::add;
+  else if (op == "intersect") s.op = Shape::Op::intersect;
+  else SceneCheck(false, comm, "-body_%s_op '%s': give subtract, add or intersect", n, in.op.c_str());
+
+  // Each type takes its own parameters and no other's (a stray one is a mistake).
+  const bool has_box = !in.box.empty(), has_centre = !in.centre.empty(), has_radii = !in.radii.empty(), has_points = !in.points.empty();
+  const bool wanted_box = s.kind == Shape::Kind::rectangle, wanted_points = s.kind == Shape::Kind::polygon;
+  const bool wanted_centre = s.kind == Shape::Kind::circle || s.kind == Shape::Kind::ellipse;
+  const struct {
+    bool        given, wanted;
+    const char *option;
+  } parameters[] = {{has_box, wanted_box, "box"},
+                    {has_centre, wanted_centre, "centre"},
+                    {in.radius_set, s.kind == Shape::Kind::circle, "radius"},
+                    {has_radii, s.kind == Shape::Kind::ellipse, "radii"},
+                    {in.angle != 0, s.kind == Shape::Kind::ellipse, "angle"},
+                    {has_points, wanted_points, "points"}};
+  for (const auto &p : parameters)
+    SceneCheck(!p.given || p.wanted, comm, "-body_%s_%s is not a parameter of a %s: remove it, or change -body_%s_type", n, p.option,
+               to_string(s.kind), n);
+  switch (s.kind) {
+  case Shape::Kind::rectangle:
+    SceneCheck(in.box.size() == 4, comm, "-body_%s_box holds %zu numbers: give xmin,ymin,xmax,ymax in m", n, in.box.size());
+    SceneCheck(in.box[2] > in.box[0] && in.box[3] > in.box[1], comm,
+               "-body_%s_box %g,%g,%g,%g: give xmin,ymin,xmax,ymax with xmax > xmin and ymax > ymin", n, in.box[0], in.box[1], in.box[2],
+               in.box[3]);
+    std::copy(in.box.begin(), in.box.end(), s.box);
+    break;
+  case Shape::Kind::circle:
+  case Shape::Kind::ellipse:
+    SceneCheck(in.centre.size() == 2, comm, "-body_%s_centre holds %zu numbers: give x,y in m", n, in.centre.size());
+    s.cx = in.centre[0], s.cy = in.centre[1];
+    if (s.kind == Shape::Kind::circle) {
+      SceneCheck(in.radius_set && in.radius > 0, comm, "-body_%s_radius: give the circle's radius in m, > 0", n);
+      s.a = s.b = in.radius;
+    } else {
+      SceneCheck(in.radii.size() == 2 && in.radii[0] > 0 && in.radii[1] > 0, comm,
+                 "-body_%s_radii: give the ellipse's two semi-axes a,b in m, both > 0", n);
+      s.a = in.radii[0], s.b = in.radii[1], s.angle = in.angle * M_PI / 180.0;
+    }
+    break;
+  case Shape::Kind::polygon: {
+    SceneCheck(in.points.size() % 2 == 0, comm, "-body_%s_points holds %zu numbers: give vertex pairs x0,y0,x1,y1,... in m", n,
+               in.points.size());
+    s.vertices = in.points;
+    const std::string problem = polygon_problem(s.vertices);
+    SceneCheck(problem.empty(), comm, "-body_%s_points: %s", n, problem.c_str());
+    break;
+  }
+  }
+  // A shape that does not touch the sheet does nothing: surely a mistake in a number.
+  bool touches = false;
+  const LatticeCells cells = lattice_cells(b);
+  const int64_t      step  = std::max<int64_t>(1, std::max(cells.nx, cells.ny) / 2000);
+  for (int64_t iy = 0; iy < cells.ny && !touches; iy += step)
+    for (int64_t ix = 0; ix < cells.nx && !touches; ix += step)
+      touches = shape_contains(s, (ix + 0.5) * b.dx, (iy + 0.5) * b.dx);
+  SceneCheck(touches || s.op == Shape::Op::intersect, comm,
+             "-body_%s: the %s holds no lattice point of the sheet [0, %g] x [0, %g] m (spacing %g m), so it changes nothing: check "
+             "its position and size",
+             n, to_string(s.kind), b.width, b.height, b.dx);
+  shapes->push_back(s);
+  PetscFunctionReturn(0);
+}
+
 } // namespace
 
 PetscErrorCode ReadBody(MPI_Comm comm, Scene *scene, SceneInput *in)
 {
   Body2D     &b = scene->body;
   PetscFunctionBeginUser;
-  PetscCall(ReadOptionBlock(comm, nullptr, "Body: a plane sheet [0, width] x [0, height] cut by holes and notches", [&](OptionReader &r) -> PetscErrorCode {
+  PetscCall(ReadOptionBlock(comm, nullptr, "Body: a plane sheet [0, width] x [0, height] cut by holes, shapes and notches", [&](OptionReader &r) -> PetscErrorCode {
     PetscCall(r.Real("-body_width", "Sheet width along x [m] (required)", &b.width, &in->width_set));
     PetscCall(r.Real("-body_height", "Sheet height along y [m] (required)", &b.height, &in->height_set));
     PetscCall(r.Real("-body_thickness", "Sheet thickness [m] (required)", &b.thickness, &in->thickness_set));
     PetscCall(r.Real("-body_dx", "Lattice spacing of the material points [m] (required)", &b.dx, &in->dx_set));
     PetscCall(r.RealArray("-body_holes", "Circular holes cx,cy,r,cx,cy,r,... [m] (default: none)", &in->holes));
     PetscCall(r.RealArray("-body_notches", "Pre-notch segments x0,y0,x1,y1,... [m]; bonds crossing one are never created (default: none)", &in->notches));
+    PetscCall(r.StringArray("-body_shapes", "Shapes applied in order to the sheet, name1,name2,... (each shape S is set by -body_S_...)",
+                            &in->shape_names));
     return 0;
   }));
+  PetscCall(CheckNames(comm, in->shape_names, "-body_shapes", "shape"));
+  for (const std::string &name : in->shape_names) {
+    ShapeInput        shape;
+    const std::string prefix = "body_" + name + "_", title = "Shape " + name;
+    shape.name               = name;
+    PetscCall(ReadOptionBlock(comm, prefix.c_str(), title.c_str(), [&](OptionReader &r) -> PetscErrorCode {
+      PetscCall(r.String("-type", "rectangle | circle | ellipse | polygon (required)", &shape.type, &shape.type_set));
+      PetscCall(r.String("-op", "What it does to the body so far: subtract | add (within the sheet) | intersect", &shape.op));
+      PetscCall(r.RealArray("-box", "Rectangle xmin,ymin,xmax,ymax [m]", &shape.box));
+      PetscCall(r.RealArray("-centre", "Circle or ellipse centre x,y [m]", &shape.centre));
+      PetscCall(r.Real("-radius", "Circle radius [m]", &shape.radius, &shape.radius_set));
+      PetscCall(r.RealArray("-radii", "Ellipse semi-axes a,b [m] (a along -angle)", &shape.radii));
+      PetscCall(r.Real("-angle", "Ellipse: angle of the a axis from x [degrees]", &shape.angle));
+      PetscCall(r.RealArray("-points", "Polygon vertices x0,y0,x1,y1,... [m] (closed: the last joins the first)", &shape.points));
+      return 0;
+    }));
+    in->shapes.push_back(shape);
+  }
 
   PetscCall(ReadOptionBlock(comm, nullptr, "Horizon", [&](OptionReader &r) -> PetscErrorCode {
     PetscCall(r.Real("-horizon_factor", "Horizon over lattice spacing, delta/dx [-] (paper: 3.015; 2.515 and 3.515 also studied)",
@@ -223,10 +327,12 @@ PetscErrorCode CheckBody(MPI_Comm comm, const SceneInput &in, Scene *scene)
     SceneCheck(c.radius < far, comm,
                "-body_holes: hole %zu (centre (%g, %g) m, radius %g m) covers the whole body and leaves no material: reduce its radius",
                h + 1, c.cx, c.cy, c.radius);
-    SceneCheck(c.cx - c.radius >= -tol && c.cx + c.radius <= b.width + tol && c.cy - c.radius >= -tol && c.cy + c.radius <= b.height + tol,
-               comm,
-               "-body_holes: hole %zu (centre (%g, %g) m, radius %g m) is not entirely inside the body [0, %g] x [0, %g] m: move its "
-               "centre or reduce its radius",
+    // A hole may reach outside the sheet (a waisted sheet is a sheet less two discs
+    // that cross its sides), but it must cut into it.
+    const double near = std::hypot(c.cx - std::clamp(c.cx, 0.0, b.width), c.cy - std::clamp(c.cy, 0.0, b.height));
+    SceneCheck(near < c.radius, comm,
+               "-body_holes: hole %zu (centre (%g, %g) m, radius %g m) does not reach the body [0, %g] x [0, %g] m: move its centre "
+               "or enlarge its radius",
                h + 1, c.cx, c.cy, c.radius, b.width, b.height);
     b.holes.push_back(c);
   }
@@ -248,11 +354,23 @@ PetscErrorCode CheckBody(MPI_Comm comm, const SceneInput &in, Scene *scene)
                "-body_notches: notch %zu has zero length (both ends at (%g, %g) m): give two different end points", s + 1, g.x0, g.y0);
     b.notches.push_back(g);
   }
+  b.shapes.clear();
+  for (const ShapeInput &si : in.shapes) PetscCall(CheckShape(comm, si, b, &b.shapes));
   const std::string cut = FindCut(b);
   PetscCheck(cut.empty(), comm, PETSC_ERR_USER, "%s", cut.c_str());
   const int64_t points = ScenePointEstimate(*scene);
-  SceneCheck(points > 0, comm,
-             "-body_holes: the holes leave no material point on the lattice of spacing -body_dx %g m: reduce their radii or dx", b.dx);
+  SceneCheck(points > 0, comm, "%s leave no material point on the lattice of spacing -body_dx %g m: %s",
+             b.shapes.empty() ? "-body_holes: the holes" : "-body_holes and -body_shapes: the holes and shapes", b.dx,
+             b.shapes.empty() ? "reduce their radii or dx" : "check each shape's -body_NAME_op (subtract removes what it covers)");
+  if (!b.shapes.empty()) {
+    // The holes and notches are checked above edge by edge (FindCut); shapes can make
+    // any outline, so the lattice itself is looked at.
+    const LatticePieces pieces = lattice_pieces(b);
+    SceneCheck(pieces.count <= 1, comm,
+               "-body_shapes: the body falls apart into %lld pieces on the lattice of spacing %g m (the smallest, %lld point(s), at "
+               "(%g, %g) m): change the shapes so that the body is one piece, or remove the stray one",
+               (long long)pieces.count, b.dx, (long long)pieces.smallest_points, pieces.smallest_x, pieces.smallest_y);
+  }
 
   SceneCheck(scene->horizon_factor >= 1, comm,
              "-horizon_factor %g is below 1: the horizon delta = factor x dx must reach the nearest neighbours; use 3.015 (the paper's "

@@ -51,6 +51,9 @@ PetscErrorCode CheckProbes(MPI_Comm comm, const SceneInput &in, Scene *scene)
     SceneCheck(hole < 0, comm,
                "-probe_%s_at (%g, %g) m lies inside hole %d, where there is no material: move it onto the body (a hole's edge is fine)", n, p.x,
                p.y, hole + 1);
+    const int shape = b.shapes.empty() ? -1 : shape_removing(b.shapes, p.x, p.y);
+    SceneCheck(shape < 0, comm, "-probe_%s_at (%g, %g) m lies where shape '%s' (%s) removed the material: move it onto the body", n, p.x,
+               p.y, shape < 0 ? "" : b.shapes[shape].name.c_str(), shape < 0 ? "" : to_string(b.shapes[shape].op));
     scene->probes.push_back(p);
   }
   PetscFunctionReturn(0);

@@ -78,7 +78,7 @@ expect_error bad_relaxation "-relaxation 'fast' is not a relaxation route: choos
 
 # Geometry
 expect_error hole_covers_body "-body_holes: hole 1 (centre (0.005, 0.005) m, radius 0.02 m) covers the whole body" "$scene" -body_holes 0.005,0.005,0.02
-expect_error hole_sticks_out "-body_holes: hole 1 (centre (0.005, 0.005) m, radius 0.006 m) is not entirely inside the body" "$scene" -body_holes 0.005,0.005,0.006
+expect_error hole_misses_body "-body_holes: hole 1 (centre (0.02, 0.02) m, radius 0.001 m) does not reach the body" "$scene" -body_holes 0.02,0.02,0.001
 expect_error notch_outside "-body_notches: notch 1 ends at (0.02, 0.005) m, outside the body" "$scene" -body_notches 0.02,0.005,0.008,0.005
 expect_error dx_needs_more_memory "-body_dx 1e-07 m asks for about 10000000000 material points" "$scene" -body_dx 1e-7
 expect_error dx_above_body "-body_dx 0.02 m is larger than the body" "$scene" -body_dx 0.02
@@ -106,6 +106,26 @@ if [ -f "$source_dir/include/bapd/checkpoint.hpp" ]; then
     failures=$((failures + 1))
   fi
 fi
+
+# Shapes (shape.hpp): each mistake named with the shape's option
+sh=(-body_shapes cut)
+expect_error shape_no_type "-body_cut_type is required for shape 'cut'" "$scene" "${sh[@]}" -body_cut_box 0,0,0.001,0.001
+expect_error shape_bad_type "-body_cut_type 'square' is not a shape" "$scene" "${sh[@]}" -body_cut_type square
+expect_error shape_bad_op "-body_cut_op 'minus': give subtract, add or intersect" "$scene" "${sh[@]}" -body_cut_type circle \
+  -body_cut_centre 0,0 -body_cut_radius 0.002 -body_cut_op minus
+expect_error shape_stray_parameter "-body_cut_radius is not a parameter of a rectangle" "$scene" "${sh[@]}" -body_cut_type rectangle \
+  -body_cut_box 0,0,0.002,0.002 -body_cut_radius 0.001
+expect_error shape_self_crossing "-body_cut_points: edges 1 and 3 cross" "$scene" "${sh[@]}" -body_cut_type polygon \
+  -body_cut_points 0.002,0.002,0.008,0.008,0.008,0.002,0.002,0.006
+expect_error shape_misses_body "-body_cut: the circle holds no lattice point of the sheet" "$scene" "${sh[@]}" -body_cut_type circle \
+  -body_cut_centre 0.5,0.5 -body_cut_radius 0.001
+expect_error shape_cuts_apart "-body_shapes: the body falls apart into 2 pieces" "$scene" "${sh[@]}" -body_cut_type rectangle \
+  -body_cut_box -1,0.004,1,0.006
+expect_error shape_reserved_name "-body_shapes: 'width' is the name of a body option" "$scene" -body_shapes width
+expect_error shape_undeclared "'hole2' is not one of -body_shapes" "$scene" "${sh[@]}" -body_cut_type circle -body_cut_centre 0,0 \
+  -body_cut_radius 0.002 -body_hole2_radius 0.001
+expect_error probe_in_shape "lies where shape 'cut' (subtract) removed the material" "$scene" "${sh[@]}" -body_cut_type circle \
+  -body_cut_centre 0.005,0.005 -body_cut_radius 0.002 -probes p -probe_p_at 0.005,0.005
 
 # Options are checked before any work (docs/options.md): a typo or a bad -ts_* value
 # stops the run before the scene is shown and the body is built.

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The same scene on 1, 2, 3 and 4 ranks: the same history, final displacement field
 # (bit for bit: tolerance 0) and set of broken bonds.
-#   rank_invariance.sh elastic|fracture
+#   rank_invariance.sh elastic|fracture|shapes
 set -euo pipefail
 case="$1"
 work="rank_invariance_$case"
@@ -14,7 +14,21 @@ scene=(-body_width 0.03 -body_height 0.012 -body_thickness 0.003 -body_dx 0.0005
        -load_bottom_region bottom -load_bottom_x fixed -load_bottom_y fixed
        -probes mouth -probe_mouth_at 0.03,0.0062 -damping 40 -output_interval 50 -progress_interval 100000
        -output_final_state)
-if [ "$case" = fracture ]; then
+if [ "$case" = shapes ]; then
+  # A waisted sheet with an elliptical pore and a polygonal window (shape.hpp): the
+  # lattice the shapes leave, partitioned 1 to 4 ways.
+  scene=(-body_width 0.02 -body_height 0.03 -body_thickness 0.002 -body_dx 0.0005 -horizon_factor 3.015
+         -body_shapes left,right,pore,window
+         -body_left_type circle -body_left_centre -0.008,0.015 -body_left_radius 0.012
+         -body_right_type circle -body_right_centre 0.028,0.015 -body_right_radius 0.012
+         -body_pore_type ellipse -body_pore_centre 0.01,0.015 -body_pore_radii 0.0015,0.0008 -body_pore_angle 30
+         -body_window_type polygon -body_window_points 0.010,0.022,0.013,0.025,0.010,0.028,0.007,0.025
+         -material_mu 4.55e3 -material_Jm 162.6 -material_bulk_ratio 100 -material_density 1000
+         -load_sets top,bottom -load_top_region top -load_top_layers 2 -load_top_x fixed -load_top_y stretch
+         -load_bottom_region bottom -load_bottom_layers 2 -load_bottom_x fixed -load_bottom_y fixed
+         -probes waist -probe_waist_at 0.00425,0.015 -damping 40 -output_interval 50 -progress_interval 100000
+         -output_final_state -load_schedule 0,1,0.05,1.2)
+elif [ "$case" = fracture ]; then
   # Stretch the sheet fast enough that the notch opens and bonds break within the run.
   scene+=(-load_schedule 0,1,0.2,1.6 -failure_critical_stretch 2.0)
 else

@@ -447,7 +447,7 @@ TEST_F(SceneOptions, RejectsEachInvalidInputNamingItsOption)
     {"holes not triples", {{"-body_holes", "0.04,0.08"}}, "-body_holes", "multiple of 3"},
     {"hole list malformed", {{"-body_holes", "0.04,x,0.01"}}, "-body_holes", "not a number"},
     {"hole radius zero", {{"-body_holes", "0.04,0.08,0"}}, "-body_holes", "radius"},
-    {"hole through the edge", {{"-body_holes", "0.075,0.08,0.01"}}, "-body_holes", "not entirely inside"},
+    {"hole out of reach", {{"-body_holes", "0.2,0.08,0.01"}}, "-body_holes", "does not reach the body"},
     {"hole covers the body", {{"-body_holes", "0.04,0.08,1"}}, "-body_holes", "no material"},
     {"notches not quadruples", {{"-body_notches", "0.01,0.02,0.03"}}, "-body_notches", "multiple of 4"},
     {"notch end outside", {{"-body_notches", "0.05,0.02,0.09,0.02"}}, "-body_notches", "outside the body"},
