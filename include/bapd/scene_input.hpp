@@ -22,7 +22,7 @@ struct LoadInput {
 };
 
 struct ShapeInput {
-  std::string         name, type, op = "subtract";
+  std::string         name, type, op = "subtract", file;
   bool                type_set = false;
   std::vector<double> box, centre, radii, points;
   double              radius = 0, angle = 0; // angle in degrees, as given

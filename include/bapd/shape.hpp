@@ -10,8 +10,24 @@
 
 namespace bapd {
 
+// Triangles (6 numbers each: x0,y0,x1,y1,x2,y2) with a bucket grid over their
+// bounding box, so that a point finds the few triangles that may hold it: the domain
+// of a Gmsh mesh (gmsh_shape.hpp reads it).
+struct TriangleSet {
+  std::vector<double> corners;        // 6 per triangle [m]
+  double              x0 = 0, y0 = 0; // the grid's lower-left corner [m]
+  double              cell = 1;       // bucket size [m]
+  long                nx = 0, ny = 0; // buckets
+  std::vector<int>    offsets, members; // CSR: triangles overlapping each bucket
+  std::size_t         size() const { return corners.size() / 6; }
+};
+// Builds the bucket grid of `set` (about one triangle a bucket).
+void index_triangles(TriangleSet &set);
+// Whether (x, y) lies in one of the triangles (edges inclusive).
+bool triangles_contain(const TriangleSet &set, double x, double y);
+
 struct Shape {
-  enum class Kind { rectangle, circle, ellipse, polygon };
+  enum class Kind { rectangle, circle, ellipse, polygon, mesh };
   enum class Op { subtract, add, intersect };
   std::string name;
   Kind        kind = Kind::rectangle;
@@ -21,10 +37,12 @@ struct Shape {
   double      a = 0, b = 0;          // circle: radius a; ellipse: semi-axes a (along the angle) and b [m]
   double      angle = 0;             // ellipse: angle of the a axis from x [rad]
   std::vector<double> vertices;      // polygon: x0,y0,x1,y1,... (closed implicitly)
+  std::string         file;          // mesh: the Gmsh file it came from
+  TriangleSet         triangles;     // mesh: its 2D elements, as triangles
 };
 
 // Whether (x, y) lies inside the shape. A point on the boundary counts as inside for
-// a polygon and a rectangle, outside for a circle and an ellipse (as the hole rule of
+// a polygon, a mesh and a rectangle, outside for a circle and an ellipse (as the hole rule of
 // lattice.hpp: a point on a hole's rim is material).
 bool shape_contains(const Shape &shape, double x, double y);
 

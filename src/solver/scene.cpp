@@ -84,6 +84,7 @@ PetscErrorCode SceneView(MPI_Comm comm, const Scene &s)
       where = Format("centre (%g, %g) m, semi-axes %g m, %g m at %g deg", sh.cx, sh.cy, sh.a, sh.b, sh.angle * 180.0 / M_PI);
       break;
     case Shape::Kind::polygon: where = Format("%zu vertices, area %g m^2", sh.vertices.size() / 2, shape_area(sh)); break;
+    case Shape::Kind::mesh: where = Format("%s: %zu triangles, area %g m^2", sh.file.c_str(), sh.triangles.size(), shape_area(sh)); break;
     }
     const char *article = sh.kind == Shape::Kind::ellipse ? "an" : "a";
     text += Format("            shape %s: %s %s %s, %s\n", sh.name.c_str(), to_string(sh.op), article, to_string(sh.kind), where.c_str());

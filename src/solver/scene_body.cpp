@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "bapd/gmsh_shape.hpp"
 #include "bapd/lattice.hpp"
 #include "bapd/options_reader.hpp"
 #include "bapd/scene_input.hpp"
@@ -174,14 +175,15 @@ PetscErrorCode CheckShape(MPI_Comm comm, const ShapeInput &in, const Body2D &b, 
   static const char *reserved[] = {"width", "height", "thickness", "dx", "holes", "notches", "shapes"};
   for (const char *word : reserved)
     SceneCheck(Lower(in.name) != word, comm, "-body_shapes: '%s' is the name of a body option (-body_%s): give the shape another name", n, word);
-  SceneCheck(in.type_set, comm, "-body_%s_type is required for shape '%s': rectangle, circle, ellipse or polygon%s", n, n,
+  SceneCheck(in.type_set, comm, "-body_%s_type is required for shape '%s': rectangle, circle, ellipse, polygon or mesh%s", n, n,
              MisspeltHint("-body_" + in.name + "_type").c_str());
   const std::string type = Lower(in.type), op = Lower(in.op);
   if (type == "rectangle") s.kind = Shape::Kind::rectangle;
   else if (type == "circle") s.kind = Shape::Kind::circle;
   else if (type == "ellipse") s.kind = Shape::Kind::ellipse;
   else if (type == "polygon") s.kind = Shape::Kind::polygon;
-  else SceneCheck(false, comm, "-body_%s_type '%s' is not a shape: give rectangle, circle, ellipse or polygon", n, in.type.c_str());
+  else if (type == "mesh") s.kind = Shape::Kind::mesh;
+  else SceneCheck(false, comm, "-body_%s_type '%s' is not a shape: give rectangle, circle, ellipse, polygon or mesh", n, in.type.c_str());
   if (op == "subtract") s.op = Shape::Op::subtract;
   else if (op == "add") s.op = Shape::Op::add;
   else if (op == "intersect") s.op = Shape::Op::intersect;
@@ -199,7 +201,8 @@ PetscErrorCode CheckShape(MPI_Comm comm, const ShapeInput &in, const Body2D &b, 
                     {in.radius_set, s.kind == Shape::Kind::circle, "radius"},
                     {has_radii, s.kind == Shape::Kind::ellipse, "radii"},
                     {in.angle != 0, s.kind == Shape::Kind::ellipse, "angle"},
-                    {has_points, wanted_points, "points"}};
+                    {has_points, wanted_points, "points"},
+                    {!in.file.empty(), s.kind == Shape::Kind::mesh, "file"}};
   for (const auto &p : parameters)
     SceneCheck(!p.given || p.wanted, comm, "-body_%s_%s is not a parameter of a %s: remove it, or change -body_%s_type", n, p.option,
                to_string(s.kind), n);
@@ -230,6 +233,14 @@ PetscErrorCode CheckShape(MPI_Comm comm, const ShapeInput &in, const Body2D &b, 
     s.vertices = in.points;
     const std::string problem = polygon_problem(s.vertices);
     SceneCheck(problem.empty(), comm, "-body_%s_points: %s", n, problem.c_str());
+    break;
+  }
+  case Shape::Kind::mesh: {
+    SceneCheck(!in.file.empty(), comm, "-body_%s_file: give the Gmsh .geo or .msh file of shape '%s'", n, n);
+    // Every rank reads the (small) outline: the scene checks and probes use it too.
+    s.file                    = in.file;
+    const std::string problem = ReadGmshTriangles(in.file, &s.triangles);
+    SceneCheck(problem.empty(), comm, "-body_%s_file: %s", n, problem.c_str());
     break;
   }
   }
@@ -271,7 +282,7 @@ PetscErrorCode ReadBody(MPI_Comm comm, Scene *scene, SceneInput *in)
     const std::string prefix = "body_" + name + "_", title = "Shape " + name;
     shape.name               = name;
     PetscCall(ReadOptionBlock(comm, prefix.c_str(), title.c_str(), [&](OptionReader &r) -> PetscErrorCode {
-      PetscCall(r.String("-type", "rectangle | circle | ellipse | polygon (required)", &shape.type, &shape.type_set));
+      PetscCall(r.String("-type", "rectangle | circle | ellipse | polygon | mesh (a Gmsh file) (required)", &shape.type, &shape.type_set));
       PetscCall(r.String("-op", "What it does to the body so far: subtract | add (within the sheet) | intersect", &shape.op));
       PetscCall(r.RealArray("-box", "Rectangle xmin,ymin,xmax,ymax [m]", &shape.box));
       PetscCall(r.RealArray("-centre", "Circle or ellipse centre x,y [m]", &shape.centre));
@@ -279,6 +290,7 @@ PetscErrorCode ReadBody(MPI_Comm comm, Scene *scene, SceneInput *in)
       PetscCall(r.RealArray("-radii", "Ellipse semi-axes a,b [m] (a along -angle)", &shape.radii));
       PetscCall(r.Real("-angle", "Ellipse: angle of the a axis from x [degrees]", &shape.angle));
       PetscCall(r.RealArray("-points", "Polygon vertices x0,y0,x1,y1,... [m] (closed: the last joins the first)", &shape.points));
+      PetscCall(r.String("-file", "Mesh: a Gmsh .geo (meshed in 2D) or .msh file whose 2D elements are the shape [m]", &shape.file));
       return 0;
     }));
     in->shapes.push_back(shape);

@@ -124,6 +124,11 @@ expect_error shape_cuts_apart "-body_shapes: the body falls apart into 2 pieces"
 expect_error shape_reserved_name "-body_shapes: 'width' is the name of a body option" "$scene" -body_shapes width
 expect_error shape_undeclared "'hole2' is not one of -body_shapes" "$scene" "${sh[@]}" -body_cut_type circle -body_cut_centre 0,0 \
   -body_cut_radius 0.002 -body_hole2_radius 0.001
+expect_error mesh_missing_file "-body_cut_file: cannot open 'no_such.geo'" "$scene" "${sh[@]}" -body_cut_type mesh -body_cut_file no_such.geo
+expect_error mesh_no_surface "-body_cut_file: '$source_dir/tests/geometry/lines_only.geo' holds no surface" "$scene" "${sh[@]}" \
+  -body_cut_type mesh -body_cut_file "$source_dir/tests/geometry/lines_only.geo"
+expect_error mesh_not_gmsh "-body_cut_file: Gmsh cannot read" "$scene" "${sh[@]}" -body_cut_type mesh -body_cut_file "$source_dir/tests/geometry/broken.geo"
+expect_error mesh_no_file "-body_cut_file: give the Gmsh .geo or .msh file" "$scene" "${sh[@]}" -body_cut_type mesh
 expect_error probe_in_shape "lies where shape 'cut' (subtract) removed the material" "$scene" "${sh[@]}" -body_cut_type circle \
   -body_cut_centre 0.005,0.005 -body_cut_radius 0.002 -probes p -probe_p_at 0.005,0.005
 

@@ -117,3 +117,44 @@ TEST(ShapedLattice, WithoutShapesNothingChanges)
 }
 
 } // namespace
+
+namespace {
+
+// A 40 x 30 grid of squares, each split into two triangles, with the square (12, 7)
+// left out: the bucket index answers as a test of every triangle would.
+TEST(TriangleSet, IndexAnswersAsBruteForce)
+{
+  TriangleSet set;
+  const double h = 0.25;
+  for (int j = 0; j < 30; ++j)
+    for (int i = 0; i < 40; ++i) {
+      if (i == 12 && j == 7) continue;
+      const double x = i * h, y = j * h;
+      for (double v : {x, y, x + h, y, x + h, y + h, x, y, x + h, y + h, x, y + h}) set.corners.push_back(v);
+    }
+  index_triangles(set);
+  Shape s;
+  s.kind      = Shape::Kind::mesh;
+  s.triangles = set;
+  EXPECT_NEAR(shape_area(s), (40 * 30 - 1) * h * h, 1e-12);
+  EXPECT_TRUE(triangles_contain(set, 0, 0));           // a corner of the domain
+  EXPECT_TRUE(triangles_contain(set, 10, 7.5));        // the far corner
+  EXPECT_FALSE(triangles_contain(set, 10.001, 7.5));   // just outside
+  EXPECT_FALSE(triangles_contain(set, 3.1, 1.9));      // in the missing square
+  EXPECT_TRUE(triangles_contain(set, 3.0, 1.9));       // on its edge
+  int disagreements = 0;
+  for (int k = 0; k < 1000; ++k) {
+    const double x = -0.5 + 11.0 * ((k * 7919) % 4001) / 4000.0, y = -0.5 + 8.5 * ((k * 104729) % 3989) / 3988.0;
+    bool brute = false;
+    for (std::size_t t = 0; t < set.size() && !brute; ++t) {
+      TriangleSet one;
+      one.corners.assign(set.corners.begin() + 6 * t, set.corners.begin() + 6 * t + 6);
+      index_triangles(one);
+      brute = triangles_contain(one, x, y);
+    }
+    disagreements += brute != triangles_contain(set, x, y);
+  }
+  EXPECT_EQ(disagreements, 0);
+}
+
+} // namespace
