@@ -37,8 +37,6 @@ PetscErrorCode RegisterEvents()
   PetscFunctionReturn(0);
 }
 
-const char *SignalName(int signal) { return signal == SIGINT ? "SIGINT" : signal == SIGTERM ? "SIGTERM" : "a signal"; }
-
 // The step of a history.csv row ("step,time,...").
 long long RowStep(const std::string &line) { return std::atoll(line.c_str()); }
 
@@ -117,7 +115,7 @@ PetscErrorCode Simulation::OutputAfterStep(PetscInt step, double t)
     const std::string path = scene_.output_dir + "/checkpoint.h5";
     char              msg[1024];
     std::snprintf(msg, sizeof msg, "interrupted by %s at step %" PetscInt_FMT " (t = %.6e s); the state is saved in %s: continue with -restart %s",
-                  SignalName(flags[0]), step, t, path.c_str(), path.c_str());
+                  InterruptName(flags[0]).c_str(), step, t, path.c_str(), path.c_str());
     stop_reason_      = msg;
     stopped_on_error_ = true;
     PetscCall(TSSetConvergedReason(ts_, TS_CONVERGED_USER));

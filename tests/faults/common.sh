@@ -1,0 +1,86 @@
+# Shared by the fault-injection tests (sourced): a small disk, a bounded run, and the
+# checks every case makes (issue 17: exit code, one message, no hang, nothing lost).
+set -uo pipefail
+PYTHON=/usr/bin/python3
+TINY="$BAPD_SOURCE_DIR/tests/input/tiny.yaml" # 400 points, 49 steps
+
+fail() {
+  echo "FAIL: $*"
+  [ -f "${log:-}" ] && sed 's/^/    | /' "$log"
+  exit 1
+}
+
+# small_disk DIR KB: a file system of KB kilobytes mounted at DIR (tmpfs, as root, as
+# in CI). Where mounting is refused (no root), DISK=ulimit: the runs are started
+# under `ulimit -f KB` with SIGXFSZ ignored, so that a file growing past KB fails
+# with EFBIG ("File too large") the way a full disk fails with ENOSPC; the checks
+# then accept that cause. A test skips (exit 77) only if neither works.
+small_disk() {
+  local dir="$1" kb="$2"
+  mountpoint -q "$dir" 2> /dev/null && umount "$dir"
+  rm -rf "$dir" && mkdir -p "$dir" || exit 1
+  if mount -t tmpfs -o "size=${kb}k" tmpfs "$dir" 2> /dev/null; then
+    DISK=tmpfs
+    trap "umount '$dir' 2> /dev/null" EXIT
+  elif (ulimit -f "$kb") 2> /dev/null; then
+    DISK=ulimit
+    LIMIT_KB="$kb"
+  else
+    echo "SKIP: neither a tmpfs mount nor ulimit -f is possible here"
+    exit 77
+  fi
+  CAUSE="No space left on device"
+  [ "$DISK" = tmpfs ] || CAUSE="File too large"
+}
+
+# bounded LOG RANKS ARGS...: run_mpi.sh on RANKS ranks, killed after 60 s (a hang);
+# sets STATUS.
+bounded() {
+  log="$1"
+  local ranks="$2"
+  shift 2
+  if [ "${DISK:-}" = ulimit ]; then
+    (trap '' XFSZ; ulimit -f "$LIMIT_KB"; exec timeout 60 "$BAPD_SOURCE_DIR/run_mpi.sh" -n "$ranks" "$@") > "$log" 2>&1
+  else
+    timeout 60 "$BAPD_SOURCE_DIR/run_mpi.sh" -n "$ranks" "$@" > "$log" 2>&1
+  fi
+  STATUS=$?
+}
+
+# stopped_cleanly KEY...: the run failed without hanging or crashing, printed exactly
+# one `bapd: error:` line and it holds every KEY (the file, the cause); no stack.
+stopped_cleanly() {
+  ((STATUS != 124)) || fail "the run hung (killed after 60 s)"
+  ((STATUS != 0)) || fail "exit status 0 although the output could not be written"
+  ((STATUS < 128)) || fail "bapd crashed (exit status $STATUS)"
+  [ "$(grep -c 'bapd: error:' "$log")" = 1 ] || fail "expected exactly one 'bapd: error:' line"
+  local key
+  for key in "$@"; do grep 'bapd: error:' "$log" | grep -q -F -- "$key" || fail "the error line does not say '$key'"; done
+  if grep -q -e "HDF5-DIAG" -e "PETSC ERROR" -e "Segmentation" -e "signal 11" "$log"; then fail "an error stack or a crash was printed"; fi
+  return 0
+}
+
+# whole_rows FILE: every line of a CSV file complete (as many fields as the header,
+# a final newline) and the steps (history.csv's first column) increasing.
+whole_rows() {
+  "$PYTHON" - "$1" << 'PY' || fail "$1 has a cut or broken row"
+import sys
+text = open(sys.argv[1]).read()
+assert text.endswith("\n"), "no final newline"
+rows = [r.split(",") for r in text.splitlines()]
+assert len(rows) >= 2, "no data row"
+n = len(rows[0])
+assert all(len(r) == n for r in rows), "a row with another number of fields"
+if rows[0][0] == "step":
+    steps = [int(r[0]) for r in rows[1:]]
+    assert steps == sorted(set(steps)), "steps not increasing"
+PY
+}
+
+# same_prefix FILE REFERENCE: FILE is the first lines of REFERENCE, byte for byte.
+same_prefix() {
+  head -n "$(wc -l < "$1")" "$2" | cmp -s - "$1" || fail "$1 differs from the same rows of an undisturbed run ($2)"
+}
+
+# ok MESSAGE: the case passed; print its error line for the record.
+ok() { echo "ok   $*: exit $STATUS, $(grep 'bapd: error:' "$log" | cut -c1-160)"; }
