@@ -71,7 +71,7 @@ std::string InterruptName(int signal)
     std::fclose(f);
   }
   name[std::strcspn(name, " \n")] = '\0';
-  return std::strncmp(name, "SIG", 3) == 0 ? std::string(name) + " (sent on as SIGUSR2 by run_mpi.sh)" : "SIGUSR2";
+  return std::strncmp(name, "SIG", 3) == 0 ? std::string(name) : "SIGUSR2";
 }
 
 bool TakeCheckpointRequest()

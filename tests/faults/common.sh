@@ -60,6 +60,9 @@ stopped_cleanly() {
   return 0
 }
 
+# stopped_saying REGEX: the error line matches REGEX (grep -E) too.
+stopped_saying() { grep 'bapd: error:' "$log" | grep -q -E -- "$1" || fail "the error line does not match '$1'"; }
+
 # whole_rows FILE: every line of a CSV file complete (as many fields as the header,
 # a final newline) and the steps (history.csv's first column) increasing.
 whole_rows() {
