@@ -10,7 +10,9 @@
 // inside its collective metadata flush (H5Fclose then waits in mismatched
 // collectives, or leaves a half-closed file that crashes MPI_Finalize). So a file
 // is created only after its whole size has been reserved on the disk (Create's
-// `bytes`): a disk without the room is reported before HDF5 writes anything.
+// `bytes`): a disk without the room is reported before HDF5 writes anything. A disk
+// that another program fills after the reservation fails a write: the ranks agree on
+// it before the close, and rank 0 empties the file so that the close finds room.
 #include <hdf5.h>
 #include <petscsys.h>
 

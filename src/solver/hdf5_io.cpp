@@ -4,6 +4,7 @@
 #include <cerrno>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <fcntl.h>
 #include <sys/statvfs.h>
@@ -101,6 +102,13 @@ PetscErrorCode H5ParallelFile::Close()
   // prints: it names its own failure, or the lowest failing rank's.
   int failing = failed_.empty() ? INT32_MAX : rank, first = INT32_MAX;
   PetscCallMPI(MPI_Allreduce(&failing, &first, 1, MPI_INT, MPI_MIN, comm_));
+  // A file being written that failed (a disk filled by someone else since Create's
+  // reservation) is worthless: rank 0 empties it first, so that the close's
+  // metadata flush finds room and every rank leaves it (a close failing on some
+  // ranks hangs the others, and leaves a file that crashes MPI_Finalize).
+  if (first != INT32_MAX && writing_ && rank == 0 && ::truncate(path_.c_str(), 0) != 0) {
+  } // best effort: the failure is reported either way
+  if (first != INT32_MAX) PetscCallMPI(MPI_Barrier(comm_)); // emptied before anyone flushes
   Record(H5Fclose(file_) >= 0, "close", path_.c_str());
   file_ = -1;
   if (first == INT32_MAX) {
@@ -144,7 +152,9 @@ PetscErrorCode H5ReserveSpace(MPI_Comm comm, const std::string &path, std::uint6
   PetscFunctionBegin;
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   int error = 0;
-  if (rank == 0 && bytes > 0) {
+  // BAPD_TEST_NO_SPACE_RESERVATION (tests/faults only): no reservation, so that a
+  // full disk fails the writes themselves, as when another program fills it later.
+  if (rank == 0 && bytes > 0 && !std::getenv("BAPD_TEST_NO_SPACE_RESERVATION")) {
     // Blocks really allocated (posix_fallocate writes them where the file system
     // cannot preallocate), then given back for HDF5 to write: the file fits.
     const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);

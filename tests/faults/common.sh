@@ -10,21 +10,22 @@ fail() {
   exit 1
 }
 
-# small_disk DIR KB: a file system of KB kilobytes mounted at DIR (tmpfs, as root, as
-# in CI). Where mounting is refused (no root), DISK=ulimit: the runs are started
-# under `ulimit -f KB` with SIGXFSZ ignored, so that a file growing past KB fails
-# with EFBIG ("File too large") the way a full disk fails with ENOSPC; the checks
-# then accept that cause. A test skips (exit 77) only if neither works.
+# small_disk DIR KB [LIMIT_KB]: a file system of KB kilobytes mounted at DIR (tmpfs,
+# as root, as in CI). Where mounting is refused (no root; or BAPD_FAULTS_DISK=ulimit),
+# DISK=ulimit: the runs are started under `ulimit -f LIMIT_KB` (default KB) with
+# SIGXFSZ ignored, so that a file growing past it fails with EFBIG ("File too
+# large") the way a full disk fails with ENOSPC; the checks then expect that cause.
+# A test skips (exit 77) only if neither works.
 small_disk() {
   local dir="$1" kb="$2"
   mountpoint -q "$dir" 2> /dev/null && umount "$dir"
   rm -rf "$dir" && mkdir -p "$dir" || exit 1
-  if mount -t tmpfs -o "size=${kb}k" tmpfs "$dir" 2> /dev/null; then
+  if [ "${BAPD_FAULTS_DISK:-}" != ulimit ] && mount -t tmpfs -o "size=${kb}k" tmpfs "$dir" 2> /dev/null; then
     DISK=tmpfs
     trap "umount '$dir' 2> /dev/null" EXIT
-  elif (ulimit -f "$kb") 2> /dev/null; then
+  elif (ulimit -f "${3:-$kb}") 2> /dev/null; then
     DISK=ulimit
-    LIMIT_KB="$kb"
+    LIMIT_KB="${3:-$kb}"
   else
     echo "SKIP: neither a tmpfs mount nor ulimit -f is possible here"
     exit 77

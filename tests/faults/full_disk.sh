@@ -4,9 +4,10 @@
 # nothing already written: history.csv keeps whole rows, the same as an undisturbed
 # run's; the last good checkpoint still restarts; fields.xdmf lists only files that
 # are there and read back.
-#   full_disk.sh WHAT RANKS    WHAT: checkpoint, fields, history or static
+#   full_disk.sh WHAT RANKS    WHAT: checkpoint, fields, history, static, or
+#                              checkpoint_late, fields_late (the writes themselves fail)
 # The disk is a small tmpfs (tests/faults/common.sh); its size lets the first
-# checkpoint or field files be written and the next one not.
+# checkpoint or field files be written and the next one not (full_disk_scenes.sh).
 source "$BAPD_SOURCE_DIR/tests/faults/common.sh"
 what="$1" ranks="$2"
 work="faults_full_disk_${what}_np$ranks"
@@ -17,10 +18,10 @@ out="$disk/out"
 source "$BAPD_SOURCE_DIR/tests/faults/full_disk_scenes.sh"
 
 # The undisturbed run, on the ordinary disk (faults.reference; rank-independent).
-reference="$PWD/faults_reference/$what"
+reference="$PWD/faults_reference/${what%_late}"
 [ -f "$reference/history.csv" ] || fail "no undisturbed run in $reference (ctest runs faults.reference first)"
 
-small_disk "$disk" "$kb"
+small_disk "$disk" "$kb" "$ulimit_kb"
 case "$what" in
   history) [ "$DISK" = tmpfs ] && head -c $((60 * 1024)) /dev/zero > "$disk/filler" ;;
   static)
@@ -38,7 +39,7 @@ same_prefix "$out/history.csv" "$reference/history.csv"
 rows="$(($(wc -l < "$out/history.csv") - 1)) history row(s) kept"
 
 case "$what" in
-  checkpoint)
+  checkpoint | checkpoint_late)
     [ ! -e "$out/checkpoint.h5.tmp" ] || fail "a partial checkpoint.h5.tmp was left on the full disk"
     if [ -f "$out/checkpoint.h5" ]; then
       # The last good checkpoint continues the run, to the same history.
@@ -49,7 +50,7 @@ case "$what" in
     elif [ "$DISK" = tmpfs ]; then
       fail "the checkpoint of step 10 (which fits) is missing"
     fi ;;
-  fields)
+  fields | fields_late)
     if [ -f "$out/fields.xdmf" ]; then
       "$PYTHON" - "$out" << 'PY' || fail "fields.xdmf lists a file that is missing or unreadable"
 import re, sys
@@ -68,5 +69,5 @@ PY
   static)
     [ -s "$reference/static_states.csv" ] || fail "the undisturbed run ended no hold (the case tests nothing)" ;;
 esac
-[ "$what" = checkpoint ] || [ ! -e "$out/checkpoint.h5.tmp" ] || fail "a temporary file was left"
+[ ! -e "$out/checkpoint.h5.tmp" ] || fail "a temporary file was left"
 log="$work/run.log" STATUS=$fault_status ok "disk full ($DISK) during $what on $ranks rank(s), stopped in ${seconds%???????} s, $rows"
