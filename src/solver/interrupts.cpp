@@ -1,5 +1,5 @@
 // Signals (checkpoint.hpp): SIGTERM / SIGINT / SIGUSR2 ask for a checkpoint and a
-// stop, SIGUSR1 for a checkpoint and going on. The handlers only record the signal;
+// stop, SIGUSR1 for a checkpoint and going on; SIGXFSZ is ignored. The handlers only record the signal;
 // the driver asks once per step, collectively (Simulation::OutputAfterStep).
 #include <csignal>
 #include <cstdio>
@@ -14,7 +14,7 @@ namespace bapd {
 namespace {
 
 volatile std::sig_atomic_t interrupt_signal = 0, checkpoint_requests = 0;
-struct sigaction           previous_term, previous_int, previous_usr1, previous_usr2;
+struct sigaction           previous_term, previous_int, previous_usr1, previous_usr2, previous_xfsz;
 int                        installed = 0;
 
 extern "C" void OnInterrupt(int signal)
@@ -44,6 +44,10 @@ void InstallInterruptHandlers()
   sigaction(SIGUSR2, &action, &previous_usr2);
   action.sa_handler = OnCheckpointRequest;
   sigaction(SIGUSR1, &action, &previous_usr1);
+  // A file-size limit (ulimit -f, a batch system's) then fails the write with EFBIG,
+  // which bapd reports naming the file, instead of killing the process unexplained.
+  action.sa_handler = SIG_IGN;
+  sigaction(SIGXFSZ, &action, &previous_xfsz);
 }
 
 void RestoreInterruptHandlers()
@@ -53,6 +57,7 @@ void RestoreInterruptHandlers()
   sigaction(SIGINT, &previous_int, nullptr);
   sigaction(SIGUSR1, &previous_usr1, nullptr);
   sigaction(SIGUSR2, &previous_usr2, nullptr);
+  sigaction(SIGXFSZ, &previous_xfsz, nullptr);
 }
 
 int PendingInterrupt() { return (int)interrupt_signal; }

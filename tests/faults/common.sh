@@ -1,6 +1,7 @@
 # Shared by the fault-injection tests (sourced): a small disk, a bounded run, and the
 # checks every case makes (issue 17: exit code, one message, no hang, nothing lost).
 set -uo pipefail
+SCRIPT_ARGS=("$@") # (the caller's arguments: small_disk may run the test again)
 PYTHON=/usr/bin/python3
 TINY="$BAPD_SOURCE_DIR/tests/input/tiny.yaml" # 400 points, 49 steps
 
@@ -10,28 +11,33 @@ fail() {
   exit 1
 }
 
-# small_disk DIR KB [LIMIT_KB]: a file system of KB kilobytes mounted at DIR (tmpfs,
-# as root, as in CI). Where mounting is refused (no root; or BAPD_FAULTS_DISK=ulimit),
-# DISK=ulimit: the runs are started under `ulimit -f LIMIT_KB` (default KB) with
-# SIGXFSZ ignored, so that a file growing past it fails with EFBIG ("File too
-# large") the way a full disk fails with ENOSPC; the checks then expect that cause.
-# A test skips (exit 77) only if neither works.
+# small_disk DIR KB: a file system of KB kilobytes mounted at DIR: a tmpfs, as root
+# (as in CI). Without root the whole test runs again in a user namespace
+# (`unshare --user --map-root-user --mount`), where the mount needs no privilege
+# (BAPD_FAULTS_DISK=userns forces that route). `ulimit -f` is no substitute: Open
+# MPI's PMIx writes its shared-memory segments under the same limit and mpiexec dies
+# of SIGXFSZ. A test skips (exit 77) only if neither works.
 small_disk() {
   local dir="$1" kb="$2"
   mountpoint -q "$dir" 2> /dev/null && umount "$dir"
   rm -rf "$dir" && mkdir -p "$dir" || exit 1
-  if [ "${BAPD_FAULTS_DISK:-}" != ulimit ] && mount -t tmpfs -o "size=${kb}k" tmpfs "$dir" 2> /dev/null; then
+  if { [ "${BAPD_FAULTS_DISK:-}" != userns ] || [ -n "${BAPD_FAULTS_IN_USERNS:-}" ]; } &&
+    mount -t tmpfs -o "size=${kb}k" tmpfs "$dir" 2> /dev/null; then
     DISK=tmpfs
     trap "umount '$dir' 2> /dev/null" EXIT
-  elif (ulimit -f "${3:-$kb}") 2> /dev/null; then
-    DISK=ulimit
-    LIMIT_KB="${3:-$kb}"
+    if [ -n "${BAPD_FAULTS_IN_USERNS:-}" ]; then
+      DISK="tmpfs in a user namespace"
+      # (Open MPI's session directory of "root" in /tmp would be the real root's)
+      export TMPDIR="$dir.tmp"
+      mkdir -p "$TMPDIR"
+    fi
+  elif [ -z "${BAPD_FAULTS_IN_USERNS:-}" ] && unshare --user --map-root-user --mount true 2> /dev/null; then
+    exec unshare --user --map-root-user --mount env BAPD_FAULTS_IN_USERNS=1 bash "$0" "${SCRIPT_ARGS[@]}"
   else
-    echo "SKIP: neither a tmpfs mount nor ulimit -f is possible here"
+    echo "SKIP: no small file system: tmpfs cannot be mounted here (not root, no user namespaces)"
     exit 77
   fi
   CAUSE="No space left on device"
-  [ "$DISK" = tmpfs ] || CAUSE="File too large"
 }
 
 # bounded LOG RANKS ARGS...: run_mpi.sh on RANKS ranks, killed after 60 s (a hang);
@@ -40,11 +46,7 @@ bounded() {
   log="$1"
   local ranks="$2"
   shift 2
-  if [ "${DISK:-}" = ulimit ]; then
-    (trap '' XFSZ; ulimit -f "$LIMIT_KB"; exec timeout 60 "$BAPD_SOURCE_DIR/run_mpi.sh" -n "$ranks" "$@") > "$log" 2>&1
-  else
-    timeout 60 "$BAPD_SOURCE_DIR/run_mpi.sh" -n "$ranks" "$@" > "$log" 2>&1
-  fi
+  timeout 60 "$BAPD_SOURCE_DIR/run_mpi.sh" -n "$ranks" "$@" > "$log" 2>&1
   STATUS=$?
 }
 

@@ -1,24 +1,23 @@
-# The scenes of full_disk.sh (sourced, with $what set): scene, the tmpfs size kb, the
-# file whose write fails, and ulimit_kb, the file size limit where no tmpfs can be
-# mounted (every file on its own: the first checkpoint or field file already fails).
+# The scenes of full_disk.sh (sourced, with $what set): scene, the tmpfs size kb and
+# the file whose write fails.
 case "$what" in
   checkpoint) # checkpoint 114 KB (150 KB reserved): the one of step 10 fits, the next not
-    kb=250 ulimit_kb=140 scene=("$TINY" -checkpoint_interval 10 -output_interval 2) file=checkpoint.h5 ;;
+    kb=250 scene=("$TINY" -checkpoint_interval 10 -output_interval 2) file=checkpoint.h5 ;;
   fields) # field files of 164 KB (196 KB reserved): steps 0 and 2 fit, step 4 not
-    kb=400 ulimit_kb=150 scene=("$TINY" -output_fields -output_fields_interval 2 -output_interval 2) file=fields/step_ ;;
+    kb=400 scene=("$TINY" -output_fields -output_fields_interval 2 -output_interval 2) file=fields/step_ ;;
   checkpoint_late | fields_late) # no reservation (BAPD_TEST_NO_SPACE_RESERVATION): the
     # writes fail inside HDF5, as on a disk another program fills after the reservation
     export BAPD_TEST_NO_SPACE_RESERVATION=1
     if [ "$what" = checkpoint_late ]; then # 180 KB: the second checkpoint's /bonds fail
-      kb=180 ulimit_kb=100 scene=("$TINY" -checkpoint_interval 10 -output_interval 2) file=checkpoint.h5
+      kb=180 scene=("$TINY" -checkpoint_interval 10 -output_interval 2) file=checkpoint.h5
     else # 400 KB: the third field file fails
-      kb=400 ulimit_kb=100 scene=("$TINY" -output_fields -output_fields_interval 2 -output_interval 2) file=fields/step_
+      kb=400 scene=("$TINY" -output_fields -output_fields_interval 2 -output_interval 2) file=fields/step_
     fi ;;
   history) # 4 KB free: about 20 rows of history.csv
-    kb=64 ulimit_kb=4 scene=("$TINY" -output_interval 1) file=history.csv ;;
+    kb=64 scene=("$TINY" -output_interval 1) file=history.csv ;;
   static) # 4 KB free: history.csv up to the step (140) where the first hold ends is 4071
           # bytes, one tmpfs page; static_states.csv's first row needs another
-    kb=64 ulimit_kb=0
+    kb=64
     scene=(-body_width 0.03 -body_height 0.012 -body_thickness 0.003 -body_dx 0.001 -body_notches 0.02,0.006,0.03,0.006
            -horizon_factor 3.015 -material_mu 4.55e3 -material_Jm 162.6 -material_bulk_ratio 100 -material_density 1000
            -load_sets top,bottom -load_top_region top -load_top_x fixed -load_top_y stretch -load_bottom_region bottom
