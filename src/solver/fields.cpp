@@ -194,9 +194,11 @@ PetscErrorCode WriteFieldFrame(MPI_Comm comm, const NaturalOrder &order, FieldSe
     there = std::filesystem::is_directory(series->output_dir, ec);
     if (there) std::filesystem::create_directories(series->output_dir + "/fields", ec);
     ok = !ec;
+    if (!ok) there = std::filesystem::is_directory(series->output_dir, ec); // deleted meanwhile?
   }
-  PetscCallMPI(MPI_Bcast(&there, 1, MPI_INT, 0, comm));
-  PetscCallMPI(MPI_Bcast(&ok, 1, MPI_INT, 0, comm));
+  int status[2] = {there, ok};
+  PetscCallMPI(MPI_Bcast(status, 2, MPI_INT, 0, comm));
+  there = status[0], ok = status[1];
   PetscCheck(there, comm, PETSC_ERR_FILE_WRITE, "The output directory %s was deleted during the run: the run stops (its files are lost). Keep -output_dir until the run ends",
              series->output_dir.c_str());
   PetscCheck(ok, comm, PETSC_ERR_FILE_OPEN, "Cannot create %s/fields: choose a writable -output_dir", series->output_dir.c_str());

@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <sys/statvfs.h>
 #include <unistd.h>
 
@@ -51,7 +52,18 @@ PetscErrorCode H5ParallelFile::Begin(MPI_Comm comm, const std::string &path, boo
     H5Fclose(file_);
     file_ = -1;
   }
-  PetscCheck(all || !writing, comm, PETSC_ERR_FILE_OPEN, "Cannot create %s: choose a writable -output_dir", path.c_str());
+  if (!all && writing) {
+    // HDF5 gives no errno: rank 0 tells a vanished directory from the rest.
+    PetscMPIInt       rank;
+    const std::size_t slash = path.find_last_of('/');
+    struct stat       st;
+    int               gone  = 0;
+    PetscCallMPI(MPI_Comm_rank(comm, &rank));
+    if (rank == 0) gone = slash != std::string::npos && stat(path.substr(0, std::max<std::size_t>(slash, 1)).c_str(), &st) != 0;
+    PetscCallMPI(MPI_Bcast(&gone, 1, MPI_INT, 0, comm));
+    SETERRQ(comm, PETSC_ERR_FILE_OPEN, "Cannot create %s: %s", path.c_str(),
+            gone ? "No such file or directory (the output directory was deleted during the run?)" : "choose a writable -output_dir");
+  }
   PetscCheck(all, comm, PETSC_ERR_FILE_OPEN, "Cannot open %s for reading (missing, truncated or not an HDF5 file)", path.c_str());
   PetscFunctionReturn(0);
 }

@@ -189,8 +189,9 @@ PetscErrorCode Simulation::WriteFields(PetscInt step, double t)
   fields.volume        = layout_.cloud.volume.data();
   fields.force_density = force.data();
   fields.quantities    = &quantities;
-  PetscCall(WriteFieldFrame(comm_, output_.order, &output_.series, step, t, loading_.stretch_at(t), fields));
-  PetscCall(VecRestoreArrayRead(X_, &x));
+  const PetscErrorCode written = WriteFieldFrame(comm_, output_.order, &output_.series, step, t, loading_.stretch_at(t), fields);
+  PetscCall(VecRestoreArrayRead(X_, &x)); // also when the file could not be written
+  PetscCall(written);
   PetscCall(PetscLogEventEnd(event_fields, 0, 0, 0, 0));
   PetscCall(PetscLogStagePop());
   PetscFunctionReturn(0);
@@ -258,8 +259,9 @@ PetscErrorCode Simulation::WriteCheckpointFile(PetscInt step, double t, const ch
     state.relaxation_u        = relaxation_.latest_u();
     state.relaxation_a        = relaxation_.latest_a();
   }
-  PetscCall(WriteCheckpoint(comm_, path, output_.order, families_, &header, state));
-  PetscCall(VecRestoreArray(X_, &x));
+  const PetscErrorCode written = WriteCheckpoint(comm_, path, output_.order, families_, &header, state);
+  PetscCall(VecRestoreArray(X_, &x)); // also when the checkpoint could not be written
+  PetscCall(written);
   output_.last_checkpoint_step = step;
   output_.last_checkpoint_wall = MPI_Wtime();
   double megabytes = 0;

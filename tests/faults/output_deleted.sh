@@ -10,8 +10,8 @@ ranks="$1"
 work="faults_output_deleted_np$ranks"
 rm -rf "$work" && mkdir -p "$work" || exit 1
 
-# The whole directory (with field files every 50 steps, history rows every 10).
-start_long "$work/dir.log" "$ranks" -output_dir "$work/out" -output_fields -output_fields_interval 50
+# The whole directory (with field files every 37 steps, history rows every 10).
+start_long "$work/dir.log" "$ranks" -output_dir "$work/out" -output_fields -output_fields_interval 37
 rm -rf "$work/out"
 finish_long
 # Whichever write comes first notices: a history row (usually), a field file or the
