@@ -22,8 +22,9 @@ H5Quiet::H5Quiet()
 H5Quiet::~H5Quiet() { H5Eset_auto2(H5E_DEFAULT, func_, data_); }
 
 // A failed call is recorded, not reported at once: every rank makes the same calls
-// whatever their outcome, and Close() agrees on the outcome with one reduction (a
-// reduction per call costs more than the writing on a busy node).
+// whatever their outcome, and Close() agrees on the outcome with a reduction before
+// its collective close and one after (a reduction per call costs more than the
+// writing on a busy node).
 void H5ParallelFile::Record(bool ok, const char *what, const char *name)
 {
   if (ok || !failed_.empty()) return;
