@@ -23,7 +23,15 @@ reference="$PWD/faults_reference/${what%_late}"
 
 small_disk "$disk" "$kb"
 case "$what" in
-  history | static) head -c $((60 * 1024)) /dev/zero > "$disk/filler" ;; # 4 KB left
+  history) head -c $((60 * 1024)) /dev/zero > "$disk/filler" ;; # 4 KB left
+  static)
+    # Room for history.csv up to the step where the first hold ends (the undisturbed
+    # run's, in whole 4 KB tmpfs pages) and not a page more: static_states.csv's
+    # first row finds none.
+    hold_step=$(sed -n '2p' "$reference/static_states.csv" | cut -d, -f3)
+    history_bytes=$(awk -F, -v s="$hold_step" 'NR == 1 || $1 <= s' "$reference/history.csv" | wc -c)
+    pages=$(((history_bytes + 4095) / 4096))
+    head -c $(((64 - 4 * pages) * 1024)) /dev/zero > "$disk/filler" ;;
 esac
 start=$(date +%s.%N)
 bounded "$work/run.log" "$ranks" "${scene[@]}" -output_dir "$out" -progress_interval 100000

@@ -15,8 +15,8 @@ case "$what" in
     fi ;;
   history) # 4 KB free: about 20 rows of history.csv
     kb=64 scene=("$TINY" -output_interval 1) file=history.csv ;;
-  static) # 4 KB free: history.csv up to the step (140) where the first hold ends is 4071
-          # bytes, one tmpfs page; static_states.csv's first row needs another
+  static) # the first hold ends at step 140; full_disk.sh leaves room for history.csv
+          # up to then and not for static_states.csv
     kb=64
     scene=(-body_width 0.03 -body_height 0.012 -body_thickness 0.003 -body_dx 0.001 -body_notches 0.02,0.006,0.03,0.006
            -horizon_factor 3.015 -material_mu 4.55e3 -material_Jm 162.6 -material_bulk_ratio 100 -material_density 1000
