@@ -46,11 +46,20 @@ scene_args=()
 # -q: no Open MPI banner after a failed run; bapd's own message is the explanation.
 # mpiexec runs as a child so that a rank killed by a signal (which bapd cannot report
 # itself) still gets one line; the signals a user or a batch system sends to this
-# script (SIGTERM, SIGINT, SIGUSR1: checkpoint and stop, or checkpoint and go on) are
-# passed on to mpiexec, which passes them on to the ranks.
-mpiexec -q -n "$ranks" --oversubscribe --bind-to none "$BAPD_EXE" "${scene_args[@]}" "${args[@]}" &
+# script (SIGTERM, SIGINT: checkpoint and stop; SIGUSR1: checkpoint and go on) are
+# passed on to mpiexec, which passes them on to the ranks. Open MPI 4's mpiexec
+# passes SIGINT on as SIGTERM, and kills the ranks 1 s after a SIGTERM; SIGUSR2 it
+# passes on at once and leaves alone. So SIGINT and SIGTERM go on as SIGUSR2 (bapd:
+# checkpoint and stop), and the signal's real name goes to $BAPD_SIGNAL_FILE, which
+# bapd reads for its message. mpiexec runs in a session of its own (setsid): a Ctrl-C
+# in a terminal reaches this script only, not the ranks as well.
+signal_file="$(mktemp "${TMPDIR:-/tmp}/bapd_signal.XXXXXX")"
+trap 'rm -f "$signal_file"' EXIT
+export BAPD_SIGNAL_FILE="$signal_file"
+setsid mpiexec -q -x BAPD_SIGNAL_FILE -n "$ranks" --oversubscribe --bind-to none "$BAPD_EXE" "${scene_args[@]}" "${args[@]}" &
 child=$!
-for sig in TERM INT USR1 HUP; do trap "kill -$sig $child 2> /dev/null" "$sig"; done
+for sig in TERM INT; do trap "echo SIG$sig > '$signal_file'; kill -USR2 $child 2> /dev/null" "$sig"; done
+for sig in USR1 HUP; do trap "kill -$sig $child 2> /dev/null" "$sig"; done
 status=0
 while :; do
   wait "$child" && status=0 || status=$?

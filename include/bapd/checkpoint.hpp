@@ -3,10 +3,12 @@
 // any number of ranks (STYLE.md: ... -> fields / checkpoint). docs/options.md,
 // "Checkpoints and restart", is the user's view.
 //
-// File layout, format version 2 (every array in natural order, natural_order.hpp;
-// version 1 is version 2 without /relaxation, and is still read):
+// File layout, format version 3 (every array in natural order, natural_order.hpp;
+// version 2 is version 3 without text_hash, version 1 version 2 without /relaxation;
+// both are still read):
 //   /                 attributes format = "bapd checkpoint", format_version, step,
-//                     time_s, time_step_s, stretch, reason, ranks, content_hash
+//                     time_s, time_step_s, stretch, reason, ranks, content_hash,
+//                     text_hash
 //   /geometry         attributes points, bonds, dx_m, horizon_m, hash
 //   /points/displacement   (points, 2) m        /points/velocity (points, 2) m/s
 //   /points/family_size    (points) int32
@@ -25,8 +27,9 @@
 //                          (points, 2): the latest force evaluation, which the next
 //                          step's damping coefficient is computed against
 // content_hash is an order-independent checksum of the arrays and of the step, time
-// and schedule attributes: a damaged file is refused instead of silently continuing
-// from wrong data.
+// and schedule attributes; text_hash one of /run/options, /run/history,
+// /run/static_states, /run/field_frames and reason: a damaged file is refused instead
+// of silently continuing from wrong data.
 #include <petscsys.h>
 
 #include <cstdint>
@@ -40,7 +43,7 @@
 
 namespace bapd {
 
-constexpr std::int64_t kCheckpointFormatVersion       = 2;
+constexpr std::int64_t kCheckpointFormatVersion       = 3;
 constexpr std::int64_t kCheckpointOldestFormatVersion = 1; // still read
 
 // -checkpoint_interval, -checkpoint_on_error, -restart.
@@ -115,15 +118,20 @@ PetscErrorCode ReadCheckpointState(MPI_Comm comm, const std::string &path, const
 // given on the command line still wins. Collective; does nothing without -restart.
 PetscErrorCode CheckpointMergeOptions(MPI_Comm comm);
 
-// Signals. SIGTERM / SIGINT: write a checkpoint and stop; SIGUSR1: write a
-// checkpoint and go on (Open MPI's mpiexec passes SIGUSR1 on to the ranks and leaves
-// them running, while after SIGTERM it kills them 1 s later). The handlers only
+// Signals. SIGTERM / SIGINT / SIGUSR2: write a checkpoint and stop; SIGUSR1: write a
+// checkpoint and go on. Open MPI's mpiexec passes SIGUSR1 and SIGUSR2 on to the
+// ranks at once; SIGINT it passes on as SIGTERM, and after SIGTERM it kills the ranks
+// 1 s later. So run_mpi.sh turns the SIGINT / SIGTERM it gets into SIGUSR2 and names
+// the real signal in the file $BAPD_SIGNAL_FILE (InterruptName). The handlers only
 // record the signal; the driver asks, once per step and collectively, whether any
-// rank got one (Simulation::OutputAfterStep). A second SIGTERM / SIGINT while the
-// first is pending ends the process the default way.
+// rank got one (Simulation::OutputAfterStep). A second SIGTERM / SIGINT / SIGUSR2
+// while the first is pending ends the process the default way. SIGXFSZ is ignored:
+// a file past a size limit (ulimit -f) is then a write error that bapd reports.
 void InstallInterruptHandlers();
 void RestoreInterruptHandlers();
-int  PendingInterrupt();      // SIGTERM or SIGINT if one came, else 0
+int  PendingInterrupt();      // SIGTERM, SIGINT or SIGUSR2 if one came, else 0
 bool TakeCheckpointRequest(); // a SIGUSR1 came since the last call
+// "SIGINT", "SIGTERM", or for SIGUSR2 the signal run_mpi.sh got ("SIGUSR2" if none).
+std::string InterruptName(int signal);
 
 } // namespace bapd

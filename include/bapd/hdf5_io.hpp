@@ -3,8 +3,16 @@
 // datasets whose rows are split over the ranks in contiguous blocks
 // (natural_order.hpp), attributes, and text. Every rank makes the same calls, in the
 // same order. A failure is recorded and reported by Close(), on every rank alike
-// (one reduction per file), so it never leaves a rank waiting: check Close() before
-// using what was read.
+// (the ranks agree before HDF5's collective close and after it), so it never leaves
+// a rank waiting: check Close() before using what was read.
+//
+// A full disk: parallel HDF5 cannot recover from a write that fails on some ranks
+// inside its collective metadata flush (H5Fclose then waits in mismatched
+// collectives, or leaves a half-closed file that crashes MPI_Finalize). So a file
+// is created only after its whole size has been reserved on the disk (Create's
+// `bytes`): a disk without the room is reported before HDF5 writes anything. A disk
+// that another program fills after the reservation fails a write: the ranks agree on
+// it before the close, and rank 0 empties the file so that the close finds room.
 #include <hdf5.h>
 #include <petscsys.h>
 
@@ -35,10 +43,14 @@ public:
   H5ParallelFile(const H5ParallelFile &)            = delete;
   H5ParallelFile &operator=(const H5ParallelFile &) = delete;
 
-  // Creates (truncating) or opens read-only. Errors: PETSC_ERR_FILE_OPEN.
-  PetscErrorCode Create(MPI_Comm comm, const std::string &path) { return Begin(comm, path, true); }
+  // Creates (truncating) after reserving `bytes` (an upper bound of the file's size,
+  // H5FileBytes) on its disk, or opens read-only. Errors: PETSC_ERR_FILE_WRITE (no
+  // room: the cause, e.g. "No space left on device"), PETSC_ERR_FILE_OPEN.
+  PetscErrorCode Create(MPI_Comm comm, const std::string &path, std::uint64_t bytes);
   PetscErrorCode Open(MPI_Comm comm, const std::string &path) { return Begin(comm, path, false); }
-  PetscErrorCode Close(); // collective: flushes, closes, reports any failure (the destructor only closes)
+  // Collective: flushes, closes, reports any failure (the destructor only closes). A
+  // file being written that failed is removed: a partial file is no use to anyone.
+  PetscErrorCode Close();
 
   // rows x cols dataset (cols = 0: 1-D of `rows`); this rank writes or reads rows
   // [start, start + count) from/to data (count * max(cols, 1) entries).
@@ -71,6 +83,14 @@ private:
   std::string path_, failed_; // the first failed call on this rank
   bool        writing_ = true;
 };
+
+// An upper bound of the size of an HDF5 file holding `data_bytes` of datasets and
+// `objects` datasets, groups and attributes (HDF5's headers, heaps and B-trees).
+std::uint64_t H5FileBytes(std::uint64_t data_bytes, std::uint64_t objects);
+
+// Collective: rank 0 reserves `bytes` for `path` (posix_fallocate, then removed again)
+// and every rank learns the outcome; "" if there is room, else the cause (strerror).
+PetscErrorCode H5ReserveSpace(MPI_Comm comm, const std::string &path, std::uint64_t bytes, std::string *cause);
 
 // Serial reads (one rank) of a file another process wrote; false on any failure
 // (missing object, wrong type or shape), never an HDF5 error stack.

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -146,6 +147,29 @@ std::uint64_t HeaderHash(const CheckpointHeader &h)
   return sum;
 }
 
+// Format version 3: the checksum of what rank 0 stores and a restart restores
+// besides the arrays (the options, history.csv, static_states.csv, the field frames
+// and the reason), checked as the header is read, before the options are merged.
+std::uint64_t TextHash(const CheckpointHeader &h)
+{
+  std::uint64_t sum  = 0;
+  auto          text = [&](std::uint64_t tag, const std::string &t) {
+    sum += Entry(tag, ~0ULL, t.size());
+    for (std::size_t k = 0; k < t.size(); k += 8) {
+      std::uint64_t chunk = 0;
+      std::memcpy(&chunk, t.data() + k, std::min<std::size_t>(8, t.size() - k));
+      sum += Entry(tag, k, chunk);
+    }
+  };
+  text(12, h.options);
+  text(13, h.history);
+  text(14, h.static_states);
+  text(15, h.reason);
+  sum += Entry(16, ~0ULL, h.field_frames.size());
+  for (std::size_t k = 0; k < h.field_frames.size(); ++k) sum += Entry(16, k, Bits(h.field_frames[k]));
+  return sum;
+}
+
 // "600s", "10min", "2h" -> seconds; "1000" -> steps. False if neither.
 bool ParseInterval(const std::string &text, PetscInt *steps, double *seconds)
 {
@@ -272,11 +296,20 @@ PetscErrorCode WriteCheckpoint(MPI_Comm comm, const std::string &path, const Nat
   }
   header->content_hash += HeaderHash(*header);
   header->ranks = size;
+  std::uint64_t text_hash = rank == 0 ? TextHash(*header) : 0; // rank 0's texts are the ones written
+  PetscCallMPI(MPI_Bcast(&text_hash, 1, MPI_UINT64_T, 0, comm));
 
   const std::string tmp = path + ".tmp";
   {
+    // Its size: the arrays, the texts and tables (rank 0's, which writes them), and
+    // about 30 datasets, groups and attributes.
+    const std::uint64_t points = (std::uint64_t)order.n_points, bonds = (std::uint64_t)order.n_bonds;
+    std::uint64_t       data = points * (2 * 16 + 4) + bonds * (1 + 8) + (header->relaxation_records > 0 ? 2 * 16 * points : 0);
+    std::uint64_t       text = header->options.size() + header->history.size() + header->static_states.size() +
+                         8 * (header->field_frames.size() + header->schedule_original.size() + header->schedule_current.size());
+    PetscCallMPI(MPI_Bcast(&text, 1, MPI_UINT64_T, 0, comm));
     H5ParallelFile f;
-    PetscCall(f.Create(comm, tmp));
+    PetscCall(f.Create(comm, tmp, H5FileBytes(data + text, 32)));
     PetscCall(f.WriteAttribute("/", "format", std::string("bapd checkpoint")));
     PetscCall(f.WriteAttribute("/", "format_version", header->format_version));
     PetscCall(f.WriteAttribute("/", "step", (std::int64_t)header->step));
@@ -286,6 +319,7 @@ PetscErrorCode WriteCheckpoint(MPI_Comm comm, const std::string &path, const Nat
     PetscCall(f.WriteAttribute("/", "reason", header->reason));
     PetscCall(f.WriteAttribute("/", "ranks", header->ranks));
     PetscCall(f.WriteAttribute("/", "content_hash", header->content_hash));
+    PetscCall(f.WriteAttribute("/", "text_hash", text_hash));
     PetscCall(f.WriteAttribute("/", "end_time_original_s", header->end_time_original));
     PetscCall(f.WriteAttribute("/", "end_time_s", header->end_time));
     PetscCall(f.WriteAttribute("/", "static_hold_done", header->static_hold_done));
@@ -321,17 +355,17 @@ PetscErrorCode WriteCheckpoint(MPI_Comm comm, const std::string &path, const Nat
   }
   // Only a complete file takes the name: flushed to the disk, then renamed over the
   // previous checkpoint in one step.
-  int ok = 1;
+  int error = 0;
   if (rank == 0) {
     const int fd = ::open(tmp.c_str(), O_RDONLY);
-    if (fd >= 0) {
-      ::fsync(fd);
-      ::close(fd);
-    }
-    ok = std::rename(tmp.c_str(), path.c_str()) == 0;
+    if (fd < 0 || ::fsync(fd) != 0) error = errno;
+    if (fd >= 0 && ::close(fd) != 0 && !error) error = errno;
+    if (!error && std::rename(tmp.c_str(), path.c_str()) != 0) error = errno;
+    if (error) std::remove(tmp.c_str()); // the previous checkpoint stays as it was
   }
-  PetscCallMPI(MPI_Bcast(&ok, 1, MPI_INT, 0, comm));
-  PetscCheck(ok, comm, PETSC_ERR_FILE_WRITE, "Cannot rename %s to %s", tmp.c_str(), path.c_str());
+  PetscCallMPI(MPI_Bcast(&error, 1, MPI_INT, 0, comm));
+  PetscCheck(!error, comm, PETSC_ERR_FILE_WRITE, "Cannot write %s: %s while saving %s; the previous checkpoint (if any) is kept: free some space or choose another -output_dir",
+             path.c_str(), std::strerror(error), tmp.c_str());
   PetscFunctionReturn(0);
 }
 
@@ -399,6 +433,12 @@ std::string ReadHeaderSerial(const std::string &path, CheckpointHeader *h)
     if (problem.empty() && h->schedule_original.size() != h->schedule_current.size()) damaged("the schedule datasets differ in length");
     if (problem.empty() && frames.size() == 2 && frames[0] > 0 && !H5ReadDoubles(file, "/run/field_frames", &h->field_frames))
       damaged("dataset /run/field_frames cannot be read");
+    std::uint64_t text_hash = 0; // version 3 on; older files have none
+    if (problem.empty() && h->format_version >= 3 && !H5ReadAttribute(file, "/", "text_hash", &text_hash))
+      damaged("attribute text_hash is missing");
+    if (problem.empty() && h->format_version >= 3 && text_hash != TextHash(*h))
+      problem = "Checkpoint '" + path + "' is corrupt: its stored options, history, static states or field list (/run) do not match "
+                "the checksum written with them (use an earlier checkpoint)";
     // -relaxation adaptive (version 2): optional.
     if (problem.empty() && H5Lexists(file, "/relaxation", H5P_DEFAULT) > 0) {
       if (!H5ReadAttribute(file, "/relaxation", "records", &h->relaxation_records) || h->relaxation_records < 1)

@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
+#include <cstring>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -184,13 +186,21 @@ PetscErrorCode WriteFieldFrame(MPI_Comm comm, const NaturalOrder &order, FieldSe
   PetscFunctionBegin;
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   PetscCall(PetscSFGetGraph(order.owned_points, nullptr, &owned, nullptr, nullptr));
-  int ok = 1;
+  // The output directory exists from the start of the run (history.csv): one that
+  // is gone was deleted, and recreating it would hide that the run's files are lost.
+  int ok = 1, there = 1;
   if (rank == 0) {
     std::error_code ec;
-    std::filesystem::create_directories(series->output_dir + "/fields", ec);
+    there = std::filesystem::is_directory(series->output_dir, ec);
+    if (there) std::filesystem::create_directories(series->output_dir + "/fields", ec);
     ok = !ec;
+    if (!ok) there = std::filesystem::is_directory(series->output_dir, ec); // deleted meanwhile?
   }
-  PetscCallMPI(MPI_Bcast(&ok, 1, MPI_INT, 0, comm));
+  int status[2] = {there, ok};
+  PetscCallMPI(MPI_Bcast(status, 2, MPI_INT, 0, comm));
+  there = status[0], ok = status[1];
+  PetscCheck(there, comm, PETSC_ERR_FILE_WRITE, "The output directory %s was deleted during the run: the run stops (its files are lost). Keep -output_dir until the run ends",
+             series->output_dir.c_str());
   PetscCheck(ok, comm, PETSC_ERR_FILE_OPEN, "Cannot create %s/fields: choose a writable -output_dir", series->output_dir.c_str());
 
   // Owned points -> natural block, kPacked numbers per point in one exchange (the
@@ -213,8 +223,10 @@ PetscErrorCode WriteFieldFrame(MPI_Comm comm, const NaturalOrder &order, FieldSe
   const std::string path = series->output_dir + "/" + FieldFileName(step);
   const hsize_t     N = (hsize_t)order.n_points, start = (hsize_t)order.point_start, n = (hsize_t)count;
   {
+    // Its size: per point an int64 id, an int32 rank, 5 vectors, 3 tensors and 5
+    // scalars of 8 bytes (kArrays); 20 datasets and attributes.
     H5ParallelFile f;
-    PetscCall(f.Create(comm, path));
+    PetscCall(f.Create(comm, path, H5FileBytes(N * (8 + 4 + 8 * (5 * 3 + 3 * 9 + 5)), 24)));
     PetscCall(f.WriteAttribute("/", "format", std::string("bapd fields")));
     PetscCall(f.WriteAttribute("/", "format_version", (std::int64_t)2));
     PetscCall(f.WriteAttribute("/", "step", (std::int64_t)step));
@@ -251,17 +263,28 @@ PetscErrorCode WriteFieldIndex(MPI_Comm comm, const FieldSeries &series, PetscIn
 
   PetscFunctionBegin;
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
-  int ok = 1;
+  // [errno of a failed write, index of the first frame whose file is gone + 1]: a
+  // frame whose file was deleted (the output directory removed during the run) is
+  // not listed, and stops the run.
+  int         status[2] = {0, 0};
+  std::string gone;
   if (rank == 0) {
+    std::vector<char> present(series.frames.size(), 1);
+    for (std::size_t k = 0; k < series.frames.size(); ++k) {
+      std::error_code ec;
+      present[k] = std::filesystem::exists(series.output_dir + "/" + FieldFileName(series.frames[k].step), ec);
+      if (!present[k] && !status[1]) status[1] = (int)k + 1;
+    }
     const std::string path = series.output_dir + "/fields.xdmf", tmp = path + ".tmp";
     FILE             *f    = std::fopen(tmp.c_str(), "w");
-    ok                     = f != nullptr;
+    if (!f) status[0] = errno;
     if (f) {
       const long long   N        = (long long)n_points;
       const char *const geometry = series.geometry == FieldGeometry::reference ? "reference_position" : "position";
       std::fprintf(f, "<?xml version=\"1.0\" ?>\n<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n<Xdmf Version=\"2.0\">\n <Domain>\n");
       std::fprintf(f, "  <Grid Name=\"bapd\" GridType=\"Collection\" CollectionType=\"Temporal\">\n");
       for (const FieldFrame &frame : series.frames) {
+        if (!present[&frame - series.frames.data()]) continue;
         const std::string file = FieldFileName(frame.step);
         auto item = [&](const FieldArray &a) {
           const int c = components(a.shape);
@@ -306,11 +329,20 @@ PetscErrorCode WriteFieldIndex(MPI_Comm comm, const FieldSeries &series, PetscIn
         std::fprintf(f, "   </Grid>\n");
       }
       std::fprintf(f, "  </Grid>\n </Domain>\n</Xdmf>\n");
-      ok = std::fclose(f) == 0 && std::rename(tmp.c_str(), path.c_str()) == 0;
+      // Every write checked: a full disk shows at the flush, or earlier as the error flag.
+      if ((std::fflush(f) != 0 || std::ferror(f)) && !status[0]) status[0] = errno ? errno : EIO;
+      if (std::fclose(f) != 0 && !status[0]) status[0] = errno;
+      if (!status[0] && std::rename(tmp.c_str(), path.c_str()) != 0) status[0] = errno;
+      if (status[0]) std::remove(tmp.c_str()); // the previous fields.xdmf stays
     }
   }
-  PetscCallMPI(MPI_Bcast(&ok, 1, MPI_INT, 0, comm));
-  PetscCheck(ok, comm, PETSC_ERR_FILE_WRITE, "Cannot write %s/fields.xdmf: choose a writable -output_dir", series.output_dir.c_str());
+  PetscCallMPI(MPI_Bcast(status, 2, MPI_INT, 0, comm));
+  PetscCheck(!status[0], comm, PETSC_ERR_FILE_WRITE, "Cannot write %s/fields.xdmf: %s: free some space or choose a writable -output_dir",
+             series.output_dir.c_str(), std::strerror(status[0]));
+  PetscCheck(!status[1], comm, PETSC_ERR_FILE_WRITE,
+             "%s/%s was deleted during the run (the output directory removed?): fields.xdmf now lists only the field files still "
+             "there; the run stops. Keep the output directory until the run ends",
+             series.output_dir.c_str(), status[1] ? FieldFileName(series.frames[status[1] - 1].step).c_str() : "");
   PetscFunctionReturn(0);
 }
 

@@ -1,8 +1,11 @@
-// Signals (checkpoint.hpp): SIGTERM / SIGINT ask for a checkpoint and a stop, SIGUSR1
-// for a checkpoint and going on. The handlers only record the signal; the driver
-// asks once per step, collectively (Simulation::OutputAfterStep).
+// Signals (checkpoint.hpp): SIGTERM / SIGINT / SIGUSR2 ask for a checkpoint and a
+// stop, SIGUSR1 for a checkpoint and going on; SIGXFSZ is ignored. The handlers only record the signal;
+// the driver asks once per step, collectively (Simulation::OutputAfterStep).
 #include <csignal>
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
+#include <string>
 
 #include "bapd/checkpoint.hpp"
 
@@ -11,7 +14,7 @@ namespace bapd {
 namespace {
 
 volatile std::sig_atomic_t interrupt_signal = 0, checkpoint_requests = 0;
-struct sigaction           previous_term, previous_int, previous_usr1;
+struct sigaction           previous_term, previous_int, previous_usr1, previous_usr2, previous_xfsz;
 int                        installed = 0;
 
 extern "C" void OnInterrupt(int signal)
@@ -38,8 +41,13 @@ void InstallInterruptHandlers()
   sigemptyset(&action.sa_mask);
   sigaction(SIGTERM, &action, &previous_term);
   sigaction(SIGINT, &action, &previous_int);
+  sigaction(SIGUSR2, &action, &previous_usr2);
   action.sa_handler = OnCheckpointRequest;
   sigaction(SIGUSR1, &action, &previous_usr1);
+  // A file-size limit (ulimit -f, a batch system's) then fails the write with EFBIG,
+  // which bapd reports naming the file, instead of killing the process unexplained.
+  action.sa_handler = SIG_IGN;
+  sigaction(SIGXFSZ, &action, &previous_xfsz);
 }
 
 void RestoreInterruptHandlers()
@@ -48,9 +56,28 @@ void RestoreInterruptHandlers()
   sigaction(SIGTERM, &previous_term, nullptr);
   sigaction(SIGINT, &previous_int, nullptr);
   sigaction(SIGUSR1, &previous_usr1, nullptr);
+  sigaction(SIGUSR2, &previous_usr2, nullptr);
+  sigaction(SIGXFSZ, &previous_xfsz, nullptr);
 }
 
 int PendingInterrupt() { return (int)interrupt_signal; }
+
+std::string InterruptName(int signal)
+{
+  if (signal == SIGINT) return "SIGINT";
+  if (signal == SIGTERM) return "SIGTERM";
+  if (signal != SIGUSR2) return "signal " + std::to_string(signal);
+  // run_mpi.sh turns SIGINT / SIGTERM into SIGUSR2 (which mpiexec passes on at once)
+  // and writes the signal it got to $BAPD_SIGNAL_FILE.
+  const char *file = std::getenv("BAPD_SIGNAL_FILE");
+  char        name[32] = "";
+  if (FILE *f = file ? std::fopen(file, "r") : nullptr) {
+    if (!std::fgets(name, sizeof name, f)) name[0] = '\0';
+    std::fclose(f);
+  }
+  name[std::strcspn(name, " \n")] = '\0';
+  return std::strncmp(name, "SIG", 3) == 0 ? std::string(name) : "SIGUSR2";
+}
 
 bool TakeCheckpointRequest()
 {

@@ -5,7 +5,10 @@
 #include <algorithm>
 #include <cerrno>
 #include <cstring>
+#include <fcntl.h>
 #include <filesystem>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include "bapd/damage.hpp"
 #include "bapd/fields.hpp"
@@ -34,6 +37,45 @@ template <class T> PetscErrorCode GatherOnRankZero(MPI_Comm comm, const std::vec
     all->resize(displs[size - 1] + counts[size - 1]);
   }
   PetscCallMPI(MPI_Gatherv(mine.data(), m, type, all->data(), counts.data(), displs.data(), type, 0, comm));
+  PetscFunctionReturn(0);
+}
+
+// The outcome of rank 0's writing of rows to a CSV file since `row_start` (its
+// offset before them): 0; the errno of a failed write or flush, after which the file
+// is cut back to its last whole row (the rows before are kept) and what stdio still
+// holds goes to /dev/null; or -1 if the file was deleted (st_nlink 0: the output
+// directory removed during the run). One fstat: cheap at each history row.
+int FinishRows(FILE *f, long row_start)
+{
+  errno = 0;
+  int error = 0;
+  if (std::fflush(f) != 0 || std::ferror(f)) error = errno ? errno : EIO;
+  struct stat st;
+  if (!error && fstat(fileno(f), &st) == 0 && st.st_nlink == 0) return -1;
+  if (error) {
+    // (never longer: a header that did not reach the disk is not padded with zeros)
+    if (row_start >= 0 && fstat(fileno(f), &st) == 0 && st.st_size > row_start && ftruncate(fileno(f), row_start) != 0) {
+    } // best effort: the error is reported either way
+    const int null = ::open("/dev/null", O_WRONLY);
+    if (null >= 0) {
+      dup2(null, fileno(f));
+      ::close(null);
+    }
+  }
+  return error;
+}
+
+// The message for FinishRows' outcome (collective after the broadcast of `error`).
+PetscErrorCode CheckRows(MPI_Comm comm, int error, const std::string &dir, const char *file)
+{
+  PetscFunctionBegin;
+  PetscCheck(error != -1, comm, PETSC_ERR_FILE_WRITE,
+             "%s/%s was deleted during the run (the output directory removed?): the run stops. Keep -output_dir until the run ends",
+             dir.c_str(), file);
+  PetscCheck(error == 0, comm, PETSC_ERR_FILE_WRITE,
+             "Cannot write %s/%s: %s; the rows written before are kept: free some space or choose another -output_dir (continue from "
+             "a checkpoint with -restart if one was written)",
+             dir.c_str(), file, std::strerror(error));
   PetscFunctionReturn(0);
 }
 
@@ -129,15 +171,19 @@ PetscErrorCode Simulation::WriteHistoryRow(PetscInt step, double t)
   PetscInt broken;
   PetscCall(BrokenBondCount(&broken));
   const std::vector<double> &reaction = last_reaction_, &probe_u = last_probe_u_;
+  int                        error    = 0;
   if (rank_ == 0) {
+    const long   row_start = std::ftell(history_);
     const double area = scene_.body.width * scene_.body.thickness;
     std::fprintf(history_, "%" PetscInt_FMT ",%.17g,%.17g", step, t, loading_.stretch_at(t));
     for (std::size_t s = 0; s < scene_.loads.size(); ++s)
       std::fprintf(history_, ",%.17g,%.17g,%.17g", reaction[2 * s], reaction[2 * s + 1], reaction[2 * s + 1] / area);
     for (std::size_t p = 0; p < probes_.size(); ++p) std::fprintf(history_, ",%.17g,%.17g", probe_u[2 * p], probe_u[2 * p + 1]);
     std::fprintf(history_, ",%.17g,%.17g,%" PetscInt_FMT "\n", last_kinetic_, last_internal_, broken);
-    std::fflush(history_);
+    error = FinishRows(history_, row_start);
   }
+  PetscCallMPI(MPI_Bcast(&error, 1, MPI_INT, 0, comm_)); // rank 0 wrote: every rank stops alike
+  PetscCall(CheckRows(comm_, error, scene_.output_dir, "history.csv"));
   PetscCall(PetscLogStagePop());
   PetscFunctionReturn(0);
 }
@@ -160,10 +206,14 @@ PetscErrorCode Simulation::CheckStaticHold(PetscInt step, double t)
     PetscCall(PetscPrintf(comm_, "; %s ux = %.6e m", scene_.probes[p].name.c_str(), last_probe_u_[2 * p]));
   if (relaxation_.active()) PetscCall(PetscPrintf(comm_, "; damping %.4g 1/s", relaxation_.last()));
   PetscCall(PetscPrintf(comm_, "\n"));
-  if (rank_ == 0) {
-    if (!static_states_) {
-      static_states_ = std::fopen((scene_.output_dir + "/static_states.csv").c_str(), "w");
-      PetscCheck(static_states_, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "Cannot write %s/static_states.csv: choose a writable -output_dir", scene_.output_dir.c_str());
+  int error = 0;
+  if (rank_ == 0 && !static_states_) {
+    static_states_ = std::fopen((scene_.output_dir + "/static_states.csv").c_str(), "w");
+    if (!static_states_) error = errno;
+  }
+  if (rank_ == 0 && static_states_) {
+    const long row_start = std::ftell(static_states_);
+    if (row_start == 0) {
       std::fprintf(static_states_, "stretch,time_s,step,kinetic_over_internal");
       for (const Probe &p : scene_.probes) std::fprintf(static_states_, ",%s_ux_m,%s_uy_m", p.name.c_str(), p.name.c_str());
       for (const LoadSet &l : scene_.loads) std::fprintf(static_states_, ",%s_reaction_y_N", l.name.c_str());
@@ -173,8 +223,10 @@ PetscErrorCode Simulation::CheckStaticHold(PetscInt step, double t)
     for (std::size_t p = 0; p < probes_.size(); ++p) std::fprintf(static_states_, ",%.17g,%.17g", last_probe_u_[2 * p], last_probe_u_[2 * p + 1]);
     for (std::size_t l = 0; l < scene_.loads.size(); ++l) std::fprintf(static_states_, ",%.17g", last_reaction_[2 * l + 1]);
     std::fprintf(static_states_, "\n");
-    std::fflush(static_states_);
+    error = FinishRows(static_states_, row_start);
   }
+  PetscCallMPI(MPI_Bcast(&error, 1, MPI_INT, 0, comm_));
+  PetscCall(CheckRows(comm_, error, scene_.output_dir, "static_states.csv"));
   // Skip what is left of the hold.
   loading_.EndHold(k, t);
   PetscCall(TSSetMaxTime(ts_, loading_.end_time()));
@@ -307,19 +359,38 @@ PetscErrorCode Simulation::WriteFinalState()
   PetscCall(GatherDisplacement(&u));
   PetscCall(GatherNatural(layout_.cloud.x.data(), &reference)); // the layout's copies of the lattice positions
   PetscCall(GatherBrokenBonds(&broken));
+  // [errno, which file failed (0 final_state.csv, 1 broken_bonds.csv)]: rank 0 writes, every rank learns it.
+  int error[2] = {0, 0};
   if (rank_ == 0) {
+    // Every write checked: a full disk shows at the flush, or earlier as the error flag.
+    auto finish = [](FILE *f) {
+      errno = 0;
+      int e = (std::fflush(f) != 0 || std::ferror(f)) ? (errno ? errno : EIO) : 0;
+      if (std::fclose(f) != 0 && !e) e = errno;
+      return e;
+    };
     FILE *f = std::fopen((scene_.output_dir + "/final_state.csv").c_str(), "w");
-    PetscCheck(f, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "Cannot write %s/final_state.csv", scene_.output_dir.c_str());
-    std::fprintf(f, "natural_id,x_m,y_m,ux_m,uy_m\n");
-    for (std::size_t i = 0; i < (std::size_t)layout_.n_global; ++i)
-      std::fprintf(f, "%zu,%.17g,%.17g,%.17g,%.17g\n", i, reference[2 * i], reference[2 * i + 1], u[2 * i], u[2 * i + 1]);
-    std::fclose(f);
-    f = std::fopen((scene_.output_dir + "/broken_bonds.csv").c_str(), "w");
-    PetscCheck(f, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "Cannot write %s/broken_bonds.csv", scene_.output_dir.c_str());
-    std::fprintf(f, "i,j\n");
-    for (const auto &b : broken) std::fprintf(f, "%lld,%lld\n", (long long)b.first, (long long)b.second);
-    std::fclose(f);
+    if (!f) error[0] = errno;
+    else {
+      std::fprintf(f, "natural_id,x_m,y_m,ux_m,uy_m\n");
+      for (std::size_t i = 0; i < (std::size_t)layout_.n_global; ++i)
+        std::fprintf(f, "%zu,%.17g,%.17g,%.17g,%.17g\n", i, reference[2 * i], reference[2 * i + 1], u[2 * i], u[2 * i + 1]);
+      error[0] = finish(f);
+    }
+    if (!error[0]) {
+      error[1] = 1;
+      f        = std::fopen((scene_.output_dir + "/broken_bonds.csv").c_str(), "w");
+      if (!f) error[0] = errno;
+      else {
+        std::fprintf(f, "i,j\n");
+        for (const auto &b : broken) std::fprintf(f, "%lld,%lld\n", (long long)b.first, (long long)b.second);
+        error[0] = finish(f);
+      }
+    }
   }
+  PetscCallMPI(MPI_Bcast(error, 2, MPI_INT, 0, comm_));
+  PetscCheck(!error[0], comm_, PETSC_ERR_FILE_WRITE, "Cannot write %s/%s: %s: free some space or choose another -output_dir", scene_.output_dir.c_str(),
+             error[1] ? "broken_bonds.csv" : "final_state.csv", std::strerror(error[0]));
   PetscFunctionReturn(0);
 }
 

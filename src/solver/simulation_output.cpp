@@ -37,8 +37,6 @@ PetscErrorCode RegisterEvents()
   PetscFunctionReturn(0);
 }
 
-const char *SignalName(int signal) { return signal == SIGINT ? "SIGINT" : signal == SIGTERM ? "SIGTERM" : "a signal"; }
-
 // The step of a history.csv row ("step,time,...").
 long long RowStep(const std::string &line) { return std::atoll(line.c_str()); }
 
@@ -119,7 +117,7 @@ PetscErrorCode Simulation::OutputAfterStep(PetscInt step, double t)
     const std::string path = scene_.output_dir + "/checkpoint.h5";
     char              msg[1024];
     std::snprintf(msg, sizeof msg, "interrupted by %s at step %" PetscInt_FMT " (t = %.6e s); the state is saved in %s: continue with -restart %s",
-                  SignalName(flags[0]), step, t, path.c_str(), path.c_str());
+                  InterruptName(flags[0]).c_str(), step, t, path.c_str(), path.c_str());
     stop_reason_      = msg;
     stopped_on_error_ = true;
     PetscCall(TSSetConvergedReason(ts_, TS_CONVERGED_USER));
@@ -193,8 +191,9 @@ PetscErrorCode Simulation::WriteFields(PetscInt step, double t)
   fields.volume        = layout_.cloud.volume.data();
   fields.force_density = force.data();
   fields.quantities    = &quantities;
-  PetscCall(WriteFieldFrame(comm_, output_.order, &output_.series, step, t, loading_.stretch_at(t), fields));
-  PetscCall(VecRestoreArrayRead(X_, &x));
+  const PetscErrorCode written = WriteFieldFrame(comm_, output_.order, &output_.series, step, t, loading_.stretch_at(t), fields);
+  PetscCall(VecRestoreArrayRead(X_, &x)); // also when the file could not be written
+  PetscCall(written);
   PetscCall(PetscLogEventEnd(event_fields, 0, 0, 0, 0));
   PetscCall(PetscLogStagePop());
   PetscFunctionReturn(0);
@@ -262,8 +261,9 @@ PetscErrorCode Simulation::WriteCheckpointFile(PetscInt step, double t, const ch
     state.relaxation_u        = relaxation_.latest_u();
     state.relaxation_a        = relaxation_.latest_a();
   }
-  PetscCall(WriteCheckpoint(comm_, path, output_.order, families_, &header, state));
-  PetscCall(VecRestoreArray(X_, &x));
+  const PetscErrorCode written = WriteCheckpoint(comm_, path, output_.order, families_, &header, state);
+  PetscCall(VecRestoreArray(X_, &x)); // also when the checkpoint could not be written
+  PetscCall(written);
   output_.last_checkpoint_step = step;
   output_.last_checkpoint_wall = MPI_Wtime();
   double megabytes = 0;

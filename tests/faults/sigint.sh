@@ -1,0 +1,27 @@
+#!/usr/bin/env bash
+# SIGINT (Ctrl-C) to run_mpi.sh (issue 17): Open MPI's mpiexec would pass it on as
+# SIGTERM and kill the ranks 1 s later; run_mpi.sh passes it on as SIGUSR2 (at once)
+# and names it. The run writes a checkpoint, says "interrupted by SIGINT" in one line,
+# exits non-zero (not by a signal), and the checkpoint continues the run.
+#   sigint.sh RANKS
+source "$BAPD_SOURCE_DIR/tests/faults/common.sh"
+source "$BAPD_SOURCE_DIR/tests/faults/long_scene.sh"
+ranks="$1"
+work="faults_sigint_np$ranks"
+rm -rf "$work" && mkdir -p "$work" || exit 1
+
+for sig in INT TERM; do
+  start_long "$work/$sig.log" "$ranks" -output_dir "$work/$sig"
+  kill -$sig $PID
+  finish_long
+  stopped_cleanly "interrupted by SIG$sig at step" "-restart $work/$sig/checkpoint.h5"
+  [ -f "$work/$sig/checkpoint.h5" ] || fail "no checkpoint after SIG$sig"
+  [ ! -e "$work/$sig/checkpoint.h5.tmp" ] || fail "a temporary checkpoint was left behind"
+  whole_rows "$work/$sig/history.csv"
+  ok "SIG$sig on $ranks rank(s), stopped ${SECONDS_LEFT} s later"
+done
+step=$(sed -n 's/^Checkpoint (interrupted): step \([0-9]*\),.*/\1/p' "$work/INT.log")
+bounded "$work/continued.log" "$ranks" -restart "$work/INT/checkpoint.h5" -ts_max_steps $((step + 20)) -output_dir "$work/continued"
+((STATUS == 0)) || fail "the checkpoint written on SIGINT does not continue"
+grep -q "^Restart from .*step $step," "$work/continued.log" || fail "the continuation did not start at step $step"
+echo "ok   the SIGINT checkpoint (step $step) continues"
