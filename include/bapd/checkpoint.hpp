@@ -3,8 +3,9 @@
 // any number of ranks (STYLE.md: ... -> fields / checkpoint). docs/options.md,
 // "Checkpoints and restart", is the user's view.
 //
-// File layout, format version 2 (every array in natural order, natural_order.hpp;
-// version 1 is version 2 without /relaxation, and is still read):
+// File layout, format version 3 (every array in natural order, natural_order.hpp;
+// version 2 is version 3 without /time_step, version 1 version 2 without /relaxation;
+// both are still read):
 //   /                 attributes format = "bapd checkpoint", format_version, step,
 //                     time_s, time_step_s, stretch, reason, ranks, content_hash
 //   /geometry         attributes points, bonds, dx_m, horizon_m, hash
@@ -24,6 +25,11 @@
 //                          records; /relaxation/displacement, /relaxation/acceleration
 //                          (points, 2): the latest force evaluation, which the next
 //                          step's damping coefficient is computed against
+//   /time_step             only while the step is re-estimated (time_step_control.hpp):
+//                          attributes lambda_per_s2, stiffness_dt_s, next_estimate,
+//                          by_stiffness, by_travel, shortest_dt_s;
+//                          /time_step/eigenvector (points, 2): the power iteration's
+//                          vector, which the next re-estimate starts from
 // content_hash is an order-independent checksum of the arrays and of the step, time
 // and schedule attributes: a damaged file is refused instead of silently continuing
 // from wrong data.
@@ -40,7 +46,7 @@
 
 namespace bapd {
 
-constexpr std::int64_t kCheckpointFormatVersion       = 2;
+constexpr std::int64_t kCheckpointFormatVersion       = 3;
 constexpr std::int64_t kCheckpointOldestFormatVersion = 1; // still read
 
 // -checkpoint_interval, -checkpoint_on_error, -restart.
@@ -82,6 +88,10 @@ struct CheckpointHeader {
   std::int64_t        static_hold_done  = -1;
   // -relaxation adaptive: force evaluations recorded (0: no /relaxation group).
   std::int64_t        relaxation_records = 0;
+  // The re-estimated stable step (TimeStepState, time_step_control.hpp); step_lambda 0:
+  // no /time_step group (format 1 and 2, or -time_step_reestimate 0).
+  double              step_lambda = 0, step_stiffness_dt = 0, step_shortest = 0;
+  std::int64_t        step_next_estimate = 0, step_by_stiffness = 0, step_by_travel = 0;
 };
 
 // The state of the rank layout, read from (written to) a checkpoint.
@@ -92,6 +102,9 @@ struct CheckpointState {
   // -relaxation adaptive: the latest recorded evaluation, owned points, 2 each
   // (write: used when header.relaxation_records > 0; read: filled when the file has it).
   double          *relaxation_u = nullptr, *relaxation_a = nullptr;
+  // The power iteration's vector, owned points, 2 each (write: used when
+  // header.step_lambda > 0; read: filled when the file has it).
+  double          *step_eigenvector = nullptr;
 };
 
 // Collective. Writes `path` through `path.tmp` and a rename, so the last good

@@ -120,7 +120,8 @@ private:
   ForceOperator   force_;        // u -> f (force_operator.hpp)
   Loading         loading_;      // grips, schedule, reactions (loading.hpp)
   Failure         failure_;      // breaking and its exchange (failure.hpp)
-  TimeStepControl step_control_; // stable step, travel limit (time_step_control.hpp)
+  TimeStepOptions time_step_options_; // -time_step_reestimate ...
+  TimeStepControl step_control_;      // stable step, its re-estimate, travel limit (time_step_control.hpp)
   std::vector<ProbePoint> probes_;
 
   Vec X_         = nullptr; // TS state

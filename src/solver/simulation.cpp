@@ -43,6 +43,7 @@ PetscErrorCode Simulation::Setup()
   PetscCall(SceneFromOptions(comm_, &scene_));
   PetscCall(ReadOutputOptions()); // -output_fields..., -checkpoint_..., -restart
   PetscCall(RelaxationFromOptions(comm_, &relaxation_kind_)); // -relaxation
+  PetscCall(TimeStepOptionsFromOptions(comm_, &time_step_options_)); // -time_step_reestimate ...
   if (scene_.help_only) {
     // -help without a scene: list the time stepper's options too, and stop.
     PetscCall(TSCreate(comm_, &ts_));
@@ -58,7 +59,7 @@ PetscErrorCode Simulation::Setup()
   PetscCall(BuildProbes());
   last_reaction_.assign(2 * scene_.loads.size(), 0.0);
   last_probe_u_.assign(2 * scene_.probes.size(), 0.0);
-  PetscCall(step_control_.EstimateStable(comm_, scene_, layout_, loading_, force_));
+  PetscCall(step_control_.EstimateStable(comm_, scene_, time_step_options_, layout_, loading_, force_));
   PetscCall(SetupRelaxation());
   PetscCall(SetupTimeStepper());
   PetscCall(CheckUnusedOptions(comm_));
@@ -215,11 +216,13 @@ PetscErrorCode Simulation::PostStep(TS ts)
     PetscCall(sim->failure_.Break(sim->force_.positions(), sim->force_.failed_bonds(), sim->bond_state_, sim->geometry_));
   }
   {
-    // Before any checkpoint: a restart takes the same next step.
+    // Before any checkpoint: a restart takes the same next step (re-estimated about the
+  // latest evaluation when due, shortened while points fly: time_step_control.hpp).
     const double *xr;
     PetscCall(VecGetArrayRead(X, &xr));
-    PetscCall(sim->step_control_.AdaptToTravel(sim->comm_, sim->layout_, sim->families_, sim->bond_state_, xr + n, ts));
+    PetscCall(sim->step_control_.AfterStep(sim->comm_, step, sim->layout_, sim->families_, sim->bond_state_, sim->force_, xr + n, ts));
     PetscCall(VecRestoreArrayRead(X, &xr));
+    sim->relaxation_.FollowStableStep(sim->step_control_.stable_now()); // its cap, 2 omega_max
   }
   if (step % sim->scene_.output_interval == 0) {
     PetscCall(sim->WriteHistoryRow(step, t));
