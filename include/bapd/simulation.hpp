@@ -80,6 +80,7 @@ private:
   PetscErrorCode Acceleration(const double *u_owned, double *a_owned);
   PetscErrorCode CheckHealth(PetscInt step, double t, PetscBool *diverged);
   PetscErrorCode CheckRunaway(PetscInt step, double t, std::string *message);
+  PetscErrorCode DiagnoseDivergence(); // the cause and its fix, appended to stop_reason_ (divergence.hpp)
   PetscErrorCode ReadProbes(const double *u_owned, double *probe_u);
   PetscErrorCode GatherNatural(const double *values, std::vector<double> *natural);
   PetscErrorCode WriteHistoryRow(PetscInt step, double t);

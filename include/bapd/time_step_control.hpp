@@ -61,7 +61,8 @@ public:
   PetscErrorCode EstimateStable(MPI_Comm comm, const Scene &scene, const TimeStepOptions &options, const Layout &layout,
                                 const Loading &loading, ForceOperator &force);
   // A new base step (and step in use); the TS takes it with the next step.
-  void SetBaseStep(double dt) { dt_ = base_dt_ = stiffness_dt_ = dt; }
+  // The solver's travel limit is off for a step above the stable one.
+  void SetBaseStep(double dt);
 
   // Every acceleration the dynamics evaluates (owned u and the free acceleration, 2
   // per point): kept (a copy, no allocation) when the next re-estimate will use it as
@@ -73,6 +74,11 @@ public:
   // Collective.
   PetscErrorCode AfterStep(MPI_Comm comm, PetscInt step, const Layout &layout, const Families &families, const BondState &state,
                            ForceOperator &force, const double *v, TS ts);
+  // The stable step of the state (u: owned, 2 per point; c33: its warm starts, 1 per
+  // bond) by `iterations` shifted power iterations from the current eigenvector: for
+  // the diagnosis of a divergence (divergence.hpp), once. Collective.
+  PetscErrorCode SharpEstimate(MPI_Comm comm, ForceOperator &force, const double *u, const std::vector<double> &c33, PetscInt iterations,
+                               double *stable);
   // Restart: the step in use (header time_step) and the estimate's state.
   PetscErrorCode Restore(double dt, const TimeStepState &state, TS ts);
 
@@ -109,6 +115,7 @@ private:
   double   dt_           = 0; // the step being taken: the stiffness step, or less while points fly
   double   travel_       = 0; // -time_step_travel x dx (0: off)
   bool     travel_auto_  = false;
+  double   travel_given_ = 0; // [m] the limit asked for (or chosen), before SetBaseStep
   double   inv_rho_ = 0, eps_ = 0;
   PetscInt next_estimate_ = 0, estimates_ = 0, evaluations_ = 0;
   PetscInt by_stiffness_ = 0, by_travel_ = 0;

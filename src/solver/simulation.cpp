@@ -205,6 +205,7 @@ PetscErrorCode Simulation::PostStep(TS ts)
     if (!runaway.empty()) sim->stop_reason_ = runaway, sim->stopped_on_error_ = true, diverged = PETSC_TRUE;
   }
   if (diverged) {
+    PetscCall(sim->DiagnoseDivergence()); // the cause, from the last good state
     PetscCall(sim->OutputOnDivergence()); // checkpoint of the last good state
     PetscCall(TSSetConvergedReason(ts, TS_DIVERGED_NONLINEAR_SOLVE));
     PetscFunctionReturn(0);

@@ -143,7 +143,7 @@ PetscErrorCode Simulation::OutputOnDivergence()
   PetscCall(WriteCheckpointFile(output_.good_step, output_.good_time, "last good state"));
   const std::string path = scene_.output_dir + "/checkpoint.h5";
   char              msg[512];
-  std::snprintf(msg, sizeof msg, " The last good state (step %" PetscInt_FMT ", t = %.6e s) is saved in %s: continue from it with -restart %s and a smaller -time_step_safety.",
+  std::snprintf(msg, sizeof msg, " The last good state (step %" PetscInt_FMT ", t = %.6e s) is saved in %s: continue from it with -restart %s and the change above.",
                 output_.good_step, output_.good_time, path.c_str(), path.c_str());
   stop_reason_ += msg;
   PetscFunctionReturn(0);

@@ -100,10 +100,8 @@ PetscErrorCode TimeStepControl::EstimateStable(MPI_Comm comm, const Scene &scene
   // 0.1 dx a step is what the torn sheets need (0.3 is not enough). A step that the
   // user set above the stable one is left alone, so that its blow-up is reported
   // instead of hidden by a step shortened while the points fly apart.
-  travel_auto_ = scene.time_step_travel < 0;
-  const bool over_stable = scene.time_step > 0 ? false : scene.time_step_safety > 1;
-  const double travel = travel_auto_ ? (scene.failure && !over_stable ? 0.1 : 0.0) : scene.time_step_travel;
-  travel_ = travel * scene.body.dx;
+  travel_auto_  = scene.time_step_travel < 0;
+  travel_given_ = (travel_auto_ ? (scene.failure ? 0.1 : 0.0) : scene.time_step_travel) * scene.body.dx;
   held_.assign(n, 0);
   for (const ConstrainedDof &d : loading.constrained()) held_[d.dof] = 1;
   v_.assign(n, 0.0);
@@ -148,6 +146,12 @@ PetscErrorCode TimeStepControl::EstimateStable(MPI_Comm comm, const Scene &scene
                                 "*** Lower -time_step (or -time_step_safety below 1).\n\n",
                           dt_, stable_dt_));
   PetscFunctionReturn(0);
+}
+
+void TimeStepControl::SetBaseStep(double dt)
+{
+  dt_ = base_dt_ = stiffness_dt_ = dt;
+  travel_ = travel_auto_ && dt > stable_dt_ ? 0.0 : travel_given_;
 }
 
 void TimeStepControl::Record(const double *u, const double *a)
@@ -245,6 +249,22 @@ PetscErrorCode TimeStepControl::AfterStep(MPI_Comm comm, PetscInt step, const La
     else ++by_stiffness_;
     shortest_dt_ = shortest_dt_ > 0 ? std::min(shortest_dt_, dt_) : dt_;
   }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode TimeStepControl::SharpEstimate(MPI_Comm comm, ForceOperator &force, const double *u, const std::vector<double> &c33,
+                                             PetscInt iterations, double *stable)
+{
+  PetscFunctionBegin;
+  std::copy(u, u + u_rec_.size(), u_rec_.begin());
+  std::copy(c33.begin(), c33.end(), c33_.begin());
+  PetscCall(ProbeAcceleration(force, c33_, inv_rho_, held_, u_rec_.data(), a_rec_.data()));
+  double lambda = lambda_, best = lambda_;
+  for (PetscInt it = 0; it < iterations; ++it) {
+    PetscCall(PowerStep(comm, force, u_rec_.data(), a_rec_.data(), options_.shift * best, &lambda));
+    if (std::isfinite(lambda) && lambda > best) best = lambda;
+  }
+  *stable = 2.0 / std::sqrt(1.1 * best);
   PetscFunctionReturn(0);
 }
 
