@@ -27,7 +27,7 @@
 //                          step's damping coefficient is computed against
 //   /time_step             only while the step is re-estimated (time_step_control.hpp):
 //                          attributes lambda_per_s2, stiffness_dt_s, next_estimate,
-//                          by_stiffness, by_travel, shortest_dt_s;
+//                          by_stiffness, by_travel, shortest_dt_s, stretch;
 //                          /time_step/eigenvector (points, 2): the power iteration's
 //                          vector, which the next re-estimate starts from
 // content_hash is an order-independent checksum of the arrays and of the step, time
@@ -90,7 +90,7 @@ struct CheckpointHeader {
   std::int64_t        relaxation_records = 0;
   // The re-estimated stable step (TimeStepState, time_step_control.hpp); step_lambda 0:
   // no /time_step group (format 1 and 2, or -time_step_reestimate 0).
-  double              step_lambda = 0, step_stiffness_dt = 0, step_shortest = 0;
+  double              step_lambda = 0, step_stiffness_dt = 0, step_shortest = 0, step_stretch = 1;
   std::int64_t        step_next_estimate = 0, step_by_stiffness = 0, step_by_travel = 0;
 };
 

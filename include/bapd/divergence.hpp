@@ -91,6 +91,8 @@ struct DivergenceFacts {
   double bulk_ratio   = 0;     // K / mu
   double damping      = 0;     // [1/s] (the floor, with -relaxation adaptive)
   bool   reestimating = true;  // -time_step_reestimate > 0: the step followed the material
+  double horizon_factor = 3.015;
+  double stiffening   = 1;     // the largest lambda_max of the run's re-estimates over the one at rest
 };
 // In this order (the first that fits): a step above the stable step at rest ->
 // -time_step_safety (or -time_step); the chain limit (0.8 <= reach <= 1.05: the Gent
@@ -98,7 +100,8 @@ struct DivergenceFacts {
 // larger reach is a state the blow-up already wrecked) -> -material_Jm and the
 // stretch; plane strain with K >= 1000 mu (a real negative eigenvalue at rest,
 // docs/stability.md section 1) -> -material_bulk_ratio; a fixed step above the stable
-// step of the state reached -> -time_step_safety or -time_step_reestimate; the
+// step of the state reached -> -time_step_safety or -time_step_reestimate (a state
+// already wrecked, reach > 1.05, in a run whose lambda_max rose 4 x: the chain limit); the
 // bond-only form with less damping than its free edges need (100 1/s, section 1) ->
 // -damping or -force_form energy_consistent; a re-estimated step above the state's
 // -> -time_step_safety. The order matters: a chain-limited state has a tiny stable

@@ -31,13 +31,14 @@
 
 namespace bapd {
 
-// -time_step_reestimate, -time_step_reestimate_iterations, -time_step_band.
+// -time_step_reestimate, -time_step_reestimate_iterations, ..._stretch, -time_step_band.
 struct TimeStepOptions {
   PetscInt interval   = 50;   // steps between re-estimates (0: the step at rest all run long)
   PetscInt iterations = 1;    // fewest power iterations per re-estimate (one force evaluation each)
   PetscInt max_iterations = 8; // most, while lambda still moves by more than tolerance per iteration
   double   tolerance  = 0.005; // measured on the Jm = 8 plate: 0.01 stalls 30 % below lambda_max (docs/stability.md section 8)
   double   band       = 0.05; // dead band of the stiffness step [-]
+  double   stretch    = 0.05; // ...and whenever the applied stretch moved by this much since the last one
   double   shift      = 0.45; // the power iteration runs on A - shift lambda I: faster convergence to lambda_max
   PetscBool monitor   = PETSC_FALSE; // a line per re-estimate (measurements, docs/stability.md section 8)
 };
@@ -49,6 +50,7 @@ struct TimeStepState {
   double   lambda        = 0; // the latest estimate of lambda_max [1/s^2]
   double   stiffness_dt  = 0; // the stiffness step [s]
   PetscInt next_estimate = 0; // the step after which the next re-estimate runs
+  double   stretch       = 1; // the applied stretch at the last re-estimate
   PetscInt by_stiffness = 0, by_travel = 0; // the counters of the summary
   double   shortest = 0;
 };
@@ -72,7 +74,7 @@ public:
   // the operator's committed warm starts copied: side-effect free), then the travel
   // limit over the owned velocities v (2 per point), then the step the TS takes next.
   // Collective.
-  PetscErrorCode AfterStep(MPI_Comm comm, PetscInt step, const Layout &layout, const Families &families, const BondState &state,
+  PetscErrorCode AfterStep(MPI_Comm comm, PetscInt step, double stretch, const Layout &layout, const Families &families, const BondState &state,
                            ForceOperator &force, const double *v, TS ts);
   // The stable step of the state (u: owned, 2 per point; c33: its warm starts, 1 per
   // bond) by `iterations` shifted power iterations from the current eigenvector: for
@@ -118,6 +120,7 @@ private:
   double   travel_given_ = 0; // [m] the limit asked for (or chosen), before SetBaseStep
   double   inv_rho_ = 0, eps_ = 0;
   PetscInt next_estimate_ = 0, estimates_ = 0, evaluations_ = 0;
+  double   estimate_stretch_ = 1; // the applied stretch at the last re-estimate
   PetscInt by_stiffness_ = 0, by_travel_ = 0;
   double   shortest_dt_ = 0, estimate_wall_ = 0;
   bool     recording_ = false, recorded_ = false;

@@ -406,12 +406,6 @@ def t_spectrum_narrow(root):
                   "asymmetry", "mode at (mm)"], rows)
 
 
-TABLES = {"shear_reference": lambda root: t_shear_reference(), "shear": t_shear, "spectrum_shear": t_spectrum_shear,
-          "spectrum_broken": t_spectrum_broken, "spectrum_narrow": t_spectrum_narrow, "spectrum_plate": t_spectrum_plate, "rows": t_rows,
-          "timestep": t_timestep, "bulk": t_bulk, "horizon": t_horizon, "fracture": t_fracture,
-          "map": t_map}
-
-
 def _cause(r):
     m = re.search(r"Cause: ([^.]*)\.", r.error)
     return m.group(1) if m else ("" if r.rc == 0 else "(no cause named)")
@@ -446,6 +440,12 @@ def t_map(root):
             return cell if cell.startswith("ran") else f"stretch {fmt(lam, 4)}: {cell}"
         rows.append([var.replace("_", " "), value.replace("_", " "), rate, show("fixed"), show("adaptive")])
     return table(["varied", "value", "loading", "step fixed at rest (-time_step_reestimate 0)", "step re-estimated (default)"], rows)
+
+
+TABLES = {"shear_reference": lambda root: t_shear_reference(), "shear": t_shear, "spectrum_shear": t_spectrum_shear,
+          "spectrum_broken": t_spectrum_broken, "spectrum_narrow": t_spectrum_narrow, "spectrum_plate": t_spectrum_plate, "rows": t_rows,
+          "timestep": t_timestep, "bulk": t_bulk, "horizon": t_horizon, "fracture": t_fracture,
+          "map": t_map}
 
 
 def main():

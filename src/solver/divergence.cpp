@@ -211,14 +211,22 @@ std::string DivergenceAdvice(const DivergenceFacts &f)
                   "-material_bulk_ratio %g (K / mu) the %splane-strain body locks volumetrically and is unstable whatever the "
                   "step (docs/stability.md, section 1): lower -material_bulk_ratio to 100%s.",
                   f.dt / f.stable, f.bulk_ratio, f.bond_only ? "bond-only " : "", f.bond_only ? ", or use -force_form energy_consistent" : "");
+  else if (f.chain_reach > 1.05 && f.Jm > 0 && f.stiffening >= 4) // a wrecked state, but the run saw the stiffening
+    std::snprintf(text, sizeof text,
+                  " Cause: the Gent chain limit. The material stiffened to %.3g x its stiffness at rest as bonds neared the "
+                  "chain limit (applied stretch %.4g), and the state broke down (bond stretch %.3g): raise -material_Jm (now %g), "
+                  "or end the load below stretch %.4g, or enable failure (-failure_critical_stretch) so that such bonds break.",
+                  f.stiffening, f.applied_stretch, f.bond_stretch, f.Jm, f.applied_stretch);
   else if (!f.reestimating && f.dt > f.stable) too_long(" (the material stiffened; the step was fixed at rest)");
   else if (f.bond_only && f.damping < 100)
     std::snprintf(text, sizeof text,
                   " Cause: flutter of the bond-only force form. The step followed the material (dt = %.3g x the stable step at "
                   "rest), but the bond-only form's stiffness is not symmetric at free edges and its motion grows whatever the "
                   "step (docs/stability.md, section 1): raise -damping (now %g 1/s; 200 covers the pure shear sheet) or use "
-                  "-force_form energy_consistent, which has no flutter.",
-                  f.dt / f.stable_rest, f.damping);
+                  "-force_form energy_consistent, which has no flutter%s.",
+                  f.dt / f.stable_rest, f.damping,
+                  f.horizon_factor < 2.5 ? " (with -horizon_factor below 2.5 the bond-only rest state itself can be unstable: "
+                                           "then only the energy-consistent form, or a horizon of 2.5 to 4, helps)" : "");
   else if (f.dt > f.stable) too_long(" (the material stiffened faster than the re-estimate followed)");
   else
     std::snprintf(text, sizeof text,

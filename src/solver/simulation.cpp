@@ -221,7 +221,7 @@ PetscErrorCode Simulation::PostStep(TS ts)
   // latest evaluation when due, shortened while points fly: time_step_control.hpp).
     const double *xr;
     PetscCall(VecGetArrayRead(X, &xr));
-    PetscCall(sim->step_control_.AfterStep(sim->comm_, step, sim->layout_, sim->families_, sim->bond_state_, sim->force_, xr + n, ts));
+    PetscCall(sim->step_control_.AfterStep(sim->comm_, step, sim->loading_.stretch_at(t), sim->layout_, sim->families_, sim->bond_state_, sim->force_, xr + n, ts));
     PetscCall(VecRestoreArrayRead(X, &xr));
     sim->relaxation_.FollowStableStep(sim->step_control_.stable_now()); // its cap, 2 omega_max
   }

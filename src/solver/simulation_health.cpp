@@ -88,6 +88,8 @@ PetscErrorCode Simulation::DiagnoseDivergence()
   f.bulk_ratio   = 2.0 / (scene_.material.D * scene_.material.mu);
   f.damping      = scene_.damping;
   f.reestimating = step_control_.reestimating();
+  f.horizon_factor = scene_.horizon_factor;
+  f.stiffening     = step_control_.largest_lambda() / step_control_.lambda_rest();
   f.applied_stretch = loading_.stretch_at(t);
   PetscCall(step_control_.SharpEstimate(comm_, force_, u.data(), c33, 40, &f.stable));
   if (!std::isfinite(f.stable) || f.stable <= 0) f.stable = step_control_.stable_now();
@@ -123,6 +125,9 @@ PetscErrorCode Simulation::DiagnoseDivergence()
   }
   f.chain_reach  = reach[0];
   f.bond_stretch = reach[1];
+  if (time_step_options_.monitor)
+    PetscCall(PetscPrintf(comm_, "Diagnosis at the last good state: dt %.4e s, stable %.4e s (at rest %.4e s), chain reach %.4g (bond stretch %.4g), applied stretch %.4g\n",
+                          f.dt, f.stable, f.stable_rest, f.chain_reach, f.bond_stretch, f.applied_stretch));
   stop_reason_ += DivergenceAdvice(f);
   PetscFunctionReturn(0);
 }

@@ -270,6 +270,7 @@ PetscErrorCode Simulation::WriteCheckpointFile(PetscInt step, double t, const ch
     header.step_next_estimate = s.next_estimate;
     header.step_by_stiffness  = s.by_stiffness;
     header.step_by_travel     = s.by_travel;
+    header.step_stretch       = s.stretch;
     state.step_eigenvector    = step_control_.eigenvector();
   }
   PetscCall(WriteCheckpoint(comm_, path, output_.order, families_, &header, state));
@@ -348,6 +349,7 @@ PetscErrorCode Simulation::RestoreCheckpoint()
     s.next_estimate = (PetscInt)header.step_next_estimate;
     s.by_stiffness  = (PetscInt)header.step_by_stiffness;
     s.by_travel     = (PetscInt)header.step_by_travel;
+    s.stretch       = header.step_stretch;
     PetscCall(step_control_.Restore(header.time_step, s, ts_));
   }
   if (header.time_step != step_control_.current())

@@ -27,6 +27,8 @@ PetscErrorCode TimeStepOptionsFromOptions(MPI_Comm comm, TimeStepOptions *option
                             "docs/options.md", options->max_iterations, &options->max_iterations, nullptr));
   PetscCall(PetscOptionsReal("-time_step_reestimate_tolerance", "A re-estimate stops once lambda_max moves by less than this fraction per iteration [-]",
                              "docs/options.md", options->tolerance, &options->tolerance, nullptr));
+  PetscCall(PetscOptionsReal("-time_step_reestimate_stretch", "Re-estimate also whenever the applied stretch moved by this much since the last one [-] (fast ramps)",
+                             "docs/options.md", options->stretch, &options->stretch, nullptr));
   PetscCall(PetscOptionsReal("-time_step_shift", "Shift of the re-estimate's power iteration, a fraction of the last lambda_max [-], in [0, 0.5]",
                              "docs/options.md", options->shift, &options->shift, nullptr));
   PetscCall(PetscOptionsBool("-time_step_monitor", "Print a line per re-estimate of the stable step (step, lambda_max, stable step, step in use)",
@@ -132,7 +134,8 @@ PetscErrorCode TimeStepControl::EstimateStable(MPI_Comm comm, const Scene &scene
   lambda_rest_ = lambda_ = lambda_largest_ = lambda;
   stable_dt_ = stable_now_ = 2.0 / std::sqrt(1.1 * lambda);
   SetBaseStep(scene.time_step > 0 ? scene.time_step : scene.time_step_safety * stable_dt_);
-  next_estimate_ = options_.interval;
+  next_estimate_    = options_.interval;
+  estimate_stretch_ = loading.stretch_at(0.0);
   PetscCall(PetscPrintf(comm, "Stable time step %.4e s (power iteration, lambda_max = %.4e 1/s^2); using dt = %.4e s (%.3g x stable)\n",
                         stable_dt_, lambda, dt_, dt_ / stable_dt_));
   if (options_.interval > 0)
@@ -208,17 +211,29 @@ PetscErrorCode TimeStepControl::Reestimate(MPI_Comm comm, ForceOperator &force)
 // section 5). So the step shrinks until no point that still has a bond moves more
 // than the travel limit, and returns once they slow down. The maximum is exact
 // (MPI_MAX of doubles), so the step is the same on any number of ranks.
-PetscErrorCode TimeStepControl::AfterStep(MPI_Comm comm, PetscInt step, const Layout &layout, const Families &families,
+PetscErrorCode TimeStepControl::AfterStep(MPI_Comm comm, PetscInt step, double stretch, const Layout &layout, const Families &families,
                                           const BondState &state, ForceOperator &force, const double *v, TS ts)
 {
   PetscFunctionBegin;
-  if (options_.interval > 0 && recorded_ && step >= next_estimate_) {
+  // Due after `interval` steps, or sooner on a fast ramp: a ramp of the fast route
+  // (0.05 s, 30 steps) stiffens a Jm = 3 gel past its step between two estimates
+  // (docs/stability.md, section 8).
+  const bool due = step >= next_estimate_ || std::fabs(stretch - estimate_stretch_) > options_.stretch;
+  if (options_.interval > 0 && recorded_ && due) {
+    estimate_stretch_ = stretch;
     const double before = lambda_;
     PetscCall(Reestimate(comm, force));
+    // Shrinks at once; grows back by at most 2 x band per estimate: a quotient that
+    // drops is not trusted at once (the warm-started iteration can lose the fastest
+    // mode for a while when it moves: a Jm = 3 plate at stretch 2 showed lambda_max
+    // 17 x, then 0.6 x the value at rest 50 steps later, and blew up at the full step).
     const double target = std::min(base_dt_, base_dt_ * std::sqrt(lambda_rest_ / lambda_));
-    if (target < (1.0 - options_.band) * stiffness_dt_ || target > (1.0 + options_.band) * stiffness_dt_) stiffness_dt_ = target;
-    const bool moving = std::fabs(lambda_ - before) > options_.band * before;
-    next_estimate_    = step + (moving ? 1 : options_.interval);
+    if (target < (1.0 - options_.band) * stiffness_dt_) stiffness_dt_ = target;
+    else if (target > (1.0 + options_.band) * stiffness_dt_) stiffness_dt_ = std::min(target, (1.0 + 2.0 * options_.band) * stiffness_dt_);
+    // Stiffening by more than the band, or a step still growing back: the next
+    // estimate comes sooner (a tenth of the interval).
+    const bool sooner = lambda_ > (1.0 + options_.band) * before || stiffness_dt_ < target;
+    next_estimate_    = step + (sooner ? std::max<PetscInt>(1, options_.interval / 10) : options_.interval);
     if (options_.monitor)
       PetscCall(PetscPrintf(comm, "re-estimate %" PetscInt_FMT " after step %" PetscInt_FMT ": lambda_max %.6e 1/s^2 (%.4g x at rest), stable %.4e s, stiffness step %.4e s (%.4g x base), %" PetscInt_FMT " force evaluations, %.3f s so far\n",
                             estimates_, step, lambda_, lambda_ / lambda_rest_, stable_now_, stiffness_dt_, stiffness_dt_ / base_dt_, evaluations_,
@@ -274,6 +289,7 @@ TimeStepState TimeStepControl::state() const
   s.lambda        = lambda_;
   s.stiffness_dt  = stiffness_dt_;
   s.next_estimate = next_estimate_;
+  s.stretch       = estimate_stretch_;
   s.by_stiffness  = by_stiffness_;
   s.by_travel     = by_travel_;
   s.shortest      = shortest_dt_;
@@ -294,6 +310,7 @@ PetscErrorCode TimeStepControl::Restore(double dt, const TimeStepState &state, T
     stable_now_     = 2.0 / std::sqrt(1.1 * lambda_);
     stiffness_dt_   = std::min(base_dt_, state.stiffness_dt);
     next_estimate_  = state.next_estimate;
+    estimate_stretch_ = state.stretch;
     by_stiffness_   = state.by_stiffness;
     by_travel_      = state.by_travel;
     shortest_dt_    = state.shortest;
