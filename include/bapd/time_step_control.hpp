@@ -38,6 +38,7 @@ struct TimeStepOptions {
   PetscInt max_iterations = 8; // most, while lambda still moves by more than tolerance per iteration
   double   tolerance  = 0.005; // measured on the Jm = 8 plate: 0.01 stalls 30 % below lambda_max (docs/stability.md section 8)
   double   band       = 0.05; // dead band of the stiffness step [-]
+  double   floor      = -1;   // the stiffness step is at least this x base (-1: 0.1, or 0.5 with failure)
   double   stretch    = 0.05; // ...and whenever the applied stretch moved by this much since the last one
   double   shift      = 0.45; // the power iteration runs on A - shift lambda I: faster convergence to lambda_max
   PetscBool monitor   = PETSC_FALSE; // a line per re-estimate (measurements, docs/stability.md section 8)
@@ -118,7 +119,7 @@ private:
   double   travel_       = 0; // -time_step_travel x dx (0: off)
   bool     travel_auto_  = false;
   double   travel_given_ = 0; // [m] the limit asked for (or chosen), before SetBaseStep
-  double   inv_rho_ = 0, eps_ = 0;
+  double   inv_rho_ = 0, eps_ = 0, floor_ = 0.1;
   PetscInt next_estimate_ = 0, estimates_ = 0, evaluations_ = 0;
   double   estimate_stretch_ = 1; // the applied stretch at the last re-estimate
   PetscInt by_stiffness_ = 0, by_travel_ = 0;

@@ -27,6 +27,10 @@ PetscErrorCode TimeStepOptionsFromOptions(MPI_Comm comm, TimeStepOptions *option
                             "docs/options.md", options->max_iterations, &options->max_iterations, nullptr));
   PetscCall(PetscOptionsReal("-time_step_reestimate_tolerance", "A re-estimate stops once lambda_max moves by less than this fraction per iteration [-]",
                              "docs/options.md", options->tolerance, &options->tolerance, nullptr));
+  PetscCall(PetscOptionsReal("-time_step_floor",
+                             "The re-estimated step is at least this fraction of the base step [-], in (0, 1] (default -1: 0.1, or 0.5 "
+                             "with failure, where the travel limit handles the bonds about to snap)",
+                             "docs/options.md", options->floor, &options->floor, nullptr));
   PetscCall(PetscOptionsReal("-time_step_reestimate_stretch", "Re-estimate also whenever the applied stretch moved by this much since the last one [-] (fast ramps)",
                              "docs/options.md", options->stretch, &options->stretch, nullptr));
   PetscCall(PetscOptionsReal("-time_step_shift", "Shift of the re-estimate's power iteration, a fraction of the last lambda_max [-], in [0, 0.5]",
@@ -40,6 +44,8 @@ PetscErrorCode TimeStepOptionsFromOptions(MPI_Comm comm, TimeStepOptions *option
   PetscCheck(options->iterations >= 1, comm, PETSC_ERR_USER,
              "-time_step_reestimate_iterations %" PetscInt_FMT ": give at least 1 power iteration per re-estimate (default 2)",
              options->iterations);
+  PetscCheck(options->floor == -1 || (options->floor > 0 && options->floor <= 1), comm, PETSC_ERR_USER,
+             "-time_step_floor %g: give a fraction of the base step in (0, 1], or -1 for the solver's choice", options->floor);
   PetscCheck(options->band >= 0 && options->band < 0.5, comm, PETSC_ERR_USER,
              "-time_step_band %g: give a fraction in [0, 0.5) (default 0.05)", options->band);
   PetscFunctionReturn(0);
@@ -102,6 +108,11 @@ PetscErrorCode TimeStepControl::EstimateStable(MPI_Comm comm, const Scene &scene
   // 0.1 dx a step is what the torn sheets need (0.3 is not enough). A step that the
   // user set above the stable one is left alone, so that its blow-up is reported
   // instead of hidden by a step shortened while the points fly apart.
+  // The floor of the stiffness step. With failure, a bond about to snap or invert at
+  // a crack tip drives lambda_max to 1e6 x its value at rest (measured on the notched
+  // sheet): following it would stop the run, and such points are the travel limit's
+  // (section 5), so the stiffness step stays above half the base step.
+  floor_        = options_.floor > 0 ? options_.floor : (scene.failure ? 0.5 : 0.1);
   travel_auto_  = scene.time_step_travel < 0;
   travel_given_ = (travel_auto_ ? (scene.failure ? 0.1 : 0.0) : scene.time_step_travel) * scene.body.dx;
   held_.assign(n, 0);
@@ -227,7 +238,7 @@ PetscErrorCode TimeStepControl::AfterStep(MPI_Comm comm, PetscInt step, double s
     // drops is not trusted at once (the warm-started iteration can lose the fastest
     // mode for a while when it moves: a Jm = 3 plate at stretch 2 showed lambda_max
     // 17 x, then 0.6 x the value at rest 50 steps later, and blew up at the full step).
-    const double target = std::min(base_dt_, base_dt_ * std::sqrt(lambda_rest_ / lambda_));
+    const double target = std::clamp(base_dt_ * std::sqrt(lambda_rest_ / lambda_), floor_ * base_dt_, base_dt_);
     if (target < (1.0 - options_.band) * stiffness_dt_) stiffness_dt_ = target;
     else if (target > (1.0 + options_.band) * stiffness_dt_) stiffness_dt_ = std::min(target, (1.0 + 2.0 * options_.band) * stiffness_dt_);
     // Stiffening by more than the band, or a step still growing back: the next
