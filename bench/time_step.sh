@@ -5,13 +5,18 @@
 # of both runs, the time the re-estimates took (-time_step_monitor, measured inside
 # the run, so it does not depend on the load of the machine the way the difference of
 # two wall times does), their force evaluations, and the step at the end.
-#   bench/time_step.sh [STEPS] [OUTPUT_DIR]     (default 1000 steps, /tmp/bapd_time_step)
+#   bench/time_step.sh [STEPS] [OUTPUT_DIR] [SCENE ...]
+# (default 1000 steps, /tmp/bapd_time_step, scenes plate plate_Jm8 notched; a STEPS past
+# a scene's end runs it whole).
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 steps="${1:-1000}"
 out="${2:-/tmp/bapd_time_step}"
 exe="${BAPD_EXE:-$here/build/bapd}"
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+shift 2 || shift $# || true
+names=("$@")
+((${#names[@]})) || names=(plate plate_Jm8 notched)
 mkdir -p "$out"
 declare -A scenes=(
   [plate]="-options_file_yaml $here/examples/plate_hole.yaml -options_file_yaml $here/examples/plate_hole_fast.yaml"
@@ -20,7 +25,7 @@ declare -A scenes=(
 )
 echo "| scene | steps | wall, fixed step (s) | wall, re-estimated (s) | re-estimates (s) | share of the run | force evaluations | dt at the end / base |"
 echo "|---|---|---|---|---|---|---|---|"
-for name in plate plate_Jm8 notched; do
+for name in "${names[@]}"; do
   # shellcheck disable=SC2086 # the scene is a list of words
   "$exe" ${scenes[$name]} -ts_max_steps "$steps" -progress_interval 1000000 -output_dir "$out/${name}_fixed" \
     -time_step_reestimate 0 > "$out/${name}_fixed.log" 2>&1 || true

@@ -79,6 +79,7 @@ private:
 // in, the sentence out (no MPI: every rank has the same reduced values).
 struct DivergenceFacts {
   double dt           = 0;     // the step that was taken [s]
+  double base         = 0;     // the base step (safety x the step at rest, or -time_step) [s]
   double stable       = 0;     // stable step of the last good state (a sharp power iteration) [s]
   double stable_rest  = 0;     // stable step at rest [s]
   bool   step_given   = false; // -time_step (or -ts_dt) set the base step, not the safety factor

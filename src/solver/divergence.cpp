@@ -191,11 +191,13 @@ std::string DivergenceAdvice(const DivergenceFacts &f)
                     std::min(0.8, 0.8 * f.safety * std::min(f.stable, f.stable_rest) / f.dt),
                     f.reestimating ? "" : ", or let the step follow the material (-time_step_reestimate 50)");
   };
-  if (f.dt > f.stable_rest) // the state reached is a wreck already: the step at rest says it
+  // A base step above the stable step at rest: the blow-up starts at once (and may
+  // shorten the re-estimated step on its way, so the step taken last says less).
+  if (std::max(f.dt, f.base) > f.stable_rest)
     std::snprintf(text, sizeof text,
-                  " Cause: the time step. dt = %.4e s is %.3g x the stable step at rest, %.4e s, so the explicit scheme "
-                  "amplifies its fastest mode every step: %s.",
-                  f.dt, f.dt / f.stable_rest, f.stable_rest,
+                  " Cause: the time step. The base step %.4e s is %.3g x the stable step at rest, %.4e s, so the explicit "
+                  "scheme amplifies its fastest mode every step: %s.",
+                  std::max(f.dt, f.base), std::max(f.dt, f.base) / f.stable_rest, f.stable_rest,
                   f.step_given ? "lower -time_step, or leave it to the solver (-time_step 0, -time_step_safety 0.8)"
                                : "lower -time_step_safety to 0.8 (the default) or less");
   else if (f.chain_reach >= 0.8 && f.chain_reach <= 1.05) // beyond: a state the blow-up already wrecked
@@ -220,11 +222,12 @@ std::string DivergenceAdvice(const DivergenceFacts &f)
   else if (!f.reestimating && f.dt > f.stable) too_long(" (the material stiffened; the step was fixed at rest)");
   else if (f.bond_only && f.damping < 100)
     std::snprintf(text, sizeof text,
-                  " Cause: flutter of the bond-only force form. The step followed the material (dt = %.3g x the stable step at "
-                  "rest), but the bond-only form's stiffness is not symmetric at free edges and its motion grows whatever the "
+                  " Cause: flutter of the bond-only force form. The step was below the stable one (dt = %.3g x the stable "
+                  "step at rest), but the bond-only form's stiffness is not symmetric at free edges and its motion grows whatever the "
                   "step (docs/stability.md, section 1): raise -damping (now %g 1/s; 200 covers the pure shear sheet) or use "
-                  "-force_form energy_consistent, which has no flutter%s.",
+                  "-force_form energy_consistent, which has no flutter%s%s.",
                   f.dt / f.stable_rest, f.damping,
+                  f.reestimating ? "" : "; with the step fixed at rest, also let it follow the material (-time_step_reestimate 50)",
                   f.horizon_factor < 2.5 ? " (with -horizon_factor below 2.5 the bond-only rest state itself can be unstable: "
                                            "then only the energy-consistent form, or a horizon of 2.5 to 4, helps)" : "");
   else if (f.dt > f.stable) too_long(" (the material stiffened faster than the re-estimate followed)");

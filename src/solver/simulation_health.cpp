@@ -80,6 +80,7 @@ PetscErrorCode Simulation::DiagnoseDivergence()
 
   DivergenceFacts f;
   f.dt          = step_control_.current();
+  f.base        = step_control_.base();
   f.stable_rest = step_control_.stable();
   f.step_given  = scene_.time_step > 0 || step_control_.base() != scene_.time_step_safety * step_control_.stable();
   f.safety      = scene_.time_step_safety;
