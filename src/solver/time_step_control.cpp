@@ -242,9 +242,9 @@ PetscErrorCode TimeStepControl::AfterStep(MPI_Comm comm, PetscInt step, double s
     if (target < (1.0 - options_.band) * stiffness_dt_) stiffness_dt_ = target;
     else if (target > (1.0 + options_.band) * stiffness_dt_) stiffness_dt_ = std::min(target, (1.0 + 2.0 * options_.band) * stiffness_dt_);
     // Stiffening by more than the band, or a step still growing back: the next
-    // estimate comes sooner (a tenth of the interval).
+    // estimate comes sooner (a fifth of the interval: a tenth cost 6 % of the fast plate).
     const bool sooner = lambda_ > (1.0 + options_.band) * before || stiffness_dt_ < target;
-    next_estimate_    = step + (sooner ? std::max<PetscInt>(1, options_.interval / 10) : options_.interval);
+    next_estimate_    = step + (sooner ? std::max<PetscInt>(1, options_.interval / 5) : options_.interval);
     if (options_.monitor)
       PetscCall(PetscPrintf(comm, "re-estimate %" PetscInt_FMT " after step %" PetscInt_FMT ": lambda_max %.6e 1/s^2 (%.4g x at rest), stable %.4e s, stiffness step %.4e s (%.4g x base), %" PetscInt_FMT " force evaluations, %.3f s so far\n",
                             estimates_, step, lambda_, lambda_ / lambda_rest_, stable_now_, stiffness_dt_, stiffness_dt_ / base_dt_, evaluations_,
