@@ -4,7 +4,7 @@
 // "Checkpoints and restart", is the user's view.
 //
 // File layout, format version 3 (every array in natural order, natural_order.hpp;
-// version 2 is version 3 without text_hash, version 1 version 2 without /relaxation;
+// version 2 is version 3 without text_hash and /time_step, version 1 version 2 without /relaxation;
 // both are still read):
 //   /                 attributes format = "bapd checkpoint", format_version, step,
 //                     time_s, time_step_s, stretch, reason, ranks, content_hash,
@@ -26,6 +26,11 @@
 //                          records; /relaxation/displacement, /relaxation/acceleration
 //                          (points, 2): the latest force evaluation, which the next
 //                          step's damping coefficient is computed against
+//   /time_step             only while the step is re-estimated (time_step_control.hpp):
+//                          attributes lambda_per_s2, stiffness_dt_s, next_estimate,
+//                          by_stiffness, by_travel, shortest_dt_s, stretch;
+//                          /time_step/eigenvector (points, 2): the power iteration's
+//                          vector, which the next re-estimate starts from
 // content_hash is an order-independent checksum of the arrays and of the step, time
 // and schedule attributes; text_hash one of /run/options, /run/history,
 // /run/static_states, /run/field_frames and reason: a damaged file is refused instead
@@ -85,6 +90,10 @@ struct CheckpointHeader {
   std::int64_t        static_hold_done  = -1;
   // -relaxation adaptive: force evaluations recorded (0: no /relaxation group).
   std::int64_t        relaxation_records = 0;
+  // The re-estimated stable step (TimeStepState, time_step_control.hpp); step_lambda 0:
+  // no /time_step group (format 1 and 2, or -time_step_reestimate 0).
+  double              step_lambda = 0, step_stiffness_dt = 0, step_shortest = 0, step_stretch = 1;
+  std::int64_t        step_next_estimate = 0, step_by_stiffness = 0, step_by_travel = 0;
 };
 
 // The state of the rank layout, read from (written to) a checkpoint.
@@ -95,6 +104,9 @@ struct CheckpointState {
   // -relaxation adaptive: the latest recorded evaluation, owned points, 2 each
   // (write: used when header.relaxation_records > 0; read: filled when the file has it).
   double          *relaxation_u = nullptr, *relaxation_a = nullptr;
+  // The power iteration's vector, owned points, 2 each (write: used when
+  // header.step_lambda > 0; read: filled when the file has it).
+  double          *step_eigenvector = nullptr;
 };
 
 // Collective. Writes `path` through `path.tmp` and a rename, so the last good

@@ -74,6 +74,42 @@ private:
   std::vector<double> scratch_;
 };
 
+// The cause of a divergence, as the solver sees it at the last good state (issue 15
+// item 3; docs/stability.md section 8), and the fix the message names. Plain numbers
+// in, the sentence out (no MPI: every rank has the same reduced values).
+struct DivergenceFacts {
+  double dt           = 0;     // the step that was taken [s]
+  double base         = 0;     // the base step (safety x the step at rest, or -time_step) [s]
+  double stable       = 0;     // stable step of the last good state (a sharp power iteration) [s]
+  double stable_rest  = 0;     // stable step at rest [s]
+  bool   step_given   = false; // -time_step (or -ts_dt) set the base step, not the safety factor
+  double safety       = 0.8;   // -time_step_safety
+  double chain_reach  = 0;     // max over bonds of (I1bar - 3) / Jm (0 for laws without a limit)
+  double Jm           = 0;
+  double bond_stretch = 1;     // the largest principal stretch of a bond's F there [-]
+  double applied_stretch = 1;  // the schedule's stretch at that time [-]
+  bool   plane_strain = false, bond_only = true;
+  double bulk_ratio   = 0;     // K / mu
+  double damping      = 0;     // [1/s] (the floor, with -relaxation adaptive)
+  bool   reestimating = true;  // -time_step_reestimate > 0: the step followed the material
+  double horizon_factor = 3.015;
+  double stiffening   = 1;     // the largest lambda_max of the run's re-estimates over the one at rest
+};
+// In this order (the first that fits): a step above the stable step at rest ->
+// -time_step_safety (or -time_step); the chain limit (0.8 <= reach <= 1.05: the Gent
+// stiffness mu Jm / (Jm + 3 - I1bar) is 5 x its rest value and unbounded beyond; a
+// larger reach is a state the blow-up already wrecked) -> -material_Jm and the
+// stretch; plane strain with K >= 1000 mu (a real negative eigenvalue at rest,
+// docs/stability.md section 1) -> -material_bulk_ratio; a fixed step above the stable
+// step of the state reached -> -time_step_safety or -time_step_reestimate (a state
+// already wrecked, reach > 1.05, in a run whose lambda_max rose 4 x: the chain limit); the
+// bond-only form with less damping than its free edges need (100 1/s, section 1) ->
+// -damping or -force_form energy_consistent; a re-estimated step above the state's
+// -> -time_step_safety. The order matters: a chain-limited state has a tiny stable
+// step too, and a fluttering one looks stiff once the flutter has grown, but neither
+// is cured by a shorter step.
+std::string DivergenceAdvice(const DivergenceFacts &facts);
+
 // What the post-step check reads, handed to it by the driver.
 struct RunawayInputs {
   MPI_Comm        comm     = MPI_COMM_NULL;

@@ -25,6 +25,7 @@
 // checkpoints (/relaxation, checkpoint.hpp) and a restart continues bit for bit.
 #include <petscsys.h>
 
+#include <algorithm>
 #include <vector>
 
 namespace bapd {
@@ -42,6 +43,9 @@ public:
   void Setup(RelaxationKind kind, std::size_t n_owned, const double *volume, const std::vector<PetscInt> &held_dofs,
              double floor, double stable_dt);
   bool active() const { return kind_ == RelaxationKind::adaptive; }
+  // The stable step re-estimated during the run (time_step_control.hpp): the cap
+  // follows it, 2 omega_max = 4 / dt_stable, so a stiffer material may be damped harder.
+  void FollowStableStep(double stable_dt) { cap_ = std::max(floor_, 2.0 * 2.0 / stable_dt); }
   // Every acceleration the dynamics evaluates (owned u and a, 2 per point): keeps the
   // last two. A copy, no allocation.
   void Record(const double *u, const double *a);

@@ -51,7 +51,7 @@ struct Scene {
 
   double   time_step        = 0.0;  // 0: use safety * stable step
   double   time_step_safety = 0.8;  // fraction of the computed stable step
-  double   time_step_travel = 0.0;  // a step moves no bonded point more than this x dx (0: off)
+  double   time_step_travel = -1.0; // a step moves no bonded point more than this x dx (0: off; -1: the solver's choice, 0.1 with failure)
   double   damping          = 0.0;  // mass-proportional damping coefficient [1/s]
   double   static_tolerance = 0.0;  // hold ends once kinetic / internal energy < this (0: holds run out)
   double   end_time         = 0.0;  // default: the schedule's last knot

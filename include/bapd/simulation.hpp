@@ -82,6 +82,7 @@ private:
   PetscErrorCode Acceleration(const double *u_owned, double *a_owned);
   PetscErrorCode CheckHealth(PetscInt step, double t, PetscBool *diverged);
   PetscErrorCode CheckRunaway(PetscInt step, double t, std::string *message);
+  PetscErrorCode DiagnoseDivergence(); // the cause and its fix, appended to stop_reason_ (divergence.hpp)
   PetscErrorCode ReadProbes(const double *u_owned, double *probe_u);
   PetscErrorCode GatherNatural(const double *values, std::vector<double> *natural);
   PetscErrorCode WriteHistoryRow(PetscInt step, double t);
@@ -123,7 +124,8 @@ private:
   ForceOperator   force_;        // u -> f (force_operator.hpp)
   Loading         loading_;      // grips, schedule, reactions (loading.hpp)
   Failure         failure_;      // breaking and its exchange (failure.hpp)
-  TimeStepControl step_control_; // stable step, travel limit (time_step_control.hpp)
+  TimeStepOptions time_step_options_; // -time_step_reestimate ...
+  TimeStepControl step_control_;      // stable step, its re-estimate, travel limit (time_step_control.hpp)
   std::vector<ProbePoint> probes_;
 
   Vec X_         = nullptr; // TS state

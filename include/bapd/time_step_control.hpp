@@ -1,9 +1,23 @@
 #pragma once
 // Time-step control: the stable step of the linearised system (power iteration on
-// the force operator), the step in use, and its shortening while points fly
-// (-time_step_travel, docs/stability.md section 5). SetBaseStep is where a new base
-// step enters during a run (the -ts_dt override at set-up today; a re-estimate of
-// the stable step later).
+// the force operator), re-estimated during the run as the material stiffens or
+// softens (-time_step_reestimate), and the shortening while points fly
+// (-time_step_travel, docs/stability.md sections 5 and 8). SetBaseStep is where a new
+// base step enters (the -ts_dt override at set-up).
+//
+// The step in use is dt = min(dt_stiffness, dt_travel):
+//  - dt_stiffness = base x sqrt(lambda_rest / lambda_now), at most the base step,
+//    where lambda is the largest eigenvalue of M^{-1} K (Velocity Verlet is stable for
+//    dt < 2 / sqrt(lambda_max)); lambda_now comes from a power iteration on the
+//    current tangent, K v = -(f(u + eps v) - f(u)) / eps, warm-started from the last
+//    eigenvector: a few force evaluations every -time_step_reestimate steps (more
+//    often while lambda moves). It shrinks at once when lambda grows by more than the
+//    dead band and grows back (bounded by the base step) only when lambda falls by
+//    more than it: the band keeps the step from flapping on the estimate's noise.
+//  - dt_travel: no point with bonds moves more than -time_step_travel dx in one step.
+// Every sum is a reproducible sum and every maximum exact, so the step is the same on
+// any number of ranks; the estimate's state (eigenvector, lambda, the stiffness step)
+// is in checkpoints, so a restart continues bit for bit.
 #include <petscts.h>
 
 #include <vector>
@@ -17,35 +31,103 @@
 
 namespace bapd {
 
+// -time_step_reestimate, -time_step_reestimate_iterations, ..._stretch, -time_step_band.
+struct TimeStepOptions {
+  PetscInt interval   = 50;   // steps between re-estimates (0: the step at rest all run long)
+  PetscInt iterations = 1;    // fewest power iterations per re-estimate (one force evaluation each)
+  PetscInt max_iterations = 8; // most, while lambda still moves by more than tolerance per iteration
+  double   tolerance  = 0.005; // measured on the Jm = 8 plate: 0.01 stalls 30 % below lambda_max (docs/stability.md section 8)
+  double   band       = 0.05; // dead band of the stiffness step [-]
+  double   floor      = -1;   // the stiffness step is at least this x base (-1: 0.1, or 0.5 with failure)
+  double   stretch    = 0.05; // ...and whenever the applied stretch moved by this much since the last one
+  double   shift      = 0.45; // the power iteration runs on A - shift lambda I: faster convergence to lambda_max
+  PetscBool monitor   = PETSC_FALSE; // a line per re-estimate (measurements, docs/stability.md section 8)
+};
+// Reads (and lists under -help) the options. Collective.
+PetscErrorCode TimeStepOptionsFromOptions(MPI_Comm comm, TimeStepOptions *options);
+
+// What a checkpoint carries of the re-estimate (natural order is the caller's job).
+struct TimeStepState {
+  double   lambda        = 0; // the latest estimate of lambda_max [1/s^2]
+  double   stiffness_dt  = 0; // the stiffness step [s]
+  PetscInt next_estimate = 0; // the step after which the next re-estimate runs
+  double   stretch       = 1; // the applied stretch at the last re-estimate
+  PetscInt by_stiffness = 0, by_travel = 0; // the counters of the summary
+  double   shortest = 0;
+};
+
 class TimeStepControl {
 public:
   // Power iteration for lambda_max of M^{-1} K at the reference state, then the step
   // -time_step or -time_step_safety x stable. Leaves the operator as it was (the
   // iteration carries its own warm starts). Collective; prints the steps.
-  PetscErrorCode EstimateStable(MPI_Comm comm, const Scene &scene, const Layout &layout, const Loading &loading,
-                                ForceOperator &force);
+  PetscErrorCode EstimateStable(MPI_Comm comm, const Scene &scene, const TimeStepOptions &options, const Layout &layout,
+                                const Loading &loading, ForceOperator &force);
   // A new base step (and step in use); the TS takes it with the next step.
-  void SetBaseStep(double dt) { dt_ = base_dt_ = dt; }
-  // After a step: shortens the next one so that no bonded point travels more than
-  // -time_step_travel dx (v: owned velocities, 2 per point). Collective.
-  PetscErrorCode AdaptToTravel(MPI_Comm comm, const Layout &layout, const Families &families, const BondState &state,
-                               const double *v, TS ts);
-  // Restart: a step that -time_step_travel shortened goes on as it was.
-  PetscErrorCode ContinueShortened(double dt, TS ts);
+  // The solver's travel limit is off for a step above the stable one.
+  void SetBaseStep(double dt);
 
-  double   stable() const { return stable_dt_; }
+  // Every acceleration the dynamics evaluates (owned u and the free acceleration, 2
+  // per point): kept (a copy, no allocation) when the next re-estimate will use it as
+  // its base point f(u), which saves a force evaluation.
+  void Record(const double *u, const double *a);
+  // After a step: the re-estimate when due (about the last recorded evaluation, with
+  // the operator's committed warm starts copied: side-effect free), then the travel
+  // limit over the owned velocities v (2 per point), then the step the TS takes next.
+  // Collective.
+  PetscErrorCode AfterStep(MPI_Comm comm, PetscInt step, double stretch, const Layout &layout, const Families &families, const BondState &state,
+                           ForceOperator &force, const double *v, TS ts);
+  // The stable step of the state (u: owned, 2 per point; c33: its warm starts, 1 per
+  // bond) by `iterations` shifted power iterations from the current eigenvector: for
+  // the diagnosis of a divergence (divergence.hpp), once. Collective.
+  PetscErrorCode SharpEstimate(MPI_Comm comm, ForceOperator &force, const double *u, const std::vector<double> &c33, PetscInt iterations,
+                               double *stable);
+  // Restart: the step in use (header time_step) and the estimate's state.
+  PetscErrorCode Restore(double dt, const TimeStepState &state, TS ts);
+
+  double   stable() const { return stable_dt_; }           // at rest
+  double   stable_now() const { return stable_now_; }      // of the latest estimate
+  double   lambda_now() const { return lambda_; }
+  double   lambda_rest() const { return lambda_rest_; }
   double   base() const { return base_dt_; }
   double   current() const { return dt_; }
-  PetscInt shortened_steps() const { return shortened_steps_; }
+  double   stiffness_step() const { return stiffness_dt_; }
+  double   travel() const { return travel_; }              // [m], 0: off
+  bool     travel_automatic() const { return travel_auto_; }
+  bool     reestimating() const { return options_.interval > 0; }
+  PetscInt shortened_steps() const { return by_stiffness_ + by_travel_; }
+  PetscInt shortened_by_stiffness() const { return by_stiffness_; } // steps shorter than base because of lambda_now
+  PetscInt shortened_by_travel() const { return by_travel_; }       // ...shorter still because points flew
+  PetscInt estimates() const { return estimates_; }                 // re-estimates so far (this process's run)
+  PetscInt estimate_evaluations() const { return evaluations_; }    // force evaluations they cost
+  double   estimate_seconds() const { return estimate_wall_; }      // wall time they cost (this rank)
   double   shortest() const { return shortest_dt_; }
+  double   largest_lambda() const { return lambda_largest_; }
+  // Checkpoints: the state and the eigenvector (owned points, 2 each).
+  TimeStepState state() const;
+  double       *eigenvector() { return v_.data(); }
 
 private:
-  double   stable_dt_ = 0;
-  double   base_dt_   = 0; // the step chosen at setup (safety x stable, or -time_step)
-  double   dt_        = 0; // the step being taken: base_dt_, or less while points fly
-  double   travel_    = 0; // -time_step_travel x dx (0: off)
-  PetscInt shortened_steps_ = 0; // steps taken shorter than base_dt_
-  double   shortest_dt_     = 0; // the shortest of them
+  PetscErrorCode Reestimate(MPI_Comm comm, ForceOperator &force);
+  PetscErrorCode PowerStep(MPI_Comm comm, ForceOperator &force, const double *u0, const double *a0, double shift, double *lambda);
+
+  TimeStepOptions options_;
+  double   stable_dt_ = 0, stable_now_ = 0, lambda_rest_ = 0, lambda_ = 0, lambda_largest_ = 0;
+  double   base_dt_      = 0; // the step chosen at setup (safety x stable, or -time_step)
+  double   stiffness_dt_ = 0; // base_dt_, or less while the material is stiffer than at rest
+  double   dt_           = 0; // the step being taken: the stiffness step, or less while points fly
+  double   travel_       = 0; // -time_step_travel x dx (0: off)
+  bool     travel_auto_  = false;
+  double   travel_given_ = 0; // [m] the limit asked for (or chosen), before SetBaseStep
+  double   inv_rho_ = 0, eps_ = 0, floor_ = 0.1;
+  PetscInt next_estimate_ = 0, estimates_ = 0, evaluations_ = 0;
+  double   estimate_stretch_ = 1; // the applied stretch at the last re-estimate
+  PetscInt by_stiffness_ = 0, by_travel_ = 0;
+  double   shortest_dt_ = 0, estimate_wall_ = 0;
+  bool     recording_ = false, recorded_ = false;
+  // Scratch sized at set-up: no allocation in a step.
+  std::vector<char>   held_;
+  std::vector<double> v_, seed_, u_rec_, a_rec_, u_probe_, a_probe_, sq_, c33_;
 };
 
 } // namespace bapd

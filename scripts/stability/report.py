@@ -406,9 +406,46 @@ def t_spectrum_narrow(root):
                   "asymmetry", "mode at (mm)"], rows)
 
 
+def _cause(r):
+    m = re.search(r"Cause: ([^.]*)\.", r.error)
+    return m.group(1) if m else ("" if r.rc == 0 else "(no cause named)")
+
+
+def t_map(root):
+    """The stability map (section 8): runs named map__VARIABLE__VALUE__RATE__STEP."""
+    names = sorted(n for n in os.listdir(root) if n.startswith("map__") and os.path.isdir(os.path.join(root, n)))
+    order = {"Jm": 0, "bulk_ratio": 1, "horizon": 2, "safety": 3}
+    cells = {}
+    for r in runs(root, names):
+        _, var, value, rate, step = r.name.split("__")
+        dt = [row["dt_s"] for row in r.history if "dt_s" in row]
+        shortest = f"{min(dt) / dt[0]:.2f}" if dt and dt[0] > 0 else "-"
+        cell = f"{r.outcome()}" + (f": {_cause(r)}" if r.rc else "") + (f" (dt down to {shortest} x)" if step == "adaptive" and shortest not in ("-", "1.00") else "")
+        cells.setdefault((order.get(var, 9), var, value, rate), {})[step] = (cell, r.final_stretch)
+    if not cells:
+        return None
+    def key(k):
+        try:
+            return (k[0], float(k[2].split("_")[0]), k[2], k[3])
+        except ValueError:
+            return (k[0], 0.0, k[2], k[3])
+    rows = []
+    for k in sorted(cells, key=key):
+        _, var, value, rate = k
+        c = cells[k]
+        def show(step):
+            if step not in c:
+                return "-"
+            cell, lam = c[step]
+            return cell if cell.startswith("ran") else f"stretch {fmt(lam, 4)}: {cell}"
+        rows.append([var.replace("_", " "), value.replace("_", " "), rate, show("fixed"), show("adaptive")])
+    return table(["varied", "value", "loading", "step fixed at rest (-time_step_reestimate 0)", "step re-estimated (default)"], rows)
+
+
 TABLES = {"shear_reference": lambda root: t_shear_reference(), "shear": t_shear, "spectrum_shear": t_spectrum_shear,
           "spectrum_broken": t_spectrum_broken, "spectrum_narrow": t_spectrum_narrow, "spectrum_plate": t_spectrum_plate, "rows": t_rows,
-          "timestep": t_timestep, "bulk": t_bulk, "horizon": t_horizon, "fracture": t_fracture}
+          "timestep": t_timestep, "bulk": t_bulk, "horizon": t_horizon, "fracture": t_fracture,
+          "map": t_map}
 
 
 def main():

@@ -5,7 +5,9 @@
 #
 #   scripts/stability/run_all.sh [OUTPUT_DIR] [SECTION ...]
 #
-# Sections: spectrum shear rows timestep bulk horizon fracture (default: all). Each run
+# Sections: spectrum shear rows timestep bulk horizon fracture map (default: all but
+# map; map alone, the stability map of section 8, takes a few minutes:
+#   scripts/stability/run_all.sh output/stability map). Each run
 # is small (hundreds to a few thousand points, one rank) and is skipped when OUTPUT_DIR
 # already holds it (delete OUTPUT_DIR/NAME to redo one). BAPD_EXE and BAPD_BUILD_DIR
 # as in run_mpi.sh; the spectra need the build's tests/stability/stability_spectrum
@@ -18,7 +20,7 @@ here="${BAPD_SOURCE_DIR:-$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)}"
 out="${1:-$here/output/stability}"
 shift || true
 sections=("$@")
-((${#sections[@]})) || sections=(spectrum shear rows timestep bulk horizon fracture)
+((${#sections[@]})) || sections=(spectrum shear rows timestep bulk horizon fracture)  # map: on request
 build="${BAPD_BUILD_DIR:-$here/build}"
 if [ -z "${BAPD_EXE:-}" ]; then
   "$here/scripts/install-deps.sh"
@@ -172,6 +174,39 @@ for section in "${sections[@]}"; do
     for ratio in 1000 10000; do
       bapd "bulk_plane_strain_k${ratio}_energy_consistent_s0.4" "${plate[@]}" -material_bulk_ratio "$ratio" \
         -material_formulation plane_strain -force_form energy_consistent -time_step_safety 0.4
+    done
+    ;;
+  map)
+    # The stability map (section 8, issue 15): the plate on a 4 mm grid, the fast route
+    # (ramps of 0.05 s, holds that end once static), one option varied at a time around
+    # the default, with the step fixed at rest (the paper's, -time_step_reestimate 0)
+    # and re-estimated (the default). Every cell must run to the end or stop with the
+    # message that names its cause.
+    fast=(-options_file_yaml "$here/examples/plate_hole.yaml" -options_file_yaml "$here/examples/plate_hole_fast.yaml"
+          -body_dx 0.004 -output_interval 20 -progress_interval 1000000)
+    to2=(-load_schedule 0,1,0.05,1.5,1.05,1.5,1.1,2.0,2.1,2.0)
+    slow2=(-load_schedule 0,1,0.5,1.5,1.5,1.5,2.0,2.0,3.0,2.0)
+    for step in fixed adaptive; do
+      control=(); [ "$step" = fixed ] && control=(-time_step_reestimate 0)
+      for jm in 3 5 8 20 162.6; do
+        bapd "map__Jm__${jm}__fast__$step" "${fast[@]}" "${to2[@]}" -material_Jm "$jm" "${control[@]}"
+        bapd "map__Jm__${jm}__slow__$step" "${fast[@]}" "${slow2[@]}" -material_Jm "$jm" "${control[@]}"
+      done
+      for k in 10 1000 100000; do
+        for formulation in plane_stress plane_strain; do
+          bapd "map__bulk_ratio__${k}_${formulation}__fast__$step" "${fast[@]}" -load_schedule 0,1,0.05,1.5,0.1,1.5 \
+            -material_bulk_ratio "$k" -material_formulation "$formulation" "${control[@]}"
+        done
+      done
+      for h in 1.5 2 3.015 4; do
+        for form in bond_only energy_consistent; do
+          bapd "map__horizon__${h}_${form}__fast__$step" "${fast[@]}" "${to2[@]}" -material_Jm 8 -horizon_factor "$h" \
+            -force_form "$form" "${control[@]}"
+        done
+      done
+      for safety in 0.5 0.8 1.0 1.2; do
+        bapd "map__safety__${safety}__fast__$step" "${fast[@]}" "${to2[@]}" -material_Jm 8 -time_step_safety "$safety" "${control[@]}"
+      done
     done
     ;;
   horizon)

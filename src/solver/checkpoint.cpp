@@ -97,6 +97,16 @@ PetscErrorCode RelaxationHash(MPI_Comm comm, const NaturalOrder &order, const do
   PetscFunctionReturn(0);
 }
 
+// The checksum of the re-estimate's eigenvector in this rank's block (time_step_control.hpp).
+PetscErrorCode EigenvectorHash(MPI_Comm comm, const NaturalOrder &order, const double *e, std::uint64_t *hash)
+{
+  PetscFunctionBegin;
+  std::uint64_t h = 0;
+  for (PetscInt k = 0; k < 2 * order.point_count; ++k) h += Entry(12, 2 * (std::uint64_t)order.point_start + (std::uint64_t)k, Bits(e[k]));
+  PetscCallMPI(MPI_Allreduce(&h, hash, 1, MPI_UINT64_T, MPI_SUM, comm));
+  PetscFunctionReturn(0);
+}
+
 // Two arrays of 2 per owned point -> this rank's natural block (or back).
 PetscErrorCode PairToNatural(const NaturalOrder &order, PetscInt owned_points, const double *a_local, const double *b_local,
                              std::vector<double> *a_block, std::vector<double> *b_block)
@@ -144,6 +154,10 @@ std::uint64_t HeaderHash(const CheckpointHeader &h)
   for (std::size_t k = 0; k < h.schedule_current.size(); ++k) sum += Entry(7, k, Bits(h.schedule_current[k]));
   for (std::size_t k = 0; k < h.schedule_original.size(); ++k) sum += Entry(8, k, Bits(h.schedule_original[k]));
   if (h.relaxation_records > 0) sum += Entry(11, 0, (std::uint64_t)h.relaxation_records); // absent in version 1
+  if (h.step_lambda > 0) // absent in versions 1 and 2
+    sum += Entry(13, 0, Bits(h.step_lambda)) + Entry(13, 1, Bits(h.step_stiffness_dt)) + Entry(13, 2, Bits(h.step_shortest)) +
+           Entry(13, 3, (std::uint64_t)h.step_next_estimate) + Entry(13, 4, (std::uint64_t)h.step_by_stiffness) +
+           Entry(13, 5, (std::uint64_t)h.step_by_travel) + Entry(13, 6, Bits(h.step_stretch));
   return sum;
 }
 
@@ -294,6 +308,13 @@ PetscErrorCode WriteCheckpoint(MPI_Comm comm, const std::string &path, const Nat
     PetscCall(RelaxationHash(comm, order, relax_u.data(), relax_a.data(), &relax_hash));
     header->content_hash += relax_hash;
   }
+  std::vector<double> eigenvector, unused;
+  if (header->step_lambda > 0) {
+    std::uint64_t step_hash = 0;
+    PetscCall(PairToNatural(order, owned_points, state.step_eigenvector, state.step_eigenvector, &eigenvector, &unused));
+    PetscCall(EigenvectorHash(comm, order, eigenvector.data(), &step_hash));
+    header->content_hash += step_hash;
+  }
   header->content_hash += HeaderHash(*header);
   header->ranks = size;
   std::uint64_t text_hash = rank == 0 ? TextHash(*header) : 0; // rank 0's texts are the ones written
@@ -301,10 +322,11 @@ PetscErrorCode WriteCheckpoint(MPI_Comm comm, const std::string &path, const Nat
 
   const std::string tmp = path + ".tmp";
   {
-    // Its size: the arrays, the texts and tables (rank 0's, which writes them), and
-    // about 30 datasets, groups and attributes.
+    // Its size: the arrays (with the re-estimate's eigenvector), the texts and tables
+    // (rank 0's, which writes them), and about 30 datasets, groups and attributes.
     const std::uint64_t points = (std::uint64_t)order.n_points, bonds = (std::uint64_t)order.n_bonds;
-    std::uint64_t       data = points * (2 * 16 + 4) + bonds * (1 + 8) + (header->relaxation_records > 0 ? 2 * 16 * points : 0);
+    std::uint64_t       data = points * (2 * 16 + 4) + bonds * (1 + 8) + (header->relaxation_records > 0 ? 2 * 16 * points : 0) +
+                         (state.step_eigenvector ? 16 * points : 0);
     std::uint64_t       text = header->options.size() + header->history.size() + header->static_states.size() +
                          8 * (header->field_frames.size() + header->schedule_original.size() + header->schedule_current.size());
     PetscCallMPI(MPI_Bcast(&text, 1, MPI_UINT64_T, 0, comm));
@@ -348,6 +370,17 @@ PetscErrorCode WriteCheckpoint(MPI_Comm comm, const std::string &path, const Nat
       PetscCall(f.WriteAttribute("/relaxation", "records", header->relaxation_records));
       PetscCall(f.WriteBlock("/relaxation/displacement", H5T_NATIVE_DOUBLE, P, 2, order.point_start, order.point_count, relax_u.data()));
       PetscCall(f.WriteBlock("/relaxation/acceleration", H5T_NATIVE_DOUBLE, P, 2, order.point_start, order.point_count, relax_a.data()));
+    }
+    if (header->step_lambda > 0) {
+      PetscCall(f.CreateGroup("/time_step"));
+      PetscCall(f.WriteAttribute("/time_step", "lambda_per_s2", header->step_lambda));
+      PetscCall(f.WriteAttribute("/time_step", "stiffness_dt_s", header->step_stiffness_dt));
+      PetscCall(f.WriteAttribute("/time_step", "shortest_dt_s", header->step_shortest));
+      PetscCall(f.WriteAttribute("/time_step", "next_estimate", header->step_next_estimate));
+      PetscCall(f.WriteAttribute("/time_step", "by_stiffness", header->step_by_stiffness));
+      PetscCall(f.WriteAttribute("/time_step", "by_travel", header->step_by_travel));
+      PetscCall(f.WriteAttribute("/time_step", "stretch", header->step_stretch));
+      PetscCall(f.WriteBlock("/time_step/eigenvector", H5T_NATIVE_DOUBLE, P, 2, order.point_start, order.point_count, eigenvector.data()));
     }
     const hsize_t frames = header->field_frames.size() / 2;
     PetscCall(f.WriteBlock("/run/field_frames", H5T_NATIVE_DOUBLE, frames, 2, 0, rank == 0 ? frames : 0, header->field_frames.data()));
@@ -446,6 +479,19 @@ std::string ReadHeaderSerial(const std::string &path, CheckpointHeader *h)
       for (const char *name : {"/relaxation/displacement", "/relaxation/acceleration"})
         if (H5DatasetShape(file, name) != std::vector<hsize_t>{P, 2}) damaged(std::string("dataset ") + name + " is missing or has the wrong shape");
     }
+    // The re-estimated step (version 3): optional.
+    if (problem.empty() && H5Lexists(file, "/time_step", H5P_DEFAULT) > 0) {
+      if (!H5ReadAttribute(file, "/time_step", "lambda_per_s2", &h->step_lambda) || !(h->step_lambda > 0) ||
+          !H5ReadAttribute(file, "/time_step", "stiffness_dt_s", &h->step_stiffness_dt) ||
+          !H5ReadAttribute(file, "/time_step", "shortest_dt_s", &h->step_shortest) ||
+          !H5ReadAttribute(file, "/time_step", "next_estimate", &h->step_next_estimate) ||
+          !H5ReadAttribute(file, "/time_step", "by_stiffness", &h->step_by_stiffness) ||
+          !H5ReadAttribute(file, "/time_step", "by_travel", &h->step_by_travel) ||
+          !H5ReadAttribute(file, "/time_step", "stretch", &h->step_stretch))
+        damaged("an attribute of /time_step is missing");
+      if (H5DatasetShape(file, "/time_step/eigenvector") != std::vector<hsize_t>{P, 2})
+        damaged("dataset /time_step/eigenvector is missing or has the wrong shape");
+    }
   }
   H5Fclose(file);
   return problem;
@@ -464,15 +510,17 @@ PetscErrorCode ReadCheckpointHeader(MPI_Comm comm, const std::string &path, Chec
   if (rank == 0) problem = ReadHeaderSerial(path, header);
   PetscCall(BcastString(comm, &problem));
   PetscCheck(problem.empty(), comm, PETSC_ERR_FILE_UNEXPECTED, "%s", problem.c_str());
-  long long     ints[7]   = {(long long)header->step,            (long long)header->ranks,
+  long long     ints[10]  = {(long long)header->step,            (long long)header->ranks,
                              (long long)header->geometry.points, (long long)header->geometry.bonds,
                              (long long)header->format_version,  (long long)header->static_hold_done,
-                             (long long)header->relaxation_records};
-  double        reals[7]  = {header->time,        header->time_step,         header->stretch, header->geometry.dx,
-                             header->geometry.horizon, header->end_time_original, header->end_time};
+                             (long long)header->relaxation_records, (long long)header->step_next_estimate,
+                             (long long)header->step_by_stiffness,  (long long)header->step_by_travel};
+  double        reals[11] = {header->time,        header->time_step,         header->stretch, header->geometry.dx,
+                             header->geometry.horizon, header->end_time_original, header->end_time,
+                             header->step_lambda, header->step_stiffness_dt, header->step_shortest, header->step_stretch};
   std::uint64_t hashes[2] = {header->content_hash, header->geometry.hash};
-  PetscCallMPI(MPI_Bcast(ints, 7, MPI_LONG_LONG, 0, comm));
-  PetscCallMPI(MPI_Bcast(reals, 7, MPI_DOUBLE, 0, comm));
+  PetscCallMPI(MPI_Bcast(ints, 10, MPI_LONG_LONG, 0, comm));
+  PetscCallMPI(MPI_Bcast(reals, 11, MPI_DOUBLE, 0, comm));
   PetscCallMPI(MPI_Bcast(hashes, 2, MPI_UINT64_T, 0, comm));
   header->step             = (PetscInt)ints[0];
   header->ranks            = ints[1];
@@ -481,6 +529,13 @@ PetscErrorCode ReadCheckpointHeader(MPI_Comm comm, const std::string &path, Chec
   header->format_version   = ints[4];
   header->static_hold_done = ints[5];
   header->relaxation_records = ints[6];
+  header->step_next_estimate = ints[7];
+  header->step_by_stiffness  = ints[8];
+  header->step_by_travel     = ints[9];
+  header->step_lambda        = reals[7];
+  header->step_stiffness_dt  = reals[8];
+  header->step_shortest      = reals[9];
+  header->step_stretch       = reals[10];
   header->end_time_original = reals[5];
   header->end_time          = reals[6];
   header->time             = reals[0];
@@ -519,6 +574,7 @@ PetscErrorCode ReadCheckpointState(MPI_Comm comm, const std::string &path, const
                : "");
   std::vector<double>        u(2 * order.point_count), v(2 * order.point_count), c33(order.bond_count);
   std::vector<double>        relax_u, relax_a; // -relaxation adaptive, when the file has it
+  std::vector<double>        eigenvector;      // the re-estimated step, when the file has it
   std::vector<std::int32_t>  family_size(order.point_count);
   std::vector<unsigned char> intact(order.bond_count);
   {
@@ -536,6 +592,10 @@ PetscErrorCode ReadCheckpointState(MPI_Comm comm, const std::string &path, const
       PetscCall(f.ReadBlock("/relaxation/displacement", H5T_NATIVE_DOUBLE, P, 2, order.point_start, order.point_count, relax_u.data()));
       PetscCall(f.ReadBlock("/relaxation/acceleration", H5T_NATIVE_DOUBLE, P, 2, order.point_start, order.point_count, relax_a.data()));
     }
+    if (header.step_lambda > 0) {
+      eigenvector.resize(2 * order.point_count);
+      PetscCall(f.ReadBlock("/time_step/eigenvector", H5T_NATIVE_DOUBLE, P, 2, order.point_start, order.point_count, eigenvector.data()));
+    }
     PetscCall(f.Close());
   }
   std::uint64_t hash = 0;
@@ -544,6 +604,11 @@ PetscErrorCode ReadCheckpointState(MPI_Comm comm, const std::string &path, const
     std::uint64_t relax_hash = 0;
     PetscCall(RelaxationHash(comm, order, relax_u.data(), relax_a.data(), &relax_hash));
     hash += relax_hash;
+  }
+  if (header.step_lambda > 0) {
+    std::uint64_t step_hash = 0;
+    PetscCall(EigenvectorHash(comm, order, eigenvector.data(), &step_hash));
+    hash += step_hash;
   }
   hash += HeaderHash(header);
   PetscCheck(hash == header.content_hash, comm, PETSC_ERR_FILE_UNEXPECTED,
@@ -570,6 +635,10 @@ PetscErrorCode ReadCheckpointState(MPI_Comm comm, const std::string &path, const
     }
   if (header.relaxation_records > 0 && state.relaxation_u)
     PetscCall(PairFromNatural(order, owned_points, relax_u, relax_a, state.relaxation_u, state.relaxation_a));
+  if (header.step_lambda > 0 && state.step_eigenvector) {
+    std::vector<double> scratch(2 * owned_points);
+    PetscCall(PairFromNatural(order, owned_points, eigenvector, eigenvector, state.step_eigenvector, scratch.data()));
+  }
   const std::size_t          family_bonds = families.offsets[families.n_family];
   std::vector<unsigned char> intact_local(family_bonds);
   PetscCall(FromNaturalOrder(order.family_bonds, MPI_UNSIGNED_CHAR, intact.data(), intact_local.data()));

@@ -166,23 +166,77 @@ PetscErrorCode CheckRunawayEnergy(const RunawayInputs &inputs, RunawayEnergyMoni
   if (best.rank == mine.rank && fastest_i >= 0)
     where[0] = (double)layout.cloud.natural_id[fastest_i], where[1] = layout.cloud.x[2 * fastest_i], where[2] = layout.cloud.x[2 * fastest_i + 1];
   PetscCallMPI(MPI_Bcast(where, 3, MPI_DOUBLE, best.rank, comm));
-  const double stable = inputs.stable_dt;
-  char         text[1024];
-  std::snprintf(text, sizeof text,
-                "the run diverged at step %" PetscInt_FMT " (t = %.6e s): %s. Fastest point: %.0f, reference position (%.6g, %.6g) m. "
-                "%s: lower -time_step or -time_step_safety (default 0.8)",
-                step, t, monitor.Describe().c_str(), where[0], where[1], where[2],
-                dt > stable ? "The time step is above the stable step, so the explicit scheme amplifies its fastest mode every step"
-                            : "The time step is below the stable step estimated at rest, but the material stiffens as it deforms");
-  std::string reason = text;
-  // With failure, the usual culprit is a running crack: bonds that snap at a large
-  // stretch fling their points through their neighbours within one full step.
-  if (scene.failure && scene.time_step_travel <= 0)
-    reason += "; if bonds were breaking (a running crack), give -time_step_travel 0.1 instead, which shortens only the steps in which points fly (docs/stability.md, section 5)";
-  char        steps[160];
-  std::snprintf(steps, sizeof steps, " (dt = %.4e s, stable estimate %.4e s).", dt, stable);
-  *message = reason + steps;
+  // The cause and its fix follow (DivergenceAdvice, from the last good state).
+  char text[1024];
+  std::snprintf(text, sizeof text, "the run diverged at step %" PetscInt_FMT " (t = %.6e s): %s. Fastest point: %.0f, reference position (%.6g, %.6g) m.",
+                step, t, monitor.Describe().c_str(), where[0], where[1], where[2]);
+  *message = text;
   PetscFunctionReturn(0);
+}
+
+std::string DivergenceAdvice(const DivergenceFacts &f)
+{
+  char text[1024];
+  auto too_long = [&](const char *why) {
+    if (f.step_given)
+      std::snprintf(text, sizeof text,
+                    " Cause: the time step%s. dt = %.4e s is %.3g x the stable step %.4e s of the state reached (%.4e s at rest): "
+                    "lower -time_step below %.3e s, or leave it to the solver (-time_step 0, -time_step_safety 0.8).",
+                    why, f.dt, f.dt / f.stable, f.stable, f.stable_rest, 0.8 * std::min(f.stable, f.stable_rest));
+    else
+      std::snprintf(text, sizeof text,
+                    " Cause: the time step%s. dt = %.4e s is %.3g x the stable step %.4e s of the state reached (%.4e s at rest): "
+                    "lower -time_step_safety (now %g) to %.2g or less%s.",
+                    why, f.dt, f.dt / f.stable, f.stable, f.stable_rest, f.safety,
+                    std::min(0.8, 0.8 * f.safety * std::min(f.stable, f.stable_rest) / f.dt),
+                    f.reestimating ? "" : ", or let the step follow the material (-time_step_reestimate 50)");
+  };
+  // A base step above the stable step at rest: the blow-up starts at once (and may
+  // shorten the re-estimated step on its way, so the step taken last says less).
+  if (std::max(f.dt, f.base) > f.stable_rest)
+    std::snprintf(text, sizeof text,
+                  " Cause: the time step. The base step %.4e s is %.3g x the stable step at rest, %.4e s, so the explicit "
+                  "scheme amplifies its fastest mode every step: %s.",
+                  std::max(f.dt, f.base), std::max(f.dt, f.base) / f.stable_rest, f.stable_rest,
+                  f.step_given ? "lower -time_step, or leave it to the solver (-time_step 0, -time_step_safety 0.8)"
+                               : "lower -time_step_safety to 0.8 (the default) or less");
+  else if (f.chain_reach >= 0.8 && f.chain_reach <= 1.05) // beyond: a state the blow-up already wrecked
+    std::snprintf(text, sizeof text,
+                  " Cause: the Gent chain limit. Bonds reached I1bar - 3 = %.3g x Jm (largest bond stretch %.3g, applied stretch %.4g), "
+                  "where the material stiffens without bound (its stable step fell to %.3g x the one at rest) and no time step "
+                  "keeps up: raise -material_Jm (now %g), or end the load below stretch %.4g, or enable failure "
+                  "(-failure_critical_stretch) so that such bonds break.",
+                  f.chain_reach, f.bond_stretch, f.applied_stretch, f.stable / f.stable_rest, f.Jm, f.applied_stretch);
+  else if (f.plane_strain && f.bulk_ratio >= 1000)
+    std::snprintf(text, sizeof text,
+                  " Cause: a bulk modulus too stiff for plane strain. The step (%.3g x the stable one) is not the problem: with "
+                  "-material_bulk_ratio %g (K / mu) the %splane-strain body locks volumetrically and is unstable whatever the "
+                  "step (docs/stability.md, section 1): lower -material_bulk_ratio to 100%s.",
+                  f.dt / f.stable, f.bulk_ratio, f.bond_only ? "bond-only " : "", f.bond_only ? ", or use -force_form energy_consistent" : "");
+  else if (f.chain_reach > 1.05 && f.Jm > 0 && f.stiffening >= 4) // a wrecked state, but the run saw the stiffening
+    std::snprintf(text, sizeof text,
+                  " Cause: the Gent chain limit. The material stiffened to %.3g x its stiffness at rest as bonds neared the "
+                  "chain limit (applied stretch %.4g), and the state broke down (bond stretch %.3g): raise -material_Jm (now %g), "
+                  "or end the load below stretch %.4g, or enable failure (-failure_critical_stretch) so that such bonds break.",
+                  f.stiffening, f.applied_stretch, f.bond_stretch, f.Jm, f.applied_stretch);
+  else if (!f.reestimating && f.dt > f.stable) too_long(" (the material stiffened; the step was fixed at rest)");
+  else if (f.bond_only && f.damping < 100)
+    std::snprintf(text, sizeof text,
+                  " Cause: flutter of the bond-only force form. The step was below the stable one (dt = %.3g x the stable "
+                  "step at rest), but the bond-only form's stiffness is not symmetric at free edges and its motion grows whatever the "
+                  "step (docs/stability.md, section 1): raise -damping (now %g 1/s; 200 covers the pure shear sheet) or use "
+                  "-force_form energy_consistent, which has no flutter%s%s.",
+                  f.dt / f.stable_rest, f.damping,
+                  f.reestimating ? "" : "; with the step fixed at rest, also let it follow the material (-time_step_reestimate 50)",
+                  f.horizon_factor < 2.5 ? " (with -horizon_factor below 2.5 the bond-only rest state itself can be unstable: "
+                                           "then only the energy-consistent form, or a horizon of 2.5 to 4, helps)" : "");
+  else if (f.dt > f.stable) too_long(" (the material stiffened faster than the re-estimate followed)");
+  else
+    std::snprintf(text, sizeof text,
+                  " Cause: not found. The step (%.3g x the stable one of the state reached) and the material look sound: lower "
+                  "-time_step_safety (now %g), and see docs/stability.md.",
+                  f.dt / f.stable, f.safety);
+  return text;
 }
 
 } // namespace bapd

@@ -117,6 +117,7 @@ PetscErrorCode SceneView(MPI_Comm comm, const Scene &s)
   if (s.time_step > 0) text += Format("  time      step %g s", s.time_step);
   else text += Format("  time      step %g x the stable step", s.time_step_safety);
   if (s.time_step_travel > 0) text += Format(" (shorter while a point with bonds would move > %g dx a step)", s.time_step_travel);
+  else if (s.time_step_travel < 0 && s.failure) text += " (shorter while a point with bonds would move > 0.1 dx a step)";
   text += Format(", damping %g 1/s, end %g s\n", s.damping, s.end_time);
   if (s.static_tolerance > 0)
     text += Format("  static    a hold ends once kinetic energy < %g x internal energy (checked at every history row)\n", s.static_tolerance);

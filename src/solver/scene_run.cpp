@@ -81,7 +81,7 @@ PetscErrorCode ReadOutputTime(MPI_Comm comm, Scene *scene, SceneInput *in)
   PetscCall(ReadOptionBlock(comm, nullptr, "Time stepping (explicit dynamics)", [&](OptionReader &r) -> PetscErrorCode {
     PetscCall(r.Real("-time_step", "Time step [s]; 0: time_step_safety x the estimated stable step", &scene->time_step));
     PetscCall(r.Real("-time_step_safety", "Fraction of the estimated stable step [-], in (0, 1]", &scene->time_step_safety));
-    PetscCall(r.Real("-time_step_travel", "Largest distance a point with bonds may move in one step [dx]; the step shrinks while points move fast (snapping bonds), 0: never", &scene->time_step_travel));
+    PetscCall(r.Real("-time_step_travel", "Largest distance a point with bonds may move in one step [dx]; the step shrinks while points move fast (snapping bonds), 0: never, -1 (default): 0.1 with failure, off without", &scene->time_step_travel));
     PetscCall(r.Real("-damping", "Mass-proportional damping coefficient [1/s], >= 0", &scene->damping));
     PetscCall(r.Real("-static_tolerance", "A hold of the load schedule ends once kinetic/internal energy < this [-] (0: holds run their full length)", &scene->static_tolerance));
     PetscCall(r.Real("-end_time", "End of the run [s] (default: the schedule's last time)", &scene->end_time, &in->end_time_set));
@@ -122,8 +122,8 @@ PetscErrorCode CheckOutputTime(MPI_Comm comm, const SceneInput &in, Scene *scene
                           "may blow up; use a value in (0, 1] (default 0.8)",
                           scene->time_step_safety),
                    true));
-  SceneCheck(scene->time_step_travel >= 0, comm,
-             "-time_step_travel %g must be >= 0: it is the largest distance, in dx, that a point with bonds may move in one step (0, the default: off; 0.1 for running cracks)",
+  SceneCheck(scene->time_step_travel >= 0 || scene->time_step_travel == -1, comm,
+             "-time_step_travel %g must be >= 0: it is the largest distance, in dx, that a point with bonds may move in one step (0: off; -1, the default: 0.1 with failure, off without)",
              scene->time_step_travel);
   SceneCheck(scene->damping >= 0, comm, "-damping %g: the damping coefficient must be >= 0 1/s (0: undamped)", scene->damping);
   SceneCheck(scene->static_tolerance >= 0 && scene->static_tolerance < 1, comm,

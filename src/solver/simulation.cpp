@@ -44,6 +44,7 @@ PetscErrorCode Simulation::Setup()
   PetscCall(SceneFromOptions(comm_, &scene_));
   PetscCall(ReadOutputOptions()); // -output_fields..., -checkpoint_..., -restart
   PetscCall(RelaxationFromOptions(comm_, &relaxation_kind_)); // -relaxation
+  PetscCall(TimeStepOptionsFromOptions(comm_, &time_step_options_)); // -time_step_reestimate ...
   if (scene_.help_only) {
     // -help all: list the time stepper's options too (PETSc's), and stop.
     if (CurrentHelpMode() != HelpMode::bapd) {
@@ -61,7 +62,7 @@ PetscErrorCode Simulation::Setup()
   PetscCall(BuildProbes());
   last_reaction_.assign(2 * scene_.loads.size(), 0.0);
   last_probe_u_.assign(2 * scene_.probes.size(), 0.0);
-  PetscCall(step_control_.EstimateStable(comm_, scene_, layout_, loading_, force_));
+  PetscCall(step_control_.EstimateStable(comm_, scene_, time_step_options_, layout_, loading_, force_));
   PetscCall(SetupRelaxation());
   PetscCall(SetupTimeStepper());
   PetscCall(OpenHistory());
@@ -228,6 +229,7 @@ PetscErrorCode Simulation::PostStep(TS ts)
     if (!runaway.empty()) sim->stop_reason_ = runaway, sim->stopped_on_error_ = true, diverged = PETSC_TRUE;
   }
   if (diverged) {
+    PetscCall(sim->DiagnoseDivergence()); // the cause, from the last good state
     PetscCall(sim->OutputOnDivergence()); // checkpoint of the last good state
     PetscCall(TSSetConvergedReason(ts, TS_DIVERGED_NONLINEAR_SOLVE));
     PetscFunctionReturn(0);
@@ -239,11 +241,13 @@ PetscErrorCode Simulation::PostStep(TS ts)
     PetscCall(sim->failure_.Break(sim->force_.positions(), sim->force_.failed_bonds(), sim->bond_state_, sim->geometry_));
   }
   {
-    // Before any checkpoint: a restart takes the same next step.
+    // Before any checkpoint: a restart takes the same next step (re-estimated about the
+  // latest evaluation when due, shortened while points fly: time_step_control.hpp).
     const double *xr;
     PetscCall(VecGetArrayRead(X, &xr));
-    PetscCall(sim->step_control_.AdaptToTravel(sim->comm_, sim->layout_, sim->families_, sim->bond_state_, xr + n, ts));
+    PetscCall(sim->step_control_.AfterStep(sim->comm_, step, sim->loading_.stretch_at(t), sim->layout_, sim->families_, sim->bond_state_, sim->force_, xr + n, ts));
     PetscCall(VecRestoreArrayRead(X, &xr));
+    sim->relaxation_.FollowStableStep(sim->step_control_.stable_now()); // its cap, 2 omega_max
   }
   if (step % sim->scene_.output_interval == 0) {
     PetscCall(sim->WriteHistoryRow(step, t));

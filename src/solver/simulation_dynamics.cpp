@@ -26,6 +26,7 @@ PetscErrorCode Simulation::Acceleration(const double *u_owned, double *a_owned)
   for (PetscInt k = 0; k < 2 * layout_.n_owned; ++k) a_owned[k] *= inv_rho;
   for (const ConstrainedDof &d : loading_.constrained()) a_owned[d.dof] = 0.0; // the grip moves them
   relaxation_.Record(u_owned, a_owned); // -relaxation adaptive: the last two evaluations
+  step_control_.Record(u_owned, a_owned); // the base point of the next re-estimate of the stable step
   PetscFunctionReturn(0);
 }
 

@@ -45,15 +45,91 @@ PetscErrorCode Simulation::CheckHealth(PetscInt step, double t, PetscBool *diver
   if (global[0] || ((global[1] || global[2]) && !scene_.failure)) {
     *diverged = PETSC_TRUE;
     char msg[512];
+    // What happened; the cause and its fix follow (DiagnoseDivergence).
     if (global[0])
-      std::snprintf(msg, sizeof msg, "the solution became NaN/Inf at step %" PetscInt_FMT " (t = %.6e s). The time step %.4e s is probably too large: lower -time_step or -time_step_safety (stable estimate %.4e s).", step, t, step_control_.current(), step_control_.stable());
+      std::snprintf(msg, sizeof msg, "the solution became NaN/Inf at step %" PetscInt_FMT " (t = %.6e s, dt = %.4e s).", step, t, step_control_.current());
     else if (global[1])
-      std::snprintf(msg, sizeof msg, "%d bond(s) inverted (det F <= 0) at step %" PetscInt_FMT " (t = %.6e s): the run is unstable; lower -time_step or -time_step_safety (stable estimate %.4e s).", global[1], step, t, step_control_.stable());
+      std::snprintf(msg, sizeof msg, "%d bond(s) inverted (det F <= 0) at step %" PetscInt_FMT " (t = %.6e s, dt = %.4e s): the run is unstable.", global[1], step, t, step_control_.current());
     else
-      std::snprintf(msg, sizeof msg, "%d bond(s) reached the Gent chain-extension limit (I1bar - 3 >= Jm) at step %" PetscInt_FMT " (t = %.6e s), where the model has no finite energy: raise -material_Jm, lower the load, or enable failure (-failure_critical_stretch) so such bonds break.", global[2], step, t);
+      std::snprintf(msg, sizeof msg, "%d bond(s) reached the Gent chain-extension limit (I1bar - 3 >= Jm) at step %" PetscInt_FMT " (t = %.6e s), where the model has no finite energy.", global[2], step, t);
     stop_reason_      = std::string(msg) + at;
     stopped_on_error_ = true;
   }
+  PetscFunctionReturn(0);
+}
+
+// What the solver sees at the last good state (the state saved before the step that
+// failed; the current one without -checkpoint_on_error): the stable step of that
+// state by a sharp power iteration, and how close its bonds came to the Gent chain
+// limit. DivergenceAdvice (divergence.hpp) turns it into the cause and the fix.
+// Once, when the run stops: the slow per-bond path is fine here. Collective.
+PetscErrorCode Simulation::DiagnoseDivergence()
+{
+  const bool     good = output_.good_step >= 0;
+  const double  *x;
+  const PetscInt n = 2 * layout_.n_owned;
+
+  PetscFunctionBegin;
+  const std::vector<double> &c33 = good ? output_.good_c33 : force_.warm_start();
+  PetscCall(VecGetArrayRead(good ? output_.good_state : X_, &x));
+  std::vector<double> u(x, x + n);
+  PetscCall(VecRestoreArrayRead(good ? output_.good_state : X_, &x));
+  PetscReal now;
+  PetscCall(TSGetTime(ts_, &now));
+  const double t = good ? output_.good_time : now;
+
+  DivergenceFacts f;
+  f.dt          = step_control_.current();
+  f.base        = step_control_.base();
+  f.stable_rest = step_control_.stable();
+  f.step_given  = scene_.time_step > 0 || step_control_.base() != scene_.time_step_safety * step_control_.stable();
+  f.safety      = scene_.time_step_safety;
+  f.plane_strain = scene_.formulation == Formulation::plane_strain;
+  f.bond_only    = scene_.force_form == ForceForm::bond_only;
+  f.bulk_ratio   = 2.0 / (scene_.material.D * scene_.material.mu);
+  f.damping      = scene_.damping;
+  f.reestimating = step_control_.reestimating();
+  f.horizon_factor = scene_.horizon_factor;
+  f.stiffening     = step_control_.largest_lambda() / step_control_.lambda_rest();
+  f.applied_stretch = loading_.stretch_at(t);
+  PetscCall(step_control_.SharpEstimate(comm_, force_, u.data(), c33, 40, &f.stable));
+  if (!std::isfinite(f.stable) || f.stable <= 0) f.stable = step_control_.stable_now();
+
+  // Chain reach: max over owned bonds of (I1bar - 3) / Jm, I1bar = tr(C) J^{-2/3}
+  // with C = diag(F~^T F~, C33) (C33 = 1 in plane strain; hyperelastic.hpp).
+  double reach[2] = {0.0, 1.0}; // reach, the bond stretch there
+  if (scene_.model == ModelKind::gent) {
+    PetscCall(force_.UpdatePositions(u.data()));
+    const double *y = force_.positions();
+    for (PetscInt i = 0; i < layout_.n_owned; ++i)
+      for (std::size_t q = 0; q < families_.size((std::size_t)i); ++q) {
+        if (!bond_state_.is_intact((std::size_t)i, q) || !geometry_.is_usable((std::size_t)i, q)) continue;
+        const Mat2   F   = bond_deformation_gradient(layout_.cloud, y, families_, geometry_, bond_state_, (std::size_t)i, q);
+        const double C33 = f.plane_strain ? 1.0 : c33[families_.offsets[i] + q];
+        const double J   = det(F) * std::sqrt(C33);
+        if (!(J > 0) || !(C33 > 0)) continue;
+        const double c11 = F[0] * F[0] + F[2] * F[2], c22 = F[1] * F[1] + F[3] * F[3], c12 = F[0] * F[1] + F[2] * F[3];
+        const double I1bar = (c11 + c22 + C33) * std::pow(J, -2.0 / 3.0);
+        const double r     = (I1bar - 3.0) / scene_.material.Jm;
+        if (r > reach[0]) {
+          const double mean = 0.5 * (c11 + c22), dev = std::sqrt(0.25 * (c11 - c22) * (c11 - c22) + c12 * c12);
+          reach[0] = r, reach[1] = std::sqrt(mean + dev);
+        }
+      }
+    struct {
+      double value;
+      int    rank;
+    } mine = {reach[0], rank_}, best;
+    PetscCallMPI(MPI_Allreduce(&mine, &best, 1, MPI_DOUBLE_INT, MPI_MAXLOC, comm_));
+    PetscCallMPI(MPI_Bcast(reach, 2, MPI_DOUBLE, best.rank, comm_));
+    f.Jm = scene_.material.Jm;
+  }
+  f.chain_reach  = reach[0];
+  f.bond_stretch = reach[1];
+  if (time_step_options_.monitor)
+    PetscCall(PetscPrintf(comm_, "Diagnosis at the last good state: dt %.4e s, stable %.4e s (at rest %.4e s), chain reach %.4g (bond stretch %.4g), applied stretch %.4g\n",
+                          f.dt, f.stable, f.stable_rest, f.chain_reach, f.bond_stretch, f.applied_stretch));
+  stop_reason_ += DivergenceAdvice(f);
   PetscFunctionReturn(0);
 }
 

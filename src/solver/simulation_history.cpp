@@ -103,7 +103,7 @@ PetscErrorCode Simulation::OpenHistory()
     for (const LoadSet &s : scene_.loads)
       std::fprintf(history_, ",%s_reaction_x_N,%s_reaction_y_N,%s_nominal_stress_Pa", s.name.c_str(), s.name.c_str(), s.name.c_str());
     for (const Probe &p : scene_.probes) std::fprintf(history_, ",%s_ux_m,%s_uy_m", p.name.c_str(), p.name.c_str());
-    std::fprintf(history_, ",kinetic_energy_J,internal_energy_J,broken_bonds\n");
+    std::fprintf(history_, ",kinetic_energy_J,internal_energy_J,broken_bonds,dt_s\n"); // dt_s: the next step (time_step_control.hpp)
   }
   PetscCall(WriteHistoryRow(0, 0.0));
   PetscFunctionReturn(0);
@@ -179,7 +179,8 @@ PetscErrorCode Simulation::WriteHistoryRow(PetscInt step, double t)
     for (std::size_t s = 0; s < scene_.loads.size(); ++s)
       std::fprintf(history_, ",%.17g,%.17g,%.17g", reaction[2 * s], reaction[2 * s + 1], reaction[2 * s + 1] / area);
     for (std::size_t p = 0; p < probes_.size(); ++p) std::fprintf(history_, ",%.17g,%.17g", probe_u[2 * p], probe_u[2 * p + 1]);
-    std::fprintf(history_, ",%.17g,%.17g,%" PetscInt_FMT "\n", last_kinetic_, last_internal_, broken);
+    std::fprintf(history_, ",%.17g,%.17g,%" PetscInt_FMT ",%.17g
+", last_kinetic_, last_internal_, broken, step_control_.current());
     error = FinishRows(history_, row_start);
   }
   PetscCallMPI(MPI_Bcast(&error, 1, MPI_INT, 0, comm_)); // rank 0 wrote: every rank stops alike

@@ -143,7 +143,7 @@ PetscErrorCode Simulation::OutputOnDivergence()
   PetscCall(WriteCheckpointFile(output_.good_step, output_.good_time, "last good state"));
   const std::string path = scene_.output_dir + "/checkpoint.h5";
   char              msg[512];
-  std::snprintf(msg, sizeof msg, " The last good state (step %" PetscInt_FMT ", t = %.6e s) is saved in %s: continue from it with -restart %s and a smaller -time_step_safety.",
+  std::snprintf(msg, sizeof msg, " The last good state (step %" PetscInt_FMT ", t = %.6e s) is saved in %s: continue from it with -restart %s and the change above.",
                 output_.good_step, output_.good_time, path.c_str(), path.c_str());
   stop_reason_ += msg;
   PetscFunctionReturn(0);
@@ -261,6 +261,19 @@ PetscErrorCode Simulation::WriteCheckpointFile(PetscInt step, double t, const ch
     state.relaxation_u        = relaxation_.latest_u();
     state.relaxation_a        = relaxation_.latest_a();
   }
+  // The re-estimated step: its state and eigenvector (time_step_control.hpp); not for
+  // the last good state either (the continuation starts from the estimate at rest).
+  if (step_control_.reestimating() && std::strcmp(reason, "last good state") != 0) {
+    const TimeStepState s    = step_control_.state();
+    header.step_lambda        = s.lambda;
+    header.step_stiffness_dt  = s.stiffness_dt;
+    header.step_shortest      = s.shortest;
+    header.step_next_estimate = s.next_estimate;
+    header.step_by_stiffness  = s.by_stiffness;
+    header.step_by_travel     = s.by_travel;
+    header.step_stretch       = s.stretch;
+    state.step_eigenvector    = step_control_.eigenvector();
+  }
   const PetscErrorCode written = WriteCheckpoint(comm_, path, output_.order, families_, &header, state);
   PetscCall(VecRestoreArray(X_, &x)); // also when the checkpoint could not be written
   PetscCall(written);
@@ -309,6 +322,7 @@ PetscErrorCode Simulation::RestoreCheckpoint()
     state.relaxation_u = relaxation_.latest_u();
     state.relaxation_a = relaxation_.latest_a();
   }
+  if (step_control_.reestimating()) state.step_eigenvector = step_control_.eigenvector();
   PetscCall(ReadCheckpointState(comm_, path, output_.order, families_, header, output_.geometry, state));
   if (relaxation_.active()) relaxation_.RestoreLatest((int)header.relaxation_records);
   PetscCall(VecRestoreArray(X_, &x));
@@ -326,9 +340,20 @@ PetscErrorCode Simulation::RestoreCheckpoint()
                                    " (the options stored in the checkpoint count): this run takes no step. Give a larger -ts_max_steps.\n\n",
                             (PetscInt)header.step, max_steps));
   }
-  // A step shortened by -time_step_travel goes on as it was: the continuation is then
-  // the uninterrupted run. A new, shorter base step (a smaller -time_step_safety) wins.
-  PetscCall(step_control_.ContinueShortened(header.time_step, ts_));
+  // A step shortened by stiffness or -time_step_travel goes on as it was, and so does
+  // the re-estimate: the continuation is then the uninterrupted run. A new, shorter
+  // base step (a smaller -time_step_safety) wins.
+  {
+    TimeStepState s;
+    s.lambda        = step_control_.reestimating() ? header.step_lambda : 0;
+    s.stiffness_dt  = header.step_stiffness_dt;
+    s.shortest      = header.step_shortest;
+    s.next_estimate = (PetscInt)header.step_next_estimate;
+    s.by_stiffness  = (PetscInt)header.step_by_stiffness;
+    s.by_travel     = (PetscInt)header.step_by_travel;
+    s.stretch       = header.step_stretch;
+    PetscCall(step_control_.Restore(header.time_step, s, ts_));
+  }
   if (header.time_step != step_control_.current())
     PetscCall(PetscPrintf(comm_, "Note: the checkpoint was written with dt = %.6e s; this run uses dt = %.6e s\n", header.time_step,
                           step_control_.current()));

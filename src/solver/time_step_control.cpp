@@ -3,10 +3,53 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "bapd/reproducible_sum.hpp"
 
 namespace bapd {
+
+PetscErrorCode TimeStepOptionsFromOptions(MPI_Comm comm, TimeStepOptions *options)
+{
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(comm, nullptr, "Time step that follows the material", "bapd");
+  PetscCall(PetscOptionsInt("-time_step_reestimate",
+                            "Time steps between re-estimates of the stable step from the current state [-] (0: the step at rest "
+                            "for the whole run, as in the paper)",
+                            "docs/options.md", options->interval, &options->interval, nullptr));
+  PetscCall(PetscOptionsInt("-time_step_reestimate_iterations", "Power iterations per re-estimate [-], >= 1 (one force evaluation each)",
+                            "docs/options.md", options->iterations, &options->iterations, nullptr));
+  PetscCall(PetscOptionsReal("-time_step_band",
+                             "Dead band of the re-estimated step [-], in [0, 0.5): it shrinks or grows back only when the stable step "
+                             "moved by more than this fraction",
+                             "docs/options.md", options->band, &options->band, nullptr));
+  PetscCall(PetscOptionsInt("-time_step_reestimate_max_iterations", "Most power iterations per re-estimate [-] while the estimate still moves",
+                            "docs/options.md", options->max_iterations, &options->max_iterations, nullptr));
+  PetscCall(PetscOptionsReal("-time_step_reestimate_tolerance", "A re-estimate stops once lambda_max moves by less than this fraction per iteration [-]",
+                             "docs/options.md", options->tolerance, &options->tolerance, nullptr));
+  PetscCall(PetscOptionsReal("-time_step_floor",
+                             "The re-estimated step is at least this fraction of the base step [-], in (0, 1] (default -1: 0.1, or 0.5 "
+                             "with failure, where the travel limit handles the bonds about to snap)",
+                             "docs/options.md", options->floor, &options->floor, nullptr));
+  PetscCall(PetscOptionsReal("-time_step_reestimate_stretch", "Re-estimate also whenever the applied stretch moved by this much since the last one [-] (fast ramps)",
+                             "docs/options.md", options->stretch, &options->stretch, nullptr));
+  PetscCall(PetscOptionsReal("-time_step_shift", "Shift of the re-estimate's power iteration, a fraction of the last lambda_max [-], in [0, 0.5]",
+                             "docs/options.md", options->shift, &options->shift, nullptr));
+  PetscCall(PetscOptionsBool("-time_step_monitor", "Print a line per re-estimate of the stable step (step, lambda_max, stable step, step in use)",
+                             "docs/options.md", options->monitor, &options->monitor, nullptr));
+  PetscOptionsEnd();
+  PetscCheck(options->interval >= 0, comm, PETSC_ERR_USER,
+             "-time_step_reestimate %" PetscInt_FMT ": give the number of steps between re-estimates (>= 1), or 0 to keep the step at rest",
+             options->interval);
+  PetscCheck(options->iterations >= 1, comm, PETSC_ERR_USER,
+             "-time_step_reestimate_iterations %" PetscInt_FMT ": give at least 1 power iteration per re-estimate (default 2)",
+             options->iterations);
+  PetscCheck(options->floor == -1 || (options->floor > 0 && options->floor <= 1), comm, PETSC_ERR_USER,
+             "-time_step_floor %g: give a fraction of the base step in (0, 1], or -1 for the solver's choice", options->floor);
+  PetscCheck(options->band >= 0 && options->band < 0.5, comm, PETSC_ERR_USER,
+             "-time_step_band %g: give a fraction in [0, 0.5) (default 0.05)", options->band);
+  PetscFunctionReturn(0);
+}
 
 namespace {
 
@@ -22,23 +65,65 @@ PetscErrorCode ProbeAcceleration(ForceOperator &force, std::vector<double> &c33,
 
 } // namespace
 
-// Stable step of the linearised system at the reference state, by power iteration on
-// M^{-1} K with K v = -(f(eps v) - f(0)) / eps (the bond kernel itself, so every
-// model, horizon and formulation is covered). Velocity Verlet is stable for
-// dt < 2 / sqrt(lambda_max). Norms are reproducible sums: dt is the same on any
-// number of ranks.
-PetscErrorCode TimeStepControl::EstimateStable(MPI_Comm comm, const Scene &scene, const Layout &layout, const Loading &loading,
-                                               ForceOperator &force)
+// One power iteration about (u0, a0 = M^{-1} f(u0)): v <- A v with A v = -(a(u0 + eps
+// v/|v|) - a0) / eps, and the Rayleigh quotient of the unit vector v/|v|. The
+// warm starts C33 are the caller's copy (c33_), so the operator's are untouched.
+PetscErrorCode TimeStepControl::PowerStep(MPI_Comm comm, ForceOperator &force, const double *u0, const double *a0, double shift, double *lambda)
 {
-  const PetscInt      n = 2 * layout.n_owned;
-  std::vector<double> v(n), Av(n), u(n, 0.0), a0(n);
-  std::vector<char>   held(n, 0);
-  std::vector<double> c33(force.warm_start().size(), 0.0); // the iteration's own warm starts
-  const double        inv_rho = 1.0 / scene.density;
+  const PetscInt n = (PetscInt)v_.size();
+  double         norm2;
 
   PetscFunctionBegin;
-  travel_ = scene.time_step_travel * scene.body.dx;
-  for (const ConstrainedDof &d : loading.constrained()) held[d.dof] = 1;
+  for (PetscInt k = 0; k < n; ++k) sq_[k] = v_[k] * v_[k];
+  PetscCall(ReproducibleSum(comm, 1, n, sq_.data(), &norm2));
+  PetscCheck(norm2 > 0, comm, PETSC_ERR_USER, "Every degree of freedom is held by a load set: nothing moves");
+  const double inv = 1.0 / std::sqrt(norm2);
+  for (PetscInt k = 0; k < n; ++k) u_probe_[k] = u0[k] + eps_ * v_[k] * inv;
+  PetscCall(ProbeAcceleration(force, c33_, inv_rho_, held_, u_probe_.data(), a_probe_.data()));
+  ++evaluations_;
+  for (PetscInt k = 0; k < n; ++k) a_probe_[k] = held_[k] ? 0.0 : -(a_probe_[k] - a0[k]) / eps_;
+  for (PetscInt k = 0; k < n; ++k) sq_[k] = a_probe_[k] * v_[k] * inv;
+  PetscCall(ReproducibleSum(comm, 1, n, sq_.data(), lambda));
+  if (shift > 0)
+    for (PetscInt k = 0; k < n; ++k) a_probe_[k] -= shift * v_[k] * inv;
+  std::swap(v_, a_probe_);
+  PetscFunctionReturn(0);
+}
+
+// Stable step of the linearised system at the reference state, by power iteration on
+// M^{-1} K (the bond kernel itself, so every model, horizon and formulation is
+// covered), 60 iterations from a deterministic start. Norms are reproducible sums: dt
+// is the same on any number of ranks.
+PetscErrorCode TimeStepControl::EstimateStable(MPI_Comm comm, const Scene &scene, const TimeStepOptions &options, const Layout &layout,
+                                               const Loading &loading, ForceOperator &force)
+{
+  const PetscInt n = 2 * layout.n_owned;
+
+  PetscFunctionBegin;
+  options_ = options;
+  inv_rho_ = 1.0 / scene.density;
+  eps_     = 1e-7 * scene.body.dx;
+  // -time_step_travel: given, or chosen here. With failure on, bonds that snap fling
+  // their points at many times the wave speed at rest (docs/stability.md, section 5):
+  // 0.1 dx a step is what the torn sheets need (0.3 is not enough). A step that the
+  // user set above the stable one is left alone, so that its blow-up is reported
+  // instead of hidden by a step shortened while the points fly apart.
+  // The floor of the stiffness step. With failure, a bond about to snap or invert at
+  // a crack tip drives lambda_max to 1e6 x its value at rest (measured on the notched
+  // sheet): following it would stop the run, and such points are the travel limit's
+  // (section 5), so the stiffness step stays above half the base step.
+  floor_        = options_.floor > 0 ? options_.floor : (scene.failure ? 0.5 : 0.1);
+  travel_auto_  = scene.time_step_travel < 0;
+  travel_given_ = (travel_auto_ ? (scene.failure ? 0.1 : 0.0) : scene.time_step_travel) * scene.body.dx;
+  held_.assign(n, 0);
+  for (const ConstrainedDof &d : loading.constrained()) held_[d.dof] = 1;
+  v_.assign(n, 0.0);
+  u_rec_.assign(n, 0.0);
+  a_rec_.assign(n, 0.0);
+  u_probe_.assign(n, 0.0);
+  a_probe_.assign(n, 0.0);
+  sq_.assign(n, 0.0);
+  c33_.assign(force.warm_start().size(), 0.0); // the iteration's own warm starts
   // A deterministic start with energy in every wavelength: a hash of the natural id.
   for (PetscInt i = 0; i < layout.n_owned; ++i)
     for (int c = 0; c < 2; ++c) {
@@ -46,34 +131,30 @@ PetscErrorCode TimeStepControl::EstimateStable(MPI_Comm comm, const Scene &scene
       h ^= h >> 33;
       h *= 0xff51afd7ed558ccdULL;
       h ^= h >> 33;
-      v[2 * i + c] = held[2 * i + c] ? 0.0 : (double)(h >> 11) / 9007199254740992.0 - 0.5;
+      v_[2 * i + c] = held_[2 * i + c] ? 0.0 : (double)(h >> 11) / 9007199254740992.0 - 0.5;
     }
-  PetscCall(ProbeAcceleration(force, c33, inv_rho, held, u.data(), a0.data()));
-  const double        eps_scale = 1e-7 * scene.body.dx;
-  double              lambda    = 0.0;
-  std::vector<double> sq(n);
-  const PetscInt      iterations = 60;
-  for (PetscInt it = 0; it < iterations; ++it) {
-    double norm2;
-    for (PetscInt k = 0; k < n; ++k) sq[k] = v[k] * v[k];
-    PetscCall(ReproducibleSum(comm, 1, n, sq.data(), &norm2));
-    PetscCheck(norm2 > 0, comm, PETSC_ERR_USER, "Every degree of freedom is held by a load set: nothing moves");
-    const double inv = 1.0 / std::sqrt(norm2);
-    for (PetscInt k = 0; k < n; ++k) u[k] = eps_scale * v[k] * inv;
-    PetscCall(ProbeAcceleration(force, c33, inv_rho, held, u.data(), Av.data()));
-    for (PetscInt k = 0; k < n; ++k) Av[k] = held[k] ? 0.0 : -(Av[k] - a0[k]) / eps_scale;
-    // Rayleigh quotient with the unit vector v/|v|.
-    for (PetscInt k = 0; k < n; ++k) sq[k] = Av[k] * v[k] * inv;
-    PetscCall(ReproducibleSum(comm, 1, n, sq.data(), &lambda));
-    std::swap(v, Av);
-  }
+  seed_ = v_;
+  std::vector<double> u0(n, 0.0), a0(n); // set-up only
+  PetscCall(ProbeAcceleration(force, c33_, inv_rho_, held_, u0.data(), a0.data()));
+  double lambda = 0.0;
+  for (PetscInt it = 0; it < 60; ++it) PetscCall(PowerStep(comm, force, u0.data(), a0.data(), 0.0, &lambda));
+  evaluations_ = 0; // counts the re-estimates' cost only
   PetscCheck(std::isfinite(lambda) && lambda > 0, comm, PETSC_ERR_USER,
              "Could not estimate a stable time step (lambda_max = %g): check -material_mu, -material_D and -material_density", lambda);
   // The Rayleigh quotient approaches lambda_max from below: pad it by 10 %.
-  stable_dt_ = 2.0 / std::sqrt(1.1 * lambda);
+  lambda_rest_ = lambda_ = lambda_largest_ = lambda;
+  stable_dt_ = stable_now_ = 2.0 / std::sqrt(1.1 * lambda);
   SetBaseStep(scene.time_step > 0 ? scene.time_step : scene.time_step_safety * stable_dt_);
+  next_estimate_    = options_.interval;
+  estimate_stretch_ = loading.stretch_at(0.0);
   PetscCall(PetscPrintf(comm, "Stable time step %.4e s (power iteration, lambda_max = %.4e 1/s^2); using dt = %.4e s (%.3g x stable)\n",
                         stable_dt_, lambda, dt_, dt_ / stable_dt_));
+  if (options_.interval > 0)
+    PetscCall(PetscPrintf(comm, "Time step: re-estimated every %" PetscInt_FMT " steps (%" PetscInt_FMT " to %" PetscInt_FMT " power iterations about the current state), at most %.4e s%s\n",
+                          options_.interval, options_.iterations, std::max(options_.iterations, options_.max_iterations), dt_,
+                          travel_ > 0 ? "; shorter while points with bonds fly" : ""));
+  if (travel_ > 0 && travel_auto_)
+    PetscCall(PetscPrintf(comm, "Time step: with failure on, no point with bonds moves more than 0.1 dx in one step (-time_step_travel 0 turns it off)\n"));
   if (dt_ > stable_dt_)
     PetscCall(PetscPrintf(comm, "\n*** WARNING: dt = %.4e s is LARGER than the stable step %.4e s: expect the run to blow up.\n"
                                 "*** Lower -time_step (or -time_step_safety below 1).\n\n",
@@ -81,47 +162,176 @@ PetscErrorCode TimeStepControl::EstimateStable(MPI_Comm comm, const Scene &scene
   PetscFunctionReturn(0);
 }
 
-// The step for the next step. Bonds that snap at a large stretch fling their points at
-// many times the wave speed at rest; a step that lets such a point travel a sizeable
-// part of dx carries it past its neighbours, and the inverted bond-associated F that
-// follows gives a huge stress and a blow-up within a step (docs/stability.md,
-// section 5). So the step shrinks until no point that still has a bond moves more
-// than -time_step_travel dx, and returns to base_dt_ once they slow down. Points
-// without bonds move freely and do not count. The maximum is exact (MPI_MAX of
-// doubles), so the step is the same on any number of ranks.
-PetscErrorCode TimeStepControl::AdaptToTravel(MPI_Comm comm, const Layout &layout, const Families &families, const BondState &state,
-                                              const double *v, TS ts)
+void TimeStepControl::SetBaseStep(double dt)
+{
+  dt_ = base_dt_ = stiffness_dt_ = dt;
+  travel_ = travel_auto_ && dt > stable_dt_ ? 0.0 : travel_given_;
+}
+
+void TimeStepControl::Record(const double *u, const double *a)
+{
+  if (options_.interval <= 0) return;
+  std::memcpy(u_rec_.data(), u, sizeof(double) * u_rec_.size());
+  std::memcpy(a_rec_.data(), a, sizeof(double) * a_rec_.size());
+  recorded_ = true;
+}
+
+// A few power iterations about the latest evaluation of the dynamics, warm-started from
+// the last eigenvector: the Rayleigh quotient follows lambda_max as the state changes.
+// The C33 warm starts are a copy of the operator's committed ones (converged at that
+// very state), so the operator is left as it was and a restart (which restores them)
+// repeats the estimate bit for bit.
+PetscErrorCode TimeStepControl::Reestimate(MPI_Comm comm, ForceOperator &force)
 {
   PetscFunctionBegin;
-  if (travel_ <= 0) PetscFunctionReturn(0);
-  const std::size_t W      = families.mask_words;
-  double            v2_max = 0.0;
-  for (PetscInt i = 0; i < layout.n_owned; ++i) {
-    const std::uint64_t *intact = state.intact_mask((std::size_t)i);
-    std::uint64_t        any    = 0;
-    for (std::size_t w = 0; w < W; ++w) any |= intact[w];
-    if (!any) continue;
-    const double vx = v[2 * i], vy = v[2 * i + 1];
-    v2_max = std::max(v2_max, vx * vx + vy * vy);
+  const double               wall      = MPI_Wtime();
+  const std::vector<double> &committed = force.warm_start();
+  std::copy(committed.begin(), committed.end(), c33_.begin());
+  // At least `iterations` iterations, more (up to max_iterations) while the quotient
+  // still moves by more than `tolerance`: in a steady state the warm start is already
+  // converged and one iteration confirms it; when the fastest mode moves elsewhere
+  // (stiffening at a hole, a crack tip) the quotient climbs and the iteration follows.
+  double lambda = 0, previous = lambda_;
+  for (PetscInt it = 0; it < options_.max_iterations; ++it) {
+    PetscCall(PowerStep(comm, force, u_rec_.data(), a_rec_.data(), options_.shift * lambda_, &lambda));
+    const bool settled = std::fabs(lambda - previous) <= options_.tolerance * std::fabs(lambda);
+    previous           = lambda;
+    if (it + 1 >= options_.iterations && (settled || !std::isfinite(lambda))) break;
   }
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &v2_max, 1, MPI_DOUBLE, MPI_MAX, comm));
-  double dt = base_dt_;
-  if (v2_max * dt * dt > travel_ * travel_) dt = travel_ / std::sqrt(v2_max);
+  ++estimates_;
+  // A quotient that is not positive or not finite (a static instability, a NaN the
+  // health check reports) says nothing about the fastest mode: keep the last one.
+  if (std::isfinite(lambda) && lambda > 0) lambda_ = lambda;
+  else if (!std::isfinite(lambda)) v_ = seed_; // a NaN must not stay in the vector: the start again (no allocation: same size)
+  lambda_largest_ = std::max(lambda_largest_, lambda_);
+  stable_now_     = 2.0 / std::sqrt(1.1 * lambda_);
+  estimate_wall_ += MPI_Wtime() - wall;
+  PetscFunctionReturn(0);
+}
+
+// After a step: the re-estimate when due, then the step. The stiffness step keeps the
+// ratio of the base step to the stable one (the safety factor, or whatever -time_step
+// or -ts_dt gave), bounded by the base step; it moves only outside the dead band.
+// While lambda moves by more than the band between two estimates the next one comes
+// a step later, so a fast stiffening is followed closely; a steady state costs
+// iterations / interval force evaluations per step.
+// The travel limit: bonds that snap at a large stretch fling their points at many
+// times the wave speed at rest; a step that lets such a point travel a sizeable part
+// of dx carries it past its neighbours, and the inverted bond-associated F that
+// follows gives a huge stress and a blow-up within a step (docs/stability.md,
+// section 5). So the step shrinks until no point that still has a bond moves more
+// than the travel limit, and returns once they slow down. The maximum is exact
+// (MPI_MAX of doubles), so the step is the same on any number of ranks.
+PetscErrorCode TimeStepControl::AfterStep(MPI_Comm comm, PetscInt step, double stretch, const Layout &layout, const Families &families,
+                                          const BondState &state, ForceOperator &force, const double *v, TS ts)
+{
+  PetscFunctionBegin;
+  // Due after `interval` steps, or sooner on a fast ramp: a ramp of the fast route
+  // (0.05 s, 30 steps) stiffens a Jm = 3 gel past its step between two estimates
+  // (docs/stability.md, section 8).
+  const bool due = step >= next_estimate_ || std::fabs(stretch - estimate_stretch_) > options_.stretch;
+  if (options_.interval > 0 && recorded_ && due) {
+    estimate_stretch_ = stretch;
+    const double before = lambda_;
+    PetscCall(Reestimate(comm, force));
+    // Shrinks at once; grows back by at most 2 x band per estimate: a quotient that
+    // drops is not trusted at once (the warm-started iteration can lose the fastest
+    // mode for a while when it moves: a Jm = 3 plate at stretch 2 showed lambda_max
+    // 17 x, then 0.6 x the value at rest 50 steps later, and blew up at the full step).
+    const double target = std::clamp(base_dt_ * std::sqrt(lambda_rest_ / lambda_), floor_ * base_dt_, base_dt_);
+    if (target < (1.0 - options_.band) * stiffness_dt_) stiffness_dt_ = target;
+    else if (target > (1.0 + options_.band) * stiffness_dt_) stiffness_dt_ = std::min(target, (1.0 + 2.0 * options_.band) * stiffness_dt_);
+    // Stiffening by more than the band, or a step still growing back: the next
+    // estimate comes sooner (a fifth of the interval: a tenth cost 6 % of the fast plate).
+    const bool sooner = lambda_ > (1.0 + options_.band) * before || stiffness_dt_ < target;
+    next_estimate_    = step + (sooner ? std::max<PetscInt>(1, options_.interval / 5) : options_.interval);
+    if (options_.monitor)
+      PetscCall(PetscPrintf(comm, "re-estimate %" PetscInt_FMT " after step %" PetscInt_FMT ": lambda_max %.6e 1/s^2 (%.4g x at rest), stable %.4e s, stiffness step %.4e s (%.4g x base), %" PetscInt_FMT " force evaluations, %.3f s so far\n",
+                            estimates_, step, lambda_, lambda_ / lambda_rest_, stable_now_, stiffness_dt_, stiffness_dt_ / base_dt_, evaluations_,
+                            estimate_wall_));
+  }
+  double dt = stiffness_dt_;
+  bool   flying = false;
+  if (travel_ > 0) {
+    const std::size_t W      = families.mask_words;
+    double            v2_max = 0.0;
+    for (PetscInt i = 0; i < layout.n_owned; ++i) {
+      const std::uint64_t *intact = state.intact_mask((std::size_t)i);
+      std::uint64_t        any    = 0;
+      for (std::size_t w = 0; w < W; ++w) any |= intact[w];
+      if (!any) continue;
+      const double vx = v[2 * i], vy = v[2 * i + 1];
+      v2_max = std::max(v2_max, vx * vx + vy * vy);
+    }
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &v2_max, 1, MPI_DOUBLE, MPI_MAX, comm));
+    if (v2_max * dt * dt > travel_ * travel_) dt = travel_ / std::sqrt(v2_max), flying = true;
+  }
+  // While the travel limit holds the step below the stiffness step, the re-estimates
+  // wait: counted in steps, they would come ever more often in simulated time as the
+  // step shrinks (a running crack at 0.04 x the base step spent 20 % of the run in
+  // them), and the stiffness step does not set the step then anyway.
+  if (flying && options_.interval > 0) ++next_estimate_;
   if (dt != dt_) {
     dt_ = dt;
     PetscCall(TSSetTimeStep(ts, dt_));
   }
   if (dt_ < base_dt_) {
-    ++shortened_steps_;
+    if (flying) ++by_travel_;
+    else ++by_stiffness_;
     shortest_dt_ = shortest_dt_ > 0 ? std::min(shortest_dt_, dt_) : dt_;
   }
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode TimeStepControl::ContinueShortened(double dt, TS ts)
+PetscErrorCode TimeStepControl::SharpEstimate(MPI_Comm comm, ForceOperator &force, const double *u, const std::vector<double> &c33,
+                                             PetscInt iterations, double *stable)
 {
   PetscFunctionBegin;
-  if (travel_ > 0 && dt > 0 && dt < base_dt_) {
+  std::copy(u, u + u_rec_.size(), u_rec_.begin());
+  std::copy(c33.begin(), c33.end(), c33_.begin());
+  PetscCall(ProbeAcceleration(force, c33_, inv_rho_, held_, u_rec_.data(), a_rec_.data()));
+  double lambda = lambda_, best = lambda_;
+  for (PetscInt it = 0; it < iterations; ++it) {
+    PetscCall(PowerStep(comm, force, u_rec_.data(), a_rec_.data(), options_.shift * best, &lambda));
+    if (std::isfinite(lambda) && lambda > best) best = lambda;
+  }
+  *stable = 2.0 / std::sqrt(1.1 * best);
+  PetscFunctionReturn(0);
+}
+
+TimeStepState TimeStepControl::state() const
+{
+  TimeStepState s;
+  s.lambda        = lambda_;
+  s.stiffness_dt  = stiffness_dt_;
+  s.next_estimate = next_estimate_;
+  s.stretch       = estimate_stretch_;
+  s.by_stiffness  = by_stiffness_;
+  s.by_travel     = by_travel_;
+  s.shortest      = shortest_dt_;
+  return s;
+}
+
+// Restart: the step in use goes on as it was (a step shortened by stiffness or travel
+// included), and so does the estimate; eigenvector() was filled from the checkpoint.
+// A new, shorter base step (a smaller -time_step_safety) wins. state.lambda == 0: a
+// checkpoint without the estimate (older format): start it again from the rest
+// estimate's vector.
+PetscErrorCode TimeStepControl::Restore(double dt, const TimeStepState &state, TS ts)
+{
+  PetscFunctionBegin;
+  if (state.lambda > 0) {
+    lambda_         = state.lambda;
+    lambda_largest_ = std::max(lambda_largest_, lambda_);
+    stable_now_     = 2.0 / std::sqrt(1.1 * lambda_);
+    stiffness_dt_   = std::min(base_dt_, state.stiffness_dt);
+    next_estimate_  = state.next_estimate;
+    estimate_stretch_ = state.stretch;
+    by_stiffness_   = state.by_stiffness;
+    by_travel_      = state.by_travel;
+    shortest_dt_    = state.shortest;
+  }
+  if (dt > 0 && dt < base_dt_ && (travel_ > 0 || options_.interval > 0)) {
     dt_ = dt;
     PetscCall(TSSetTimeStep(ts, dt_));
   }

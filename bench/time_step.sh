@@ -1,0 +1,47 @@
+#!/usr/bin/env bash
+# The cost of re-estimating the stable step (issue 15): each scene run side by side
+# with the step fixed at rest (-time_step_reestimate 0) and with the default
+# re-estimate, one rank, the same number of steps. Prints a markdown table: wall time
+# of both runs, the time the re-estimates took (-time_step_monitor, measured inside
+# the run, so it does not depend on the load of the machine the way the difference of
+# two wall times does), their force evaluations, and the step at the end.
+#   bench/time_step.sh [STEPS] [OUTPUT_DIR] [SCENE ...]
+# (default 1000 steps, /tmp/bapd_time_step, scenes plate plate_Jm8 notched; a STEPS past
+# a scene's end runs it whole).
+set -euo pipefail
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+steps="${1:-1000}"
+out="${2:-/tmp/bapd_time_step}"
+exe="${BAPD_EXE:-$here/build/bapd}"
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+shift 2 || shift $# || true
+names=("$@")
+((${#names[@]})) || names=(plate plate_Jm8 notched)
+mkdir -p "$out"
+declare -A scenes=(
+  [plate]="-options_file_yaml $here/examples/plate_hole.yaml -options_file_yaml $here/examples/plate_hole_fast.yaml"
+  [plate_Jm8]="-options_file_yaml $here/examples/plate_hole.yaml -options_file_yaml $here/examples/plate_hole_fast.yaml -material_Jm 8 -load_schedule 0,1,0.05,1.5,1.05,1.5,1.1,2.0,2.1,2.0"
+  [notched]="-options_file_yaml $here/examples/notched_pure_shear.yaml"
+)
+echo "| scene | steps | wall, fixed step (s) | wall, re-estimated (s) | re-estimates (s) | share of the run | force evaluations | dt at the end / base |"
+echo "|---|---|---|---|---|---|---|---|"
+for name in "${names[@]}"; do
+  # shellcheck disable=SC2086 # the scene is a list of words
+  "$exe" ${scenes[$name]} -ts_max_steps "$steps" -progress_interval 1000000 -output_dir "$out/${name}_fixed" \
+    -time_step_reestimate 0 > "$out/${name}_fixed.log" 2>&1 || true
+  # shellcheck disable=SC2086
+  "$exe" ${scenes[$name]} -ts_max_steps "$steps" -progress_interval 1000000 -output_dir "$out/${name}_adaptive" \
+    -time_step_monitor > "$out/${name}_adaptive.log" 2>&1 || true
+  /usr/bin/python3 - "$out/${name}_fixed.log" "$out/${name}_adaptive.log" "$name" <<'PY'
+import re, sys
+fixed, adaptive, name = open(sys.argv[1]).read(), open(sys.argv[2]).read(), sys.argv[3]
+def wall(text):
+    m = re.search(r"^(?:Finished|Stopped)[^:]*: (\d+) steps.*wall (\S+) s", text, re.M)
+    return (int(m.group(1)), float(m.group(2))) if m else (0, float("nan"))
+(nf, wf), (na, wa) = wall(fixed), wall(adaptive)
+est = re.findall(r"stiffness step \S+ s \((\S+) x base\), (\d+) force evaluations, (\S+) s so far", adaptive)
+ratio, evals, secs = (est[-1][0], int(est[-1][1]), float(est[-1][2])) if est else ("1", 0, 0.0)
+stop = "" if "error:" not in fixed else " (fixed: diverged)"
+print(f"| {name}{stop} | {na} | {wf:.1f} | {wa:.1f} | {secs:.2f} | {100 * secs / wa:.1f} % | {evals} | {ratio} |")
+PY
+done

@@ -1,0 +1,63 @@
+#!/usr/bin/env bash
+# A time step that follows the material (issue 15 item 1, time_step_control.hpp).
+# Scene: the plate with a hole on a 4 mm grid with a stiff-limit gel (Jm = 5) pulled
+# to stretch 2, held, and let back to 1.5: near the hole the Gent stiffness grows
+# and the stable step at stretch 2 is about 0.7 x the one at rest.
+#  1. With the step fixed at rest (-time_step_reestimate 0) the run inverts bonds;
+#     with the re-estimate it runs to the end, its step shrinks below the base step
+#     at stretch 2 and grows back to it after the unloading.
+#  2. The step, like everything else, is the same on 1, 2 and 3 ranks (tolerance 0,
+#     the dt_s column of history.csv included).
+#  3. A checkpoint taken while the step is shortened, continued on 2 and on 3 ranks,
+#     gives the uninterrupted run bit for bit (the estimate's state and eigenvector
+#     are in the checkpoint).
+#   adaptive_step.sh        (ctest sets BAPD_EXE and BAPD_SOURCE_DIR)
+set -uo pipefail
+src="$BAPD_SOURCE_DIR"
+work="stability_adaptive_step"
+rm -rf "$work" && mkdir -p "$work" || exit 1
+fail() { echo "FAILED: $*"; exit 1; }
+run() { # run RANKS DIR OPTIONS...
+  local ranks="$1" dir="$2"
+  shift 2
+  timeout 300 mpiexec -n "$ranks" --oversubscribe --bind-to none "$BAPD_EXE" "$@" -output_dir "$dir" > "$dir.log" 2>&1
+}
+column() { # column DIR NAME: the values of a history.csv column, one a line
+  awk -F, -v name="$2" 'NR == 1 { for (i = 1; i <= NF; ++i) if ($i == name) c = i; next } { print $c }' "$1/history.csv"
+}
+scene=(-options_file_yaml "$src/examples/plate_hole.yaml" -options_file_yaml "$src/examples/plate_hole_fast.yaml"
+       -body_dx 0.004 -material_Jm 5 -load_schedule 0,1,0.05,1.5,1.05,1.5,1.1,2.0,2.1,2.0,2.15,1.5,3.15,1.5
+       -output_interval 1 -progress_interval 1000000 -output_final_state)
+
+# 1. Fixed step diverges, the adaptive one does not.
+run 1 "$work/fixed" "${scene[@]}" -time_step_reestimate 0 && fail "the fixed step was expected to diverge (see $work/fixed.log)"
+grep -q "error: .*inverted" "$work/fixed.log" || fail "the fixed step stopped without the inverted-bond message: $(grep error: "$work/fixed.log")"
+run 1 "$work/np1" "${scene[@]}" || { tail -n 5 "$work/np1.log"; fail "the adaptive step did not run to the end"; }
+base=$(column "$work/np1" dt_s | head -n 1)
+shortest=$(column "$work/np1" dt_s | sort -g | head -n 1)
+last=$(column "$work/np1" dt_s | tail -n 1)
+echo "fixed: $(grep -o 'inverted.*at step [0-9]*' "$work/fixed.log" | head -n 1); adaptive: dt $base s -> shortest $shortest s -> last $last s"
+awk -v a="$shortest" -v b="$base" 'BEGIN { exit !(a < 0.9 * b) }' || fail "the step never shrank (shortest $shortest, base $base)"
+[ "$last" = "$base" ] || fail "the step did not grow back to the base step after the unloading ($last, base $base)"
+
+# 2. The same on 1, 2 and 3 ranks.
+run 2 "$work/np2" "${scene[@]}" || fail "np2 run failed"
+run 3 "$work/np3" "${scene[@]}" || fail "np3 run failed"
+python3 "$src/tests/mpi/compare_runs.py" --tolerance 0 "$work/np1" "$work/np2" "$work/np3" || fail "the runs differ across rank counts"
+for r in 2 3; do
+  cmp <(column "$work/np1" dt_s) <(column "$work/np$r" dt_s) || fail "dt_s differs between 1 and $r ranks"
+done
+
+# 3. Restart mid-adaptation: the checkpoint at step N has a shortened step.
+N=170 M=240
+run 2 "$work/whole" "${scene[@]}" -ts_max_steps $M || fail "whole run failed"
+run 2 "$work/first" "${scene[@]}" -ts_max_steps $N -checkpoint_interval $N || fail "first run failed"
+[ -f "$work/first/checkpoint.h5" ] || fail "no checkpoint after $N steps"
+at_n=$(awk -F, -v n=$N 'NR == 1 { for (i = 1; i <= NF; ++i) if ($i == "dt_s") c = i; next } $1 == n { print $c }' "$work/whole/history.csv")
+awk -v a="$at_n" -v b="$base" 'BEGIN { exit !(a < b) }' || fail "the step at the checkpoint ($at_n) is not shortened: not mid-adaptation"
+run 2 "$work/second_np2" -restart "$work/first/checkpoint.h5" -ts_max_steps $M || fail "restart on 2 ranks failed"
+run 3 "$work/second_np3" -restart "$work/first/checkpoint.h5" -ts_max_steps $M || fail "restart on 3 ranks failed"
+python3 "$src/tests/mpi/compare_runs.py" --tolerance 0 "$work/whole" "$work/second_np2" "$work/second_np3" ||
+  fail "the continuation differs from the uninterrupted run"
+echo "restart at step $N (dt $at_n s < base $base s) continues bit for bit on 2 and 3 ranks"
+echo "adaptive time step: ok"
