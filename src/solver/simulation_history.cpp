@@ -179,8 +179,7 @@ PetscErrorCode Simulation::WriteHistoryRow(PetscInt step, double t)
     for (std::size_t s = 0; s < scene_.loads.size(); ++s)
       std::fprintf(history_, ",%.17g,%.17g,%.17g", reaction[2 * s], reaction[2 * s + 1], reaction[2 * s + 1] / area);
     for (std::size_t p = 0; p < probes_.size(); ++p) std::fprintf(history_, ",%.17g,%.17g", probe_u[2 * p], probe_u[2 * p + 1]);
-    std::fprintf(history_, ",%.17g,%.17g,%" PetscInt_FMT ",%.17g
-", last_kinetic_, last_internal_, broken, step_control_.current());
+    std::fprintf(history_, ",%.17g,%.17g,%" PetscInt_FMT ",%.17g\n", last_kinetic_, last_internal_, broken, step_control_.current());
     error = FinishRows(history_, row_start);
   }
   PetscCallMPI(MPI_Bcast(&error, 1, MPI_INT, 0, comm_)); // rank 0 wrote: every rank stops alike
