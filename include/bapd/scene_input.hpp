@@ -30,7 +30,8 @@ struct ProbeInput {
 struct SceneInput {
   bool                     width_set = false, height_set = false, thickness_set = false, dx_set = false;
   std::vector<double>      holes, notches;
-  std::string              model = "gent", formulation = "plane_stress", force_form = "bond_only";
+  std::string              model = "gent", formulation = "plane_stress", force_form = "bond_only",
+                           stress_correction = "none";
   bool                     D_set = false, bulk_ratio_set = false;
   double                   bulk_ratio = 1000.0;
   bool                     critical_stretch_set = false;
