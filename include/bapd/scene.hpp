@@ -46,6 +46,7 @@ struct Scene {
   std::vector<LoadSet> loads;
   Schedule             schedule;
   double               reference_length = 0.0; // default: body height
+  GripField            grip_field       = GripField::rigid;
 
   std::vector<Probe> probes;
 

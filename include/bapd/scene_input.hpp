@@ -31,7 +31,7 @@ struct SceneInput {
   bool                     width_set = false, height_set = false, thickness_set = false, dx_set = false;
   std::vector<double>      holes, notches;
   std::string              model = "gent", formulation = "plane_stress", force_form = "bond_only",
-                           stress_correction = "none";
+                           stress_correction = "none", grip_field = "rigid";
   bool                     D_set = false, bulk_ratio_set = false;
   double                   bulk_ratio = 1000.0;
   bool                     critical_stretch_set = false;
