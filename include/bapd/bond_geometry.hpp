@@ -273,17 +273,19 @@ struct BondGeometry {
   }
 };
 
-// Sizes the geometry and computes it for every family point. Needs
+// Sizes the geometry and computes it for every family point (with C_i if
+// geometry.stress_correction is set). Needs
 // cloud.family_volume for every neighbour (ring-2 ghosts included). Returns the
 // number of intact bonds whose K is not usable. Throws std::invalid_argument if a
 // needed family volume is missing (NaN) or not positive.
 std::size_t compute_bond_geometry(const PointCloud &cloud, const Families &families, const BondState &state,
                                   BondGeometry &geometry);
 
-// Recomputes the listed points only (after break_bond / break_bonds). A geometry not
-// yet sized for these families is sized first (the only allocation). Duplicates in
-// points are harmless (each point is done once). Returns the number of intact bonds
-// of those points whose K is not usable.
+// Recomputes the listed points only (after break_bond / break_bonds): their usable
+// bits (the stress correction C_i is a reference quantity and stays). A geometry not
+// yet sized for these families is sized first (the only allocation; C_i of every
+// point is formed then). Duplicates in points are harmless (each point is done once).
+// Returns the number of intact bonds of those points whose K is not usable.
 std::size_t compute_bond_geometry(const PointCloud &cloud, const Families &families, const BondState &state,
                                   BondGeometry &geometry, const std::vector<std::size_t> &points);
 
