@@ -6,6 +6,10 @@
 //   t_ij = P(F_ij) g_ij,   g_ij = 1/2 phi_xi/phi K_ij^{-1} (x_j - x_i)                (eq 23)
 // and the force density of an owned point is
 //   f_i = sum_j (t_ij - t_ji) V_j                                                   (eq 1)
+// With -force_stress_correction (stress_correction.hpp, docs/stress_consistency.md)
+// g_ij becomes C_i g_ij, C_i = M_i^{-1} or I / m_i from BondGeometry, so that a
+// uniform P gives sum_j t_ij (x) xi_ij V_j = P (P M_i without it); the pairing of
+// eq 1, and so linear momentum, is untouched.
 //
 // The loop is written once here and templated on the constitutive model (any type
 // with `StressStatus stress(const Mat2 &F, double &c33, Mat2 &P) const`), so the
@@ -218,7 +222,19 @@ inline KernelPoint begin_point(const PointCloud &ref, const double *y, const Fam
           ws.point, gather_point<Words>(ref, y, fam, i, intact, ws.point)};
 }
 
-template <std::size_t Words, class Model>
+// g_ij -> C_i g_ij, C_i the point's stress correction (BondGeometry::correction,
+// -force_stress_correction); compiled out without one, so that the paper's force is
+// bit for bit what it was.
+template <bool Corrected> inline void correct(const double *C, double &g0, double &g1)
+{
+  if constexpr (Corrected) {
+    const double h0 = C[0] * g0 + C[1] * g1, h1 = C[2] * g0 + C[3] * g1;
+    g0 = h0;
+    g1 = h1;
+  }
+}
+
+template <std::size_t Words, bool Corrected, class Model>
 void bond_forces_range(const Model &model, const PointCloud &ref, const double *y, const Families &fam,
                        const BondGeometry &geo, const BondState &state, double *c33, double *bond_force,
                        BondKernelWorkspace &ws, std::size_t begin, std::size_t end, KernelStats &stats)
@@ -227,6 +243,7 @@ void bond_forces_range(const Model &model, const PointCloud &ref, const double *
   for (std::size_t i = begin; i < end; ++i) {
     const auto [W, o, m, ba, intact, usable, s, totals] = begin_point<Words>(ref, y, fam, geo, state, i, ws);
     const double     *off = s.offset.data(), *fvk = s.family_volume.data();
+    const double     *C   = Corrected ? geo.correction.data() + 4 * i : nullptr;
     std::size_t       pending = 0; // bonds collected for the model (HasLanes)
     for (std::size_t q = 0; q < m; ++q) {
       const std::size_t   b     = o + q;
@@ -252,10 +269,12 @@ void bond_forces_range(const Model &model, const PointCloud &ref, const double *
         const double      f  = force_scale(k, totals, fvk[q]);
         const double     *ki = k.shape_tensor_inv;
         const double      d0 = off[2 * q], d1 = off[2 * q + 1];
+        double            g0 = f * (ki[0] * d0 + ki[1] * d1), g1 = f * (ki[1] * d0 + ki[2] * d1);
+        correct<Corrected>(C, g0, g1);
         for (int comp = 0; comp < 4; ++comp) ws.pending_F[comp * S + pending] = k.F[comp];
         ws.pending_c33[pending]       = c;
-        ws.pending_g[2 * pending]     = f * (ki[0] * d0 + ki[1] * d1);
-        ws.pending_g[2 * pending + 1] = f * (ki[1] * d0 + ki[2] * d1);
+        ws.pending_g[2 * pending]     = g0;
+        ws.pending_g[2 * pending + 1] = g1;
         ws.pending_q[pending++]       = q;
         continue;
       }
@@ -267,11 +286,12 @@ void bond_forces_range(const Model &model, const PointCloud &ref, const double *
         continue;
       }
       if (c33 && !ws.keep_warm_start) c33[b] = c;
-      // g_ij = force_scale K^{-1} (x_j - x_i);  t_ij = P g_ij   (eq 23)
+      // g_ij = force_scale K^{-1} (x_j - x_i) (C_i g_ij corrected);  t_ij = P g_ij   (eq 23)
       const double  f  = force_scale(k, totals, fvk[q]);
       const double *ki = k.shape_tensor_inv;
       const double  d0 = off[2 * q], d1 = off[2 * q + 1];
-      const double  g0 = f * (ki[0] * d0 + ki[1] * d1), g1 = f * (ki[1] * d0 + ki[2] * d1);
+      double        g0 = f * (ki[0] * d0 + ki[1] * d1), g1 = f * (ki[1] * d0 + ki[2] * d1);
+      correct<Corrected>(C, g0, g1);
       t[0]             = P[0] * g0 + P[1] * g1;
       t[1]             = P[2] * g0 + P[3] * g1;
     }
@@ -296,10 +316,15 @@ KernelStats compute_bond_forces(const Model &model, const PointCloud &ref, const
 {
   KernelStats stats;
   ws.reserve(families);
-  if (families.mask_words == 1)
-    detail::bond_forces_range<1>(model, ref, y, families, geometry, state, c33, bond_force, ws, begin, end, stats);
+  const bool one_word = families.mask_words == 1;
+  if (geometry.corrected() && one_word)
+    detail::bond_forces_range<1, true>(model, ref, y, families, geometry, state, c33, bond_force, ws, begin, end, stats);
+  else if (geometry.corrected())
+    detail::bond_forces_range<0, true>(model, ref, y, families, geometry, state, c33, bond_force, ws, begin, end, stats);
+  else if (one_word)
+    detail::bond_forces_range<1, false>(model, ref, y, families, geometry, state, c33, bond_force, ws, begin, end, stats);
   else
-    detail::bond_forces_range<0>(model, ref, y, families, geometry, state, c33, bond_force, ws, begin, end, stats);
+    detail::bond_forces_range<0, false>(model, ref, y, families, geometry, state, c33, bond_force, ws, begin, end, stats);
   return stats;
 }
 

@@ -41,11 +41,13 @@
 #include "bapd/body.hpp"
 #include "bapd/bond_state.hpp"
 #include "bapd/family.hpp"
+#include "bapd/stress_correction.hpp"
 #include "bapd/tensor.hpp"
 
 namespace bapd {
 
 inline constexpr double shape_tensor_degeneracy = 1e-8;
+
 
 // Four doubles in one SIMD register (GCC/Clang vector extension), added with one
 // instruction.
@@ -239,6 +241,15 @@ struct BondGeometry {
   std::size_t                mask_words = 1;
   std::vector<std::uint64_t> usable;   // mask_words per family point; bit q: intact and K usable
   std::vector<std::uint64_t> singular; // mask_words per family point; bit q: intact, K not usable
+  // Set before compute_bond_geometry (kept by it): with a correction other than none,
+  // `correction` holds C_i (4 per family point, xx xy yx yy) that the bond-only kernel
+  // applies to every force vector of i, g_ij -> C_i g_ij: M_i^{-1} (tensor) or I / m_i
+  // (scalar), I where M_i is degenerate (no usable bond, or a rank-1 M_i). M_i is that
+  // of the reference family (every bond of t = 0 intact): C_i is formed when the
+  // geometry is sized and not changed by breaking (bond_geometry.cpp says why).
+  StressCorrection           stress_correction = StressCorrection::none;
+  std::vector<double>        correction;
+  std::vector<std::uint64_t> reference_mask; // work space: every family bond set
   // Work space of compute_bond_geometry, sized with the geometry, so that a time step
   // in which bonds break allocates nothing (STYLE.md, "Data").
   PointScratch               scratch;
@@ -246,6 +257,13 @@ struct BondGeometry {
   std::uint32_t              pass = 0;
 
   bool is_usable(std::size_t i, std::size_t q) const { return (usable[i * mask_words + q / 64] >> (q % 64)) & 1u; }
+  bool corrected() const { return stress_correction != StressCorrection::none; }
+  // C_i of point i (identity without a correction).
+  Mat2 correction_of(std::size_t i) const
+  {
+    if (!corrected()) return {1.0, 0.0, 0.0, 1.0};
+    return {correction[4 * i], correction[4 * i + 1], correction[4 * i + 2], correction[4 * i + 3]};
+  }
   // Intact bonds of points [0, n_points) that carry no force for want of a usable K.
   std::size_t count_unusable(std::size_t n_points) const
   {
@@ -255,17 +273,19 @@ struct BondGeometry {
   }
 };
 
-// Sizes the geometry and computes it for every family point. Needs
+// Sizes the geometry and computes it for every family point (with C_i if
+// geometry.stress_correction is set). Needs
 // cloud.family_volume for every neighbour (ring-2 ghosts included). Returns the
 // number of intact bonds whose K is not usable. Throws std::invalid_argument if a
 // needed family volume is missing (NaN) or not positive.
 std::size_t compute_bond_geometry(const PointCloud &cloud, const Families &families, const BondState &state,
                                   BondGeometry &geometry);
 
-// Recomputes the listed points only (after break_bond / break_bonds). A geometry not
-// yet sized for these families is sized first (the only allocation). Duplicates in
-// points are harmless (each point is done once). Returns the number of intact bonds
-// of those points whose K is not usable.
+// Recomputes the listed points only (after break_bond / break_bonds): their usable
+// bits (the stress correction C_i is a reference quantity and stays). A geometry not
+// yet sized for these families is sized first (the only allocation; C_i of every
+// point is formed then). Duplicates in points are harmless (each point is done once).
+// Returns the number of intact bonds of those points whose K is not usable.
 std::size_t compute_bond_geometry(const PointCloud &cloud, const Families &families, const BondState &state,
                                   BondGeometry &geometry, const std::vector<std::size_t> &points);
 
@@ -280,5 +300,10 @@ struct BondShape {
 };
 BondShape bond_shape(const PointCloud &cloud, const Families &families, const BondState &state, std::size_t i,
                      std::size_t q);
+
+// M_i = sum_j g_ij (x) (x_j - x_i) V_j over the usable intact bonds of i in `state`,
+// g_ij the uncorrected force vector (the virial tensor above; slow path, for tests
+// and reports). C_i is formed from it with every bond of t = 0 intact.
+Mat2 virial_tensor(const PointCloud &cloud, const Families &families, const BondState &state, std::size_t i);
 
 } // namespace bapd

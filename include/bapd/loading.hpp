@@ -18,6 +18,7 @@ struct ConstrainedDof {
   PetscInt      dof;   // 2 * owned point + component
   ComponentLoad kind;  // fixed or stretch
   double        scale; // u = scale * (lambda - 1) * reference_length
+  double        lever = 0.0; // -load_grip_field affine: + lever * (lambda - 1) [m]
 };
 
 struct LoadSetPoints {
@@ -61,6 +62,8 @@ public:
                          double end_current, double t, PetscInt hold_done);
 
 private:
+  void SetAffineLevers(const Scene &scene, const Layout &layout);
+
   MPI_Comm                    comm_   = MPI_COMM_NULL;
   const Layout               *layout_ = nullptr;
   double                      reference_length_ = 0;

@@ -12,6 +12,13 @@
 // consistent form (ba_force_energy.hpp) the weights are those of its energy,
 // a_ij = V_j (omega_i V_j). Either way an affine motion (F_ij = A for every bond)
 // gives P_i = P(A), F_i = A up to round-off, at the boundary too.
+// With a stress correction of the bond-only force (-force_stress_correction,
+// stress_correction.hpp; geometry.corrected()) P_i is instead the point's virial
+// stress, the quantity the correction is built to make equal P:
+//   P_i = sum_j t_ij (x) xi_ij V_j = sum_j P(F_ij) B_ij,   B_ij = V_j (C_i g_ij) (x) xi_ij,
+// with g_ij = w_ij K_ij^{-1} xi_ij; sum_j B_ij = C_i M_i = I for the tensor correction,
+// so an affine motion again gives P_i = P(A) at every point (and the interior figure
+// for the scalar one). F_i and lambda_3,i keep the scalar weights a_ij.
 //   Cauchy stress      sigma_i = P_i F_i^T / J_i,  J_i = det F~_i lambda_3,i
 //   energy density     W_i = sum_j Psi(F_ij) V_j / sum_j V_j (strain_energy(),
 //                      ba_force.hpp: the internal energy of history.csv is sum V_i W_i)
@@ -79,9 +86,11 @@ void point_quantities(const Model &model, const PointCloud &cloud, const double 
                       StressWeights weights, PointQuantities &out)
 {
   out.resize(n_points);
+  const bool virial = geometry.corrected() && weights == StressWeights::bond_force;
   for (std::size_t i = 0; i < n_points; ++i) {
-    Mat2   P_sum = {0.0, 0.0, 0.0, 0.0}, F_sum = {0.0, 0.0, 0.0, 0.0};
-    double lambda_3_sum = 0.0, total = 0.0;
+    Mat2       P_sum = {0.0, 0.0, 0.0, 0.0}, F_sum = {0.0, 0.0, 0.0, 0.0};
+    double     lambda_3_sum = 0.0, total = 0.0;
+    const Mat2 C = geometry.correction_of(i);
     for (std::size_t q = 0; q < families.size(i); ++q) {
       if (!state.is_intact(i, q) || !geometry.is_usable(i, q)) continue;
       const BondShape shape = bond_shape(cloud, families, state, i, q);
@@ -93,13 +102,18 @@ void point_quantities(const Model &model, const PointCloud &cloud, const double 
       if (model.stress(F, c, P) != StressStatus::ok) continue; // the kernel gives it t = 0
       const double v = cloud.volume[static_cast<std::size_t>(families.neighbour[b])];
       const double a = weights == StressWeights::bond_force ? shape.force_scale * v : v;
-      P_sum          = P_sum + a * P;
+      if (virial) { // P B_ij, B_ij = V_j (C_i g_ij) (x) xi_ij
+        const std::size_t j  = static_cast<std::size_t>(families.neighbour[b]);
+        const Vec2        h  = C * shape.force_vector;
+        const double      d0 = cloud.x[2 * j] - cloud.x[2 * i], d1 = cloud.x[2 * j + 1] - cloud.x[2 * i + 1];
+        P_sum                = P_sum + P * Mat2{v * h[0] * d0, v * h[0] * d1, v * h[1] * d0, v * h[1] * d1};
+      } else P_sum = P_sum + a * P;
       F_sum          = F_sum + a * F;
       lambda_3_sum += a * std::sqrt(c);
       total += a;
     }
     if (!(total > 0.0)) continue; // no bond carries force: zeros
-    const Mat2   P        = (1.0 / total) * P_sum;
+    const Mat2   P        = virial ? P_sum : (1.0 / total) * P_sum;
     const Mat2   F        = (1.0 / total) * F_sum;
     const double lambda_3 = lambda_3_sum / total;
     const Mat2   sigma    = cauchy_stress(P, F, lambda_3);

@@ -17,6 +17,7 @@
 #include "bapd/scene_loading.hpp"
 #include "bapd/scene_probes.hpp"
 #include "bapd/scene_schedule.hpp"
+#include "bapd/stress_correction.hpp"
 
 namespace bapd {
 
@@ -33,6 +34,9 @@ struct Scene {
   ModelKind          model       = ModelKind::gent;
   Formulation        formulation = Formulation::plane_stress;
   ForceForm          force_form  = ForceForm::bond_only;
+  // -force_stress_correction (stress_correction.hpp): the bond-only force made to give
+  // sum_j t_ij (x) xi_ij V_j = P; the identity for the energy-consistent form.
+  StressCorrection   stress_correction = StressCorrection::none;
   MaterialParameters material;
   double             density = 1000.0; // kg/m^3
 
@@ -42,6 +46,7 @@ struct Scene {
   std::vector<LoadSet> loads;
   Schedule             schedule;
   double               reference_length = 0.0; // default: body height
+  GripField            grip_field       = GripField::rigid;
 
   std::vector<Probe> probes;
 

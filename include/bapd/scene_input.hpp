@@ -40,7 +40,8 @@ struct SceneInput {
   std::vector<double>      holes, notches;
   std::vector<std::string> shape_names;
   std::vector<ShapeInput>  shapes;
-  std::string              model = "gent", formulation = "plane_stress", force_form = "bond_only";
+  std::string              model = "gent", formulation = "plane_stress", force_form = "bond_only",
+                           stress_correction = "none", grip_field = "rigid";
   bool                     D_set = false, bulk_ratio_set = false;
   double                   bulk_ratio = 1000.0;
   bool                     critical_stretch_set = false;

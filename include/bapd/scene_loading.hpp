@@ -11,6 +11,15 @@ struct Scene;
 
 enum class ComponentLoad { free, fixed, stretch };
 
+// How a top or bottom grip moves the y component of its points (-load_grip_field;
+// issue 14 item 2, docs/stress_consistency.md): rigid, every point of the grip by the
+// same u (the default), or affine, the grip's points on the affine continuation of the
+// free region's mean stretch, u = u_rigid + (lambda - 1) (L / L_free) (y - y_inner),
+// y_inner the grip's inner boundary, L_free the distance between the two grips'
+// inner boundaries. The free points next to a grip then see no kink of the
+// displacement within their horizon.
+enum class GripField { rigid, affine };
+
 // A named set of points held by a grip. Per component: free, fixed (u = 0) or
 // following the stretch schedule, u = scale * (lambda(t) - 1) * reference_length.
 struct LoadSet {

@@ -61,6 +61,7 @@ PetscErrorCode Loading::Setup(MPI_Comm comm, const Scene &scene, const Layout &l
     else *it = d;
   }
   constrained_ = std::move(unique);
+  if (scene.grip_field == GripField::affine) SetAffineLevers(scene, layout);
   terms_.assign(2 * most, 0.0);
   PetscFunctionReturn(0);
 }
@@ -83,6 +84,30 @@ void Loading::Apply(double t, double *u, double *v) const
       u[d.dof] = d.scale * (lambda - 1.0) * L;
       if (v) v[d.dof] = d.scale * rate * L;
     }
+    if (d.lever != 0.0) { // -load_grip_field affine (the rigid default: no term, the same bits)
+      u[d.dof] += d.lever * (lambda - 1.0);
+      if (v) v[d.dof] += d.lever * rate;
+    }
+  }
+}
+
+// -load_grip_field affine: the y dofs of the top and bottom grips get
+// lever = (L / L_free) (y - y_inner), y_inner = H - layers dx (top) or layers dx
+// (bottom), L_free = y_inner,top - y_inner,bottom (CheckLoading made sure both exist).
+void Loading::SetAffineLevers(const Scene &scene, const Layout &layout)
+{
+  double y_top = 0, y_bottom = 0;
+  for (const LoadSet &l : scene.loads) {
+    if (l.y == ComponentLoad::free) continue;
+    if (l.region == LoadSet::Region::top) y_top = scene.body.height - l.layers * scene.body.dx;
+    if (l.region == LoadSet::Region::bottom) y_bottom = l.layers * scene.body.dx;
+  }
+  const double gradient = reference_length_ / (y_top - y_bottom);
+  for (ConstrainedDof &d : constrained_) {
+    if (d.dof % 2 != 1) continue;
+    const double y = layout.cloud.x[d.dof]; // (2 p + 1: the y of point p)
+    if (y > y_top) d.lever = gradient * (y - y_top);
+    else if (y < y_bottom) d.lever = gradient * (y - y_bottom);
   }
 }
 

@@ -95,7 +95,11 @@ PetscErrorCode SceneView(MPI_Comm comm, const Scene &s)
   text += Format("  material  %s, %s: mu %g Pa", to_string(s.model), to_string(s.formulation), s.material.mu);
   if (s.model == ModelKind::gent) text += Format(", Jm %g", s.material.Jm);
   text += Format(", D %g 1/Pa (bulk modulus K = 2/D = %g Pa = %g mu), density %g kg/m^3\n", s.material.D, K, K / s.material.mu, s.density);
-  text += Format("  force     %s\n", to_string(s.force_form));
+  text += Format("  force     %s", to_string(s.force_form));
+  if (s.stress_correction != StressCorrection::none) // (absent by default: the summary stays as it was)
+    text += Format(", stress correction %s%s", to_string(s.stress_correction),
+                   s.force_form == ForceForm::energy_consistent ? " (the identity for this form)" : "");
+  text += "\n";
   if (s.failure) text += Format("  failure   bonds break past stretch s_c = %g\n", s.critical_stretch);
   else text += "  failure   none\n";
   auto component = [](ComponentLoad c, double scale) {

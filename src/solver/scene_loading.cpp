@@ -34,6 +34,10 @@ PetscErrorCode ReadLoading(MPI_Comm comm, Scene *scene, SceneInput *in)
                           &in->schedule_set));
     PetscCall(r.Real("-load_reference_length", "Length L in u = scale (lambda - 1) L [m] (default: body height)", &scene->reference_length,
                      &in->reference_length_set));
+    PetscCall(r.String("-load_grip_field",
+                       "y of the top and bottom grips' points: rigid (one u per grip) | affine (the continuation of the free "
+                       "region's mean stretch into the grip; docs/stress_consistency.md)",
+                       &in->grip_field));
     return 0;
   }));
   PetscCall(CheckNames(comm, in->load_names, "-load_sets", "load set"));
@@ -161,6 +165,23 @@ PetscErrorCode CheckLoading(MPI_Comm comm, const SceneInput &in, Scene *scene)
                                   "one of them to fixed or stretch",
                                   n, n, n)));
     scene->loads.push_back(set);
+  }
+  const std::string field = Lower(in.grip_field);
+  if (field == "rigid") scene->grip_field = GripField::rigid;
+  else if (field == "affine") scene->grip_field = GripField::affine;
+  else SETERRQ(comm, PETSC_ERR_USER, "%s", Format("-load_grip_field '%s' is not a choice: choose rigid or affine", in.grip_field.c_str()).c_str());
+  if (scene->grip_field == GripField::affine) {
+    int top = 0, bottom = 0;
+    for (const LoadSet &l : scene->loads) {
+      if (l.y == ComponentLoad::free) continue;
+      top += l.region == LoadSet::Region::top;
+      bottom += l.region == LoadSet::Region::bottom;
+    }
+    SceneCheck(top == 1 && bottom == 1, comm,
+               "-load_grip_field affine continues the stretch between a top and a bottom grip, but the load sets hold y at %d top "
+               "and %d bottom edge(s): give exactly one of each (-load_NAME_region top|bottom with -load_NAME_y fixed or stretch), "
+               "or use -load_grip_field rigid",
+               top, bottom);
   }
   PetscFunctionReturn(0);
 }

@@ -1,6 +1,6 @@
 // The material section: the constitutive model and its parameters, the 2D
 // reduction, the bond force form, the density and the failure criterion
-// (-material_*, -force_form, -failure_critical_stretch). Read in one block, checked
+// (-material_*, -force_form, -force_stress_correction, -failure_critical_stretch). Read in one block, checked
 // once the model is known (check_model, material.hpp, names the parameters). The
 // laws, their own options, help texts, defaults and checks come from the law registry
 // (law_registry.hpp): a new law needs nothing here.
@@ -54,6 +54,11 @@ PetscErrorCode ReadMaterial(MPI_Comm comm, Scene *scene, SceneInput *in)
                        "Bond force: bond_only (the paper's eq 23) | energy_consistent (minus the gradient of the strain "
                        "energy: conserves energy undamped)",
                        &in->force_form));
+    PetscCall(r.String("-force_stress_correction",
+                       "Bond-only force made stress-consistent (sum_j t_ij (x) xi_ij V_j = P for a uniform P; "
+                       "docs/stress_consistency.md): none (the paper's) | tensor (M_i^-1 per point) | scalar (1/m_i, "
+                       "m_i = tr M_i / 2); the energy-consistent form needs none",
+                       &in->stress_correction));
     PetscCall(r.Real("-material_mu", "Shear modulus mu [Pa] (paper: 4.55e3)", &m.mu));
     // every law's own parameters (defaults: the members' initialisers), listed for all
     // laws so that -help shows them and a file may carry them whatever the model
@@ -98,6 +103,10 @@ PetscErrorCode CheckMaterial(MPI_Comm comm, const SceneInput &in, Scene *scene)
   else
     SETERRQ(comm, PETSC_ERR_USER, "%s",
             Format("-force_form '%s' is not a force form: choose bond_only (the paper's) or energy_consistent", in.force_form.c_str()).c_str());
+  if (!parse(Lower(in.stress_correction), scene->stress_correction))
+    SETERRQ(comm, PETSC_ERR_USER, "%s",
+            Format("-force_stress_correction '%s' is not a correction: choose none (the paper's force), tensor or scalar",
+                   in.stress_correction.c_str()).c_str());
 
   SceneCheck(!(in.D_set && in.bulk_ratio_set), comm,
              "-material_D and -material_bulk_ratio both set the compressibility (D = 2/(bulk_ratio mu)): give only one of them");

@@ -117,6 +117,10 @@ PetscErrorCode Simulation::BuildBody()
   // did: their whole neighbourhood lies in the two rings it holds.
   families_ = build_families(layout_.cloud, (std::size_t)layout_.n_family(), horizon, scene_.body.notches);
   bond_state_ = BondState(families_);
+  // -force_stress_correction: C_i per family point, for the bond-only kernel only (the
+  // energy-consistent form is stress-consistent as it is: stress_correction.hpp)
+  geometry_.stress_correction =
+      scene_.force_form == ForceForm::bond_only ? scene_.stress_correction : StressCorrection::none;
   compute_bond_geometry(layout_.cloud, families_, bond_state_, geometry_);
 
   PetscCall(force_.Setup(comm_, scene_, layout_, families_, geometry_, bond_state_, stage_ghost_, stage_force_));

@@ -326,8 +326,12 @@ TEST_F(SceneOptions, ReadsEveryOtherChoice)
   o["-time_step_safety"]         = "0.5";
   o["-end_time"]                 = "3";
   o["-progress_interval"]        = "50";
+  o["-force_stress_correction"]  = "tensor";
+  o["-load_grip_field"]          = "affine";
   Scene scene;
   ASSERT_EQ(Read(o, &scene), 0) << ErrorText();
+  EXPECT_EQ(scene.stress_correction, bapd::StressCorrection::tensor);
+  EXPECT_EQ(scene.grip_field, bapd::GripField::affine);
   EXPECT_EQ(scene.model, bapd::ModelKind::neo_hookean);
   EXPECT_EQ(scene.formulation, bapd::Formulation::plane_strain);
   EXPECT_EQ(scene.material.mu, 1e4);
@@ -470,6 +474,7 @@ TEST_F(SceneOptions, RejectsEachInvalidInputNamingItsOption)
     {"bulk ratio zero", {{"-material_bulk_ratio", "0"}}, "-material_bulk_ratio"},
     {"density zero", {{"-material_density", "0"}}, "-material_density"},
     {"critical stretch below one", {{"-failure_critical_stretch", "0.9"}}, "-failure_critical_stretch", "> 1"},
+    {"unknown stress correction", {{"-force_stress_correction", "matrix"}}, "-force_stress_correction", "none (the paper's force), tensor or scalar"},
     // loading
     {"set name with a dash", {{"-load_sets", "top-grip"}}, "-load_sets", "letters"},
     {"set listed twice", {{"-load_sets", "top,bottom,top"}}, "-load_sets", "twice"},
@@ -491,6 +496,8 @@ TEST_F(SceneOptions, RejectsEachInvalidInputNamingItsOption)
     {"schedule negative time", {{"-load_schedule", "-1,1,1,1.5"}}, "-load_schedule", "t >= 0"},
     {"schedule stretch zero", {{"-load_schedule", "0,1,1,0"}}, "-load_schedule", "> 0"},
     {"reference length zero", {{"-load_reference_length", "0"}}, "-load_reference_length"},
+    {"unknown grip field", {{"-load_grip_field", "mirror"}}, "-load_grip_field", "rigid or affine"},
+    {"affine grips without a bottom grip", {{"-load_grip_field", "affine"}, {"-load_bottom_y", "free"}, {"-load_bottom_y_scale", "<erase>"}}, "-load_grip_field", "1 top and 0 bottom"},
     // probes
     {"probe outside", {{"-probe_left_mid_at", "0.1,0.08"}}, "-probe_left_mid_at", "outside the body"},
     {"probe in the hole", {{"-probe_left_mid_at", "0.04,0.08"}}, "-probe_left_mid_at", "inside hole 1"},

@@ -149,13 +149,17 @@ inline LocalView local_view(const PointCloud &g, const Families &gf, const std::
 // stretch, split into two scrambled "ranks": each rank's owned force densities, and its
 // ring-1 ghosts' bond forces and C33, must be bit for bit the one-rank ones.
 // kernel(cloud, y, families, geometry, state, c33, bond_force, ws) is the bond kernel.
-template <class Kernel> void expect_rank_local_views_reproduce_one_rank(Kernel kernel)
+// correction: -force_stress_correction of both geometries (stress_correction.hpp).
+template <class Kernel>
+void expect_rank_local_views_reproduce_one_rank(Kernel kernel, StressCorrection correction = StressCorrection::none)
 {
   const double dx   = kPlateDx;
   Body2D       body = plate(24, 24, dx);
   body.holes.push_back({7.0 * dx, 15.0 * dx, 2.5 * dx});
   body.notches.push_back({24 * dx, 12.0 * dx, 14.0 * dx, 12.0 * dx});
   Discretisation      d(body);
+  d.geometry.stress_correction = correction;
+  compute_bond_geometry(d.cloud, d.families, d.state, d.geometry);
   std::mt19937        rng(3);
   std::vector<double> y = d.affine({1.4, 0.1, 0.0, 0.95});
   for (double &v : y) v += random_between(rng, -0.15, 0.15) * dx;
@@ -183,6 +187,7 @@ template <class Kernel> void expect_rank_local_views_reproduce_one_rank(Kernel k
     std::vector<std::size_t> lt;
     break_bonds(v.cloud, ly.data(), lf, s_c, ls, lt);
     BondGeometry lg;
+    lg.stress_correction = correction;
     compute_bond_geometry(v.cloud, lf, ls, lg);
     std::vector<double> lbf(2 * lf.n_bonds()), lfd(2 * v.n_owned), lc33(lf.n_bonds(), 0.0);
     BondKernelWorkspace ws;
