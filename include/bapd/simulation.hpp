@@ -89,6 +89,7 @@ private:
   PetscErrorCode Progress(PetscInt step, double t, PetscBool force);
   PetscErrorCode Summary();
   PetscErrorCode ListOutputFiles(); // rank 0: every file written, with its size
+  PetscErrorCode TimeStepSummary(PetscInt steps); // steps shortened and why, re-estimates' cost
   PetscErrorCode WriteFinalState();
   PetscErrorCode CheckStaticHold(PetscInt step, double t);
 

@@ -247,10 +247,33 @@ PetscErrorCode Simulation::Progress(PetscInt step, double t, PetscBool force)
   PetscCall(Energies(&kinetic, &internal));
   const double left     = t > 0 ? std::max(0.0, wall * (end_time - t) / t) : 0.0;
   char shortened[64] = "";
+  // Why the step is short: points flying (the travel limit) or a stiffer material.
   const double dt = step_control_.current(), base = step_control_.base();
-  if (dt < base) PetscCall(PetscSNPrintf(shortened, sizeof shortened, " (%.3g x, fast points)", dt / base));
+  if (dt < base)
+    PetscCall(PetscSNPrintf(shortened, sizeof shortened, " (%.3g x, %s)", dt / base, dt < step_control_.stiffness_step() ? "fast points" : "stiffer"));
   PetscCall(PetscPrintf(comm_, "step %8" PetscInt_FMT "  t %.4e s  dt %.3e s%s  stretch %.4f  KE %.3e J  IE %.3e J  broken %" PetscInt_FMT "  wall %.1f s  left ~%.1f s\n",
                         step, t, dt, shortened, loading_.stretch_at(t), kinetic, internal, total_broken_, wall, left));
+  PetscFunctionReturn(0);
+}
+
+// How the step went (time_step_control.hpp): how many steps were shortened, and why,
+// and what re-estimating the stable step cost.
+PetscErrorCode Simulation::TimeStepSummary(PetscInt steps)
+{
+  const TimeStepControl &c = step_control_;
+
+  PetscFunctionBegin;
+  if (c.reestimating() && c.estimates() > 0)
+    PetscCall(PetscPrintf(comm_, "time step: re-estimated %" PetscInt_FMT " time(s) (%" PetscInt_FMT " force evaluations, %.1f s); lambda_max up to %.3g x its value at rest\n",
+                          c.estimates(), c.estimate_evaluations(), c.estimate_seconds(), c.largest_lambda() / c.lambda_rest()));
+  if (c.shortened_steps() > 0) {
+    char travel[96] = "";
+    if (c.shortened_by_travel() > 0)
+      PetscCall(PetscSNPrintf(travel, sizeof travel, ", %" PetscInt_FMT " by the travel limit (%.3g dx%s, fast points)", c.shortened_by_travel(),
+                              c.travel() / scene_.body.dx, c.travel_automatic() ? ", chosen with failure" : ""));
+    PetscCall(PetscPrintf(comm_, "time step: %" PetscInt_FMT " of %" PetscInt_FMT " step(s) shorter than the full %.4e s: %" PetscInt_FMT " by stiffness (the material stiffened)%s; the shortest %.4e s = %.3g x\n",
+                          c.shortened_steps(), steps, c.base(), c.shortened_by_stiffness(), travel, c.shortest(), c.shortest() / c.base()));
+  }
   PetscFunctionReturn(0);
 }
 
@@ -280,10 +303,7 @@ PetscErrorCode Simulation::Summary()
   PetscInt broken;
   PetscCall(BrokenBondCount(&broken));
   if (scene_.failure) PetscCall(PetscPrintf(comm_, "broken bonds: %" PetscInt_FMT "\n", broken));
-  if (step_control_.shortened_steps() > 0)
-    PetscCall(PetscPrintf(comm_, "time step: %" PetscInt_FMT " step(s) shortened by -time_step_travel %g (fast points), the shortest %.4e s = %.3g x the full %.4e s\n",
-                          step_control_.shortened_steps(), scene_.time_step_travel, step_control_.shortest(),
-                          step_control_.shortest() / step_control_.base(), step_control_.base()));
+  PetscCall(TimeStepSummary(step));
   if (relaxation_.active())
     PetscCall(PetscPrintf(comm_, "adaptive relaxation: damping %.4g 1/s now, %.4g to %.4g 1/s over the run\n", relaxation_.last(),
                           relaxation_.smallest(), relaxation_.largest()));
