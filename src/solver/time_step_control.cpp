@@ -17,7 +17,7 @@ PetscErrorCode TimeStepOptionsFromOptions(MPI_Comm comm, TimeStepOptions *option
                             "Time steps between re-estimates of the stable step from the current state [-] (0: the step at rest "
                             "for the whole run, as in the paper)",
                             "docs/options.md", options->interval, &options->interval, nullptr));
-  PetscCall(PetscOptionsInt("-time_step_reestimate_iterations", "Power iterations per re-estimate [-], >= 1 (one force evaluation each)",
+  PetscCall(PetscOptionsInt("-time_step_reestimate_iterations", "Fewest power iterations per re-estimate [-], >= 1 (one force evaluation each)",
                             "docs/options.md", options->iterations, &options->iterations, nullptr));
   PetscCall(PetscOptionsReal("-time_step_band",
                              "Dead band of the re-estimated step [-], in [0, 0.5): it shrinks or grows back only when the stable step "
@@ -46,6 +46,14 @@ PetscErrorCode TimeStepOptionsFromOptions(MPI_Comm comm, TimeStepOptions *option
              options->iterations);
   PetscCheck(options->floor == -1 || (options->floor > 0 && options->floor <= 1), comm, PETSC_ERR_USER,
              "-time_step_floor %g: give a fraction of the base step in (0, 1], or -1 for the solver's choice", options->floor);
+  PetscCheck(options->shift >= 0 && options->shift <= 0.5, comm, PETSC_ERR_USER,
+             "-time_step_shift %g: give a fraction of lambda_max in [0, 0.5] (default 0.45; above 0.5 the low end of the spectrum would dominate)",
+             options->shift);
+  PetscCheck(options->max_iterations >= 1 && options->tolerance >= 0, comm, PETSC_ERR_USER,
+             "-time_step_reestimate_max_iterations %" PetscInt_FMT " / -time_step_reestimate_tolerance %g: give at least 1 iteration and a tolerance >= 0 (defaults 8, 0.005)",
+             options->max_iterations, options->tolerance);
+  PetscCheck(options->stretch > 0, comm, PETSC_ERR_USER,
+             "-time_step_reestimate_stretch %g: give a stretch increment > 0 (default 0.05)", options->stretch);
   PetscCheck(options->band >= 0 && options->band < 0.5, comm, PETSC_ERR_USER,
              "-time_step_band %g: give a fraction in [0, 0.5) (default 0.05)", options->band);
   PetscFunctionReturn(0);
@@ -241,9 +249,10 @@ PetscErrorCode TimeStepControl::AfterStep(MPI_Comm comm, PetscInt step, double s
     const double target = std::clamp(base_dt_ * std::sqrt(lambda_rest_ / lambda_), floor_ * base_dt_, base_dt_);
     if (target < (1.0 - options_.band) * stiffness_dt_) stiffness_dt_ = target;
     else if (target > (1.0 + options_.band) * stiffness_dt_) stiffness_dt_ = std::min(target, (1.0 + 2.0 * options_.band) * stiffness_dt_);
-    // Stiffening by more than the band, or a step still growing back: the next
+    // Stiffening by more than the band, or a step still growing back (beyond the band:
+    // inside it the step stays, and so would the follow-ups, for good): the next
     // estimate comes sooner (a fifth of the interval: a tenth cost 6 % of the fast plate).
-    const bool sooner = lambda_ > (1.0 + options_.band) * before || stiffness_dt_ < target;
+    const bool sooner = lambda_ > (1.0 + options_.band) * before || target > (1.0 + options_.band) * stiffness_dt_;
     next_estimate_    = step + (sooner ? std::max<PetscInt>(1, options_.interval / 5) : options_.interval);
     if (options_.monitor)
       PetscCall(PetscPrintf(comm, "re-estimate %" PetscInt_FMT " after step %" PetscInt_FMT ": lambda_max %.6e 1/s^2 (%.4g x at rest), stable %.4e s, stiffness step %.4e s (%.4g x base), %" PetscInt_FMT " force evaluations, %.3f s so far\n",

