@@ -54,7 +54,7 @@ inline void principal_stretches(LoadMode m, double lambda, double s[3])
 
 inline Invariants incompressible_invariants(LoadMode m, double lambda)
 {
-  double s[3];
+  double s[3] = {1.0, 1.0, 1.0};
   principal_stretches(m, lambda, s);
   const double c0 = s[0] * s[0], c1 = s[1] * s[1], c2 = s[2] * s[2];
   return {c0 + c1 + c2, c0 * c1 + c1 * c2 + c2 * c0};

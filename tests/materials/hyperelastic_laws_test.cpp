@@ -100,7 +100,7 @@ TEST(ArrudaBoyceModulus, DerivativesMatchDifferencesOfTheModulus)
 // stress-free stretch(es) solved by bisection in ln s (P there is increasing in s).
 template <class Law> double compressible_nominal_stress(const Compressible3D<Law> &model, LoadMode mode, double lambda)
 {
-  double s_inc[3];
+  double s_inc[3] = {1.0, 1.0, 1.0};
   principal_stretches(mode, lambda, s_inc);
   auto F_of = [&](double t) -> Mat3 {
     switch (mode) {
