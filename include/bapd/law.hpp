@@ -97,12 +97,21 @@ using Modulus                      = ModulusOf<double>;
 
 // Empty when Law can be run in formulation f, else why not (one sentence, naming the
 // requirement and the formulation that would do). Plane stress: see plane_stress.hpp.
+// A law of principal stretches may bring its own formulations (Ogden: ogden.hpp),
+// as the member types PlaneStrainModel and PlaneStressModel.
+template <class Law, class = void> struct HasOwnFormulations : std::false_type {};
+template <class Law>
+struct HasOwnFormulations<Law, std::void_t<typename Law::PlaneStrainModel, typename Law::PlaneStressModel>> : std::true_type {};
+template <class Law> inline constexpr bool has_own_formulations = HasOwnFormulations<Law>::value;
+
 template <class Law> std::string formulation_refusal(Formulation f)
 {
   const std::string law = Law::name;
+  if constexpr (has_own_formulations<Law>) return "";
   if (Law::variables != LawVariables::invariants)
     return "-material_model " + law +
-           ": the law is written in principal stretches, and no formulation of bapd evaluates those yet";
+           ": the law is written in principal stretches and brings no formulations of its own (PlaneStrainModel, "
+           "PlaneStressModel: see ogden.hpp)";
   if (f != Formulation::plane_stress) return "";
   if (Law::uses_I2bar)
     return "-material_model " + law +

@@ -20,6 +20,7 @@
 #include "bapd/law.hpp"
 #include "bapd/mooney_rivlin.hpp"
 #include "bapd/neo_hookean.hpp"
+#include "bapd/ogden.hpp"
 #include "bapd/yeoh.hpp"
 
 // X(type, id): the law's struct and its -material_model name (static_asserted equal
@@ -29,7 +30,8 @@
   X(NeoHookean, neo_hookean)     \
   X(MooneyRivlin, mooney_rivlin) \
   X(Yeoh, yeoh)                  \
-  X(ArrudaBoyce, arruda_boyce)
+  X(ArrudaBoyce, arruda_boyce)   \
+  X(Ogden, ogden)
 
 namespace bapd {
 

@@ -65,7 +65,7 @@ FitLaw ogden(int n)
   if (n < 1 || n > 4) throw FitError("-ogden_terms " + std::to_string(n) + ": give 1 to 4 Ogden terms");
   FitLaw f;
   f.name    = "ogden";
-  f.in_bapd = false;
+  f.in_bapd = n <= Ogden::max_terms;
   for (int k = 1; k <= n; ++k) {
     f.parameters.push_back("mu" + std::to_string(k));
     f.units.push_back("Pa");
@@ -122,9 +122,16 @@ FitLaw ogden(int n)
     std::ostringstream y;
     double             mu = 0.0;
     for (int k = 0; k < n; ++k) mu += 0.5 * p[2 * k] * p[2 * k + 1];
-    y << "# Ogden (" << n << " term(s)): bapd has no Ogden law yet (docs/laws.md); the values, for the record:\n";
-    y << "#   shear modulus at rest mu = sum mu_k alpha_k / 2 = " << number(mu) << " Pa\n";
-    for (int k = 0; k < n; ++k) y << "#   mu" << k + 1 << " = " << number(p[2 * k]) << " Pa, alpha" << k + 1 << " = " << number(p[2 * k + 1]) << "\n";
+    if (n > Ogden::max_terms) {
+      y << "# Ogden (" << n << " terms): bapd's Ogden law has at most " << Ogden::max_terms << " terms; the values, for the record:\n";
+      y << "#   shear modulus at rest mu = sum mu_k alpha_k / 2 = " << number(mu) << " Pa\n";
+      for (int k = 0; k < n; ++k) y << "#   mu" << k + 1 << " = " << number(p[2 * k]) << " Pa, alpha" << k + 1 << " = " << number(p[2 * k + 1]) << "\n";
+      return y.str();
+    }
+    y << "material:\n  model: ogden\n  mu: " << number(mu) << "\n";
+    for (int k = 0; k < Ogden::max_terms; ++k) // unused terms: mu_k = 0
+      y << "  ogden_mu" << k + 1 << ": " << number(k < n ? p[2 * k] : 0.0) << "\n  ogden_alpha" << k + 1 << ": "
+        << number(k < n ? p[2 * k + 1] : 0.0) << "\n";
     return y.str();
   };
   return f;

@@ -104,6 +104,7 @@ int run(int argc, char **argv)
   std::cout << "wrote " << output_dir << "/ (parameters_*.csv, residuals_*.csv, material_*.yaml, curves.csv"
             << (fits.size() > 1 ? ", comparison.csv" : "") << ")\n";
   if (plot) {
+    std::cout.flush(); // (the script's lines after ours)
     const std::string cmd = "/usr/bin/python3 '" + plot_script + "' '" + output_dir + "'";
     if (std::system(cmd.c_str()) != 0)
       throw FitError("the plot failed (" + cmd + "); the fit's files are written; rerun with -no_plot to skip the PNGs");

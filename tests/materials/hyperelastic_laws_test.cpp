@@ -98,7 +98,7 @@ TEST(ArrudaBoyceModulus, DerivativesMatchDifferencesOfTheModulus)
 // ---------------------------------------------------------------------------------
 // Homogeneous tests of the compressible 3D law, F = diag(s0, s1, s2), with the
 // stress-free stretch(es) solved by bisection in ln s (P there is increasing in s).
-template <class Law> double compressible_nominal_stress(const Compressible3D<Law> &model, LoadMode mode, double lambda)
+template <class Model> double compressible_nominal_stress(const Model &model, LoadMode mode, double lambda)
 {
   double s_inc[3] = {1.0, 1.0, 1.0};
   principal_stretches(mode, lambda, s_inc);
@@ -222,6 +222,101 @@ TEST(HomogeneousResponse, OgdenWithOneTermOfAlpha2IsNeoHookean)
 }
 
 // ---------------------------------------------------------------------------------
+// Ogden (principal stretches, its own formulations: ogden.hpp).
+MaterialParameters ogden_parameters(double K_over_mu)
+{
+  MaterialParameters m = law_parameters(K_over_mu); // defaults: (4500, 2), (16.667, 6)
+  m.ogden_mu3 = -20.0, m.ogden_alpha3 = -2.0;        // a third term of negative alpha
+  m.ogden_mu1 = 4500.0 - 20.0;                       // keeping sum mu_k alpha_k / 2 = mu
+  return m;
+}
+
+TEST(Ogden, CompressibleSheetApproachesTheIncompressibleOgdenResponses)
+{
+  const ParametersOf<Ogden> p(ogden_parameters(1e5));
+  const Ogden3D             model3{p};
+  const OgdenPlaneStress    sheet{p};
+  const double mu[3] = {p.ogden_mu1, p.ogden_mu2, p.ogden_mu3}, alpha[3] = {p.ogden_alpha1, p.ogden_alpha2, p.ogden_alpha3};
+  for (LoadMode mode : {LoadMode::uniaxial, LoadMode::pure_shear, LoadMode::equibiaxial})
+    for (double lambda : {1.05, 1.5, 2.0, 3.0}) {
+      const double P_inc = ogden_nominal_stress(mu, alpha, 3, mode, lambda);
+      // as for the other laws: O(tangent / K) with K = 1e5 mu
+      EXPECT_NEAR(compressible_nominal_stress(model3, mode, lambda), P_inc, 1e-3 * std::abs(P_inc)) << to_string(mode) << " " << lambda;
+      if (mode == LoadMode::uniaxial) continue;
+      const Mat2 F   = mode == LoadMode::pure_shear ? Mat2{lambda, 0, 0, 1} : Mat2{lambda, 0, 0, lambda};
+      double     c33 = 0.0;
+      Mat2       P;
+      ASSERT_EQ(sheet.stress(F, c33, P), StressStatus::ok);
+      EXPECT_NEAR(P[0], P_inc, 1e-3 * std::abs(P_inc)) << "plane stress " << to_string(mode) << " " << lambda;
+    }
+}
+
+TEST(Ogden, PlaneStressIsThe3DLawAtTheSolvedThicknessWithZeroS33)
+{
+  std::mt19937              rng(5);
+  const ParametersOf<Ogden> p(ogden_parameters(1000.0));
+  const Ogden3D             model3{p};
+  const OgdenPlaneStress    sheet{p};
+  const OgdenPlaneStrain    strain{p};
+  for (int sample = 0; sample < 100; ++sample) {
+    const Mat2 F   = test::random_F2(rng, 4.0);
+    double     c33 = 0.0, one = 0.0;
+    Mat2       P, Pe;
+    Mat3       P3;
+    ASSERT_EQ(sheet.stress(F, c33, P), StressStatus::ok);
+    ASSERT_EQ(model3.stress(embed(F, std::sqrt(c33)), P3), StressStatus::ok);
+    // P33 = tau_3 / lambda_3 = 0 to the solve's round-off (terms of size mu and K)
+    EXPECT_LT(std::abs(P3[8]), 1e-9 * p.mu) << sample;
+    EXPECT_LT(test::relative_difference(P, Mat2{P3[0], P3[1], P3[3], P3[4]}, p.mu), 1e-10) << sample;
+    ASSERT_EQ(strain.stress(F, one, Pe), StressStatus::ok);
+    ASSERT_EQ(model3.stress(embed(F, 1.0), P3), StressStatus::ok);
+    EXPECT_LT(test::relative_difference(Pe, Mat2{P3[0], P3[1], P3[3], P3[4]}, p.mu), 1e-10) << sample;
+  }
+}
+
+TEST(Ogden, RepeatedPrincipalStretchesNeedNoSpecialCase)
+{
+  const ParametersOf<Ogden> p(ogden_parameters(1000.0));
+  const OgdenPlaneStress    sheet{p};
+  const Ogden3D             model3{p};
+  double                    c33 = 0.0;
+  Mat2                      P;
+  ASSERT_EQ(sheet.stress(identity2(), c33, P), StressStatus::ok);
+  EXPECT_LT(test::relative_difference(P, Mat2{}, p.mu), 1e-13); // at rest: no stress
+  EXPECT_NEAR(c33, 1.0, 1e-14);
+  // equibiaxial (c_1 = c_2), rotated, against a split of 1e-9: P moves by O(1e-9) only
+  const Mat2 R = test::rotation2(0.7);
+  for (double lambda : {0.8, 1.5, 3.0}) {
+    Mat2   Pe, Ps;
+    double c_a = 0.0, c_b = 0.0;
+    ASSERT_EQ(sheet.stress(R * Mat2{lambda, 0, 0, lambda}, c_a, Pe), StressStatus::ok);
+    ASSERT_EQ(sheet.stress(R * Mat2{lambda, 0, 0, lambda * (1.0 + 1e-9)}, c_b, Ps), StressStatus::ok);
+    EXPECT_LT(test::relative_difference(Pe, Ps, p.mu), 1e-8) << lambda;
+    // and equibiaxial P is R times a multiple of the identity
+    const Mat2 back = transpose(R) * Pe;
+    EXPECT_NEAR(back[1], 0.0, 1e-12 * std::abs(back[0]));
+    EXPECT_NEAR(back[0], back[3], 1e-12 * std::abs(back[0]));
+  }
+  Mat3 P3;
+  ASSERT_EQ(model3.stress({1.3, 0, 0, 0, 1.3, 0, 0, 0, 1.3}, P3), StressStatus::ok); // all three equal
+  EXPECT_NEAR(P3[0], P3[8], 1e-12 * std::abs(P3[0]));
+}
+
+TEST(Ogden, SmallStrainGivesShearModulusMu)
+{
+  const ParametersOf<Ogden> p(ogden_parameters(1e4));
+  const Ogden3D             model{p};
+  const double              gamma = 1e-5;
+  Mat3                      P;
+  ASSERT_EQ(model.stress({1, gamma, 0, 0, 1, 0, 0, 0, 1}, P), StressStatus::ok);
+  EXPECT_NEAR(P[1] / gamma, p.mu, 1e-8 * p.mu);
+  const double e = 1e-4, K = 1e4 * p.mu, E = 9.0 * K * p.mu / (3.0 * K + p.mu);
+  const double slope = (compressible_nominal_stress(model, LoadMode::uniaxial, 1.0 + e) -
+                        compressible_nominal_stress(model, LoadMode::uniaxial, 1.0 - e)) / (2.0 * e);
+  EXPECT_NEAR(slope, E, 1e-6 * E);
+}
+
+// ---------------------------------------------------------------------------------
 TEST(NewLawChecks, EachBadValueGetsOneLineNamingItsOption)
 {
   auto problems = [](ModelKind k, const std::function<void(MaterialParameters &)> &change) {
@@ -243,6 +338,9 @@ TEST(NewLawChecks, EachBadValueGetsOneLineNamingItsOption)
   EXPECT_TRUE(one_line_naming(problems(ModelKind::yeoh, [](auto &m) { m.mu = 5000.0; }), "-material_C1"));
   EXPECT_TRUE(one_line_naming(problems(ModelKind::arruda_boyce, [](auto &m) { m.lambda_m = 1.0; }), "-material_lambda_m"));
   EXPECT_EQ(problems(ModelKind::mooney_rivlin, [](auto &m) { m.C10 = 0.0, m.C01 = m.mu / 2; }), ""); // pure I2bar is fine
+  EXPECT_TRUE(one_line_naming(problems(ModelKind::ogden, [](auto &m) { m.ogden_mu3 = 10.0, m.ogden_alpha3 = -2.0; }), "-material_ogden_alpha3"));
+  EXPECT_TRUE(one_line_naming(problems(ModelKind::ogden, [](auto &m) { m.ogden_mu1 = 4000.0; }), "-material_ogden_mu1"));
+  EXPECT_EQ(problems(ModelKind::ogden, [](auto &m) { m = ogden_parameters(1000.0); }), "");
 }
 
 } // namespace

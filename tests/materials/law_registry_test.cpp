@@ -38,10 +38,12 @@ TEST(LawRegistry, ListsTheRegisteredLawsInOrderWithUniqueNamesAndOptions)
     }
   }
   std::printf("registered laws: %s\n", listed.c_str());
-  EXPECT_EQ(listed, "gent neo_hookean mooney_rivlin yeoh arruda_boyce");
+  EXPECT_EQ(listed, "gent neo_hookean mooney_rivlin yeoh arruda_boyce ogden");
   EXPECT_EQ(registered_laws().size(), registered_law_count);
   EXPECT_EQ(options, (std::set<std::string>{"-material_Jm", "-material_C10", "-material_C01", "-material_C1", "-material_C2",
-                                            "-material_C3", "-material_lambda_m"}));
+                                            "-material_C3", "-material_lambda_m", "-material_ogden_mu1", "-material_ogden_alpha1",
+                                            "-material_ogden_mu2", "-material_ogden_alpha2", "-material_ogden_mu3",
+                                            "-material_ogden_alpha3"}));
 }
 
 // The scene's defaults (K = 1000 mu) and each law's own defaults.

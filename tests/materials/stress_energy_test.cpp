@@ -19,7 +19,8 @@ MaterialParameters parameters(double D) { return test::parameters(mu, Jm, D); }
 // The 2D models, as the bond kernel sees them.
 template <class Model> class MaterialStress2D : public ::testing::Test {};
 using Models2D = ::testing::Types<GentPlaneStress, NeoHookeanPlaneStress, GentPlaneStrain, NeoHookeanPlaneStrain, YeohPlaneStress,
-                                  YeohPlaneStrain, ArrudaBoycePlaneStress, ArrudaBoycePlaneStrain, MooneyRivlinPlaneStrain>;
+                                  YeohPlaneStrain, ArrudaBoycePlaneStress, ArrudaBoycePlaneStrain, MooneyRivlinPlaneStrain,
+                                  OgdenPlaneStress, OgdenPlaneStrain>;
 TYPED_TEST_SUITE(MaterialStress2D, Models2D);
 
 TYPED_TEST(MaterialStress2D, StressIsDerivativeOfEnergyAtRandomLargeStretches)
@@ -96,7 +97,7 @@ TYPED_TEST(MaterialStress2D, InvertedDeformationIsReported)
 // ---------------------------------------------------------------------------------
 // The 3D laws (paper eq 26).
 template <class Model> class Material3D : public ::testing::Test {};
-using Models3D = ::testing::Types<Gent3D, NeoHookean3D, Yeoh3D, ArrudaBoyce3D, MooneyRivlin3D>;
+using Models3D = ::testing::Types<Gent3D, NeoHookean3D, Yeoh3D, ArrudaBoyce3D, MooneyRivlin3D, Ogden3D>;
 TYPED_TEST_SUITE(Material3D, Models3D);
 
 TYPED_TEST(Material3D, StressIsDerivativeOfEnergyAtRandomLargeStretches)
