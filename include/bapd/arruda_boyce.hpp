@@ -16,8 +16,8 @@
 // Taylor series (degree 4) in the variable b: I1bar(b) = 3 lambda_m^2 L(b)^2 and
 // G(b) = (mu/g0) b / (3 L(b)) from L's Taylor coefficients at b0 (langevin_taylor),
 // then the series of I1bar - I1bar0 is reverted to b - b0 as a series in
-// e = I1bar - I1bar0, and G composed with it. Each bond pays two inverse-Langevin
-// solves (b and b0); four bonds at a time (Lanes) run lane by lane.
+// e = I1bar - I1bar0, and G composed with it. Each bond pays one inverse-Langevin
+// solve (g0 is remembered per lambda_m); four bonds at a time (Lanes) run lane by lane.
 // The law interface is described in law.hpp; the registry line is in law_registry.hpp.
 #include <array>
 #include <cmath>
@@ -115,10 +115,17 @@ struct ArrudaBoyce {
   static double I1bar_limit(const ParametersOf<ArrudaBoyce> &p) { return 3.0 * p.lambda_m * p.lambda_m; }
 
   // g0 = b0 / (3 x0), x0 = 1 / lambda_m: G = (mu / g0) b / (3x) is mu at rest.
+  // It depends on lambda_m alone: solved once per value and thread, not per bond
+  // (the same number either way).
   static double rest_factor(const ParametersOf<ArrudaBoyce> &p)
   {
-    const double x0 = 1.0 / p.lambda_m;
-    return inverse_langevin(x0) / (3.0 * x0);
+    thread_local double lambda_m = 0.0, g0 = 1.0;
+    if (p.lambda_m != lambda_m) {
+      const double x0 = 1.0 / p.lambda_m;
+      g0              = inverse_langevin(x0) / (3.0 * x0);
+      lambda_m        = p.lambda_m;
+    }
+    return g0;
   }
 
   // One bond: G and its I1bar-derivatives (see the top); false where locked or NaN.

@@ -18,6 +18,7 @@
 // inverse_langevin_test.cpp checks L(L^{-1}(x)) = x over [1e-8, 1 - 1e-9].
 #include <array>
 #include <cmath>
+#include <cstddef>
 #include <limits>
 
 namespace bapd {
@@ -55,12 +56,15 @@ inline std::array<double, 5> langevin_taylor(double b)
 {
   std::array<double, 5> l{};
   if (b < langevin_detail::series_limit) {
-    // d^m/db^m of b^p / m! = binom(p, m) b^{p-m}, term by term
+    // d^m/db^m of b^p / m! = binom(p, m) b^{p-m}, term by term (powers by products)
+    std::array<double, 2 * langevin_detail::terms> power{};
+    power[0] = 1.0;
+    for (std::size_t q = 1; q < power.size(); ++q) power[q] = power[q - 1] * b;
     for (int n = 1; n <= langevin_detail::terms; ++n) {
       const int p = 2 * n - 1;
       double    binom = 1.0;
       for (int m = 0; m <= 4 && m <= p; ++m) {
-        l[m] += langevin_detail::series[n - 1] * binom * std::pow(b, p - m);
+        l[m] += langevin_detail::series[n - 1] * binom * power[p - m];
         binom = binom * (p - m) / (m + 1);
       }
     }

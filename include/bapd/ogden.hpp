@@ -18,7 +18,7 @@
 // (1/9)(lb_1^a_k + lb_2^a_k)) + 2 J^2 / D > 0 when every mu_k a_k > 0 (checked), so the
 // root is unique; safeguarded Newton (bracketed, bisection on a bad step), from the warm
 // start or the incompressible lambda_3 = 1/J~. Scalar only (no lanes): every bond
-// evaluation pays a 2x2 eigen-decomposition and the pow() calls.
+// evaluation pays a 2x2 eigen-decomposition and an exp() per term and stretch.
 // The law interface is described in law.hpp; the registry line is in law_registry.hpp.
 #include <array>
 #include <cmath>
@@ -93,31 +93,22 @@ struct Ogden {
   using PlaneStrainModel                          = OgdenPlaneStrain;
   using PlaneStressModel                          = OgdenPlaneStress;
 
-  // Principal Kirchhoff stresses of the isochoric part at principal stretches l[3], J.
-  static void kirchhoff_iso(const ParametersOf<Ogden> &p, const double l[3], double J, double tau[3])
+  // Principal Kirchhoff stresses of the isochoric part from the logarithms of the
+  // principal stretches (lb_i^a = exp(a (ln lambda_i - ln J / 3)): one exp per term and
+  // stretch, no pow); slope33, if given: d tau_3 / d ln lambda_3 at fixed lambda_1, lambda_2.
+  static void kirchhoff_iso(const ParametersOf<Ogden> &p, const double ln_l[3], double tau[3], double *slope33 = nullptr)
   {
-    const auto mu = mu_of(p), alpha = alpha_of(p);
+    const auto   mu = mu_of(p), alpha = alpha_of(p);
+    const double third_lnJ = (ln_l[0] + ln_l[1] + ln_l[2]) / 3.0;
     tau[0] = tau[1] = tau[2] = 0.0;
+    if (slope33) *slope33 = 0.0;
     for (int k = 0; k < max_terms; ++k) {
       if (mu[k] == 0.0) continue;
-      const double f = std::pow(J, -alpha[k] / 3.0);
-      double       A[3], mean = 0.0;
-      for (int i = 0; i < 3; ++i) mean += (A[i] = f * std::pow(l[i], alpha[k])) / 3.0;
+      double A[3], mean = 0.0;
+      for (int i = 0; i < 3; ++i) mean += (A[i] = std::exp(alpha[k] * (ln_l[i] - third_lnJ))) / 3.0;
       for (int i = 0; i < 3; ++i) tau[i] += mu[k] * (A[i] - mean);
+      if (slope33) *slope33 += mu[k] * alpha[k] * ((4.0 / 9.0) * A[2] + (1.0 / 9.0) * (A[0] + A[1]));
     }
-  }
-  // d tau_3 / d ln lambda_3 with lambda_1, lambda_2 fixed (the isochoric part).
-  static double kirchhoff_iso_33_slope(const ParametersOf<Ogden> &p, const double l[3], double J)
-  {
-    const auto mu = mu_of(p), alpha = alpha_of(p);
-    double     slope = 0.0;
-    for (int k = 0; k < max_terms; ++k) {
-      if (mu[k] == 0.0) continue;
-      const double f = std::pow(J, -alpha[k] / 3.0);
-      const double A1 = f * std::pow(l[0], alpha[k]), A2 = f * std::pow(l[1], alpha[k]), A3 = f * std::pow(l[2], alpha[k]);
-      slope += mu[k] * alpha[k] * ((4.0 / 9.0) * A3 + (1.0 / 9.0) * (A1 + A2));
-    }
-    return slope;
   }
   static double energy_iso(const ParametersOf<Ogden> &p, const double l[3], double J)
   {
@@ -174,8 +165,8 @@ struct OgdenPlaneStrain {
     }
     double c[2], N[2][2], tau[3];
     ogden_detail::eigen2(right_cauchy_green(F), c, N);
-    const double l[3] = {std::sqrt(c[0]), std::sqrt(c[1]), 1.0};
-    Ogden::kirchhoff_iso(p, l, J, tau);
+    const double ln_l[3] = {0.5 * std::log(c[0]), 0.5 * std::log(c[1]), 0.0};
+    Ogden::kirchhoff_iso(p, ln_l, tau);
     const double vol = (J * J - 1.0) / p.D, s[2] = {(tau[0] + vol) / c[0], (tau[1] + vol) / c[1]};
     P = ogden_detail::first_piola(F, s, N);
     return StressStatus::ok;
@@ -200,34 +191,31 @@ struct OgdenPlaneStress {
   static constexpr int max_iterations = 100;
 
   // lambda_3 with tau_3 = 0 for in-plane stretches l1, l2 (J~ = l1 l2), warm start c33.
+  // Newton on s = ln lambda_3 (tau_3 increases with s), steps limited to 0.5 until the
+  // root is bracketed, bisection when a step leaves the bracket. A step below 1e-8
+  // (quadratic convergence: what it leaves is ~1e-16) is taken as the last one, so a
+  // warm start costs two evaluations.
   StressStatus solve(double l1, double l2, double c33_guess, double &lambda3) const
   {
-    auto tau3 = [&](double s, double &slope) {
-      const double l[3] = {l1, l2, std::exp(s)}, J = l1 * l2 * l[2];
-      double       tau[3];
-      Ogden::kirchhoff_iso(p, l, J, tau);
-      slope = Ogden::kirchhoff_iso_33_slope(p, l, J) + 2.0 * J * J / p.D;
-      return tau[2] + (J * J - 1.0) / p.D;
-    };
-    double s = c33_guess > 0.0 ? 0.5 * std::log(c33_guess) : -std::log(l1 * l2), slope;
-    double g = tau3(s, slope);
-    // bracket: step out from the start (tau_3 increases with s) until the sign changes
-    double lo = s, hi = s, g_lo = g, g_hi = g, width = 0.05;
-    for (int it = 0; it < 60 && g_lo > 0.0; ++it, width *= 2.0) g_lo = tau3(lo -= width, slope);
-    for (int it = 0; it < 60 && g_hi < 0.0; ++it, width *= 2.0) g_hi = tau3(hi += width, slope);
-    if (!(g_lo <= 0.0 && g_hi >= 0.0)) return StressStatus::no_convergence;
-    if (g_lo == 0.0) s = hi = lo;
-    if (g_hi == 0.0) s = lo = hi;
+    const double ln_l1 = std::log(l1), ln_l2 = std::log(l2), Jt = l1 * l2;
+    double       s  = c33_guess > 0.0 ? 0.5 * std::log(c33_guess) : -(ln_l1 + ln_l2);
+    double       lo = -std::numeric_limits<double>::infinity(), hi = std::numeric_limits<double>::infinity();
     for (int it = 0; it < max_iterations; ++it) {
-      g = tau3(s, slope);
+      const double ln_l[3] = {ln_l1, ln_l2, s}, J = Jt * std::exp(s);
+      double       tau[3], slope;
+      Ogden::kirchhoff_iso(p, ln_l, tau, &slope);
+      const double g = tau[2] + (J * J - 1.0) / p.D;
+      slope += 2.0 * J * J / p.D;
+      if (!std::isfinite(g) || !(slope > 0.0)) return StressStatus::no_convergence;
       if (g == 0.0) break;
       (g < 0.0 ? lo : hi) = s;
-      double next = s - g / slope;
+      double step = -g / slope;
+      if (!std::isfinite(lo) || !std::isfinite(hi)) step = std::max(-0.5, std::min(0.5, step));
+      double next = s + step;
       if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
-      const bool done = std::abs(next - s) <= 4.0 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(s)) ||
-                        hi - lo <= 4.0 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(s));
-      s = next;
-      if (done) break;
+      const bool last = std::abs(next - s) <= 1e-8 * std::max(1.0, std::abs(s));
+      s               = next;
+      if (last) break;
       if (it + 1 == max_iterations) return StressStatus::no_convergence;
     }
     lambda3 = std::exp(s);
@@ -249,8 +237,8 @@ struct OgdenPlaneStress {
       P = {};
       return st;
     }
-    const double l[3] = {l1, l2, lambda3}, J = Jt * lambda3;
-    Ogden::kirchhoff_iso(p, l, J, tau);
+    const double ln_l[3] = {0.5 * std::log(c[0]), 0.5 * std::log(c[1]), std::log(lambda3)}, J = Jt * lambda3;
+    Ogden::kirchhoff_iso(p, ln_l, tau);
     const double vol = (J * J - 1.0) / p.D, s[2] = {(tau[0] + vol) / c[0], (tau[1] + vol) / c[1]};
     P   = ogden_detail::first_piola(F, s, N);
     c33 = lambda3 * lambda3;
@@ -328,8 +316,8 @@ struct Ogden3D {
     double c[3], tau[3];
     Mat3   V;
     eigen3(right_cauchy_green3(F), c, V);
-    const double l[3] = {std::sqrt(c[0]), std::sqrt(c[1]), std::sqrt(c[2])};
-    Ogden::kirchhoff_iso(p, l, J, tau);
+    const double ln_l[3] = {0.5 * std::log(c[0]), 0.5 * std::log(c[1]), 0.5 * std::log(c[2])};
+    Ogden::kirchhoff_iso(p, ln_l, tau);
     const double vol = (J * J - 1.0) / p.D;
     Mat3         S{};
     for (int n = 0; n < 3; ++n)
