@@ -38,11 +38,11 @@
 // plane_stress.hpp); formulation_refusal() below says, in one message, why a law
 // cannot be run in a formulation, and the registry refuses such a choice up front.
 //
-// Seams for later laws: Mooney-Rivlin (uses_I2bar, modulus_I2bar), Yeoh and
-// Arruda-Boyce (I1bar only, like Gent) fit this interface as it is. Ogden-type laws work
-// on the principal stretches: they declare LawVariables::principal_stretches, which no
-// formulation accepts yet (each static_asserts invariants); such a law needs its own
-// stress path (the eigenvalues of C) beside these.
+// The laws beyond Gent: Mooney-Rivlin (uses_I2bar, modulus_I2bar), Yeoh and
+// Arruda-Boyce (I1bar only, like Gent) use this interface as it is. Ogden works on the
+// principal stretches: it declares LawVariables::principal_stretches and brings its own
+// formulations (PlaneStrainModel, PlaneStressModel: has_own_formulations below), which
+// with_model (models.hpp) picks instead of the invariant ones.
 #include <array>
 #include <string>
 #include <type_traits>
