@@ -38,11 +38,11 @@
 // plane_stress.hpp); formulation_refusal() below says, in one message, why a law
 // cannot be run in a formulation, and the registry refuses such a choice up front.
 //
-// Seams for later laws: Mooney-Rivlin (uses_I2bar, modulus_I2bar), Yeoh and
-// Arruda-Boyce (I1bar only, like Gent) fit this interface as it is. Ogden-type laws work
-// on the principal stretches: they declare LawVariables::principal_stretches, which no
-// formulation accepts yet (each static_asserts invariants); such a law needs its own
-// stress path (the eigenvalues of C) beside these.
+// The laws beyond Gent: Mooney-Rivlin (uses_I2bar, modulus_I2bar), Yeoh and
+// Arruda-Boyce (I1bar only, like Gent) use this interface as it is. Ogden works on the
+// principal stretches: it declares LawVariables::principal_stretches and brings its own
+// formulations (PlaneStrainModel, PlaneStressModel: has_own_formulations below), which
+// with_model (models.hpp) picks instead of the invariant ones.
 #include <array>
 #include <string>
 #include <type_traits>
@@ -97,12 +97,21 @@ using Modulus                      = ModulusOf<double>;
 
 // Empty when Law can be run in formulation f, else why not (one sentence, naming the
 // requirement and the formulation that would do). Plane stress: see plane_stress.hpp.
+// A law of principal stretches may bring its own formulations (Ogden: ogden.hpp),
+// as the member types PlaneStrainModel and PlaneStressModel.
+template <class Law, class = void> struct HasOwnFormulations : std::false_type {};
+template <class Law>
+struct HasOwnFormulations<Law, std::void_t<typename Law::PlaneStrainModel, typename Law::PlaneStressModel>> : std::true_type {};
+template <class Law> inline constexpr bool has_own_formulations = HasOwnFormulations<Law>::value;
+
 template <class Law> std::string formulation_refusal(Formulation f)
 {
   const std::string law = Law::name;
+  if constexpr (has_own_formulations<Law>) return "";
   if (Law::variables != LawVariables::invariants)
     return "-material_model " + law +
-           ": the law is written in principal stretches, and no formulation of bapd evaluates those yet";
+           ": the law is written in principal stretches and brings no formulations of its own (PlaneStrainModel, "
+           "PlaneStressModel: see ogden.hpp)";
   if (f != Formulation::plane_stress) return "";
   if (Law::uses_I2bar)
     return "-material_model " + law +

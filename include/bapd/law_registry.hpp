@@ -15,15 +15,23 @@
 #include <tuple>
 #include <vector>
 
+#include "bapd/arruda_boyce.hpp"
 #include "bapd/gent.hpp"
 #include "bapd/law.hpp"
+#include "bapd/mooney_rivlin.hpp"
 #include "bapd/neo_hookean.hpp"
+#include "bapd/ogden.hpp"
+#include "bapd/yeoh.hpp"
 
 // X(type, id): the law's struct and its -material_model name (static_asserted equal
 // to type::name below). One line per law; the order is the order of -help and docs.
-#define BAPD_REGISTERED_LAWS(X) \
-  X(Gent, gent)                 \
-  X(NeoHookean, neo_hookean)
+#define BAPD_REGISTERED_LAWS(X)  \
+  X(Gent, gent)                  \
+  X(NeoHookean, neo_hookean)     \
+  X(MooneyRivlin, mooney_rivlin) \
+  X(Yeoh, yeoh)                  \
+  X(ArrudaBoyce, arruda_boyce)   \
+  X(Ogden, ogden)
 
 namespace bapd {
 

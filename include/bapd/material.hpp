@@ -21,6 +21,9 @@
 //                           what a formulation may refuse
 //   bapd/gent.hpp           the Gent law (paper eq 24) and its aliases
 //   bapd/neo_hookean.hpp    the neo-Hookean law and its aliases
+//   bapd/mooney_rivlin.hpp, yeoh.hpp, arruda_boyce.hpp, ogden.hpp  the other laws
+//                           (docs/laws.md); inverse_langevin.hpp for Arruda-Boyce
+//   bapd/homogeneous_response.hpp  their incompressible test responses (bapd-fit)
 //   bapd/law_registry.hpp   the list of laws: ModelKind, MaterialParameters, entries
 //   bapd/hyperelastic.hpp   Compressible3D, PlaneStrain
 //   bapd/plane_stress.hpp   PlaneStress (the S33 = 0 solve) and what it requires

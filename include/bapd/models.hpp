@@ -27,10 +27,15 @@ decltype(auto) with_law(ModelKind kind, Formulation formulation, const MaterialP
   using Law = std::tuple_element_t<I, RegisteredLaws>;
   if constexpr (I + 1 < registered_law_count)
     if (kind != static_cast<ModelKind>(I)) return with_law<I + 1>(kind, formulation, p, fn);
-  if constexpr (accepts_plane_stress<Law>)
-    if (formulation == Formulation::plane_stress) return fn(PlaneStress<Law>{p});
-  if (formulation != Formulation::plane_strain) throw std::invalid_argument(formulation_refusal<Law>(formulation));
-  return fn(PlaneStrain<Law>{p});
+  if constexpr (has_own_formulations<Law>) { // a law of principal stretches (law.hpp)
+    if (formulation == Formulation::plane_stress) return fn(typename Law::PlaneStressModel{p});
+    return fn(typename Law::PlaneStrainModel{p});
+  } else {
+    if constexpr (accepts_plane_stress<Law>)
+      if (formulation == Formulation::plane_stress) return fn(PlaneStress<Law>{p});
+    if (formulation != Formulation::plane_strain) throw std::invalid_argument(formulation_refusal<Law>(formulation));
+    return fn(PlaneStrain<Law>{p});
+  }
 }
 } // namespace detail
 

@@ -61,7 +61,7 @@ std::vector<std::pair<std::string, Mat2>> loading_path(double increment)
 }
 
 template <class Model> class PlaneStressFastPath : public ::testing::Test {};
-using Models = ::testing::Types<GentPlaneStress, NeoHookeanPlaneStress>;
+using Models = ::testing::Types<GentPlaneStress, NeoHookeanPlaneStress, YeohPlaneStress, ArrudaBoycePlaneStress>;
 TYPED_TEST_SUITE(PlaneStressFastPath, Models);
 
 

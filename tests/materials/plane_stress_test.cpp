@@ -40,7 +40,7 @@ double pure_shear_nominal_stress(double lambda)
 }
 
 template <class Model> class PlaneStressModels : public ::testing::Test {};
-using Models = ::testing::Types<GentPlaneStress, NeoHookeanPlaneStress>;
+using Models = ::testing::Types<GentPlaneStress, NeoHookeanPlaneStress, YeohPlaneStress, ArrudaBoycePlaneStress>;
 TYPED_TEST_SUITE(PlaneStressModels, Models);
 
 

@@ -464,7 +464,7 @@ TEST_F(SceneOptions, RejectsEachInvalidInputNamingItsOption)
     {"notch cutting a corner", {{"-body_notches", "0,0.15,0.01,0.16"}}, "-body_notches", "top-left corner"},
     {"horizon below one spacing", {{"-horizon_factor", "0.5"}}, "-horizon_factor"},
     // material
-    {"unknown model", {{"-material_model", "mooney"}}, "-material_model", "gent or neo_hookean"},
+    {"unknown model", {{"-material_model", "mooney"}}, "-material_model", "choose gent, neo_hookean, mooney_rivlin, yeoh, arruda_boyce or ogden"},
     {"unknown formulation", {{"-material_formulation", "3d"}}, "-material_formulation", "plane_stress or plane_strain"},
     {"mu zero", {{"-material_mu", "0"}}, "-material_mu"},
     {"mu negative", {{"-material_mu", "-4550"}}, "-material_mu"},

@@ -1,0 +1,131 @@
+// bapd-fit: fits hyperelastic laws to stress-stretch test data (docs/laws.md).
+//
+//   bapd-fit -law gent,mooney_rivlin data/pure_shear.csv uniaxial:data/uni.csv
+//
+// Reads the curves (fit_data.hpp), fits each law (fit_run.hpp), prints the parameters
+// with their standard errors and a comparison table, writes the files of fit_report.hpp
+// and, unless -no_plot, draws fit_<mode>.png with scripts/plot_fit.py. Bad input stops
+// it with one "bapd-fit: error: ..." line and exit status 1; so does any law that
+// cannot fit the data (after the others are written).
+#include <cstdlib>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "fit_error.hpp"
+#include "fit_report.hpp"
+#include "fit_run.hpp"
+
+#ifndef BAPD_SOURCE_DIR
+#define BAPD_SOURCE_DIR "."
+#endif
+
+namespace {
+
+using namespace bapd::fit;
+
+const char *usage =
+    "usage: bapd-fit [options] [MODE:]FILE.csv ...\n"
+    "  FILE.csv          nominal stress against stretch: a 'stretch' column and one named ..._stress_Pa or\n"
+    "                    ..._stress_kPa; the test from a '# mode: uniaxial|pure_shear|equibiaxial' line or\n"
+    "                    the MODE: tag\n"
+    "  -law LIST         laws to fit, comma-separated: gent, neo_hookean, mooney_rivlin, yeoh, arruda_boyce,\n"
+    "                    ogden, or all (default gent)\n"
+    "  -ogden_terms N    terms of the Ogden law, 1 to 4 (default 2)\n"
+    "  -weight W         relative (default: residual / max(|P|, 5 % of the curve's top)) or absolute (Pa)\n"
+    "  -output_dir DIR   where the files go (default bapd_fit_output)\n"
+    "  -no_plot          skip the PNGs (scripts/plot_fit.py; needs /usr/bin/python3 with matplotlib)\n"
+    "  -plot_script PATH the plotting script (default " BAPD_SOURCE_DIR "/scripts/plot_fit.py)\n";
+
+std::vector<std::string> split_commas(const std::string &s)
+{
+  std::vector<std::string> out;
+  std::stringstream        ss(s);
+  std::string              item;
+  while (std::getline(ss, item, ','))
+    if (!item.empty()) out.push_back(item);
+  return out;
+}
+
+int run(int argc, char **argv)
+{
+  std::vector<std::string> laws = {"gent"}, files;
+  int                      ogden_terms = 2;
+  Weighting                weighting   = Weighting::relative;
+  std::string              output_dir = "bapd_fit_output", plot_script = BAPD_SOURCE_DIR "/scripts/plot_fit.py";
+  bool                     plot = true;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a     = argv[i];
+    auto              value = [&]() -> std::string {
+      if (i + 1 >= argc) throw FitError(a + " needs a value (bapd-fit -help lists the options)");
+      return argv[++i];
+    };
+    if (a == "-help" || a == "--help" || a == "-h") {
+      std::cout << usage;
+      return 0;
+    } else if (a == "-law") {
+      laws = split_commas(value());
+      if (laws.size() == 1 && laws[0] == "all") laws = fit_law_names();
+    } else if (a == "-ogden_terms") {
+      const std::string v = value();
+      char             *end = nullptr;
+      ogden_terms           = static_cast<int>(std::strtol(v.c_str(), &end, 10));
+      if (v.empty() || *end != '\0') throw FitError("-ogden_terms " + v + ": give a whole number of terms, 1 to 4");
+    } else if (a == "-weight") {
+      const std::string v = value();
+      if (v == "relative") weighting = Weighting::relative;
+      else if (v == "absolute") weighting = Weighting::absolute;
+      else throw FitError("-weight " + v + ": choose relative or absolute");
+    } else if (a == "-output_dir") output_dir = value();
+    else if (a == "-no_plot") plot = false;
+    else if (a == "-plot_script") plot_script = value();
+    else if (!a.empty() && a[0] == '-') throw FitError(a + " is not an option of bapd-fit (bapd-fit -help lists them)");
+    else files.push_back(a);
+  }
+  if (files.empty()) throw FitError("no data: give one or more CSV files of stretch and nominal stress (bapd-fit -help)");
+  if (laws.empty()) throw FitError("-law: give at least one law");
+
+  std::vector<Curve> curves;
+  for (const std::string &f : files) {
+    std::string mode, path = f;
+    const auto  colon = f.find(':');
+    bapd::LoadMode m;
+    if (colon != std::string::npos && parse_mode(f.substr(0, colon), m)) mode = f.substr(0, colon), path = f.substr(colon + 1);
+    curves.push_back(read_curve(path, mode));
+  }
+  std::vector<FitLaw> chosen;
+  for (const std::string &name : laws) chosen.push_back(fit_law(name, ogden_terms)); // unknown names first
+  std::vector<LawFit> fits;
+  for (const FitLaw &law : chosen) fits.push_back(fit_law_to_data(law, curves, weighting));
+  for (const LawFit &f : fits) print_fit(std::cout, f);
+  if (fits.size() > 1) print_comparison(std::cout, fits);
+  write_outputs(output_dir, curves, fits);
+  std::cout << "wrote " << output_dir << "/ (parameters_*.csv, residuals_*.csv, material_*.yaml, curves.csv"
+            << (fits.size() > 1 ? ", comparison.csv" : "") << ")\n";
+  if (plot) {
+    std::cout.flush(); // (the script's lines after ours)
+    const std::string cmd = "/usr/bin/python3 '" + plot_script + "' '" + output_dir + "'";
+    if (std::system(cmd.c_str()) != 0)
+      throw FitError("the plot failed (" + cmd + "); the fit's files are written; rerun with -no_plot to skip the PNGs");
+  }
+  int status = 0;
+  for (const LawFit &f : fits)
+    if (!f.problem.empty()) {
+      std::cerr << "bapd-fit: error: -law " << f.law.name << ": " << f.problem << "\n";
+      status = 1;
+    }
+  return status;
+}
+
+} // namespace
+
+int main(int argc, char **argv)
+{
+  try {
+    return run(argc, argv);
+  } catch (const FitError &e) {
+    std::cerr << "bapd-fit: error: " << e.what() << "\n";
+    return 1;
+  }
+}
