@@ -7,4 +7,6 @@ here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 export OMPI_MCA_rmaps_base_oversubscribe=1
 cd "${BAPD_BUILD_DIR:-$here/build}"
-ctest --output-on-failure --timeout 600 "$@"
+# Tests declare the ranks they use (PROCESSORS): ctest runs as many side by side as
+# the machine has cores.
+ctest --output-on-failure --timeout 600 -j "$(nproc)" "$@"
