@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "bapd/options.hpp"
 #include "bapd/reproducible_sum.hpp"
 
 namespace bapd {
@@ -12,6 +13,11 @@ namespace bapd {
 PetscErrorCode TimeStepOptionsFromOptions(MPI_Comm comm, TimeStepOptions *options)
 {
   PetscFunctionBeginUser;
+  // Known to the typo check (options_unused.cpp), which suggests the nearest of them.
+  for (const char *name : {"-time_step_reestimate", "-time_step_reestimate_iterations", "-time_step_band", "-time_step_reestimate_max_iterations",
+                           "-time_step_reestimate_tolerance", "-time_step_floor", "-time_step_reestimate_stretch", "-time_step_shift",
+                           "-time_step_monitor"})
+    RegisterOptionName(name);
   PetscOptionsBegin(comm, nullptr, "Time step that follows the material", "bapd");
   PetscCall(PetscOptionsInt("-time_step_reestimate",
                             "Time steps between re-estimates of the stable step from the current state [-] (0: the step at rest "
@@ -42,7 +48,7 @@ PetscErrorCode TimeStepOptionsFromOptions(MPI_Comm comm, TimeStepOptions *option
              "-time_step_reestimate %" PetscInt_FMT ": give the number of steps between re-estimates (>= 1), or 0 to keep the step at rest",
              options->interval);
   PetscCheck(options->iterations >= 1, comm, PETSC_ERR_USER,
-             "-time_step_reestimate_iterations %" PetscInt_FMT ": give at least 1 power iteration per re-estimate (default 2)",
+             "-time_step_reestimate_iterations %" PetscInt_FMT ": give at least 1 power iteration per re-estimate (default 1)",
              options->iterations);
   PetscCheck(options->floor == -1 || (options->floor > 0 && options->floor <= 1), comm, PETSC_ERR_USER,
              "-time_step_floor %g: give a fraction of the base step in (0, 1], or -1 for the solver's choice", options->floor);

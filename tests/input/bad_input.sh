@@ -49,6 +49,7 @@ expect_error bad_rank_count "-n needs a number of ranks" "$scene" -n two
 # Unknown options: the nearest real name
 expect_error unknown_option "-material_muu is not a bapd option. Did you mean -material_mu?" "$scene" -material_muu 5e3
 expect_error nested_key "(-body_dx_value was given: in YAML, 'value' is nested under the key of -body_dx" "$fixtures/nested_key.yaml"
+expect_error time_step_typo "-time_step_reestimat is not a bapd option. Did you mean -time_step_reestimate?" "$scene" -time_step_reestimat 10
 expect_error nested_optional_key "-material_mu_value is not a bapd option. In YAML, 'value' is nested under the key of -material_mu" "$scene" -material_mu_value 3
 expect_error duplicate_key "key 'width' is given twice under 'body' (lines 3 and 7): give each key once" "$fixtures/duplicate_key.yaml"
 expect_error misspelt_required "(-body_widht was given: is it a misspelling of -body_width?)" "$fixtures/misspelt_width.yaml"
