@@ -41,7 +41,7 @@ struct TimeStepOptions {
   double   floor      = -1;   // the stiffness step is at least this x base (-1: 0.1, or 0.5 with failure)
   double   stretch    = 0.05; // ...and whenever the applied stretch moved by this much since the last one
   double   shift      = 0.45; // the power iteration runs on A - shift lambda I: faster convergence to lambda_max
-  PetscBool monitor   = PETSC_FALSE; // a line per re-estimate (measurements, docs/stability.md section 8)
+  bool     monitor    = false; // a line per re-estimate (measurements, docs/stability.md section 8)
 };
 // Reads (and lists under -help) the options. Collective.
 PetscErrorCode TimeStepOptionsFromOptions(MPI_Comm comm, TimeStepOptions *options);

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <cstring>
 
-#include "bapd/options.hpp"
+#include "bapd/options_reader.hpp"
 #include "bapd/reproducible_sum.hpp"
 
 namespace bapd {
@@ -13,37 +13,35 @@ namespace bapd {
 PetscErrorCode TimeStepOptionsFromOptions(MPI_Comm comm, TimeStepOptions *options)
 {
   PetscFunctionBeginUser;
-  // Known to the typo check (options_unused.cpp), which suggests the nearest of them.
-  for (const char *name : {"-time_step_reestimate", "-time_step_reestimate_iterations", "-time_step_band", "-time_step_reestimate_max_iterations",
-                           "-time_step_reestimate_tolerance", "-time_step_floor", "-time_step_reestimate_stretch", "-time_step_shift",
-                           "-time_step_monitor"})
-    RegisterOptionName(name);
-  PetscOptionsBegin(comm, nullptr, "Time step that follows the material", "bapd");
-  PetscCall(PetscOptionsInt("-time_step_reestimate",
-                            "Time steps between re-estimates of the stable step from the current state [-] (0: the step at rest "
-                            "for the whole run, as in the paper)",
-                            "docs/options.md", options->interval, &options->interval, nullptr));
-  PetscCall(PetscOptionsInt("-time_step_reestimate_iterations", "Fewest power iterations per re-estimate [-], >= 1 (one force evaluation each)",
-                            "docs/options.md", options->iterations, &options->iterations, nullptr));
-  PetscCall(PetscOptionsReal("-time_step_band",
-                             "Dead band of the re-estimated step [-], in [0, 0.5): it shrinks or grows back only when the stable step "
-                             "moved by more than this fraction",
-                             "docs/options.md", options->band, &options->band, nullptr));
-  PetscCall(PetscOptionsInt("-time_step_reestimate_max_iterations", "Most power iterations per re-estimate [-] while the estimate still moves",
-                            "docs/options.md", options->max_iterations, &options->max_iterations, nullptr));
-  PetscCall(PetscOptionsReal("-time_step_reestimate_tolerance", "A re-estimate stops once lambda_max moves by less than this fraction per iteration [-]",
-                             "docs/options.md", options->tolerance, &options->tolerance, nullptr));
-  PetscCall(PetscOptionsReal("-time_step_floor",
-                             "The re-estimated step is at least this fraction of the base step [-], in (0, 1] (default -1: 0.1, or 0.5 "
-                             "with failure, where the travel limit handles the bonds about to snap)",
-                             "docs/options.md", options->floor, &options->floor, nullptr));
-  PetscCall(PetscOptionsReal("-time_step_reestimate_stretch", "Re-estimate also whenever the applied stretch moved by this much since the last one [-] (fast ramps)",
-                             "docs/options.md", options->stretch, &options->stretch, nullptr));
-  PetscCall(PetscOptionsReal("-time_step_shift", "Shift of the re-estimate's power iteration, a fraction of the last lambda_max [-], in [0, 0.5]",
-                             "docs/options.md", options->shift, &options->shift, nullptr));
-  PetscCall(PetscOptionsBool("-time_step_monitor", "Print a line per re-estimate of the stable step (step, lambda_max, stable step, step in use)",
-                             "docs/options.md", options->monitor, &options->monitor, nullptr));
-  PetscOptionsEnd();
+  // Read as the scene's options are (options_reader.hpp): named in -help, known to the
+  // typo check, a malformed value refused naming its option.
+  PetscCall(ReadOptionBlock(comm, nullptr, "Time step that follows the material", [&](OptionReader &r) -> PetscErrorCode {
+    PetscCall(r.Int("-time_step_reestimate",
+                    "Time steps between re-estimates of the stable step from the current state [-] (0: the step at rest for the whole "
+                    "run, as in the paper)",
+                    &options->interval));
+    PetscCall(r.Int("-time_step_reestimate_iterations", "Fewest power iterations per re-estimate [-], >= 1 (one force evaluation each)",
+                    &options->iterations));
+    PetscCall(r.Real("-time_step_band",
+                     "Dead band of the re-estimated step [-], in [0, 0.5): it shrinks or grows back only when the stable step moved by "
+                     "more than this fraction",
+                     &options->band));
+    PetscCall(r.Int("-time_step_reestimate_max_iterations", "Most power iterations per re-estimate [-] while the estimate still moves",
+                    &options->max_iterations));
+    PetscCall(r.Real("-time_step_reestimate_tolerance", "A re-estimate stops once lambda_max moves by less than this fraction per iteration [-]",
+                     &options->tolerance));
+    PetscCall(r.Real("-time_step_floor",
+                     "The re-estimated step is at least this fraction of the base step [-], in (0, 1] (default -1: 0.1, or 0.5 with "
+                     "failure, where the travel limit handles the bonds about to snap)",
+                     &options->floor));
+    PetscCall(r.Real("-time_step_reestimate_stretch", "Re-estimate also whenever the applied stretch moved by this much since the last one [-] (fast ramps)",
+                     &options->stretch));
+    PetscCall(r.Real("-time_step_shift", "Shift of the re-estimate's power iteration, a fraction of the last lambda_max [-], in [0, 0.5]",
+                     &options->shift));
+    PetscCall(r.Bool("-time_step_monitor", "Print a line per re-estimate of the stable step (step, lambda_max, stable step, step in use)",
+                     &options->monitor));
+    return 0;
+  }));
   PetscCheck(options->interval >= 0, comm, PETSC_ERR_USER,
              "-time_step_reestimate %" PetscInt_FMT ": give the number of steps between re-estimates (>= 1), or 0 to keep the step at rest",
              options->interval);
