@@ -36,7 +36,7 @@ LatticeCells lattice_cells(const Body2D &body);
 // How many points make_lattice keeps, counted without building them (cells less the
 // centres inside holes), exactly, row by row (one chord per hole and row). Beyond
 // 1e8 row-hole pairs (a body no machine holds) it estimates from the hole areas.
-// With shapes, every cell is tested up to 2e8 cells; beyond, a 4000 x 4000 sample of
+// With shapes, every cell is tested up to 2e7 cells (as lattice_pieces); beyond, a 4000 x 4000 sample of
 // the cells estimates the fraction kept.
 int64_t lattice_point_count(const Body2D &body);
 

@@ -87,7 +87,6 @@ public:
 
   double   stable() const { return stable_dt_; }           // at rest
   double   stable_now() const { return stable_now_; }      // of the latest estimate
-  double   lambda_now() const { return lambda_; }
   double   lambda_rest() const { return lambda_rest_; }
   double   base() const { return base_dt_; }
   double   current() const { return dt_; }

@@ -55,8 +55,8 @@ static void hole_row_cells(const Body2D &body, const Circle &h, int64_t nx, doub
 static int64_t shaped_point_count(const Body2D &body, const LatticeCells &cells)
 {
   const double  total  = static_cast<double>(cells.nx) * static_cast<double>(cells.ny);
-  const int64_t sx     = total > 2e8 ? std::max<int64_t>(1, cells.nx / 4000) : 1;
-  const int64_t sy     = total > 2e8 ? std::max<int64_t>(1, cells.ny / 4000) : 1;
+  const int64_t sx     = total > 2e7 ? std::max<int64_t>(1, cells.nx / 4000) : 1;
+  const int64_t sy     = total > 2e7 ? std::max<int64_t>(1, cells.ny / 4000) : 1;
   int64_t       kept = 0, tested = 0;
   for (int64_t iy = 0; iy < cells.ny; iy += sy)
     for (int64_t ix = 0; ix < cells.nx; ix += sx, ++tested) kept += is_material(body, cell_centre(ix, body.dx), cell_centre(iy, body.dx));
