@@ -262,6 +262,40 @@ class _Problem(dolfinx.fem.petsc.NonlinearProblem):
             self.gent.update_c33()
 
 
+def mesh_from_gmsh(build, h, geometry_order=2):
+    """dolfinx mesh of the gmsh model that build(gmsh, h) makes (it returns the surface
+    tags, synchronised; it may add a size field), element size at most h;
+    geometry_order 2 puts the edge mid-nodes on the curves, so P2 does not lose its
+    order to a polygonal hole."""
+    import gmsh
+    from dolfinx.io import gmshio
+    gmsh.initialize()
+    gmsh.option.setNumber("General.Terminal", 0)
+    gmsh.model.add("fe")
+    surfaces = build(gmsh, h)
+    gmsh.model.occ.synchronize()
+    gmsh.model.addPhysicalGroup(2, surfaces, 1)
+    gmsh.option.setNumber("Mesh.CharacteristicLengthMax", h)
+    gmsh.model.mesh.generate(2)
+    gmsh.model.mesh.setOrder(geometry_order)
+    msh, _, _ = gmshio.model_to_mesh(gmsh.model, MPI.COMM_WORLD, 0, gdim=2)
+    gmsh.finalize()
+    return msh
+
+
+def point_value(function, point):
+    """Value of a vector Function at a point of the mesh (x, y) in mm."""
+    from dolfinx import geometry
+    msh = function.function_space.mesh
+    p = np.array([[point[0], point[1], 0.0]])
+    tree = geometry.BoundingBoxTree(msh, msh.topology.dim)
+    candidates = geometry.compute_collisions(tree, p)
+    cells = geometry.compute_colliding_cells(msh, candidates, p)
+    if len(cells.links(0)) == 0:
+        raise RuntimeError(f"point {point} is not in the mesh")
+    return function.eval(p, cells.links(0)[:1])
+
+
 def formulation_name(bulk_ratio):
     return "incompressible" if bulk_ratio is None else f"K={bulk_ratio:g}mu"
 
@@ -282,6 +316,97 @@ def richardson(values, ratio=2.0):
         return None, None
     p = math.log(abs(d1 / d2)) / math.log(ratio)
     return p, c + d2 / (ratio**p - 1)
+
+
+def study_arguments(description, sizes, lambdas, csv_name):
+    """The command line every script shares."""
+    import argparse
+    import os
+    ap = argparse.ArgumentParser(description=description,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--quick", action="store_true", help="the two coarsest meshes only")
+    ap.add_argument("--sizes", type=float, nargs="+", default=sizes,
+                    help="P2 element sizes (mm), coarse to fine; P1 runs on the finest")
+    ap.add_argument("--lambdas", type=float, nargs="+", default=lambdas, help="stretches")
+    ap.add_argument("--formulations", nargs="+", default=["incompressible", "compressible"],
+                    choices=["incompressible", "compressible"])
+    ap.add_argument("--bulk-ratio", type=float, default=BULK_RATIO,
+                    help="K/mu of the compressible law (bapd's default 1000)")
+    ap.add_argument("--csv", default=os.path.join(os.path.dirname(os.path.abspath(__file__)),
+                                                  "results", csv_name))
+    ap.add_argument("--verbose", action="store_true", help="report the load steps")
+    return ap
+
+
+def run_study(args, quantities, solve):
+    """Convergence study: for each formulation, P2 on args.sizes (the two coarsest with
+    --quick) and P1 on the finest; prints a row a mesh and the Richardson estimate of each
+    quantity from the three finest P2 meshes, writes args.csv.
+    quantities: [(key, label, unit)]; solve(h, degree, bulk_ratio, lambdas) returns
+    ({key: {lambda: value}}, {"cells":, "dofs":, "steps":, "newton":, "s33":})."""
+    import csv
+    import os
+    sizes = args.sizes[:2] if args.quick else args.sizes
+    lambdas = sorted(args.lambdas)
+    rows = []
+    columns = [(key, lam) for key, _, _ in quantities for lam in lambdas]
+    labels = {key: label for key, label, _ in quantities}
+    units = {key: unit for key, _, unit in quantities}
+    header = (f"{'formulation':<15} {'P':>2} {'h_mm':>7} {'cells':>7} {'dofs':>8} "
+              + " ".join(f"{labels[k] + '(' + format(l, 'g') + ')':>12}" for k, l in columns)
+              + f" {'steps':>5} {'newton':>6} {'time_s':>7}")
+    for form in args.formulations:
+        bulk = None if form == "incompressible" else args.bulk_ratio
+        name = formulation_name(bulk)
+        print(header)
+        p2 = {c: [] for c in columns}
+        for degree, h in [(2, h) for h in sizes] + [(1, sizes[-1])]:
+            timer = Timer()
+            values, info = solve(h, degree, bulk, lambdas)
+            t = timer()
+            print(f"{name:<15} {degree:>2} {h:>7.4g} {info['cells']:>7} {info['dofs']:>8} "
+                  + " ".join(f"{values[k][l]:>12.6f}" for k, l in columns)
+                  + f" {info['steps']:>5} {info['newton']:>6} {t:>7.1f}", flush=True)
+            row = dict(formulation=name, degree=degree, h_mm=h, cells=info["cells"],
+                       dofs=info["dofs"])
+            for k, l in columns:
+                row[f"{k}_{l:g}_{units[k]}"] = f"{values[k][l]:.8f}"
+                if degree == 2:
+                    p2[(k, l)].append(values[k][l])
+            row["max_S33_residual"] = f"{info['s33']:.1e}"
+            row["time_s"] = f"{t:.1f}"
+            rows.append(row)
+        ratio = sizes[-2] / sizes[-1] if len(sizes) > 1 else 2.0
+        extrapolated = dict(formulation=name, degree="extrapolated", h_mm=0, cells="", dofs="")
+        for k, l in columns:
+            p, ext = richardson(p2[(k, l)], ratio)
+            fine = p2[(k, l)][-1]
+            if ext is None:
+                diffs = " ".join(f"{d:+.1e}" for d in np.diff(p2[(k, l)]))
+                print(f"  {labels[k]}({l:g}): finest P2 {fine:.6f} {units[k]}; no Richardson "
+                      f"estimate (P2 differences {diffs})")
+                extrapolated[f"{k}_{l:g}_{units[k]}"] = ""
+            else:
+                print(f"  {labels[k]}({l:g}): finest P2 {fine:.6f} {units[k]}, observed order "
+                      f"{p:.2f}, extrapolated {ext:.6f}, estimated relative error of the "
+                      f"finest {abs(fine - ext) / abs(ext):.1e}")
+                extrapolated[f"{k}_{l:g}_{units[k]}"] = f"{ext:.8f}"
+        extrapolated["max_S33_residual"] = ""
+        extrapolated["time_s"] = ""
+        rows.append(extrapolated)
+    os.makedirs(os.path.dirname(args.csv), exist_ok=True)
+    with open(args.csv, "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
+        w.writeheader()
+        w.writerows(rows)
+    print(f"wrote {args.csv}")
+
+
+def solve_info(fe):
+    """The bookkeeping run_study prints for a solved problem."""
+    return {"cells": fe.msh.topology.index_map(2).size_local, "dofs": dofs_of(fe),
+            "steps": fe.steps_taken, "newton": fe.newton_iterations,
+            "s33": fe.s33_check() if fe.compressible else 0.0}
 
 
 def pure_shear_analytic(lam, mu=MU_KPA, Jm=JM):

@@ -1,0 +1,111 @@
+#!/usr/bin/python3
+"""FE reference for examples/waisted_sheet.yaml (issue 18: a non-rectangular specimen).
+
+The scene (mm): the sheet [0, 20] x [0, 60], thickness 2, less two discs of radius 12
+centred at (-8, 30) and (28, 30) (a 12 mm waist), an elliptical pore centred at (10, 30)
+with radii 1.5 x 0.8 tilted 30 degrees, and the diamond window (10, 46), (13, 49),
+(10, 52), (7, 49). Grips: 3 point rows at each end (dx = 0.5 mm), x held, the bottom
+fixed, the top moved by (lambda - 1) 60 mm (the default reference length: the body
+height). Gent, mu = 4.55 kPa, Jm = 162.6, plane stress, K = 1000 mu.
+
+Mirror in the continuum: the grips are rigid, so the free specimen is the shape
+between y = 1.5 and y = 58.5 mm (the grip rows' cells end there), clamped on those two
+edges (ux = 0; uy = 0 below, (lambda - 1) 60 mm above). Outputs at each stretch:
+  ux, uy of the probe (mm): the scene's probe waist_edge at (4.25, 30) records the
+  lattice point nearest to it, (4.25, 29.75) (the tie with (4.25, 30.25) goes to the
+  lower by round-off and by natural id; bapd prints "Probe waist_edge: point ... at");
+  s = top reaction / (20 mm x 2 mm) (kPa), as bapd's history (width x thickness).
+Meshes: gmsh, size h, h/4 within 1 mm of the pore and the window (their corners and
+tight curvature), second-order geometry. Writes results/waisted_sheet.csv.
+"""
+import os
+import sys
+
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import gent_fe  # noqa: E402
+
+WIDTH, HEIGHT, THICKNESS = 20.0, 60.0, 2.0          # mm
+DX, GRIP_LAYERS = 0.5, 3                            # the scene's lattice and grips
+PROBE = (4.25, 29.75)                               # mm
+
+
+def build_waisted(gmsh, h, grip_depth):
+    occ = gmsh.model.occ
+    sheet = occ.addRectangle(0, grip_depth, 0, WIDTH, HEIGHT - 2 * grip_depth)
+    left = occ.addDisk(-8, 30, 0, 12, 12)
+    right = occ.addDisk(28, 30, 0, 12, 12)
+    pore = occ.addDisk(10, 30, 0, 1.5, 0.8)
+    occ.rotate([(2, pore)], 10, 30, 0, 0, 0, 1, np.radians(30))
+    corners = [occ.addPoint(x, y, 0) for x, y in [(10, 46), (13, 49), (10, 52), (7, 49)]]
+    lines = [occ.addLine(corners[i], corners[(i + 1) % 4]) for i in range(4)]
+    window = occ.addPlaneSurface([occ.addCurveLoop(lines)])
+    cut, _ = occ.cut([(2, sheet)], [(2, left), (2, right), (2, pore), (2, window)])
+    occ.synchronize()
+    # Curves of the pore and the window: those whose bounding box lies in their boxes.
+    near = []
+    for box in [(8, 28.5, 12, 31.5), (6.9, 45.9, 13.1, 52.1)]:
+        near += [tag for _, tag in gmsh.model.getEntitiesInBoundingBox(
+            box[0], box[1], -1, box[2], box[3], 1, dim=1)]
+    field = gmsh.model.mesh.field
+    dist = field.add("Distance")
+    field.setNumbers(dist, "CurvesList", near)
+    field.setNumber(dist, "Sampling", 200)
+    thr = field.add("Threshold")
+    field.setNumber(thr, "InField", dist)
+    field.setNumber(thr, "SizeMin", h / 4)
+    field.setNumber(thr, "SizeMax", h)
+    field.setNumber(thr, "DistMin", 1.0)
+    field.setNumber(thr, "DistMax", 1.0 + 3 * h)
+    field.setAsBackgroundMesh(thr)
+    return [tag for _, tag in cut]
+
+
+def solve(h, degree, bulk_ratio, lambdas, grip_depth, reference_length, verbose=False):
+    msh = gent_fe.mesh_from_gmsh(lambda g, hh: build_waisted(g, hh, grip_depth), h)
+    fe = gent_fe.GentPlaneStress(msh, degree, THICKNESS, bulk_ratio=bulk_ratio)
+    top = fe.facets(lambda x: np.isclose(x[1], HEIGHT - grip_depth))
+    low = fe.facets(lambda x: np.isclose(x[1], grip_depth))
+    for facets in (top, low):
+        fe.add_bc(0, facets)
+    fe.add_bc(1, low)
+    uy_top = fe.add_bc(1, top)
+    reaction = fe.reaction_form(1, top)
+
+    def set_load(lam):
+        uy_top.value = (lam - 1.0) * reference_length
+
+    ux, uy, stress = {}, {}, {}
+
+    def on_target(lam):
+        u = gent_fe.point_value(fe.u, PROBE)
+        ux[lam], uy[lam] = float(u[0]), float(u[1])
+        stress[lam] = gent_fe.fem.assemble_scalar(reaction) / (WIDTH * THICKNESS)
+        if verbose:
+            print(f"    lambda {lam:g}: probe ({ux[lam]:.6f}, {uy[lam]:.6f}) mm, "
+                  f"s {stress[lam]:.6f} kPa", file=sys.stderr)
+
+    fe.march(set_load, lambdas, on_target, verbose=verbose)
+    return {"ux": ux, "uy": uy, "s": stress}, gent_fe.solve_info(fe)
+
+
+def main():
+    ap = gent_fe.study_arguments(__doc__, [1.0, 0.5, 0.25], [1.25, 1.5, 1.75, 2.0],
+                                 "waisted_sheet.csv")
+    ap.add_argument("--grip-depth", type=float, default=GRIP_LAYERS * DX,
+                    help="mm of each end held by a grip (default 3 rows x 0.5 mm)")
+    ap.add_argument("--reference-length", type=float, default=HEIGHT,
+                    help="L (mm) in u_top = (lambda - 1) L (default: the body height)")
+    args = ap.parse_args()
+    print(f"Waisted sheet (examples/waisted_sheet.yaml), free between y = {args.grip_depth:g} "
+          f"and {HEIGHT - args.grip_depth:g} mm, top moved by (lambda - 1) "
+          f"{args.reference_length:g} mm, plane-stress Gent: probe at {PROBE} mm "
+          "(ux, uy in mm), nominal stress s = reaction / (20 mm x 2 mm) (kPa)")
+    gent_fe.run_study(args, [("ux", "ux", "mm"), ("uy", "uy", "mm"), ("s", "s", "kPa")],
+                      lambda h, p, k, lams: solve(h, p, k, lams, args.grip_depth,
+                                                  args.reference_length, args.verbose))
+
+
+if __name__ == "__main__":
+    main()
