@@ -51,7 +51,7 @@ def build_waisted(gmsh, h, grip_depth):
     field = gmsh.model.mesh.field
     dist = field.add("Distance")
     field.setNumbers(dist, "CurvesList", near)
-    field.setNumber(dist, "Sampling", 200)
+    field.setNumber(dist, "NumPointsPerCurve", 200)
     thr = field.add("Threshold")
     field.setNumber(thr, "InField", dist)
     field.setNumber(thr, "SizeMin", h / 4)
@@ -91,7 +91,7 @@ def solve(h, degree, bulk_ratio, lambdas, grip_depth, reference_length, verbose=
 
 
 def main():
-    ap = gent_fe.study_arguments(__doc__, [1.0, 0.5, 0.25], [1.25, 1.5, 1.75, 2.0],
+    ap = gent_fe.study_arguments(__doc__, [2.0, 1.0, 0.5], [1.25, 1.5, 1.75, 2.0],
                                  "waisted_sheet.csv")
     ap.add_argument("--grip-depth", type=float, default=GRIP_LAYERS * DX,
                     help="mm of each end held by a grip (default 3 rows x 0.5 mm)")
