@@ -283,6 +283,39 @@ def mesh_from_gmsh(build, h, geometry_order=2):
     return msh
 
 
+def solve_gripped_specimen(build, h, degree, bulk_ratio, lambdas, *, height, width, thickness,
+                           grip_depth, reference_length, probe, verbose=False):
+    """A specimen of a bapd scene gripped by edge layers: the shape build(gmsh, h) makes,
+    between y = grip_depth and height - grip_depth, clamped there (ux = 0; uy = 0 below,
+    (lambda - 1) reference_length above). Returns the probe's ux, uy (mm) and
+    s = top reaction / (width x thickness) (kPa), bapd's nominal stress, per stretch."""
+    msh = mesh_from_gmsh(build, h)
+    fe = GentPlaneStress(msh, degree, thickness, bulk_ratio=bulk_ratio)
+    top = fe.facets(lambda x: np.isclose(x[1], height - grip_depth))
+    low = fe.facets(lambda x: np.isclose(x[1], grip_depth))
+    for facets in (top, low):
+        fe.add_bc(0, facets)
+    fe.add_bc(1, low)
+    uy_top = fe.add_bc(1, top)
+    reaction = fe.reaction_form(1, top)
+
+    def set_load(lam):
+        uy_top.value = (lam - 1.0) * reference_length
+
+    ux, uy, stress = {}, {}, {}
+
+    def on_target(lam):
+        u = point_value(fe.u, probe)
+        ux[lam], uy[lam] = float(u[0]), float(u[1])
+        stress[lam] = fem.assemble_scalar(reaction) / (width * thickness)
+        if verbose:
+            print(f"    lambda {lam:g}: probe ({ux[lam]:.6f}, {uy[lam]:.6f}) mm, "
+                  f"s {stress[lam]:.6f} kPa", file=sys.stderr)
+
+    fe.march(set_load, lambdas, on_target, verbose=verbose)
+    return {"ux": ux, "uy": uy, "s": stress}, solve_info(fe)
+
+
 def point_value(function, point):
     """Value of a vector Function at a point of the mesh (x, y) in mm."""
     from dolfinx import geometry

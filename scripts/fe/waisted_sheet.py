@@ -62,34 +62,6 @@ def build_waisted(gmsh, h, grip_depth):
     return [tag for _, tag in cut]
 
 
-def solve(h, degree, bulk_ratio, lambdas, grip_depth, reference_length, verbose=False):
-    msh = gent_fe.mesh_from_gmsh(lambda g, hh: build_waisted(g, hh, grip_depth), h)
-    fe = gent_fe.GentPlaneStress(msh, degree, THICKNESS, bulk_ratio=bulk_ratio)
-    top = fe.facets(lambda x: np.isclose(x[1], HEIGHT - grip_depth))
-    low = fe.facets(lambda x: np.isclose(x[1], grip_depth))
-    for facets in (top, low):
-        fe.add_bc(0, facets)
-    fe.add_bc(1, low)
-    uy_top = fe.add_bc(1, top)
-    reaction = fe.reaction_form(1, top)
-
-    def set_load(lam):
-        uy_top.value = (lam - 1.0) * reference_length
-
-    ux, uy, stress = {}, {}, {}
-
-    def on_target(lam):
-        u = gent_fe.point_value(fe.u, PROBE)
-        ux[lam], uy[lam] = float(u[0]), float(u[1])
-        stress[lam] = gent_fe.fem.assemble_scalar(reaction) / (WIDTH * THICKNESS)
-        if verbose:
-            print(f"    lambda {lam:g}: probe ({ux[lam]:.6f}, {uy[lam]:.6f}) mm, "
-                  f"s {stress[lam]:.6f} kPa", file=sys.stderr)
-
-    fe.march(set_load, lambdas, on_target, verbose=verbose)
-    return {"ux": ux, "uy": uy, "s": stress}, gent_fe.solve_info(fe)
-
-
 def main():
     ap = gent_fe.study_arguments(__doc__, [2.0, 1.0, 0.5], [1.25, 1.5, 1.75, 2.0],
                                  "waisted_sheet.csv")
@@ -103,8 +75,11 @@ def main():
           f"{args.reference_length:g} mm, plane-stress Gent: probe at {PROBE} mm "
           "(ux, uy in mm), nominal stress s = reaction / (20 mm x 2 mm) (kPa)")
     gent_fe.run_study(args, [("ux", "ux", "mm"), ("uy", "uy", "mm"), ("s", "s", "kPa")],
-                      lambda h, p, k, lams: solve(h, p, k, lams, args.grip_depth,
-                                                  args.reference_length, args.verbose))
+                      lambda h, p, k, lams: gent_fe.solve_gripped_specimen(
+                          lambda g, hh: build_waisted(g, hh, args.grip_depth), h, p, k, lams,
+                          height=HEIGHT, width=WIDTH, thickness=THICKNESS,
+                          grip_depth=args.grip_depth, reference_length=args.reference_length,
+                          probe=PROBE, verbose=args.verbose))
 
 
 if __name__ == "__main__":
