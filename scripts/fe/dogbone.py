@@ -27,8 +27,8 @@ import gent_fe  # noqa: E402
 WIDTH, HEIGHT, THICKNESS = 20.0, 60.0, 2.0          # mm
 DX, GRIP_LAYERS = 0.5, 4                            # the scene's lattice and grips
 PROBE = (5.25, 29.75)                               # mm
-GEO = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "examples",
-                   "geometry", "dogbone.geo")
+REPOSITORY = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+GEO = os.path.join(REPOSITORY, "examples", "geometry", "dogbone.geo")
 
 
 def outline_curves(gmsh, path):
@@ -90,7 +90,7 @@ def main():
     ap.add_argument("--reference-length", type=float, default=HEIGHT,
                     help="L (mm) in u_top = (lambda - 1) L (default: the body height)")
     args = ap.parse_args()
-    print(f"Dogbone (examples/dogbone.yaml, outline from {os.path.relpath(GEO)}), free "
+    print(f"Dogbone (examples/dogbone.yaml, outline from {os.path.relpath(GEO, REPOSITORY)}), free "
           f"between y = {args.grip_depth:g} and {HEIGHT - args.grip_depth:g} mm, top moved by "
           f"(lambda - 1) {args.reference_length:g} mm, plane-stress Gent: probe at {PROBE} mm "
           "(ux, uy in mm), nominal stress s = reaction / (20 mm x 2 mm) (kPa)")
