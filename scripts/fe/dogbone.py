@@ -84,22 +84,10 @@ def build_dogbone(gmsh, h, grip_depth):
 
 
 def main():
-    ap = gent_fe.study_arguments(__doc__, [2.0, 1.0, 0.5], [1.25, 1.5], "dogbone.csv")
-    ap.add_argument("--grip-depth", type=float, default=GRIP_LAYERS * DX,
-                    help="mm of each end held by a grip (default 4 rows x 0.5 mm)")
-    ap.add_argument("--reference-length", type=float, default=HEIGHT,
-                    help="L (mm) in u_top = (lambda - 1) L (default: the body height)")
-    args = ap.parse_args()
-    print(f"Dogbone (examples/dogbone.yaml, outline from {os.path.relpath(GEO, REPOSITORY)}), free "
-          f"between y = {args.grip_depth:g} and {HEIGHT - args.grip_depth:g} mm, top moved by "
-          f"(lambda - 1) {args.reference_length:g} mm, plane-stress Gent: probe at {PROBE} mm "
-          "(ux, uy in mm), nominal stress s = reaction / (20 mm x 2 mm) (kPa)")
-    gent_fe.run_study(args, [("ux", "ux", "mm"), ("uy", "uy", "mm"), ("s", "s", "kPa")],
-                      lambda h, p, k, lams: gent_fe.solve_gripped_specimen(
-                          lambda g, hh: build_dogbone(g, hh, args.grip_depth), h, p, k, lams,
-                          height=HEIGHT, width=WIDTH, thickness=THICKNESS,
-                          grip_depth=args.grip_depth, reference_length=args.reference_length,
-                          probe=PROBE, verbose=args.verbose))
+    title = f"Dogbone (examples/dogbone.yaml, outline from {os.path.relpath(GEO, REPOSITORY)})"
+    gent_fe.gripped_specimen_main(__doc__, title, "dogbone.csv", build_dogbone, [1.25, 1.5],
+                                  height=HEIGHT, width=WIDTH, thickness=THICKNESS,
+                                  grip_depth=GRIP_LAYERS * DX, probe=PROBE)
 
 
 if __name__ == "__main__":

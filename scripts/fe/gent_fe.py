@@ -316,6 +316,27 @@ def solve_gripped_specimen(build, h, degree, bulk_ratio, lambdas, *, height, wid
     return {"ux": ux, "uy": uy, "s": stress}, solve_info(fe)
 
 
+def gripped_specimen_main(description, title, csv_name, build, lambdas, *, height, width,
+                          thickness, grip_depth, probe, sizes=(2.0, 1.0, 0.5)):
+    """Command line, convergence study and table of a bapd scene's specimen held by edge
+    grips (solve_gripped_specimen); build(gmsh, h, grip_depth) makes the free shape."""
+    ap = study_arguments(description, list(sizes), lambdas, csv_name)
+    ap.add_argument("--grip-depth", type=float, default=grip_depth,
+                    help=f"mm of each end held by a grip (default {grip_depth:g}: the scene's rows)")
+    ap.add_argument("--reference-length", type=float, default=height,
+                    help="L (mm) in u_top = (lambda - 1) L (default: the body height)")
+    args = ap.parse_args()
+    print(f"{title}, free between y = {args.grip_depth:g} and {height - args.grip_depth:g} mm, "
+          f"top moved by (lambda - 1) {args.reference_length:g} mm, plane-stress Gent: probe "
+          f"at {probe} mm (ux, uy in mm), nominal stress s = reaction / ({width:g} mm x "
+          f"{thickness:g} mm) (kPa)")
+    run_study(args, [("ux", "ux", "mm"), ("uy", "uy", "mm"), ("s", "s", "kPa")],
+              lambda h, p, k, lams: solve_gripped_specimen(
+                  lambda g, hh: build(g, hh, args.grip_depth), h, p, k, lams,
+                  height=height, width=width, thickness=thickness, grip_depth=args.grip_depth,
+                  reference_length=args.reference_length, probe=probe, verbose=args.verbose))
+
+
 def point_value(function, point):
     """Value of a vector Function at a point of the mesh (x, y) in mm."""
     from dolfinx import geometry

@@ -63,23 +63,10 @@ def build_waisted(gmsh, h, grip_depth):
 
 
 def main():
-    ap = gent_fe.study_arguments(__doc__, [2.0, 1.0, 0.5], [1.25, 1.5, 1.75, 2.0],
-                                 "waisted_sheet.csv")
-    ap.add_argument("--grip-depth", type=float, default=GRIP_LAYERS * DX,
-                    help="mm of each end held by a grip (default 3 rows x 0.5 mm)")
-    ap.add_argument("--reference-length", type=float, default=HEIGHT,
-                    help="L (mm) in u_top = (lambda - 1) L (default: the body height)")
-    args = ap.parse_args()
-    print(f"Waisted sheet (examples/waisted_sheet.yaml), free between y = {args.grip_depth:g} "
-          f"and {HEIGHT - args.grip_depth:g} mm, top moved by (lambda - 1) "
-          f"{args.reference_length:g} mm, plane-stress Gent: probe at {PROBE} mm "
-          "(ux, uy in mm), nominal stress s = reaction / (20 mm x 2 mm) (kPa)")
-    gent_fe.run_study(args, [("ux", "ux", "mm"), ("uy", "uy", "mm"), ("s", "s", "kPa")],
-                      lambda h, p, k, lams: gent_fe.solve_gripped_specimen(
-                          lambda g, hh: build_waisted(g, hh, args.grip_depth), h, p, k, lams,
-                          height=HEIGHT, width=WIDTH, thickness=THICKNESS,
-                          grip_depth=args.grip_depth, reference_length=args.reference_length,
-                          probe=PROBE, verbose=args.verbose))
+    gent_fe.gripped_specimen_main(__doc__, "Waisted sheet (examples/waisted_sheet.yaml)",
+                                  "waisted_sheet.csv", build_waisted, [1.25, 1.5, 1.75, 2.0],
+                                  height=HEIGHT, width=WIDTH, thickness=THICKNESS,
+                                  grip_depth=GRIP_LAYERS * DX, probe=PROBE)
 
 
 if __name__ == "__main__":
