@@ -2,8 +2,8 @@
 # Time to solution, one git revision against another (issue 20): builds bapd at both
 # revisions, runs the paper's three scenes with each, alternating (A B A B ...: a
 # shared machine's load falls on both alike), and prints one table per scene with the
-# figure of merit (CPU and wall time, steps, force evaluations, CPU time per step per
-# point) and the ratio new / old. A scene more than 10 % slower (CPU time, the best of
+# figure of merit (CPU and wall time, steps, ghost exchanges = force evaluations plus
+# one a step with failure, CPU time per step per point) and the ratio new / old. A scene more than 10 % slower (CPU time, the best of
 # the repeats) is flagged SLOWER and the script exits 1.
 #
 #   bench/compare_revisions.sh OLD NEW              # e.g. main HEAD, or two commit ids

@@ -5,9 +5,10 @@
 
 Reads RUNS_DIR/SCENE_{old,new}_R.json (bench/bapd_run.py) and prints, per scene and
 revision: the best and the spread of the CPU time over the repeats ((max - min) / min),
-the wall time of the best run, steps, force evaluations (ghost exchanges of the
-displacement: every evaluation of the force operator, dynamics, output and the
-stable-step estimates; counted by -log_view), and CPU time per step per point. The
+the wall time of the best run, steps, ghost exchanges of the displacement (-log_view's
+VecScatterBegin count: one per evaluation of the force operator, dynamics, output and
+stable-step estimates, plus one a step with failure on, where the breaking pass
+updates the positions), and CPU time per step per point. The
 ratio is new / old of the best CPU times; above --threshold the scene is flagged
 SLOWER and the exit status is 1. "identical" says whether history.csv of the first
 repeats are the same byte for byte (different steps or bonds broken: "differs").
@@ -39,7 +40,7 @@ def main():
     a = ap.parse_args()
     print(f"old = {a.old}, new = {a.new}; CPU time = user + system of the run, best of {a.repeats} "
           f"(spread = (max - min) / min)\n")
-    print("| scene | rev | points | steps | force evals | CPU s (best) | spread | wall s | CPU us/step/point | "
+    print("| scene | rev | points | steps | ghost exchanges | CPU s (best) | spread | wall s | CPU us/step/point | "
           "new/old CPU | history.csv |")
     print("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---|")
     slower = []
