@@ -18,8 +18,10 @@
 // per family member; each bond's F and K are then one masked sum of them (BA mask AND
 // intact mask), in family order (bond_geometry.hpp). A model with stress_lanes
 // (has_lanes, material.hpp: PlaneStress, plane_stress.hpp) is run four bonds at a time: the point's
-// bonds are collected first (F, warm start, force vector g), then model_lanes hands
-// them to it in family order. Nothing is allocated per call
+// bonds are collected first (F, warm start, what the force form keeps), then model_lanes hands
+// them to it in family order. That first pass (stress_pass) is shared with the
+// energy-consistent form (ba_force_energy.hpp): the forms differ only in what they do
+// with a bond's kinematics and P (BondOnlyForm here, EnergyConsistentForm there). Nothing is allocated per call
 // (the workspace is sized once), except the list of failed bonds in the rare call
 // where a model fails.
 //
