@@ -12,6 +12,10 @@
 //                 run under `valgrind --tool=callgrind --collect-atstart=no`
 //                 (bench/callgrind_kernel.sh does this and reads the profiles)
 //   --table       also print one machine-readable line, `RESULT key=value ...`
+//   --only NAME   run only the region NAME (gent_warm, energy_warm, gent_dynamics,
+//                 identity, assemble), reps times, and print its time: for a sampling
+//                 profiler (`perf record -e cpu-clock kernel_bench --only energy_warm
+//                 --reps 200`; docs/performance.md, section 1c)
 //
 // What is measured (every time is the minimum over reps of the thread CPU time, which
 // a busy shared machine disturbs much less than wall clock; the minimum wall time is
@@ -46,6 +50,8 @@
 #include <cstdlib>
 #include <cstring>
 #include <ctime>
+#include <functional>
+#include <utility>
 #include <random>
 #include <string>
 #include <vector>
@@ -145,6 +151,7 @@ struct Options {
   bool   clock     = false;
   double motion    = 1e-5; // dx: how far the two position states are apart (one time step's motion)
   double dynamics  = 5e-4; // dx: the same for gent_dynamics
+  std::string only;        // --only: one region
 };
 
 Options parse(int argc, char **argv)
@@ -167,6 +174,7 @@ Options parse(int argc, char **argv)
     else if (s == "--clock") o.clock = true;
     else if (s == "--motion") o.motion = std::atof(next());
     else if (s == "--dynamics-motion") o.dynamics = std::atof(next());
+    else if (s == "--only") o.only = next();
     else {
       std::fprintf(stderr, "kernel_bench: unknown argument %s (see the comment at the top of bench/kernel_bench.cpp)\n",
                    s.c_str());
@@ -309,7 +317,9 @@ int main(int argc, char **argv)
     profile_region("model_warm", model_run);
     profile_region("gent_cold", cold_run);
     profile_region("gent_dynamics", dynamics_run); // c33 warm at y_c: evaluated at y_a
-    std::printf("callgrind regions dumped: gent_warm assemble identity model_warm gent_cold gent_dynamics (%zu bond evaluations "
+    profile_region("energy_warm", energy_run);     // c33_energy warm at y_b: evaluated at y_a
+    std::printf("callgrind regions dumped: gent_warm assemble identity model_warm gent_cold gent_dynamics energy_warm (%zu "
+                "bond evaluations "
                 "each, %zu model calls)\n",
                 stats.evaluated, Fs[0].size());
     std::printf("RESULT side=%d factor=%.3f points=%zu bonds=%zu evaluated=%zu model_calls=%zu evals_warm=%.4f "
@@ -318,6 +328,20 @@ int main(int argc, char **argv)
     return sink == 12345.0;
   }
 
+  if (!o.only.empty()) {
+    const std::pair<const char *, std::function<void(int)>> regions[] = {
+        {"gent_warm", gent_run}, {"energy_warm", energy_run}, {"gent_dynamics", dynamics_run},
+        {"identity", identity_run}, {"assemble", assemble_run}};
+    for (const auto &[name, run] : regions)
+      if (o.only == name) {
+        const Timing tm = time_min(o.reps, run);
+        std::printf("%s: %.2f ns/bond (thread CPU, minimum of %d)\n", name, 1e9 * tm.cpu / evaluated, o.reps);
+        return 0;
+      }
+    std::fprintf(stderr, "kernel_bench: --only %s: not a region (gent_warm energy_warm gent_dynamics identity assemble)\n",
+                 o.only.c_str());
+    return 2;
+  }
   const Timing gent_t     = time_min(o.reps, gent_run);
   const Timing cold_t     = time_min(std::max(1, o.reps / 2), cold_run);
   const Timing dyn_t      = time_min(o.reps, dynamics_run);

@@ -147,7 +147,7 @@ if want callgrind; then
     calls=$(sed -n 's/.* model_calls=\([0-9]*\).*/\1/p' "$d/run.txt")
     # regions in the order kernel_bench dumps them
     k=1
-    for region in gent_warm assemble identity model_warm gent_cold gent_dynamics; do
+    for region in gent_warm assemble identity model_warm gent_cold gent_dynamics energy_warm; do
       count=$evaluated; [ "$region" = model_warm ] && count=$calls
       "$PY" "$here/bench/callgrind_flops.py" "$bench/kernel_profile" "$d/cg.out.$k" "$count" --label "$region" --json \
         >"$d/$region.json"

@@ -18,8 +18,10 @@
 // per family member; each bond's F and K are then one masked sum of them (BA mask AND
 // intact mask), in family order (bond_geometry.hpp). A model with stress_lanes
 // (has_lanes, material.hpp: PlaneStress, plane_stress.hpp) is run four bonds at a time: the point's
-// bonds are collected first (F, warm start, force vector g), then model_lanes hands
-// them to it in family order. Nothing is allocated per call
+// bonds are collected first (F, warm start, what the force form keeps), then model_lanes hands
+// them to it in family order. That first pass (stress_pass) is shared with the
+// energy-consistent form (ba_force_energy.hpp): the forms differ only in what they do
+// with a bond's kinematics and P (BondOnlyForm here, EnergyConsistentForm there). Nothing is allocated per call
 // (the workspace is sized once), except the list of failed bonds in the rare call
 // where a model fails.
 //
@@ -105,11 +107,13 @@ struct BondKernelWorkspace {
   // point's bonds, and which of them carry energy (mask_words words).
   std::vector<Quad>          bond_stress;
   std::vector<std::uint64_t> energetic;
-  // Models evaluated four bonds at a time (has_lanes, e.g. PlaneStress): the point's
-  // bonds waiting for the model, in family order: F by component (4 arrays of
-  // `lane_stride`), the warm start, the force vector g (2 per bond), the position q.
+  // The point's bonds waiting for the model, in family order (models with stress_lanes,
+  // has_lanes, e.g. PlaneStress, take them four at a time; the others one at a time
+  // through slot 0): F by component (4 arrays of `lane_stride`), the warm start, what
+  // the force form needs once P is known (pending_data, 3 per bond: the force vector g
+  // of the bond-only form, K^{-1} of the energy-consistent one) and the position q.
   std::size_t              lane_stride = 0; // max_family_size rounded up to 4
-  std::vector<double>      pending_F, pending_c33, pending_g;
+  std::vector<double>      pending_F, pending_c33, pending_data;
   std::vector<std::size_t> pending_q;
 
   void reserve(const Families &families)
@@ -122,7 +126,7 @@ struct BondKernelWorkspace {
       lane_stride = stride;
       pending_F.assign(4 * stride, 0.0);
       pending_c33.assign(stride, 0.0);
-      pending_g.assign(2 * stride, 0.0);
+      pending_data.assign(3 * stride, 0.0);
       pending_q.assign(stride, 0);
     }
   }
@@ -160,10 +164,11 @@ inline Lanes load_lanes(const double *p)
 // (Model::stress_lanes); a lane that its first evaluation does not finish goes through
 // the scalar stress(), which gives bit for bit what stress_lanes gives where that
 // finishes (plane_stress.hpp), so a bond's result does not depend on its lane. Bonds
-// are taken in family order: failures are recorded in loop order.
-template <class Model>
+// are taken in family order, so failures are recorded, and the form's stress() is
+// called, in loop order (the energy-consistent form sums in that order).
+template <class Model, class Form>
 void model_lanes(const Model &model, BondKernelWorkspace &ws, std::size_t n, std::size_t i, std::size_t o,
-                 double *c33, double *bond_force, KernelStats &stats)
+                 double *c33, Form &form, KernelStats &stats)
 {
   const std::size_t S  = ws.lane_stride;
   double           *Fc = ws.pending_F.data(), *cw = ws.pending_c33.data();
@@ -178,8 +183,7 @@ void model_lanes(const Model &model, BondKernelWorkspace &ws, std::size_t n, std
     std::array<Lanes, 4>       P;
     const LaneMask             done = model.stress_lanes(F, c, P);
     for (std::size_t l = 0; l < 4 && j + l < n; ++l) {
-      const std::size_t q = ws.pending_q[j + l], b = o + q;
-      double           *t = bond_force + 2 * b;
+      const std::size_t q = ws.pending_q[j + l];
       double            cb;
       Mat2              Pb;
       if (done[l]) {
@@ -190,14 +194,12 @@ void model_lanes(const Model &model, BondKernelWorkspace &ws, std::size_t n, std
         const StressStatus status = model_lane_fallback(model, {F[0][l], F[1][l], F[2][l], F[3][l]}, cb, Pb);
         if (__builtin_expect(status != StressStatus::ok, 0)) {
           record_failure(stats, ws, i, q, status);
-          t[0] = t[1] = 0.0;
+          form.none(q);
           continue;
         }
       }
-      if (c33 && !ws.keep_warm_start) c33[b] = cb;
-      const double g0 = ws.pending_g[2 * (j + l)], g1 = ws.pending_g[2 * (j + l) + 1];
-      t[0]            = Pb[0] * g0 + Pb[1] * g1;
-      t[1]            = Pb[2] * g0 + Pb[3] * g1;
+      if (c33 && !ws.keep_warm_start) c33[o + q] = cb;
+      form.stress(j + l, q, Pb);
     }
   }
 }
@@ -222,6 +224,63 @@ inline KernelPoint begin_point(const PointCloud &ref, const double *y, const Fam
           ws.point, gather_point<Words>(ref, y, fam, i, intact, ws.point)};
 }
 
+// The first pass of both force forms over the bonds of point i (begun by begin_point):
+// F_iq from the masked sums (eq 9) and P(F_iq) from the model, one bond at a time or,
+// for a model with stress_lanes, four at a time after the loop (model_lanes). The
+// form (BondOnlyForm below, EnergyConsistentForm in ba_force_energy.hpp) is told, in
+// family order:
+//   form.none(q)                 bond q carries no stress: broken, K not usable, or
+//                                its model failed (then after its collect());
+//   form.collect(slot, q, k)     its kinematics k, before the model: the form keeps
+//                                what it needs in ws.pending_data[3 slot .. 3 slot + 3);
+//   form.stress(slot, q, P)      P(F_iq) of the bond collected in slot.
+// The c33 warm starts are read, and written back unless ws.keep_warm_start; failures
+// are recorded (stats, ws.failed) in loop order.
+template <std::size_t Words, class Model, class Form>
+void stress_pass(const Model &model, const KernelPoint &pt, std::size_t i, double *c33, BondKernelWorkspace &ws,
+                 Form &form, std::size_t &evaluated, std::size_t &unusable, KernelStats &stats)
+{
+  const auto &[W, o, m, ba, intact, usable, s, totals] = pt;
+  std::size_t pending = 0; // bonds collected for the model (HasLanes)
+  for (std::size_t q = 0; q < m; ++q) {
+    const std::size_t   b     = o + q;
+    const std::uint64_t bit   = std::uint64_t{1} << (q % 64);
+    const bool          alive = intact[q / 64] & bit;
+    if (!(alive && (usable[q / 64] & bit))) {
+      unusable += alive;
+      form.none(q);
+      continue;
+    }
+    const BondKinematics k = bond_kinematics<Words>(ba + q * W, intact, W, s, totals);
+    if (__builtin_expect(!k.usable, 0)) { // K went singular since the geometry was computed
+      ++unusable;
+      form.none(q);
+      continue;
+    }
+    double c = c33 ? c33[b] : 0.0; // <= 0: no warm start
+    ++evaluated;
+    if constexpr (HasLanes<Model>::value) { // the model for four bonds at a time after the loop
+      const std::size_t S = ws.lane_stride;
+      form.collect(pending, q, k);
+      for (int comp = 0; comp < 4; ++comp) ws.pending_F[comp * S + pending] = k.F[comp];
+      ws.pending_c33[pending] = c;
+      ws.pending_q[pending++] = q;
+      continue;
+    }
+    form.collect(0, q, k);
+    Mat2               P;
+    const StressStatus status = model.stress(k.F, c, P);
+    if (__builtin_expect(status != StressStatus::ok, 0)) {
+      record_failure(stats, ws, i, q, status);
+      form.none(q);
+      continue;
+    }
+    if (c33 && !ws.keep_warm_start) c33[b] = c;
+    form.stress(0, q, P);
+  }
+  if constexpr (HasLanes<Model>::value) model_lanes(model, ws, pending, i, o, c33, form, stats);
+}
+
 // g_ij -> C_i g_ij, C_i the point's stress correction (BondGeometry::correction,
 // -force_stress_correction); compiled out without one, so that the paper's force is
 // bit for bit what it was.
@@ -234,6 +293,34 @@ template <bool Corrected> inline void correct(const double *C, double &g0, doubl
   }
 }
 
+// The paper's bond-only force of the bonds of one point (eq 23):
+//   g_ij = force_scale K^{-1} (x_j - x_i) (C_i g_ij corrected),   t_ij = P(F_ij) g_ij,
+// and t_ij = 0 for a bond without stress.
+template <bool Corrected> struct BondOnlyForm {
+  double            *t;    // the point's bond forces, 2 per bond (bond_force + 2 offset)
+  double            *data; // ws.pending_data: g_ij, 2 of 3 per slot
+  const double      *off, *fvk, *C;
+  const PointTotals &totals;
+
+  void none(std::size_t q) { t[2 * q] = t[2 * q + 1] = 0.0; }
+  void collect(std::size_t slot, std::size_t q, const BondKinematics &k)
+  {
+    const double  f  = force_scale(k, totals, fvk[q]);
+    const double *ki = k.shape_tensor_inv;
+    const double  d0 = off[2 * q], d1 = off[2 * q + 1];
+    double        g0 = f * (ki[0] * d0 + ki[1] * d1), g1 = f * (ki[1] * d0 + ki[2] * d1);
+    correct<Corrected>(C, g0, g1);
+    data[3 * slot]     = g0;
+    data[3 * slot + 1] = g1;
+  }
+  void stress(std::size_t slot, std::size_t q, const Mat2 &P)
+  {
+    const double g0 = data[3 * slot], g1 = data[3 * slot + 1];
+    t[2 * q]        = P[0] * g0 + P[1] * g1;
+    t[2 * q + 1]    = P[2] * g0 + P[3] * g1;
+  }
+};
+
 template <std::size_t Words, bool Corrected, class Model>
 void bond_forces_range(const Model &model, const PointCloud &ref, const double *y, const Families &fam,
                        const BondGeometry &geo, const BondState &state, double *c33, double *bond_force,
@@ -241,61 +328,11 @@ void bond_forces_range(const Model &model, const PointCloud &ref, const double *
 {
   std::size_t evaluated = 0, unusable = 0;
   for (std::size_t i = begin; i < end; ++i) {
-    const auto [W, o, m, ba, intact, usable, s, totals] = begin_point<Words>(ref, y, fam, geo, state, i, ws);
-    const double     *off = s.offset.data(), *fvk = s.family_volume.data();
-    const double     *C   = Corrected ? geo.correction.data() + 4 * i : nullptr;
-    std::size_t       pending = 0; // bonds collected for the model (HasLanes)
-    for (std::size_t q = 0; q < m; ++q) {
-      const std::size_t   b     = o + q;
-      double             *t     = bond_force + 2 * b;
-      const std::uint64_t bit   = std::uint64_t{1} << (q % 64);
-      const bool          alive = intact[q / 64] & bit;
-      if (!(alive && (usable[q / 64] & bit))) {
-        unusable += alive;
-        t[0] = t[1] = 0.0;
-        continue;
-      }
-      const BondKinematics k = bond_kinematics<Words>(ba + q * W, intact, W, s, totals);
-      if (__builtin_expect(!k.usable, 0)) { // K went singular since the geometry was computed
-        ++unusable;
-        t[0] = t[1] = 0.0;
-        continue;
-      }
-      double c = c33 ? c33[b] : 0.0; // <= 0: no warm start
-      ++evaluated;
-      if constexpr (HasLanes<Model>::value) {
-        // g_ij now, the model for four bonds at a time after the loop (model_lanes)
-        const std::size_t S  = ws.lane_stride;
-        const double      f  = force_scale(k, totals, fvk[q]);
-        const double     *ki = k.shape_tensor_inv;
-        const double      d0 = off[2 * q], d1 = off[2 * q + 1];
-        double            g0 = f * (ki[0] * d0 + ki[1] * d1), g1 = f * (ki[1] * d0 + ki[2] * d1);
-        correct<Corrected>(C, g0, g1);
-        for (int comp = 0; comp < 4; ++comp) ws.pending_F[comp * S + pending] = k.F[comp];
-        ws.pending_c33[pending]       = c;
-        ws.pending_g[2 * pending]     = g0;
-        ws.pending_g[2 * pending + 1] = g1;
-        ws.pending_q[pending++]       = q;
-        continue;
-      }
-      Mat2               P;
-      const StressStatus status = model.stress(k.F, c, P);
-      if (__builtin_expect(status != StressStatus::ok, 0)) {
-        record_failure(stats, ws, i, q, status);
-        t[0] = t[1] = 0.0;
-        continue;
-      }
-      if (c33 && !ws.keep_warm_start) c33[b] = c;
-      // g_ij = force_scale K^{-1} (x_j - x_i) (C_i g_ij corrected);  t_ij = P g_ij   (eq 23)
-      const double  f  = force_scale(k, totals, fvk[q]);
-      const double *ki = k.shape_tensor_inv;
-      const double  d0 = off[2 * q], d1 = off[2 * q + 1];
-      double        g0 = f * (ki[0] * d0 + ki[1] * d1), g1 = f * (ki[1] * d0 + ki[2] * d1);
-      correct<Corrected>(C, g0, g1);
-      t[0]             = P[0] * g0 + P[1] * g1;
-      t[1]             = P[2] * g0 + P[3] * g1;
-    }
-    if constexpr (HasLanes<Model>::value) model_lanes(model, ws, pending, i, o, c33, bond_force, stats);
+    const KernelPoint       pt = begin_point<Words>(ref, y, fam, geo, state, i, ws);
+    BondOnlyForm<Corrected> form{bond_force + 2 * pt.offset, ws.pending_data.data(), pt.s.offset.data(),
+                                 pt.s.family_volume.data(), Corrected ? geo.correction.data() + 4 * i : nullptr,
+                                 pt.totals};
+    stress_pass<Words>(model, pt, i, c33, ws, form, evaluated, unusable, stats);
   }
   stats.evaluated += evaluated;
   stats.unusable += unusable;

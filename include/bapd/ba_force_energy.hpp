@@ -29,8 +29,8 @@
 // own BA mask, and S_ip is one masked sum of the per-member stresses M_iq with the
 // same code (and the same "totals minus the others" shortcut) as F_ij's sums
 // (bond_geometry.hpp). Per point i the kernel runs two loops over its bonds: the first
-// forms F_ij, P and M_iq (what compute_bond_forces does, sharing its code), the second
-// S_ip and t_ip. Nothing per bond is stored beyond t_ij (and c33); M lives in the
+// forms F_ij and P (stress_pass, the code of compute_bond_forces, with the model four
+// bonds at a time where it has stress_lanes) and M_iq, the second S_ip and t_ip. Nothing per bond is stored beyond t_ij (and c33); M lives in the
 // workspace for one point at a time.
 //
 // A bond that is broken, has no usable K or whose model fails has M = 0 and no
@@ -46,6 +46,35 @@ namespace bapd {
 
 namespace detail {
 
+// Pass 1 of the energy-consistent form (stress_pass, ba_force.hpp, gives F_iq and P):
+// M_iq = V_q P(F_iq) K_iq^{-1} of every bond that carries energy, their sum in family
+// order, sum_q V_q (omega_i = 1 / that) and the mask of those bonds.
+struct EnergyConsistentForm {
+  Quad          *M;         // ws.bond_stress
+  std::uint64_t *energetic; // ws.energetic, cleared by the caller
+  double        *data;      // ws.pending_data: K^{-1} (xx, xy, yy) per slot
+  const Quad    *shp;       // the point's shape_k (V_k in the last entry)
+  Double4        stress_total = {0.0, 0.0, 0.0, 0.0};
+  double         volume       = 0.0;
+
+  void none(std::size_t) {} // no energy: M_iq is not read (its bit stays clear)
+  void collect(std::size_t slot, std::size_t, const BondKinematics &k)
+  {
+    for (int c = 0; c < 3; ++c) data[3 * slot + c] = k.shape_tensor_inv[c];
+  }
+  void stress(std::size_t slot, std::size_t q, const Mat2 &P)
+  {
+    const double *ki = data + 3 * slot;
+    const double  v  = shp[q].v[3]; // V_q
+    const Double4 mq = {v * (P[0] * ki[0] + P[1] * ki[1]), v * (P[0] * ki[1] + P[1] * ki[2]),
+                        v * (P[2] * ki[0] + P[3] * ki[1]), v * (P[2] * ki[1] + P[3] * ki[2])};
+    M[q].v           = mq;
+    stress_total += mq;
+    volume += v;
+    energetic[q / 64] |= std::uint64_t{1} << (q % 64);
+  }
+};
+
 template <std::size_t Words, class Model>
 void energy_consistent_range(const Model &model, const PointCloud &ref, const double *y, const Families &fam,
                              const BondGeometry &geo, const BondState &state, double *c33, double *bond_force,
@@ -55,52 +84,19 @@ void energy_consistent_range(const Model &model, const PointCloud &ref, const do
   std::uint64_t *energetic = ws.energetic.data();
   std::size_t    evaluated = 0, unusable = 0;
   for (std::size_t i = begin; i < end; ++i) {
-    const auto [W, o, m, ba, intact, usable, s, totals] = begin_point<Words>(ref, y, fam, geo, state, i, ws);
-    const double *off = s.offset.data();
-    const Quad   *shp = s.shape.data();
+    const KernelPoint pt = begin_point<Words>(ref, y, fam, geo, state, i, ws);
+    const auto &[W, o, m, ba, intact, usable, s, totals] = pt;
     for (std::size_t w = 0; w < W; ++w) energetic[w] = 0;
-    // Pass 1: M_iq = V_q P(F_iq) K_iq^{-1} of every bond that carries energy, their
-    // sum in family order, and sum_q V_q (omega_i = 1 / that).
-    Double4 stress_total = {0.0, 0.0, 0.0, 0.0};
-    double  volume       = 0.0;
-    for (std::size_t q = 0; q < m; ++q) {
-      const std::size_t   b     = o + q;
-      const std::uint64_t bit   = std::uint64_t{1} << (q % 64);
-      const bool          alive = intact[q / 64] & bit;
-      if (!(alive && (usable[q / 64] & bit))) {
-        unusable += alive;
-        continue;
-      }
-      const BondKinematics k = bond_kinematics<Words>(ba + q * W, intact, W, s, totals);
-      if (__builtin_expect(!k.usable, 0)) { // K went singular since the geometry was computed
-        ++unusable;
-        continue;
-      }
-      double c = c33 ? c33[b] : 0.0; // <= 0: no warm start
-      Mat2   P;
-      ++evaluated;
-      const StressStatus status = model.stress(k.F, c, P);
-      if (__builtin_expect(status != StressStatus::ok, 0)) {
-        record_failure(stats, ws, i, q, status);
-        continue;
-      }
-      if (c33 && !ws.keep_warm_start) c33[b] = c;
-      const double *ki = k.shape_tensor_inv;
-      const double  v  = shp[q].v[3]; // V_q
-      const Double4 mq = {v * (P[0] * ki[0] + P[1] * ki[1]), v * (P[0] * ki[1] + P[1] * ki[2]),
-                          v * (P[2] * ki[0] + P[3] * ki[1]), v * (P[2] * ki[1] + P[3] * ki[2])};
-      M[q].v = mq;
-      stress_total += mq;
-      volume += v;
-      energetic[q / 64] |= bit;
-    }
+    EnergyConsistentForm form{M, energetic, ws.pending_data.data(), s.shape.data()};
+    stress_pass<Words>(model, pt, i, c33, ws, form, evaluated, unusable, stats);
     // Pass 2: t_ip = omega_i S_ip (x_p - x_i), S_ip = sum of M_iq over q in B_ip.
-    double *t = bond_force + 2 * o;
-    if (volume == 0.0) { // no bond of i carries energy
+    const double *off = s.offset.data();
+    double       *t   = bond_force + 2 * o;
+    if (form.volume == 0.0) { // no bond of i carries energy
       for (std::size_t p = 0; p < 2 * m; ++p) t[p] = 0.0;
       continue;
     }
-    const double      omega     = 1.0 / volume;
+    const double      omega     = 1.0 / form.volume;
     const Quad *const arrays[1] = {M};
     for (std::size_t p = 0; p < m; ++p) {
       if (!((intact[p / 64] >> (p % 64)) & 1u)) {
@@ -108,7 +104,7 @@ void energy_consistent_range(const Model &model, const PointCloud &ref, const do
         continue;
       }
       Double4 S;
-      masked_sums<Words, 1>(ba + p * W, energetic, W, arrays, &stress_total, &S);
+      masked_sums<Words, 1>(ba + p * W, energetic, W, arrays, &form.stress_total, &S);
       const double d0 = off[2 * p], d1 = off[2 * p + 1];
       t[2 * p]        = omega * (S[0] * d0 + S[1] * d1);
       t[2 * p + 1]    = omega * (S[2] * d0 + S[3] * d1);

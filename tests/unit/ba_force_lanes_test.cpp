@@ -1,7 +1,7 @@
 // The bond kernel's four-bond path (ba_force.hpp: model_lanes, PlaneStress::stress_lanes)
 // on a non-affine field with Gent: bit for bit the bond forces and C33 of the same
-// kernel run one bond at a time, both with cold and with warm starts; and the
-// workspace's keep_warm_start, which evaluates without writing C33 back.
+// kernel run one bond at a time, for both force forms, with cold and with warm starts;
+// and the workspace's keep_warm_start, which evaluates without writing C33 back.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -61,7 +61,9 @@ std::vector<double> bond_forces(const Model &model, const test::Discretisation &
   return t;
 }
 
-TEST(BaForceLanes, NonAffineGentFieldGivesBitForBitTheScalarKernelColdAndWarm)
+// Both forms share the first pass (stress_pass): the energy-consistent one gets the
+// same four-bond path, and must give bit for bit its one-bond-at-a-time result too.
+void expect_lanes_match_the_scalar_kernel(bool energy_consistent)
 {
   const test::CutPlate  c(20, 0.15, 17);
   const GentPlaneStress gent = test::hydrogel();
@@ -82,19 +84,30 @@ TEST(BaForceLanes, NonAffineGentFieldGivesBitForBitTheScalarKernelColdAndWarm)
     if (step == 3)
       for (std::size_t b = 0; b < c_lanes.size(); ++b) c_scalar[b] = c_lanes[b] *= std::exp2(test::random_between(rng, -1.0, 1.0));
     counting.scalar_calls         = 0;
-    const std::vector<double> t   = bond_forces(counting, c.d, *fields[step], c_lanes);
-    const std::vector<double> ref = bond_forces(scalar, c.d, *fields[step], c_scalar);
+    const std::vector<double> t   = bond_forces(counting, c.d, *fields[step], c_lanes, false, energy_consistent);
+    const std::vector<double> ref = bond_forces(scalar, c.d, *fields[step], c_scalar, false, energy_consistent);
     fallbacks[step]               = counting.scalar_calls;
     EXPECT_TRUE(same_bits(t, ref)) << "step " << step;
     EXPECT_TRUE(same_bits(c_lanes, c_scalar)) << "step " << step;
   }
   const std::size_t bonds = c.d.families.n_bonds();
-  std::printf("scalar fallbacks of %zu bonds: cold %zu, warm 1e-4 dx %zu, warm 1e-2 dx %zu, scrambled %zu\n", bonds,
-              fallbacks[0], fallbacks[1], fallbacks[2], fallbacks[3]);
+  std::printf("%s: scalar fallbacks of %zu bonds: cold %zu, warm 1e-4 dx %zu, warm 1e-2 dx %zu, scrambled %zu\n",
+              energy_consistent ? "energy-consistent" : "bond-only", bonds, fallbacks[0], fallbacks[1], fallbacks[2],
+              fallbacks[3]);
   // Not vacuous: the lanes finish the usual steps, and the far guesses reach the
   // fallback for a good share of the bonds, so both paths were compared.
   EXPECT_LT(fallbacks[1], bonds / 100);
   EXPECT_GT(fallbacks[3], bonds / 10);
+}
+
+TEST(BaForceLanes, NonAffineGentFieldGivesBitForBitTheScalarKernelColdAndWarm)
+{
+  expect_lanes_match_the_scalar_kernel(false);
+}
+
+TEST(BaForceLanes, EnergyConsistentFormOnTheLanesGivesBitForBitItsScalarKernel)
+{
+  expect_lanes_match_the_scalar_kernel(true);
 }
 
 TEST(BaForceLanes, KeepWarmStartLeavesC33AndGivesTheSameForces)
