@@ -56,6 +56,9 @@ public:
   Verdict Total(PetscInt step, double total);
   // What was seen, for the message: "the kinetic energy grew from ... to ...".
   std::string Describe() const;
+  // The kinetic energy's growth factor per step over the last `steps` steps of the
+  // window (geometric mean; 1 when the window holds fewer values or KE was zero).
+  double GrowthPerStep(PetscInt steps) const;
   // Room for one value per owned point, kept between steps (CheckRunawayEnergy).
   std::vector<double> &scratch() { return scratch_; }
 
@@ -94,6 +97,7 @@ struct DivergenceFacts {
   bool   reestimating = true;  // -time_step_reestimate > 0: the step followed the material
   double horizon_factor = 3.015;
   double stiffening   = 1;     // the largest lambda_max of the run's re-estimates over the one at rest
+  double kinetic_growth = 1;   // the kinetic energy's growth factor per step over the last steps before the failure
 };
 // In this order (the first that fits): a step above the stable step at rest ->
 // -time_step_safety (or -time_step); the chain limit (0.8 <= reach <= 1.05: the Gent

@@ -41,6 +41,7 @@ struct TimeStepOptions {
   double   floor      = -1;   // the stiffness step is at least this x base (-1: 0.1, or 0.5 with failure)
   double   stretch    = 0.05; // ...and whenever the applied stretch moved by this much since the last one
   double   shift      = 0.45; // the power iteration runs on A - shift lambda I: faster convergence to lambda_max
+  PetscInt backoff    = 4;    // while the estimates find nothing that moves the step, interval and stretch grow up to this x
   bool     monitor    = false; // a line per re-estimate (measurements, docs/stability.md section 8)
 };
 // Reads (and lists under -help) the options. Collective.
@@ -54,6 +55,8 @@ struct TimeStepState {
   double   stretch       = 1; // the applied stretch at the last re-estimate
   PetscInt by_stiffness = 0, by_travel = 0; // the counters of the summary
   double   shortest = 0;
+  PetscInt interval_now = 0;      // steps between re-estimates now (backed off while quiet); 0: not stored (format 3)
+  double   stretch_increment = 0; // ...and the stretch increment now
 };
 
 class TimeStepControl {
@@ -107,7 +110,7 @@ public:
   double       *eigenvector() { return v_.data(); }
 
 private:
-  PetscErrorCode Reestimate(MPI_Comm comm, ForceOperator &force);
+  PetscErrorCode Reestimate(MPI_Comm comm, ForceOperator &force, PetscInt *iterations);
   PetscErrorCode PowerStep(MPI_Comm comm, ForceOperator &force, const double *u0, const double *a0, double shift, double *lambda);
 
   TimeStepOptions options_;
@@ -121,6 +124,8 @@ private:
   double   inv_rho_ = 0, eps_ = 0, floor_ = 0.1;
   PetscInt next_estimate_ = 0, estimates_ = 0, evaluations_ = 0;
   double   estimate_stretch_ = 1; // the applied stretch at the last re-estimate
+  PetscInt interval_now_ = 0;     // steps between re-estimates now: the option's, or up to backoff x it while quiet
+  double   stretch_now_  = 0;     // the stretch increment that triggers one now (likewise)
   PetscInt by_stiffness_ = 0, by_travel_ = 0;
   double   shortest_dt_ = 0, estimate_wall_ = 0;
   bool     recording_ = false, recorded_ = false;

@@ -77,6 +77,16 @@ RunawayEnergyMonitor::Verdict RunawayEnergyMonitor::Total(PetscInt step, double 
   return Verdict::fine;
 }
 
+double RunawayEnergyMonitor::GrowthPerStep(PetscInt steps) const
+{
+  const std::size_t k = std::min<std::size_t>((std::size_t)std::max<PetscInt>(steps, 1), count_ > 0 ? count_ - 1 : 0);
+  if (k == 0) return 1.0;
+  const std::size_t capacity = kinetic_.size();
+  const std::size_t newest = (head_ + capacity - 1) % capacity, oldest = (head_ + capacity - 1 - k) % capacity;
+  if (!(kinetic_[oldest] > 0) || !(kinetic_[newest] > 0)) return 1.0;
+  return std::pow(kinetic_[newest] / kinetic_[oldest], 1.0 / (double)(steps_[newest] - steps_[oldest]));
+}
+
 std::string RunawayEnergyMonitor::Describe() const
 {
   char text[512];

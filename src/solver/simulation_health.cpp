@@ -92,6 +92,7 @@ PetscErrorCode Simulation::DiagnoseDivergence()
   f.horizon_factor = scene_.horizon_factor;
   f.stiffening     = step_control_.largest_lambda() / step_control_.lambda_rest();
   f.applied_stretch = loading_.stretch_at(t);
+  f.kinetic_growth = energy_monitor_.GrowthPerStep(5);
   PetscCall(step_control_.SharpEstimate(comm_, force_, u.data(), c33, 40, &f.stable));
   if (!std::isfinite(f.stable) || f.stable <= 0) f.stable = step_control_.stable_now();
 
@@ -127,8 +128,8 @@ PetscErrorCode Simulation::DiagnoseDivergence()
   f.chain_reach  = reach[0];
   f.bond_stretch = reach[1];
   if (time_step_options_.monitor)
-    PetscCall(PetscPrintf(comm_, "Diagnosis at the last good state: dt %.4e s, stable %.4e s (at rest %.4e s), chain reach %.4g (bond stretch %.4g), applied stretch %.4g\n",
-                          f.dt, f.stable, f.stable_rest, f.chain_reach, f.bond_stretch, f.applied_stretch));
+    PetscCall(PetscPrintf(comm_, "Diagnosis at the last good state: dt %.4e s, stable %.4e s (at rest %.4e s), chain reach %.4g (bond stretch %.4g), applied stretch %.4g, kinetic energy x %.3g per step\n",
+                          f.dt, f.stable, f.stable_rest, f.chain_reach, f.bond_stretch, f.applied_stretch, f.kinetic_growth));
   stop_reason_ += DivergenceAdvice(f);
   PetscFunctionReturn(0);
 }

@@ -272,6 +272,8 @@ PetscErrorCode Simulation::WriteCheckpointFile(PetscInt step, double t, const ch
     header.step_by_stiffness  = s.by_stiffness;
     header.step_by_travel     = s.by_travel;
     header.step_stretch       = s.stretch;
+    header.step_interval_now  = s.interval_now;
+    header.step_stretch_increment = s.stretch_increment;
     state.step_eigenvector    = step_control_.eigenvector();
   }
   const PetscErrorCode written = WriteCheckpoint(comm_, path, output_.order, families_, &header, state);
@@ -352,6 +354,8 @@ PetscErrorCode Simulation::RestoreCheckpoint()
     s.by_stiffness  = (PetscInt)header.step_by_stiffness;
     s.by_travel     = (PetscInt)header.step_by_travel;
     s.stretch       = header.step_stretch;
+    s.interval_now  = (PetscInt)header.step_interval_now;
+    s.stretch_increment = header.step_stretch_increment;
     PetscCall(step_control_.Restore(header.time_step, s, ts_));
   }
   if (header.time_step != step_control_.current())
