@@ -92,7 +92,24 @@ PetscErrorCode Simulation::DiagnoseDivergence()
   f.horizon_factor = scene_.horizon_factor;
   f.stiffening     = step_control_.largest_lambda() / step_control_.lambda_rest();
   f.applied_stretch = loading_.stretch_at(t);
-  f.kinetic_growth = energy_monitor_.GrowthPerStep(5);
+  // With the step fixed at rest, also the state 10 to 20 steps before the last good
+  // one: a blow-up wrecks the last good state (DivergenceFacts::stable_earlier).
+  if (good && !f.reestimating) {
+    int older = -1;
+    for (int k = 0; k < 2; ++k)
+      if (output_.earlier_step[k] >= 0 && output_.earlier_step[k] + SimulationOutput::earlier_interval <= output_.good_step &&
+          (older < 0 || output_.earlier_step[k] > output_.earlier_step[older]))
+        older = k;
+    if (older >= 0) {
+      const double *xe;
+      PetscCall(VecGetArrayRead(output_.earlier_state[older], &xe));
+      std::vector<double> ue(xe, xe + n);
+      PetscCall(VecRestoreArrayRead(output_.earlier_state[older], &xe));
+      PetscCall(step_control_.SharpEstimate(comm_, force_, ue.data(), output_.earlier_c33[older], 40, &f.stable_earlier));
+      if (!std::isfinite(f.stable_earlier) || f.stable_earlier <= 0) f.stable_earlier = 0;
+      f.earlier_steps = output_.good_step - output_.earlier_step[older];
+    }
+  }
   PetscCall(step_control_.SharpEstimate(comm_, force_, u.data(), c33, 40, &f.stable));
   if (!std::isfinite(f.stable) || f.stable <= 0) f.stable = step_control_.stable_now();
 
@@ -128,8 +145,8 @@ PetscErrorCode Simulation::DiagnoseDivergence()
   f.chain_reach  = reach[0];
   f.bond_stretch = reach[1];
   if (time_step_options_.monitor)
-    PetscCall(PetscPrintf(comm_, "Diagnosis at the last good state: dt %.4e s, stable %.4e s (at rest %.4e s), chain reach %.4g (bond stretch %.4g), applied stretch %.4g, kinetic energy x %.3g per step\n",
-                          f.dt, f.stable, f.stable_rest, f.chain_reach, f.bond_stretch, f.applied_stretch, f.kinetic_growth));
+    PetscCall(PetscPrintf(comm_, "Diagnosis at the last good state: dt %.4e s, stable %.4e s (at rest %.4e s), chain reach %.4g (bond stretch %.4g), applied stretch %.4g; %" PetscInt_FMT " steps before: stable %.4e s\n",
+                          f.dt, f.stable, f.stable_rest, f.chain_reach, f.bond_stretch, f.applied_stretch, f.earlier_steps, f.stable_earlier));
   stop_reason_ += DivergenceAdvice(f);
   PetscFunctionReturn(0);
 }

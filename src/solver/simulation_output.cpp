@@ -75,6 +75,7 @@ PetscErrorCode Simulation::SetupOutput()
   }
   if (output_.checkpoint.on_error) {
     PetscCall(VecDuplicate(X_, &output_.good_state));
+    for (Vec &earlier : output_.earlier_state) PetscCall(VecDuplicate(X_, &earlier));
     PetscCall(SaveGoodState(step, t));
   }
   PetscFunctionReturn(0);
@@ -96,6 +97,12 @@ PetscErrorCode Simulation::SaveGoodState(PetscInt step, double t)
   output_.good_c33.assign(force_.warm_start().begin(), force_.warm_start().end()); // same size every step: no allocation
   output_.good_step = step;
   output_.good_time = t;
+  if (step % SimulationOutput::earlier_interval == 0) {
+    const int slot = (int)((step / SimulationOutput::earlier_interval) % 2);
+    PetscCall(VecCopy(X_, output_.earlier_state[slot]));
+    output_.earlier_c33[slot].assign(force_.warm_start().begin(), force_.warm_start().end());
+    output_.earlier_step[slot] = step;
+  }
   PetscFunctionReturn(0);
 }
 
