@@ -25,7 +25,7 @@ declare -A scenes=(
   [plate]="-options_file_yaml $here/examples/plate_hole.yaml -options_file_yaml $here/examples/plate_hole_fast.yaml"
   [plate_Jm8]="-options_file_yaml $here/examples/plate_hole.yaml -options_file_yaml $here/examples/plate_hole_fast.yaml -material_Jm 8 -load_schedule 0,1,0.05,1.5,1.05,1.5,1.1,2.0,2.1,2.0"
   [notched]="-options_file_yaml $here/examples/notched_pure_shear.yaml"
-  [notched_short]="-options_file_yaml $here/examples/notched_pure_shear.yaml -body_dx 0.0005 -body_width 0.035 -body_notches 0.025,0.005,0.035,0.005 -load_schedule 0,1,0.4,3.4"
+  [notched_short]="-options_file_yaml $here/examples/notched_pure_shear.yaml -body_dx 0.0005 -body_width 0.035 -body_notches 0.025,0.005,0.035,0.005 -probe_notch_mouth_top_at 0.035,0.0052 -probe_notch_mouth_bottom_at 0.035,0.0048 -load_schedule 0,1,0.4,3.4"
   [pure_shear]="-options_file_yaml $here/examples/pure_shear.yaml"
 )
 echo "| scene | steps | force evaluations: dynamics + re-estimates | re-estimates' share of the evaluations | wall, fixed step (s) | wall, re-estimated (s) | re-estimates inside the run (s) | share of the run's time | dt at the end / base |"

@@ -11,9 +11,11 @@
 //    dt < 2 / sqrt(lambda_max)); lambda_now comes from a power iteration on the
 //    current tangent, K v = -(f(u + eps v) - f(u)) / eps, warm-started from the last
 //    eigenvector: a few force evaluations every -time_step_reestimate steps (more
-//    often while lambda moves). It shrinks at once when lambda grows by more than the
-//    dead band and grows back (bounded by the base step) only when lambda falls by
-//    more than it: the band keeps the step from flapping on the estimate's noise.
+//    often while lambda moves, up to -time_step_reestimate_backoff x less often while
+//    the estimates find nothing that would move the step). It shrinks at once when
+//    lambda grows by more than the dead band and grows back (bounded by the base
+//    step) only when lambda falls by more than it: the band keeps the step from
+//    flapping on the estimate's noise.
 //  - dt_travel: no point with bonds moves more than -time_step_travel dx in one step.
 // Every sum is a reproducible sum and every maximum exact, so the step is the same on
 // any number of ranks; the estimate's state (eigenvector, lambda, the stiffness step)
@@ -111,6 +113,8 @@ public:
 
 private:
   PetscErrorCode Reestimate(MPI_Comm comm, ForceOperator &force, PetscInt *iterations);
+  // The lambda_max above which the base step would be shortened (outside the dead band).
+  double ShorteningThreshold() const { return lambda_rest_ / ((1.0 - options_.band) * (1.0 - options_.band)); }
   PetscErrorCode PowerStep(MPI_Comm comm, ForceOperator &force, const double *u0, const double *a0, double shift, double *lambda);
 
   TimeStepOptions options_;

@@ -220,7 +220,7 @@ PetscErrorCode TimeStepControl::Reestimate(MPI_Comm comm, ForceOperator &force, 
   // at the base step, and the iteration stops (the plate's first ramp, where lambda_max
   // falls to 0.88 x its value at rest: 18 force evaluations became 10).
   const bool   at_base   = stiffness_dt_ >= base_dt_;
-  const double threshold = lambda_rest_ / ((1.0 - options_.band) * (1.0 - options_.band));
+  const double threshold = ShorteningThreshold();
   double       lambda = 0, previous = lambda_;
   PetscInt     it     = 0;
   while (it < options_.max_iterations) {
@@ -282,8 +282,7 @@ PetscErrorCode TimeStepControl::AfterStep(MPI_Comm comm, PetscInt step, double s
     // Far from mattering: at the base step, lambda stays below the threshold that would
     // shorten it even if it went on moving as fast for two more intervals.
     const double moved     = std::fabs(lambda_ - before);
-    const double threshold = lambda_rest_ / ((1.0 - options_.band) * (1.0 - options_.band));
-    const bool   far       = stiffness_dt_ >= base_dt_ && lambda_ + 2.0 * moved < threshold;
+    const bool   far       = stiffness_dt_ >= base_dt_ && lambda_ + 2.0 * moved < ShorteningThreshold();
     // Stiffening by more than the band (unless far from mattering), or a step still
     // growing back (beyond the band: inside it the step stays, and so would the
     // follow-ups, for good): the next estimate comes sooner (a fifth of the interval:
