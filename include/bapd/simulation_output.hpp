@@ -36,6 +36,7 @@ struct SimulationOutput {
   Vec                 earlier_state[2] = {nullptr, nullptr};
   std::vector<double> earlier_c33[2];
   PetscInt            earlier_step[2] = {-1, -1};
+  double              earlier_time[2] = {0, 0};
   bool                handlers  = false;
 
   SimulationOutput() = default;

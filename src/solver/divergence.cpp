@@ -200,6 +200,13 @@ std::string DivergenceAdvice(const DivergenceFacts &f)
                   std::max(f.dt, f.base), std::max(f.dt, f.base) / f.stable_rest, f.stable_rest,
                   f.step_given ? "lower -time_step, or leave it to the solver (-time_step 0, -time_step_safety 0.8)"
                                : "lower -time_step_safety to 0.8 (the default) or less");
+  else if (f.chain_reach > 1.05 && f.chain_reach_earlier >= 0.8 && f.chain_reach_earlier <= 1.05) // wrecked, but near the limit before
+    std::snprintf(text, sizeof text,
+                  " Cause: the Gent chain limit. %" PetscInt_FMT " steps before the failure bonds had reached I1bar - 3 = %.3g x Jm "
+                  "(largest bond stretch %.3g, applied stretch %.4g), where the material stiffens without bound and no time step "
+                  "keeps up: raise -material_Jm (now %g), or end the load below stretch %.4g, or enable failure "
+                  "(-failure_critical_stretch) so that such bonds break.",
+                  f.earlier_steps, f.chain_reach_earlier, f.bond_stretch_earlier, f.applied_stretch_earlier, f.Jm, f.applied_stretch_earlier);
   else if (f.chain_reach >= 0.8 && f.chain_reach <= 1.05) // beyond: a state the blow-up already wrecked
     std::snprintf(text, sizeof text,
                   " Cause: the Gent chain limit. Bonds reached I1bar - 3 = %.3g x Jm (largest bond stretch %.3g, applied stretch %.4g), "
@@ -220,12 +227,12 @@ std::string DivergenceAdvice(const DivergenceFacts &f)
                   "or end the load below stretch %.4g, or enable failure (-failure_critical_stretch) so that such bonds break.",
                   f.stiffening, f.applied_stretch, f.bond_stretch, f.Jm, f.applied_stretch);
   else if (!f.reestimating && f.dt > f.stable) too_long(" (the material stiffened; the step was fixed at rest)", f.stable);
-  else if (!f.reestimating && f.stable_earlier > 0 && f.dt > f.stable_earlier) {
+  else if (f.stable_earlier > 0 && f.dt > f.stable_earlier) {
     // The last good state is already a wreck (its sharp estimate finds the wreck's
     // negative eigenvalue, not the stiffening); the state before the blow-up shows it.
-    char why[160];
-    std::snprintf(why, sizeof why, " (the material stiffened; the step was fixed at rest; measured %" PetscInt_FMT " steps before the failure)",
-                  f.earlier_steps);
+    char why[200];
+    std::snprintf(why, sizeof why, " (the material stiffened; %s; measured %" PetscInt_FMT " steps before the failure)",
+                  f.reestimating ? "faster than the re-estimate followed" : "the step was fixed at rest", f.earlier_steps);
     too_long(why, f.stable_earlier);
   }
   else if (f.bond_only && f.damping < 100)

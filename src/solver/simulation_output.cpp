@@ -102,6 +102,7 @@ PetscErrorCode Simulation::SaveGoodState(PetscInt step, double t)
     PetscCall(VecCopy(X_, output_.earlier_state[slot]));
     output_.earlier_c33[slot].assign(force_.warm_start().begin(), force_.warm_start().end());
     output_.earlier_step[slot] = step;
+    output_.earlier_time[slot] = t;
   }
   PetscFunctionReturn(0);
 }
