@@ -115,6 +115,11 @@ private:
   PetscErrorCode Reestimate(MPI_Comm comm, ForceOperator &force, PetscInt *iterations);
   // The lambda_max above which the base step would be shortened (outside the dead band).
   double ShorteningThreshold() const { return lambda_rest_ / ((1.0 - options_.band) * (1.0 - options_.band)); }
+  // The back-off and the early stop spend part of the margin the safety factor leaves
+  // (0.8 / sqrt(1.1) covers an estimate 1.7 x below lambda_max): with a base step above
+  // 0.9 x the stable one at rest there is too little of it (the map's safety-1.0 cell
+  // stopped with them), and every estimate runs as without them.
+  bool Margin() const { return base_dt_ <= 0.9 * stable_dt_; }
   PetscErrorCode PowerStep(MPI_Comm comm, ForceOperator &force, const double *u0, const double *a0, double shift, double *lambda);
 
   TimeStepOptions options_;

@@ -219,7 +219,7 @@ PetscErrorCode TimeStepControl::Reestimate(MPI_Comm comm, ForceOperator &force, 
   // more increments of the last size (r = 0.9) stay below that threshold the step stays
   // at the base step, and the iteration stops (the plate's first ramp, where lambda_max
   // falls to 0.88 x its value at rest: 18 force evaluations became 10).
-  const bool   at_base   = stiffness_dt_ >= base_dt_;
+  const bool   at_base   = stiffness_dt_ >= base_dt_ && Margin();
   const double threshold = ShorteningThreshold();
   double       lambda = 0, previous = lambda_;
   PetscInt     it     = 0;
@@ -282,7 +282,7 @@ PetscErrorCode TimeStepControl::AfterStep(MPI_Comm comm, PetscInt step, double s
     // Far from mattering: at the base step, lambda stays below the threshold that would
     // shorten it even if it went on moving as fast for two more intervals.
     const double moved     = std::fabs(lambda_ - before);
-    const bool   far       = stiffness_dt_ >= base_dt_ && lambda_ + 2.0 * moved < ShorteningThreshold();
+    const bool   far       = stiffness_dt_ >= base_dt_ && Margin() && lambda_ + 2.0 * moved < ShorteningThreshold();
     // Stiffening by more than the band (unless far from mattering), or a step still
     // growing back (beyond the band: inside it the step stays, and so would the
     // follow-ups, for good): the next estimate comes sooner (a fifth of the interval:
@@ -292,7 +292,7 @@ PetscErrorCode TimeStepControl::AfterStep(MPI_Comm comm, PetscInt step, double s
     // from mattering. Then the steps and the stretch increment to the next estimate
     // double, up to backoff x the options' (holds, and ramps of a soft gel, cost a
     // fourth); anything else brings them back at once.
-    const bool quiet = !sooner && stiffness_dt_ == stiffness_before && (moved <= 0.5 * options_.band * before || far);
+    const bool quiet = !sooner && stiffness_dt_ == stiffness_before && Margin() && (moved <= 0.5 * options_.band * before || far);
     if (quiet) {
       interval_now_ = std::min(2 * interval_now_, options_.backoff * options_.interval);
       stretch_now_  = std::min(2.0 * stretch_now_, (double)options_.backoff * options_.stretch);
