@@ -3,9 +3,10 @@
 // any number of ranks (STYLE.md: ... -> fields / checkpoint). docs/options.md,
 // "Checkpoints and restart", is the user's view.
 //
-// File layout, format version 3 (every array in natural order, natural_order.hpp;
-// version 2 is version 3 without text_hash and /time_step, version 1 version 2 without /relaxation;
-// both are still read):
+// File layout, format version 4 (every array in natural order, natural_order.hpp;
+// version 3 is version 4 without the back-off attributes of /time_step, version 2
+// version 3 without text_hash and /time_step, version 1 version 2 without /relaxation;
+// all are still read):
 //   /                 attributes format = "bapd checkpoint", format_version, step,
 //                     time_s, time_step_s, stretch, reason, ranks, content_hash,
 //                     text_hash
@@ -28,7 +29,8 @@
 //                          step's damping coefficient is computed against
 //   /time_step             only while the step is re-estimated (time_step_control.hpp):
 //                          attributes lambda_per_s2, stiffness_dt_s, next_estimate,
-//                          by_stiffness, by_travel, shortest_dt_s, stretch;
+//                          by_stiffness, by_travel, shortest_dt_s, stretch, and
+//                          (version 4) interval_now, stretch_increment: the back-off;
 //                          /time_step/eigenvector (points, 2): the power iteration's
 //                          vector, which the next re-estimate starts from
 // content_hash is an order-independent checksum of the arrays and of the step, time
@@ -48,7 +50,7 @@
 
 namespace bapd {
 
-constexpr std::int64_t kCheckpointFormatVersion       = 3;
+constexpr std::int64_t kCheckpointFormatVersion       = 4;
 constexpr std::int64_t kCheckpointOldestFormatVersion = 1; // still read
 
 // -checkpoint_interval, -checkpoint_on_error, -restart.
@@ -94,6 +96,9 @@ struct CheckpointHeader {
   // no /time_step group (format 1 and 2, or -time_step_reestimate 0).
   double              step_lambda = 0, step_stiffness_dt = 0, step_shortest = 0, step_stretch = 1;
   std::int64_t        step_next_estimate = 0, step_by_stiffness = 0, step_by_travel = 0;
+  // Its back-off (version 4; 0 in older files: the continuation starts it again).
+  std::int64_t        step_interval_now = 0;
+  double              step_stretch_increment = 0;
 };
 
 // The state of the rank layout, read from (written to) a checkpoint.

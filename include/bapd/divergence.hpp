@@ -94,14 +94,20 @@ struct DivergenceFacts {
   bool   reestimating = true;  // -time_step_reestimate > 0: the step followed the material
   double horizon_factor = 3.015;
   double stiffening   = 1;     // the largest lambda_max of the run's re-estimates over the one at rest
+  double stable_earlier = 0;   // stable step of a state 10 to 20 steps before the last good one [s] (0: none)
+  PetscInt earlier_steps = 0;  // how many steps before the last good state that state is
+  double chain_reach_earlier = 0, bond_stretch_earlier = 1, applied_stretch_earlier = 1; // ...and its chain reach
 };
 // In this order (the first that fits): a step above the stable step at rest ->
 // -time_step_safety (or -time_step); the chain limit (0.8 <= reach <= 1.05: the Gent
 // stiffness mu Jm / (Jm + 3 - I1bar) is 5 x its rest value and unbounded beyond; a
 // larger reach is a state the blow-up already wrecked) -> -material_Jm and the
-// stretch; plane strain with K >= 1000 mu (a real negative eigenvalue at rest,
+// stretch (also when the last good state is wrecked but the state 10 to 20 steps
+// before it was there: the Jm = 3 plate on a 1 mm grid); plane strain with K >= 1000 mu (a real negative eigenvalue at rest,
 // docs/stability.md section 1) -> -material_bulk_ratio; a fixed step above the stable
-// step of the state reached -> -time_step_safety or -time_step_reestimate (a state
+// step of the state reached, or of the state 10 to 20 steps earlier (a blow-up wrecks
+// the last good state: plane strain with K = 10 mu on the fixed step showed only the
+// wreck's negative eigenvalue there) -> -time_step_safety or -time_step_reestimate (a state
 // already wrecked, reach > 1.05, in a run whose lambda_max rose 4 x: the chain limit); the
 // bond-only form with less damping than its free edges need (100 1/s, section 1) ->
 // -damping or -force_form energy_consistent; a re-estimated step above the state's

@@ -30,12 +30,21 @@ struct SimulationOutput {
   std::vector<double> good_c33;
   PetscInt            good_step = -1;
   double              good_time = 0;
+  // Two older states, every 10 steps in turn: for the diagnosis of a blow-up that has
+  // already wrecked the last good state (DiagnoseDivergence), one 10 to 20 steps older.
+  static constexpr PetscInt earlier_interval = 10;
+  Vec                 earlier_state[2] = {nullptr, nullptr};
+  std::vector<double> earlier_c33[2];
+  PetscInt            earlier_step[2] = {-1, -1};
+  double              earlier_time[2] = {0, 0};
   bool                handlers  = false;
 
   SimulationOutput() = default;
   ~SimulationOutput()
   {
     VecDestroy(&good_state);
+    VecDestroy(&earlier_state[0]);
+    VecDestroy(&earlier_state[1]);
     if (handlers) RestoreInterruptHandlers();
   }
   SimulationOutput(const SimulationOutput &)            = delete;

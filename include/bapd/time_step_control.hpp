@@ -11,9 +11,11 @@
 //    dt < 2 / sqrt(lambda_max)); lambda_now comes from a power iteration on the
 //    current tangent, K v = -(f(u + eps v) - f(u)) / eps, warm-started from the last
 //    eigenvector: a few force evaluations every -time_step_reestimate steps (more
-//    often while lambda moves). It shrinks at once when lambda grows by more than the
-//    dead band and grows back (bounded by the base step) only when lambda falls by
-//    more than it: the band keeps the step from flapping on the estimate's noise.
+//    often while lambda moves, up to -time_step_reestimate_backoff x less often while
+//    the estimates find nothing that would move the step). It shrinks at once when
+//    lambda grows by more than the dead band and grows back (bounded by the base
+//    step) only when lambda falls by more than it: the band keeps the step from
+//    flapping on the estimate's noise.
 //  - dt_travel: no point with bonds moves more than -time_step_travel dx in one step.
 // Every sum is a reproducible sum and every maximum exact, so the step is the same on
 // any number of ranks; the estimate's state (eigenvector, lambda, the stiffness step)
@@ -41,6 +43,7 @@ struct TimeStepOptions {
   double   floor      = -1;   // the stiffness step is at least this x base (-1: 0.1, or 0.5 with failure)
   double   stretch    = 0.05; // ...and whenever the applied stretch moved by this much since the last one
   double   shift      = 0.45; // the power iteration runs on A - shift lambda I: faster convergence to lambda_max
+  PetscInt backoff    = 4;    // while the estimates find nothing that moves the step, interval and stretch grow up to this x
   bool     monitor    = false; // a line per re-estimate (measurements, docs/stability.md section 8)
 };
 // Reads (and lists under -help) the options. Collective.
@@ -54,6 +57,8 @@ struct TimeStepState {
   double   stretch       = 1; // the applied stretch at the last re-estimate
   PetscInt by_stiffness = 0, by_travel = 0; // the counters of the summary
   double   shortest = 0;
+  PetscInt interval_now = 0;      // steps between re-estimates now (backed off while quiet); 0: not stored (format 3)
+  double   stretch_increment = 0; // ...and the stretch increment now
 };
 
 class TimeStepControl {
@@ -107,7 +112,14 @@ public:
   double       *eigenvector() { return v_.data(); }
 
 private:
-  PetscErrorCode Reestimate(MPI_Comm comm, ForceOperator &force);
+  PetscErrorCode Reestimate(MPI_Comm comm, ForceOperator &force, PetscInt *iterations);
+  // The lambda_max above which the base step would be shortened (outside the dead band).
+  double ShorteningThreshold() const { return lambda_rest_ / ((1.0 - options_.band) * (1.0 - options_.band)); }
+  // The back-off and the early stop spend part of the margin the safety factor leaves
+  // (0.8 / sqrt(1.1) covers an estimate 1.7 x below lambda_max): with a base step above
+  // 0.9 x the stable one at rest there is too little of it (the map's safety-1.0 cell
+  // stopped with them), and every estimate runs as without them.
+  bool Margin() const { return base_dt_ <= 0.9 * stable_dt_; }
   PetscErrorCode PowerStep(MPI_Comm comm, ForceOperator &force, const double *u0, const double *a0, double shift, double *lambda);
 
   TimeStepOptions options_;
@@ -121,6 +133,8 @@ private:
   double   inv_rho_ = 0, eps_ = 0, floor_ = 0.1;
   PetscInt next_estimate_ = 0, estimates_ = 0, evaluations_ = 0;
   double   estimate_stretch_ = 1; // the applied stretch at the last re-estimate
+  PetscInt interval_now_ = 0;     // steps between re-estimates now: the option's, or up to backoff x it while quiet
+  double   stretch_now_  = 0;     // the stretch increment that triggers one now (likewise)
   PetscInt by_stiffness_ = 0, by_travel_ = 0;
   double   shortest_dt_ = 0, estimate_wall_ = 0;
   bool     recording_ = false, recorded_ = false;

@@ -158,6 +158,8 @@ std::uint64_t HeaderHash(const CheckpointHeader &h)
     sum += Entry(13, 0, Bits(h.step_lambda)) + Entry(13, 1, Bits(h.step_stiffness_dt)) + Entry(13, 2, Bits(h.step_shortest)) +
            Entry(13, 3, (std::uint64_t)h.step_next_estimate) + Entry(13, 4, (std::uint64_t)h.step_by_stiffness) +
            Entry(13, 5, (std::uint64_t)h.step_by_travel) + Entry(13, 6, Bits(h.step_stretch));
+  if (h.step_interval_now > 0) // absent in versions 1 to 3
+    sum += Entry(13, 7, (std::uint64_t)h.step_interval_now) + Entry(13, 8, Bits(h.step_stretch_increment));
   return sum;
 }
 
@@ -380,6 +382,8 @@ PetscErrorCode WriteCheckpoint(MPI_Comm comm, const std::string &path, const Nat
       PetscCall(f.WriteAttribute("/time_step", "by_stiffness", header->step_by_stiffness));
       PetscCall(f.WriteAttribute("/time_step", "by_travel", header->step_by_travel));
       PetscCall(f.WriteAttribute("/time_step", "stretch", header->step_stretch));
+      PetscCall(f.WriteAttribute("/time_step", "interval_now", header->step_interval_now));
+      PetscCall(f.WriteAttribute("/time_step", "stretch_increment", header->step_stretch_increment));
       PetscCall(f.WriteBlock("/time_step/eigenvector", H5T_NATIVE_DOUBLE, P, 2, order.point_start, order.point_count, eigenvector.data()));
     }
     const hsize_t frames = header->field_frames.size() / 2;
@@ -489,6 +493,9 @@ std::string ReadHeaderSerial(const std::string &path, CheckpointHeader *h)
           !H5ReadAttribute(file, "/time_step", "by_travel", &h->step_by_travel) ||
           !H5ReadAttribute(file, "/time_step", "stretch", &h->step_stretch))
         damaged("an attribute of /time_step is missing");
+      if (h->format_version >= 4 && (!H5ReadAttribute(file, "/time_step", "interval_now", &h->step_interval_now) || h->step_interval_now < 1 ||
+                                     !H5ReadAttribute(file, "/time_step", "stretch_increment", &h->step_stretch_increment)))
+        damaged("attribute /time_step/interval_now or stretch_increment is missing");
       if (H5DatasetShape(file, "/time_step/eigenvector") != std::vector<hsize_t>{P, 2})
         damaged("dataset /time_step/eigenvector is missing or has the wrong shape");
     }
@@ -510,17 +517,19 @@ PetscErrorCode ReadCheckpointHeader(MPI_Comm comm, const std::string &path, Chec
   if (rank == 0) problem = ReadHeaderSerial(path, header);
   PetscCall(BcastString(comm, &problem));
   PetscCheck(problem.empty(), comm, PETSC_ERR_FILE_UNEXPECTED, "%s", problem.c_str());
-  long long     ints[10]  = {(long long)header->step,            (long long)header->ranks,
+  long long     ints[11]  = {(long long)header->step,            (long long)header->ranks,
                              (long long)header->geometry.points, (long long)header->geometry.bonds,
                              (long long)header->format_version,  (long long)header->static_hold_done,
                              (long long)header->relaxation_records, (long long)header->step_next_estimate,
-                             (long long)header->step_by_stiffness,  (long long)header->step_by_travel};
-  double        reals[11] = {header->time,        header->time_step,         header->stretch, header->geometry.dx,
+                             (long long)header->step_by_stiffness,  (long long)header->step_by_travel,
+                             (long long)header->step_interval_now};
+  double        reals[12] = {header->time,        header->time_step,         header->stretch, header->geometry.dx,
                              header->geometry.horizon, header->end_time_original, header->end_time,
-                             header->step_lambda, header->step_stiffness_dt, header->step_shortest, header->step_stretch};
+                             header->step_lambda, header->step_stiffness_dt, header->step_shortest, header->step_stretch,
+                             header->step_stretch_increment};
   std::uint64_t hashes[2] = {header->content_hash, header->geometry.hash};
-  PetscCallMPI(MPI_Bcast(ints, 10, MPI_LONG_LONG, 0, comm));
-  PetscCallMPI(MPI_Bcast(reals, 11, MPI_DOUBLE, 0, comm));
+  PetscCallMPI(MPI_Bcast(ints, 11, MPI_LONG_LONG, 0, comm));
+  PetscCallMPI(MPI_Bcast(reals, 12, MPI_DOUBLE, 0, comm));
   PetscCallMPI(MPI_Bcast(hashes, 2, MPI_UINT64_T, 0, comm));
   header->step             = (PetscInt)ints[0];
   header->ranks            = ints[1];
@@ -532,10 +541,12 @@ PetscErrorCode ReadCheckpointHeader(MPI_Comm comm, const std::string &path, Chec
   header->step_next_estimate = ints[7];
   header->step_by_stiffness  = ints[8];
   header->step_by_travel     = ints[9];
+  header->step_interval_now  = ints[10];
   header->step_lambda        = reals[7];
   header->step_stiffness_dt  = reals[8];
   header->step_shortest      = reals[9];
   header->step_stretch       = reals[10];
+  header->step_stretch_increment = reals[11];
   header->end_time_original = reals[5];
   header->end_time          = reals[6];
   header->time             = reals[0];

@@ -177,18 +177,18 @@ PetscErrorCode CheckRunawayEnergy(const RunawayInputs &inputs, RunawayEnergyMoni
 std::string DivergenceAdvice(const DivergenceFacts &f)
 {
   char text[1024];
-  auto too_long = [&](const char *why) {
+  auto too_long = [&](const char *why, double stable) {
     if (f.step_given)
       std::snprintf(text, sizeof text,
-                    " Cause: the time step%s. dt = %.4e s is %.3g x the stable step %.4e s of the state reached (%.4e s at rest): "
+                    " Cause: the time step%s. dt = %.4e s is %.3g x the stable step %.4e s of the state %s (%.4e s at rest): "
                     "lower -time_step below %.3e s, or leave it to the solver (-time_step 0, -time_step_safety 0.8).",
-                    why, f.dt, f.dt / f.stable, f.stable, f.stable_rest, 0.8 * std::min(f.stable, f.stable_rest));
+                    why, f.dt, f.dt / stable, stable, stable == f.stable ? "reached" : "before the blow-up", f.stable_rest, 0.8 * std::min(stable, f.stable_rest));
     else
       std::snprintf(text, sizeof text,
-                    " Cause: the time step%s. dt = %.4e s is %.3g x the stable step %.4e s of the state reached (%.4e s at rest): "
+                    " Cause: the time step%s. dt = %.4e s is %.3g x the stable step %.4e s of the state %s (%.4e s at rest): "
                     "lower -time_step_safety (now %g) to %.2g or less%s.",
-                    why, f.dt, f.dt / f.stable, f.stable, f.stable_rest, f.safety,
-                    std::min(0.8, 0.8 * f.safety * std::min(f.stable, f.stable_rest) / f.dt),
+                    why, f.dt, f.dt / stable, stable, stable == f.stable ? "reached" : "before the blow-up", f.stable_rest, f.safety,
+                    std::min(0.8, 0.8 * f.safety * std::min(stable, f.stable_rest) / f.dt),
                     f.reestimating ? "" : ", or let the step follow the material (-time_step_reestimate 50)");
   };
   // A base step above the stable step at rest: the blow-up starts at once (and may
@@ -200,6 +200,13 @@ std::string DivergenceAdvice(const DivergenceFacts &f)
                   std::max(f.dt, f.base), std::max(f.dt, f.base) / f.stable_rest, f.stable_rest,
                   f.step_given ? "lower -time_step, or leave it to the solver (-time_step 0, -time_step_safety 0.8)"
                                : "lower -time_step_safety to 0.8 (the default) or less");
+  else if (f.chain_reach > 1.05 && f.chain_reach_earlier >= 0.8 && f.chain_reach_earlier <= 1.05) // wrecked, but near the limit before
+    std::snprintf(text, sizeof text,
+                  " Cause: the Gent chain limit. %" PetscInt_FMT " steps before the failure bonds had reached I1bar - 3 = %.3g x Jm "
+                  "(largest bond stretch %.3g, applied stretch %.4g), where the material stiffens without bound and no time step "
+                  "keeps up: raise -material_Jm (now %g), or end the load below stretch %.4g, or enable failure "
+                  "(-failure_critical_stretch) so that such bonds break.",
+                  f.earlier_steps, f.chain_reach_earlier, f.bond_stretch_earlier, f.applied_stretch_earlier, f.Jm, f.applied_stretch_earlier);
   else if (f.chain_reach >= 0.8 && f.chain_reach <= 1.05) // beyond: a state the blow-up already wrecked
     std::snprintf(text, sizeof text,
                   " Cause: the Gent chain limit. Bonds reached I1bar - 3 = %.3g x Jm (largest bond stretch %.3g, applied stretch %.4g), "
@@ -219,7 +226,15 @@ std::string DivergenceAdvice(const DivergenceFacts &f)
                   "chain limit (applied stretch %.4g), and the state broke down (bond stretch %.3g): raise -material_Jm (now %g), "
                   "or end the load below stretch %.4g, or enable failure (-failure_critical_stretch) so that such bonds break.",
                   f.stiffening, f.applied_stretch, f.bond_stretch, f.Jm, f.applied_stretch);
-  else if (!f.reestimating && f.dt > f.stable) too_long(" (the material stiffened; the step was fixed at rest)");
+  else if (!f.reestimating && f.dt > f.stable) too_long(" (the material stiffened; the step was fixed at rest)", f.stable);
+  else if (f.stable_earlier > 0 && f.dt > f.stable_earlier) {
+    // The last good state is already a wreck (its sharp estimate finds the wreck's
+    // negative eigenvalue, not the stiffening); the state before the blow-up shows it.
+    char why[200];
+    std::snprintf(why, sizeof why, " (the material stiffened; %s; measured %" PetscInt_FMT " steps before the failure)",
+                  f.reestimating ? "faster than the re-estimate followed" : "the step was fixed at rest", f.earlier_steps);
+    too_long(why, f.stable_earlier);
+  }
   else if (f.bond_only && f.damping < 100)
     std::snprintf(text, sizeof text,
                   " Cause: flutter of the bond-only force form. The step was below the stable one (dt = %.3g x the stable "
@@ -230,7 +245,7 @@ std::string DivergenceAdvice(const DivergenceFacts &f)
                   f.reestimating ? "" : "; with the step fixed at rest, also let it follow the material (-time_step_reestimate 50)",
                   f.horizon_factor < 2.5 ? " (with -horizon_factor below 2.5 the bond-only rest state itself can be unstable: "
                                            "then only the energy-consistent form, or a horizon of 2.5 to 4, helps)" : "");
-  else if (f.dt > f.stable) too_long(" (the material stiffened faster than the re-estimate followed)");
+  else if (f.dt > f.stable) too_long(" (the material stiffened faster than the re-estimate followed)", f.stable);
   else
     std::snprintf(text, sizeof text,
                   " Cause: not found. The step (%.3g x the stable one of the state reached) and the material look sound: lower "

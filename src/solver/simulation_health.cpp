@@ -92,20 +92,19 @@ PetscErrorCode Simulation::DiagnoseDivergence()
   f.horizon_factor = scene_.horizon_factor;
   f.stiffening     = step_control_.largest_lambda() / step_control_.lambda_rest();
   f.applied_stretch = loading_.stretch_at(t);
-  PetscCall(step_control_.SharpEstimate(comm_, force_, u.data(), c33, 40, &f.stable));
-  if (!std::isfinite(f.stable) || f.stable <= 0) f.stable = step_control_.stable_now();
-
-  // Chain reach: max over owned bonds of (I1bar - 3) / Jm, I1bar = tr(C) J^{-2/3}
-  // with C = diag(F~^T F~, C33) (C33 = 1 in plane strain; hyperelastic.hpp).
-  double reach[2] = {0.0, 1.0}; // reach, the bond stretch there
-  if (scene_.model == ModelKind::gent) {
-    PetscCall(force_.UpdatePositions(u.data()));
+  // Chain reach of a state (u: owned, c33: its warm starts): max over owned bonds of
+  // (I1bar - 3) / Jm, I1bar = tr(C) J^{-2/3} with C = diag(F~^T F~, C33) (C33 = 1 in
+  // plane strain; hyperelastic.hpp), and the largest principal stretch of that bond.
+  auto chain_reach = [&](const double *state_u, const std::vector<double> &state_c33, double reach[2]) -> PetscErrorCode {
+    PetscFunctionBegin;
+    reach[0] = 0.0, reach[1] = 1.0;
+    PetscCall(force_.UpdatePositions(state_u));
     const double *y = force_.positions();
     for (PetscInt i = 0; i < layout_.n_owned; ++i)
       for (std::size_t q = 0; q < families_.size((std::size_t)i); ++q) {
         if (!bond_state_.is_intact((std::size_t)i, q) || !geometry_.is_usable((std::size_t)i, q)) continue;
         const Mat2   F   = bond_deformation_gradient(layout_.cloud, y, families_, geometry_, bond_state_, (std::size_t)i, q);
-        const double C33 = f.plane_strain ? 1.0 : c33[families_.offsets[i] + q];
+        const double C33 = f.plane_strain ? 1.0 : state_c33[families_.offsets[i] + q];
         const double J   = det(F) * std::sqrt(C33);
         if (!(J > 0) || !(C33 > 0)) continue;
         const double c11 = F[0] * F[0] + F[2] * F[2], c22 = F[1] * F[1] + F[3] * F[3], c12 = F[0] * F[1] + F[2] * F[3];
@@ -122,13 +121,47 @@ PetscErrorCode Simulation::DiagnoseDivergence()
     } mine = {reach[0], rank_}, best;
     PetscCallMPI(MPI_Allreduce(&mine, &best, 1, MPI_DOUBLE_INT, MPI_MAXLOC, comm_));
     PetscCallMPI(MPI_Bcast(reach, 2, MPI_DOUBLE, best.rank, comm_));
-    f.Jm = scene_.material.Jm;
+    PetscFunctionReturn(0);
+  };
+
+  // Also the state 10 to 20 steps before the last good one, which a blow-up has often
+  // wrecked already (DivergenceFacts::stable_earlier, chain_reach_earlier): its stable
+  // step and its chain reach.
+  if (good) {
+    int older = -1;
+    for (int k = 0; k < 2; ++k)
+      if (output_.earlier_step[k] >= 0 && output_.earlier_step[k] + SimulationOutput::earlier_interval <= output_.good_step &&
+          (older < 0 || output_.earlier_step[k] > output_.earlier_step[older]))
+        older = k;
+    if (older >= 0) {
+      const double *xe;
+      PetscCall(VecGetArrayRead(output_.earlier_state[older], &xe));
+      std::vector<double> ue(xe, xe + n);
+      PetscCall(VecRestoreArrayRead(output_.earlier_state[older], &xe));
+      f.earlier_steps = output_.good_step - output_.earlier_step[older];
+      PetscCall(step_control_.SharpEstimate(comm_, force_, ue.data(), output_.earlier_c33[older], 40, &f.stable_earlier));
+      if (!std::isfinite(f.stable_earlier) || f.stable_earlier <= 0) f.stable_earlier = 0;
+      if (scene_.model == ModelKind::gent) {
+        double reach[2];
+        PetscCall(chain_reach(ue.data(), output_.earlier_c33[older], reach));
+        f.chain_reach_earlier  = reach[0];
+        f.bond_stretch_earlier = reach[1];
+        f.applied_stretch_earlier = loading_.stretch_at(output_.earlier_time[older]);
+      }
+    }
   }
-  f.chain_reach  = reach[0];
-  f.bond_stretch = reach[1];
+  PetscCall(step_control_.SharpEstimate(comm_, force_, u.data(), c33, 40, &f.stable));
+  if (!std::isfinite(f.stable) || f.stable <= 0) f.stable = step_control_.stable_now();
+  if (scene_.model == ModelKind::gent) {
+    double reach[2];
+    PetscCall(chain_reach(u.data(), c33, reach));
+    f.chain_reach  = reach[0];
+    f.bond_stretch = reach[1];
+    f.Jm           = scene_.material.Jm;
+  }
   if (time_step_options_.monitor)
-    PetscCall(PetscPrintf(comm_, "Diagnosis at the last good state: dt %.4e s, stable %.4e s (at rest %.4e s), chain reach %.4g (bond stretch %.4g), applied stretch %.4g\n",
-                          f.dt, f.stable, f.stable_rest, f.chain_reach, f.bond_stretch, f.applied_stretch));
+    PetscCall(PetscPrintf(comm_, "Diagnosis at the last good state: dt %.4e s, stable %.4e s (at rest %.4e s), chain reach %.4g (bond stretch %.4g), applied stretch %.4g; %" PetscInt_FMT " steps before: stable %.4e s, chain reach %.4g\n",
+                          f.dt, f.stable, f.stable_rest, f.chain_reach, f.bond_stretch, f.applied_stretch, f.earlier_steps, f.stable_earlier, f.chain_reach_earlier));
   stop_reason_ += DivergenceAdvice(f);
   PetscFunctionReturn(0);
 }

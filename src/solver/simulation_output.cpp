@@ -75,6 +75,7 @@ PetscErrorCode Simulation::SetupOutput()
   }
   if (output_.checkpoint.on_error) {
     PetscCall(VecDuplicate(X_, &output_.good_state));
+    for (Vec &earlier : output_.earlier_state) PetscCall(VecDuplicate(X_, &earlier));
     PetscCall(SaveGoodState(step, t));
   }
   PetscFunctionReturn(0);
@@ -96,6 +97,13 @@ PetscErrorCode Simulation::SaveGoodState(PetscInt step, double t)
   output_.good_c33.assign(force_.warm_start().begin(), force_.warm_start().end()); // same size every step: no allocation
   output_.good_step = step;
   output_.good_time = t;
+  if (step % SimulationOutput::earlier_interval == 0) {
+    const int slot = (int)((step / SimulationOutput::earlier_interval) % 2);
+    PetscCall(VecCopy(X_, output_.earlier_state[slot]));
+    output_.earlier_c33[slot].assign(force_.warm_start().begin(), force_.warm_start().end());
+    output_.earlier_step[slot] = step;
+    output_.earlier_time[slot] = t;
+  }
   PetscFunctionReturn(0);
 }
 
@@ -272,6 +280,8 @@ PetscErrorCode Simulation::WriteCheckpointFile(PetscInt step, double t, const ch
     header.step_by_stiffness  = s.by_stiffness;
     header.step_by_travel     = s.by_travel;
     header.step_stretch       = s.stretch;
+    header.step_interval_now  = s.interval_now;
+    header.step_stretch_increment = s.stretch_increment;
     state.step_eigenvector    = step_control_.eigenvector();
   }
   const PetscErrorCode written = WriteCheckpoint(comm_, path, output_.order, families_, &header, state);
@@ -352,6 +362,8 @@ PetscErrorCode Simulation::RestoreCheckpoint()
     s.by_stiffness  = (PetscInt)header.step_by_stiffness;
     s.by_travel     = (PetscInt)header.step_by_travel;
     s.stretch       = header.step_stretch;
+    s.interval_now  = (PetscInt)header.step_interval_now;
+    s.stretch_increment = header.step_stretch_increment;
     PetscCall(step_control_.Restore(header.time_step, s, ts_));
   }
   if (header.time_step != step_control_.current())

@@ -38,6 +38,10 @@ PetscErrorCode TimeStepOptionsFromOptions(MPI_Comm comm, TimeStepOptions *option
                      &options->stretch));
     PetscCall(r.Real("-time_step_shift", "Shift of the re-estimate's power iteration, a fraction of the last lambda_max [-], in [0, 0.5]",
                      &options->shift));
+    PetscCall(r.Int("-time_step_reestimate_backoff",
+                    "While re-estimates find nothing that would move the step, the steps and the stretch increment between them double, "
+                    "up to this factor [-], >= 1 (1: every -time_step_reestimate steps and -time_step_reestimate_stretch, always)",
+                    &options->backoff));
     PetscCall(r.Bool("-time_step_monitor", "Print a line per re-estimate of the stable step (step, lambda_max, stable step, step in use)",
                      &options->monitor));
     return 0;
@@ -58,6 +62,9 @@ PetscErrorCode TimeStepOptionsFromOptions(MPI_Comm comm, TimeStepOptions *option
              options->max_iterations, options->tolerance);
   PetscCheck(options->stretch > 0, comm, PETSC_ERR_USER,
              "-time_step_reestimate_stretch %g: give a stretch increment > 0 (default 0.05)", options->stretch);
+  PetscCheck(options->backoff >= 1, comm, PETSC_ERR_USER,
+             "-time_step_reestimate_backoff %" PetscInt_FMT ": give a factor >= 1 (default 4; 1 keeps the interval and stretch increment fixed)",
+             options->backoff);
   PetscCheck(options->band >= 0 && options->band < 0.5, comm, PETSC_ERR_USER,
              "-time_step_band %g: give a fraction in [0, 0.5) (default 0.05)", options->band);
   PetscFunctionReturn(0);
@@ -158,6 +165,8 @@ PetscErrorCode TimeStepControl::EstimateStable(MPI_Comm comm, const Scene &scene
   stable_dt_ = stable_now_ = 2.0 / std::sqrt(1.1 * lambda);
   SetBaseStep(scene.time_step > 0 ? scene.time_step : scene.time_step_safety * stable_dt_);
   next_estimate_    = options_.interval;
+  interval_now_     = options_.interval;
+  stretch_now_      = options_.stretch;
   estimate_stretch_ = loading.stretch_at(0.0);
   PetscCall(PetscPrintf(comm, "Stable time step %.4e s (power iteration, lambda_max = %.4e 1/s^2); using dt = %.4e s (%.3g x stable)\n",
                         stable_dt_, lambda, dt_, dt_ / stable_dt_));
@@ -193,7 +202,7 @@ void TimeStepControl::Record(const double *u, const double *a)
 // The C33 warm starts are a copy of the operator's committed ones (converged at that
 // very state), so the operator is left as it was and a restart (which restores them)
 // repeats the estimate bit for bit.
-PetscErrorCode TimeStepControl::Reestimate(MPI_Comm comm, ForceOperator &force)
+PetscErrorCode TimeStepControl::Reestimate(MPI_Comm comm, ForceOperator &force, PetscInt *iterations)
 {
   PetscFunctionBegin;
   const double               wall      = MPI_Wtime();
@@ -203,13 +212,28 @@ PetscErrorCode TimeStepControl::Reestimate(MPI_Comm comm, ForceOperator &force)
   // still moves by more than `tolerance`: in a steady state the warm start is already
   // converged and one iteration confirms it; when the fastest mode moves elsewhere
   // (stiffening at a hole, a crack tip) the quotient climbs and the iteration follows.
-  double lambda = 0, previous = lambda_;
-  for (PetscInt it = 0; it < options_.max_iterations; ++it) {
+  // Except where the answer cannot matter: at the base step (which the stiffness step
+  // never exceeds) only a lambda past lambda_rest / (1 - band)^2 would shorten it. The
+  // quotient climbs towards lambda_max by increments that shrink about geometrically
+  // (ratio r < 1, measured 0.57 to 0.85 on the plate's first ramp); while even ten
+  // more increments of the last size (r = 0.9) stay below that threshold the step stays
+  // at the base step, and the iteration stops (the plate's first ramp, where lambda_max
+  // falls to 0.88 x its value at rest: 18 force evaluations became 10).
+  const bool   at_base   = stiffness_dt_ >= base_dt_ && Margin();
+  const double threshold = ShorteningThreshold();
+  double       lambda = 0, previous = lambda_;
+  PetscInt     it     = 0;
+  while (it < options_.max_iterations) {
     PetscCall(PowerStep(comm, force, u_rec_.data(), a_rec_.data(), options_.shift * lambda_, &lambda));
-    const bool settled = std::fabs(lambda - previous) <= options_.tolerance * std::fabs(lambda);
-    previous           = lambda;
-    if (it + 1 >= options_.iterations && (settled || !std::isfinite(lambda))) break;
+    ++it;
+    if (!std::isfinite(lambda)) break;
+    const double change   = std::fabs(lambda - previous);
+    const bool   settled  = change <= options_.tolerance * std::fabs(lambda);
+    const bool   harmless = at_base && it >= 2 && lambda + 10.0 * change < threshold;
+    previous              = lambda;
+    if (it >= options_.iterations && (settled || harmless)) break;
   }
+  *iterations = it;
   ++estimates_;
   // A quotient that is not positive or not finite (a static instability, a NaN the
   // health check reports) says nothing about the fastest mode: keep the last one.
@@ -241,11 +265,13 @@ PetscErrorCode TimeStepControl::AfterStep(MPI_Comm comm, PetscInt step, double s
   // Due after `interval` steps, or sooner on a fast ramp: a ramp of the fast route
   // (0.05 s, 30 steps) stiffens a Jm = 3 gel past its step between two estimates
   // (docs/stability.md, section 8).
-  const bool due = step >= next_estimate_ || std::fabs(stretch - estimate_stretch_) > options_.stretch;
+  const bool by_step = step >= next_estimate_;
+  const bool due     = by_step || std::fabs(stretch - estimate_stretch_) > stretch_now_;
   if (options_.interval > 0 && recorded_ && due) {
     estimate_stretch_ = stretch;
-    const double before = lambda_;
-    PetscCall(Reestimate(comm, force));
+    const double   before = lambda_, stiffness_before = stiffness_dt_;
+    PetscInt       iterations         = 0;
+    PetscCall(Reestimate(comm, force, &iterations));
     // Shrinks at once; grows back by at most 2 x band per estimate: a quotient that
     // drops is not trusted at once (the warm-started iteration can lose the fastest
     // mode for a while when it moves: a Jm = 3 plate at stretch 2 showed lambda_max
@@ -253,15 +279,32 @@ PetscErrorCode TimeStepControl::AfterStep(MPI_Comm comm, PetscInt step, double s
     const double target = std::clamp(base_dt_ * std::sqrt(lambda_rest_ / lambda_), floor_ * base_dt_, base_dt_);
     if (target < (1.0 - options_.band) * stiffness_dt_) stiffness_dt_ = target;
     else if (target > (1.0 + options_.band) * stiffness_dt_) stiffness_dt_ = std::min(target, (1.0 + 2.0 * options_.band) * stiffness_dt_);
-    // Stiffening by more than the band, or a step still growing back (beyond the band:
-    // inside it the step stays, and so would the follow-ups, for good): the next
-    // estimate comes sooner (a fifth of the interval: a tenth cost 6 % of the fast plate).
-    const bool sooner = lambda_ > (1.0 + options_.band) * before || target > (1.0 + options_.band) * stiffness_dt_;
-    next_estimate_    = step + (sooner ? std::max<PetscInt>(1, options_.interval / 5) : options_.interval);
+    // Far from mattering: at the base step, lambda stays below the threshold that would
+    // shorten it even if it went on moving as fast for two more intervals.
+    const double moved     = std::fabs(lambda_ - before);
+    const bool   far       = stiffness_dt_ >= base_dt_ && Margin() && lambda_ + 2.0 * moved < ShorteningThreshold();
+    // Stiffening by more than the band (unless far from mattering), or a step still
+    // growing back (beyond the band: inside it the step stays, and so would the
+    // follow-ups, for good): the next estimate comes sooner (a fifth of the interval:
+    // a tenth cost 6 % of the fast plate).
+    const bool sooner = (lambda_ > (1.0 + options_.band) * before && !far) || target > (1.0 + options_.band) * stiffness_dt_;
+    // Quiet: the step stayed, and lambda moved by less than half the band or is far
+    // from mattering. Then the steps and the stretch increment to the next estimate
+    // double, up to backoff x the options' (holds, and ramps of a soft gel, cost a
+    // fourth); anything else brings them back at once.
+    const bool quiet = !sooner && stiffness_dt_ == stiffness_before && Margin() && (moved <= 0.5 * options_.band * before || far);
+    if (quiet) {
+      interval_now_ = std::min(2 * interval_now_, options_.backoff * options_.interval);
+      stretch_now_  = std::min(2.0 * stretch_now_, (double)options_.backoff * options_.stretch);
+    } else {
+      interval_now_ = options_.interval;
+      stretch_now_  = options_.stretch;
+    }
+    next_estimate_ = step + (sooner ? std::max<PetscInt>(1, options_.interval / 5) : interval_now_);
     if (options_.monitor)
-      PetscCall(PetscPrintf(comm, "re-estimate %" PetscInt_FMT " after step %" PetscInt_FMT ": lambda_max %.6e 1/s^2 (%.4g x at rest), stable %.4e s, stiffness step %.4e s (%.4g x base), %" PetscInt_FMT " force evaluations, %.3f s so far\n",
-                            estimates_, step, lambda_, lambda_ / lambda_rest_, stable_now_, stiffness_dt_, stiffness_dt_ / base_dt_, evaluations_,
-                            estimate_wall_));
+      PetscCall(PetscPrintf(comm, "re-estimate %" PetscInt_FMT " after step %" PetscInt_FMT " (%s, %" PetscInt_FMT " iteration(s)): lambda_max %.6e 1/s^2 (%.4g x at rest), stable %.4e s, stiffness step %.4e s (%.4g x base), next in %" PetscInt_FMT " steps or %.3g in stretch, %" PetscInt_FMT " force evaluations, %.3f s so far\n",
+                            estimates_, step, by_step ? "steps" : "stretch", iterations, lambda_, lambda_ / lambda_rest_, stable_now_, stiffness_dt_,
+                            stiffness_dt_ / base_dt_, next_estimate_ - step, stretch_now_, evaluations_, estimate_wall_));
   }
   double dt = stiffness_dt_;
   bool   flying = false;
@@ -322,6 +365,8 @@ TimeStepState TimeStepControl::state() const
   s.by_stiffness  = by_stiffness_;
   s.by_travel     = by_travel_;
   s.shortest      = shortest_dt_;
+  s.interval_now  = interval_now_;
+  s.stretch_increment = stretch_now_;
   return s;
 }
 
@@ -343,6 +388,10 @@ PetscErrorCode TimeStepControl::Restore(double dt, const TimeStepState &state, T
     by_stiffness_   = state.by_stiffness;
     by_travel_      = state.by_travel;
     shortest_dt_    = state.shortest;
+    if (state.interval_now > 0) { // format 4 on; older checkpoints start the back-off again
+      interval_now_ = state.interval_now;
+      stretch_now_  = state.stretch_increment;
+    }
   }
   if (dt > 0 && dt < base_dt_ && (travel_ > 0 || options_.interval > 0)) {
     dt_ = dt;

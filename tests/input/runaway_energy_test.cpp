@@ -118,3 +118,28 @@ TEST(RunawayEnergy, StopsAtOnceOnAnAbsurdKineticEnergy)
   EXPECT_EQ(monitor.Kinetic(1, 0, 1.0), Verdict::fine);
   EXPECT_EQ(monitor.Kinetic(2, 0, RunawayEnergyMonitor::overflow), Verdict::diverged);
 }
+
+// DivergenceAdvice with the step fixed at rest when the last good state is a wreck
+// (its sharp estimate found no stiffening: stable = the step at rest): the state 10 to
+// 20 steps earlier decides. Shorter than dt there: the time step, and the fix is to let
+// it follow the material. As long as dt there: not the step (here, the bond-only form
+// with little damping: flutter).
+TEST(DivergenceAdvice, AWreckedLastStateIsJudgedByTheStateBeforeTheBlowUp)
+{
+  DivergenceFacts f;
+  f.stable_rest = f.stable = 1.2012e-3; // plane strain, K = 10 mu (docs/stability.md, section 8)
+  f.dt = f.base = 0.8 * f.stable_rest;
+  f.chain_reach = 1.2, f.Jm = 162.6, f.plane_strain = true, f.bulk_ratio = 10, f.damping = 50;
+  f.reestimating  = false;
+  f.earlier_steps = 19;
+  f.stable_earlier = 0.95 * f.dt; // the material had stiffened past the fixed step
+  const std::string stiffened = DivergenceAdvice(f);
+  EXPECT_NE(stiffened.find("Cause: the time step (the material stiffened; the step was fixed at rest; measured 19 steps"), std::string::npos)
+    << stiffened;
+  EXPECT_NE(stiffened.find("-time_step_reestimate 50"), std::string::npos) << stiffened;
+  f.stable_earlier = 1.05 * f.dt; // it had not
+  const std::string sound = DivergenceAdvice(f);
+  EXPECT_NE(sound.find("Cause: flutter"), std::string::npos) << sound;
+  f.stable_earlier = 0; // no earlier state (fewer than 10 steps, or -checkpoint_on_error 0): as before
+  EXPECT_EQ(DivergenceAdvice(f), sound);
+}
