@@ -51,7 +51,11 @@ PetscErrorCode Simulation::CheckHealth(PetscInt step, double t, PetscBool *diver
     else if (global[1])
       std::snprintf(msg, sizeof msg, "%d bond(s) inverted (det F <= 0) at step %" PetscInt_FMT " (t = %.6e s, dt = %.4e s): the run is unstable.", global[1], step, t, step_control_.current());
     else
-      std::snprintf(msg, sizeof msg, "%d bond(s) reached the Gent chain-extension limit (I1bar - 3 >= Jm) at step %" PetscInt_FMT " (t = %.6e s), where the model has no finite energy.", global[2], step, t);
+    {
+      const LawEntry &law = law_entry(scene_.model); // Gent's chain limit, Arruda-Boyce's locking stretch
+      std::snprintf(msg, sizeof msg, "%d bond(s) reached %s at step %" PetscInt_FMT " (t = %.6e s), where the model has no finite energy.",
+                    global[2], law.limit ? law.limit : "the law's limit", step, t);
+    }
     stop_reason_      = std::string(msg) + at;
     stopped_on_error_ = true;
   }
@@ -60,8 +64,8 @@ PetscErrorCode Simulation::CheckHealth(PetscInt step, double t, PetscBool *diver
 
 // What the solver sees at the last good state (the state saved before the step that
 // failed; the current one without -checkpoint_on_error): the stable step of that
-// state by a sharp power iteration, and how close its bonds came to the Gent chain
-// limit. DivergenceAdvice (divergence.hpp) turns it into the cause and the fix.
+// state by a sharp power iteration, and how close its bonds came to the law's limit
+// (Gent's chain limit, Arruda-Boyce's locking stretch). DivergenceAdvice (divergence.hpp) turns it into the cause and the fix.
 // Once, when the run stops: the slow per-bond path is fine here. Collective.
 PetscErrorCode Simulation::DiagnoseDivergence()
 {
@@ -95,10 +99,13 @@ PetscErrorCode Simulation::DiagnoseDivergence()
   PetscCall(step_control_.SharpEstimate(comm_, force_, u.data(), c33, 40, &f.stable));
   if (!std::isfinite(f.stable) || f.stable <= 0) f.stable = step_control_.stable_now();
 
-  // Chain reach: max over owned bonds of (I1bar - 3) / Jm, I1bar = tr(C) J^{-2/3}
-  // with C = diag(F~^T F~, C33) (C33 = 1 in plane strain; hyperelastic.hpp).
-  double reach[2] = {0.0, 1.0}; // reach, the bond stretch there
-  if (scene_.model == ModelKind::gent) {
+  // Chain reach: max over owned bonds of (I1bar - 3) / (I1bar_limit - 3) (Gent: / Jm),
+  // I1bar = tr(C) J^{-2/3} with C = diag(F~^T F~, C33) (C33 = 1 in plane strain;
+  // hyperelastic.hpp).
+  double          reach[2] = {0.0, 1.0}; // reach, the bond stretch there
+  const LawEntry &law      = law_entry(scene_.model);
+  if (law.limit) {
+    const double span = law.I1bar_limit(scene_.material) - 3.0;
     PetscCall(force_.UpdatePositions(u.data()));
     const double *y = force_.positions();
     for (PetscInt i = 0; i < layout_.n_owned; ++i)
@@ -110,7 +117,7 @@ PetscErrorCode Simulation::DiagnoseDivergence()
         if (!(J > 0) || !(C33 > 0)) continue;
         const double c11 = F[0] * F[0] + F[2] * F[2], c22 = F[1] * F[1] + F[3] * F[3], c12 = F[0] * F[1] + F[2] * F[3];
         const double I1bar = (c11 + c22 + C33) * std::pow(J, -2.0 / 3.0);
-        const double r     = (I1bar - 3.0) / scene_.material.Jm;
+        const double r     = (I1bar - 3.0) / span;
         if (r > reach[0]) {
           const double mean = 0.5 * (c11 + c22), dev = std::sqrt(0.25 * (c11 - c22) * (c11 - c22) + c12 * c12);
           reach[0] = r, reach[1] = std::sqrt(mean + dev);
@@ -122,7 +129,10 @@ PetscErrorCode Simulation::DiagnoseDivergence()
     } mine = {reach[0], rank_}, best;
     PetscCallMPI(MPI_Allreduce(&mine, &best, 1, MPI_DOUBLE_INT, MPI_MAXLOC, comm_));
     PetscCallMPI(MPI_Bcast(reach, 2, MPI_DOUBLE, best.rank, comm_));
-    f.Jm = scene_.material.Jm;
+    f.limit        = law.limit;
+    f.limit_option = law.limit_option;
+    for (const LawOptionEntry &o : law.options)
+      if (std::string(o.name) == law.limit_option) f.limit_value = scene_.material.*o.value;
   }
   f.chain_reach  = reach[0];
   f.bond_stretch = reach[1];
