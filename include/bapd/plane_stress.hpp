@@ -161,25 +161,20 @@ template <class Law> struct PlaneStress {
     // q ~ c^{-1/3}, w ~ c^{2/3}: q^(n) = q u^n prod_{m<n} (-1/3 - m), w^(n) likewise
     const T q1 = q * u * (-1.0 / 3.0), q2 = q * u2 * (4.0 / 9.0), q3 = q * u3 * (-28.0 / 27.0),
             q4 = q * u4 * (280.0 / 81.0);
+    // I1bar = a q + w: its c-derivatives
     const T I1 = a * q1 + w * u * (2.0 / 3.0);
     const T I2 = a * q2 + w * u2 * (-2.0 / 9.0);
     const T I3 = a * q3 + w * u3 * (8.0 / 27.0);
     const T I4 = a * q4 + w * u4 * (-56.0 / 81.0);
-    // d^n G(I1bar(c)) / dc^n (Faa di Bruno)
-    const T H0 = G[0], H1 = G[1] * I1, H2 = G[2] * I1 * I1 + G[1] * I2;
-    const T H3 = G[3] * I1 * I1 * I1 + 3.0 * G[2] * I1 * I2 + G[1] * I3;
-    const T H4 = G[4] * (I1 * I1) * (I1 * I1) + 6.0 * G[3] * I1 * I1 * I2 +
-                 G[2] * (3.0 * I2 * I2 + 4.0 * I1 * I3) + G[1] * I4;
-    r.shear = {H0 * q, H1 * q + H0 * q1, H2 * q + 2.0 * H1 * q1 + H0 * q2,
-               H3 * q + 3.0 * H2 * q1 + 3.0 * H1 * q2 + H0 * q3,
-               H4 * q + 4.0 * H3 * q1 + 6.0 * H2 * q2 + 4.0 * H1 * q3 + H0 * q4};
+    T dG_dc;
+    r.shear = modulus_times_power(G, {I1, I2, I3, I4}, {q, q1, q2, q3, q4}, dG_dc); // Gbar = G q
     const T t = (2.0 * c - a) * (1.0 / 3.0);
     const T iso = r.shear[0] * t, vol = (c * k - 1.0) * inv_D;
     r.f     = {iso + vol, r.shear[1] * t + (2.0 / 3.0) * r.shear[0] + k * inv_D,
                r.shear[2] * t + (4.0 / 3.0) * r.shear[1], r.shear[3] * t + 2.0 * r.shear[2],
                r.shear[4] * t + (8.0 / 3.0) * r.shear[3]};
     r.scale = lane_abs(iso) + lane_abs(vol);
-    r.dG_dc = lane_abs(H1);
+    r.dG_dc = lane_abs(dG_dc);
     r.G     = G[0];
     if constexpr (Law::uses_I2bar) {
       // I2bar = k v + a z, v = q^2 ~ c^{-2/3}, z = c q^2 ~ c^{1/3}: v^(n), z^(n) as q^(n)
@@ -189,16 +184,10 @@ template <class Law> struct PlaneStress {
       const T z1 = z * u * (1.0 / 3.0), z2 = z * u2 * (-2.0 / 9.0), z3 = z * u3 * (10.0 / 27.0),
               z4 = z * u4 * (-80.0 / 81.0);
       const T J1 = k * v1 + a * z1, J2 = k * v2 + a * z2, J3 = k * v3 + a * z3, J4 = k * v4 + a * z4;
-      ModulusOf<T> Hm;
-      Law::modulus_I2bar(p, InvariantsOf<T>{a * q + w, k * v + a * z}, Hm);
-      // d^n H(I2bar(c)) / dc^n (Faa di Bruno), then Hbar = H v (Leibniz)
-      const T K0 = Hm[0], K1 = Hm[1] * J1, K2 = Hm[2] * J1 * J1 + Hm[1] * J2;
-      const T K3 = Hm[3] * J1 * J1 * J1 + 3.0 * Hm[2] * J1 * J2 + Hm[1] * J3;
-      const T K4 = Hm[4] * (J1 * J1) * (J1 * J1) + 6.0 * Hm[3] * J1 * J1 * J2 +
-                   Hm[2] * (3.0 * J2 * J2 + 4.0 * J1 * J3) + Hm[1] * J4;
-      r.shear_I2 = {K0 * v, K1 * v + K0 * v1, K2 * v + 2.0 * K1 * v1 + K0 * v2,
-                    K3 * v + 3.0 * K2 * v1 + 3.0 * K1 * v2 + K0 * v3,
-                    K4 * v + 4.0 * K3 * v1 + 6.0 * K2 * v2 + 4.0 * K1 * v3 + K0 * v4};
+      ModulusOf<T> H;
+      Law::modulus_I2bar(p, InvariantsOf<T>{a * q + w, k * v + a * z}, H);
+      T dH_dc;
+      r.shear_I2 = modulus_times_power(H, {J1, J2, J3, J4}, {v, v1, v2, v3, v4}, dH_dc); // Hbar = H v
       // f += Hbar t2, t2 = (a c - 2k)/3: t2' = a/3, t2'' = 0
       const T t2 = (a * c - 2.0 * k) * (1.0 / 3.0), a3 = a * (1.0 / 3.0), iso2 = r.shear_I2[0] * t2;
       r.f[0] += iso2;
@@ -207,8 +196,8 @@ template <class Law> struct PlaneStress {
       r.f[3] += r.shear_I2[3] * t2 + 3.0 * a3 * r.shear_I2[2];
       r.f[4] += r.shear_I2[4] * t2 + 4.0 * a3 * r.shear_I2[3];
       r.scale += lane_abs(iso2);
-      r.dH_dc = lane_abs(K1);
-      r.H     = K0;
+      r.dH_dc = lane_abs(dH_dc);
+      r.H     = H[0];
     }
     return r;
   }
@@ -318,6 +307,23 @@ template <class Law> struct PlaneStress {
   }
 
 private:
+  // d^n (M(X(c)) y(c)) / dc^n, n = 0..4: M's X-derivatives M[n] composed with X's
+  // c-derivatives X[0..3] = X', ..., X'''' (Faa di Bruno), times y with its derivatives
+  // y[0..4] (Leibniz). dM_dc: M' X', how fast the modulus itself moves with c.
+  // (Gbar = G(I1bar) q and Hbar = H(I2bar) q^2.)
+  template <class T>
+  static std::array<T, 5> modulus_times_power(const ModulusOf<T> &M, const std::array<T, 4> &X, const std::array<T, 5> &y, T &dM_dc)
+  {
+    const T X1 = X[0], X2 = X[1], X3 = X[2], X4 = X[3];
+    const T H0 = M[0], H1 = M[1] * X1, H2 = M[2] * X1 * X1 + M[1] * X2;
+    const T H3 = M[3] * X1 * X1 * X1 + 3.0 * M[2] * X1 * X2 + M[1] * X3;
+    const T H4 = M[4] * (X1 * X1) * (X1 * X1) + 6.0 * M[3] * X1 * X1 * X2 + M[2] * (3.0 * X2 * X2 + 4.0 * X1 * X3) + M[1] * X4;
+    dM_dc      = H1;
+    return {H0 * y[0], H1 * y[0] + H0 * y[1], H2 * y[0] + 2.0 * H1 * y[1] + H0 * y[2],
+            H3 * y[0] + 3.0 * H2 * y[1] + 3.0 * H1 * y[2] + H0 * y[3],
+            H4 * y[0] + 4.0 * H3 * y[1] + 6.0 * H2 * y[2] + 4.0 * H1 * y[3] + H0 * y[4]};
+  }
+
   // The bracket [lo, hi] of the root and the first iterate (c, s), c = s^3 / k: the warm
   // start where it lies in the bracket, else c = 1/k, s = 1 (see above).
   template <class T> static void start(T a, T k, T inv_k, T c33_guess, T &lo, T &hi, T &c, T &s)

@@ -39,16 +39,7 @@ template <class Law> double reference_c33(const MaterialParameters &p, const Mat
 // |S33| / (the terms of C33 S33 that cancel, over C33, + mu): the round-off scale.
 template <class Law> double relative_out_of_plane_stress(const MaterialParameters &p, const Mat2 &F, double c)
 {
-  const double a = F[0] * F[0] + F[1] * F[1] + F[2] * F[2] + F[3] * F[3], k = det(F) * det(F);
-  const double q = 1.0 / std::cbrt(c * k);
-  Modulus      G{};
-  EXPECT_TRUE(Law::modulus(p, Invariants{(a + c) * q}, G));
-  double       scale = std::abs(G[0] * q * (2.0 * c - a) / 3.0) / c + std::abs((c * k - 1.0) / p.D) / c + p.mu;
-  if constexpr (Law::uses_I2bar) { // + |Hbar t2| / c
-    Modulus H{};
-    Law::modulus_I2bar(ParametersOf<Law>(p), Invariants{(a + c) * q, (k + a * c) * q * q}, H);
-    scale += std::abs(H[0] * q * q * (a * c - 2.0 * k) / 3.0) / c;
-  }
+  const double scale = test::out_of_plane_stress_scale<Law>(p, F, c);
   Mat3         P;
   EXPECT_EQ(Compressible3D<Law>{p}.stress(embed(F, std::sqrt(c)), P), StressStatus::ok);
   return std::abs(P[8] / std::sqrt(c)) / scale;

@@ -22,23 +22,6 @@ template <class Law> double out_of_plane_stress(const MaterialParameters &p, con
   return P[8] / lambda3;
 }
 
-// The terms of C33 S33 that cancel at the solution (plane_stress.hpp), over C33: the
-// scale against which the round-off in S33 is measured.
-template <class Law> double out_of_plane_stress_scale(const MaterialParameters &p, const Mat2 &F, double c)
-{
-  const double a = F[0] * F[0] + F[1] * F[1] + F[2] * F[2] + F[3] * F[3], k = det(F) * det(F);
-  const double q = 1.0 / std::cbrt(c * k);
-  Modulus      G{};
-  EXPECT_TRUE(Law::modulus(p, Invariants{(a + c) * q}, G));
-  double scale = std::abs(G[0] * q * (2.0 * c - a) / 3.0) / c + std::abs((c * k - 1.0) / p.D) / c + p.mu;
-  if constexpr (Law::uses_I2bar) { // + |Hbar t2| / c
-    Modulus H{};
-    Law::modulus_I2bar(ParametersOf<Law>(p), Invariants{(a + c) * q, (k + a * c) * q * q}, H);
-    scale += std::abs(H[0] * q * q * (a * c - 2.0 * k) / 3.0) / c;
-  }
-  return scale;
-}
-
 // Paper eq 36: incompressible Gent, pure shear, nominal stress.
 double pure_shear_nominal_stress(double lambda)
 {
@@ -150,7 +133,7 @@ TYPED_TEST(PlaneStressModels, NewtonSolveConvergesUpToStretchTenForAllCompressib
       ++solves;
       // S33 is the difference of two terms of size `scale`: round-off 1e-16 of them,
       // the solve stops at 1e-13 of them
-      const double scale = out_of_plane_stress_scale<Law>(p, F, cold.c33);
+      const double scale = test::out_of_plane_stress_scale<Law>(p, F, cold.c33);
       EXPECT_LT(std::abs(out_of_plane_stress<Law>(p, F, cold.c33)), 1e-11 * scale) << name;
       // Any start finds the same root: guesses far outside and at the wrong end of the bracket.
       const double a = F[0] * F[0] + F[1] * F[1] + F[2] * F[2] + F[3] * F[3];
@@ -243,7 +226,7 @@ TEST(PlaneStress, MooneyRivlinOfEitherInvariantAloneIsSolvedAndTheOtherIsNeoHook
       Mat3   P3;
       ASSERT_EQ(MooneyRivlinPlaneStress{p}.stress(F, c33, P), StressStatus::ok);
       ASSERT_EQ(MooneyRivlin3D{p}.stress(embed(F, std::sqrt(c33)), P3), StressStatus::ok);
-      EXPECT_LT(std::abs(P3[8] / std::sqrt(c33)), 1e-11 * out_of_plane_stress_scale<MooneyRivlin>(p, F, c33));
+      EXPECT_LT(std::abs(P3[8] / std::sqrt(c33)), 1e-11 * test::out_of_plane_stress_scale<MooneyRivlin>(p, F, c33));
       EXPECT_LT(test::relative_difference(P, Mat2{P3[0], P3[1], P3[3], P3[4]}, mu), 1e-10);
     }
   }
@@ -277,7 +260,7 @@ TYPED_TEST(PlaneStressModels, ResidualDerivativesMatchFiniteDifferences)
     // and f itself is 2 C33 dPsi/dC33 = C33 S33 of the 3D law (f is what the solve zeroes)
     Mat3 P3;
     ASSERT_EQ(Compressible3D<Law>{p}.stress(embed(F, std::sqrt(c)), P3), StressStatus::ok);
-    EXPECT_NEAR(r.f[0], std::sqrt(c) * P3[8], 1e-12 * c * out_of_plane_stress_scale<Law>(p, F, c));
+    EXPECT_NEAR(r.f[0], std::sqrt(c) * P3[8], 1e-12 * c * test::out_of_plane_stress_scale<Law>(p, F, c));
   }
 }
 
