@@ -33,8 +33,9 @@
 // The Gent chain-extension limit. Gent has no finite energy once I1bar - 3 >= Jm;
 // a model evaluated there returns StressStatus::chain_limit and writes no stress.
 // The bond kernel then breaks the bond when failure is enabled; otherwise the run
-// stops with describe_limit(model), which names -material_Jm (Arruda-Boyce, the other
-// law with a limit: -material_lambda_m).
+// stops with a message naming the law's limit, and the diagnosis names the option that
+// moves it (LawEntry::limit, limit_option: -material_Jm; Arruda-Boyce's
+// -material_lambda_m).
 // In plane stress with a finite D the limit is reached only when even the least
 // I1bar over all thickness stretches, 3 (trC~ / (2 J~))^{2/3}, is beyond it: short
 // of that the sheet thickens (J > 1) and the stress rises on the bulk-modulus scale
@@ -55,10 +56,6 @@ const char *to_string(Formulation f);
 // false (and the output untouched) for an unknown name.
 bool parse(const std::string &name, ModelKind &k);
 bool parse(const std::string &name, Formulation &f);
-
-// describe(StressStatus::chain_limit) for law k: its own limit and the option that
-// moves it (Gent: -material_Jm; Arruda-Boyce: -material_lambda_m).
-std::string describe_limit(ModelKind k);
 
 // Empty when the parameters are usable by the model; otherwise one message per bad
 // value, naming the option (-material_mu, the law's own such as -material_Jm,

@@ -25,7 +25,7 @@ const char *describe(StressStatus s)
     return "a bond reached its law's limit (the Gent chain limit I1bar - 3 >= Jm, or the Arruda-Boyce locking "
            "stretch I1bar >= 3 lambda_m^2), where the model has no finite energy: raise -material_Jm or "
            "-material_lambda_m, lower the load, or enable failure (-failure_critical_stretch) so that such bonds "
-           "break (describe_limit names the law's own)";
+           "break (a run names its law's own: simulation_health.cpp)";
   case StressStatus::inverted:
     return "a bond deformation gradient has det F <= 0 (the material is inverted): the run is unstable; "
            "lower -time_step or -time_step_safety";
@@ -34,14 +34,6 @@ const char *describe(StressStatus s)
            "vanishingly small) and that the deformation is finite";
   }
   return "unknown stress status";
-}
-
-std::string describe_limit(ModelKind k)
-{
-  const LawEntry &law = law_entry(k);
-  if (!law.limit) return describe(StressStatus::chain_limit);
-  return std::string("a bond reached ") + law.limit + ", where the model has no finite energy: raise " + law.limit_option +
-         ", lower the load, or enable failure (-failure_critical_stretch) so that such bonds break";
 }
 
 const char *to_string(ModelKind k) { return law_entry(k).name; }

@@ -50,9 +50,8 @@ PetscErrorCode Simulation::CheckHealth(PetscInt step, double t, PetscBool *diver
       std::snprintf(msg, sizeof msg, "the solution became NaN/Inf at step %" PetscInt_FMT " (t = %.6e s, dt = %.4e s).", step, t, step_control_.current());
     else if (global[1])
       std::snprintf(msg, sizeof msg, "%d bond(s) inverted (det F <= 0) at step %" PetscInt_FMT " (t = %.6e s, dt = %.4e s): the run is unstable.", global[1], step, t, step_control_.current());
-    else
-    {
-      const LawEntry &law = law_entry(scene_.model); // Gent's chain limit, Arruda-Boyce's locking stretch
+    else { // the law's own limit: Gent's chain limit, Arruda-Boyce's locking stretch
+      const LawEntry &law = law_entry(scene_.model);
       std::snprintf(msg, sizeof msg, "%d bond(s) reached %s at step %" PetscInt_FMT " (t = %.6e s), where the model has no finite energy.",
                     global[2], law.limit ? law.limit : "the law's limit", step, t);
     }
@@ -65,7 +64,8 @@ PetscErrorCode Simulation::CheckHealth(PetscInt step, double t, PetscBool *diver
 // What the solver sees at the last good state (the state saved before the step that
 // failed; the current one without -checkpoint_on_error): the stable step of that
 // state by a sharp power iteration, and how close its bonds came to the law's limit
-// (Gent's chain limit, Arruda-Boyce's locking stretch). DivergenceAdvice (divergence.hpp) turns it into the cause and the fix.
+// (Gent's chain limit, Arruda-Boyce's locking stretch). DivergenceAdvice
+// (divergence.hpp) turns it into the cause and the fix.
 // Once, when the run stops: the slow per-bond path is fine here. Collective.
 PetscErrorCode Simulation::DiagnoseDivergence()
 {
