@@ -113,6 +113,8 @@ struct ArrudaBoyce {
   static constexpr bool         convex_increasing = true; // see the top of this file
   static constexpr bool         has_limit         = true;
   static double I1bar_limit(const ParametersOf<ArrudaBoyce> &p) { return 3.0 * p.lambda_m * p.lambda_m; }
+  static constexpr const char *limit        = "the Arruda-Boyce locking stretch (I1bar >= 3 lambda_m^2: chains fully extended)";
+  static constexpr const char *limit_option = "-material_lambda_m";
 
   // g0 = b0 / (3 x0), x0 = 1 / lambda_m: G = (mu / g0) b / (3x) is mu at rest.
   // It depends on lambda_m alone: solved once per value and thread, not per bond

@@ -84,8 +84,10 @@ struct DivergenceFacts {
   double stable_rest  = 0;     // stable step at rest [s]
   bool   step_given   = false; // -time_step (or -ts_dt) set the base step, not the safety factor
   double safety       = 0.8;   // -time_step_safety
-  double chain_reach  = 0;     // max over bonds of (I1bar - 3) / Jm (0 for laws without a limit)
-  double Jm           = 0;
+  double chain_reach  = 0;     // max over bonds of (I1bar - 3) / (I1bar_limit - 3) (Gent: / Jm; 0 for laws without a limit)
+  const char *limit        = "the Gent chain limit (I1bar - 3 >= Jm)"; // the law's (law.hpp: limit)
+  const char *limit_option = "-material_Jm";                          // the option that moves it
+  double      limit_value  = 0;                                       // its value (0: no limit)
   double bond_stretch = 1;     // the largest principal stretch of a bond's F there [-]
   double applied_stretch = 1;  // the schedule's stretch at that time [-]
   bool   plane_strain = false, bond_only = true;
@@ -101,9 +103,10 @@ struct DivergenceFacts {
 // In this order (the first that fits): a step above the stable step at rest ->
 // -time_step_safety (or -time_step); the chain limit (0.8 <= reach <= 1.05: the Gent
 // stiffness mu Jm / (Jm + 3 - I1bar) is 5 x its rest value and unbounded beyond; a
-// larger reach is a state the blow-up already wrecked) -> -material_Jm and the
-// stretch (also when the last good state is wrecked but the state 10 to 20 steps
-// before it was there: the Jm = 3 plate on a 1 mm grid); plane strain with K >= 1000 mu (a real negative eigenvalue at rest,
+// larger reach is a state the blow-up already wrecked) -> the law's limit option
+// (-material_Jm; Arruda-Boyce: -material_lambda_m) and the stretch (also when the last
+// good state is wrecked but the state 10 to 20 steps before it was there: the Jm = 3
+// plate on a 1 mm grid); plane strain with K >= 1000 mu (a real negative eigenvalue at rest,
 // docs/stability.md section 1) -> -material_bulk_ratio; a fixed step above the stable
 // step of the state reached, or of the state 10 to 20 steps earlier (a blow-up wrecks
 // the last good state: plane strain with K = 10 mu on the fixed step showed only the

@@ -38,6 +38,8 @@ struct Gent {
   static constexpr bool         convex_increasing = true; // G > 0 and G' = G / gap > 0 below the limit
   static constexpr bool         has_limit         = true;
   static double                 I1bar_limit(const ParametersOf<Gent> &p) { return p.Jm + 3.0; }
+  static constexpr const char  *limit        = "the Gent chain limit (I1bar - 3 >= Jm)";
+  static constexpr const char  *limit_option = "-material_Jm";
 
   // G = mu Jm / gap, gap = Jm + 3 - I1bar: d^n G / dI1bar^n = n! G / gap^n. T = double
   // or Lanes; false where locked (or NaN), and there G is finite and meaningless.

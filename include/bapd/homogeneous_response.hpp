@@ -81,7 +81,11 @@ template <class Law> bool incompressible_nominal_stress(const ParametersOf<Law> 
   Modulus          G;
   if (!Law::modulus(p, inv, G)) return false;
   double W2 = 0.0;
-  if constexpr (Law::uses_I2bar) W2 = 0.5 * Law::modulus_I2bar(p, inv);
+  if constexpr (Law::uses_I2bar) {
+    Modulus H;
+    Law::modulus_I2bar(p, inv, H);
+    W2 = 0.5 * H[0];
+  }
   P = nominal_stress_from_W(m, lambda, 0.5 * G[0], W2);
   return true;
 }

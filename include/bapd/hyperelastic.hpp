@@ -44,7 +44,9 @@ template <class Law> struct Compressible3D {
       const Invariants inv{trC * q, I2 * q * q};
       if (!Law::modulus(p, inv, G)) return fail(P, StressStatus::chain_limit);
       const Mat3   Finv_t = inverse_transpose(F);
-      const double h = Law::modulus_I2bar(p, inv) * q * q; // H J^{-4/3}
+      Modulus      H;
+      Law::modulus_I2bar(p, inv, H);
+      const double h = H[0] * q * q; // H J^{-4/3}
       const double a = G[0] * q + h * trC;
       const double b = (J * J - 1.0) / p.D - G[0] * q * trC / 3.0 - h * (2.0 / 3.0) * I2;
       for (int i = 0; i < 9; ++i) P[i] = a * F[i] - h * FC[i] + b * Finv_t[i];
@@ -130,7 +132,9 @@ template <class Law> struct PlaneStrain {
         return StressStatus::chain_limit;
       }
       const Mat2   FC = F * right_cauchy_green(F);
-      const double h  = Law::modulus_I2bar(p, inv) * q * q; // H J^{-4/3}
+      Modulus      H;
+      Law::modulus_I2bar(p, inv, H);
+      const double h  = H[0] * q * q; // H J^{-4/3}
       const double a  = G[0] * q + h * trC;
       const double b  = ((J * J - 1.0) / p.D - G[0] * q * trC / 3.0 - h * (2.0 / 3.0) * I2) / J;
       P = {a * F[0] - h * FC[0] + b * F[3], a * F[1] - h * FC[1] - b * F[2], a * F[2] - h * FC[2] - b * F[1],

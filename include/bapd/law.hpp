@@ -18,15 +18,24 @@
 //   static constexpr LawVariables variables = LawVariables::invariants;
 //   static constexpr bool uses_I2bar;         // Psi_iso depends on I2bar
 //   static constexpr bool convex_increasing;  // Psi_iso convex and increasing in I1bar
-//                                             // for every value check() accepts
+//                                             // (and, uses_I2bar, in I2bar) for every
+//                                             // value check() accepts
 //   static constexpr bool has_limit;          // Psi_iso finite only for I1bar < limit
 //   static double I1bar_limit(const ParametersOf<Law> &);                (has_limit)
+//   static constexpr const char *limit, *limit_option;                   (has_limit)
+//                          // for messages: "the Gent chain limit (I1bar - 3 >= Jm)",
+//                          // and the option that moves it, "-material_Jm"
 //   template <class T> static MaskOf<T> modulus(const ParametersOf<Law> &,
 //                                 const InvariantsOf<T> &, ModulusOf<T> &G);
 //                          // G[n] = d^n G / dI1bar^n, n = 0..4, G = 2 dPsi_iso/dI1bar
 //   static bool energy(const ParametersOf<Law> &, const Invariants &, double &psi_iso);
-//   (uses_I2bar only) static double modulus_I2bar(const ParametersOf<Law> &, const Invariants &);
-//                          // H = 2 dPsi_iso/dI2bar
+//   (uses_I2bar only) template <class T> static void modulus_I2bar(const ParametersOf<Law> &,
+//                                 const InvariantsOf<T> &, ModulusOf<T> &H);
+//                          // H[n] = d^n H / dI2bar^n, n = 0..4, H = 2 dPsi_iso/dI2bar
+//
+// A law of I2bar is separable, Psi_iso = W1(I1bar) + W2(I2bar): G depends on I1bar
+// alone and H on I2bar alone (the plane-stress solve differentiates them along C33 one
+// invariant at a time; Compressible3D and PlaneStrain read G[0] and H[0] only).
 //
 // modulus and energy return false where the law is locked (I1bar >= limit). modulus is
 // a template over T = double (one bond) or Lanes (four, lanes.hpp: PlaneStress runs
@@ -113,15 +122,15 @@ template <class Law> std::string formulation_refusal(Formulation f)
            ": the law is written in principal stretches and brings no formulations of its own (PlaneStrainModel, "
            "PlaneStressModel: see ogden.hpp)";
   if (f != Formulation::plane_stress) return "";
-  if (Law::uses_I2bar)
-    return "-material_model " + law +
-           " with -material_formulation plane_stress: the plane-stress C33 solve (S33 = 0) differentiates Psi_iso "
-           "along I1bar only, and this law depends on I2bar; use -material_formulation plane_strain";
   if (!Law::convex_increasing)
     return "-material_model " + law +
            " with -material_formulation plane_stress: the plane-stress C33 solve (S33 = 0) needs an isochoric "
-           "energy that is convex and increasing in I1bar (then S33 = 0 has one root, bracketed), and this law's "
-           "is not; use -material_formulation plane_strain";
+           "energy that is convex and increasing in I1bar and I2bar (then S33 = 0 has one root, bracketed), and this "
+           "law's is not; use -material_formulation plane_strain";
+  if (Law::uses_I2bar && Law::has_limit)
+    return "-material_model " + law +
+           " with -material_formulation plane_stress: the plane-stress C33 solve (S33 = 0) brackets a locked law "
+           "along I1bar only, and this law depends on I2bar too; use -material_formulation plane_strain";
   return "";
 }
 
@@ -129,6 +138,6 @@ template <class Law> std::string formulation_refusal(Formulation f)
 // only where it holds).
 template <class Law>
 inline constexpr bool accepts_plane_stress =
-    Law::variables == LawVariables::invariants && !Law::uses_I2bar && Law::convex_increasing;
+    Law::variables == LawVariables::invariants && Law::convex_increasing && !(Law::uses_I2bar && Law::has_limit);
 
 } // namespace bapd

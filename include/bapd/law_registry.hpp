@@ -82,6 +82,11 @@ struct LawEntry {
   std::string (*check)(const MaterialParameters &);
   // Empty when the law runs in that formulation, else why not (formulation_refusal).
   std::string (*refusal)(Formulation);
+  // A law with a limit (has_limit, law.hpp: Gent, Arruda-Boyce): its name for messages,
+  // the option that moves it and I1bar there. nullptr for a law without one.
+  const char *limit        = nullptr;
+  const char *limit_option = nullptr;
+  double (*I1bar_limit)(const MaterialParameters &) = nullptr;
 };
 // Every registered law, in registry order (entry k has kind ModelKind(k)).
 const std::vector<LawEntry> &registered_laws();

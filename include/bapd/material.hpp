@@ -33,7 +33,9 @@
 // The Gent chain-extension limit. Gent has no finite energy once I1bar - 3 >= Jm;
 // a model evaluated there returns StressStatus::chain_limit and writes no stress.
 // The bond kernel then breaks the bond when failure is enabled; otherwise the run
-// stops with describe(StressStatus::chain_limit), which names -material_Jm.
+// stops with a message naming the law's limit, and the diagnosis names the option that
+// moves it (LawEntry::limit, limit_option: -material_Jm; Arruda-Boyce's
+// -material_lambda_m).
 // In plane stress with a finite D the limit is reached only when even the least
 // I1bar over all thickness stretches, 3 (trC~ / (2 J~))^{2/3}, is beyond it: short
 // of that the sheet thickens (J > 1) and the stress rises on the bulk-modulus scale

@@ -3,11 +3,21 @@
 //   Psi_iso = C10 (I1bar - 3) + C01 (I2bar - 3),
 //   G = 2 dPsi_iso/dI1bar = 2 C10,  H = 2 dPsi_iso/dI2bar = 2 C01,
 // with the volumetric term of paper eq 24; the I2bar part of the stress is added by
-// Compressible3D and PlaneStrain (hyperelastic.hpp). The shear modulus at rest is
+// Compressible3D and PlaneStrain (hyperelastic.hpp) and PlaneStress (plane_stress.hpp:
+// the C33 solve with the I2bar term Hbar t2). The shear modulus at rest is
 // 2 (C10 + C01), so it must equal mu (checked: the time step and the default D are
-// sized from mu). The plane-stress C33 solve differentiates along I1bar only and
-// refuses the law (formulation_refusal, law.hpp). Interface: law.hpp; registry line:
-// law_registry.hpp.
+// sized from mu).
+//
+// Stability. Incompressible, the nominal stresses are (homogeneous_response.hpp)
+//   uniaxial    P = 2 (l - l^-2) (C10 + C01 / l),
+//   equibiaxial P = 2 (l - l^-5) (C10 + C01 l^2):
+// with C01 < 0 the equibiaxial stress falls back to zero at l = sqrt(C10 / -C01), with
+// C10 < 0 the uniaxial one at l = C01 / -C10; before that the stress-stretch curve has
+// turned down, i.e. the law is not Drucker-stable (and the plane-stress solve, which
+// needs Psi_iso convex in both invariants, would lose its one root). C10 >= 0 and
+// C01 >= 0 make each term convex: stable for every deformation. So the check refuses
+// a negative coefficient and says where the law would have failed. Interface: law.hpp;
+// registry line: law_registry.hpp.
 #include <array>
 #include <cmath>
 #include <sstream>
@@ -15,6 +25,7 @@
 
 #include "bapd/hyperelastic.hpp"
 #include "bapd/law.hpp"
+#include "bapd/plane_stress.hpp"
 
 namespace bapd {
 
@@ -29,18 +40,28 @@ struct MooneyRivlin {
   static constexpr std::array<LawOption<Parameters>, 2> options = {
       {{"-material_C10", "Mooney-Rivlin C10 [Pa], >= 0, with 2 (C10 + C01) = mu (default 1820)", &Parameters::C10},
        {"-material_C01", "Mooney-Rivlin C01 [Pa], >= 0, with 2 (C10 + C01) = mu (default 455)", &Parameters::C01}}};
-  // C10 >= 0, C01 >= 0, C10 + C01 > 0: the usual sufficient condition for Drucker
-  // stability (each invariant term convex in F's principal stretches).
+  // C10 >= 0, C01 >= 0, C10 + C01 > 0: Drucker stability for every deformation (see
+  // the top); a negative coefficient is refused with the stretch where it fails.
   static std::string check(const ParametersOf<MooneyRivlin> &p)
   {
     std::ostringstream msg;
-    bool               ok = true;
-    if (!(p.C10 >= 0.0) || !std::isfinite(p.C10)) {
-      msg << "-material_C10 " << p.C10 << ": the Mooney-Rivlin C10 must be >= 0 Pa (Drucker stability, sufficient condition)\n";
+    bool               ok = std::isfinite(p.C10) && std::isfinite(p.C01);
+    if (!std::isfinite(p.C10)) msg << "-material_C10 " << p.C10 << ": the Mooney-Rivlin C10 must be a number >= 0 Pa\n";
+    if (!std::isfinite(p.C01)) msg << "-material_C01 " << p.C01 << ": the Mooney-Rivlin C01 must be a number >= 0 Pa\n";
+    if (ok && p.C10 < 0.0) {
+      msg << "-material_C10 " << p.C10 << ": the Mooney-Rivlin C10 must be >= 0 Pa: with C10 < 0 the law is not "
+          << "Drucker-stable (the uniaxial stress 2 (l - l^-2)(C10 + C01/l) turns down and is zero at stretch C01/-C10";
+      if (p.C01 > 0.0) msg << " = " << p.C01 / -p.C10;
+      msg << "); refit with C10 >= 0 or choose a law of I1bar (-material_model yeoh, gent)\n";
       ok = false;
     }
-    if (!(p.C01 >= 0.0) || !std::isfinite(p.C01)) {
-      msg << "-material_C01 " << p.C01 << ": the Mooney-Rivlin C01 must be >= 0 Pa (Drucker stability, sufficient condition)\n";
+    if (ok && p.C01 < 0.0) {
+      msg << "-material_C01 " << p.C01 << ": the Mooney-Rivlin C01 must be >= 0 Pa: with C01 < 0 the law is not "
+          << "Drucker-stable (the equibiaxial stress 2 (l - l^-5)(C10 + C01 l^2) turns down and is zero at stretch "
+          << "sqrt(C10/-C01)";
+      if (p.C10 > 0.0) msg << " = " << std::sqrt(p.C10 / -p.C01);
+      msg << "), and the plane-stress solve needs C01 >= 0; refit with C01 >= 0 or choose a law of I1bar "
+          << "(-material_model yeoh, gent)\n";
       ok = false;
     }
     const double mu = 2.0 * (p.C10 + p.C01);
@@ -54,7 +75,7 @@ struct MooneyRivlin {
 
   static constexpr LawVariables variables         = LawVariables::invariants;
   static constexpr bool         uses_I2bar        = true;
-  static constexpr bool         convex_increasing = true; // in I1bar (linear, C10 >= 0)
+  static constexpr bool         convex_increasing = true; // linear in each invariant, C10, C01 >= 0
   static constexpr bool         has_limit         = false;
 
   template <class T>
@@ -63,7 +84,11 @@ struct MooneyRivlin {
     G = {T{} + 2.0 * p.C10, T{}, T{}, T{}, T{}};
     return (inv.I1bar == inv.I1bar) | (inv.I1bar != inv.I1bar); // never locked
   }
-  static double modulus_I2bar(const ParametersOf<MooneyRivlin> &p, const Invariants &) { return 2.0 * p.C01; }
+  template <class T>
+  static void modulus_I2bar(const ParametersOf<MooneyRivlin> &p, const InvariantsOf<T> &, ModulusOf<T> &H)
+  {
+    H = {T{} + 2.0 * p.C01, T{}, T{}, T{}, T{}};
+  }
 
   static bool energy(const ParametersOf<MooneyRivlin> &p, const Invariants &inv, double &psi)
   {
@@ -73,6 +98,7 @@ struct MooneyRivlin {
 };
 
 using MooneyRivlin3D          = Compressible3D<MooneyRivlin>;
+using MooneyRivlinPlaneStress = PlaneStress<MooneyRivlin>;
 using MooneyRivlinPlaneStrain = PlaneStrain<MooneyRivlin>;
 
 } // namespace bapd

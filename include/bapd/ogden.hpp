@@ -212,7 +212,11 @@ struct OgdenPlaneStress {
       double step = -g / slope;
       if (!std::isfinite(lo) || !std::isfinite(hi)) step = std::max(-0.5, std::min(0.5, step));
       double next = s + step;
-      if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+      // Outside the bracket: bisect. With one end still infinite that happens only when
+      // the step is below the spacing of doubles (s + step == s, itself the end): s is
+      // the root to round-off (a warm start at the root, a bond whose F did not change),
+      // and bisecting towards the infinite end would leave it.
+      if (!(next > lo && next < hi)) next = std::isfinite(lo) && std::isfinite(hi) ? 0.5 * (lo + hi) : s;
       const bool last = std::abs(next - s) <= 1e-8 * std::max(1.0, std::abs(s));
       s               = next;
       if (last) break;

@@ -21,24 +21,37 @@ namespace bapd {
 // and then P~ = Gbar (F~ - c F~^{-T}) (eq 34). Because S33 = 2 dPsi/dc = 0 at the
 // solution, P~ is exactly the derivative of the reduced energy Psi(F~, c(F~)).
 //
+// A law of I2bar too (Mooney-Rivlin: law.hpp, uses_I2bar) adds, with H = 2 dPsi_iso/dI2bar,
+// I2 = det C~ + c tr C~ = k + a c and I2bar(c) = (k + a c) q^2 (so c dI2bar/dc = q^2 t2):
+//
+//   f(c) = Gbar t + Hbar(c) t2(c) + (1/D)(c k - 1),   Hbar = H(I2bar) q^2,  t2 = (a c - 2k)/3
+//
+// and the in-plane block of the 3D stress (hyperelastic.hpp) with P33 = 0 and the 2x2
+// Cayley-Hamilton F~ C~ = a F~ - k F~^{-T} is
+//
+//   P~ = (Gbar + c Hbar) F~ - (c Gbar + (a c - k) Hbar) F~^{-T}.
+//
 // What it requires of the law (accepts_plane_stress, law.hpp; a law that does not meet
 // it is refused by the registry with formulation_refusal's message, and PlaneStress<Law>
 // does not compile for it):
-// * Psi_iso is a function of I1bar alone (no I2bar), written in invariants, with G and
-//   its first four I1bar-derivatives (modulus): the Faa di Bruno sums of residual_at
-//   and the fourth-order step use them;
+// * Psi_iso is written in invariants, with G and its first four I1bar-derivatives
+//   (modulus): the Faa di Bruno sums of residual_at and the fourth-order step use them.
+//   A law of I2bar is separable, Psi_iso = W1(I1bar) + W2(I2bar), and gives H and its
+//   first four I2bar-derivatives (modulus_I2bar) the same way;
 // * Psi_iso is convex and increasing in I1bar (G > 0, G' >= 0) wherever it is finite,
-//   and a law with a limit is finite exactly below one I1bar_limit: the facts below,
-//   one root and its bracket, follow from that and fail without it (a non-convex law
-//   can have several roots, and the solve would return one of them silently).
+//   and a law with a limit is finite exactly below one I1bar_limit; a law of I2bar has
+//   W2 convex and nondecreasing (H >= 0, H' >= 0) and no limit: the facts below, one
+//   root and its bracket, follow from that and fail without it (a non-convex law can
+//   have several roots, and the solve would return one of them silently).
 //
 // Facts the solver relies on:
-// * Psi is strictly convex in ln c (U is convex in ln J, and I1bar, a sum of
-//   exponentials of ln c, is fed to a convex increasing Psi_iso), so f = 2 c dPsi/dc
+// * Psi is strictly convex in ln c (U is convex in ln J, and I1bar and I2bar, sums of
+//   exponentials of ln c, are fed to convex increasing W1, W2), so f = 2 c dPsi/dc
 //   is strictly increasing: there is one root. (f' = (G' q^2 t^2 + Gbar (4c+a)/9)/c
-//   + k/D, every term positive.)
-// * The isochoric term vanishes at c = a/2 and the volumetric one at c = 1/k, with
-//   opposite signs between them: the root lies in [min(a/2, 1/k), max(a/2, 1/k)].
+//   + (H' q^4 t2^2 + Hbar (a c + 4k)/9)/c + k/D, every term >= 0 and k/D > 0.)
+// * The isochoric terms vanish at c = a/2 (I1bar) and c = 2k/a (I2bar; 2k/a <= J~ <=
+//   a/2) and the volumetric one at c = 1/k, each increasing through its zero: the root
+//   lies in [min(a/2, 2k/a, 1/k), max(a/2, 1/k)] (2k/a only for a law of I2bar).
 // * I1bar(c) is least at c = a/2, where it is 3 (a / (2 J~))^{2/3}. A law with a limit
 //   is finite on an interval around a/2; f -> -inf at its left end and +inf at its
 //   right end, so the root is always inside it. A locked trial c counts as f = -inf
@@ -92,9 +105,12 @@ template <class T> struct PlaneStressResidualOf {
   MaskOf<T>        admissible{}; // false: the law is locked at this c (f = -inf/+inf)
   std::array<T, 5> f{};          // d^n f / dc^n
   std::array<T, 5> shear{};      // d^n Gbar / dc^n
-  T                scale{};      // |Gbar t| + |(c k - 1)/D|
+  std::array<T, 5> shear_I2{};   // d^n Hbar / dc^n (laws of I2bar; else 0)
+  T                scale{};      // |Gbar t| + |Hbar t2| + |(c k - 1)/D|
   T                dG_dc{};      // |dG/dI1bar dI1bar/dc|: G changes by this per unit c
   T                G{};          // G (at this c)
+  T                dH_dc{};      // |dH/dI2bar dI2bar/dc|, and H (laws of I2bar; else 0)
+  T                H{};
 };
 using PlaneStressResidual = PlaneStressResidualOf<double>;
 
@@ -103,6 +119,7 @@ template <class T> struct PlaneStressStepOf {
   MaskOf<T> converged{}; // |f| <= tol (or the bracket is at round-off): c is the root
   MaskOf<T> accepted{};  // the corrected step is taken unevaluated: c + delta is the root
   T         c33{}, shear{}; // the root and Gbar there, where converged or accepted
+  T         shear_I2{};     // Hbar there (laws of I2bar)
   T         lo{}, hi{};  // the bracket, narrowed by this evaluation
   T         delta{};     // the corrected Newton step
 };
@@ -111,6 +128,7 @@ struct PlaneStressSolution {
   StressStatus status      = StressStatus::ok;
   double       c33         = 0.0; // C33 = lambda_3^2 with S33 = 0
   double       shear       = 0.0; // Gbar = G J^{-2/3}: P~ = Gbar (F~ - C33 F~^{-T})
+  double       shear_I2    = 0.0; // Hbar = H J^{-4/3} (laws of I2bar; P~: see above)
   int          evaluations = 0;   // residual evaluations (the iteration count)
 };
 
@@ -143,26 +161,44 @@ template <class Law> struct PlaneStress {
     // q ~ c^{-1/3}, w ~ c^{2/3}: q^(n) = q u^n prod_{m<n} (-1/3 - m), w^(n) likewise
     const T q1 = q * u * (-1.0 / 3.0), q2 = q * u2 * (4.0 / 9.0), q3 = q * u3 * (-28.0 / 27.0),
             q4 = q * u4 * (280.0 / 81.0);
+    // I1bar = a q + w: its c-derivatives
     const T I1 = a * q1 + w * u * (2.0 / 3.0);
     const T I2 = a * q2 + w * u2 * (-2.0 / 9.0);
     const T I3 = a * q3 + w * u3 * (8.0 / 27.0);
     const T I4 = a * q4 + w * u4 * (-56.0 / 81.0);
-    // d^n G(I1bar(c)) / dc^n (Faa di Bruno)
-    const T H0 = G[0], H1 = G[1] * I1, H2 = G[2] * I1 * I1 + G[1] * I2;
-    const T H3 = G[3] * I1 * I1 * I1 + 3.0 * G[2] * I1 * I2 + G[1] * I3;
-    const T H4 = G[4] * (I1 * I1) * (I1 * I1) + 6.0 * G[3] * I1 * I1 * I2 +
-                 G[2] * (3.0 * I2 * I2 + 4.0 * I1 * I3) + G[1] * I4;
-    r.shear = {H0 * q, H1 * q + H0 * q1, H2 * q + 2.0 * H1 * q1 + H0 * q2,
-               H3 * q + 3.0 * H2 * q1 + 3.0 * H1 * q2 + H0 * q3,
-               H4 * q + 4.0 * H3 * q1 + 6.0 * H2 * q2 + 4.0 * H1 * q3 + H0 * q4};
+    T dG_dc;
+    r.shear = modulus_times_power(G, {I1, I2, I3, I4}, {q, q1, q2, q3, q4}, dG_dc); // Gbar = G q
     const T t = (2.0 * c - a) * (1.0 / 3.0);
     const T iso = r.shear[0] * t, vol = (c * k - 1.0) * inv_D;
     r.f     = {iso + vol, r.shear[1] * t + (2.0 / 3.0) * r.shear[0] + k * inv_D,
                r.shear[2] * t + (4.0 / 3.0) * r.shear[1], r.shear[3] * t + 2.0 * r.shear[2],
                r.shear[4] * t + (8.0 / 3.0) * r.shear[3]};
     r.scale = lane_abs(iso) + lane_abs(vol);
-    r.dG_dc = lane_abs(H1);
+    r.dG_dc = lane_abs(dG_dc);
     r.G     = G[0];
+    if constexpr (Law::uses_I2bar) {
+      // I2bar = k v + a z, v = q^2 ~ c^{-2/3}, z = c q^2 ~ c^{1/3}: v^(n), z^(n) as q^(n)
+      const T v = q * q, z = w * q;
+      const T v1 = v * u * (-2.0 / 3.0), v2 = v * u2 * (10.0 / 9.0), v3 = v * u3 * (-80.0 / 27.0),
+              v4 = v * u4 * (880.0 / 81.0);
+      const T z1 = z * u * (1.0 / 3.0), z2 = z * u2 * (-2.0 / 9.0), z3 = z * u3 * (10.0 / 27.0),
+              z4 = z * u4 * (-80.0 / 81.0);
+      const T J1 = k * v1 + a * z1, J2 = k * v2 + a * z2, J3 = k * v3 + a * z3, J4 = k * v4 + a * z4;
+      ModulusOf<T> H;
+      Law::modulus_I2bar(p, InvariantsOf<T>{a * q + w, k * v + a * z}, H);
+      T dH_dc;
+      r.shear_I2 = modulus_times_power(H, {J1, J2, J3, J4}, {v, v1, v2, v3, v4}, dH_dc); // Hbar = H v
+      // f += Hbar t2, t2 = (a c - 2k)/3: t2' = a/3, t2'' = 0
+      const T t2 = (a * c - 2.0 * k) * (1.0 / 3.0), a3 = a * (1.0 / 3.0), iso2 = r.shear_I2[0] * t2;
+      r.f[0] += iso2;
+      r.f[1] += r.shear_I2[1] * t2 + a3 * r.shear_I2[0];
+      r.f[2] += r.shear_I2[2] * t2 + 2.0 * a3 * r.shear_I2[1];
+      r.f[3] += r.shear_I2[3] * t2 + 3.0 * a3 * r.shear_I2[2];
+      r.f[4] += r.shear_I2[4] * t2 + 4.0 * a3 * r.shear_I2[3];
+      r.scale += lane_abs(iso2);
+      r.dH_dc = lane_abs(dH_dc);
+      r.H     = H[0];
+    }
     return r;
   }
 
@@ -181,7 +217,14 @@ template <class Law> struct PlaneStress {
       P = {};
       return s.status;
     }
-    c33            = s.c33;
+    c33 = s.c33;
+    if constexpr (Law::uses_I2bar) { // P~ = (Gbar + c Hbar) F~ - (c Gbar + (a c - k) Hbar) F~^{-T} (see above)
+      const double a = F[0] * F[0] + F[1] * F[1] + F[2] * F[2] + F[3] * F[3];
+      const double g = s.shear + s.c33 * s.shear_I2;
+      const double b = (s.c33 * s.shear + (a * s.c33 - Jt * Jt) * s.shear_I2) * inv_Jt;
+      P = {g * F[0] - b * F[3], g * F[1] + b * F[2], g * F[2] + b * F[1], g * F[3] - b * F[0]};
+      return StressStatus::ok;
+    }
     const double g = s.shear, b = s.shear * s.c33 * inv_Jt; // Gbar c F~^{-T} = (Gbar c / J~) cof F~
     P              = {g * F[0] - b * F[3], g * F[1] + b * F[2], g * F[2] + b * F[1], g * F[3] - b * F[0]};
     return StressStatus::ok;
@@ -213,7 +256,7 @@ template <class Law> struct PlaneStress {
     const PlaneStressResidualOf<Lanes> r     = residual_at(a, k, inv_D, c, s);
     const PlaneStressStepOf<Lanes>     st    = step(r, c, lo, hi);
     LaneMask                           done  = ok & r.admissible & (st.converged | st.accepted);
-    Lanes                              root = st.c33, shear = st.shear;
+    Lanes                              root = st.c33, shear = st.shear, shear_I2 = st.shear_I2;
     const LaneMask                     more = ok & r.admissible & ~done;
     if (any(more)) {
       // A second evaluation, where solve() makes it at a Newton point (the larger time
@@ -232,10 +275,16 @@ template <class Law> struct PlaneStress {
         const LaneMask                     done2 = newton & r2.admissible & (st2.converged | st2.accepted);
         root                                     = select(done2, st2.c33, root);
         shear                                    = select(done2, st2.shear, shear);
+        if constexpr (Law::uses_I2bar) shear_I2 = select(done2, st2.shear_I2, shear_I2);
         done |= done2;
       }
     }
-    c33           = select(done, root, c33);
+    c33 = select(done, root, c33);
+    if constexpr (Law::uses_I2bar) { // as stress()
+      const Lanes g = shear + root * shear_I2, b = (root * shear + (a * root - k) * shear_I2) * inv_Jt;
+      P = {g * F[0] - b * F[3], g * F[1] + b * F[2], g * F[2] + b * F[1], g * F[3] - b * F[0]};
+      return done;
+    }
     const Lanes b = shear * root * inv_Jt;
     P = {shear * F[0] - b * F[3], shear * F[1] + b * F[2], shear * F[2] + b * F[1], shear * F[3] - b * F[0]};
     return done;
@@ -250,12 +299,31 @@ template <class Law> struct PlaneStress {
     const double a = F[0] * F[0] + F[1] * F[1] + F[2] * F[2] + F[3] * F[3];
     const double J = std::sqrt(s.c33) * det(F);
     double       psi_iso;
-    if (!Law::energy(p, Invariants{(a + s.c33) / std::cbrt(J * J)}, psi_iso)) return StressStatus::chain_limit;
+    Invariants   inv{(a + s.c33) / std::cbrt(J * J)};
+    if constexpr (Law::uses_I2bar) inv.I2bar = (det(F) * det(F) + a * s.c33) / std::cbrt(J * J * J * J); // (k + a c) J^{-4/3}
+    if (!Law::energy(p, inv, psi_iso)) return StressStatus::chain_limit;
     psi = psi_iso + volumetric_energy_times_D(J) / p.D;
     return StressStatus::ok;
   }
 
 private:
+  // d^n (M(X(c)) y(c)) / dc^n, n = 0..4: M's X-derivatives M[n] composed with X's
+  // c-derivatives X[0..3] = X', ..., X'''' (Faa di Bruno), times y with its derivatives
+  // y[0..4] (Leibniz). dM_dc: M' X', how fast the modulus itself moves with c.
+  // (Gbar = G(I1bar) q and Hbar = H(I2bar) q^2.)
+  template <class T>
+  static std::array<T, 5> modulus_times_power(const ModulusOf<T> &M, const std::array<T, 4> &X, const std::array<T, 5> &y, T &dM_dc)
+  {
+    const T X1 = X[0], X2 = X[1], X3 = X[2], X4 = X[3];
+    const T H0 = M[0], H1 = M[1] * X1, H2 = M[2] * X1 * X1 + M[1] * X2;
+    const T H3 = M[3] * X1 * X1 * X1 + 3.0 * M[2] * X1 * X2 + M[1] * X3;
+    const T H4 = M[4] * (X1 * X1) * (X1 * X1) + 6.0 * M[3] * X1 * X1 * X2 + M[2] * (3.0 * X2 * X2 + 4.0 * X1 * X3) + M[1] * X4;
+    dM_dc      = H1;
+    return {H0 * y[0], H1 * y[0] + H0 * y[1], H2 * y[0] + 2.0 * H1 * y[1] + H0 * y[2],
+            H3 * y[0] + 3.0 * H2 * y[1] + 3.0 * H1 * y[2] + H0 * y[3],
+            H4 * y[0] + 4.0 * H3 * y[1] + 6.0 * H2 * y[2] + 4.0 * H1 * y[3] + H0 * y[4]};
+  }
+
   // The bracket [lo, hi] of the root and the first iterate (c, s), c = s^3 / k: the warm
   // start where it lies in the bracket, else c = 1/k, s = 1 (see above).
   template <class T> static void start(T a, T k, T inv_k, T c33_guess, T &lo, T &hi, T &c, T &s)
@@ -263,6 +331,10 @@ private:
     const T c_iso = 0.5 * a;
     lo            = select(inv_k < c_iso, inv_k, c_iso); // std::min, std::max
     hi            = select(c_iso < inv_k, inv_k, c_iso);
+    if constexpr (Law::uses_I2bar) { // the I2bar term's zero, 2k/a <= a/2
+      const T c_I2 = 2.0 * k / a;
+      lo           = select(c_I2 < lo, c_I2, lo);
+    }
     const auto in_bracket = (c33_guess >= lo) & (c33_guess <= hi);
     const T    s_guess    = approximate_cbrt(select(in_bracket, c33_guess, inv_k) * k); // (no overflow)
     const T    c_guess    = s_guess * s_guess * s_guess * inv_k;
@@ -288,8 +360,9 @@ private:
     st.delta   = select(lane_abs(bend) <= 0.1, h * (1.0 - bend + (2.0 * A2 * A2 - A3) * h * h),
                         select(lane_abs(bend) <= 0.5, h * (1.0 - bend), h));
     const T    next  = c + st.delta;
-    const auto small = (next > st.lo) & (next < st.hi) & (lane_abs(st.delta) <= 1e-3 * c) &
-                       (lane_abs(st.delta) * r.dG_dc <= 1e-3 * r.G);
+    auto small = (next > st.lo) & (next < st.hi) & (lane_abs(st.delta) <= 1e-3 * c) &
+                 (lane_abs(st.delta) * r.dG_dc <= 1e-3 * r.G);
+    if constexpr (Law::uses_I2bar) small &= lane_abs(st.delta) * r.dH_dc <= 1e-3 * r.H; // H's series too
     const T hs = select(small, h, T{}), h2 = hs * hs; // (large h: no overflow)
     const T left =
         lane_abs(r.f[1]) * h2 * h2 * (5.0 * lane_abs(A2) * (A2 * A2 + lane_abs(A3)) + lane_abs(A4));
@@ -300,6 +373,12 @@ private:
         d * (r.shear[1] + d * ((1.0 / 2.0) * r.shear[2] + d * ((1.0 / 6.0) * r.shear[3] + d * (1.0 / 24.0) * r.shear[4])));
     st.c33   = select(st.converged, c, next);
     st.shear = select(st.converged, r.shear[0], taken);
+    if constexpr (Law::uses_I2bar) {
+      const T taken_I2 =
+          r.shear_I2[0] + d * (r.shear_I2[1] + d * ((1.0 / 2.0) * r.shear_I2[2] +
+                                                    d * ((1.0 / 6.0) * r.shear_I2[3] + d * (1.0 / 24.0) * r.shear_I2[4])));
+      st.shear_I2 = select(st.converged, r.shear_I2[0], taken_I2);
+    }
     return st;
   }
 
@@ -344,8 +423,9 @@ private:
       } else {
         const PlaneStressStepOf<double> st = step(r, c, lo, hi);
         if (st.converged || st.accepted) {
-          out.c33   = st.c33;
-          out.shear = st.shear;
+          out.c33      = st.c33;
+          out.shear    = st.shear;
+          out.shear_I2 = st.shear_I2;
           return out;
         }
         lo = st.lo, hi = st.hi;

@@ -13,6 +13,11 @@ template <class Law> LawEntry entry_of(ModelKind kind)
   for (const LawOption<typename Law::Parameters> &o : Law::options) e.options.push_back({o.name, o.help, o.value});
   e.check   = [](const MaterialParameters &p) { return Law::check(ParametersOf<Law>(p)); };
   e.refusal = [](Formulation f) { return formulation_refusal<Law>(f); };
+  if constexpr (Law::has_limit) {
+    e.limit        = Law::limit;
+    e.limit_option = Law::limit_option;
+    e.I1bar_limit  = [](const MaterialParameters &p) { return Law::I1bar_limit(ParametersOf<Law>(p)); };
+  }
   return e;
 }
 

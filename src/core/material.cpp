@@ -22,9 +22,10 @@ const char *describe(StressStatus s)
   switch (s) {
   case StressStatus::ok: return "the stress was evaluated";
   case StressStatus::chain_limit:
-    return "a bond reached the Gent chain-extension limit (I1bar - 3 >= Jm), where the model has no "
-           "finite energy: raise -material_Jm, lower the load, or enable failure (-failure_critical_stretch) "
-           "so that such bonds break";
+    return "a bond reached its law's limit (the Gent chain limit I1bar - 3 >= Jm, or the Arruda-Boyce locking "
+           "stretch I1bar >= 3 lambda_m^2), where the model has no finite energy: raise -material_Jm or "
+           "-material_lambda_m, lower the load, or enable failure (-failure_critical_stretch) so that such bonds "
+           "break (a run names its law's own: simulation_health.cpp)";
   case StressStatus::inverted:
     return "a bond deformation gradient has det F <= 0 (the material is inverted): the run is unstable; "
            "lower -time_step or -time_step_safety";

@@ -202,30 +202,32 @@ std::string DivergenceAdvice(const DivergenceFacts &f)
                                : "lower -time_step_safety to 0.8 (the default) or less");
   else if (f.chain_reach > 1.05 && f.chain_reach_earlier >= 0.8 && f.chain_reach_earlier <= 1.05) // wrecked, but near the limit before
     std::snprintf(text, sizeof text,
-                  " Cause: the Gent chain limit. %" PetscInt_FMT " steps before the failure bonds had reached I1bar - 3 = %.3g x Jm "
+                  " Cause: %s. %" PetscInt_FMT " steps before the failure bonds had reached I1bar - 3 = %.3g x its value at the limit "
                   "(largest bond stretch %.3g, applied stretch %.4g), where the material stiffens without bound and no time step "
-                  "keeps up: raise -material_Jm (now %g), or end the load below stretch %.4g, or enable failure "
+                  "keeps up: raise %s (now %g), or end the load below stretch %.4g, or enable failure "
                   "(-failure_critical_stretch) so that such bonds break.",
-                  f.earlier_steps, f.chain_reach_earlier, f.bond_stretch_earlier, f.applied_stretch_earlier, f.Jm, f.applied_stretch_earlier);
+                  f.limit, f.earlier_steps, f.chain_reach_earlier, f.bond_stretch_earlier, f.applied_stretch_earlier, f.limit_option,
+                  f.limit_value, f.applied_stretch_earlier);
   else if (f.chain_reach >= 0.8 && f.chain_reach <= 1.05) // beyond: a state the blow-up already wrecked
     std::snprintf(text, sizeof text,
-                  " Cause: the Gent chain limit. Bonds reached I1bar - 3 = %.3g x Jm (largest bond stretch %.3g, applied stretch %.4g), "
+                  " Cause: %s. Bonds reached I1bar - 3 = %.3g x its value at the limit (largest bond stretch %.3g, applied stretch %.4g), "
                   "where the material stiffens without bound (its stable step fell to %.3g x the one at rest) and no time step "
-                  "keeps up: raise -material_Jm (now %g), or end the load below stretch %.4g, or enable failure "
+                  "keeps up: raise %s (now %g), or end the load below stretch %.4g, or enable failure "
                   "(-failure_critical_stretch) so that such bonds break.",
-                  f.chain_reach, f.bond_stretch, f.applied_stretch, f.stable / f.stable_rest, f.Jm, f.applied_stretch);
+                  f.limit, f.chain_reach, f.bond_stretch, f.applied_stretch, f.stable / f.stable_rest, f.limit_option,
+                  f.limit_value, f.applied_stretch);
   else if (f.plane_strain && f.bulk_ratio >= 1000)
     std::snprintf(text, sizeof text,
                   " Cause: a bulk modulus too stiff for plane strain. The step (%.3g x the stable one) is not the problem: with "
                   "-material_bulk_ratio %g (K / mu) the %splane-strain body locks volumetrically and is unstable whatever the "
                   "step (docs/stability.md, section 1): lower -material_bulk_ratio to 100%s.",
                   f.dt / f.stable, f.bulk_ratio, f.bond_only ? "bond-only " : "", f.bond_only ? ", or use -force_form energy_consistent" : "");
-  else if (f.chain_reach > 1.05 && f.Jm > 0 && f.stiffening >= 4) // a wrecked state, but the run saw the stiffening
+  else if (f.chain_reach > 1.05 && f.limit_value > 0 && f.stiffening >= 4) // a wrecked state, but the run saw the stiffening
     std::snprintf(text, sizeof text,
-                  " Cause: the Gent chain limit. The material stiffened to %.3g x its stiffness at rest as bonds neared the "
-                  "chain limit (applied stretch %.4g), and the state broke down (bond stretch %.3g): raise -material_Jm (now %g), "
+                  " Cause: %s. The material stiffened to %.3g x its stiffness at rest as bonds neared the "
+                  "limit (applied stretch %.4g), and the state broke down (bond stretch %.3g): raise %s (now %g), "
                   "or end the load below stretch %.4g, or enable failure (-failure_critical_stretch) so that such bonds break.",
-                  f.stiffening, f.applied_stretch, f.bond_stretch, f.Jm, f.applied_stretch);
+                  f.limit, f.stiffening, f.applied_stretch, f.bond_stretch, f.limit_option, f.limit_value, f.applied_stretch);
   else if (!f.reestimating && f.dt > f.stable) too_long(" (the material stiffened; the step was fixed at rest)", f.stable);
   else if (f.stable_earlier > 0 && f.dt > f.stable_earlier) {
     // The last good state is already a wreck (its sharp estimate finds the wreck's

@@ -60,8 +60,9 @@ PetscErrorCode Simulation::CheckHealth(PetscInt step, double t, PetscBool *diver
 
 // What the solver sees at the last good state (the state saved before the step that
 // failed; the current one without -checkpoint_on_error): the stable step of that
-// state by a sharp power iteration, and how close its bonds came to the Gent chain
-// limit. DivergenceAdvice (divergence.hpp) turns it into the cause and the fix.
+// state by a sharp power iteration, and how close its bonds came to the law's limit
+// (Gent's chain limit, Arruda-Boyce's locking stretch). DivergenceAdvice
+// (divergence.hpp) turns it into the cause and the fix.
 // Once, when the run stops: the slow per-bond path is fine here. Collective.
 PetscErrorCode Simulation::DiagnoseDivergence()
 {
@@ -93,8 +94,11 @@ PetscErrorCode Simulation::DiagnoseDivergence()
   f.stiffening     = step_control_.largest_lambda() / step_control_.lambda_rest();
   f.applied_stretch = loading_.stretch_at(t);
   // Chain reach of a state (u: owned, c33: its warm starts): max over owned bonds of
-  // (I1bar - 3) / Jm, I1bar = tr(C) J^{-2/3} with C = diag(F~^T F~, C33) (C33 = 1 in
-  // plane strain; hyperelastic.hpp), and the largest principal stretch of that bond.
+  // (I1bar - 3) / (I1bar_limit - 3) (Gent: / Jm), I1bar = tr(C) J^{-2/3} with
+  // C = diag(F~^T F~, C33) (C33 = 1 in plane strain; hyperelastic.hpp), and the largest
+  // principal stretch of that bond. Only for a law with a limit.
+  const LawEntry &law  = law_entry(scene_.model);
+  const double    span = law.limit ? law.I1bar_limit(scene_.material) - 3.0 : 0.0;
   auto chain_reach = [&](const double *state_u, const std::vector<double> &state_c33, double reach[2]) -> PetscErrorCode {
     PetscFunctionBegin;
     reach[0] = 0.0, reach[1] = 1.0;
@@ -109,7 +113,7 @@ PetscErrorCode Simulation::DiagnoseDivergence()
         if (!(J > 0) || !(C33 > 0)) continue;
         const double c11 = F[0] * F[0] + F[2] * F[2], c22 = F[1] * F[1] + F[3] * F[3], c12 = F[0] * F[1] + F[2] * F[3];
         const double I1bar = (c11 + c22 + C33) * std::pow(J, -2.0 / 3.0);
-        const double r     = (I1bar - 3.0) / scene_.material.Jm;
+        const double r     = (I1bar - 3.0) / span;
         if (r > reach[0]) {
           const double mean = 0.5 * (c11 + c22), dev = std::sqrt(0.25 * (c11 - c22) * (c11 - c22) + c12 * c12);
           reach[0] = r, reach[1] = std::sqrt(mean + dev);
@@ -141,7 +145,7 @@ PetscErrorCode Simulation::DiagnoseDivergence()
       f.earlier_steps = output_.good_step - output_.earlier_step[older];
       PetscCall(step_control_.SharpEstimate(comm_, force_, ue.data(), output_.earlier_c33[older], 40, &f.stable_earlier));
       if (!std::isfinite(f.stable_earlier) || f.stable_earlier <= 0) f.stable_earlier = 0;
-      if (scene_.model == ModelKind::gent) {
+      if (law.limit) {
         double reach[2];
         PetscCall(chain_reach(ue.data(), output_.earlier_c33[older], reach));
         f.chain_reach_earlier  = reach[0];
@@ -152,12 +156,15 @@ PetscErrorCode Simulation::DiagnoseDivergence()
   }
   PetscCall(step_control_.SharpEstimate(comm_, force_, u.data(), c33, 40, &f.stable));
   if (!std::isfinite(f.stable) || f.stable <= 0) f.stable = step_control_.stable_now();
-  if (scene_.model == ModelKind::gent) {
+  if (law.limit) {
     double reach[2];
     PetscCall(chain_reach(u.data(), c33, reach));
     f.chain_reach  = reach[0];
     f.bond_stretch = reach[1];
-    f.Jm           = scene_.material.Jm;
+    f.limit        = law.limit;
+    f.limit_option = law.limit_option;
+    for (const LawOptionEntry &o : law.options)
+      if (std::string(o.name) == law.limit_option) f.limit_value = scene_.material.*o.value;
   }
   if (time_step_options_.monitor)
     PetscCall(PetscPrintf(comm_, "Diagnosis at the last good state: dt %.4e s, stable %.4e s (at rest %.4e s), chain reach %.4g (bond stretch %.4g), applied stretch %.4g; %" PetscInt_FMT " steps before: stable %.4e s, chain reach %.4g\n",

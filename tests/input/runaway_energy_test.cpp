@@ -129,7 +129,7 @@ TEST(DivergenceAdvice, AWreckedLastStateIsJudgedByTheStateBeforeTheBlowUp)
   DivergenceFacts f;
   f.stable_rest = f.stable = 1.2012e-3; // plane strain, K = 10 mu (docs/stability.md, section 8)
   f.dt = f.base = 0.8 * f.stable_rest;
-  f.chain_reach = 1.2, f.Jm = 162.6, f.plane_strain = true, f.bulk_ratio = 10, f.damping = 50;
+  f.chain_reach = 1.2, f.limit_value = 162.6, f.plane_strain = true, f.bulk_ratio = 10, f.damping = 50;
   f.reestimating  = false;
   f.earlier_steps = 19;
   f.stable_earlier = 0.95 * f.dt; // the material had stiffened past the fixed step

@@ -37,6 +37,24 @@ template <class Law> struct LawOf<PlaneStress<Law>> {
   using type = Law;
 };
 
+// The terms of C33 S33 that cancel at the plane-stress solution (plane_stress.hpp:
+// Gbar t, Hbar t2 for a law of I2bar, (ck - 1)/D), over C33, + mu: the scale against
+// which the round-off in S33 is measured.
+template <class Law> double out_of_plane_stress_scale(const MaterialParameters &p, const Mat2 &F, double c)
+{
+  const double a = F[0] * F[0] + F[1] * F[1] + F[2] * F[2] + F[3] * F[3], k = det(F) * det(F);
+  const double q = 1.0 / std::cbrt(c * k);
+  Modulus      G{};
+  Law::modulus(ParametersOf<Law>(p), Invariants{(a + c) * q}, G);
+  double scale = std::abs(G[0] * q * (2.0 * c - a) / 3.0) / c + std::abs((c * k - 1.0) / p.D) / c + p.mu;
+  if constexpr (Law::uses_I2bar) {
+    Modulus H{};
+    Law::modulus_I2bar(ParametersOf<Law>(p), Invariants{(a + c) * q, (k + a * c) * q * q}, H);
+    scale += std::abs(H[0] * q * q * (a * c - 2.0 * k) / 3.0) / c;
+  }
+  return scale;
+}
+
 inline Mat2 rotation2(double theta) { return {std::cos(theta), -std::sin(theta), std::sin(theta), std::cos(theta)}; }
 
 // R(theta1) diag(s1, s2) R(theta2): principal stretches s1, s2 in [1/max, max].

@@ -65,10 +65,11 @@ TEST(LawRegistry, EveryLawAcceptsItsDefaultsAndNamesEachBadValue)
       EXPECT_NE(problems.find(o.name), std::string::npos) << law.name << ": " << problems;
       EXPECT_EQ(law.check(p), problems) << "mu and D are fine, so only the law's own line";
     }
-    // every law runs in plane strain; plane stress refuses the laws of I2bar (law.hpp)
+    // every registered law runs in both formulations (and in 3D: Compressible3D, Ogden3D,
+    // stress_energy_test), as issue 19 asks
     EXPECT_EQ(law.refusal(Formulation::plane_strain), "") << law.name;
-    const bool i2bar = law.kind == ModelKind::mooney_rivlin;
-    EXPECT_EQ(law.refusal(Formulation::plane_stress).empty(), !i2bar) << law.name;
+    EXPECT_EQ(law.refusal(Formulation::plane_stress), "") << law.name;
+    EXPECT_EQ(check_model(law.kind, Formulation::plane_stress, defaults()), "") << law.name;
   }
 }
 
@@ -105,8 +106,9 @@ TEST(LawRegistry, EveryLawStressIsTheDerivativeOfItsEnergyThroughTheRegistry)
 }
 
 // Laws that the plane-stress solve must refuse (law.hpp, plane_stress.hpp): one that
-// depends on I2bar, one that is not convex in I1bar, one in principal stretches. Only
-// their declarations matter here.
+// depends on I2bar and has a limit, one that is not convex, one in principal stretches
+// without formulations of its own; and one of I2bar without a limit, which it accepts.
+// Only their declarations matter here.
 struct LawStub {
   struct Parameters {};
   static constexpr std::array<LawOption<Parameters>, 0> options = {};
@@ -119,6 +121,10 @@ struct WithI2bar : LawStub {
   static constexpr const char *name       = "with_i2bar";
   static constexpr bool        uses_I2bar = true;
 };
+struct WithI2barAndLimit : WithI2bar {
+  static constexpr const char *name      = "with_i2bar_and_limit";
+  static constexpr bool        has_limit = true;
+};
 struct NotConvex : LawStub {
   static constexpr const char *name              = "not_convex";
   static constexpr bool        convex_increasing = false;
@@ -130,16 +136,18 @@ struct InStretches : LawStub {
 
 TEST(LawRegistry, PlaneStressRefusesLawsItCannotSolveWithAMessage)
 {
-  static_assert(accepts_plane_stress<Gent> && accepts_plane_stress<NeoHookean>);
-  static_assert(!accepts_plane_stress<WithI2bar> && !accepts_plane_stress<NotConvex> && !accepts_plane_stress<InStretches>);
-  const std::string i2 = formulation_refusal<WithI2bar>(Formulation::plane_stress);
-  EXPECT_NE(i2.find("-material_model with_i2bar with -material_formulation plane_stress"), std::string::npos) << i2;
+  static_assert(accepts_plane_stress<Gent> && accepts_plane_stress<NeoHookean> && accepts_plane_stress<MooneyRivlin>);
+  static_assert(accepts_plane_stress<WithI2bar> && !accepts_plane_stress<WithI2barAndLimit>);
+  static_assert(!accepts_plane_stress<NotConvex> && !accepts_plane_stress<InStretches>);
+  EXPECT_EQ(formulation_refusal<WithI2bar>(Formulation::plane_stress), "");
+  const std::string i2 = formulation_refusal<WithI2barAndLimit>(Formulation::plane_stress);
+  EXPECT_NE(i2.find("-material_model with_i2bar_and_limit with -material_formulation plane_stress"), std::string::npos) << i2;
   EXPECT_NE(i2.find("I2bar"), std::string::npos) << i2;
   EXPECT_NE(i2.find("use -material_formulation plane_strain"), std::string::npos) << i2;
   const std::string convex = formulation_refusal<NotConvex>(Formulation::plane_stress);
   EXPECT_NE(convex.find("convex and increasing in I1bar"), std::string::npos) << convex;
   EXPECT_EQ(formulation_refusal<NotConvex>(Formulation::plane_strain), "");
-  EXPECT_EQ(formulation_refusal<WithI2bar>(Formulation::plane_strain), "");
+  EXPECT_EQ(formulation_refusal<WithI2barAndLimit>(Formulation::plane_strain), "");
   for (Formulation f : {Formulation::plane_stress, Formulation::plane_strain})
     EXPECT_NE(formulation_refusal<InStretches>(f).find("principal stretches"), std::string::npos);
 }

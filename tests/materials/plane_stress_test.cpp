@@ -22,17 +22,6 @@ template <class Law> double out_of_plane_stress(const MaterialParameters &p, con
   return P[8] / lambda3;
 }
 
-// The two terms of C33 S33 that cancel at the solution (plane_stress.hpp), over C33:
-// the scale against which the round-off in S33 is measured.
-template <class Law> double out_of_plane_stress_scale(const MaterialParameters &p, const Mat2 &F, double c)
-{
-  const double a = F[0] * F[0] + F[1] * F[1] + F[2] * F[2] + F[3] * F[3], k = det(F) * det(F);
-  const double q = 1.0 / std::cbrt(c * k);
-  Modulus      G{};
-  EXPECT_TRUE(Law::modulus(p, Invariants{(a + c) * q}, G));
-  return std::abs(G[0] * q * (2.0 * c - a) / 3.0) / c + std::abs((c * k - 1.0) / p.D) / c + p.mu;
-}
-
 // Paper eq 36: incompressible Gent, pure shear, nominal stress.
 double pure_shear_nominal_stress(double lambda)
 {
@@ -40,7 +29,8 @@ double pure_shear_nominal_stress(double lambda)
 }
 
 template <class Model> class PlaneStressModels : public ::testing::Test {};
-using Models = ::testing::Types<GentPlaneStress, NeoHookeanPlaneStress, YeohPlaneStress, ArrudaBoycePlaneStress>;
+using Models = ::testing::Types<GentPlaneStress, NeoHookeanPlaneStress, YeohPlaneStress, ArrudaBoycePlaneStress,
+                                MooneyRivlinPlaneStress>;
 TYPED_TEST_SUITE(PlaneStressModels, Models);
 
 
@@ -143,7 +133,7 @@ TYPED_TEST(PlaneStressModels, NewtonSolveConvergesUpToStretchTenForAllCompressib
       ++solves;
       // S33 is the difference of two terms of size `scale`: round-off 1e-16 of them,
       // the solve stops at 1e-13 of them
-      const double scale = out_of_plane_stress_scale<Law>(p, F, cold.c33);
+      const double scale = test::out_of_plane_stress_scale<Law>(p, F, cold.c33);
       EXPECT_LT(std::abs(out_of_plane_stress<Law>(p, F, cold.c33)), 1e-11 * scale) << name;
       // Any start finds the same root: guesses far outside and at the wrong end of the bracket.
       const double a = F[0] * F[0] + F[1] * F[1] + F[2] * F[2] + F[3] * F[3];
@@ -195,8 +185,9 @@ TYPED_TEST(PlaneStressModels, WarmStartAlongLoadingPathTakesFewEvaluations)
   }
 }
 
-TEST(PlaneStress, StressIsInPlaneBlockOf3DStressAtSolvedThickness)
+TYPED_TEST(PlaneStressModels, StressIsInPlaneBlockOf3DStressAtSolvedThickness)
 {
+  using Law = typename test::LawOf<TypeParam>::type;
   std::mt19937             rng(11);
   const MaterialParameters p = test::parameters(mu, Jm, 2.0 / (1e3 * mu));
   for (int sample = 0; sample < 50; ++sample) {
@@ -204,18 +195,51 @@ TEST(PlaneStress, StressIsInPlaneBlockOf3DStressAtSolvedThickness)
     double     c33 = 0.0;
     Mat2       P;
     Mat3       P3;
-    ASSERT_EQ(GentPlaneStress{p}.stress(F, c33, P), StressStatus::ok);
-    ASSERT_EQ(Gent3D{p}.stress(embed(F, std::sqrt(c33)), P3), StressStatus::ok);
-    // eq 34 and eq 26 agree once S33 = 0: difference = S33-residual terms, round-off
+    ASSERT_EQ(TypeParam{p}.stress(F, c33, P), StressStatus::ok);
+    ASSERT_EQ(Compressible3D<Law>{p}.stress(embed(F, std::sqrt(c33)), P3), StressStatus::ok);
+    // eq 34 (and its I2bar form) and eq 26 agree once S33 = 0: difference = S33-residual
+    // terms, round-off
     EXPECT_LT(test::relative_difference(P, Mat2{P3[0], P3[1], P3[3], P3[4]}, mu), 1e-10);
+  }
+}
+
+TEST(PlaneStress, MooneyRivlinOfEitherInvariantAloneIsSolvedAndTheOtherIsNeoHookean)
+{
+  // C01 = 0 is the neo-Hookean law (mu = 2 C10); C10 = 0 leaves G = 0 and the I2bar
+  // term alone to balance the volumetric one: the bracket's lower end is then 2k/a.
+  std::mt19937 rng(23);
+  for (int sample = 0; sample < 50; ++sample) {
+    const Mat2 F = test::random_F2(rng, 4.0);
+    for (double K_over_mu : {10.0, 1e4}) {
+      MaterialParameters p = test::parameters(mu, Jm, 2.0 / (K_over_mu * mu));
+      p.C10 = 0.5 * mu, p.C01 = 0.0;
+      double c_mr = 0.0, c_nh = 0.0;
+      Mat2   P_mr, P_nh;
+      ASSERT_EQ(MooneyRivlinPlaneStress{p}.stress(F, c_mr, P_mr), StressStatus::ok);
+      ASSERT_EQ(NeoHookeanPlaneStress{p}.stress(F, c_nh, P_nh), StressStatus::ok);
+      // the same equation, solved from the same start to 1e-13 of its terms
+      EXPECT_NEAR(c_mr, c_nh, 1e-11 * c_nh);
+      EXPECT_LT(test::relative_difference(P_mr, P_nh, mu), 1e-10);
+      p.C10 = 0.0, p.C01 = 0.5 * mu;
+      double c33 = 0.0;
+      Mat2   P;
+      Mat3   P3;
+      ASSERT_EQ(MooneyRivlinPlaneStress{p}.stress(F, c33, P), StressStatus::ok);
+      ASSERT_EQ(MooneyRivlin3D{p}.stress(embed(F, std::sqrt(c33)), P3), StressStatus::ok);
+      EXPECT_LT(std::abs(P3[8] / std::sqrt(c33)), 1e-11 * test::out_of_plane_stress_scale<MooneyRivlin>(p, F, c33));
+      EXPECT_LT(test::relative_difference(P, Mat2{P3[0], P3[1], P3[3], P3[4]}, mu), 1e-10);
+    }
   }
 }
 
 TYPED_TEST(PlaneStressModels, ResidualDerivativesMatchFiniteDifferences)
 {
-  // The Newton/Chebyshev solve and its early exit use f', f'', f''' and Gbar', Gbar'',
-  // Gbar''' (plane_stress.hpp); each must be the derivative of the one before.
-  const TypeParam model{test::parameters(mu, Jm, 2.0 / (100.0 * mu))};
+  // The Newton/Chebyshev solve and its early exit use f' to f'''' and Gbar' to Gbar''''
+  // (Hbar' to Hbar'''' for a law of I2bar; plane_stress.hpp); each must be the
+  // derivative of the one before.
+  using Law = typename test::LawOf<TypeParam>::type;
+  const MaterialParameters p = test::parameters(mu, Jm, 2.0 / (100.0 * mu));
+  const TypeParam          model{p};
   std::mt19937    rng(17);
   for (int sample = 0; sample < 50; ++sample) {
     const Mat2   F = test::random_F2(rng, 4.0);
@@ -225,12 +249,18 @@ TYPED_TEST(PlaneStressModels, ResidualDerivativesMatchFiniteDifferences)
     auto         at = [&](double x) { return model.residual(a, k, 1.0 / model.p.D, x); };
     const PlaneStressResidual r = at(c), rp = at(c + h), rm = at(c - h);
     ASSERT_TRUE(r.admissible && rp.admissible && rm.admissible);
-    for (int n = 0; n < 3; ++n) {
+    for (int n = 0; n < 4; ++n) {
       // central difference, h = 1e-5 c: truncation (h/c)^2 ~ 1e-10, round-off eps/(h/c) ~ 1e-11
       const double fd_f = (rp.f[n] - rm.f[n]) / (2.0 * h), fd_g = (rp.shear[n] - rm.shear[n]) / (2.0 * h);
+      const double fd_h = (rp.shear_I2[n] - rm.shear_I2[n]) / (2.0 * h);
       EXPECT_NEAR(r.f[n + 1], fd_f, 1e-7 * (std::abs(r.f[n + 1]) + std::abs(r.f[n]) / c)) << "n " << n;
       EXPECT_NEAR(r.shear[n + 1], fd_g, 1e-7 * (std::abs(r.shear[n + 1]) + std::abs(r.shear[n]) / c)) << "n " << n;
+      EXPECT_NEAR(r.shear_I2[n + 1], fd_h, 1e-7 * (std::abs(r.shear_I2[n + 1]) + std::abs(r.shear_I2[n]) / c)) << "n " << n;
     }
+    // and f itself is 2 C33 dPsi/dC33 = C33 S33 of the 3D law (f is what the solve zeroes)
+    Mat3 P3;
+    ASSERT_EQ(Compressible3D<Law>{p}.stress(embed(F, std::sqrt(c)), P3), StressStatus::ok);
+    EXPECT_NEAR(r.f[0], std::sqrt(c) * P3[8], 1e-12 * c * test::out_of_plane_stress_scale<Law>(p, F, c));
   }
 }
 

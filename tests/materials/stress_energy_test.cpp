@@ -19,7 +19,8 @@ MaterialParameters parameters(double D) { return test::parameters(mu, Jm, D); }
 // The 2D models, as the bond kernel sees them.
 template <class Model> class MaterialStress2D : public ::testing::Test {};
 using Models2D = ::testing::Types<GentPlaneStress, NeoHookeanPlaneStress, GentPlaneStrain, NeoHookeanPlaneStrain, YeohPlaneStress,
-                                  YeohPlaneStrain, ArrudaBoycePlaneStress, ArrudaBoycePlaneStrain, MooneyRivlinPlaneStrain,
+                                  YeohPlaneStrain, ArrudaBoycePlaneStress, ArrudaBoycePlaneStrain, MooneyRivlinPlaneStress,
+                                  MooneyRivlinPlaneStrain,
                                   OgdenPlaneStress, OgdenPlaneStrain>;
 TYPED_TEST_SUITE(MaterialStress2D, Models2D);
 
