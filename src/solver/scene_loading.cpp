@@ -41,8 +41,8 @@ PetscErrorCode ReadLoading(MPI_Comm comm, Scene *scene, SceneInput *in)
                        &in->grip_placement));
     PetscCall(r.String("-load_grip_field",
                        "y of the top and bottom grips' points: rigid (one u per grip) | affine (the continuation of the free "
-                       "region's mean stretch into the grip; docs/stress_consistency.md) (default: affine for grips outside, "
-                       "rigid inside)",
+                       "region's mean stretch into the grip; docs/stress_consistency.md) | auto (affine for a top and a bottom "
+                       "grip outside, else rigid)",
                        &in->grip_field));
     return 0;
   }));
@@ -56,7 +56,7 @@ PetscErrorCode ReadLoading(MPI_Comm comm, Scene *scene, SceneInput *in)
     PetscCall(ReadOptionBlock(comm, prefix.c_str(), title.c_str(), [&](OptionReader &r) -> PetscErrorCode {
       PetscCall(r.String("-region", "Points held: top | bottom | left | right (edge layers) | box (required)", &set.region, &set.region_set));
       PetscCall(r.RealArray("-box", "Region box xmin,ymin,xmax,ymax [m] (region box)", &set.box, &set.box_set));
-      PetscCall(r.String("-placement", "outside (beyond the specimen's edge) | inside (the specimen's edge rows) (default: -load_grip_placement)",
+      PetscCall(r.String("-placement", "outside (beyond the specimen's edge) | inside (the specimen's edge rows) | auto (-load_grip_placement's)",
                          &set.placement));
       PetscCall(r.Int("-layers", "Point rows the grip holds at its edge [-] (default: 2 horizons deep outside, 1 inside)", &set.layers,
                       &set.layers_set));
@@ -143,7 +143,7 @@ PetscErrorCode CheckLoading(MPI_Comm comm, const SceneInput &in, Scene *scene)
       SceneCheck(set.box[2] >= 0 && set.box[0] <= b.width && set.box[3] >= 0 && set.box[1] <= b.height, comm,
                  "-load_%s_box %g,%g,%g,%g lies outside the body [0, %g] x [0, %g] m: move it onto the body", n, set.box[0], set.box[1],
                  set.box[2], set.box[3], b.width, b.height);
-      for (const auto &[given, option] : {std::pair{li.layers_set, "layers"}, {li.depth_set, "depth"}, {!li.placement.empty(), "placement"}})
+      for (const auto &[given, option] : {std::pair{li.layers_set, "layers"}, {li.depth_set, "depth"}, {Lower(li.placement) != "auto", "placement"}})
         SceneCheck(!given, comm,
                    "-load_%s_%s is set but load set '%s' is a box: it applies to an edge grip; remove it or choose an edge region", n,
                    option, n);
@@ -151,10 +151,10 @@ PetscErrorCode CheckLoading(MPI_Comm comm, const SceneInput &in, Scene *scene)
       SceneCheck(!li.box_set, comm,
                  "-load_%s_box is set but -load_%s_region is %s: the box is only used with region box; remove it or set the region to box",
                  n, n, to_string(set.region));
-      const std::string placement = li.placement.empty() ? to_string(default_placement) : Lower(li.placement);
+      const std::string placement = Lower(li.placement) == "auto" ? to_string(default_placement) : Lower(li.placement);
       if (placement == "outside") set.placement = GripPlacement::outside;
       else if (placement == "inside") set.placement = GripPlacement::inside;
-      else SceneCheck(false, comm, "-load_%s_placement '%s' is not a choice: choose outside or inside", n, li.placement.c_str());
+      else SceneCheck(false, comm, "-load_%s_placement '%s' is not a choice: choose outside, inside or auto", n, li.placement.c_str());
       SceneCheck(!(li.layers_set && li.depth_set), comm,
                  "-load_%s_layers and -load_%s_depth both give the grip's depth: keep one (rows, or metres)", n, n);
       SceneCheck(!li.depth_set || li.depth > 0, comm, "-load_%s_depth %g m: a grip's depth must be > 0", n, li.depth);
@@ -212,11 +212,11 @@ PetscErrorCode CheckLoading(MPI_Comm comm, const SceneInput &in, Scene *scene)
     outside += (l.region == LoadSet::Region::top || l.region == LoadSet::Region::bottom) && l.placement == GripPlacement::outside;
   }
   const std::string field = Lower(in.grip_field);
-  if (field.empty()) // the default: affine where it applies, to a top and a bottom grip outside
+  if (field == "auto") // the default: affine where it applies, to a top and a bottom grip outside
     scene->grip_field = top == 1 && bottom == 1 && outside == 2 ? GripField::affine : GripField::rigid;
   else if (field == "rigid") scene->grip_field = GripField::rigid;
   else if (field == "affine") scene->grip_field = GripField::affine;
-  else SETERRQ(comm, PETSC_ERR_USER, "%s", Format("-load_grip_field '%s' is not a choice: choose rigid or affine", in.grip_field.c_str()).c_str());
+  else SETERRQ(comm, PETSC_ERR_USER, "%s", Format("-load_grip_field '%s' is not a choice: choose rigid, affine or auto", in.grip_field.c_str()).c_str());
   if (scene->grip_field == GripField::affine) {
     SceneCheck(top == 1 && bottom == 1, comm,
                "-load_grip_field affine continues the stretch between a top and a bottom grip, but the load sets hold y at %d top "
