@@ -521,7 +521,7 @@ TEST_F(SceneOptions, RejectsEachInvalidInputNamingItsOption)
     {"horizon below one spacing", {{"-horizon_factor", "0.5"}}, "-horizon_factor"},
     // grips
     {"unknown placement", {{"-load_grip_placement", "beside"}}, "-load_grip_placement", "outside or inside"},
-    {"unknown set placement", {{"-load_top_placement", "over"}}, "-load_top_placement", "outside or inside"},
+    {"unknown set placement", {{"-load_top_placement", "over"}}, "-load_top_placement", "outside, inside or auto"},
     {"depth and layers", {{"-load_top_depth", "0.003"}, {"-load_top_layers", "3"}}, "-load_top_depth", "keep one"},
     {"depth zero", {{"-load_top_depth", "0"}}, "-load_top_depth", "> 0"},
     // material
@@ -535,7 +535,7 @@ TEST_F(SceneOptions, RejectsEachInvalidInputNamingItsOption)
     {"bulk ratio zero", {{"-material_bulk_ratio", "0"}}, "-material_bulk_ratio"},
     {"density zero", {{"-material_density", "0"}}, "-material_density"},
     {"critical stretch below one", {{"-failure_critical_stretch", "0.9"}}, "-failure_critical_stretch", "> 1"},
-    {"unknown stress correction", {{"-force_stress_correction", "matrix"}}, "-force_stress_correction", "none (the paper's force), tensor or scalar"},
+    {"unknown stress correction", {{"-force_stress_correction", "matrix"}}, "-force_stress_correction", "none (the paper's force), tensor, scalar or auto"},
     // loading
     {"set name with a dash", {{"-load_sets", "top-grip"}}, "-load_sets", "letters"},
     {"set listed twice", {{"-load_sets", "top,bottom,top"}}, "-load_sets", "twice"},
@@ -557,7 +557,7 @@ TEST_F(SceneOptions, RejectsEachInvalidInputNamingItsOption)
     {"schedule negative time", {{"-load_schedule", "-1,1,1,1.5"}}, "-load_schedule", "t >= 0"},
     {"schedule stretch zero", {{"-load_schedule", "0,1,1,0"}}, "-load_schedule", "> 0"},
     {"reference length zero", {{"-load_reference_length", "0"}}, "-load_reference_length"},
-    {"unknown grip field", {{"-load_grip_field", "mirror"}}, "-load_grip_field", "rigid or affine"},
+    {"unknown grip field", {{"-load_grip_field", "mirror"}}, "-load_grip_field", "rigid, affine or auto"},
     {"affine grips without a bottom grip", {{"-load_grip_field", "affine"}, {"-load_bottom_y", "free"}, {"-load_bottom_y_scale", "<erase>"}}, "-load_grip_field", "1 top and 0 bottom"},
     // probes
     {"probe outside", {{"-probe_left_mid_at", "0.1,0.08"}}, "-probe_left_mid_at", "outside the body"},
