@@ -26,22 +26,25 @@ struct LatticePieces {
 };
 LatticePieces lattice_pieces(const Body2D &body);
 
-// The lattice's cells: nx = round(width / dx) x ny = round(height / dx); 0 x 0 when
+// The sheet's cells (the grips' rows outside it not counted): nx = round(width / dx) x ny = round(height / dx); 0 x 0 when
 // dx, width or height is not positive. 64-bit: a fine spacing can pass 2^31 cells.
 struct LatticeCells {
   int64_t nx = 0, ny = 0;
 };
 LatticeCells lattice_cells(const Body2D &body);
 
-// How many points make_lattice keeps, counted without building them (cells less the
-// centres inside holes), exactly, row by row (one chord per hole and row). Beyond
+// How many points make_lattice keeps, grips outside the sheet included, counted
+// without building them (cells less the centres inside holes), exactly, row by row (one chord per hole and row). Beyond
 // 1e8 row-hole pairs (a body no machine holds) it estimates from the hole areas.
 // With shapes, every cell is tested up to 2e7 cells (as lattice_pieces); beyond, a 4000 x 4000 sample of
 // the cells estimates the fraction kept.
 int64_t lattice_point_count(const Body2D &body);
 
 // Points at ((ix + 0.5) dx, (iy + 0.5) dx) for ix < nx = round(width / dx),
-// iy < ny = round(height / dx), row by row (y outer, x inner). A point that is not
+// iy < ny = round(height / dx), row by row (y outer, x inner); with grips outside the
+// sheet (Body2D::grip_rows) ix runs from -left to nx + right - 1 and iy from -bottom
+// to ny + top - 1, a cell outside the sheet being material where the sheet's edge
+// cell it extrudes is. A point that is not
 // material (is_material: inside a hole, or removed by the shapes) is left out. natural_id is the compact index of the
 // surviving points in that order; volume = dx^2 * thickness. family_volume is left
 // empty (compute_family_volumes in family.hpp fills it).

@@ -14,10 +14,12 @@ namespace bapd {
 // What the options said, beyond the values that go straight into the Scene: which
 // were given, and the raw text of lists and choices, for the checks.
 struct LoadInput {
-  std::string         name, region, x = "free", y = "free";
-  bool                region_set = false, box_set = false, layers_set = false, x_scale_set = false, y_scale_set = false;
+  std::string         name, region, x = "free", y = "free", placement = "auto"; // auto: -load_grip_placement's
+  bool                region_set = false, box_set = false, layers_set = false, depth_set = false, x_scale_set = false,
+                      y_scale_set = false;
   std::vector<double> box;
   PetscInt            layers  = 1;
+  double              depth   = 0.0;
   double              x_scale = 1.0, y_scale = 1.0;
 };
 
@@ -41,7 +43,7 @@ struct SceneInput {
   std::vector<std::string> shape_names;
   std::vector<ShapeInput>  shapes;
   std::string              model = "gent", formulation = "plane_stress", force_form = "bond_only",
-                           stress_correction = "none", grip_field = "rigid";
+                           stress_correction = "auto", grip_field = "auto", grip_placement = "outside";
   bool                     D_set = false, bulk_ratio_set = false;
   double                   bulk_ratio = 1000.0;
   bool                     critical_stretch_set = false;

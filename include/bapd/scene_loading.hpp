@@ -13,34 +13,52 @@ enum class ComponentLoad { free, fixed, stretch };
 
 // How a top or bottom grip moves the y component of its points (-load_grip_field;
 // issue 14 item 2, docs/stress_consistency.md): rigid, every point of the grip by the
-// same u (the default), or affine, the grip's points on the affine continuation of the
-// free region's mean stretch, u = u_rigid + (lambda - 1) (L / L_free) (y - y_inner),
+// same u, or affine, the grip's points on the affine continuation of the free
+// region's mean stretch, u = u_rigid + (lambda - 1) (L / L_free) (y - y_inner),
 // y_inner the grip's inner boundary, L_free the distance between the two grips'
 // inner boundaries. The free points next to a grip then see no kink of the
-// displacement within their horizon.
+// displacement within their horizon. x is held as the set says (a clamp holds it).
+// Default: affine for a top and a bottom grip placed outside the specimen, rigid
+// otherwise.
 enum class GripField { rigid, affine };
+
+// Where an edge grip's points are (-load_grip_placement, -load_NAME_placement):
+// outside, added beyond the specimen's edge (Body2D::grip_rows), so the specimen is
+// the free region; or inside, the specimen's own edge rows (the paper's grips).
+enum class GripPlacement { outside, inside };
 
 // A named set of points held by a grip. Per component: free, fixed (u = 0) or
 // following the stretch schedule, u = scale * (lambda(t) - 1) * reference_length.
 struct LoadSet {
   enum class Region { top, bottom, left, right, box };
   std::string   name;
-  Region        region = Region::top;
+  Region        region    = Region::top;
+  GripPlacement placement = GripPlacement::inside; // edge regions (a box is inside)
   double        box[4] = {0, 0, 0, 0}; // xmin, ymin, xmax, ymax (Region::box)
-  int           layers = 1;            // point layers taken from the named edge
+  int           layers = 1;            // point rows taken at the named edge
   ComponentLoad x = ComponentLoad::free, y = ComponentLoad::free;
   double        x_scale = 0.0, y_scale = 0.0;
 };
 
+// The rows a grip of depth d holds: those whose centres lie within d of its edge,
+// ceil(d / dx - 1/2) (at least 1). The default depth of a grip outside the specimen
+// is two horizons, 2 delta (6 rows at delta = 3.015 dx): no free point then has a
+// neighbour whose family reaches the grip's outer edge.
+int GripRows(double depth, double dx);
+
 // The local points (reference positions x, 2 per point, n points) that a load set
-// holds: within `layers` layers of its edge (top: y > height - layers*dx, bottom:
-// y < layers*dx, left: x < layers*dx, right: x > width - layers*dx) or inside its
-// box (edges included). Indices into x, increasing. Pass owned points only; whether
-// a set holds any point at all is for the caller to check over the communicator.
+// holds: inside, within `layers` rows of its edge (top: y > height - layers*dx,
+// bottom: y < layers*dx, left: x < layers*dx, right: x > width - layers*dx); outside,
+// its `layers` rows beyond the edge (top: height < y < height + layers*dx, ...); or
+// inside its box (edges included). Indices into x, increasing. Pass owned points
+// only; whether a set holds any point at all is for the caller to check over the
+// communicator.
 PetscErrorCode LoadSetSelect(const Scene &scene, const LoadSet &set, const double *x, PetscInt n,
                              std::vector<PetscInt> *selected);
 
 const char *to_string(LoadSet::Region region);
+const char *to_string(GripPlacement placement);
+const char *to_string(GripField field);
 const char *to_string(ComponentLoad load);
 
 } // namespace bapd

@@ -48,5 +48,16 @@ for h in 3.015 2.515 3.515; do
   run "plate_dx1_h$h" "$here/examples/plate_hole.yaml" "${fast[@]}" -horizon_factor "$h" -output_interval 40
 done
 run plate_dx0.5_h3.015 "$here/examples/plate_hole.yaml" "${fast[@]}" -body_dx 0.0005 -output_interval 80
+# The paper's method (one rigid row inside per grip, the uncorrected bond-only force):
+# its Table 1 row, next to the defaults (grips outside, affine, tensor correction).
+paper=(-load_grip_placement inside -force_stress_correction none)
+run plate_dx2_h3.015_paper "$here/examples/plate_hole.yaml" -body_dx 0.002 "${fast[@]}" "${paper[@]}"
+run plate_dx1_h3.015_paper "$here/examples/plate_hole.yaml" "${fast[@]}" "${paper[@]}" -output_interval 40
+# Pure shear's static states at stretch 1.5, 2, 3 against the FE solution of the
+# clamped 70 mm x 10 mm free region (issue 14: 5.417, 8.591, 14.065 kPa).
+static=(-load_schedule 0,1,0.05,1.5,1.05,1.5,1.1,2,2.1,2,2.2,3,3.2,3 -relaxation adaptive -static_tolerance 1e-10 -output_interval 20)
+run pure_shear_static_dx0.5 "$here/examples/pure_shear.yaml" "${static[@]}"
+run pure_shear_static_dx1 "$here/examples/pure_shear.yaml" "${static[@]}" -body_dx 0.001
+run pure_shear_static_dx0.5_paper "$here/examples/pure_shear.yaml" "${static[@]}" "${paper[@]}"
 
 /usr/bin/python3 "$here/scripts/validation/report.py" "$out" "$here/docs"

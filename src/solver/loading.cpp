@@ -92,15 +92,20 @@ void Loading::Apply(double t, double *u, double *v) const
 }
 
 // -load_grip_field affine: the y dofs of the top and bottom grips get
-// lever = (L / L_free) (y - y_inner), y_inner = H - layers dx (top) or layers dx
-// (bottom), L_free = y_inner,top - y_inner,bottom (CheckLoading made sure both exist).
+// lever = (L / L_free) (y - y_inner), y_inner the grip line: the specimen's edge, H
+// (top) or 0 (bottom), for a grip outside it; H - layers dx or layers dx for one
+// inside. L_free = y_inner,top - y_inner,bottom (CheckLoading made sure both exist).
+// The x dofs keep what the set says: a clamp holds x (the free region's lateral
+// contraction vanishes at the grip line, so u_x = 0 continues it).
 void Loading::SetAffineLevers(const Scene &scene, const Layout &layout)
 {
-  double y_top = 0, y_bottom = 0;
+  const double H = scene.body.height, dx = scene.body.dx;
+  double       y_top = 0, y_bottom = 0;
   for (const LoadSet &l : scene.loads) {
     if (l.y == ComponentLoad::free) continue;
-    if (l.region == LoadSet::Region::top) y_top = scene.body.height - l.layers * scene.body.dx;
-    if (l.region == LoadSet::Region::bottom) y_bottom = l.layers * scene.body.dx;
+    const bool inside = l.placement == GripPlacement::inside;
+    if (l.region == LoadSet::Region::top) y_top = inside ? H - l.layers * dx : H;
+    if (l.region == LoadSet::Region::bottom) y_bottom = inside ? l.layers * dx : 0.0;
   }
   const double gradient = reference_length_ / (y_top - y_bottom);
   for (ConstrainedDof &d : constrained_) {

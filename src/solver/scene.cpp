@@ -71,9 +71,14 @@ PetscErrorCode SceneView(MPI_Comm comm, const Scene &s)
   std::string   text; // built with the C library's printf (see SceneCheck), printed once
   PetscFunctionBeginUser;
   if (s.help_only) PetscFunctionReturn(0);
-  text += Format("Scene\n  body      %g m x %g m, thickness %g m, dx %g m: %ld x %ld lattice, %ld points, %zu hole(s), %zu notch(es)\n", b.width,
-                 b.height, b.thickness, b.dx, std::lround(b.width / b.dx), std::lround(b.height / b.dx), (long)ScenePointEstimate(s),
-                 b.holes.size(), b.notches.size());
+  const EdgeRows &g = b.grip_rows;
+  text += Format("Scene\n  body      %g m x %g m, thickness %g m, dx %g m: %ld x %ld lattice%s, %ld points, %zu hole(s), %zu notch(es)\n",
+                 b.width, b.height, b.thickness, b.dx, std::lround(b.width / b.dx), std::lround(b.height / b.dx),
+                 g.any() ? Format(" + grip rows outside (%ld top, %ld bottom, %ld left, %ld right)", (long)g.top, (long)g.bottom,
+                                  (long)g.left, (long)g.right)
+                               .c_str()
+                         : "",
+                 (long)ScenePointEstimate(s), b.holes.size(), b.notches.size());
   for (const Circle &c : b.holes) text += Format("            hole centre (%g, %g) m, radius %g m\n", c.cx, c.cy, c.radius);
   for (const Shape &sh : b.shapes) {
     std::string where;
@@ -107,7 +112,8 @@ PetscErrorCode SceneView(MPI_Comm comm, const Scene &s)
   };
   for (const LoadSet &l : s.loads) {
     const std::string where = l.region == LoadSet::Region::box ? Format("box [%g, %g] x [%g, %g] m", l.box[0], l.box[2], l.box[1], l.box[3])
-                                                               : Format("%s edge, %d layer(s)", to_string(l.region), l.layers);
+                                                               : Format("%s edge, %d row(s) %s", to_string(l.region), l.layers,
+                                                                        to_string(l.placement));
     text += Format("  load set  %s: %s; x %s, y %s\n", l.name.c_str(), where.c_str(), component(l.x, l.x_scale).c_str(),
                    component(l.y, l.y_scale).c_str());
   }
@@ -115,7 +121,7 @@ PetscErrorCode SceneView(MPI_Comm comm, const Scene &s)
   if (!s.schedule.time.empty()) {
     text += "  schedule  (t, lambda):";
     for (std::size_t k = 0; k < s.schedule.time.size(); ++k) text += Format(" (%g s, %g)", s.schedule.time[k], s.schedule.stretch[k]);
-    text += Format("; u = scale (lambda - 1) %g m\n", s.reference_length);
+    text += Format("; u = scale (lambda - 1) %g m; grip field %s\n", s.reference_length, to_string(s.grip_field));
   }
   for (const Probe &p : s.probes) text += Format("  probe     %s at (%g, %g) m\n", p.name.c_str(), p.x, p.y);
   if (s.time_step > 0) text += Format("  time      step %g s", s.time_step);

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 
 #include "bapd/options_reader.hpp"
 #include "bapd/scene_input.hpp"
@@ -34,9 +35,14 @@ PetscErrorCode ReadLoading(MPI_Comm comm, Scene *scene, SceneInput *in)
                           &in->schedule_set));
     PetscCall(r.Real("-load_reference_length", "Length L in u = scale (lambda - 1) L [m] (default: body height)", &scene->reference_length,
                      &in->reference_length_set));
+    PetscCall(r.String("-load_grip_placement",
+                       "Where edge grips are, unless a set says: outside (clamps added beyond the specimen, which is the free "
+                       "region) | inside (the specimen's edge rows: the paper's grips)",
+                       &in->grip_placement));
     PetscCall(r.String("-load_grip_field",
                        "y of the top and bottom grips' points: rigid (one u per grip) | affine (the continuation of the free "
-                       "region's mean stretch into the grip; docs/stress_consistency.md)",
+                       "region's mean stretch into the grip; docs/stress_consistency.md) | auto (affine for a top and a bottom "
+                       "grip outside, else rigid)",
                        &in->grip_field));
     return 0;
   }));
@@ -50,7 +56,12 @@ PetscErrorCode ReadLoading(MPI_Comm comm, Scene *scene, SceneInput *in)
     PetscCall(ReadOptionBlock(comm, prefix.c_str(), title.c_str(), [&](OptionReader &r) -> PetscErrorCode {
       PetscCall(r.String("-region", "Points held: top | bottom | left | right (edge layers) | box (required)", &set.region, &set.region_set));
       PetscCall(r.RealArray("-box", "Region box xmin,ymin,xmax,ymax [m] (region box)", &set.box, &set.box_set));
-      PetscCall(r.Int("-layers", "Point layers taken from the edge, each dx thick [-]", &set.layers, &set.layers_set));
+      PetscCall(r.String("-placement", "outside (beyond the specimen's edge) | inside (the specimen's edge rows) | auto (-load_grip_placement's)",
+                         &set.placement));
+      PetscCall(r.Int("-layers", "Point rows the grip holds at its edge [-] (default: 2 horizons deep outside, 1 inside)", &set.layers,
+                      &set.layers_set));
+      PetscCall(r.Real("-depth", "Grip depth instead of -layers: the rows whose centres lie within it [m] (default outside: 2 horizons)",
+                       &set.depth, &set.depth_set));
       PetscCall(r.String("-x", "x component: free | fixed (u = 0) | stretch (follows the schedule)", &set.x));
       PetscCall(r.String("-y", "y component: free | fixed (u = 0) | stretch (follows the schedule)", &set.y));
       PetscCall(r.Real("-x_scale", "Scale of a stretch x component: u = scale (lambda - 1) L [-]", &set.x_scale, &set.x_scale_set));
@@ -91,12 +102,20 @@ PetscErrorCode CheckLoading(MPI_Comm comm, const SceneInput &in, Scene *scene)
     if (std::fabs(schedule.stretch_at(0.0) - 1.0) > 1e-12)
       PetscCall(Warn(comm, Format("-load_schedule starts at stretch %g, not 1: the grips jump at t = 0", schedule.stretch_at(0.0))));
   }
+  // The free length: the specimen's height between grips outside it; the whole
+  // height (grip rows included) for the paper's grips inside it.
   if (in.reference_length_set)
     SceneCheck(scene->reference_length > 0, comm,
                "-load_reference_length %g: the length that turns stretch into displacement must be > 0 m (default: the body height)",
                scene->reference_length);
   else scene->reference_length = b.height;
 
+  GripPlacement     default_placement = GripPlacement::outside;
+  const std::string placement_all     = Lower(in.grip_placement);
+  if (placement_all == "inside") default_placement = GripPlacement::inside;
+  else SceneCheck(placement_all == "outside", comm, "-load_grip_placement '%s' is not a choice: choose outside or inside",
+                  in.grip_placement.c_str());
+  scene->body.grip_rows = {};
   scene->loads.clear();
   for (const LoadInput &li : in.loads) {
     LoadSet     set;
@@ -124,20 +143,39 @@ PetscErrorCode CheckLoading(MPI_Comm comm, const SceneInput &in, Scene *scene)
       SceneCheck(set.box[2] >= 0 && set.box[0] <= b.width && set.box[3] >= 0 && set.box[1] <= b.height, comm,
                  "-load_%s_box %g,%g,%g,%g lies outside the body [0, %g] x [0, %g] m: move it onto the body", n, set.box[0], set.box[1],
                  set.box[2], set.box[3], b.width, b.height);
-      SceneCheck(!li.layers_set, comm,
-                 "-load_%s_layers is set but load set '%s' is a box: layers count from an edge; remove it or choose an edge region", n, n);
+      for (const auto &[given, option] : {std::pair{li.layers_set, "layers"}, {li.depth_set, "depth"}, {Lower(li.placement) != "auto", "placement"}})
+        SceneCheck(!given, comm,
+                   "-load_%s_%s is set but load set '%s' is a box: it applies to an edge grip; remove it or choose an edge region", n,
+                   option, n);
     } else {
       SceneCheck(!li.box_set, comm,
                  "-load_%s_box is set but -load_%s_region is %s: the box is only used with region box; remove it or set the region to box",
                  n, n, to_string(set.region));
-      SceneCheck(li.layers >= 1, comm, "-load_%s_layers %" PetscInt_FMT ": take at least one point layer (the default, 1)", n,
-                 li.layers);
+      const std::string placement = Lower(li.placement) == "auto" ? to_string(default_placement) : Lower(li.placement);
+      if (placement == "outside") set.placement = GripPlacement::outside;
+      else if (placement == "inside") set.placement = GripPlacement::inside;
+      else SceneCheck(false, comm, "-load_%s_placement '%s' is not a choice: choose outside, inside or auto", n, li.placement.c_str());
+      SceneCheck(!(li.layers_set && li.depth_set), comm,
+                 "-load_%s_layers and -load_%s_depth both give the grip's depth: keep one (rows, or metres)", n, n);
+      SceneCheck(!li.depth_set || li.depth > 0, comm, "-load_%s_depth %g m: a grip's depth must be > 0", n, li.depth);
+      SceneCheck(li.layers >= 1, comm, "-load_%s_layers %" PetscInt_FMT ": take at least one point row", n, li.layers);
+      const bool outside = set.placement == GripPlacement::outside;
+      if (li.depth_set) set.layers = GripRows(li.depth, b.dx);
+      else if (li.layers_set || !outside) set.layers = static_cast<int>(li.layers);
+      else set.layers = GripRows(2.0 * scene->horizon(), b.dx);
       const bool   vertical = set.region == LoadSet::Region::top || set.region == LoadSet::Region::bottom;
       const double across   = vertical ? b.height : b.width;
-      SceneCheck(li.layers * b.dx < across, comm,
-                 "-load_%s_layers %" PetscInt_FMT " is %g m deep, the whole body %s (%g m): use fewer layers", n, li.layers, li.layers * b.dx,
-                 vertical ? "height" : "width", across);
-      set.layers = static_cast<int>(li.layers);
+      SceneCheck(outside || set.layers * b.dx < across, comm,
+                 "-load_%s_layers %d (placement inside) is %g m deep, the whole body %s (%g m): use fewer rows, or place the grip "
+                 "outside (-load_%s_placement outside)",
+                 n, set.layers, set.layers * b.dx, vertical ? "height" : "width", across, n);
+      if (outside) {
+        int64_t &rows = set.region == LoadSet::Region::top      ? scene->body.grip_rows.top
+                        : set.region == LoadSet::Region::bottom ? scene->body.grip_rows.bottom
+                        : set.region == LoadSet::Region::left   ? scene->body.grip_rows.left
+                                                                : scene->body.grip_rows.right;
+        rows = std::max<int64_t>(rows, set.layers);
+      }
     }
 
     SceneCheck(ParseComponent(li.x, &set.x), comm, "-load_%s_x '%s' is not a choice: choose free, fixed or stretch", n, li.x.c_str());
@@ -166,17 +204,20 @@ PetscErrorCode CheckLoading(MPI_Comm comm, const SceneInput &in, Scene *scene)
                                   n, n, n)));
     scene->loads.push_back(set);
   }
+  int top = 0, bottom = 0, outside = 0; // the sets holding y at the top and bottom edges
+  for (const LoadSet &l : scene->loads) {
+    if (l.y == ComponentLoad::free) continue;
+    top += l.region == LoadSet::Region::top;
+    bottom += l.region == LoadSet::Region::bottom;
+    outside += (l.region == LoadSet::Region::top || l.region == LoadSet::Region::bottom) && l.placement == GripPlacement::outside;
+  }
   const std::string field = Lower(in.grip_field);
-  if (field == "rigid") scene->grip_field = GripField::rigid;
+  if (field == "auto") // the default: affine where it applies, to a top and a bottom grip outside
+    scene->grip_field = top == 1 && bottom == 1 && outside == 2 ? GripField::affine : GripField::rigid;
+  else if (field == "rigid") scene->grip_field = GripField::rigid;
   else if (field == "affine") scene->grip_field = GripField::affine;
-  else SETERRQ(comm, PETSC_ERR_USER, "%s", Format("-load_grip_field '%s' is not a choice: choose rigid or affine", in.grip_field.c_str()).c_str());
+  else SETERRQ(comm, PETSC_ERR_USER, "%s", Format("-load_grip_field '%s' is not a choice: choose rigid, affine or auto", in.grip_field.c_str()).c_str());
   if (scene->grip_field == GripField::affine) {
-    int top = 0, bottom = 0;
-    for (const LoadSet &l : scene->loads) {
-      if (l.y == ComponentLoad::free) continue;
-      top += l.region == LoadSet::Region::top;
-      bottom += l.region == LoadSet::Region::bottom;
-    }
     SceneCheck(top == 1 && bottom == 1, comm,
                "-load_grip_field affine continues the stretch between a top and a bottom grip, but the load sets hold y at %d top "
                "and %d bottom edge(s): give exactly one of each (-load_NAME_region top|bottom with -load_NAME_y fixed or stretch), "
@@ -197,6 +238,17 @@ const char *to_string(LoadSet::Region region)
   }
   return "unknown";
 }
+
+int GripRows(double depth, double dx)
+{
+  // Row j's centre lies (j + 1/2) dx from the edge; 1e-9: a depth of whole rows given
+  // in metres (6 x 0.5 mm) keeps its rows despite round-off.
+  return std::max(1, static_cast<int>(std::ceil(depth / dx - 0.5 - 1e-9)));
+}
+
+const char *to_string(GripPlacement placement) { return placement == GripPlacement::outside ? "outside" : "inside"; }
+
+const char *to_string(GripField field) { return field == GripField::affine ? "affine" : "rigid"; }
 
 const char *to_string(ComponentLoad load)
 {

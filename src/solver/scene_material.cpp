@@ -57,7 +57,7 @@ PetscErrorCode ReadMaterial(MPI_Comm comm, Scene *scene, SceneInput *in)
     PetscCall(r.String("-force_stress_correction",
                        "Bond-only force made stress-consistent (sum_j t_ij (x) xi_ij V_j = P for a uniform P; "
                        "docs/stress_consistency.md): none (the paper's) | tensor (M_i^-1 per point) | scalar (1/m_i, "
-                       "m_i = tr M_i / 2); the energy-consistent form needs none",
+                       "m_i = tr M_i / 2) | auto (tensor for bond_only, none for energy_consistent, which needs none)",
                        &in->stress_correction));
     PetscCall(r.Real("-material_mu", "Shear modulus mu [Pa] (paper: 4.55e3)", &m.mu));
     // every law's own parameters (defaults: the members' initialisers), listed for all
@@ -103,9 +103,13 @@ PetscErrorCode CheckMaterial(MPI_Comm comm, const SceneInput &in, Scene *scene)
   else
     SETERRQ(comm, PETSC_ERR_USER, "%s",
             Format("-force_form '%s' is not a force form: choose bond_only (the paper's) or energy_consistent", in.force_form.c_str()).c_str());
-  if (!parse(Lower(in.stress_correction), scene->stress_correction))
+  // Default: the bond-only force corrected (its bulk is 4.2 % soft without, issue 14);
+  // the energy-consistent form is stress-consistent as it is.
+  if (Lower(in.stress_correction) == "auto")
+    scene->stress_correction = scene->force_form == ForceForm::bond_only ? StressCorrection::tensor : StressCorrection::none;
+  else if (!parse(Lower(in.stress_correction), scene->stress_correction))
     SETERRQ(comm, PETSC_ERR_USER, "%s",
-            Format("-force_stress_correction '%s' is not a correction: choose none (the paper's force), tensor or scalar",
+            Format("-force_stress_correction '%s' is not a correction: choose none (the paper's force), tensor, scalar or auto",
                    in.stress_correction.c_str()).c_str());
 
   SceneCheck(!(in.D_set && in.bulk_ratio_set), comm,

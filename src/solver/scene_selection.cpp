@@ -18,13 +18,21 @@ PetscErrorCode LoadSetSelect(const Scene &scene, const LoadSet &set, const doubl
   for (PetscInt i = 0; i < n; ++i) {
     const double px = x[2 * i], py = x[2 * i + 1];
     bool         in = false;
-    switch (set.region) {
-    case LoadSet::Region::top: in = py > b.height - depth; break;
-    case LoadSet::Region::bottom: in = py < depth; break;
-    case LoadSet::Region::left: in = px < depth; break;
-    case LoadSet::Region::right: in = px > b.width - depth; break;
-    case LoadSet::Region::box: in = px >= set.box[0] && px <= set.box[2] && py >= set.box[1] && py <= set.box[3]; break;
-    }
+    if (set.placement == GripPlacement::outside) switch (set.region) {
+      case LoadSet::Region::top: in = py > b.height && py < b.height + depth; break;
+      case LoadSet::Region::bottom: in = py < 0 && py > -depth; break;
+      case LoadSet::Region::left: in = px < 0 && px > -depth; break;
+      case LoadSet::Region::right: in = px > b.width && px < b.width + depth; break;
+      case LoadSet::Region::box: break; // (a box is inside)
+      }
+    else switch (set.region) {
+         // (not the rows of other grips placed outside the sheet)
+      case LoadSet::Region::top: in = py > b.height - depth && py < b.height; break;
+      case LoadSet::Region::bottom: in = py < depth && py > 0; break;
+      case LoadSet::Region::left: in = px < depth && px > 0; break;
+      case LoadSet::Region::right: in = px > b.width - depth && px < b.width; break;
+      case LoadSet::Region::box: in = px >= set.box[0] && px <= set.box[2] && py >= set.box[1] && py <= set.box[3]; break;
+      }
     if (in) selected->push_back(i);
   }
   PetscFunctionReturn(0);

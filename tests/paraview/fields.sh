@@ -13,7 +13,8 @@ if ! command -v pvpython > /dev/null || ! command -v xvfb-run > /dev/null; then
 fi
 work="paraview_fields"
 rm -rf "$work"; mkdir -p "$work"
-# 30 x 12 points, 390 steps: the crack runs from about step 150; files at 0, 100, 200, 300, 390.
+# 30 x 12 points and 6 grip rows outside above and below (720 points), 390 steps: the crack runs
+# from about step 150; files at 0, 100, 200, 300, 390.
 scene=("${NOTCHED[@]}" "${FRACTURE[@]}" -body_dx 0.001 -ts_max_steps 390 -output_fields -output_fields_interval 100)
 run 2 "$work/current" "${scene[@]}"
 run 2 "$work/reference" "${scene[@]}" -output_fields_geometry reference
@@ -26,7 +27,7 @@ pv() {
   return "${PIPESTATUS[0]}"
 }
 for geometry in current reference; do
-  pv "$work/$geometry" 360 5 "$work" --last-step 390 --ranks 2 --geometry "$geometry" ||
+  pv "$work/$geometry" 720 5 "$work" --last-step 390 --ranks 2 --geometry "$geometry" ||
     fail "ParaView does not show the fields of $work/$geometry as expected"
 done
 for png in "$work"/damage_*.png; do

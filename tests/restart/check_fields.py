@@ -43,6 +43,7 @@ def main():
     p.add_argument("--dx", type=float, required=True)
     p.add_argument("--nx", type=int, required=True)
     p.add_argument("--ny", type=int, required=True)
+    p.add_argument("--grip_rows", type=int, default=0, help="rows of each grip outside the sheet, below and above it")
     p.add_argument("--interval", type=int, required=True)
     p.add_argument("--last", type=int, required=True, help="the run's last step")
     p.add_argument("--thickness", type=float, required=True)
@@ -50,7 +51,8 @@ def main():
     p.add_argument("xdmf")
     args = p.parse_args()
     base = os.path.dirname(os.path.abspath(args.xdmf))
-    n = args.nx * args.ny
+    rows = args.ny + 2 * args.grip_rows  # the grips' rows outside the sheet: j from -grip_rows
+    n = args.nx * rows
 
     root = ET.parse(args.xdmf).getroot()
     series = root.find("Domain/Grid")
@@ -92,7 +94,7 @@ def main():
         fail(f"times {times} do not increase from 0")
 
     # Natural order is lattice order: x fastest, cell centres (i + 1/2) dx.
-    i, j = np.meshgrid(np.arange(args.nx), np.arange(args.ny))
+    i, j = np.meshgrid(np.arange(args.nx), np.arange(-args.grip_rows, args.ny + args.grip_rows))
     lattice = np.column_stack([(i.ravel() + 0.5) * args.dx, (j.ravel() + 0.5) * args.dx, np.zeros(n)])
     for t, name, f in frames:
         if not np.allclose(f["reference_position"], lattice, rtol=0, atol=1e-15):  # round-off of (i + 1/2) dx
@@ -141,7 +143,7 @@ def main():
     first, last = frames[0][2], frames[-1][2]
     if np.any(first["displacement"] != 0):
         fail("the displacement at t = 0 is not zero")
-    inside = (j.ravel() > 0) & (j.ravel() < args.ny - 1)  # off the grips, which move from t = 0
+    inside = (j.ravel() >= 0) & (j.ravel() < args.ny)  # off the grips, which move from t = 0
     if np.any(first["velocity"][inside] != 0):
         fail("the velocity at t = 0 is not zero off the grips")
     if np.any(first["damage"] != 0) or not np.allclose(first["max_bond_stretch"], 1, rtol=0, atol=1e-15):

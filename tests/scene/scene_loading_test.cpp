@@ -9,6 +9,8 @@
 #include <vector>
 
 #include "bapd/lattice.hpp"
+#include "bapd/layout.hpp"
+#include "bapd/loading.hpp"
 #include "bapd/scene.hpp"
 
 namespace {
@@ -239,6 +241,97 @@ TEST(ScenePointEstimate, CountsWhatTheLatticeBuilds)
   EXPECT_EQ(bapd::ScenePointEstimate(scene), (PetscInt)bapd::make_lattice(scene.body).size());
   scene.body.holes.clear();
   EXPECT_EQ(bapd::ScenePointEstimate(scene), 80 * 160);
+}
+
+// Grips outside the specimen (Body2D::grip_rows): whole rows beyond each edge, each
+// the edge row extruded, counted as built, held by the outside sets alone.
+TEST(GripRows, ExtrudeTheEdgeRowsAndAreCountedAsBuilt)
+{
+  Scene scene = Plate();
+  scene.body.holes.push_back({0.02, 0.16, 0.0052}); // cuts the top edge row: 10 of its points
+  scene.body.grip_rows = {2, 3, 6, 6};              // left, right, bottom, top
+  const bapd::PointCloud cloud = bapd::make_lattice(scene.body);
+  EXPECT_EQ(bapd::ScenePointEstimate(scene), (PetscInt)cloud.size());
+  std::vector<double> top_edge, top_strip; // x of the sheet's top row, and of each row above it
+  int                 strip_rows_seen = 0;
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    const double x = cloud.x[2 * i], y = cloud.x[2 * i + 1];
+    if (std::fabs(y - 0.1595) < 1e-9 && x > 0 && x < 0.08) top_edge.push_back(x);
+    if (std::fabs(y - 0.1655) < 1e-9 && x > 0 && x < 0.08) top_strip.push_back(x); // the 6th row above
+    strip_rows_seen += std::fabs(y - 0.1665) < 1e-9;                                // a 7th: none
+  }
+  EXPECT_EQ(top_edge.size(), 70u);
+  EXPECT_EQ(top_strip, top_edge);
+  EXPECT_EQ(strip_rows_seen, 0);
+  // Shapes: the same count rule.
+  scene.body.holes.clear();
+  bapd::Shape disc;
+  disc.kind = bapd::Shape::Kind::circle, disc.op = bapd::Shape::Op::subtract, disc.cx = 0.08, disc.cy = 0.0, disc.a = disc.b = 0.0105;
+  scene.body.shapes.push_back(disc);
+  EXPECT_EQ(bapd::ScenePointEstimate(scene), (PetscInt)bapd::make_lattice(scene.body).size());
+
+  // Selection: an outside top grip of 6 rows holds the 6 x 80 points above the sheet
+  // (the sheet's x-extent: no side grips here); an inside one the sheet's own rows.
+  Scene plate = Plate();
+  plate.body.grip_rows.top = plate.body.grip_rows.bottom = 6;
+  const Share share = TakeShare(bapd::make_lattice(plate.body));
+  LoadSet     set;
+  set.placement = bapd::GripPlacement::outside;
+  set.layers    = 6;
+  set.region    = LoadSet::Region::top;
+  EXPECT_EQ(GlobalCount(plate, set, share), 6 * 80);
+  set.layers = 4; // a shallower set on the same edge: the 4 rows next to the sheet
+  EXPECT_EQ(GlobalCount(plate, set, share), 4 * 80);
+  set.region = LoadSet::Region::bottom;
+  EXPECT_EQ(GlobalCount(plate, set, share), 4 * 80);
+  set.placement = bapd::GripPlacement::inside;
+  set.layers    = 1;
+  EXPECT_EQ(GlobalCount(plate, set, share), 80); // inside: 0 < y < dx, not the outside grip's rows
+}
+
+// -load_grip_field affine (the default outside): every held y of the top and bottom
+// grips is the affine continuation of the free region's mean stretch, and x is what
+// the set says. Pure shear (top scale 1, bottom fixed): u_y = (lambda - 1) y; the
+// plate (scales +-1/2): u_y = (lambda - 1) (y - H/2). Tolerance: a few ulps of u.
+TEST(GripField, AffineGripsContinueTheMeanStretch)
+{
+  for (const double bottom_scale : {0.0, -0.5}) {
+    Scene scene = Plate();
+    scene.body.grip_rows.top = scene.body.grip_rows.bottom = 6;
+    scene.reference_length = scene.body.height;
+    scene.schedule         = RampHoldRamp();
+    scene.grip_field       = bapd::GripField::affine;
+    LoadSet top, bottom;
+    top.name = "top", bottom.name = "bottom";
+    top.region = LoadSet::Region::top, bottom.region = LoadSet::Region::bottom;
+    top.placement = bottom.placement = bapd::GripPlacement::outside;
+    top.layers = bottom.layers = 6;
+    top.x = bottom.x = bapd::ComponentLoad::fixed;
+    top.y = bapd::ComponentLoad::stretch, top.y_scale = 1.0 + bottom_scale;
+    bottom.y = bottom_scale == 0 ? bapd::ComponentLoad::fixed : bapd::ComponentLoad::stretch, bottom.y_scale = bottom_scale;
+    scene.loads = {top, bottom};
+    bapd::Layout layout;
+    layout.cloud   = bapd::make_lattice(scene.body);
+    layout.n_owned = static_cast<PetscInt>(layout.cloud.size());
+    bapd::Loading loading;
+    ASSERT_EQ(loading.Setup(PETSC_COMM_SELF, scene, layout), 0);
+    const double        t = 2.5, lambda = scene.schedule.stretch_at(t), y_centre = -bottom_scale * scene.body.height;
+    std::vector<double> u(2 * layout.cloud.size(), 7.0), v(u.size(), 7.0);
+    loading.Apply(t, u.data(), v.data());
+    std::size_t held = 0;
+    for (std::size_t i = 0; i < layout.cloud.size(); ++i) {
+      const double y = layout.cloud.x[2 * i + 1];
+      if (y > 0 && y < scene.body.height) { // free: untouched
+        EXPECT_EQ(u[2 * i + 1], 7.0);
+        continue;
+      }
+      ++held;
+      EXPECT_EQ(u[2 * i], 0.0);
+      EXPECT_NEAR(u[2 * i + 1], (lambda - 1) * (y - y_centre), 1e-15);
+      EXPECT_NEAR(v[2 * i + 1], scene.schedule.rate_at(t) * (y - y_centre), 1e-15);
+    }
+    EXPECT_EQ(held, 2u * 6 * 80);
+  }
 }
 
 } // namespace

@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <map>
 #include <string>
+#include <utility>
 #include <unistd.h>
 
 #include "bapd/scene.hpp"
@@ -272,7 +273,15 @@ TEST_F(SceneOptions, ReadsThePlateWithAHoleWithItsDefaults)
   const LoadSet &top = scene.loads[0], &bottom = scene.loads[1];
   EXPECT_EQ(top.name, "top");
   EXPECT_EQ(top.region, LoadSet::Region::top);
-  EXPECT_EQ(top.layers, 1);
+  // Grips outside the specimen, two horizons deep (2 x 3.015 dx: the 6 rows whose
+  // centres lie within it), the affine field, the corrected bond-only force.
+  EXPECT_EQ(top.placement, bapd::GripPlacement::outside);
+  EXPECT_EQ(top.layers, 6);
+  EXPECT_EQ(scene.body.grip_rows.top, 6);
+  EXPECT_EQ(scene.body.grip_rows.bottom, 6);
+  EXPECT_EQ(scene.body.grip_rows.left + scene.body.grip_rows.right, 0);
+  EXPECT_EQ(scene.grip_field, bapd::GripField::affine);
+  EXPECT_EQ(scene.stress_correction, bapd::StressCorrection::tensor);
   EXPECT_EQ(top.x, ComponentLoad::fixed);
   EXPECT_EQ(top.y, ComponentLoad::stretch);
   EXPECT_EQ(top.y_scale, 0.5);
@@ -437,6 +446,53 @@ Options Apply(Options base, const Options &change)
   return base;
 }
 
+// The paper's method (docs/options.md, "The paper's method"): one row of the
+// specimen's own edge per grip, rigid, the bond-only force uncorrected.
+TEST_F(SceneOptions, PaperGripsAreOneRigidRowInsideTheSpecimen)
+{
+  Options o = PlateWithHole();
+  o["-load_grip_placement"] = "inside";
+  o["-force_stress_correction"] = "none";
+  Scene scene;
+  ASSERT_EQ(Read(o, &scene), 0) << ErrorText();
+  for (const LoadSet &l : scene.loads) {
+    EXPECT_EQ(l.placement, bapd::GripPlacement::inside);
+    EXPECT_EQ(l.layers, 1);
+  }
+  EXPECT_FALSE(scene.body.grip_rows.any());
+  EXPECT_EQ(scene.grip_field, bapd::GripField::rigid);
+  EXPECT_EQ(scene.stress_correction, bapd::StressCorrection::none);
+  EXPECT_EQ(scene.reference_length, 0.16); // the whole height, as the paper measures it
+}
+
+TEST_F(SceneOptions, GripDepthInRowsOrMetresAndPerSetPlacement)
+{
+  Options o = PlateWithHole();
+  o["-load_top_depth"] = "0.004";      // rows at 0.5 .. 3.5 mm: 4
+  o["-load_bottom_placement"] = "inside";
+  o["-load_bottom_layers"] = "2";
+  o["-horizon_factor"] = "2.515";
+  Scene scene;
+  ASSERT_EQ(Read(o, &scene), 0) << ErrorText();
+  EXPECT_EQ(scene.loads[0].placement, bapd::GripPlacement::outside);
+  EXPECT_EQ(scene.loads[0].layers, 4);
+  EXPECT_EQ(scene.loads[1].placement, bapd::GripPlacement::inside);
+  EXPECT_EQ(scene.loads[1].layers, 2);
+  EXPECT_EQ(scene.body.grip_rows.top, 4);
+  EXPECT_EQ(scene.body.grip_rows.bottom, 0);
+  EXPECT_EQ(scene.grip_field, bapd::GripField::rigid); // affine by default only with both grips outside
+  // The default depth is two horizons: 2 x 2.515 dx holds 5 row centres, 2 x 3.515 dx 7.
+  for (const auto &[factor, rows] : {std::pair{"2.515", 5}, {"3.015", 6}, {"3.515", 7}}) {
+    Options d = PlateWithHole();
+    d["-horizon_factor"] = factor;
+    ASSERT_EQ(Read(d, &scene), 0) << ErrorText();
+    EXPECT_EQ(scene.loads[0].layers, rows) << factor;
+    EXPECT_EQ(scene.body.grip_rows.bottom, rows) << factor;
+  }
+  EXPECT_EQ(bapd::GripRows(6 * 0.0005, 0.0005), 6); // whole rows given in metres keep their count
+  EXPECT_EQ(bapd::GripRows(0.1e-3, 1e-3), 1);       // at least one row
+}
+
 TEST_F(SceneOptions, RejectsEachInvalidInputNamingItsOption)
 {
   const std::vector<Case> cases = {
@@ -463,6 +519,11 @@ TEST_F(SceneOptions, RejectsEachInvalidInputNamingItsOption)
     {"holes across the width", {{"-body_holes", "0.02,0.08,0.02,0.06,0.08,0.02"}}, "-body_holes", "hole 1, hole 2 together join the left and right edges"},
     {"notch cutting a corner", {{"-body_notches", "0,0.15,0.01,0.16"}}, "-body_notches", "top-left corner"},
     {"horizon below one spacing", {{"-horizon_factor", "0.5"}}, "-horizon_factor"},
+    // grips
+    {"unknown placement", {{"-load_grip_placement", "beside"}}, "-load_grip_placement", "outside or inside"},
+    {"unknown set placement", {{"-load_top_placement", "over"}}, "-load_top_placement", "outside, inside or auto"},
+    {"depth and layers", {{"-load_top_depth", "0.003"}, {"-load_top_layers", "3"}}, "-load_top_depth", "keep one"},
+    {"depth zero", {{"-load_top_depth", "0"}}, "-load_top_depth", "> 0"},
     // material
     {"unknown model", {{"-material_model", "mooney"}}, "-material_model", "choose gent, neo_hookean, mooney_rivlin, yeoh, arruda_boyce or ogden"},
     {"unknown formulation", {{"-material_formulation", "3d"}}, "-material_formulation", "plane_stress or plane_strain"},
@@ -474,7 +535,7 @@ TEST_F(SceneOptions, RejectsEachInvalidInputNamingItsOption)
     {"bulk ratio zero", {{"-material_bulk_ratio", "0"}}, "-material_bulk_ratio"},
     {"density zero", {{"-material_density", "0"}}, "-material_density"},
     {"critical stretch below one", {{"-failure_critical_stretch", "0.9"}}, "-failure_critical_stretch", "> 1"},
-    {"unknown stress correction", {{"-force_stress_correction", "matrix"}}, "-force_stress_correction", "none (the paper's force), tensor or scalar"},
+    {"unknown stress correction", {{"-force_stress_correction", "matrix"}}, "-force_stress_correction", "none (the paper's force), tensor, scalar or auto"},
     // loading
     {"set name with a dash", {{"-load_sets", "top-grip"}}, "-load_sets", "letters"},
     {"set listed twice", {{"-load_sets", "top,bottom,top"}}, "-load_sets", "twice"},
@@ -487,7 +548,7 @@ TEST_F(SceneOptions, RejectsEachInvalidInputNamingItsOption)
     {"box on an edge region", {{"-load_top_box", "0,0.15,0.08,0.16"}}, "-load_top_box", "region box"},
     {"layers zero", {{"-load_top_layers", "0"}}, "-load_top_layers"},
     {"layers not whole", {{"-load_top_layers", "1.5"}}, "-load_top_layers", "whole number"},
-    {"layers through the body", {{"-load_top_layers", "160"}}, "-load_top_layers", "fewer layers"},
+    {"layers through the body", {{"-load_top_placement", "inside"}, {"-load_top_layers", "160"}}, "-load_top_layers", "fewer rows"},
     {"unknown component load", {{"-load_top_x", "pull"}}, "-load_top_x", "free, fixed or stretch"},
     {"scale on a fixed component", {{"-load_top_x_scale", "0.5"}}, "-load_top_x_scale", "stretch"},
     {"stretch without schedule", {{"-load_schedule", "<erase>"}, {"-end_time", "1"}}, "-load_top_y", "-load_schedule"},
@@ -496,7 +557,7 @@ TEST_F(SceneOptions, RejectsEachInvalidInputNamingItsOption)
     {"schedule negative time", {{"-load_schedule", "-1,1,1,1.5"}}, "-load_schedule", "t >= 0"},
     {"schedule stretch zero", {{"-load_schedule", "0,1,1,0"}}, "-load_schedule", "> 0"},
     {"reference length zero", {{"-load_reference_length", "0"}}, "-load_reference_length"},
-    {"unknown grip field", {{"-load_grip_field", "mirror"}}, "-load_grip_field", "rigid or affine"},
+    {"unknown grip field", {{"-load_grip_field", "mirror"}}, "-load_grip_field", "rigid, affine or auto"},
     {"affine grips without a bottom grip", {{"-load_grip_field", "affine"}, {"-load_bottom_y", "free"}, {"-load_bottom_y_scale", "<erase>"}}, "-load_grip_field", "1 top and 0 bottom"},
     // probes
     {"probe outside", {{"-probe_left_mid_at", "0.1,0.08"}}, "-probe_left_mid_at", "outside the body"},

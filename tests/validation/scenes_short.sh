@@ -20,9 +20,11 @@ run pure_shear -options_file_yaml "$ex/pure_shear.yaml" -body_dx 0.001 -load_sch
 import csv, sys
 work = sys.argv[1]
 failures = []
-# Plate: the full runs converge on the FEA u_max from below, about linearly in dx
-# (3.015 dx: -3.4 % at dx = 2 mm, -1.7 % at 1 mm, -0.7 % at 0.5 mm). At dx = 2 mm every
-# static u_max must therefore be 2 to 4.5 % below FEA.
+# Plate, with the defaults (grips outside the specimen, affine field, tensor-corrected
+# bond-only force): the runs converge on the FEA u_max from below (3.015 dx: -1.5 to
+# -1.9 % at dx = 2 mm, -0.5 to -0.8 % at 1 mm; docs/stress_consistency.md). At dx = 2 mm
+# every static u_max must be 1 to 2.5 % below FEA; the paper's method (one rigid row
+# inside, uncorrected: -3.4 % here) fails this band.
 FEA = {1.5: 8.62, 1.75: 11.10, 2.0: 13.01}
 rows = list(csv.DictReader(open(f"{work}/plate/static_states.csv")))
 seen = set()
@@ -34,13 +36,15 @@ for r in rows:
     u = abs(float(r["left_mid_ux_m"])) * 1e3
     err = 100 * (u - FEA[lam]) / FEA[lam]
     print(f"plate, stretch {lam}: u_max {u:.4f} mm, {err:+.2f} % against FEA {FEA[lam]} mm")
-    if not -4.5 <= err <= -2.0:
-        failures.append(f"plate u_max at stretch {lam} is {err:+.2f} % off FEA, outside [-4.5, -2.0] %")
+    if not -2.5 <= err <= -1.0:
+        failures.append(f"plate u_max at stretch {lam} is {err:+.2f} % off FEA, outside [-2.5, -1.0] %")
 if seen != set(FEA):
     failures.append(f"plate: static states at {sorted(seen)}, expected {sorted(FEA)}")
-# Pure shear: the full run (dx = 0.5 mm) is 0.959-0.995 of eq 36 between stretch 1.4 and
-# 5.1; on this coarser grid the grip rows, dx/2 inside the edges, stretch the free sheet
-# 10 % more than lambda - 1 says instead of 5 %, which lifts the ratio by up to ~2 %.
+# Pure shear: with the defaults the static states are within 0.2 % of the FE solution
+# of the clamped sheet at dx = 0.5 and 1 mm, which lies 0.3 to 0.5 % below eq 36 (the
+# free side edges); this run (dx = 1 mm, loaded in 0.5 s) measures 0.988 to 0.998 of
+# eq 36 between stretch 1.5 and 3. Band: 0.975 to 1.01; the uncorrected bond-only
+# force (0.95-0.96 at stretch 1.5) fails it.
 MU, JM = 4.55e3, 162.6
 def eq36(l):
     return MU * JM * (l - l ** -3) / (JM - l ** 2 - l ** -2 + 2)
@@ -50,8 +54,8 @@ for target in (1.5, 2.0, 2.5, 3.0):
     lam, s = float(r["stretch"]), float(r["top_nominal_stress_Pa"])
     ratio = s / eq36(lam)
     print(f"pure shear, stretch {lam:.3f}: {s / 1e3:.3f} kPa, eq 36 {eq36(lam) / 1e3:.3f} kPa, ratio {ratio:.4f}")
-    if not 0.95 <= ratio <= 1.02:
-        failures.append(f"pure shear at stretch {lam:.3f}: {ratio:.4f} of eq 36, outside [0.95, 1.02]")
+    if not 0.975 <= ratio <= 1.01:
+        failures.append(f"pure shear at stretch {lam:.3f}: {ratio:.4f} of eq 36, outside [0.975, 1.01]")
 for f in failures:
     print("FAIL", f)
 sys.exit(1 if failures else 0)
