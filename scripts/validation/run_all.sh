@@ -50,7 +50,7 @@ done
 run plate_dx0.5_h3.015 "$here/examples/plate_hole.yaml" "${fast[@]}" -body_dx 0.0005 -output_interval 80
 # The paper's method (one rigid row inside per grip, the uncorrected bond-only force):
 # its Table 1 row, next to the defaults (grips outside, affine, tensor correction).
-paper=(-load_grip_placement inside -force_stress_correction none)
+paper=(-force_form bond_only -load_grip_placement inside -force_stress_correction none)
 run plate_dx2_h3.015_paper "$here/examples/plate_hole.yaml" -body_dx 0.002 "${fast[@]}" "${paper[@]}"
 run plate_dx1_h3.015_paper "$here/examples/plate_hole.yaml" "${fast[@]}" "${paper[@]}" -output_interval 40
 # Pure shear's static states at stretch 1.5, 2, 3 against the FE solution of the

@@ -16,7 +16,7 @@ work="validation_grips_short"
 rm -rf "$work" && mkdir -p "$work" || exit 1
 run() { # name, options...
   local name="$1"; shift
-  timeout 300 mpiexec -n 1 --oversubscribe --bind-to none "$BAPD_EXE" -options_file_yaml "$BAPD_SOURCE_DIR/examples/pure_shear.yaml" \
+  timeout 300 mpiexec -n 1 --oversubscribe --bind-to none "$BAPD_EXE" -options_file_yaml "$BAPD_SOURCE_DIR/examples/pure_shear.yaml" -force_form bond_only \
     -body_width 0.030 -body_dx 0.001 -probe_right_mid_at 0.030,0.005 -load_schedule 0,1,0.05,1.5,1.05,1.5,1.1,2,2.1,2 \
     -relaxation adaptive -static_tolerance 1e-10 -output_interval 20 -output_final_state "$@" -output_dir "$work/$name" \
     > "$work/$name.log" 2>&1 || { tail -20 "$work/$name.log"; echo "FAIL: $name did not run to the end"; exit 1; }
