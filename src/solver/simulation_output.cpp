@@ -76,6 +76,9 @@ PetscErrorCode Simulation::SetupOutput()
   if (output_.checkpoint.on_error) {
     PetscCall(VecDuplicate(X_, &output_.good_state));
     for (Vec &earlier : output_.earlier_state) PetscCall(VecDuplicate(X_, &earlier));
+    // Sized now, so that a snapshot taken during the run copies into place (no
+    // allocation in a time step: tests/perf/Allocation.cpp).
+    for (std::vector<double> &c33 : output_.earlier_c33) c33.resize(force_.warm_start().size());
     PetscCall(SaveGoodState(step, t));
   }
   PetscFunctionReturn(0);

@@ -1,20 +1,23 @@
 # The scenes of full_disk.sh (sourced, with $what set): scene, the tmpfs size kb and
-# the file whose write fails.
+# the file whose write fails. The tiny scene keeps the paper's one-row grips inside
+# it, so that its files have the sizes below (400 points; the default grips outside
+# add 240 points and every file grows by 1.6 x).
+tiny=("$TINY" -load_grip_placement inside)
 case "$what" in
   checkpoint) # checkpoint 114 KB (150 KB reserved): the one of step 10 fits, the next not
-    kb=250 scene=("$TINY" -checkpoint_interval 10 -output_interval 2) file=checkpoint.h5 ;;
+    kb=250 scene=("${tiny[@]}" -checkpoint_interval 10 -output_interval 2) file=checkpoint.h5 ;;
   fields) # field files of 164 KB (196 KB reserved): steps 0 and 2 fit, step 4 not
-    kb=400 scene=("$TINY" -output_fields -output_fields_interval 2 -output_interval 2) file=fields/step_ ;;
+    kb=400 scene=("${tiny[@]}" -output_fields -output_fields_interval 2 -output_interval 2) file=fields/step_ ;;
   checkpoint_late | fields_late) # no reservation (BAPD_TEST_NO_SPACE_RESERVATION): the
     # writes fail inside HDF5, as on a disk another program fills after the reservation
     export BAPD_TEST_NO_SPACE_RESERVATION=1
     if [ "$what" = checkpoint_late ]; then # 180 KB: the second checkpoint's /bonds fail
-      kb=180 scene=("$TINY" -checkpoint_interval 10 -output_interval 2) file=checkpoint.h5
+      kb=180 scene=("${tiny[@]}" -checkpoint_interval 10 -output_interval 2) file=checkpoint.h5
     else # 400 KB: the third field file fails
-      kb=400 scene=("$TINY" -output_fields -output_fields_interval 2 -output_interval 2) file=fields/step_
+      kb=400 scene=("${tiny[@]}" -output_fields -output_fields_interval 2 -output_interval 2) file=fields/step_
     fi ;;
   history) # 4 KB free: about 20 rows of history.csv
-    kb=64 scene=("$TINY" -output_interval 1) file=history.csv ;;
+    kb=64 scene=("${tiny[@]}" -output_interval 1) file=history.csv ;;
   static) # the first hold ends at step 140; full_disk.sh leaves room for history.csv
           # up to then and not for static_states.csv
     kb=64
