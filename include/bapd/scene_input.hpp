@@ -59,6 +59,9 @@ struct SceneInput {
 // Body (scene_body.cpp): -body_* and -horizon_factor.
 PetscErrorCode ReadBody(MPI_Comm comm, Scene *scene, SceneInput *in);
 PetscErrorCode CheckBody(MPI_Comm comm, const SceneInput &in, Scene *scene);
+// Refuses a lattice that cannot fit in memory; after CheckLoading, which adds the rows
+// of the grips outside the sheet.
+PetscErrorCode CheckBodyFits(MPI_Comm comm, const Scene &scene);
 // Material and failure (scene_material.cpp): -material_*, -force_form, -failure_*.
 PetscErrorCode ReadMaterial(MPI_Comm comm, Scene *scene, SceneInput *in);
 PetscErrorCode CheckMaterial(MPI_Comm comm, const SceneInput &in, Scene *scene);

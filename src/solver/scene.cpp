@@ -60,6 +60,7 @@ PetscErrorCode SceneFromOptions(MPI_Comm comm, Scene *scene)
   PetscCall(CheckBody(comm, in, scene));
   PetscCall(CheckMaterial(comm, in, scene));
   PetscCall(CheckLoading(comm, in, scene));
+  PetscCall(CheckBodyFits(comm, *scene));
   PetscCall(CheckProbes(comm, in, scene));
   PetscCall(CheckOutputTime(comm, in, scene));
   PetscFunctionReturn(0);

@@ -392,7 +392,14 @@ PetscErrorCode CheckBody(MPI_Comm comm, const SceneInput &in, Scene *scene)
     PetscCall(Warn(comm, Format("-horizon_factor %g is outside [2, 5]: too few neighbours make the shape tensor fragile, too many "
                                 "smooth the solution and cost time; the paper uses 3.015",
                                 scene->horizon_factor)));
-  PetscCall(CheckMemory(comm, *scene, points));
+  PetscFunctionReturn(0);
+}
+
+// After CheckLoading: the grips outside the sheet (Body2D::grip_rows) are points too.
+PetscErrorCode CheckBodyFits(MPI_Comm comm, const Scene &scene)
+{
+  PetscFunctionBeginUser;
+  PetscCall(CheckMemory(comm, scene, ScenePointEstimate(scene)));
   PetscFunctionReturn(0);
 }
 
