@@ -51,8 +51,8 @@ PetscErrorCode ReadMaterial(MPI_Comm comm, Scene *scene, SceneInput *in)
     PetscCall(r.String("-material_model", model_help.c_str(), &in->model));
     PetscCall(r.String("-material_formulation", "2D reduction: plane_stress | plane_strain", &in->formulation));
     PetscCall(r.String("-force_form",
-                       "Bond force: bond_only (the paper's eq 23) | energy_consistent (minus the gradient of the strain "
-                       "energy: conserves energy undamped)",
+                       "Bond force: energy_consistent (the default: minus the gradient of the strain energy, "
+                       "conserves energy undamped, stress-consistent as it is) | bond_only (the paper's eq 23)",
                        &in->force_form));
     PetscCall(r.String("-force_stress_correction",
                        "Bond-only force made stress-consistent (sum_j t_ij (x) xi_ij V_j = P for a uniform P; "
