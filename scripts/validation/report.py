@@ -69,7 +69,7 @@ def plate(root, docs, lines):
               "(docs/stress_consistency.md); \"paper\": the paper's method, `-force_form bond_only -load_grip_placement inside "
               "-force_stress_correction none` (one rigid row inside per grip, eq 23 uncorrected). Points include the grips'. "
               "Steps: time steps to the last static state. CPU: user + system seconds of all ranks (`/usr/bin/time`); wall "
-              "and CPU times are from a 2-core machine shared with other jobs (load 8-13): compare them with each other, "
+              "and CPU times are from a 2-core machine shared with other jobs (load 8-17): compare them with each other, "
               "not as benchmarks.", "",
               "| method | dx (mm) | delta/dx | points | " + " | ".join(f"u_max at {l} (mm) [error]" for l in FEA) +
               " | max error | steps | CPU (s) | wall time (s, ranks) |",
@@ -89,6 +89,9 @@ def plate(root, docs, lines):
                      f" | {worst:.1f} % | {steps(root, name)} | {cpu:.0f} | {seconds:.0f} ({ranks}) |")
     lines.append("| FEA (paper) | | | | " + " | ".join(f"{v:.2f}" for v in FEA.values()) + " | | | | |")
     lines.append("| PD (paper, 3.015) | | | | " + " | ".join(f"{v:.2f}" for v in PAPER_PD.values()) + " | | | | |")
+    missing = [name for name, _, _ in cases if name not in {f[0] for f in found}]
+    if missing:
+        lines += ["", "Not run to the end (or not run) for this page: " + ", ".join(f"`{m}`" for m in missing) + "."]
     lines += ["", "Nominal stress, top reaction / (80 mm x 1 mm) (kPa); the FE of the clamped plate with K = 1000 mu "
               "(docs/fe_reference.md) gives 4.630 / 6.261 / 7.725:", "",
               "| method | dx (mm) | delta/dx | " + " | ".join(f"at {l}" for l in FEA) + " |", "|---|---|---|" + "---|" * len(FEA)]

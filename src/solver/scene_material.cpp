@@ -103,8 +103,9 @@ PetscErrorCode CheckMaterial(MPI_Comm comm, const SceneInput &in, Scene *scene)
   else
     SETERRQ(comm, PETSC_ERR_USER, "%s",
             Format("-force_form '%s' is not a force form: choose bond_only (the paper's) or energy_consistent", in.force_form.c_str()).c_str());
-  // Default: the bond-only force corrected (its bulk is 4.2 % soft without, issue 14);
-  // the energy-consistent form is stress-consistent as it is.
+  // auto: the bond-only force corrected (its bulk is 4.2 % soft without, issue 14); the
+  // energy-consistent form (the default force form: the bond-only one folds the free
+  // corners next to grips outside, docs/stress_consistency.md) is stress-consistent as it is.
   if (Lower(in.stress_correction) == "auto")
     scene->stress_correction = scene->force_form == ForceForm::bond_only ? StressCorrection::tensor : StressCorrection::none;
   else if (!parse(Lower(in.stress_correction), scene->stress_correction))
