@@ -320,8 +320,8 @@ def notched_run(root, docs, name, label, stages):
               f"{100 * (peak['top_nominal_stress_Pa'] / 10.25e3 - 1):+.0f} % on the experiment's 10.25 kPa)",
               f"- the crack starts to run (20 broken bonds) at stretch {start['stretch']:.3f} (paper: once stretch > 3)"
               if start else "- no crack in this run",
-              f"- {int(hist[-1]['broken_bonds'])} bonds broken at stretch {hist[-1]['stretch']:.3f}; "
-              f"{steps(root, name)} steps; wall time {seconds:.0f} s on {ranks} rank(s), CPU {cpu:.0f} s"]
+              f"- {int(hist[-1]['broken_bonds'])} bonds broken at stretch {hist[-1]['stretch']:.3f}"
+              + ("" if math.isnan(seconds) else f"; {steps(root, name)} steps; wall time {seconds:.0f} s on {ranks} rank(s), CPU {cpu:.0f} s")]
     lines += crack_path(os.path.join(root, name), peak["time_s"])
     fields = os.path.join(root, name, "fields.xdmf")
     final = hist[-1]["broken_bonds"]
