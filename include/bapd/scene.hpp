@@ -33,7 +33,7 @@ struct Scene {
 
   ModelKind          model       = ModelKind::gent;
   Formulation        formulation = Formulation::plane_stress;
-  ForceForm          force_form  = ForceForm::bond_only;
+  ForceForm          force_form  = ForceForm::energy_consistent;
   // -force_stress_correction (stress_correction.hpp): the bond-only force made to give
   // sum_j t_ij (x) xi_ij V_j = P; the identity for the energy-consistent form.
   StressCorrection   stress_correction = StressCorrection::none;

@@ -42,7 +42,7 @@ struct SceneInput {
   std::vector<double>      holes, notches;
   std::vector<std::string> shape_names;
   std::vector<ShapeInput>  shapes;
-  std::string              model = "gent", formulation = "plane_stress", force_form = "bond_only",
+  std::string              model = "gent", formulation = "plane_stress", force_form = "energy_consistent",
                            stress_correction = "auto", grip_field = "auto", grip_placement = "outside";
   bool                     D_set = false, bulk_ratio_set = false;
   double                   bulk_ratio = 1000.0;

@@ -51,8 +51,8 @@ PetscErrorCode ReadMaterial(MPI_Comm comm, Scene *scene, SceneInput *in)
     PetscCall(r.String("-material_model", model_help.c_str(), &in->model));
     PetscCall(r.String("-material_formulation", "2D reduction: plane_stress | plane_strain", &in->formulation));
     PetscCall(r.String("-force_form",
-                       "Bond force: bond_only (the paper's eq 23) | energy_consistent (minus the gradient of the strain "
-                       "energy: conserves energy undamped)",
+                       "Bond force: energy_consistent (the default: minus the gradient of the strain energy, "
+                       "conserves energy undamped, stress-consistent as it is) | bond_only (the paper's eq 23)",
                        &in->force_form));
     PetscCall(r.String("-force_stress_correction",
                        "Bond-only force made stress-consistent (sum_j t_ij (x) xi_ij V_j = P for a uniform P; "
@@ -103,8 +103,9 @@ PetscErrorCode CheckMaterial(MPI_Comm comm, const SceneInput &in, Scene *scene)
   else
     SETERRQ(comm, PETSC_ERR_USER, "%s",
             Format("-force_form '%s' is not a force form: choose bond_only (the paper's) or energy_consistent", in.force_form.c_str()).c_str());
-  // Default: the bond-only force corrected (its bulk is 4.2 % soft without, issue 14);
-  // the energy-consistent form is stress-consistent as it is.
+  // auto: the bond-only force corrected (its bulk is 4.2 % soft without, issue 14); the
+  // energy-consistent form (the default force form: the bond-only one folds the free
+  // corners next to grips outside, docs/stress_consistency.md) is stress-consistent as it is.
   if (Lower(in.stress_correction) == "auto")
     scene->stress_correction = scene->force_form == ForceForm::bond_only ? StressCorrection::tensor : StressCorrection::none;
   else if (!parse(Lower(in.stress_correction), scene->stress_correction))

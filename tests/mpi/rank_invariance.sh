@@ -2,7 +2,7 @@
 # The same scene on 1, 2, 3 and 4 ranks: the same history, final displacement field
 # (bit for bit: tolerance 0) and set of broken bonds.
 #   rank_invariance.sh elastic|fracture|fracture_corrected|shapes
-# (fracture_corrected: fracture with -force_stress_correction tensor, whose per-point
+# (fracture_corrected: fracture with the bond-only form and -force_stress_correction tensor, whose per-point
 # correction is built once from the unbroken families on every rank, ghosts included)
 set -euo pipefail
 case="$1"
@@ -33,7 +33,7 @@ if [ "$case" = shapes ]; then
 elif [ "$case" = fracture ] || [ "$case" = fracture_corrected ]; then
   # Stretch the sheet fast enough that the notch opens and bonds break within the run.
   scene+=(-load_schedule 0,1,0.2,1.6 -failure_critical_stretch 2.0)
-  [ "$case" = fracture_corrected ] && scene+=(-force_stress_correction tensor)
+  [ "$case" = fracture_corrected ] && scene+=(-force_form bond_only -force_stress_correction tensor)
 else
   scene+=(-load_schedule 0,1,0.1,1.3)
 fi

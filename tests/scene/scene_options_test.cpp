@@ -274,14 +274,16 @@ TEST_F(SceneOptions, ReadsThePlateWithAHoleWithItsDefaults)
   EXPECT_EQ(top.name, "top");
   EXPECT_EQ(top.region, LoadSet::Region::top);
   // Grips outside the specimen, two horizons deep (2 x 3.015 dx: the 6 rows whose
-  // centres lie within it), the affine field, the corrected bond-only force.
+  // centres lie within it), the affine field, the energy-consistent force (which
+  // needs no stress correction: auto is none for it).
   EXPECT_EQ(top.placement, bapd::GripPlacement::outside);
   EXPECT_EQ(top.layers, 6);
   EXPECT_EQ(scene.body.grip_rows.top, 6);
   EXPECT_EQ(scene.body.grip_rows.bottom, 6);
   EXPECT_EQ(scene.body.grip_rows.left + scene.body.grip_rows.right, 0);
   EXPECT_EQ(scene.grip_field, bapd::GripField::affine);
-  EXPECT_EQ(scene.stress_correction, bapd::StressCorrection::tensor);
+  EXPECT_EQ(scene.force_form, bapd::ForceForm::energy_consistent);
+  EXPECT_EQ(scene.stress_correction, bapd::StressCorrection::none);
   EXPECT_EQ(top.x, ComponentLoad::fixed);
   EXPECT_EQ(top.y, ComponentLoad::stretch);
   EXPECT_EQ(top.y_scale, 0.5);
@@ -451,10 +453,15 @@ Options Apply(Options base, const Options &change)
 TEST_F(SceneOptions, PaperGripsAreOneRigidRowInsideTheSpecimen)
 {
   Options o = PlateWithHole();
+  o["-force_form"] = "bond_only";
+  Scene corrected; // auto: the bond-only form is tensor-corrected unless told otherwise
+  ASSERT_EQ(Read(o, &corrected), 0) << ErrorText();
+  EXPECT_EQ(corrected.stress_correction, bapd::StressCorrection::tensor);
   o["-load_grip_placement"] = "inside";
   o["-force_stress_correction"] = "none";
   Scene scene;
   ASSERT_EQ(Read(o, &scene), 0) << ErrorText();
+  EXPECT_EQ(scene.force_form, bapd::ForceForm::bond_only);
   for (const LoadSet &l : scene.loads) {
     EXPECT_EQ(l.placement, bapd::GripPlacement::inside);
     EXPECT_EQ(l.layers, 1);

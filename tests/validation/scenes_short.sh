@@ -20,11 +20,12 @@ run pure_shear -options_file_yaml "$ex/pure_shear.yaml" -body_dx 0.001 -load_sch
 import csv, sys
 work = sys.argv[1]
 failures = []
-# Plate, with the defaults (grips outside the specimen, affine field, tensor-corrected
-# bond-only force): the runs converge on the FEA u_max from below (3.015 dx: -1.5 to
-# -1.9 % at dx = 2 mm, -0.5 to -0.8 % at 1 mm; docs/stress_consistency.md). At dx = 2 mm
-# every static u_max must be 1 to 2.5 % below FEA; the paper's method (one rigid row
-# inside, uncorrected: -3.4 % here) fails this band.
+# Plate, with the defaults (grips outside the specimen, affine field, energy-consistent
+# force): the runs converge on the FEA u_max from below (3.015 dx: -0.5 / -1.0 / -1.4 %
+# at stretch 1.5 / 1.75 / 2 at dx = 2 mm, this run; -0.0 / -0.3 / -0.5 % at dx = 1 mm;
+# docs/validation.md). At dx = 2 mm every static u_max must be 0.1 to 2 % below FEA;
+# the paper's method (one rigid row inside, uncorrected bond-only force: -3.4 % here)
+# fails this band, and so would a solution above the FEA.
 FEA = {1.5: 8.62, 1.75: 11.10, 2.0: 13.01}
 rows = list(csv.DictReader(open(f"{work}/plate/static_states.csv")))
 seen = set()
@@ -36,13 +37,13 @@ for r in rows:
     u = abs(float(r["left_mid_ux_m"])) * 1e3
     err = 100 * (u - FEA[lam]) / FEA[lam]
     print(f"plate, stretch {lam}: u_max {u:.4f} mm, {err:+.2f} % against FEA {FEA[lam]} mm")
-    if not -2.5 <= err <= -1.0:
-        failures.append(f"plate u_max at stretch {lam} is {err:+.2f} % off FEA, outside [-2.5, -1.0] %")
+    if not -2.0 <= err <= -0.1:
+        failures.append(f"plate u_max at stretch {lam} is {err:+.2f} % off FEA, outside [-2.0, -0.1] %")
 if seen != set(FEA):
     failures.append(f"plate: static states at {sorted(seen)}, expected {sorted(FEA)}")
-# Pure shear: with the defaults the static states are within 0.2 % of the FE solution
+# Pure shear: with the defaults the static states are within 0.4 % of the FE solution
 # of the clamped sheet at dx = 0.5 and 1 mm, which lies 0.3 to 0.5 % below eq 36 (the
-# free side edges); this run (dx = 1 mm, loaded in 0.5 s) measures 0.988 to 0.998 of
+# free side edges); this run (dx = 1 mm, loaded in 0.5 s) measures 0.985 to 0.996 of
 # eq 36 between stretch 1.5 and 3. Band: 0.975 to 1.01; the uncorrected bond-only
 # force (0.95-0.96 at stretch 1.5) fails it.
 MU, JM = 4.55e3, 162.6
