@@ -22,6 +22,8 @@
 // is in checkpoints, so a restart continues bit for bit.
 #include <petscts.h>
 
+#include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include "bapd/bond_state.hpp"
@@ -120,6 +122,13 @@ private:
   // 0.9 x the stable one at rest there is too little of it (the map's safety-1.0 cell
   // stopped with them), and every estimate runs as without them.
   bool Margin() const { return base_dt_ <= 0.9 * stable_dt_; }
+  // The stiffness step the latest lambda asks for: base x sqrt(lambda_rest / lambda),
+  // within [floor x base, base].
+  double StiffnessTarget() const { return std::clamp(base_dt_ * std::sqrt(lambda_rest_ / lambda_), floor_ * base_dt_, base_dt_); }
+  // Mixes seed_weight x the start vector into the eigenvector (Reestimate explains).
+  PetscErrorCode MixSeed(MPI_Comm comm);
+  static constexpr double seed_weight = 0.05;
+  static constexpr PetscInt rising_iterations = 4; // fewest iterations while the shortened step's lambda rises
   PetscErrorCode PowerStep(MPI_Comm comm, ForceOperator &force, const double *u0, const double *a0, double shift, double *lambda);
 
   TimeStepOptions options_;
