@@ -114,7 +114,8 @@ public:
   double       *eigenvector() { return v_.data(); }
 
 private:
-  PetscErrorCode Reestimate(MPI_Comm comm, ForceOperator &force, PetscInt *iterations);
+  // loading: the applied stretch moved since the last estimate.
+  PetscErrorCode Reestimate(MPI_Comm comm, ForceOperator &force, bool loading, PetscInt *iterations);
   // The lambda_max above which the base step would be shortened (outside the dead band).
   double ShorteningThreshold() const { return lambda_rest_ / ((1.0 - options_.band) * (1.0 - options_.band)); }
   // The back-off and the early stop spend part of the margin the safety factor leaves

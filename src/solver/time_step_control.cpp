@@ -202,7 +202,7 @@ void TimeStepControl::Record(const double *u, const double *a)
 // The C33 warm starts are a copy of the operator's committed ones (converged at that
 // very state), so the operator is left as it was and a restart (which restores them)
 // repeats the estimate bit for bit.
-PetscErrorCode TimeStepControl::Reestimate(MPI_Comm comm, ForceOperator &force, PetscInt *iterations)
+PetscErrorCode TimeStepControl::Reestimate(MPI_Comm comm, ForceOperator &force, bool loading, PetscInt *iterations)
 {
   PetscFunctionBegin;
   const double               wall      = MPI_Wtime();
@@ -230,15 +230,15 @@ PetscErrorCode TimeStepControl::Reestimate(MPI_Comm comm, ForceOperator &force, 
   // the quotient by about seed_weight^2 / 2 (0.1 %, inside the tolerance), and a mode
   // at 2 x lambda (2.8 x per shifted iteration) shows within three estimates.
   if (stiffness_dt_ < base_dt_) PetscCall(MixSeed(comm));
-  // And while it is shortened and the last estimate found lambda rising past the band,
-  // at least rising_iterations: a quotient still climbing by less than the tolerance
-  // per iteration is not settled then (the Jm = 3 plate, 2 mm: with one or three
-  // iterations the estimates read 2.95 x lambda_rest at stretch 1.9 and the run blew
-  // up; with four or more they read up to 24 x and it ran to the end).
-  // Rising: the last estimate shortened the step to its target (it shrinks only when
-  // lambda rose past the band; read from the state a checkpoint carries, so a restart
-  // repeats it).
-  const bool     rising = stiffness_dt_ < base_dt_ && stiffness_dt_ == StiffnessTarget();
+  // And while it is shortened and the load moves (or the last estimate shortened it,
+  // lambda having risen past the band), at least rising_iterations: a quotient still
+  // climbing by less than the tolerance per iteration is not settled then, as the
+  // fastest mode localises at a stiffening spot (the Jm = 3 plate: with one to three
+  // iterations the estimates read 2.9 x lambda_rest at stretch 1.8 to 1.9 and the run
+  // blew up; with four or more (2 mm) or six (1 mm) they read up to 24 and 41 x, and the
+  // run went on). Both read from the state a checkpoint carries: a restart repeats it.
+  const bool     shortened = stiffness_dt_ < base_dt_;
+  const bool     rising    = shortened && (loading || stiffness_dt_ == StiffnessTarget());
   const PetscInt fewest = rising ? std::min(std::max(options_.iterations, rising_iterations), options_.max_iterations) : options_.iterations;
   double       lambda = 0, previous = lambda_;
   PetscInt     it     = 0;
@@ -291,7 +291,7 @@ PetscErrorCode TimeStepControl::AfterStep(MPI_Comm comm, PetscInt step, double s
     estimate_stretch_          = stretch;
     const double   before = lambda_, stiffness_before = stiffness_dt_;
     PetscInt       iterations         = 0;
-    PetscCall(Reestimate(comm, force, &iterations));
+    PetscCall(Reestimate(comm, force, stretch_moved > 0, &iterations));
     // Shrinks at once; grows back by at most 2 x band per estimate: a quotient that
     // drops is not trusted at once (the warm-started iteration can lose the fastest
     // mode for a while when it moves: a Jm = 3 plate at stretch 2 showed lambda_max
