@@ -241,13 +241,22 @@ PetscErrorCode TimeStepControl::Reestimate(MPI_Comm comm, ForceOperator &force, 
   const bool     rising    = shortened && (loading || stiffness_dt_ == StiffnessTarget());
   const PetscInt fewest = rising ? std::min(std::max(options_.iterations, rising_iterations), options_.max_iterations) : options_.iterations;
   double       lambda = 0, previous = lambda_;
+  double       last_change = 0;
   PetscInt     it     = 0;
   while (it < options_.max_iterations) {
     PetscCall(PowerStep(comm, force, u_rec_.data(), a_rec_.data(), options_.shift * lambda_, &lambda));
     ++it;
     if (!std::isfinite(lambda)) break;
     const double change   = std::fabs(lambda - previous);
-    const bool   settled  = change <= options_.tolerance * std::fabs(lambda);
+    bool         settled  = change <= options_.tolerance * std::fabs(lambda);
+    // Rising: also the rest of the climb, were it to go on geometrically at the ratio
+    // of the last two increments (from the third iteration: the first increment holds
+    // the state's own change since the last estimate), must be within the tolerance.
+    if (rising && it >= 3 && last_change > 0) {
+      const double r = std::min(change / last_change, 0.95);
+      settled        = settled && change * r / (1.0 - r) <= options_.tolerance * std::fabs(lambda);
+    }
+    last_change = change;
     const bool   harmless = at_base && it >= 2 && lambda + 10.0 * change < threshold;
     previous              = lambda;
     if (it >= fewest && (settled || harmless)) break;
