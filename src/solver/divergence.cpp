@@ -257,6 +257,14 @@ std::string DivergenceAdvice(const DivergenceFacts &f)
                   f.horizon_factor < 2.5 ? " (with -horizon_factor below 2.5 the bond-only rest state itself can be unstable: "
                                            "then only the energy-consistent form, or a horizon of 2.5 to 4, helps)" : "");
   else if (f.dt > f.stable) too_long(" (the material stiffened faster than the re-estimate followed)", f.stable);
+  else if (f.bond_only) // the step, the material and the damping are sound: what is left is the form itself
+    std::snprintf(text, sizeof text,
+                  " Cause: an instability of the bond-only force form. The step (%.3g x the stable one of the state reached), "
+                  "the material (%.3g x its stiffness at rest) and the damping (%g 1/s) look sound, but the bond-only form's "
+                  "stiffness is not symmetric, and at corners next to the grips its motion can grow whatever the step and the "
+                  "damping (pure shear with the grips outside: stretch 4.7 to 6.6, docs/stability.md section 8): use "
+                  "-force_form energy_consistent, which has no such mode.",
+                  f.dt / f.stable, f.stiffening, f.damping);
   else
     std::snprintf(text, sizeof text,
                   " Cause: not found. The step (%.3g x the stable one of the state reached) and the material look sound: lower "

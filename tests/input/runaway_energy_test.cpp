@@ -172,3 +172,22 @@ TEST(DivergenceAdvice, NotFlutterWhenTheStateBeforeWasNearTheChainLimit)
   EXPECT_NE(limit.find("raise -material_Jm (now 3)"), std::string::npos) << limit;
   EXPECT_NE(limit.find("end the load below stretch 1.85"), std::string::npos) << limit;
 }
+
+// Everything sound (the step below the stable one, no stiffening, damping above the
+// flutter's need) in the bond-only form: its own instability, cured by the
+// energy-consistent form (pure shear to 13 with the grips outside stopped at 6.56 with
+// "Cause: not found"). The energy-consistent form with the same facts: not found.
+TEST(DivergenceAdvice, TheBondOnlyFormsOwnInstabilityWhenAllElseIsSound)
+{
+  DivergenceFacts f;
+  f.stable_rest = 5.2e-4, f.stable = 5.21e-4;
+  f.dt = f.base = 0.786 * f.stable;
+  f.chain_reach = 0.3, f.limit_value = 162.6, f.damping = 200, f.bond_only = true;
+  f.earlier_steps = 15, f.stable_earlier = 5.2e-4, f.chain_reach_earlier = 0.3;
+  const std::string bond_only = DivergenceAdvice(f);
+  EXPECT_NE(bond_only.find("Cause: an instability of the bond-only force form"), std::string::npos) << bond_only;
+  EXPECT_NE(bond_only.find("-force_form energy_consistent"), std::string::npos) << bond_only;
+  f.bond_only = false;
+  const std::string energy = DivergenceAdvice(f);
+  EXPECT_NE(energy.find("Cause: not found"), std::string::npos) << energy;
+}
