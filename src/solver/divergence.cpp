@@ -200,6 +200,17 @@ std::string DivergenceAdvice(const DivergenceFacts &f)
                   std::max(f.dt, f.base), std::max(f.dt, f.base) / f.stable_rest, f.stable_rest,
                   f.step_given ? "lower -time_step, or leave it to the solver (-time_step 0, -time_step_safety 0.8)"
                                : "lower -time_step_safety to 0.8 (the default) or less");
+  // With the step fixed at rest, a step already above the stable one of the state 10
+  // to 20 steps before the blow-up is a cause that letting the step follow cures, even
+  // near the limit (the map's Jm = 3 plate, energy-consistent, slow: chain reach 0.82
+  // there, and the re-estimated run goes to the end); where the limit itself is reached,
+  // the re-estimated run then names it.
+  else if (!f.reestimating && f.stable_earlier > 0 && f.dt > f.stable_earlier) {
+    char why[200];
+    std::snprintf(why, sizeof why, " (the material stiffened; the step was fixed at rest; measured %" PetscInt_FMT " steps before the failure)",
+                  f.earlier_steps);
+    too_long(why, f.stable_earlier);
+  }
   // Wrecked, but near the limit 10 to 20 steps before: there the reach still had that
   // many steps to grow, a few hundredths a step at a fast ramp's rate (the Jm = 3 plate
   // on a 2 mm grid: 0.80 18 steps before the blow-up at stretch 1.90; on a 1 mm grid,
