@@ -225,18 +225,18 @@ PetscErrorCode TimeStepControl::Reestimate(MPI_Comm comm, ForceOperator &force, 
   // start keeps a part of every mode: a converged eigenvector has none of a mode that
   // rises elsewhere (the Jm = 3 plate: the hole's rim stiffened to 10 x lambda_rest
   // while a two-iteration estimate, warm-started from the old mode, still read 3 x and
-  // the step blew up at stretch 1.8; at least 6 iterations ran it). The seed (white,
-  // |seed| = 1 after scaling) is mixed in at seed_weight of the unit vector: it moves
-  // the quotient by about seed_weight^2 / 2 (0.1 %, inside the tolerance), and a mode
-  // at 2 x lambda (2.8 x per shifted iteration) shows within three estimates.
+  // the step blew up at stretch 1.8). The seed (white, |seed| = 1 after scaling) is
+  // mixed in at seed_weight of the unit vector: it moves the quotient by about
+  // seed_weight^2 / 2 (0.1 %, inside the tolerance). Measured: without it the 2 mm
+  // Jm = 3 plate still blew up at stretch 1.90 with the rising iterations below.
   if (stiffness_dt_ < base_dt_) PetscCall(MixSeed(comm));
   // And while it is shortened and the load moves (or the last estimate shortened it,
   // lambda having risen past the band), at least rising_iterations: a quotient still
   // climbing by less than the tolerance per iteration is not settled then, as the
   // fastest mode localises at a stiffening spot (the Jm = 3 plate: with one to three
   // iterations the estimates read 2.9 x lambda_rest at stretch 1.8 to 1.9 and the run
-  // blew up; with four or more (2 mm) or six (1 mm) they read up to 24 and 41 x, and the
-  // run went on). Both read from the state a checkpoint carries: a restart repeats it.
+  // blew up; with four and the tail check below they read up to 24 x (2 mm: the run
+  // ends) and 43 x (1 mm: its corner bonds reach the limit itself at 1.993)). Both read from the state a checkpoint carries: a restart repeats it.
   // (From lambda = 1.5 x lambda_rest only, it saved the fast-route plate 7 of 30
   // evaluations but left the Jm = 8 plate at 1.3 x through its stretch-2 hold, where
   // lambda_max is 2.0 x: its step then sat at 0.99 x the stable one.)
