@@ -105,16 +105,19 @@ struct DivergenceFacts {
 // stiffness mu Jm / (Jm + 3 - I1bar) is 5 x its rest value and unbounded beyond; a
 // larger reach is a state the blow-up already wrecked) -> the law's limit option
 // (-material_Jm; Arruda-Boyce: -material_lambda_m) and the stretch (also when the last
-// good state is wrecked but the state 10 to 20 steps before it was there: the Jm = 3
-// plate on a 1 mm grid); plane strain with K >= 1000 mu (a real negative eigenvalue at rest,
+// good state is wrecked but the state 10 to 20 steps before it was at 0.75 or more: the Jm = 3
+// plate on a 2 mm grid); plane strain with K >= 1000 mu (a real negative eigenvalue at rest,
 // docs/stability.md section 1) -> -material_bulk_ratio; a fixed step above the stable
 // step of the state reached, or of the state 10 to 20 steps earlier (a blow-up wrecks
 // the last good state: plane strain with K = 10 mu on the fixed step showed only the
 // wreck's negative eigenvalue there) -> -time_step_safety or -time_step_reestimate (a state
 // already wrecked, reach > 1.05, in a run whose lambda_max rose 4 x: the chain limit); the
-// bond-only form with less damping than its free edges need (100 1/s, section 1) ->
-// -damping or -force_form energy_consistent; a re-estimated step above the state's
-// -> -time_step_safety. The order matters: a chain-limited state has a tiny stable
+// bond-only form with less damping than its free edges need (100 1/s, section 1), in a
+// state less than half-way to the law's limit 10 to 20 steps before (closer, the
+// stiffening is the cause) -> -damping or -force_form energy_consistent; a
+// re-estimated step above the state's -> -time_step_safety; with everything else sound,
+// the bond-only form's own instability (the corners next to outside grips in pure
+// shear, stretch 4.7 to 6.6) -> -force_form energy_consistent. The order matters: a chain-limited state has a tiny stable
 // step too, and a fluttering one looks stiff once the flutter has grown, but neither
 // is cured by a shorter step.
 std::string DivergenceAdvice(const DivergenceFacts &facts);

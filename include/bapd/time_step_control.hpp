@@ -22,6 +22,8 @@
 // is in checkpoints, so a restart continues bit for bit.
 #include <petscts.h>
 
+#include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include "bapd/bond_state.hpp"
@@ -112,7 +114,8 @@ public:
   double       *eigenvector() { return v_.data(); }
 
 private:
-  PetscErrorCode Reestimate(MPI_Comm comm, ForceOperator &force, PetscInt *iterations);
+  // loading: the applied stretch moved since the last estimate.
+  PetscErrorCode Reestimate(MPI_Comm comm, ForceOperator &force, bool loading, PetscInt *iterations);
   // The lambda_max above which the base step would be shortened (outside the dead band).
   double ShorteningThreshold() const { return lambda_rest_ / ((1.0 - options_.band) * (1.0 - options_.band)); }
   // The back-off and the early stop spend part of the margin the safety factor leaves
@@ -120,6 +123,13 @@ private:
   // 0.9 x the stable one at rest there is too little of it (the map's safety-1.0 cell
   // stopped with them), and every estimate runs as without them.
   bool Margin() const { return base_dt_ <= 0.9 * stable_dt_; }
+  // The stiffness step the latest lambda asks for: base x sqrt(lambda_rest / lambda),
+  // within [floor x base, base].
+  double StiffnessTarget() const { return std::clamp(base_dt_ * std::sqrt(lambda_rest_ / lambda_), floor_ * base_dt_, base_dt_); }
+  // Mixes seed_weight x the start vector into the eigenvector (Reestimate explains).
+  PetscErrorCode MixSeed(MPI_Comm comm);
+  static constexpr double seed_weight = 0.05;
+  static constexpr PetscInt rising_iterations = 4; // fewest iterations while the shortened step's lambda rises
   PetscErrorCode PowerStep(MPI_Comm comm, ForceOperator &force, const double *u0, const double *a0, double shift, double *lambda);
 
   TimeStepOptions options_;

@@ -119,6 +119,10 @@ def fmt(v, digits=3):
 
 
 def table(header, rows):
+    """A markdown table, or None without rows (main() then leaves the doc's table as it
+    is: run on the map alone, the other sections' tables must not be blanked)."""
+    if not rows:
+        return None
     lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
     lines += ["| " + " | ".join(str(c) for c in r) + " |" for r in rows]
     return "\n".join(lines)
@@ -412,34 +416,37 @@ def _cause(r):
 
 
 def t_map(root):
-    """The stability map (section 8): runs named map__VARIABLE__VALUE__RATE__STEP."""
+    """The stability map (section 8): runs named map__VARIABLE__VALUE__FORM__RATE__STEP."""
     names = sorted(n for n in os.listdir(root) if n.startswith("map__") and os.path.isdir(os.path.join(root, n)))
     order = {"Jm": 0, "bulk_ratio": 1, "horizon": 2, "safety": 3}
     cells = {}
     for r in runs(root, names):
-        _, var, value, rate, step = r.name.split("__")
+        parts = r.name.split("__")
+        if len(parts) != 6:  # an older map's run (no force form in the name)
+            continue
+        _, var, value, form, rate, step = parts
         dt = [row["dt_s"] for row in r.history if "dt_s" in row]
         shortest = f"{min(dt) / dt[0]:.2f}" if dt and dt[0] > 0 else "-"
         cell = f"{r.outcome()}" + (f": {_cause(r)}" if r.rc else "") + (f" (dt down to {shortest} x)" if step == "adaptive" and shortest not in ("-", "1.00") else "")
-        cells.setdefault((order.get(var, 9), var, value, rate), {})[step] = (cell, r.final_stretch)
+        cells.setdefault((order.get(var, 9), var, value, form, rate), {})[step] = (cell, r.final_stretch)
     if not cells:
         return None
     def key(k):
         try:
-            return (k[0], float(k[2].split("_")[0]), k[2], k[3])
+            return (k[0], float(k[2].split("_")[0]), k[2], k[3], k[4])
         except ValueError:
-            return (k[0], 0.0, k[2], k[3])
+            return (k[0], 0.0, k[2], k[3], k[4])
     rows = []
     for k in sorted(cells, key=key):
-        _, var, value, rate = k
+        _, var, value, form, rate = k
         c = cells[k]
         def show(step):
             if step not in c:
                 return "-"
             cell, lam = c[step]
             return cell if cell.startswith("ran") else f"stretch {fmt(lam, 4)}: {cell}"
-        rows.append([var.replace("_", " "), value.replace("_", " "), rate, show("fixed"), show("adaptive")])
-    return table(["varied", "value", "loading", "step fixed at rest (-time_step_reestimate 0)", "step re-estimated (default)"], rows)
+        rows.append([var.replace("_", " "), value.replace("_", " "), form.replace("_", "-"), rate, show("fixed"), show("adaptive")])
+    return table(["varied", "value", "force form", "loading", "step fixed at rest (-time_step_reestimate 0)", "step re-estimated (default)"], rows)
 
 
 TABLES = {"shear_reference": lambda root: t_shear_reference(), "shear": t_shear, "spectrum_shear": t_spectrum_shear,

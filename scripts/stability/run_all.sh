@@ -106,8 +106,11 @@ for section in "${sections[@]}"; do
       done
     done
     # Grips one horizon deep (3 point layers) on a taller sheet (the same free height).
-    bapd rows_dx0.001_layers3 "${shear[@]}" -body_height 0.016 -load_top_layers 3 -load_bottom_layers 3 -damping 200 \
-      -load_reference_length 0.01 -time_step_safety 0.4 -end_time 0.75 -output_fields -output_fields_interval 0
+    # The paper's placement (the sheet's own rows): grips outside by default would add
+    # their rows beyond these (docs/options.md, -load_reference_length).
+    bapd rows_dx0.001_layers3 "${shear[@]}" -body_height 0.016 -load_grip_placement inside -load_top_layers 3 \
+      -load_bottom_layers 3 -damping 200 -load_reference_length 0.01 -time_step_safety 0.4 -end_time 0.75 -output_fields \
+      -output_fields_interval 0
     ;;
   fracture)
     # torn_sheet.sh's scene (tests/stability) at several steps, with and without the
@@ -180,32 +183,35 @@ for section in "${sections[@]}"; do
     # The stability map (section 8, issue 15): the plate on a 4 mm grid, the fast route
     # (ramps of 0.05 s, holds that end once static), one option varied at a time around
     # the default, with the step fixed at rest (the paper's, -time_step_reestimate 0)
-    # and re-estimated (the default). Every cell must run to the end or stop with the
-    # message that names its cause.
+    # and re-estimated (the default), for both force forms, each named on its command
+    # line (the map does not depend on the default force form). Every cell must run to
+    # the end or stop with the message that names its cause. Runs are named
+    # map__VARIABLE__VALUE__FORM__RATE__STEP (report.py reads the names).
     fast=(-options_file_yaml "$here/examples/plate_hole.yaml" -options_file_yaml "$here/examples/plate_hole_fast.yaml"
           -body_dx 0.004 -output_interval 20 -progress_interval 1000000)
     to2=(-load_schedule 0,1,0.05,1.5,1.05,1.5,1.1,2.0,2.1,2.0)
     slow2=(-load_schedule 0,1,0.5,1.5,1.5,1.5,2.0,2.0,3.0,2.0)
     for step in fixed adaptive; do
       control=(); [ "$step" = fixed ] && control=(-time_step_reestimate 0)
-      for jm in 3 5 8 20 162.6; do
-        bapd "map__Jm__${jm}__fast__$step" "${fast[@]}" "${to2[@]}" -material_Jm "$jm" "${control[@]}"
-        bapd "map__Jm__${jm}__slow__$step" "${fast[@]}" "${slow2[@]}" -material_Jm "$jm" "${control[@]}"
-      done
-      for k in 10 1000 100000; do
-        for formulation in plane_stress plane_strain; do
-          bapd "map__bulk_ratio__${k}_${formulation}__fast__$step" "${fast[@]}" -load_schedule 0,1,0.05,1.5,0.1,1.5 \
-            -material_bulk_ratio "$k" -material_formulation "$formulation" "${control[@]}"
+      for form in bond_only energy_consistent; do
+        for jm in 3 5 8 20 162.6; do
+          bapd "map__Jm__${jm}__${form}__fast__$step" "${fast[@]}" "${to2[@]}" -material_Jm "$jm" -force_form "$form" "${control[@]}"
+          bapd "map__Jm__${jm}__${form}__slow__$step" "${fast[@]}" "${slow2[@]}" -material_Jm "$jm" -force_form "$form" "${control[@]}"
         done
-      done
-      for h in 1.5 2 3.015 4; do
-        for form in bond_only energy_consistent; do
-          bapd "map__horizon__${h}_${form}__fast__$step" "${fast[@]}" "${to2[@]}" -material_Jm 8 -horizon_factor "$h" \
+        for k in 10 1000 100000; do
+          for formulation in plane_stress plane_strain; do
+            bapd "map__bulk_ratio__${k}_${formulation}__${form}__fast__$step" "${fast[@]}" -load_schedule 0,1,0.05,1.5,0.1,1.5 \
+              -material_bulk_ratio "$k" -material_formulation "$formulation" -force_form "$form" "${control[@]}"
+          done
+        done
+        for h in 1.5 2 3.015 4; do
+          bapd "map__horizon__${h}__${form}__fast__$step" "${fast[@]}" "${to2[@]}" -material_Jm 8 -horizon_factor "$h" \
             -force_form "$form" "${control[@]}"
         done
-      done
-      for safety in 0.5 0.8 1.0 1.2; do
-        bapd "map__safety__${safety}__fast__$step" "${fast[@]}" "${to2[@]}" -material_Jm 8 -time_step_safety "$safety" "${control[@]}"
+        for safety in 0.5 0.8 1.0 1.2; do
+          bapd "map__safety__${safety}__${form}__fast__$step" "${fast[@]}" "${to2[@]}" -material_Jm 8 -time_step_safety "$safety" \
+            -force_form "$form" "${control[@]}"
+        done
       done
     done
     ;;

@@ -98,4 +98,17 @@ PY
 run 2 "$work/format3" -restart "$work/format3.h5" -ts_max_steps $M || { tail -n 3 "$work/format3.log"; fail "a format-3 checkpoint was not continued"; }
 grep -q "^Finished" "$work/format3.log" || fail "the format-3 continuation did not finish"
 echo "a format-3 checkpoint (without the back-off) is read and continued"
+
+# 5. A stiffening the warm-started estimate must chase: the Jm = 3 plate on a 2 mm grid,
+# the fast route to stretch 2, bond-only, the defaults otherwise. Near stretch 1.9 the
+# rim of the hole stiffens to about 24 x lambda_rest; estimates of one to three
+# iterations read 2.95 x there and the run blew up at stretch 1.90 (called flutter,
+# then the chain limit). It must run to the end with the step down to about 0.2 x.
+run 1 "$work/jm3" -options_file_yaml "$src/examples/plate_hole.yaml" -options_file_yaml "$src/examples/plate_hole_fast.yaml" \
+  -body_dx 0.002 -material_Jm 3 -load_schedule 0,1,0.05,1.5,1.05,1.5,1.1,2.0,2.1,2.0 -force_form bond_only \
+  -progress_interval 1000000 || { tail -n 3 "$work/jm3.log"; fail "the Jm = 3 plate (2 mm) did not run to the end"; }
+grep -q "^Finished" "$work/jm3.log" || fail "the Jm = 3 plate (2 mm) did not finish"
+grep -o "lambda_max up to [0-9.]* x" "$work/jm3.log" | awk '{ exit !($4 >= 10) }' ||
+  fail "the Jm = 3 plate's estimate never saw the stiffening: $(grep -o 'lambda_max up to.*' "$work/jm3.log")"
+echo "the Jm = 3 plate (2 mm) runs to stretch 2: $(grep -o 'lambda_max up to [0-9.]* x' "$work/jm3.log")"
 echo "adaptive time step: ok"
