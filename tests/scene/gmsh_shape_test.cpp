@@ -48,6 +48,47 @@ TEST(GmshShape, DogboneExampleAreaMatchesItsGeometry)
   EXPECT_GE(bapd::shape_area(s), area);
 }
 
+const std::string examples = BAPD_TEST_SOURCE_DIR "/../examples/geometry/";
+
+TEST(GmshGroup, PhysicalSurfaceIsItsElementsAndCurveItsSegments)
+{
+  // examples/geometry/double_edge_notched.geo: grip_top is the tab [0, 20] x [38.5, 40]
+  // mm; notch_right the right notch's flanks (5 mm each less the 0.5 mm tip radius) and
+  // its semicircular tip of radius 0.5 mm, as Gmsh's chords.
+  bapd::GmshGroup group;
+  ASSERT_EQ(bapd::ReadGmshGroup(examples + "double_edge_notched.geo", "grip_top", &group), "");
+  EXPECT_EQ(group.dim, 2);
+  EXPECT_TRUE(group.segments.empty());
+  bapd::Shape tab;
+  tab.kind      = bapd::Shape::Kind::mesh;
+  tab.triangles = group.triangles;
+  EXPECT_NEAR(bapd::shape_area(tab), 0.02 * 0.0015, 1e-12); // straight edges: exact to round-off
+  EXPECT_TRUE(bapd::shape_contains(tab, 0.01, 0.039));
+  EXPECT_FALSE(bapd::shape_contains(tab, 0.01, 0.038));
+
+  ASSERT_EQ(bapd::ReadGmshGroup(examples + "double_edge_notched.geo", "notch_right", &group), "");
+  EXPECT_EQ(group.dim, 1);
+  double length = 0;
+  for (std::size_t k = 0; k < group.segments.size(); k += 4)
+    length += std::hypot(group.segments[k + 2] - group.segments[k], group.segments[k + 3] - group.segments[k + 1]);
+  const double exact = 2 * 0.0045 + M_PI * 0.0005; // chords fall short of the arc by well under 1 %
+  EXPECT_LT(length, exact);
+  EXPECT_GT(length, 0.99 * exact);
+}
+
+TEST(GmshGroup, AMissingGroupIsNamedWithTheGroupsTheFileHas)
+{
+  bapd::GmshGroup   group;
+  const std::string message = bapd::ReadGmshGroup(examples + "double_edge_notched.geo", "grip", &group);
+  EXPECT_NE(message.find("has no physical group named 'grip'"), std::string::npos) << message;
+  EXPECT_NE(message.find("'grip_top' (surface)"), std::string::npos) << message;
+  EXPECT_NE(message.find("'notch_left' (curve)"), std::string::npos) << message;
+  const std::string none = bapd::ReadGmshGroup(dir + "l_shape.geo", "grip", &group);
+  EXPECT_NE(none.find("it names none"), std::string::npos) << none;
+  EXPECT_NE(bapd::ReadGmshGroup(dir + "no_such_file.geo", "grip", &group).find("cannot open"), std::string::npos);
+  EXPECT_NE(bapd::ReadGmshGroup(dir + "broken.geo", "grip", &group).find("Gmsh cannot read"), std::string::npos);
+}
+
 TEST(GmshShape, FilesGmshCannotUseAreNamed)
 {
   bapd::TriangleSet t;
