@@ -242,7 +242,7 @@ PetscErrorCode CheckLoading(MPI_Comm comm, const SceneInput &in, Scene *scene)
         set.area.kind     = Shape::Kind::polygon;
         set.area.vertices = li.points;
         const std::string problem = polygon_problem(li.points);
-        SceneCheck(problem.empty(), comm, "-load_%s_points: the polygon of load set '%s' %s: give its vertices in order around it (it closes by itself)",
+        SceneCheck(problem.empty(), comm, "-load_%s_points (the polygon of load set '%s'): %s; give its vertices in order around it (it closes by itself)",
                    n, n, problem.c_str());
       } else
         for (std::size_t k = 0; k + 4 <= li.points.size(); k += 2) set.segments.insert(set.segments.end(), &li.points[k], &li.points[k + 4]);

@@ -5,9 +5,12 @@
 
 #include <cmath>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "bapd/gmsh_shape.hpp"
 #include "bapd/lattice.hpp"
+#include "bapd/scene.hpp"
 
 namespace {
 
@@ -74,6 +77,35 @@ TEST(GmshGroup, PhysicalSurfaceIsItsElementsAndCurveItsSegments)
   const double exact = 2 * 0.0045 + M_PI * 0.0005; // chords fall short of the arc by well under 1 %
   EXPECT_LT(length, exact);
   EXPECT_GT(length, 0.99 * exact);
+}
+
+TEST(GmshGroup, DogboneEndLinesGripTheSameRowsAsEdgeGrips)
+{
+  // examples/dogbone.yaml grips the points within 2 mm of the physical curves top_end
+  // and bottom_end: on its 0.5 mm lattice, exactly the 4 edge rows inside the sheet
+  // that its earlier edge grips held (-load_S_region top|bottom, layers 4, inside).
+  bapd::Scene scene;
+  scene.body.width = 0.02, scene.body.height = 0.06, scene.body.thickness = 0.002, scene.body.dx = 0.0005;
+  bapd::Shape outline;
+  outline.kind = bapd::Shape::Kind::mesh, outline.op = bapd::Shape::Op::intersect;
+  ASSERT_EQ(bapd::ReadGmshTriangles(examples + "dogbone.geo", &outline.triangles), "");
+  scene.body.shapes = {outline};
+  const bapd::PointCloud cloud = bapd::make_lattice(scene.body);
+  for (const auto &[name, region] : {std::pair{"top_end", bapd::LoadSet::Region::top}, {"bottom_end", bapd::LoadSet::Region::bottom}}) {
+    bapd::GmshGroup group;
+    ASSERT_EQ(bapd::ReadGmshGroup(examples + "dogbone.geo", name, &group), "");
+    ASSERT_EQ(group.dim, 1);
+    bapd::LoadSet by_name;
+    by_name.region = bapd::LoadSet::Region::group, by_name.segments = group.segments, by_name.depth = 0.002;
+    bapd::SetCurveReach(&by_name);
+    bapd::LoadSet by_edge;
+    by_edge.region = region, by_edge.layers = 4, by_edge.placement = bapd::GripPlacement::inside;
+    std::vector<PetscInt> a, b;
+    ASSERT_EQ(bapd::LoadSetSelect(scene, by_name, cloud.x.data(), (PetscInt)cloud.size(), &a), 0);
+    ASSERT_EQ(bapd::LoadSetSelect(scene, by_edge, cloud.x.data(), (PetscInt)cloud.size(), &b), 0);
+    EXPECT_EQ(a, b) << name;
+    EXPECT_EQ(a.size(), 4u * 40u) << name; // the tabs are the sheet's full 20 mm width
+  }
 }
 
 TEST(GmshGroup, AMissingGroupIsNamedWithTheGroupsTheFileHas)
