@@ -59,5 +59,12 @@ static=(-load_schedule 0,1,0.05,1.5,1.05,1.5,1.1,2,2.1,2,2.2,3,3.2,3 -relaxation
 run pure_shear_static_dx0.5 "$here/examples/pure_shear.yaml" "${static[@]}"
 run pure_shear_static_dx1 "$here/examples/pure_shear.yaml" "${static[@]}" -body_dx 0.001
 run pure_shear_static_dx0.5_paper "$here/examples/pure_shear.yaml" "${static[@]}" "${paper[@]}"
+# Issue 18: shaped specimens against their FE solutions (docs/fe_reference.md), static
+# states by the fast route at the FE's stretches (scripts/validation/shaped_report.py).
+shaped=(-relaxation adaptive -static_tolerance 1e-10 -output_interval 20)
+run waisted_static "$here/examples/waisted_sheet.yaml" "${shaped[@]}" \
+  -load_schedule 0,1,0.05,1.25,1.05,1.25,1.1,1.5,2.1,1.5,2.15,1.75,3.15,1.75,3.2,2,4.2,2
+run dogbone_static "$here/examples/dogbone.yaml" "${shaped[@]}" -body_outline_file "$here/examples/geometry/dogbone.geo" \
+  -load_schedule 0,1,0.05,1.25,1.05,1.25,1.1,1.5,2.1,1.5
 
 /usr/bin/python3 "$here/scripts/validation/report.py" "$out" "$here/docs"
