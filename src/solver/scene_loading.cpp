@@ -110,7 +110,8 @@ PetscErrorCode ReadLoading(MPI_Comm comm, Scene *scene, SceneInput *in)
                             &set.points_set));
       PetscCall(r.String("-group", "Region group: the name of a physical surface, curve or point of the Gmsh file", &set.group));
       PetscCall(r.String("-file", "Region group: the Gmsh .geo or .msh file (default: the body's mesh shape's file)", &set.file));
-      PetscCall(r.String("-placement", "outside (beyond the specimen's edge) | inside (the specimen's edge rows) | auto (-load_grip_placement's)",
+      PetscCall(r.String("-placement", "outside (beyond the specimen's edge) | inside (the specimen's edge rows) | auto (-load_grip_placement's); edge "
+                         "regions (the others are inside)",
                          &set.placement));
       PetscCall(r.Int("-layers",
                       "Point rows the grip holds at its edge [-] (default: 2 horizons deep outside, 1 inside); curve and group "
