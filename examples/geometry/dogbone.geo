@@ -37,3 +37,8 @@ Line(12) = {12, 1};
 Curve Loop(1) = {1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12};
 Plane Surface(1) = {1};
 Mesh.CharacteristicLengthMax = 0.001;
+// The ends the grips hold (examples/dogbone.yaml: -load_S_region group, the points
+// within the grip's depth of these lines), and the specimen.
+Physical Curve("bottom_end") = {1};
+Physical Curve("top_end") = {7};
+Physical Surface("dogbone") = {1};

@@ -15,9 +15,10 @@ namespace bapd {
 // were given, and the raw text of lists and choices, for the checks.
 struct LoadInput {
   std::string         name, region, x = "free", y = "free", placement = "auto"; // auto: -load_grip_placement's
+  std::string         group, file; // region group: the physical group and its Gmsh file
   bool                region_set = false, box_set = false, layers_set = false, depth_set = false, x_scale_set = false,
-                      y_scale_set = false;
-  std::vector<double> box;
+                      y_scale_set = false, points_set = false;
+  std::vector<double> box, points; // points: region polygon or curve
   PetscInt            layers  = 1;
   double              depth   = 0.0;
   double              x_scale = 1.0, y_scale = 1.0;

@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "bapd/shape.hpp"
+
 namespace bapd {
 
 struct Scene;
@@ -29,16 +31,39 @@ enum class GripPlacement { outside, inside };
 
 // A named set of points held by a grip. Per component: free, fixed (u = 0) or
 // following the stretch schedule, u = scale * (lambda(t) - 1) * reference_length.
+// Where its points are: the edge regions take rows at an edge of the sheet (inside,
+// or added outside it); the other regions are predicates on a point's reference
+// position, so they hold whatever points the body has there (a lattice's or a
+// cloud's): a box, a closed polygon, the points closer than `depth` to an open
+// polyline (curve), or a named physical group of a Gmsh file (group: a physical
+// surface holds the points inside its elements; a physical curve or point, the
+// points closer than `depth` to it).
 struct LoadSet {
-  enum class Region { top, bottom, left, right, box };
+  enum class Region { top, bottom, left, right, box, polygon, curve, group };
   std::string   name;
   Region        region    = Region::top;
-  GripPlacement placement = GripPlacement::inside; // edge regions (a box is inside)
+  GripPlacement placement = GripPlacement::inside; // edge regions (the others are inside)
   double        box[4] = {0, 0, 0, 0}; // xmin, ymin, xmax, ymax (Region::box)
   int           layers = 1;            // point rows taken at the named edge
   ComponentLoad x = ComponentLoad::free, y = ComponentLoad::free;
   double        x_scale = 0.0, y_scale = 0.0;
+  // polygon, and a group's physical surface: the points `area` contains (a polygon,
+  // edges inclusive; or a mesh shape, the group's triangles).
+  Shape               area;
+  // curve, and a group's physical curve or points: the points closer than `depth` to
+  // one of `segments` (x0,y0,x1,y1 each; a point is a segment of length 0).
+  std::vector<double> segments;
+  double              depth = 0.0;          // [m]
+  double              reach[4] = {0, 0, 0, 0}; // the segments' bounding box grown by depth
+  std::string         group, file;          // group: the physical group and its Gmsh file
 };
+
+// Whether the point at reference position (px, py) belongs to `set` (the predicate
+// LoadSetSelect applies to every owned point).
+bool LoadSetContains(const Scene &scene, const LoadSet &set, double px, double py);
+
+// Sets set->reach from its segments and depth (call after changing either).
+void SetCurveReach(LoadSet *set);
 
 // The rows a grip of depth d holds: those whose centres lie within d of its edge,
 // ceil(d / dx - 1/2) (at least 1). The default depth of a grip outside the specimen
@@ -50,7 +75,7 @@ int GripRows(double depth, double dx);
 // holds: inside, within `layers` rows of its edge (top: y > height - layers*dx,
 // bottom: y < layers*dx, left: x < layers*dx, right: x > width - layers*dx); outside,
 // its `layers` rows beyond the edge (top: height < y < height + layers*dx, ...); or
-// inside its box (edges included). Indices into x, increasing. Pass owned points
+// where LoadSetContains says for the other regions (a box: edges included). Indices into x, increasing. Pass owned points
 // only; whether a set holds any point at all is for the caller to check over the
 // communicator.
 PetscErrorCode LoadSetSelect(const Scene &scene, const LoadSet &set, const double *x, PetscInt n,

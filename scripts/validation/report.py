@@ -14,6 +14,9 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from shaped_report import shaped  # noqa: E402
+
 FEA = {1.5: 8.62, 1.75: 11.10, 2.0: 13.01}  # mm, METHOD.md section 7.1
 PAPER_PD = {1.5: 8.43, 1.75: 10.87, 2.0: 12.75}  # mm, delta = 3.015 dx
 MU, JM = 4.55e3, 162.6
@@ -412,6 +415,7 @@ def main():
     plate(root, docs, lines)
     pure_shear(root, docs, lines)
     notched(root, docs, lines)
+    shaped(root, docs, lines)  # issue 18 (shaped_report.py)
     with open(os.path.join(docs, "validation.md"), "w") as f:
         f.write("\n".join(lines) + "\n")
     print("\n".join(lines))

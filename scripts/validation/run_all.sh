@@ -75,5 +75,12 @@ run plate_dx2_h3.015_slow "$here/examples/plate_hole.yaml" -body_dx 0.002 -stati
 for h in 3.015 2.515 3.515; do
   run "plate_dx0.5_h$h" "$here/examples/plate_hole.yaml" "${fast[@]}" -body_dx 0.0005 -horizon_factor "$h" -output_interval 80
 done
+# Issue 18: shaped specimens against their FE solutions (docs/fe_reference.md), static
+# states by the fast route at the FE's stretches (scripts/validation/shaped_report.py).
+shaped=(-relaxation adaptive -static_tolerance 1e-10 -output_interval 20)
+run waisted_static "$here/examples/waisted_sheet.yaml" "${shaped[@]}" \
+  -load_schedule 0,1,0.05,1.25,1.05,1.25,1.1,1.5,2.1,1.5,2.15,1.75,3.15,1.75,3.2,2,4.2,2
+run dogbone_static "$here/examples/dogbone.yaml" "${shaped[@]}" -body_outline_file "$here/examples/geometry/dogbone.geo" \
+  -load_schedule 0,1,0.05,1.25,1.05,1.25,1.1,1.5,2.1,1.5
 
 /usr/bin/python3 "$here/scripts/validation/report.py" "$out" "$here/docs"

@@ -1,10 +1,12 @@
-// A Gmsh file as the triangles of a shape (gmsh_shape.hpp).
+// A Gmsh file as the triangles of a shape, and its physical groups (gmsh_shape.hpp).
 #include "bapd/gmsh_shape.hpp"
 
 #include <gmsh.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 namespace bapd {
@@ -34,11 +36,10 @@ struct GmshSession {
   ~GmshSession() { gmsh::finalize(); }
 };
 
-} // namespace
-
-std::string ReadGmshTriangles(const std::string &file, TriangleSet *triangles)
+// Opens `file` in a Gmsh session of its own and runs `read` on the model, meshed in
+// 2D unless the file holds 2D elements already. Returns what went wrong or "".
+template <class Read> std::string WithMeshedFile(const std::string &file, Read read)
 {
-  triangles->corners.clear();
   if (std::FILE *f = std::fopen(file.c_str(), "rb")) std::fclose(f);
   else return "cannot open '" + file + "' (check the path; it is read relative to the directory bapd runs in)";
   GmshSession session; // finalised on every return below
@@ -52,31 +53,8 @@ std::string ReadGmshTriangles(const std::string &file, TriangleSet *triangles)
       gmsh::model::getEntities(surfaces, 2);
       if (surfaces.empty()) return "'" + file + "' holds no surface and no 2D element: give a .geo with a Plane Surface, or a .msh of a 2D mesh";
       gmsh::model::mesh::generate(2);
-      gmsh::model::mesh::getElements(types, tags, nodes, 2);
     }
-    std::vector<std::size_t> node_tags;
-    std::vector<double>      xyz, parametric;
-    gmsh::model::mesh::getNodes(node_tags, xyz, parametric, -1, -1, false, false);
-    std::unordered_map<std::size_t, std::size_t> where;
-    for (std::size_t k = 0; k < node_tags.size(); ++k) where[node_tags[k]] = k;
-    auto corner = [&](std::size_t tag, std::vector<double> &out) {
-      const std::size_t k = where.at(tag);
-      out.push_back(xyz[3 * k]);
-      out.push_back(xyz[3 * k + 1]);
-    };
-    for (std::size_t t = 0; t < types.size(); ++t) {
-      std::string              name;
-      int                      dim, order, per, primary;
-      std::vector<double>      local;
-      gmsh::model::mesh::getElementProperties(types[t], name, dim, order, per, local, primary);
-      const int corners = CornerCount(types[t]);
-      if (corners == 0) return "'" + file + "' has 2D elements of a kind bapd does not read (" + name + "): mesh with triangles or quadrangles";
-      for (std::size_t e = 0; e + per <= nodes[t].size(); e += (std::size_t)per) {
-        const std::size_t *n = &nodes[t][e];
-        corner(n[0], triangles->corners), corner(n[1], triangles->corners), corner(n[2], triangles->corners);
-        if (corners == 4) corner(n[0], triangles->corners), corner(n[2], triangles->corners), corner(n[3], triangles->corners);
-      }
-    }
+    return read();
   } catch (...) {
     std::string last;
     try {
@@ -85,9 +63,125 @@ std::string ReadGmshTriangles(const std::string &file, TriangleSet *triangles)
     }
     return "Gmsh cannot read '" + file + "'" + (last.empty() ? std::string(" (not a .geo or .msh file?)") : ": " + last);
   }
+}
+
+// The model's node coordinates by tag (x, y; z ignored).
+class NodeTable {
+public:
+  NodeTable()
+  {
+    std::vector<std::size_t> node_tags;
+    std::vector<double>      parametric;
+    gmsh::model::mesh::getNodes(node_tags, xyz_, parametric, -1, -1, false, false);
+    for (std::size_t k = 0; k < node_tags.size(); ++k) where_[node_tags[k]] = k;
+  }
+  void Append(std::size_t tag, std::vector<double> &out) const
+  {
+    const std::size_t k = where_.at(tag);
+    out.push_back(xyz_[3 * k]);
+    out.push_back(xyz_[3 * k + 1]);
+  }
+
+private:
+  std::vector<double>                          xyz_;
+  std::unordered_map<std::size_t, std::size_t> where_;
+};
+
+// Appends the 2D elements of entity `tag` (-1: all) to `corners` as triangles; returns
+// "" or the element kind bapd cannot read.
+std::string AppendTriangles(const NodeTable &table, int tag, std::vector<double> &corners)
+{
+  std::vector<int>                      types;
+  std::vector<std::vector<std::size_t>> tags, nodes;
+  gmsh::model::mesh::getElements(types, tags, nodes, 2, tag);
+  for (std::size_t t = 0; t < types.size(); ++t) {
+    std::string         name;
+    int                 dim, order, per, primary;
+    std::vector<double> local;
+    gmsh::model::mesh::getElementProperties(types[t], name, dim, order, per, local, primary);
+    const int n_corners = CornerCount(types[t]);
+    if (n_corners == 0) return "2D elements of a kind bapd does not read (" + name + "): mesh with triangles or quadrangles";
+    for (std::size_t e = 0; e + per <= nodes[t].size(); e += (std::size_t)per) {
+      const std::size_t *n = &nodes[t][e];
+      table.Append(n[0], corners), table.Append(n[1], corners), table.Append(n[2], corners);
+      if (n_corners == 4) table.Append(n[0], corners), table.Append(n[2], corners), table.Append(n[3], corners);
+    }
+  }
+  return "";
+}
+
+// Appends the line elements (dim 1) or the point elements (dim 0) of entity `tag` to
+// `segments`, x0,y0,x1,y1 each (a point as a segment of zero length). Line elements
+// of any order: their first two nodes are the ends.
+void AppendSegments(const NodeTable &table, int dim, int tag, std::vector<double> &segments)
+{
+  std::vector<int>                      types;
+  std::vector<std::vector<std::size_t>> tags, nodes;
+  gmsh::model::mesh::getElements(types, tags, nodes, dim, tag);
+  for (std::size_t t = 0; t < types.size(); ++t) {
+    const std::size_t per = nodes[t].size() / std::max<std::size_t>(1, tags[t].size());
+    for (std::size_t e = 0; per > 0 && e + per <= nodes[t].size(); e += per) {
+      table.Append(nodes[t][e], segments);
+      table.Append(nodes[t][dim == 1 ? e + 1 : e], segments);
+    }
+  }
+}
+
+const char *DimensionWord(int dim) { return dim == 2 ? "surface" : dim == 1 ? "curve" : dim == 0 ? "point" : "volume"; }
+
+} // namespace
+
+std::string ReadGmshTriangles(const std::string &file, TriangleSet *triangles)
+{
+  triangles->corners.clear();
+  const std::string problem = WithMeshedFile(file, [&]() -> std::string {
+    const std::string kind = AppendTriangles(NodeTable(), -1, triangles->corners);
+    return kind.empty() ? "" : "'" + file + "' has " + kind;
+  });
+  if (!problem.empty()) return problem;
   if (triangles->corners.empty()) return "'" + file + "' holds no 2D element after meshing: check its surfaces";
   index_triangles(*triangles);
   return "";
+}
+
+std::string ReadGmshGroup(const std::string &file, const std::string &name, GmshGroup *group)
+{
+  *group = GmshGroup{};
+  group->name = name;
+  return WithMeshedFile(file, [&]() -> std::string {
+    std::vector<std::pair<int, int>> groups;
+    gmsh::model::getPhysicalGroups(groups);
+    std::string have;
+    for (const auto &[dim, tag] : groups) {
+      std::string group_name;
+      gmsh::model::getPhysicalName(dim, tag, group_name);
+      if (group_name != name) {
+        have += (have.empty() ? "" : ", ") + (group_name.empty() ? "(unnamed, tag " + std::to_string(tag) + ")" : "'" + group_name + "'") +
+                " (" + DimensionWord(dim) + ")";
+        continue;
+      }
+      if (group->dim >= 0) return "'" + file + "' has two physical groups named '" + name + "': give them different names";
+      if (dim > 2) return "physical group '" + name + "' of '" + file + "' is a volume: bapd is 2D; name a surface, curve or point";
+      group->dim = dim;
+      const NodeTable  table;
+      std::vector<int> entities;
+      gmsh::model::getEntitiesForPhysicalGroup(dim, tag, entities);
+      for (int entity : entities) {
+        if (dim == 2) {
+          const std::string kind = AppendTriangles(table, entity, group->triangles.corners);
+          if (!kind.empty()) return "physical group '" + name + "' of '" + file + "' has " + kind;
+        } else AppendSegments(table, dim, entity, group->segments);
+      }
+      if (group->triangles.corners.empty() && group->segments.empty())
+        return "physical group '" + name + "' of '" + file + "' holds no mesh element: is it a group of meshed entities?";
+    }
+    if (group->dim < 0)
+      return "'" + file + "' has no physical group named '" + name + "' " +
+             (have.empty() ? "(it names none: add one, e.g. Physical Surface(\"" + name + "\") = {1}; or Physical Curve(\"" + name + "\") = {3};)"
+                           : "(it has " + have + ")");
+    if (group->dim == 2) index_triangles(group->triangles);
+    return "";
+  });
 }
 
 } // namespace bapd

@@ -31,12 +31,26 @@ PetscErrorCode Loading::Setup(MPI_Comm comm, const Scene &scene, const Layout &l
       // Points sit at cell centres ((i + 1/2) dx, (j + 1/2) dx): a thin box can miss
       // them all, and a hole can empty an edge layer.
       const char *n = set.name.c_str();
-      char        msg[512];
+      char        msg[768];
       if (set.region == LoadSet::Region::box)
         std::snprintf(msg, sizeof msg,
                       "-load_%s_box %g,%g,%g,%g selects no material point for load set '%s': widen it to hold a lattice point "
                       "(points sit at ((i + 1/2) dx, (j + 1/2) dx), dx = %g m)",
                       n, set.box[0], set.box[1], set.box[2], set.box[3], n, scene.body.dx);
+      else if (set.region == LoadSet::Region::group)
+        std::snprintf(msg, sizeof msg,
+                      "-load_%s_group %s (of %s) selects no material point for load set '%s': %s",
+                      n, set.group.c_str(), set.file.c_str(), n,
+                      set.segments.empty() ? "no material point lies inside its elements (is it a surface of the body?)"
+                                           : ("no point lies closer to it than -load_" + set.name + "_depth: raise the depth, or check that it lies on the body").c_str());
+      else if (set.region == LoadSet::Region::polygon || set.region == LoadSet::Region::curve)
+        std::snprintf(msg, sizeof msg,
+                      "-load_%s_points: the %s selects no material point for load set '%s': %s (points sit at ((i + 1/2) dx, (j + "
+                      "1/2) dx), dx = %g m)",
+                      n, to_string(set.region), n,
+                      set.region == LoadSet::Region::polygon ? "enlarge it or move it onto the body"
+                                                             : ("raise -load_" + set.name + "_depth or move it onto the body").c_str(),
+                      scene.body.dx);
       else
         std::snprintf(msg, sizeof msg,
                       "-load_%s_region %s selects no material point for load set '%s' (its %d edge layer(s) hold none, e.g. cut away "

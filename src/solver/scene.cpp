@@ -112,9 +112,17 @@ PetscErrorCode SceneView(MPI_Comm comm, const Scene &s)
     return c == ComponentLoad::stretch ? Format("stretch (scale %g)", scale) : std::string(to_string(c));
   };
   for (const LoadSet &l : s.loads) {
-    const std::string where = l.region == LoadSet::Region::box ? Format("box [%g, %g] x [%g, %g] m", l.box[0], l.box[2], l.box[1], l.box[3])
-                                                               : Format("%s edge, %d row(s) %s", to_string(l.region), l.layers,
-                                                                        to_string(l.placement));
+    std::string where;
+    switch (l.region) {
+    case LoadSet::Region::box: where = Format("box [%g, %g] x [%g, %g] m", l.box[0], l.box[2], l.box[1], l.box[3]); break;
+    case LoadSet::Region::polygon: where = Format("polygon of %zu vertices", l.area.vertices.size() / 2); break;
+    case LoadSet::Region::curve: where = Format("within %g m of a polyline of %zu segments", l.depth, l.segments.size() / 4); break;
+    case LoadSet::Region::group:
+      where = l.segments.empty() ? Format("physical surface '%s' of %s", l.group.c_str(), l.file.c_str())
+                                 : Format("within %g m of physical group '%s' of %s", l.depth, l.group.c_str(), l.file.c_str());
+      break;
+    default: where = Format("%s edge, %d row(s) %s", to_string(l.region), l.layers, to_string(l.placement));
+    }
     text += Format("  load set  %s: %s; x %s, y %s\n", l.name.c_str(), where.c_str(), component(l.x, l.x_scale).c_str(),
                    component(l.y, l.y_scale).c_str());
   }

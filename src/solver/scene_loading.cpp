@@ -5,8 +5,11 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <tuple>
 #include <utility>
+#include <vector>
 
+#include "bapd/gmsh_shape.hpp"
 #include "bapd/options_reader.hpp"
 #include "bapd/scene_input.hpp"
 
@@ -22,6 +25,50 @@ bool ParseComponent(const std::string &text, ComponentLoad *load)
   else if (t == "stretch") *load = ComponentLoad::stretch;
   else return false;
   return true;
+}
+
+const char *const kRegionChoices = "top, bottom, left, right, box, polygon, curve or group";
+
+// The Gmsh files the body reads (its mesh shapes), where a group's file defaults to.
+std::vector<std::string> BodyGmshFiles(const Body2D &body)
+{
+  std::vector<std::string> files;
+  for (const Shape &s : body.shapes)
+    if (s.kind == Shape::Kind::mesh && std::find(files.begin(), files.end(), s.file) == files.end()) files.push_back(s.file);
+  return files;
+}
+
+// Region group: the physical group -load_S_group of -load_S_file (default: the body's
+// one Gmsh file) as the set's area (a physical surface) or segments (a curve or points).
+PetscErrorCode ReadGroup(MPI_Comm comm, const LoadInput &li, const Body2D &body, LoadSet *set)
+{
+  const char *n = li.name.c_str();
+  PetscFunctionBeginUser;
+  SceneCheck(!li.group.empty(), comm, "-load_%s_group is required with -load_%s_region group: give the name of a physical group of the Gmsh file%s",
+             n, n, MisspeltHint("-load_" + li.name + "_group").c_str());
+  set->file = li.file;
+  if (set->file.empty()) {
+    const std::vector<std::string> files = BodyGmshFiles(body);
+    SceneCheck(files.size() == 1, comm,
+               "-load_%s_file is required for load set '%s': the body reads %zu Gmsh files (mesh shapes), so the file of group '%s' "
+               "is not implied: give the .geo or .msh that names it",
+               n, n, files.size(), li.group.c_str());
+    set->file = files[0];
+  }
+  set->group = li.group;
+  GmshGroup         group;
+  const std::string problem = ReadGmshGroup(set->file, li.group, &group);
+  SceneCheck(problem.empty(), comm, "-load_%s_group %s: %s", n, li.group.c_str(), problem.c_str());
+  if (group.dim == 2) {
+    SceneCheck(!li.layers_set && !li.depth_set, comm,
+               "-load_%s_%s is set but group '%s' is a physical surface: the set holds the points inside its elements; remove it (a "
+               "depth applies to a physical curve or point)",
+               n, li.layers_set ? "layers" : "depth", li.group.c_str());
+    set->area.kind      = Shape::Kind::mesh;
+    set->area.file      = set->file;
+    set->area.triangles = std::move(group.triangles);
+  } else set->segments = std::move(group.segments);
+  PetscFunctionReturn(0);
 }
 
 } // namespace
@@ -54,13 +101,25 @@ PetscErrorCode ReadLoading(MPI_Comm comm, Scene *scene, SceneInput *in)
     const std::string title  = "Load set " + name;
     set.name                 = name;
     PetscCall(ReadOptionBlock(comm, prefix.c_str(), title.c_str(), [&](OptionReader &r) -> PetscErrorCode {
-      PetscCall(r.String("-region", "Points held: top | bottom | left | right (edge layers) | box (required)", &set.region, &set.region_set));
+      PetscCall(r.String("-region",
+                         "Points held: top | bottom | left | right (edge layers) | box | polygon | curve (points near a polyline) | "
+                         "group (a Gmsh physical group) (required)",
+                         &set.region, &set.region_set));
       PetscCall(r.RealArray("-box", "Region box xmin,ymin,xmax,ymax [m] (region box)", &set.box, &set.box_set));
-      PetscCall(r.String("-placement", "outside (beyond the specimen's edge) | inside (the specimen's edge rows) | auto (-load_grip_placement's)",
+      PetscCall(r.RealArray("-points", "Region polygon (closed) or curve (open polyline): vertices x0,y0,x1,y1,... [m]", &set.points,
+                            &set.points_set));
+      PetscCall(r.String("-group", "Region group: the name of a physical surface, curve or point of the Gmsh file", &set.group));
+      PetscCall(r.String("-file", "Region group: the Gmsh .geo or .msh file (default: the body's mesh shape's file)", &set.file));
+      PetscCall(r.String("-placement", "outside (beyond the specimen's edge) | inside (the specimen's edge rows) | auto (-load_grip_placement's); edge "
+                         "regions (the others are inside)",
                          &set.placement));
-      PetscCall(r.Int("-layers", "Point rows the grip holds at its edge [-] (default: 2 horizons deep outside, 1 inside)", &set.layers,
-                      &set.layers_set));
-      PetscCall(r.Real("-depth", "Grip depth instead of -layers: the rows whose centres lie within it [m] (default outside: 2 horizons)",
+      PetscCall(r.Int("-layers",
+                      "Point rows the grip holds at its edge [-] (default: 2 horizons deep outside, 1 inside); curve and group "
+                      "curve/point: the points closer than layers x dx",
+                      &set.layers, &set.layers_set));
+      PetscCall(r.Real("-depth",
+                       "Grip depth instead of -layers: the rows whose centres lie within it [m] (default outside: 2 horizons); curve "
+                       "and group curve/point: the points closer than it (default dx)",
                        &set.depth, &set.depth_set));
       PetscCall(r.String("-x", "x component: free | fixed (u = 0) | stretch (follows the schedule)", &set.x));
       PetscCall(r.String("-y", "y component: free | fixed (u = 0) | stretch (follows the schedule)", &set.y));
@@ -121,7 +180,7 @@ PetscErrorCode CheckLoading(MPI_Comm comm, const SceneInput &in, Scene *scene)
     LoadSet     set;
     const char *n = li.name.c_str();
     set.name      = li.name;
-    SceneCheck(li.region_set, comm, "-load_%s_region is required for load set '%s': choose top, bottom, left, right or box%s", n, n,
+    SceneCheck(li.region_set, comm, "-load_%s_region is required for load set '%s': choose %s%s", n, n, kRegionChoices,
                MisspeltHint("-load_" + li.name + "_region").c_str());
     const std::string region = Lower(li.region);
     if (region == "top") set.region = LoadSet::Region::top;
@@ -129,8 +188,37 @@ PetscErrorCode CheckLoading(MPI_Comm comm, const SceneInput &in, Scene *scene)
     else if (region == "left") set.region = LoadSet::Region::left;
     else if (region == "right") set.region = LoadSet::Region::right;
     else if (region == "box") set.region = LoadSet::Region::box;
-    else SETERRQ(comm, PETSC_ERR_USER, "%s", Format("-load_%s_region '%s' is not a region: choose top, bottom, left, right or box", n, li.region.c_str()).c_str());
-
+    else if (region == "polygon") set.region = LoadSet::Region::polygon;
+    else if (region == "curve") set.region = LoadSet::Region::curve;
+    else if (region == "group") set.region = LoadSet::Region::group;
+    else SETERRQ(comm, PETSC_ERR_USER, "%s", Format("-load_%s_region '%s' is not a region: choose %s", n, li.region.c_str(), kRegionChoices).c_str());
+    const bool edge = set.region == LoadSet::Region::top || set.region == LoadSet::Region::bottom ||
+                      set.region == LoadSet::Region::left || set.region == LoadSet::Region::right;
+    // Each option belongs to some regions; one given to another region is a mistake.
+    const bool curve_like = set.region == LoadSet::Region::curve || set.region == LoadSet::Region::group; // (a group may be a curve)
+    for (const auto &[given, option, fits, which] :
+         {std::tuple{li.box_set, "box", set.region == LoadSet::Region::box, "region box"},
+          {li.points_set, "points", set.region == LoadSet::Region::polygon || set.region == LoadSet::Region::curve, "regions polygon and curve"},
+          {!li.group.empty(), "group", set.region == LoadSet::Region::group, "region group"},
+          {!li.file.empty(), "file", set.region == LoadSet::Region::group, "region group"},
+          {li.layers_set, "layers", edge || curve_like, "edge regions, curve and group"},
+          {li.depth_set, "depth", edge || curve_like, "edge regions, curve and group"}})
+      SceneCheck(!given || fits, comm, "-load_%s_%s is set but -load_%s_region is %s: it is used by %s only; remove it or change the region",
+                 n, option, n, to_string(set.region), which);
+    if (!edge) {
+      // A box, polygon, curve or group holds the body's own points: there is nothing
+      // beyond an edge to add for it.
+      const std::string placement = Lower(li.placement);
+      SceneCheck(placement == "auto" || placement == "inside", comm,
+                 "-load_%s_placement %s: load set '%s' is a %s, which holds the body's own points (inside); only the edge regions "
+                 "top, bottom, left and right add grip rows outside the body: remove it, or set it to inside",
+                 n, li.placement.c_str(), n, to_string(set.region));
+      SceneCheck(!(li.layers_set && li.depth_set), comm, "-load_%s_layers and -load_%s_depth both give the set's depth: keep one (rows, or metres)",
+                 n, n);
+      SceneCheck(!li.depth_set || li.depth > 0, comm, "-load_%s_depth %g m: a depth must be > 0", n, li.depth);
+      SceneCheck(li.layers >= 1, comm, "-load_%s_layers %" PetscInt_FMT ": take at least one point row", n, li.layers);
+      set.depth = li.depth_set ? li.depth : static_cast<double>(li.layers) * b.dx;
+    }
     if (set.region == LoadSet::Region::box) {
       SceneCheck(li.box_set, comm, "-load_%s_box is required with -load_%s_region box: give xmin,ymin,xmax,ymax in m%s", n, n,
                  MisspeltHint("-load_" + li.name + "_box").c_str());
@@ -143,14 +231,31 @@ PetscErrorCode CheckLoading(MPI_Comm comm, const SceneInput &in, Scene *scene)
       SceneCheck(set.box[2] >= 0 && set.box[0] <= b.width && set.box[3] >= 0 && set.box[1] <= b.height, comm,
                  "-load_%s_box %g,%g,%g,%g lies outside the body [0, %g] x [0, %g] m: move it onto the body", n, set.box[0], set.box[1],
                  set.box[2], set.box[3], b.width, b.height);
-      for (const auto &[given, option] : {std::pair{li.layers_set, "layers"}, {li.depth_set, "depth"}, {Lower(li.placement) != "auto", "placement"}})
-        SceneCheck(!given, comm,
-                   "-load_%s_%s is set but load set '%s' is a box: it applies to an edge grip; remove it or choose an edge region", n,
-                   option, n);
+    } else if (set.region == LoadSet::Region::polygon || set.region == LoadSet::Region::curve) {
+      const bool        polygon = set.region == LoadSet::Region::polygon;
+      const std::size_t fewest  = polygon ? 3 : 2;
+      SceneCheck(li.points_set, comm, "-load_%s_points is required with -load_%s_region %s: give the vertices x0,y0,x1,y1,... in m%s", n,
+                 n, to_string(set.region), MisspeltHint("-load_" + li.name + "_points").c_str());
+      SceneCheck(li.points.size() % 2 == 0 && li.points.size() >= 2 * fewest, comm,
+                 "-load_%s_points holds %zu numbers: give x,y pairs, at least %zu vertices for a %s", n, li.points.size(), fewest,
+                 to_string(set.region));
+      if (polygon) {
+        set.area.kind     = Shape::Kind::polygon;
+        set.area.vertices = li.points;
+        const std::string problem = polygon_problem(li.points);
+        SceneCheck(problem.empty(), comm, "-load_%s_points (the polygon of load set '%s'): %s; give its vertices in order around it (it closes by itself)",
+                   n, n, problem.c_str());
+      } else
+        for (std::size_t k = 0; k + 4 <= li.points.size(); k += 2) set.segments.insert(set.segments.end(), &li.points[k], &li.points[k + 4]);
+      double lo[2] = {li.points[0], li.points[1]}, hi[2] = {li.points[0], li.points[1]};
+      for (std::size_t k = 0; k < li.points.size(); ++k) lo[k % 2] = std::min(lo[k % 2], li.points[k]), hi[k % 2] = std::max(hi[k % 2], li.points[k]);
+      const double grow = polygon ? 0.0 : set.depth;
+      SceneCheck(hi[0] + grow >= 0 && lo[0] - grow <= b.width && hi[1] + grow >= 0 && lo[1] - grow <= b.height, comm,
+                 "-load_%s_points: the %s of load set '%s' lies outside the body [0, %g] x [0, %g] m: move it onto the body", n,
+                 to_string(set.region), n, b.width, b.height);
+    } else if (set.region == LoadSet::Region::group) {
+      PetscCall(ReadGroup(comm, li, b, &set));
     } else {
-      SceneCheck(!li.box_set, comm,
-                 "-load_%s_box is set but -load_%s_region is %s: the box is only used with region box; remove it or set the region to box",
-                 n, n, to_string(set.region));
       const std::string placement = Lower(li.placement) == "auto" ? to_string(default_placement) : Lower(li.placement);
       if (placement == "outside") set.placement = GripPlacement::outside;
       else if (placement == "inside") set.placement = GripPlacement::inside;
@@ -177,6 +282,7 @@ PetscErrorCode CheckLoading(MPI_Comm comm, const SceneInput &in, Scene *scene)
         rows = std::max<int64_t>(rows, set.layers);
       }
     }
+    if (!set.segments.empty()) SetCurveReach(&set);
 
     SceneCheck(ParseComponent(li.x, &set.x), comm, "-load_%s_x '%s' is not a choice: choose free, fixed or stretch", n, li.x.c_str());
     SceneCheck(ParseComponent(li.y, &set.y), comm, "-load_%s_y '%s' is not a choice: choose free, fixed or stretch", n, li.y.c_str());
@@ -235,6 +341,9 @@ const char *to_string(LoadSet::Region region)
   case LoadSet::Region::left: return "left";
   case LoadSet::Region::right: return "right";
   case LoadSet::Region::box: return "box";
+  case LoadSet::Region::polygon: return "polygon";
+  case LoadSet::Region::curve: return "curve";
+  case LoadSet::Region::group: return "group";
   }
   return "unknown";
 }

@@ -1,6 +1,8 @@
 // The points the scene names, found among a rank's owned points at run time: the
 // points a load set holds (LoadSetSelect) and the point a probe reads (ProbeLocate,
 // the same point on any number of ranks). The solver and the tests call these.
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <vector>
@@ -9,32 +11,72 @@
 
 namespace bapd {
 
-PetscErrorCode LoadSetSelect(const Scene &scene, const LoadSet &set, const double *x, PetscInt n, std::vector<PetscInt> *selected)
+namespace {
+
+// Squared distance from (px, py) to the segment (x0, y0)-(x1, y1) (a point when the
+// two ends coincide).
+double SegmentDistance2(const double *s, double px, double py)
+{
+  const double ex = s[2] - s[0], ey = s[3] - s[1], wx = px - s[0], wy = py - s[1], len2 = ex * ex + ey * ey;
+  const double t  = len2 > 0 ? std::clamp((wx * ex + wy * ey) / len2, 0.0, 1.0) : 0.0;
+  const double dx = wx - t * ex, dy = wy - t * ey;
+  return dx * dx + dy * dy;
+}
+
+// Whether (px, py) lies closer than the set's depth to one of its segments.
+bool NearSegments(const LoadSet &set, double px, double py)
+{
+  if (px < set.reach[0] || px > set.reach[2] || py < set.reach[1] || py > set.reach[3]) return false; // most points
+  const double d2 = set.depth * set.depth;
+  for (std::size_t k = 0; k + 4 <= set.segments.size(); k += 4)
+    if (SegmentDistance2(&set.segments[k], px, py) < d2) return true;
+  return false;
+}
+
+} // namespace
+
+void SetCurveReach(LoadSet *set)
+{
+  double *r = set->reach;
+  r[0] = r[1] = std::numeric_limits<double>::max();
+  r[2] = r[3] = -std::numeric_limits<double>::max();
+  for (std::size_t k = 0; k + 2 <= set->segments.size(); k += 2) {
+    r[0] = std::min(r[0], set->segments[k] - set->depth), r[2] = std::max(r[2], set->segments[k] + set->depth);
+    r[1] = std::min(r[1], set->segments[k + 1] - set->depth), r[3] = std::max(r[3], set->segments[k + 1] + set->depth);
+  }
+}
+
+bool LoadSetContains(const Scene &scene, const LoadSet &set, double px, double py)
 {
   const Body2D &b     = scene.body;
   const double  depth = set.layers * b.dx; // layer boundaries fall half-way between lattice rows
+  if (set.placement == GripPlacement::outside) switch (set.region) {
+    case LoadSet::Region::top: return py > b.height && py < b.height + depth;
+    case LoadSet::Region::bottom: return py < 0 && py > -depth;
+    case LoadSet::Region::left: return px < 0 && px > -depth;
+    case LoadSet::Region::right: return px > b.width && px < b.width + depth;
+    default: return false; // (only edge grips are placed outside)
+    }
+  switch (set.region) {
+    // (not the rows of other grips placed outside the sheet)
+  case LoadSet::Region::top: return py > b.height - depth && py < b.height;
+  case LoadSet::Region::bottom: return py < depth && py > 0;
+  case LoadSet::Region::left: return px < depth && px > 0;
+  case LoadSet::Region::right: return px > b.width - depth && px < b.width;
+  case LoadSet::Region::box: return px >= set.box[0] && px <= set.box[2] && py >= set.box[1] && py <= set.box[3];
+  case LoadSet::Region::polygon: return shape_contains(set.area, px, py);
+  case LoadSet::Region::curve: return NearSegments(set, px, py);
+  case LoadSet::Region::group: return set.segments.empty() ? shape_contains(set.area, px, py) : NearSegments(set, px, py);
+  }
+  return false;
+}
+
+PetscErrorCode LoadSetSelect(const Scene &scene, const LoadSet &set, const double *x, PetscInt n, std::vector<PetscInt> *selected)
+{
   PetscFunctionBeginUser;
   selected->clear();
-  for (PetscInt i = 0; i < n; ++i) {
-    const double px = x[2 * i], py = x[2 * i + 1];
-    bool         in = false;
-    if (set.placement == GripPlacement::outside) switch (set.region) {
-      case LoadSet::Region::top: in = py > b.height && py < b.height + depth; break;
-      case LoadSet::Region::bottom: in = py < 0 && py > -depth; break;
-      case LoadSet::Region::left: in = px < 0 && px > -depth; break;
-      case LoadSet::Region::right: in = px > b.width && px < b.width + depth; break;
-      case LoadSet::Region::box: break; // (a box is inside)
-      }
-    else switch (set.region) {
-         // (not the rows of other grips placed outside the sheet)
-      case LoadSet::Region::top: in = py > b.height - depth && py < b.height; break;
-      case LoadSet::Region::bottom: in = py < depth && py > 0; break;
-      case LoadSet::Region::left: in = px < depth && px > 0; break;
-      case LoadSet::Region::right: in = px > b.width - depth && px < b.width; break;
-      case LoadSet::Region::box: in = px >= set.box[0] && px <= set.box[2] && py >= set.box[1] && py <= set.box[3]; break;
-      }
-    if (in) selected->push_back(i);
-  }
+  for (PetscInt i = 0; i < n; ++i)
+    if (LoadSetContains(scene, set, x[2 * i], x[2 * i + 1])) selected->push_back(i);
   PetscFunctionReturn(0);
 }
 

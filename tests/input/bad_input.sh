@@ -134,6 +134,29 @@ expect_error mesh_no_file "-body_cut_file: give the Gmsh .geo or .msh file" "$sc
 expect_error probe_in_shape "lies where shape 'cut' (subtract) removed the material" "$scene" "${sh[@]}" -body_cut_type circle \
   -body_cut_centre 0.005,0.005 -body_cut_radius 0.002 -probes p -probe_p_at 0.005,0.005
 
+# Load sets by polygon, curve and Gmsh physical group (scene_loading.hpp)
+den=(-body_shapes o -body_o_type mesh -body_o_op intersect -body_o_file "$source_dir/examples/geometry/double_edge_notched.geo")
+expect_error group_missing "-load_top_group grip: '$source_dir/examples/geometry/double_edge_notched.geo' has no physical group named 'grip' (it has 'notch_left' (curve), 'notch_right' (curve), 'grip_bottom' (surface), 'specimen' (surface), 'grip_top' (surface))" \
+  "$scene" "${den[@]}" -load_top_region group -load_top_group grip
+expect_error group_file_missing "-load_top_group grip_top: cannot open 'no_such.msh'" "$scene" -load_top_region group -load_top_group grip_top \
+  -load_top_file no_such.msh
+expect_error group_file_not_gmsh "-load_top_group grip_top: Gmsh cannot read" "$scene" -load_top_region group -load_top_group grip_top \
+  -load_top_file "$source_dir/tests/geometry/broken.geo"
+# The sheet is 10 mm x 10 mm of the 20 mm x 40 mm outline: its top tab lies beyond it.
+expect_error group_selects_nothing "-load_top_group grip_top (of $source_dir/examples/geometry/double_edge_notched.geo) selects no material point for load set 'top'" \
+  "$scene" "${den[@]}" -load_top_region group -load_top_group grip_top
+expect_error polygon_crossing "-load_top_points (the polygon of load set 'top'): edges 1 and 3 cross" "$scene" -load_top_region polygon \
+  -load_top_points 0,0.008,0.01,0.01,0.01,0.008,0,0.01
+expect_error polygon_open "-load_top_points holds 4 numbers: give x,y pairs, at least 3 vertices for a polygon" "$scene" \
+  -load_top_region polygon -load_top_points 0,0.01,0.01,0.01
+# (between the point rows y = 9.25 and 9.75 mm)
+expect_error polygon_selects_nothing "-load_top_points: the polygon selects no material point for load set 'top'" "$scene" \
+  -load_top_region polygon -load_top_points 0.001,0.0093,0.009,0.0093,0.005,0.0097
+expect_error curve_selects_nothing "-load_top_points: the curve selects no material point for load set 'top': raise -load_top_depth" "$scene" \
+  -load_top_region curve -load_top_points 0,0.01,0.01,0.01 -load_top_depth 0.0002
+expect_error group_placed_outside "-load_top_placement outside: load set 'top' is a group" "$scene" "${den[@]}" -load_top_region group \
+  -load_top_group grip_bottom -load_top_placement outside
+
 # Options are checked before any work (docs/options.md): a typo or a bad -ts_* value
 # stops the run before the scene is shown and the body is built.
 for name in unknown_option nested_optional_key petsc_real petsc_int petsc_ts_type; do

@@ -5,9 +5,12 @@
 
 #include <cmath>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "bapd/gmsh_shape.hpp"
 #include "bapd/lattice.hpp"
+#include "bapd/scene.hpp"
 
 namespace {
 
@@ -46,6 +49,76 @@ TEST(GmshShape, DogboneExampleAreaMatchesItsGeometry)
   const double r = 0.005, area = 0.02 * 0.06 - 2 * 0.005 * 0.024 - 4 * M_PI * r * r / 4;
   EXPECT_NEAR(bapd::shape_area(s), area, 1e-3 * area);
   EXPECT_GE(bapd::shape_area(s), area);
+}
+
+const std::string examples = BAPD_TEST_SOURCE_DIR "/../examples/geometry/";
+
+TEST(GmshGroup, PhysicalSurfaceIsItsElementsAndCurveItsSegments)
+{
+  // examples/geometry/double_edge_notched.geo: grip_top is the tab [0, 20] x [38.5, 40]
+  // mm; notch_right the right notch's flanks (5 mm each less the 0.5 mm tip radius) and
+  // its semicircular tip of radius 0.5 mm, as Gmsh's chords.
+  bapd::GmshGroup group;
+  ASSERT_EQ(bapd::ReadGmshGroup(examples + "double_edge_notched.geo", "grip_top", &group), "");
+  EXPECT_EQ(group.dim, 2);
+  EXPECT_TRUE(group.segments.empty());
+  bapd::Shape tab;
+  tab.kind      = bapd::Shape::Kind::mesh;
+  tab.triangles = group.triangles;
+  EXPECT_NEAR(bapd::shape_area(tab), 0.02 * 0.0015, 1e-12); // straight edges: exact to round-off
+  EXPECT_TRUE(bapd::shape_contains(tab, 0.01, 0.039));
+  EXPECT_FALSE(bapd::shape_contains(tab, 0.01, 0.038));
+
+  ASSERT_EQ(bapd::ReadGmshGroup(examples + "double_edge_notched.geo", "notch_right", &group), "");
+  EXPECT_EQ(group.dim, 1);
+  double length = 0;
+  for (std::size_t k = 0; k < group.segments.size(); k += 4)
+    length += std::hypot(group.segments[k + 2] - group.segments[k], group.segments[k + 3] - group.segments[k + 1]);
+  const double exact = 2 * 0.0045 + M_PI * 0.0005; // chords fall short of the arc by well under 1 %
+  EXPECT_LT(length, exact);
+  EXPECT_GT(length, 0.99 * exact);
+}
+
+TEST(GmshGroup, DogboneEndLinesGripTheSameRowsAsEdgeGrips)
+{
+  // examples/dogbone.yaml grips the points within 2 mm of the physical curves top_end
+  // and bottom_end: on its 0.5 mm lattice, exactly the 4 edge rows inside the sheet
+  // that its earlier edge grips held (-load_S_region top|bottom, layers 4, inside).
+  bapd::Scene scene;
+  scene.body.width = 0.02, scene.body.height = 0.06, scene.body.thickness = 0.002, scene.body.dx = 0.0005;
+  bapd::Shape outline;
+  outline.kind = bapd::Shape::Kind::mesh, outline.op = bapd::Shape::Op::intersect;
+  ASSERT_EQ(bapd::ReadGmshTriangles(examples + "dogbone.geo", &outline.triangles), "");
+  scene.body.shapes = {outline};
+  const bapd::PointCloud cloud = bapd::make_lattice(scene.body);
+  for (const auto &[name, region] : {std::pair{"top_end", bapd::LoadSet::Region::top}, {"bottom_end", bapd::LoadSet::Region::bottom}}) {
+    bapd::GmshGroup group;
+    ASSERT_EQ(bapd::ReadGmshGroup(examples + "dogbone.geo", name, &group), "");
+    ASSERT_EQ(group.dim, 1);
+    bapd::LoadSet by_name;
+    by_name.region = bapd::LoadSet::Region::group, by_name.segments = group.segments, by_name.depth = 0.002;
+    bapd::SetCurveReach(&by_name);
+    bapd::LoadSet by_edge;
+    by_edge.region = region, by_edge.layers = 4, by_edge.placement = bapd::GripPlacement::inside;
+    std::vector<PetscInt> a, b;
+    ASSERT_EQ(bapd::LoadSetSelect(scene, by_name, cloud.x.data(), (PetscInt)cloud.size(), &a), 0);
+    ASSERT_EQ(bapd::LoadSetSelect(scene, by_edge, cloud.x.data(), (PetscInt)cloud.size(), &b), 0);
+    EXPECT_EQ(a, b) << name;
+    EXPECT_EQ(a.size(), 4u * 40u) << name; // the tabs are the sheet's full 20 mm width
+  }
+}
+
+TEST(GmshGroup, AMissingGroupIsNamedWithTheGroupsTheFileHas)
+{
+  bapd::GmshGroup   group;
+  const std::string message = bapd::ReadGmshGroup(examples + "double_edge_notched.geo", "grip", &group);
+  EXPECT_NE(message.find("has no physical group named 'grip'"), std::string::npos) << message;
+  EXPECT_NE(message.find("'grip_top' (surface)"), std::string::npos) << message;
+  EXPECT_NE(message.find("'notch_left' (curve)"), std::string::npos) << message;
+  const std::string none = bapd::ReadGmshGroup(dir + "l_shape.geo", "grip", &group);
+  EXPECT_NE(none.find("it names none"), std::string::npos) << none;
+  EXPECT_NE(bapd::ReadGmshGroup(dir + "no_such_file.geo", "grip", &group).find("cannot open"), std::string::npos);
+  EXPECT_NE(bapd::ReadGmshGroup(dir + "broken.geo", "grip", &group).find("Gmsh cannot read"), std::string::npos);
 }
 
 TEST(GmshShape, FilesGmshCannotUseAreNamed)

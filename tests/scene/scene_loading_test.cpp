@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <petscsys.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -167,6 +168,69 @@ TEST(LoadSetSelect, TakesThePointsInsideABox)
   set.box[1] = 0.0101;
   set.box[3] = 0.0104;
   EXPECT_EQ(GlobalCount(scene, set, share), 0);
+}
+
+TEST(LoadSetSelect, PolygonTakesThePointsInsideItEdgesIncluded)
+{
+  const Scene scene = Plate();
+  const Share share = TakeShare(bapd::make_lattice(scene.body));
+  LoadSet     set;
+  set.region         = LoadSet::Region::polygon;
+  set.area.kind      = bapd::Shape::Kind::polygon;
+  // The right triangle (0, 0), (10.2, 0), (0, 10.2) mm: the points ((i + 1/2), (j + 1/2))
+  // mm with i + j + 1 <= 10.2, 10 + 9 + ... + 1 = 55 of them.
+  set.area.vertices = {0, 0, 0.0102, 0, 0, 0.0102};
+  EXPECT_EQ(GlobalCount(scene, set, share), 55);
+  // The same square as the box test, as a polygon: the same 100 points.
+  set.area.vertices = {0, 0, 0.01, 0, 0.01, 0.01, 0, 0.01};
+  EXPECT_EQ(GlobalCount(scene, set, share), 100);
+}
+
+TEST(LoadSetSelect, CurveAlongAnEdgeTakesTheEdgeRowsOfItsDepth)
+{
+  const Scene            scene = Plate();
+  const bapd::PointCloud cloud = bapd::make_lattice(scene.body);
+  for (int layers : {1, 3}) {
+    LoadSet edge;
+    edge.region = LoadSet::Region::top, edge.layers = layers;
+    LoadSet curve;
+    curve.region   = LoadSet::Region::curve;
+    curve.segments = {0.08, 0.16, 0.0, 0.16}; // the top edge, right to left
+    curve.depth    = layers * scene.body.dx;
+    bapd::SetCurveReach(&curve);
+    std::vector<PetscInt> from_edge, from_curve;
+    ASSERT_EQ(bapd::LoadSetSelect(scene, edge, cloud.x.data(), (PetscInt)cloud.size(), &from_edge), 0);
+    ASSERT_EQ(bapd::LoadSetSelect(scene, curve, cloud.x.data(), (PetscInt)cloud.size(), &from_curve), 0);
+    EXPECT_EQ(from_curve, from_edge) << layers << " layer(s)";
+    EXPECT_EQ(from_curve.size(), 80u * layers);
+  }
+}
+
+TEST(LoadSetSelect, CurveTakesThePointsCloserThanItsDepthToAnyOfItsSegments)
+{
+  const Scene            scene = Plate();
+  const bapd::PointCloud cloud = bapd::make_lattice(scene.body);
+  const Share            share = TakeShare(cloud);
+  LoadSet                set;
+  set.region = LoadSet::Region::curve;
+  // An L-shaped polyline and a single point (a segment of length 0), 2.2 mm deep.
+  set.segments = {0.02, 0.03, 0.05, 0.07, 0.05, 0.07, 0.06, 0.07, 0.07, 0.12, 0.07, 0.12};
+  set.depth    = 0.0022;
+  bapd::SetCurveReach(&set);
+  auto distance = [](const double *s, double px, double py) { // the plain formula, point by point
+    const double ex = s[2] - s[0], ey = s[3] - s[1], len2 = ex * ex + ey * ey;
+    double       t  = len2 > 0 ? ((px - s[0]) * ex + (py - s[1]) * ey) / len2 : 0;
+    t               = t < 0 ? 0 : t > 1 ? 1 : t;
+    return std::hypot(px - s[0] - t * ex, py - s[1] - t * ey);
+  };
+  PetscInt expected = 0;
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    double d = 1e300;
+    for (std::size_t k = 0; k < set.segments.size(); k += 4) d = std::min(d, distance(&set.segments[k], cloud.x[2 * i], cloud.x[2 * i + 1]));
+    expected += d < set.depth;
+  }
+  EXPECT_GT(expected, 100); // the test means something
+  EXPECT_EQ(GlobalCount(scene, set, share), expected);
 }
 
 TEST(LoadSetSelect, ReturnsIncreasingLocalIndices)
