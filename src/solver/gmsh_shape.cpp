@@ -39,6 +39,7 @@ struct GmshSession {
 std::string ReadGmshTriangles(const std::string &file, TriangleSet *triangles)
 {
   triangles->corners.clear();
+  triangles->element.clear();
   if (std::FILE *f = std::fopen(file.c_str(), "rb")) std::fclose(f);
   else return "cannot open '" + file + "' (check the path; it is read relative to the directory bapd runs in)";
   GmshSession session; // finalised on every return below
@@ -73,8 +74,13 @@ std::string ReadGmshTriangles(const std::string &file, TriangleSet *triangles)
       if (corners == 0) return "'" + file + "' has 2D elements of a kind bapd does not read (" + name + "): mesh with triangles or quadrangles";
       for (std::size_t e = 0; e + per <= nodes[t].size(); e += (std::size_t)per) {
         const std::size_t *n = &nodes[t][e];
+        const std::size_t element = triangles->element.empty() ? 0 : triangles->element.back() + 1;
         corner(n[0], triangles->corners), corner(n[1], triangles->corners), corner(n[2], triangles->corners);
-        if (corners == 4) corner(n[0], triangles->corners), corner(n[2], triangles->corners), corner(n[3], triangles->corners);
+        triangles->element.push_back(element);
+        if (corners == 4) {
+          corner(n[0], triangles->corners), corner(n[2], triangles->corners), corner(n[3], triangles->corners);
+          triangles->element.push_back(element);
+        }
       }
     }
   } catch (...) {
