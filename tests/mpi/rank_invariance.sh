@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The same scene on 1, 2, 3 and 4 ranks: the same history, final displacement field
 # (bit for bit: tolerance 0) and set of broken bonds.
-#   rank_invariance.sh elastic|fracture|fracture_corrected|shapes
+#   rank_invariance.sh elastic|fracture|fracture_corrected|shapes|cloud
 # (fracture_corrected: fracture with -force_stress_correction tensor, whose per-point
 # correction is built once from the unbroken families on every rank, ghosts included)
 set -euo pipefail
@@ -30,6 +30,12 @@ if [ "$case" = shapes ]; then
          -load_bottom_region bottom -load_bottom_layers 2 -load_bottom_x fixed -load_bottom_y fixed
          -probes waist -probe_waist_at 0.00425,0.015 -damping 40 -output_interval 50 -progress_interval 100000
          -output_final_state -load_schedule 0,1,0.05,1.2)
+elif [ "$case" = cloud ]; then
+  # The graded point cloud of examples/point_cloud.yaml (own volumes and horizons, a hole
+  # cut by the scene, the bond-only form with the tensor correction), stretched briefly.
+  scene=(-options_file_yaml "$BAPD_SOURCE_DIR/examples/point_cloud.yaml"
+         -body_cloud "$BAPD_SOURCE_DIR/examples/geometry/graded_sheet.csv"
+         -load_schedule 0,1,0.05,1.2 -output_interval 50 -progress_interval 100000 -output_final_state)
 elif [ "$case" = fracture ] || [ "$case" = fracture_corrected ]; then
   # Stretch the sheet fast enough that the notch opens and bonds break within the run.
   scene+=(-load_schedule 0,1,0.2,1.6 -failure_critical_stretch 2.0)
