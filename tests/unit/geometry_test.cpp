@@ -152,15 +152,8 @@ TEST_P(NonUniformCloud, AffineMotionGivesExactDeformationGradientOnEveryUsableBo
   test::Discretisation d(make_points(body(), kFactor));
   const Mat2           A = test::rotation(30.0) * Mat2{2.0, 0.4, 0.0, 1.2};
   const std::vector<double> y = d.affine(A, 1e-3, -2e-3);
-  std::size_t usable = 0;
-  double      worst  = 0;
-  for (std::size_t i = 0; i < d.size(); ++i)
-    for (std::size_t q = 0; q < d.families.size(i); ++q) {
-      if (!d.geometry.is_usable(i, q)) continue;
-      ++usable;
-      const Mat2 F = bond_deformation_gradient(d.cloud, y.data(), d.families, d.geometry, d.state, i, q);
-      worst        = std::max(worst, test::norm(F - A) / test::norm(A));
-    }
+  std::size_t  usable = 0;
+  const double worst  = test::worst_affine_gradient_error(d, y, A, &usable);
   EXPECT_EQ(usable, d.families.n_bonds()); // every K regular: each family holds its own horizon's disc
   // F = (A K) K^{-1}: round-off of the sums and of K^{-1}, times cond(K) (<~ 100 here).
   EXPECT_LT(worst, 1e-12);

@@ -87,6 +87,22 @@ inline Mat2 bond_force_virial(const Discretisation &d, const std::vector<double>
   return V;
 }
 
+// Over the usable bonds: the largest |F_ij - A| / |A| of the motion y (affine with A),
+// and how many bonds are usable.
+inline double worst_affine_gradient_error(const Discretisation &d, const std::vector<double> &y, const Mat2 &A, std::size_t *usable)
+{
+  double worst = 0;
+  *usable      = 0;
+  for (std::size_t i = 0; i < d.size(); ++i)
+    for (std::size_t q = 0; q < d.families.size(i); ++q) {
+      if (!d.geometry.is_usable(i, q)) continue;
+      ++*usable;
+      const Mat2 F = bond_deformation_gradient(d.cloud, y.data(), d.families, d.geometry, d.state, i, q);
+      worst        = std::max(worst, norm(F - A) / norm(A));
+    }
+  return worst;
+}
+
 inline double max_abs(const std::vector<double> &v)
 {
   double m = 0;
