@@ -26,7 +26,8 @@ struct Families {
   std::vector<std::size_t>   offsets;   // n_family + 1 (CSR)
   std::vector<std::int32_t>  neighbour; // local index of j, per bond
   std::vector<std::int32_t>  reverse;   // bond (j -> i) of bond (i -> j), -1 if j >= n_family
-  // B_ij = {k in family(i) : |x_k - x_j| <= horizon} (contains j): bit p of the
+  // B_ij = {k in family(i) : |x_k - x_j| <= horizon} (contains j; the bond rule of
+  // build_families between j and k with per-point horizons): bit p of the
   // mask_words words of bond b is set iff the p-th member of i's family is in B_ij.
   std::vector<std::uint64_t> ba_mask;
 
@@ -36,7 +37,9 @@ struct Families {
 };
 
 // Families of points [0, n_family): every j != i of the cloud (all points, ghosts
-// included) with |x_j - x_i| <= horizon, found with a cell list, minus the bonds whose
+// included) with |x_j - x_i| <= horizon (max(delta_i, delta_j) when cloud.horizon
+// gives each point its own, geometry.hpp; Families::horizon is then the largest
+// delta), found with a cell list, minus the bonds whose
 // segment properly crosses a notch segment (such bonds never exist; a bond that only
 // touches a notch end point is kept), sorted by natural_id; then the BA masks and the
 // reverse index. Throws std::invalid_argument for a bad horizon or n_family, and

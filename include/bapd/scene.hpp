@@ -29,7 +29,7 @@ enum class ForceForm { bond_only, energy_consistent };
 
 struct Scene {
   Body2D body;
-  double horizon_factor = 3.015; // delta / dx
+  double horizon_factor = 3.015; // delta / dx (given points: delta_i / h_i, geometry.hpp)
 
   ModelKind          model       = ModelKind::gent;
   Formulation        formulation = Formulation::plane_stress;
@@ -66,7 +66,7 @@ struct Scene {
   // holds defaults only. The driver should list the other components' options and stop.
   bool help_only = false;
 
-  double horizon() const { return horizon_factor * body.dx; }
+  double horizon() const { return horizon_factor * body.dx; } // (given points: the smallest delta_i)
   // Prescribed displacement of a stretch component with the given scale at time t,
   // u = scale * (lambda(t) - 1) * reference_length, and its rate du/dt.
   double grip_displacement(double scale, double t) const
@@ -87,9 +87,10 @@ PetscErrorCode SceneView(MPI_Comm comm, const Scene &scene);
 // Warnings issued by the last SceneFromOptions (also printed on rank 0, to stderr).
 const std::vector<std::string> &SceneWarnings();
 
-// How many material points the body holds, counted by make_lattice's rule
-// (lattice.hpp) without building them: round(width/dx) x round(height/dx) cell
-// centres, less those inside a hole (hole_containing, lattice.hpp).
+// How many material points the body holds, counted by the geometry stage's rule
+// (geometry.hpp: body_point_count) without building them: on the lattice
+// round(width/dx) x round(height/dx) cell centres, less those inside a hole
+// (hole_containing, lattice.hpp); given points, those that are material.
 // 64-bit: a fine -body_dx can ask for more than 2^31 points (refused, see below).
 int64_t ScenePointEstimate(const Scene &scene);
 

@@ -25,7 +25,7 @@ struct LoadInput {
 };
 
 struct ShapeInput {
-  std::string         name, type, op = "subtract", file;
+  std::string         name, type, op = "subtract", file, discretisation = "lattice";
   bool                type_set = false;
   std::vector<double> box, centre, radii, points;
   double              radius = 0, angle = 0; // angle in degrees, as given
@@ -43,6 +43,7 @@ struct SceneInput {
   std::vector<double>      holes, notches;
   std::vector<std::string> shape_names;
   std::vector<ShapeInput>  shapes;
+  std::string              cloud; // -body_cloud: a point cloud file instead of the lattice
   std::string              model = "gent", formulation = "plane_stress", force_form = "energy_consistent",
                            stress_correction = "auto", grip_field = "auto", grip_placement = "outside";
   bool                     D_set = false, bulk_ratio_set = false;

@@ -19,6 +19,7 @@ struct TriangleSet {
   double              cell = 1;       // bucket size [m]
   long                nx = 0, ny = 0; // buckets
   std::vector<int>    offsets, members; // CSR: triangles overlapping each bucket
+  std::vector<std::size_t> element;     // the 2D element each triangle came from (a quadrangle gives two)
   std::size_t         size() const { return corners.size() / 6; }
 };
 // Builds the bucket grid of `set` (about one triangle a bucket).
@@ -38,6 +39,7 @@ struct Shape {
   double      angle = 0;             // ellipse: angle of the a axis from x [rad]
   std::vector<double> vertices;      // polygon: x0,y0,x1,y1,... (closed implicitly)
   std::string         file;          // mesh: the Gmsh file it came from
+  bool                centroids = false; // mesh: its element centroids are the body's points (geometry.hpp)
   TriangleSet         triangles;     // mesh: its 2D elements, as triangles
 };
 

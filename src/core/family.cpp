@@ -30,6 +30,21 @@ void check_cloud(const PointCloud &cloud)
   const std::size_t n = cloud.size();
   if (cloud.x.size() != 2 * n || cloud.natural_id.size() != n)
     throw std::invalid_argument("PointCloud: x must hold 2 and natural_id 1 entry per volume entry");
+  if (!cloud.horizon.empty() && cloud.horizon.size() != n)
+    throw std::invalid_argument("PointCloud: horizon must be empty or hold 1 entry per volume entry");
+  for (double h : cloud.horizon)
+    if (!(h > 0) || !std::isfinite(h))
+      throw std::invalid_argument("build_families: a point's horizon must be a positive number (got " + std::to_string(h) + ")");
+}
+
+// The squared reach of bond (a, b): max(delta_a, delta_b)^2 with per-point horizons
+// (geometry.hpp: a bond exists where either horizon reaches; symmetric in a and b),
+// else the one horizon's square.
+inline double reach_squared(const double *point_horizon, double h2, std::size_t a, std::size_t b)
+{
+  if (!point_horizon) return h2;
+  const double r = std::max(point_horizon[a], point_horizon[b]);
+  return r * r;
 }
 
 } // namespace
@@ -56,10 +71,13 @@ Families build_families(const PointCloud &cloud, std::size_t n_family, double ho
                                 " exceeds the number of points " + std::to_string(n));
   const double *x  = cloud.x.data();
   const double  h2 = horizon * horizon;
+  // Per-point horizons (geometry.hpp): the largest sets the cell list's cells.
+  const double *point_horizon = cloud.horizon.empty() ? nullptr : cloud.horizon.data();
+  const double  reach         = point_horizon ? *std::max_element(cloud.horizon.begin(), cloud.horizon.end()) : horizon;
 
   Families fam;
   fam.n_family = n_family;
-  fam.horizon  = horizon;
+  fam.horizon  = reach;
   fam.offsets.assign(n_family + 1, 0);
   if (n == 0) return fam;
 
@@ -72,7 +90,7 @@ Families build_families(const PointCloud &cloud, std::size_t n_family, double ho
     ymin = std::min(ymin, x[2 * i + 1]);
     ymax = std::max(ymax, x[2 * i + 1]);
   }
-  double cell = horizon;
+  double cell = reach;
   auto   cells_along = [&](double extent) { return static_cast<std::size_t>(extent / cell) + 1; };
   while (static_cast<double>(cells_along(xmax - xmin)) * static_cast<double>(cells_along(ymax - ymin)) >
          8.0 * static_cast<double>(n) + 64.0)
@@ -109,7 +127,7 @@ Families build_families(const PointCloud &cloud, std::size_t n_family, double ho
         const std::size_t c = gy * ncx + gx;
         for (std::size_t s = cell_start[c]; s < cell_start[c + 1]; ++s) {
           const std::size_t j = cell_points[s];
-          if (j == i || distance_squared(x, i, j) > h2) continue;
+          if (j == i || distance_squared(x, i, j) > reach_squared(point_horizon, h2, i, j)) continue;
           // Canonical order (lower natural id first) so that (i, j) and (j, i) get the
           // same crossing decision bit for bit.
           const bool   i_first = cloud.natural_id[i] < cloud.natural_id[j];
@@ -136,7 +154,8 @@ Families build_families(const PointCloud &cloud, std::size_t n_family, double ho
     fam.max_family_size = std::max(fam.max_family_size, candidates.size());
   }
 
-  // BA masks: bit p of bond (i -> j) iff |x_k - x_j| <= horizon for the p-th member k.
+  // BA masks: bit p of bond (i -> j) iff |x_k - x_j| <= horizon for the p-th member k
+  // (max(delta_j, delta_k) with per-point horizons: k is in H_j).
   const std::size_t W = std::max<std::size_t>(1, (fam.max_family_size + 63) / 64);
   fam.mask_words      = W;
   fam.ba_mask.assign(fam.n_bonds() * W, 0);
@@ -147,7 +166,7 @@ Families build_families(const PointCloud &cloud, std::size_t n_family, double ho
       std::uint64_t    *mask = fam.ba_mask.data() + (o + q) * W;
       for (std::size_t p = 0; p < m; ++p) {
         const std::size_t k = static_cast<std::size_t>(fam.neighbour[o + p]);
-        if (distance_squared(x, j, k) <= h2) mask[p / 64] |= std::uint64_t{1} << (p % 64);
+        if (distance_squared(x, j, k) <= reach_squared(point_horizon, h2, j, k)) mask[p / 64] |= std::uint64_t{1} << (p % 64);
       }
     }
   }

@@ -87,9 +87,11 @@ private:
   std::unordered_map<std::size_t, std::size_t> where_;
 };
 
-// Appends the 2D elements of entity `tag` (-1: all) to `corners` as triangles; returns
-// "" or the element kind bapd cannot read.
-std::string AppendTriangles(const NodeTable &table, int tag, std::vector<double> &corners)
+// Appends the 2D elements of entity `tag` (-1: all) to `corners` as triangles, and to
+// `element` (when given) the index of the element each triangle came from (a quadrangle
+// gives two triangles); returns "" or the element kind bapd cannot read.
+std::string AppendTriangles(const NodeTable &table, int tag, std::vector<double> &corners,
+                            std::vector<std::size_t> *element = nullptr)
 {
   std::vector<int>                      types;
   std::vector<std::vector<std::size_t>> tags, nodes;
@@ -102,9 +104,14 @@ std::string AppendTriangles(const NodeTable &table, int tag, std::vector<double>
     const int n_corners = CornerCount(types[t]);
     if (n_corners == 0) return "2D elements of a kind bapd does not read (" + name + "): mesh with triangles or quadrangles";
     for (std::size_t e = 0; e + per <= nodes[t].size(); e += (std::size_t)per) {
-      const std::size_t *n = &nodes[t][e];
+      const std::size_t *n     = &nodes[t][e];
+      const std::size_t  index = element && !element->empty() ? element->back() + 1 : 0;
       table.Append(n[0], corners), table.Append(n[1], corners), table.Append(n[2], corners);
-      if (n_corners == 4) table.Append(n[0], corners), table.Append(n[2], corners), table.Append(n[3], corners);
+      if (element) element->push_back(index);
+      if (n_corners == 4) {
+        table.Append(n[0], corners), table.Append(n[2], corners), table.Append(n[3], corners);
+        if (element) element->push_back(index);
+      }
     }
   }
   return "";
@@ -134,8 +141,9 @@ const char *DimensionWord(int dim) { return dim == 2 ? "surface" : dim == 1 ? "c
 std::string ReadGmshTriangles(const std::string &file, TriangleSet *triangles)
 {
   triangles->corners.clear();
+  triangles->element.clear();
   const std::string problem = WithMeshedFile(file, [&]() -> std::string {
-    const std::string kind = AppendTriangles(NodeTable(), -1, triangles->corners);
+    const std::string kind = AppendTriangles(NodeTable(), -1, triangles->corners, &triangles->element);
     return kind.empty() ? "" : "'" + file + "' has " + kind;
   });
   if (!problem.empty()) return problem;

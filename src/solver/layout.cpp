@@ -58,6 +58,9 @@ PetscErrorCode DistributePoints(MPI_Comm comm, const PointCloud &global_cloud, c
   PetscCallMPI(MPI_Comm_size(comm, &size));
   PetscInt n_global = (PetscInt)global_cloud.size(), edge_cut = 0;
   PetscCallMPI(MPI_Bcast(&n_global, 1, MPIU_INT, 0, comm));
+  // Reals per point: x, y, V, V(H), and delta_i when the points have their own horizons.
+  int R = global_cloud.horizon.empty() ? 4 : 5;
+  PetscCallMPI(MPI_Bcast(&R, 1, MPI_INT, 0, comm));
   PetscCheck(n_global >= size, comm, PETSC_ERR_USER, "The body has %" PetscInt_FMT " points, fewer than the %d ranks: run on fewer ranks or refine -body_dx", n_global, size);
 
   std::vector<int>      my_ids;
@@ -85,14 +88,15 @@ PetscErrorCode DistributePoints(MPI_Comm comm, const PointCloud &global_cloud, c
       ids.insert(ids.end(), rp.ring1.begin(), rp.ring1.end());
       ids.insert(ids.end(), rp.ring2.begin(), rp.ring2.end());
       std::vector<PetscInt> pidx(ids.size());
-      std::vector<double>   real(4 * ids.size());
+      std::vector<double>   real(R * ids.size());
       for (std::size_t k = 0; k < ids.size(); ++k) {
         const int i     = ids[k];
         pidx[k]         = petsc_index[i];
-        real[4 * k + 0] = global_cloud.x[2 * i];
-        real[4 * k + 1] = global_cloud.x[2 * i + 1];
-        real[4 * k + 2] = global_cloud.volume[i];
-        real[4 * k + 3] = global_cloud.family_volume[i];
+        real[R * k + 0] = global_cloud.x[2 * i];
+        real[R * k + 1] = global_cloud.x[2 * i + 1];
+        real[R * k + 2] = global_cloud.volume[i];
+        real[R * k + 3] = global_cloud.family_volume[i];
+        if (R == 5) real[R * k + 4] = global_cloud.horizon[i];
       }
       PetscInt c[3] = {(PetscInt)rp.owned.size(), (PetscInt)rp.ring1.size(), (PetscInt)rp.ring2.size()};
       if (r == 0) {
@@ -105,7 +109,7 @@ PetscErrorCode DistributePoints(MPI_Comm comm, const PointCloud &global_cloud, c
         PetscCallMPI(MPI_Send(c, 3, MPIU_INT, r, 0, comm));
         PetscCallMPI(MPI_Send(ids.data(), m, MPI_INT, r, 1, comm));
         PetscCallMPI(MPI_Send(pidx.data(), m, MPIU_INT, r, 2, comm));
-        PetscCallMPI(MPI_Send(real.data(), 4 * m, MPI_DOUBLE, r, 3, comm));
+        PetscCallMPI(MPI_Send(real.data(), R * m, MPI_DOUBLE, r, 3, comm));
       }
     }
   } else {
@@ -113,10 +117,10 @@ PetscErrorCode DistributePoints(MPI_Comm comm, const PointCloud &global_cloud, c
     const int m = (int)(my_counts[0] + my_counts[1] + my_counts[2]);
     my_ids.resize(m);
     my_petsc.resize(m);
-    my_real.resize(4 * m);
+    my_real.resize(R * m);
     PetscCallMPI(MPI_Recv(my_ids.data(), m, MPI_INT, 0, 1, comm, MPI_STATUS_IGNORE));
     PetscCallMPI(MPI_Recv(my_petsc.data(), m, MPIU_INT, 0, 2, comm, MPI_STATUS_IGNORE));
-    PetscCallMPI(MPI_Recv(my_real.data(), 4 * m, MPI_DOUBLE, 0, 3, comm, MPI_STATUS_IGNORE));
+    PetscCallMPI(MPI_Recv(my_real.data(), R * m, MPI_DOUBLE, 0, 3, comm, MPI_STATUS_IGNORE));
   }
   PetscCallMPI(MPI_Bcast(&edge_cut, 1, MPIU_INT, 0, comm));
 
@@ -133,11 +137,13 @@ PetscErrorCode DistributePoints(MPI_Comm comm, const PointCloud &global_cloud, c
   c.volume.resize(m);
   c.family_volume.resize(m);
   c.natural_id.assign(my_ids.begin(), my_ids.end());
+  c.horizon.resize(R == 5 ? m : 0);
   for (std::size_t k = 0; k < m; ++k) {
-    c.x[2 * k]          = my_real[4 * k];
-    c.x[2 * k + 1]      = my_real[4 * k + 1];
-    c.volume[k]         = my_real[4 * k + 2];
-    c.family_volume[k]  = my_real[4 * k + 3];
+    c.x[2 * k]          = my_real[R * k];
+    c.x[2 * k + 1]      = my_real[R * k + 1];
+    c.volume[k]         = my_real[R * k + 2];
+    c.family_volume[k]  = my_real[R * k + 3];
+    if (R == 5) c.horizon[k] = my_real[R * k + 4];
   }
   PetscFunctionReturn(0);
 }

@@ -73,7 +73,12 @@ PetscErrorCode SceneView(MPI_Comm comm, const Scene &s)
   PetscFunctionBeginUser;
   if (s.help_only) PetscFunctionReturn(0);
   const EdgeRows &g = b.grip_rows;
-  text += Format("Scene\n  body      %g m x %g m, thickness %g m, dx %g m: %ld x %ld lattice%s, %ld points, %zu hole(s), %zu notch(es)\n",
+  if (b.given_points) // (geometry.hpp: points with their own volumes and horizons)
+    text += Format("Scene\n  body      %g m x %g m, thickness %g m: %ld points of %s (%zu given), spacing sqrt(V/t) from dx = %g m, %zu "
+                   "hole(s), %zu notch(es)\n",
+                   b.width, b.height, b.thickness, (long)ScenePointEstimate(s), b.given_points->source.c_str(), b.given_points->size(), b.dx,
+                   b.holes.size(), b.notches.size());
+  else text += Format("Scene\n  body      %g m x %g m, thickness %g m, dx %g m: %ld x %ld lattice%s, %ld points, %zu hole(s), %zu notch(es)\n",
                  b.width, b.height, b.thickness, b.dx, std::lround(b.width / b.dx), std::lround(b.height / b.dx),
                  g.any() ? Format(" + grip rows outside (%ld top, %ld bottom, %ld left, %ld right)", (long)g.top, (long)g.bottom,
                                   (long)g.left, (long)g.right)
@@ -96,7 +101,8 @@ PetscErrorCode SceneView(MPI_Comm comm, const Scene &s)
     text += Format("            shape %s: %s %s %s, %s\n", sh.name.c_str(), to_string(sh.op), article, to_string(sh.kind), where.c_str());
   }
   for (const Segment &g : b.notches) text += Format("            notch (%g, %g)-(%g, %g) m\n", g.x0, g.y0, g.x1, g.y1);
-  text += Format("  horizon   delta = %g dx = %g m\n", s.horizon_factor, s.horizon());
+  if (b.given_points) text += Format("  horizon   delta_i = %g h_i, h_i = sqrt(V_i / t) (at least %g m); a bond where either reaches\n", s.horizon_factor, s.horizon());
+  else text += Format("  horizon   delta = %g dx = %g m\n", s.horizon_factor, s.horizon());
   const double K = 2.0 / s.material.D;
   text += Format("  material  %s, %s: mu %g Pa", to_string(s.model), to_string(s.formulation), s.material.mu);
   if (s.model == ModelKind::gent) text += Format(", Jm %g", s.material.Jm);

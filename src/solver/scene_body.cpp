@@ -6,13 +6,16 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <memory>
 #include <numeric>
 #include <string>
 #include <vector>
 
+#include "bapd/geometry.hpp"
 #include "bapd/gmsh_shape.hpp"
 #include "bapd/lattice.hpp"
 #include "bapd/options_reader.hpp"
+#include "bapd/point_cloud_file.hpp"
 #include "bapd/scene_input.hpp"
 
 namespace bapd {
@@ -166,7 +169,7 @@ PetscErrorCode CheckMemory(MPI_Comm comm, const Scene &scene, int64_t points)
 }
 
 // One shape of -body_shapes, checked and converted (angles to radians).
-PetscErrorCode CheckShape(MPI_Comm comm, const ShapeInput &in, const Body2D &b, std::vector<Shape> *shapes)
+PetscErrorCode CheckShape(MPI_Comm comm, const ShapeInput &in, const Body2D &b, TriangleSet *read_mesh, std::vector<Shape> *shapes)
 {
   Shape       s;
   const char *n = in.name.c_str();
@@ -202,7 +205,8 @@ PetscErrorCode CheckShape(MPI_Comm comm, const ShapeInput &in, const Body2D &b, 
                     {has_radii, s.kind == Shape::Kind::ellipse, "radii"},
                     {in.angle != 0, s.kind == Shape::Kind::ellipse, "angle"},
                     {has_points, wanted_points, "points"},
-                    {!in.file.empty(), s.kind == Shape::Kind::mesh, "file"}};
+                    {!in.file.empty(), s.kind == Shape::Kind::mesh, "file"},
+                    {Lower(in.discretisation) != "lattice", s.kind == Shape::Kind::mesh, "discretisation"}};
   for (const auto &p : parameters)
     SceneCheck(!p.given || p.wanted, comm, "-body_%s_%s is not a parameter of a %s: remove it, or change -body_%s_type", n, p.option,
                to_string(s.kind), n);
@@ -238,23 +242,33 @@ PetscErrorCode CheckShape(MPI_Comm comm, const ShapeInput &in, const Body2D &b, 
   case Shape::Kind::mesh: {
     SceneCheck(!in.file.empty(), comm, "-body_%s_file: give the Gmsh .geo or .msh file of shape '%s'", n, n);
     // Every rank reads the (small) outline: the scene checks and probes use it too.
-    s.file                    = in.file;
-    const std::string problem = ReadGmshTriangles(in.file, &s.triangles);
-    SceneCheck(problem.empty(), comm, "-body_%s_file: %s", n, problem.c_str());
+    s.file      = in.file;
+    s.centroids = Lower(in.discretisation) == "centroids";
+    if (read_mesh) s.triangles = std::move(*read_mesh); // (read by CheckBody for its centroids)
+    else {
+      const std::string problem = ReadGmshTriangles(in.file, &s.triangles);
+      SceneCheck(problem.empty(), comm, "-body_%s_file: %s", n, problem.c_str());
+    }
     break;
   }
   }
   // A shape that does not touch the sheet does nothing: surely a mistake in a number.
-  bool touches = false;
-  const LatticeCells cells = lattice_cells(b);
-  const int64_t      step  = std::max<int64_t>(1, std::max(cells.nx, cells.ny) / 2000);
-  for (int64_t iy = 0; iy < cells.ny && !touches; iy += step)
-    for (int64_t ix = 0; ix < cells.nx && !touches; ix += step)
-      touches = shape_contains(s, (ix + 0.5) * b.dx, (iy + 0.5) * b.dx);
+  // (With given points: none of them; the mesh whose centroids they are holds them all.)
+  bool touches = s.centroids;
+  if (b.given_points) {
+    const GivenPoints &g = *b.given_points;
+    for (std::size_t p = 0; p < g.size() && !touches; ++p) touches = shape_contains(s, g.x[2 * p], g.x[2 * p + 1]);
+  } else {
+    const LatticeCells cells = lattice_cells(b);
+    const int64_t      step  = std::max<int64_t>(1, std::max(cells.nx, cells.ny) / 2000);
+    for (int64_t iy = 0; iy < cells.ny && !touches; iy += step)
+      for (int64_t ix = 0; ix < cells.nx && !touches; ix += step)
+        touches = shape_contains(s, (ix + 0.5) * b.dx, (iy + 0.5) * b.dx);
+  }
   SceneCheck(touches || s.op == Shape::Op::intersect, comm,
-             "-body_%s: the %s holds no lattice point of the sheet [0, %g] x [0, %g] m (spacing %g m), so it changes nothing: check "
+             "-body_%s: the %s holds no %s point of the sheet [0, %g] x [0, %g] m (spacing %g m), so it changes nothing: check "
              "its position and size",
-             n, to_string(s.kind), b.width, b.height, b.dx);
+             n, to_string(s.kind), b.given_points ? "given" : "lattice", b.width, b.height, b.dx);
   shapes->push_back(s);
   PetscFunctionReturn(0);
 }
@@ -272,6 +286,10 @@ PetscErrorCode ReadBody(MPI_Comm comm, Scene *scene, SceneInput *in)
     PetscCall(r.Real("-body_dx", "Lattice spacing of the material points [m] (required)", &b.dx, &in->dx_set));
     PetscCall(r.RealArray("-body_holes", "Circular holes cx,cy,r,cx,cy,r,... [m] (default: none)", &in->holes));
     PetscCall(r.RealArray("-body_notches", "Pre-notch segments x0,y0,x1,y1,... [m]; bonds crossing one are never created (default: none)", &in->notches));
+    PetscCall(r.String("-body_cloud",
+                       "Point cloud file instead of the lattice: x, y, volume [, block_id] a point, .csv or .h5 [m, m^3] (default: "
+                       "the lattice)",
+                       &in->cloud));
     PetscCall(r.StringArray("-body_shapes", "Shapes applied in order to the sheet, name1,name2,... (each shape S is set by -body_S_...)",
                             &in->shape_names));
     return 0;
@@ -291,13 +309,17 @@ PetscErrorCode ReadBody(MPI_Comm comm, Scene *scene, SceneInput *in)
       PetscCall(r.Real("-angle", "Ellipse: angle of the a axis from x [degrees]", &shape.angle));
       PetscCall(r.RealArray("-points", "Polygon vertices x0,y0,x1,y1,... [m] (closed: the last joins the first)", &shape.points));
       PetscCall(r.String("-file", "Mesh: a Gmsh .geo (meshed in 2D) or .msh file whose 2D elements are the shape [m]", &shape.file));
+      PetscCall(r.String("-discretisation",
+                         "Mesh: lattice (the lattice clipped to the mesh) | centroids (one point per 2D element, volume = area x "
+                         "thickness)",
+                         &shape.discretisation));
       return 0;
     }));
     in->shapes.push_back(shape);
   }
 
   PetscCall(ReadOptionBlock(comm, nullptr, "Horizon", [&](OptionReader &r) -> PetscErrorCode {
-    PetscCall(r.Real("-horizon_factor", "Horizon over lattice spacing, delta/dx [-] (paper: 3.015; 2.515 and 3.515 also studied)",
+    PetscCall(r.Real("-horizon_factor", "Horizon over lattice spacing, delta/dx [-] (given points: over each one's spacing sqrt(V/t)) (paper: 3.015; 2.515 and 3.515 also studied)",
                      &scene->horizon_factor, nullptr, "3.015"));
     return 0;
   }));
@@ -308,15 +330,79 @@ PetscErrorCode CheckBody(MPI_Comm comm, const SceneInput &in, Scene *scene)
 {
   Body2D &b = scene->body;
   PetscFunctionBeginUser;
+  // Given points (geometry.hpp) instead of the lattice: a cloud file, or the element
+  // centroids of one mesh shape. They fix the spacing (dx: the smallest), and the
+  // sheet's size unless it is given (the points' extent, half a spacing beyond them).
+  const ShapeInput *centroid_shape = nullptr;
+  for (const ShapeInput &si : in.shapes) {
+    const char *n = si.name.c_str();
+    if (Lower(si.discretisation) == "lattice") continue;
+    SceneCheck(Lower(si.discretisation) == "centroids", comm, "-body_%s_discretisation '%s' is not a choice: choose lattice or centroids", n,
+               si.discretisation.c_str());
+    SceneCheck(Lower(si.type) == "mesh", comm,
+               "-body_%s_discretisation centroids: only a mesh shape (-body_%s_type mesh) has elements whose centroids can be the points; "
+               "remove it, or make the shape a Gmsh mesh",
+               n, n);
+    SceneCheck(!centroid_shape, comm,
+               "-body_%s_discretisation and -body_%s_discretisation are both centroids: the body's points come from one mesh; keep one",
+               centroid_shape ? centroid_shape->name.c_str() : "", n);
+    SceneCheck(in.cloud.empty(), comm, "-body_%s_discretisation centroids and -body_cloud both give the body's points: keep one", n);
+    centroid_shape = &si;
+  }
+  b.given_points.reset();
+  TriangleSet centroid_mesh; // the centroid shape's mesh, read once (CheckShape takes it)
+  if (!in.cloud.empty() || centroid_shape) {
+    const std::string source = centroid_shape ? "-body_" + centroid_shape->name + "_discretisation centroids" : "-body_cloud";
+    SceneCheck(in.thickness_set && b.thickness > 0, comm,
+               "-body_thickness is required and must be > 0 m: %s turns volumes into spacings with it (YAML: body: {thickness: 0.001})",
+               source.c_str());
+    auto points = std::make_shared<GivenPoints>();
+    if (centroid_shape) {
+      const char       *n       = centroid_shape->name.c_str();
+      SceneCheck(!centroid_shape->file.empty(), comm, "-body_%s_file: give the Gmsh .geo or .msh file of shape '%s'", n, n);
+      const std::string problem = ReadGmshTriangles(centroid_shape->file, &centroid_mesh);
+      SceneCheck(problem.empty(), comm, "-body_%s_file: %s", n, problem.c_str());
+      *points        = element_centroids(centroid_mesh, b.thickness);
+      points->source = centroid_shape->file;
+      for (std::size_t p = 0; p < points->size(); ++p)
+        SceneCheck(points->volume[p] > 0, comm,
+                   "-body_%s_file: 2D element %zu of '%s' has zero area, so its centroid point would have no volume: fix the mesh", n, p + 1,
+                   centroid_shape->file.c_str());
+    } else {
+      const std::string problem = ReadPointCloud(in.cloud, points.get());
+      SceneCheck(problem.empty(), comm, "-body_cloud: %s", problem.c_str());
+    }
+    double right = 0, top = 0;
+    for (std::size_t p = 0; p < points->size(); ++p) {
+      const double h = point_spacing(points->volume[p], b.thickness);
+      right          = std::max(right, points->x[2 * p] + 0.5 * h);
+      top            = std::max(top, points->x[2 * p + 1] + 0.5 * h);
+    }
+    if (!in.width_set) b.width = right;
+    if (!in.height_set) b.height = top;
+    for (std::size_t p = 0; p < points->size(); ++p) {
+      const double x = points->x[2 * p], y = points->x[2 * p + 1];
+      SceneCheck(x >= 0 && x <= b.width && y >= 0 && y <= b.height, comm,
+                 "%s: point %zu at (%g, %g) m lies outside the sheet [0, %g] x [0, %g] m: shift the points into x >= 0, y >= 0%s", source.c_str(),
+                 p + 1, x, y, b.width, b.height, in.width_set || in.height_set ? ", or enlarge -body_width / -body_height" : "");
+    }
+    SceneCheck(!in.dx_set, comm,
+               "-body_dx is the lattice spacing, but %s gives the body's points, each with its own volume (its spacing is sqrt(volume / "
+               "thickness)): remove -body_dx",
+               source.c_str());
+    b.dx           = smallest_spacing(*points, b.thickness);
+    b.given_points = points;
+  }
+  const bool given = b.given_points != nullptr;
   const struct {
     bool        set;
     double      value;
     const char *name, *what, *yaml;
   } sizes[] = {
-    {in.width_set, b.width, "-body_width", "the sheet width along x", "width: 0.08"},
-    {in.height_set, b.height, "-body_height", "the sheet height along y", "height: 0.16"},
+    {in.width_set || given, b.width, "-body_width", "the sheet width along x", "width: 0.08"},
+    {in.height_set || given, b.height, "-body_height", "the sheet height along y", "height: 0.16"},
     {in.thickness_set, b.thickness, "-body_thickness", "the sheet thickness", "thickness: 0.001"},
-    {in.dx_set, b.dx, "-body_dx", "the lattice spacing", "dx: 0.001"},
+    {in.dx_set || given, b.dx, "-body_dx", "the lattice spacing", "dx: 0.001"},
   };
   for (const auto &s : sizes) {
     SceneCheck(s.set, comm, "%s is required: give %s in metres (YAML: body: {%s})%s", s.name, s.what, s.yaml, MisspeltHint(s.name).c_str());
@@ -367,14 +453,15 @@ PetscErrorCode CheckBody(MPI_Comm comm, const SceneInput &in, Scene *scene)
     b.notches.push_back(g);
   }
   b.shapes.clear();
-  for (const ShapeInput &si : in.shapes) PetscCall(CheckShape(comm, si, b, &b.shapes));
+  for (const ShapeInput &si : in.shapes) PetscCall(CheckShape(comm, si, b, &si == centroid_shape ? &centroid_mesh : nullptr, &b.shapes));
   const std::string cut = FindCut(b);
   PetscCheck(cut.empty(), comm, PETSC_ERR_USER, "%s", cut.c_str());
   const int64_t points = ScenePointEstimate(*scene);
-  SceneCheck(points > 0, comm, "%s leave no material point on the lattice of spacing -body_dx %g m: %s",
-             b.shapes.empty() ? "-body_holes: the holes" : "-body_holes and -body_shapes: the holes and shapes", b.dx,
+  SceneCheck(points > 0, comm, "%s leave no material point %s %g m: %s",
+             b.shapes.empty() ? "-body_holes: the holes" : "-body_holes and -body_shapes: the holes and shapes",
+             given ? "of the given points, smallest spacing" : "on the lattice of spacing -body_dx", b.dx,
              b.shapes.empty() ? "reduce their radii or dx" : "check each shape's -body_NAME_op (subtract removes what it covers)");
-  if (!b.shapes.empty()) {
+  if (!b.shapes.empty() && !given) {
     // The holes and notches are checked above edge by edge (FindCut); shapes can make
     // any outline, so the lattice itself is looked at.
     const LatticePieces pieces = lattice_pieces(b);
@@ -403,6 +490,6 @@ PetscErrorCode CheckBodyFits(MPI_Comm comm, const Scene &scene)
   PetscFunctionReturn(0);
 }
 
-int64_t ScenePointEstimate(const Scene &scene) { return lattice_point_count(scene.body); }
+int64_t ScenePointEstimate(const Scene &scene) { return body_point_count(scene.body); }
 
 } // namespace bapd

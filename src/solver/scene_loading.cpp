@@ -260,6 +260,12 @@ PetscErrorCode CheckLoading(MPI_Comm comm, const SceneInput &in, Scene *scene)
       if (placement == "outside") set.placement = GripPlacement::outside;
       else if (placement == "inside") set.placement = GripPlacement::inside;
       else SceneCheck(false, comm, "-load_%s_placement '%s' is not a choice: choose outside, inside or auto", n, li.placement.c_str());
+      // A grip outside extrudes the edge row of the lattice; given points have no rows.
+      SceneCheck(set.placement == GripPlacement::inside || !b.given_points, comm,
+                 "-load_%s_placement %s: a grip outside the specimen extrudes the lattice's edge rows, which given points (-body_cloud, "
+                 "-body_S_discretisation centroids) do not have: place it inside (-load_%s_placement inside, or -load_grip_placement "
+                 "inside for every grip)",
+                 n, Lower(li.placement) == "auto" ? "outside (the default)" : "outside", n);
       SceneCheck(!(li.layers_set && li.depth_set), comm,
                  "-load_%s_layers and -load_%s_depth both give the grip's depth: keep one (rows, or metres)", n, n);
       SceneCheck(!li.depth_set || li.depth > 0, comm, "-load_%s_depth %g m: a grip's depth must be > 0", n, li.depth);

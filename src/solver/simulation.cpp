@@ -8,7 +8,7 @@
 #include <limits>
 
 #include "bapd/help.hpp"
-#include "bapd/lattice.hpp"
+#include "bapd/geometry.hpp"
 
 namespace bapd {
 
@@ -103,8 +103,10 @@ PetscErrorCode Simulation::BuildBody()
   PetscFunctionBegin;
   PetscCall(PetscLogStagePush(stage_partition_));
   if (rank_ == 0) {
-    // Rank 0 builds the whole bond graph; fine up to a few 10^7 points (README).
-    global               = make_lattice(scene_.body);
+    // Rank 0 builds the whole bond graph; fine up to a few 10^7 points (README). The
+    // geometry stage gives the points: the lattice, or the given points with their
+    // own volumes and horizons (geometry.hpp).
+    global               = make_points(scene_.body, scene_.horizon_factor);
     Families all         = build_families(global, global.size(), horizon, scene_.body.notches);
     compute_family_volumes(global, all);
     offsets.assign(all.offsets.begin(), all.offsets.end());

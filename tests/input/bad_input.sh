@@ -156,6 +156,37 @@ expect_error curve_selects_nothing "-load_top_points: the curve selects no mater
   -load_top_region curve -load_top_points 0,0.01,0.01,0.01 -load_top_depth 0.0002
 expect_error group_placed_outside "-load_top_placement outside: load set 'top' is a group" "$scene" "${den[@]}" -load_top_region group \
   -load_top_group grip_bottom -load_top_placement outside
+# Point clouds (-body_cloud, point_cloud_file.hpp) and element centroids (geometry.hpp):
+# cloud.csv is a good 20 x 20 cloud of the 10 mm sheet; each case spoils one thing.
+cloud_scene="$fixtures/cloud.yaml"
+write_cloud() { # write_cloud FILE [HEADER]: the good cloud, with HEADER as its first line
+  awk -v header="${2:-x,y,volume,block_id}" 'BEGIN { print header
+    for (j = 0; j < 20; j++) for (i = 0; i < 20; i++) printf "%.17g,%.17g,2.5e-10,1\n", (i + 0.5) * 0.0005, (j + 0.5) * 0.0005 }' > "$1"
+}
+write_cloud cloud.csv
+write_cloud no_volume.csv "x,y,vol,block_id"
+sed '3s/,2.5e-10,/,0,/' cloud.csv > zero_volume.csv
+sed '5s/,2.5e-10,/,-1e-10,/' cloud.csv > negative_volume.csv
+{ cat cloud.csv; sed -n 3p cloud.csv; } > duplicate.csv
+echo "x,y,volume" > not_hdf5.h5
+expect_error cloud_missing "-body_cloud: cannot open 'no_such.csv'" "$cloud_scene" -body_cloud no_such.csv
+expect_error cloud_unreadable "-body_cloud: 'not_hdf5.h5' is not an HDF5 file" "$cloud_scene" -body_cloud not_hdf5.h5
+expect_error cloud_directory "-body_cloud: '.' is a directory" "$cloud_scene" -body_cloud .
+expect_error cloud_no_volume_column "-body_cloud: 'no_volume.csv', line 1: the header 'x,y,vol,block_id' names no column 'volume'" \
+  "$cloud_scene" -body_cloud no_volume.csv
+expect_error cloud_zero_volume "-body_cloud: 'zero_volume.csv', line 3 (point 2 at (0.00075, 0.00025) m): volume 0 m^3" \
+  "$cloud_scene" -body_cloud zero_volume.csv
+expect_error cloud_negative_volume "'negative_volume.csv', line 5 (point 4 at (0.00175, 0.00025) m): volume -1e-10 m^3" \
+  "$cloud_scene" -body_cloud negative_volume.csv
+expect_error cloud_duplicate "-body_cloud: 'duplicate.csv': line 3 and line 402 are the same point (0.00075, 0.00025) m" \
+  "$cloud_scene" -body_cloud duplicate.csv
+expect_error cloud_grip_outside "-load_top_placement outside: a grip outside the specimen extrudes the lattice's edge rows" \
+  "$cloud_scene" -load_top_placement outside
+expect_error cloud_with_dx "-body_dx is the lattice spacing, but -body_cloud gives the body's points" "$cloud_scene" -body_dx 0.0005
+expect_error centroids_no_elements "-body_cut_file: '$source_dir/tests/geometry/lines_only.geo' holds no surface" "$scene" "${sh[@]}" \
+  -body_cut_type mesh -body_cut_file "$source_dir/tests/geometry/lines_only.geo" -body_cut_discretisation centroids
+expect_error centroids_not_mesh "-body_cut_discretisation centroids: only a mesh shape" "$scene" "${sh[@]}" -body_cut_type circle \
+  -body_cut_centre 0.005,0.005 -body_cut_radius 0.002 -body_cut_discretisation centroids
 
 # Options are checked before any work (docs/options.md): a typo or a bad -ts_* value
 # stops the run before the scene is shown and the body is built.

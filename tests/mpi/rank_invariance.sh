@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The same scene on 1, 2, 3 and 4 ranks: the same history, final displacement field
 # (bit for bit: tolerance 0) and set of broken bonds.
-#   rank_invariance.sh elastic|fracture|fracture_corrected|shapes|dogbone|double_edge_notched
+#   rank_invariance.sh elastic|fracture|fracture_corrected|shapes|dogbone|double_edge_notched|cloud
 # (dogbone, double_edge_notched: the examples from Gmsh files, gripped by physical group,
 # pulled a little; on 1, 2 and 3 ranks)
 # (fracture_corrected: fracture with the bond-only form and -force_stress_correction tensor, whose per-point
@@ -37,6 +37,12 @@ elif [ "$case" = dogbone ] || [ "$case" = double_edge_notched ]; then
   scene=(-options_file_yaml "$BAPD_SOURCE_DIR/examples/$case.yaml"
          -body_outline_file "$BAPD_SOURCE_DIR/examples/geometry/$case.geo"
          -load_schedule 0,1,0.02,1.05 -output_interval 20 -progress_interval 100000 -output_final_state)
+elif [ "$case" = cloud ]; then
+  # The graded point cloud of examples/point_cloud.yaml (own volumes and horizons, a hole
+  # cut by the scene, the bond-only form with the tensor correction), stretched briefly.
+  scene=(-options_file_yaml "$BAPD_SOURCE_DIR/examples/point_cloud.yaml"
+         -body_cloud "$BAPD_SOURCE_DIR/examples/geometry/graded_sheet.csv"
+         -load_schedule 0,1,0.05,1.2 -output_interval 50 -progress_interval 100000 -output_final_state)
 elif [ "$case" = fracture ] || [ "$case" = fracture_corrected ]; then
   # Stretch the sheet fast enough that the notch opens and bonds break within the run.
   scene+=(-load_schedule 0,1,0.2,1.6 -failure_critical_stretch 2.0)

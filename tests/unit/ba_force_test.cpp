@@ -59,14 +59,7 @@ TEST(BaForce, AffineMotionGivesExactDeformationGradientOnEveryUsableBond)
   test::Discretisation d(body);
   const std::vector<double> y = d.affine(kLargeAffine, 3.7e-3, -1.2e-2);
   std::size_t               usable = 0;
-  double                    worst  = 0;
-  for (std::size_t i = 0; i < d.size(); ++i)
-    for (std::size_t q = 0; q < d.families.size(i); ++q) {
-      if (!d.geometry.is_usable(i, q)) continue;
-      ++usable;
-      const Mat2 F = bond_deformation_gradient(d.cloud, y.data(), d.families, d.geometry, d.state, i, q);
-      worst        = std::max(worst, test::norm(F - kLargeAffine) / test::norm(kLargeAffine));
-    }
+  const double              worst  = test::worst_affine_gradient_error(d, y, kLargeAffine, &usable);
   EXPECT_EQ(usable, d.families.n_bonds()); // a lattice with a hole: every K is regular
   // F = (A K) K^{-1}: round-off of y_k - y_i (eps |y| / dx ~ 50 eps), of the sums and
   // of K^{-1}, times cond(K) (<= ~30 on this lattice).
@@ -455,14 +448,7 @@ TEST(BaForce, TensorCorrectionGivesUniformStressAsTheVirialAtEveryPoint)
     d.forces(svk, y, t, f);
     double worst = 0;
     for (std::size_t i = 0; i < d.size(); ++i) {
-      Mat2 V = {0.0, 0.0, 0.0, 0.0};
-      for (std::size_t b = d.families.offsets[i]; b < d.families.offsets[i + 1]; ++b) {
-        const std::size_t j  = static_cast<std::size_t>(d.families.neighbour[b]);
-        const double      d0 = d.cloud.x[2 * j] - d.cloud.x[2 * i], d1 = d.cloud.x[2 * j + 1] - d.cloud.x[2 * i + 1];
-        const double      v  = d.cloud.volume[j];
-        V = V + Mat2{t[2 * b] * d0 * v, t[2 * b] * d1 * v, t[2 * b + 1] * d0 * v, t[2 * b + 1] * d1 * v};
-      }
-      worst = std::max(worst, test::norm(V - P) / test::norm(P));
+      worst = std::max(worst, test::norm(test::bond_force_virial(d, t, i) - P) / test::norm(P));
     }
     if (c == StressCorrection::tensor) EXPECT_LT(worst, 1e-12); // round-off of ~30 terms, cond(K) <= ~30
     else EXPECT_GT(worst, 1e-2); // not the identity at the edges
@@ -794,13 +780,7 @@ TEST(BaForce, TensorCorrectedPointStressIsTheVirialOfTheForce)
     d.forces(model, *state, t, f);
     double worst = 0, size = 0;
     for (std::size_t i = 0; i < d.size(); ++i) {
-      Mat2 V = {0.0, 0.0, 0.0, 0.0};
-      for (std::size_t b = d.families.offsets[i]; b < d.families.offsets[i + 1]; ++b) {
-        const std::size_t j  = static_cast<std::size_t>(d.families.neighbour[b]);
-        const double      d0 = d.cloud.x[2 * j] - d.cloud.x[2 * i], d1 = d.cloud.x[2 * j + 1] - d.cloud.x[2 * i + 1];
-        const double      v  = d.cloud.volume[j];
-        V = V + Mat2{t[2 * b] * d0 * v, t[2 * b] * d1 * v, t[2 * b + 1] * d0 * v, t[2 * b + 1] * d1 * v};
-      }
+      const Mat2 V = test::bond_force_virial(d, t, i);
       const Mat2 P = {out.nominal_stress[4 * i], out.nominal_stress[4 * i + 1], out.nominal_stress[4 * i + 2],
                       out.nominal_stress[4 * i + 3]};
       worst = std::max(worst, test::norm(P - V));

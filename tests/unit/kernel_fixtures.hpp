@@ -73,6 +73,36 @@ inline double force_terms(const Discretisation &d, const std::vector<double> &t,
   return s;
 }
 
+// sum_j t_ij (x) xi_ij V_j of point i from the bond forces t: the stress the bonds carry
+// (P wherever the force is stress-consistent, stress_correction.hpp).
+inline Mat2 bond_force_virial(const Discretisation &d, const std::vector<double> &t, std::size_t i)
+{
+  Mat2 V = {0.0, 0.0, 0.0, 0.0};
+  for (std::size_t b = d.families.offsets[i]; b < d.families.offsets[i + 1]; ++b) {
+    const std::size_t j  = static_cast<std::size_t>(d.families.neighbour[b]);
+    const double      d0 = d.cloud.x[2 * j] - d.cloud.x[2 * i], d1 = d.cloud.x[2 * j + 1] - d.cloud.x[2 * i + 1];
+    const double      v  = d.cloud.volume[j];
+    V = V + Mat2{t[2 * b] * d0 * v, t[2 * b] * d1 * v, t[2 * b + 1] * d0 * v, t[2 * b + 1] * d1 * v};
+  }
+  return V;
+}
+
+// Over the usable bonds: the largest |F_ij - A| / |A| of the motion y (affine with A),
+// and how many bonds are usable.
+inline double worst_affine_gradient_error(const Discretisation &d, const std::vector<double> &y, const Mat2 &A, std::size_t *usable)
+{
+  double worst = 0;
+  *usable      = 0;
+  for (std::size_t i = 0; i < d.size(); ++i)
+    for (std::size_t q = 0; q < d.families.size(i); ++q) {
+      if (!d.geometry.is_usable(i, q)) continue;
+      ++*usable;
+      const Mat2 F = bond_deformation_gradient(d.cloud, y.data(), d.families, d.geometry, d.state, i, q);
+      worst        = std::max(worst, norm(F - A) / norm(A));
+    }
+  return worst;
+}
+
 inline double max_abs(const std::vector<double> &v)
 {
   double m = 0;

@@ -1,6 +1,7 @@
 #pragma once
 // Test-local constitutive models and a small discretisation builder for the kernel
 // tests. The models follow the 2D model interface of material.hpp.
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <random>
@@ -98,6 +99,17 @@ struct Discretisation {
     families = build_families(cloud, cloud.size(), horizon, body.notches);
     compute_family_volumes(cloud, families);
     state = BondState(families);
+    compute_bond_geometry(cloud, families, state, geometry);
+  }
+  // Points with their own volumes and horizons (geometry.hpp: make_points of given
+  // points), with the stress correction C_i if asked.
+  explicit Discretisation(PointCloud points, StressCorrection correction = StressCorrection::none)
+      : cloud(std::move(points)), horizon(*std::max_element(cloud.horizon.begin(), cloud.horizon.end()))
+  {
+    families = build_families(cloud, cloud.size(), horizon, {});
+    compute_family_volumes(cloud, families);
+    state                       = BondState(families);
+    geometry.stress_correction  = correction;
     compute_bond_geometry(cloud, families, state, geometry);
   }
   std::size_t size() const { return cloud.size(); }
