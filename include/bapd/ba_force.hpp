@@ -17,7 +17,7 @@
 // (y_k - y_i) (x) (x_k - x_i) V_k and (x_k - x_i) (x) (x_k - x_i) V_k are formed once
 // per family member; each bond's F and K are then one masked sum of them (BA mask AND
 // intact mask), in family order (bond_geometry.hpp). A model with stress_lanes
-// (has_lanes, material.hpp: PlaneStress, plane_stress.hpp) is run four bonds at a time: the point's
+// (has_lanes, material.hpp: PlaneStress, plane_stress.hpp) is run lane_count (4 or 8) bonds at a time: the point's
 // bonds are collected first (F, warm start, what the force form keeps), then model_lanes hands
 // them to it in family order. That first pass (stress_pass) is shared with the
 // energy-consistent form (ba_force_energy.hpp): the forms differ only in what they do
@@ -108,11 +108,11 @@ struct BondKernelWorkspace {
   std::vector<Quad>          bond_stress;
   std::vector<std::uint64_t> energetic;
   // The point's bonds waiting for the model, in family order (models with stress_lanes,
-  // has_lanes, e.g. PlaneStress, take them four at a time; the others one at a time
+  // has_lanes, e.g. PlaneStress, take them lane_count at a time; the others one at a time
   // through slot 0): F by component (4 arrays of `lane_stride`), the warm start, what
   // the force form needs once P is known (pending_data, 3 per bond: the force vector g
   // of the bond-only form, K^{-1} of the energy-consistent one) and the position q.
-  std::size_t              lane_stride = 0; // max_family_size rounded up to 4
+  std::size_t              lane_stride = 0; // max_family_size rounded up to lane_count
   std::vector<double>      pending_F, pending_c33, pending_data;
   std::vector<std::size_t> pending_q;
 
@@ -121,7 +121,7 @@ struct BondKernelWorkspace {
     point.reserve(families.max_family_size);
     if (bond_stress.size() < families.max_family_size) bond_stress.resize(families.max_family_size);
     if (energetic.size() < families.mask_words) energetic.resize(families.mask_words);
-    const std::size_t stride = (families.max_family_size + 3) / 4 * 4;
+    const std::size_t L = lane_count, stride = (families.max_family_size + L - 1) / L * L;
     if (lane_stride < stride) {
       lane_stride = stride;
       pending_F.assign(4 * stride, 0.0);
@@ -160,7 +160,7 @@ inline Lanes load_lanes(const double *p)
   return v;
 }
 
-// The model over the n bonds of point i collected in ws.pending_*, four at a time
+// The model over the n bonds of point i collected in ws.pending_*, lane_count (lanes.hpp) at a time
 // (Model::stress_lanes); a lane that its first evaluation does not finish goes through
 // the scalar stress(), which gives bit for bit what stress_lanes gives where that
 // finishes (plane_stress.hpp), so a bond's result does not depend on its lane. Bonds
@@ -170,19 +170,19 @@ template <class Model, class Form>
 void model_lanes(const Model &model, BondKernelWorkspace &ws, std::size_t n, std::size_t i, std::size_t o,
                  double *c33, Form &form, KernelStats &stats)
 {
-  const std::size_t S  = ws.lane_stride;
+  const std::size_t S = ws.lane_stride, L = lane_count;
   double           *Fc = ws.pending_F.data(), *cw = ws.pending_c33.data();
-  for (std::size_t l = n; l < (n + 3) / 4 * 4; ++l) { // unused lanes: the rest state
+  for (std::size_t l = n; l < (n + L - 1) / L * L; ++l) { // unused lanes: the rest state
     Fc[l] = Fc[3 * S + l] = 1.0;
     Fc[S + l] = Fc[2 * S + l] = cw[l] = 0.0;
   }
-  for (std::size_t j = 0; j < n; j += 4) {
+  for (std::size_t j = 0; j < n; j += L) {
     const std::array<Lanes, 4> F = {load_lanes(Fc + j), load_lanes(Fc + S + j), load_lanes(Fc + 2 * S + j),
                                     load_lanes(Fc + 3 * S + j)};
     Lanes                      c = load_lanes(cw + j);
     std::array<Lanes, 4>       P;
     const LaneMask             done = model.stress_lanes(F, c, P);
-    for (std::size_t l = 0; l < 4 && j + l < n; ++l) {
+    for (std::size_t l = 0; l < L && j + l < n; ++l) {
       const std::size_t q = ws.pending_q[j + l];
       double            cb;
       Mat2              Pb;
@@ -226,7 +226,7 @@ inline KernelPoint begin_point(const PointCloud &ref, const double *y, const Fam
 
 // The first pass of both force forms over the bonds of point i (begun by begin_point):
 // F_iq from the masked sums (eq 9) and P(F_iq) from the model, one bond at a time or,
-// for a model with stress_lanes, four at a time after the loop (model_lanes). The
+// for a model with stress_lanes, lane_count at a time after the loop (model_lanes). The
 // form (BondOnlyForm below, EnergyConsistentForm in ba_force_energy.hpp) is told, in
 // family order:
 //   form.none(q)                 bond q carries no stress: broken, K not usable, or
@@ -259,7 +259,7 @@ void stress_pass(const Model &model, const KernelPoint &pt, std::size_t i, doubl
     }
     double c = c33 ? c33[b] : 0.0; // <= 0: no warm start
     ++evaluated;
-    if constexpr (HasLanes<Model>::value) { // the model for four bonds at a time after the loop
+    if constexpr (HasLanes<Model>::value) { // the model for lane_count bonds at a time after the loop
       const std::size_t S = ws.lane_stride;
       form.collect(pending, q, k);
       for (int comp = 0; comp < 4; ++comp) ws.pending_F[comp * S + pending] = k.F[comp];

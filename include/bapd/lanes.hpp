@@ -1,26 +1,39 @@
 #pragma once
-// Four doubles in one AVX2 register (GCC vector extension), for code written once as a
-// template over the lane type: T = double (one bond) or T = Lanes (four bonds). The
-// arithmetic operators act lane by lane with the same IEEE rounding as the scalar
-// code, so a lane gets bit for bit the result the scalar instantiation gets for the
-// same input. That needs no FMA contraction, which GCC does by default for C++ (even
+// lane_count doubles in one vector register (GCC vector extension): eight with AVX-512
+// (zmm), four otherwise (AVX2 ymm), for code written once as a template over the lane
+// type: T = double (one bond) or T = Lanes (lane_count bonds). The arithmetic
+// operators act lane by lane with the same IEEE rounding as the scalar code, so a
+// lane gets bit for bit the result the scalar instantiation gets for the same input,
+// whatever the width (a bond's result does not depend on its lane or on the machine's
+// vector width). That needs no FMA contraction, which GCC does by default for C++ (even
 // with -std=c++17), and GCC 12's SLP vectorizer fuses a*b - c*d, e*f + g*h pairs even
 // without it: the top-level CMakeLists.txt sets -ffp-contract=off and
 // -fno-tree-slp-vectorize for the whole build (tests/unit/ba_force_lanes_test.cpp
 // checks the result), and the code calls std::fma / lane_fma explicitly where it
 // wants one.
+//
+// Why eight where the machine has AVX-512 (issue 20): the plane-stress model is a
+// chain of dependent operations per bond; a wider register runs twice the bonds'
+// chains per instruction (the Zen 5 core of docs/performance.md executes 512-bit
+// operations at full width). Code that walks the lanes one by one uses lane_count.
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#ifdef __FMA__
+#if defined(__FMA__) || defined(__AVX512F__)
 #include <immintrin.h>
 #endif
 
 namespace bapd {
 
-typedef double        Lanes __attribute__((vector_size(32)));
-typedef std::int64_t  LaneMask __attribute__((vector_size(32))); // comparisons: all ones or 0
-typedef std::uint64_t LaneBits __attribute__((vector_size(32)));
+#ifdef __AVX512F__
+#define BAPD_LANE_BYTES 64
+#else
+#define BAPD_LANE_BYTES 32
+#endif
+inline constexpr int  lane_count = BAPD_LANE_BYTES / 8;
+typedef double        Lanes __attribute__((vector_size(BAPD_LANE_BYTES)));
+typedef std::int64_t  LaneMask __attribute__((vector_size(BAPD_LANE_BYTES))); // comparisons: all ones or 0
+typedef std::uint64_t LaneBits __attribute__((vector_size(BAPD_LANE_BYTES)));
 
 // The mask type of a comparison of two T.
 template <class T> using MaskOf = decltype(T{} < T{});
@@ -30,17 +43,25 @@ inline Lanes  lane_abs(Lanes x) { return (Lanes)((LaneBits)x & (LaneBits{} + 0x7
 inline double lane_fma(double a, double b, double c) { return std::fma(a, b, c); }
 inline Lanes  lane_fma(Lanes a, Lanes b, Lanes c)
 {
-#ifdef __FMA__
-  return (Lanes)_mm256_fmadd_pd((__m256d)a, (__m256d)b, (__m256d)c); // one vfmadd231pd
+#if defined(__AVX512F__)
+  return (Lanes)_mm512_fmadd_pd((__m512d)a, (__m512d)b, (__m512d)c); // one vfmadd231pd (zmm)
+#elif defined(__FMA__)
+  return (Lanes)_mm256_fmadd_pd((__m256d)a, (__m256d)b, (__m256d)c); // one vfmadd231pd (ymm)
 #else
-  return Lanes{std::fma(a[0], b[0], c[0]), std::fma(a[1], b[1], c[1]), std::fma(a[2], b[2], c[2]),
-               std::fma(a[3], b[3], c[3])}; // the same, lane by lane (fma rounds once either way)
+  Lanes r;
+  for (int l = 0; l < lane_count; ++l) r[l] = std::fma(a[l], b[l], c[l]); // the same (fma rounds once either way)
+  return r;
 #endif
 }
 inline double select(bool m, double a, double b) { return m ? a : b; }
 inline Lanes  select(LaneMask m, Lanes a, Lanes b) { return m ? a : b; }
 inline bool   any(bool m) { return m; }
-inline bool   any(LaneMask m) { return (m[0] | m[1] | m[2] | m[3]) != 0; }
+inline bool   any(LaneMask m)
+{
+  std::int64_t r = 0;
+  for (int l = 0; l < lane_count; ++l) r |= m[l];
+  return r != 0;
+}
 
 // The bits of a double and back (the approximate cube root's seed).
 inline std::uint64_t to_bits(double x)

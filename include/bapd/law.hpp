@@ -38,8 +38,8 @@
 // invariant at a time; Compressible3D and PlaneStrain read G[0] and H[0] only).
 //
 // modulus and energy return false where the law is locked (I1bar >= limit). modulus is
-// a template over T = double (one bond) or Lanes (four, lanes.hpp: PlaneStress runs
-// four bonds at a time in the bond kernel) and must keep the locked lanes finite.
+// a template over T = double (one bond) or Lanes (lane_count, lanes.hpp: PlaneStress runs
+// that many bonds at a time in the bond kernel) and must keep the locked lanes finite.
 // All of it is inline and allocation-free: it runs per bond per step. A formulation
 // fills I2bar only for a law with uses_I2bar (it costs a tr(C^2) otherwise).
 //
@@ -101,7 +101,7 @@ using Invariants = InvariantsOf<double>;
 
 // G = 2 dPsi_iso/dI1bar and its first four I1bar-derivatives (the plane-stress solve
 // uses them; Compressible3D and PlaneStrain read G[0] only).
-template <class T> using ModulusOf = std::array<T, 5>; // T = double or Lanes (four bonds)
+template <class T> using ModulusOf = std::array<T, 5>; // T = double or Lanes (lane_count bonds)
 using Modulus                      = ModulusOf<double>;
 
 // Empty when Law can be run in formulation f, else why not (one sentence, naming the

@@ -13,7 +13,7 @@
 // and are concrete types inside them. A model may also provide, with
 // `static constexpr bool has_lanes = true`,
 //   LaneMask stress_lanes(const std::array<Lanes, 4> &F, Lanes &c33, std::array<Lanes, 4> &P) const;
-// four bonds at a time (lanes.hpp), giving bit for bit what stress() gives in the lanes
+// lane_count bonds at a time (lanes.hpp), giving bit for bit what stress() gives in the lanes
 // it reports done; the bond kernel (ba_force.hpp) then uses it (PlaneStress does).
 //
 // A model is a formulation of a law. Where the files are:

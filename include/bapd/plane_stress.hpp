@@ -136,7 +136,7 @@ template <class Law> struct PlaneStress {
   static_assert(accepts_plane_stress<Law>, "PlaneStress: the law does not meet the solve's requirements (see above)");
   ParametersOf<Law>    p;
   static constexpr int max_iterations = 60;
-  // stress_lanes() exists: the bond kernel hands this model four bonds at a time.
+  // stress_lanes() exists: the bond kernel hands this model lane_count (lanes.hpp) bonds at a time.
   static constexpr bool has_lanes = true;
 
   // f(c) and its derivatives for a = tr C~, k = J~^2 (inv_D = 1/D).
@@ -230,7 +230,7 @@ template <class Law> struct PlaneStress {
     return StressStatus::ok;
   }
 
-  // Four bonds at once (AVX2): F as four lanes per component, c33 the warm starts
+  // lane_count bonds at once (lanes.hpp: 8 with AVX-512, 4 with AVX2): F as lanes per component, c33 the warm starts
   // (<= 0: none). Runs the first one or two evaluations of solve() in every lane, with
   // the same arithmetic as solve() (so a lane's C33 and P are bit for bit those of
   // stress()), and returns the lanes where they end the solve (converged, or the step

@@ -32,9 +32,11 @@ struct SimulationOutput {
   double              good_time = 0;
   // Two older states, every 10 steps in turn: for the diagnosis of a blow-up that has
   // already wrecked the last good state (DiagnoseDivergence), one 10 to 20 steps older.
+  // Positions and velocities only: the diagnosis solves their C33 again (a function of
+  // F, to the solve's tolerance) instead of keeping two per-bond copies (issue 20:
+  // 2 x 8 B a bond, ~450 B a point at delta = 3.015 dx).
   static constexpr PetscInt earlier_interval = 10;
   Vec                 earlier_state[2] = {nullptr, nullptr};
-  std::vector<double> earlier_c33[2];
   PetscInt            earlier_step[2] = {-1, -1};
   double              earlier_time[2] = {0, 0};
   bool                handlers  = false;

@@ -143,11 +143,15 @@ PetscErrorCode Simulation::DiagnoseDivergence()
       std::vector<double> ue(xe, xe + n);
       PetscCall(VecRestoreArrayRead(output_.earlier_state[older], &xe));
       f.earlier_steps = output_.good_step - output_.earlier_step[older];
-      PetscCall(step_control_.SharpEstimate(comm_, force_, ue.data(), output_.earlier_c33[older], 40, &f.stable_earlier));
+      // Its C33, solved again from a cold start (the snapshot keeps no per-bond copy,
+      // simulation_output.hpp): the same values to the solve's tolerance.
+      std::vector<double> c33_earlier(c33.size(), 0.0), unused(n);
+      PetscCall(force_.EvaluateWithWarmStart(ue.data(), unused.data(), c33_earlier));
+      PetscCall(step_control_.SharpEstimate(comm_, force_, ue.data(), c33_earlier, 40, &f.stable_earlier));
       if (!std::isfinite(f.stable_earlier) || f.stable_earlier <= 0) f.stable_earlier = 0;
       if (law.limit) {
         double reach[2];
-        PetscCall(chain_reach(ue.data(), output_.earlier_c33[older], reach));
+        PetscCall(chain_reach(ue.data(), c33_earlier, reach));
         f.chain_reach_earlier  = reach[0];
         f.bond_stretch_earlier = reach[1];
         f.applied_stretch_earlier = loading_.stretch_at(output_.earlier_time[older]);

@@ -76,9 +76,6 @@ PetscErrorCode Simulation::SetupOutput()
   if (output_.checkpoint.on_error) {
     PetscCall(VecDuplicate(X_, &output_.good_state));
     for (Vec &earlier : output_.earlier_state) PetscCall(VecDuplicate(X_, &earlier));
-    // Sized now, so that a snapshot taken during the run copies into place (no
-    // allocation in a time step: tests/perf/Allocation.cpp).
-    for (std::vector<double> &c33 : output_.earlier_c33) c33.resize(force_.warm_start().size());
     PetscCall(SaveGoodState(step, t));
   }
   PetscFunctionReturn(0);
@@ -103,7 +100,6 @@ PetscErrorCode Simulation::SaveGoodState(PetscInt step, double t)
   if (step % SimulationOutput::earlier_interval == 0) {
     const int slot = (int)((step / SimulationOutput::earlier_interval) % 2);
     PetscCall(VecCopy(X_, output_.earlier_state[slot]));
-    output_.earlier_c33[slot].assign(force_.warm_start().begin(), force_.warm_start().end());
     output_.earlier_step[slot] = step;
     output_.earlier_time[slot] = t;
   }

@@ -119,9 +119,9 @@ TYPED_TEST(PlaneStressFastPath, LanesGiveBitForBitTheScalarStress)
     const TypeParam model{test::parameters(mu, Jm, 2.0 / (K_over_mu * mu))};
     int             done_lanes = 0, lanes = 0;
     for (int group = 0; group < 400; ++group) {
-      std::array<Mat2, 4>   F;
-      std::array<double, 4> guess;
-      for (int l = 0; l < 4; ++l) {
+      std::array<Mat2, lane_count>   F; // every lane of the register (4 with AVX2, 8 with AVX-512)
+      std::array<double, lane_count> guess;
+      for (int l = 0; l < lane_count; ++l) {
         F[l]                        = test::random_F2(rng, l == 3 && group % 2 ? 12.0 : 4.0);
         const PlaneStressSolution s = model.solve(F[l], 0.0);
         // warm starts from exact to 1e-2 away, none, and garbage
@@ -131,10 +131,13 @@ TYPED_TEST(PlaneStressFastPath, LanesGiveBitForBitTheScalarStress)
       }
       if (group % 23 == 0) F[1] = {1.0, 2.0, 2.0, 1.0}; // inverted
       std::array<Lanes, 4> FL, PL;
-      for (int comp = 0; comp < 4; ++comp) FL[comp] = Lanes{F[0][comp], F[1][comp], F[2][comp], F[3][comp]};
-      Lanes c = {guess[0], guess[1], guess[2], guess[3]};
+      Lanes                c;
+      for (int l = 0; l < lane_count; ++l) {
+        for (int comp = 0; comp < 4; ++comp) FL[comp][l] = F[l][comp];
+        c[l] = guess[l];
+      }
       const LaneMask done = model.stress_lanes(FL, c, PL);
-      for (int l = 0; l < 4; ++l) {
+      for (int l = 0; l < lane_count; ++l) {
         ++lanes;
         double             cs = guess[l];
         Mat2               P;
