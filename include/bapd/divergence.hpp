@@ -18,7 +18,11 @@
 //     there), and KE above a floor: the kinetic energy of the whole body moving at
 //     the fastest grip speed of the schedule, or the highest KE already cleared.
 //  2. Confirmation, only while suspected (one internal-energy evaluation per step):
-//     the total energy grows tenfold within the next 10 steps. Otherwise the
+//     the total energy at the suspicion is ten times that of the step before it plus
+//     the floor (when that state is kept, -checkpoint_on_error: a blow-up that created
+//     its energy in one step and then stopped growing, a body shattered in one step,
+//     is caught here; it would pass the next test), or the total energy grows tenfold
+//     within the next 10 steps. Otherwise the
 //     suspicion is cleared, and the largest total energy measured becomes the floor:
 //     KE cannot exceed it unless the grips do more work (or the run blows up).
 #include <petscvec.h>
@@ -53,7 +57,8 @@ public:
   // The kinetic energy after `step`; `segment` numbers the loading segment (schedule
   // knots passed). measure_total: call Total with the total energy of this step.
   Verdict Kinetic(PetscInt step, PetscInt segment, double kinetic);
-  Verdict Total(PetscInt step, double total);
+  // before: the total energy of the step before (< 0: not known).
+  Verdict Total(PetscInt step, double total, double before = -1);
   // What was seen, for the message: "the kinetic energy grew from ... to ...".
   std::string Describe() const;
   // Room for one value per owned point, kept between steps (CheckRunawayEnergy).
@@ -71,6 +76,8 @@ private:
   bool     suspected_ = false;
   PetscInt suspect_step_ = 0, low_step_ = 0, total_step_ = 0;
   double   suspect_kinetic_ = 0, low_kinetic_ = 0, first_total_ = -1, total_ = 0, max_total_ = 0;
+  double   before_total_ = -1; // the total energy of the step before the suspicion, when it decided
+
   std::vector<double> scratch_;
 };
 
@@ -132,6 +139,8 @@ struct RunawayInputs {
   double          dt = 0, stable_dt = 0;
   // Kinetic and internal energy of the state, reproducible sums (collective).
   std::function<PetscErrorCode(double *kinetic, double *internal)> energies;
+  // The same for the state after the previous step, if the driver keeps it (*known).
+  std::function<PetscErrorCode(double *kinetic, double *internal, bool *known)> energies_before;
 };
 
 // The post-step check: sums KE over the owned points (a reproducible sum: the same

@@ -63,7 +63,7 @@ public:
   // Force density (2 per owned point) for the owned displacements u_owned.
   PetscErrorCode ComputeForceDensity(const double *u_owned, double *force_density);
   // Total energy pieces and broken bonds, reproducible across rank layouts.
-  PetscErrorCode Energies(double *kinetic, double *internal);
+  PetscErrorCode Energies(double *kinetic, double *internal, Vec state = nullptr); // state: X_ if nullptr
   PetscErrorCode BrokenBondCount(PetscInt *count);
   // Displacement of every point, gathered on rank 0 in natural order (tests, output).
   PetscErrorCode GatherDisplacement(std::vector<double> *u_natural);

@@ -50,18 +50,25 @@ RunawayEnergyMonitor::Verdict RunawayEnergyMonitor::Kinetic(PetscInt step, Petsc
   low_step_        = low_step;
   low_kinetic_     = low;
   first_total_     = -1;
+  before_total_    = -1;
   total_step_      = step;
   // Energies this large overflow the internal-energy sum: no need to confirm.
   return kinetic >= overflow ? Verdict::diverged : Verdict::measure_total;
 }
 
-RunawayEnergyMonitor::Verdict RunawayEnergyMonitor::Total(PetscInt step, double total)
+RunawayEnergyMonitor::Verdict RunawayEnergyMonitor::Total(PetscInt step, double total, double before)
 {
   if (!suspected_) return Verdict::fine;
   total_step_ = step;
   total_      = total;
   if (first_total_ < 0) {
     first_total_ = max_total_ = total;
+    // Energy created within one step, beyond the grips' work (which the floor bounds
+    // from above: the whole body at grip speed): a blow-up that may not grow further.
+    if (before >= 0 && (total >= criterion_.confirm_growth * (before + floor_) || !std::isfinite(total))) {
+      before_total_ = before;
+      return Verdict::diverged;
+    }
     return Verdict::fine;
   }
   if (total >= criterion_.confirm_growth * first_total_ || !std::isfinite(total)) return Verdict::diverged;
@@ -82,7 +89,11 @@ std::string RunawayEnergyMonitor::Describe() const
   char text[512];
   int  length = std::snprintf(text, sizeof text, "the kinetic energy grew from %.3e J (step %" PetscInt_FMT ") to %.3e J (step %" PetscInt_FMT ")",
                               low_kinetic_, low_step_, suspect_kinetic_, suspect_step_);
-  if (first_total_ >= 0 && length > 0 && (std::size_t)length < sizeof text)
+  if (before_total_ >= 0 && length > 0 && (std::size_t)length < sizeof text)
+    std::snprintf(text + length, sizeof text - (std::size_t)length,
+                  " and the total (kinetic + internal) energy, which only the grips' work can raise, from %.3e J to %.3e J in one step",
+                  before_total_, total_);
+  else if (first_total_ >= 0 && length > 0 && (std::size_t)length < sizeof text)
     std::snprintf(text + length, sizeof text - (std::size_t)length,
                   " and the total (kinetic + internal) energy, which only the grips' work can raise, from %.3e J to %.3e J in %" PetscInt_FMT
                   " step(s)",
@@ -149,9 +160,15 @@ PetscErrorCode CheckRunawayEnergy(const RunawayInputs &inputs, RunawayEnergyMoni
   const PetscInt  segment = (PetscInt)(std::upper_bound(s.time.begin(), s.time.end(), t) - s.time.begin());
   RunawayEnergyMonitor::Verdict verdict = monitor.Kinetic(step, segment, kinetic);
   if (verdict == RunawayEnergyMonitor::Verdict::measure_total) {
-    double kin, internal;
+    double kin, internal, before = -1;
+    bool   known = false;
     PetscCall(inputs.energies(&kin, &internal));
-    verdict = monitor.Total(step, kin + internal);
+    if (inputs.energies_before) {
+      double kin_before, internal_before;
+      PetscCall(inputs.energies_before(&kin_before, &internal_before, &known));
+      if (known) before = kin_before + internal_before;
+    }
+    verdict = monitor.Total(step, kin + internal, before);
   }
   if (verdict != RunawayEnergyMonitor::Verdict::diverged) PetscFunctionReturn(0);
 

@@ -193,6 +193,13 @@ PetscErrorCode Simulation::CheckRunaway(PetscInt step, double t, std::string *me
   inputs.dt        = dt;
   inputs.stable_dt = step_control_.stable();
   inputs.energies  = [this](double *kinetic, double *internal) { return Energies(kinetic, internal); };
+  // The last good state is the previous step's while -checkpoint_on_error keeps it.
+  inputs.energies_before = [this, step](double *kinetic, double *internal, bool *known) {
+    PetscFunctionBegin;
+    *known = output_.good_state && output_.good_step == step - 1;
+    if (*known) PetscCall(Energies(kinetic, internal, output_.good_state));
+    PetscFunctionReturn(0);
+  };
   PetscCall(CheckRunawayEnergy(inputs, energy_monitor_, step, t, message));
   PetscFunctionReturn(0);
 }

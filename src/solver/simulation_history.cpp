@@ -110,13 +110,14 @@ PetscErrorCode Simulation::OpenHistory()
 }
 
 // Kinetic and internal energy, reproducible sums; no allocation (scratch sized at set-up).
-PetscErrorCode Simulation::Energies(double *kinetic, double *internal)
+PetscErrorCode Simulation::Energies(double *kinetic, double *internal, Vec state)
 {
   const PetscInt n = layout_.n_owned;
   const double  *x;
 
   PetscFunctionBegin;
-  PetscCall(VecGetArrayRead(X_, &x));
+  if (!state) state = X_;
+  PetscCall(VecGetArrayRead(state, &x));
   PetscCall(force_.PointEnergies(x, point_energy_.data()));
   const double *v = x + 2 * n;
   for (PetscInt i = 0; i < n; ++i) {
@@ -124,7 +125,7 @@ PetscErrorCode Simulation::Energies(double *kinetic, double *internal)
     per_point_[2 * i]     = 0.5 * m * (v[2 * i] * v[2 * i] + v[2 * i + 1] * v[2 * i + 1]);
     per_point_[2 * i + 1] = point_energy_[i];
   }
-  PetscCall(VecRestoreArrayRead(X_, &x));
+  PetscCall(VecRestoreArrayRead(state, &x));
   double sums[2];
   PetscCall(ReproducibleSum(comm_, 2, n, per_point_.data(), sums));
   *kinetic  = sums[0];

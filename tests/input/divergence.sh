@@ -47,12 +47,11 @@ expect_divergence() {
 # Without failure the unstable mode inverts bonds within a few steps.
 expect_divergence unstable_elastic 20 "inverted" -time_step_safety 1.5
 # With failure, inverted and overstretched bonds break instead and the body would
-# shatter with exit code 0: the runaway kinetic energy stops the run. (The bond-only
-# form: with the energy-consistent one, the default since issue 14, this scene's kinetic
-# energy jumps from 1e-5 J to 918 J in one step, the first total energy the monitor
-# measures already holds the jump, and the shattered run ends with exit 0: open, for
-# the divergence monitor's owner.)
-expect_divergence unstable_fracture 20 "the run diverged at step" -time_step_safety 1.5 -failure_critical_stretch 1.5 -force_form bond_only
+# shatter with exit code 0: the runaway kinetic energy stops the run. With the
+# energy-consistent form (the default) the kinetic energy jumps from 1e-5 J to 918 J
+# in one step and stays: the total of the step before shows the energy was created.
+expect_divergence unstable_fracture 20 "the run diverged at step" -time_step_safety 1.5 -failure_critical_stretch 1.5
+expect_divergence unstable_fracture_bond_only 20 "the run diverged at step" -time_step_safety 1.5 -failure_critical_stretch 1.5 -force_form bond_only
 expect_divergence unstable_fracture_slow 40 "the run diverged at step" -time_step_safety 1.1 -failure_critical_stretch 7.2
 # An explicit -time_step above the stable one (2.6e-4 s here).
 expect_divergence unstable_time_step 20 "the run diverged at step" -time_step 4e-4 -failure_critical_stretch 1.5

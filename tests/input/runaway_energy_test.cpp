@@ -14,17 +14,19 @@ using Verdict = RunawayEnergyMonitor::Verdict;
 namespace {
 
 // Feeds the monitor kinetic(step) and total(step) for steps 1..steps, measuring the
-// total energy whenever it asks. Returns the step of divergence (0: none) and counts
-// the total-energy measurements.
+// total energy whenever it asks, with the total of the step before (as the driver does
+// while -checkpoint_on_error keeps that state) unless `before` is false. Returns the
+// step of divergence (0: none) and counts the total-energy measurements.
 template <class Kinetic, class Total>
-PetscInt Feed(RunawayEnergyMonitor &monitor, PetscInt steps, Kinetic kinetic, Total total, int *measurements = nullptr)
+PetscInt Feed(RunawayEnergyMonitor &monitor, PetscInt steps, Kinetic kinetic, Total total, int *measurements = nullptr,
+              bool before = true)
 {
   int count = 0;
   for (PetscInt step = 1; step <= steps; ++step) {
     Verdict verdict = monitor.Kinetic(step, 0, kinetic(step));
     if (verdict == Verdict::measure_total) {
       ++count;
-      verdict = monitor.Total(step, total(step));
+      verdict = monitor.Total(step, total(step), before ? total(step - 1) : -1.0);
     }
     if (verdict == Verdict::diverged) {
       if (measurements) *measurements = count;
@@ -88,6 +90,23 @@ TEST(RunawayEnergy, LetsACrackRun)
     return step < 100 ? 1e-18 : stored * 0.5 * std::min(1.0, std::pow((double)(step - 100) / 30.0, 2));
   };
   EXPECT_EQ(Feed(monitor, 400, kinetic, [&](PetscInt step) { return stored + 0.01 * stored * (double)step / 400; }), 0);
+}
+
+// A body shattered in one step (the energy-consistent tiny scene at safety 1.5 with
+// failure: KE from 1.1e-5 J to 918 J in one step, then flying apart at constant
+// energy). The tenfold growth after the suspicion never comes; the total of the step
+// before shows the energy was created. Without that state the run is not caught.
+TEST(RunawayEnergy, CatchesEnergyCreatedInOneStep)
+{
+  const auto kinetic = [](PetscInt step) { return step < 101 ? 1.1e-5 : 918.0; };
+  const auto total   = [](PetscInt step) { return step < 101 ? 3e-5 : 918.0 + 1e-3; };
+  RunawayEnergyMonitor monitor;
+  monitor.Start(1e-6);
+  EXPECT_EQ(Feed(monitor, 300, kinetic, total), 101);
+  EXPECT_NE(monitor.Describe().find("in one step"), std::string::npos) << monitor.Describe();
+  RunawayEnergyMonitor blind;
+  blind.Start(1e-6);
+  EXPECT_EQ(Feed(blind, 300, kinetic, total, nullptr, false), 0);
 }
 
 // A ramp from rest: the grips' work raises both energies as a power of time.
