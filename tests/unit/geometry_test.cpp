@@ -275,20 +275,5 @@ TEST(NonUniformPatch, AffineMotionLeavesNoInteriorForceOnARegularCloudGivenAsPoi
       EXPECT_LT(interior_affine_residual(jittered_body(30, 0.0, 0.0), c, ec), 1e-12) << (ec ? "energy-consistent" : "bond-only");
 }
 
-// Not a check: the figures of docs/validation.md "Non-uniform points" (the patch test
-// does not hold on an irregular cloud; run with --gtest_also_run_disabled_tests).
-TEST(NonUniformPatch, DISABLED_ReportInteriorForceUnderAffineMotion)
-{
-  for (bool ec : {false, true}) {
-    for (double spread : {0.0, 0.3})
-      for (double jitter : {0.0, 0.1, 0.2})
-        std::printf("%s jittered %.1f, volumes +-%.1f: %.3e\n", ec ? "energy-consistent" : "bond-only", jitter, spread,
-                    interior_affine_residual(jittered_body(30, jitter, spread), StressCorrection::tensor, ec));
-    for (int n : {40, 80})
-      std::printf("%s graded %d x %d: %.3e\n", ec ? "energy-consistent" : "bond-only", n, n,
-                  interior_affine_residual(graded_body(n), StressCorrection::tensor, ec));
-  }
-}
-
 } // namespace
 } // namespace bapd
