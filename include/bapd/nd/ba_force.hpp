@@ -57,6 +57,8 @@ template <int D> struct Workspace {
   }
 };
 
+enum class ForceForm { bond_only, energy_consistent };
+
 namespace detail {
 
 // The two stress and energy signatures (see the top of this file); int is preferred.
@@ -92,7 +94,7 @@ inline auto energy_of(const M &m, const Mat<D> &F, double &, double &psi, long) 
 // from the model; the form is told, in family order, form.none(q) (no stress: broken,
 // K not usable, or model failed) or form.stress(q, k, P) (ba_force.hpp's stress_pass,
 // without the lanes).
-template <int D, class Model, class Form>
+template <int D, std::size_t Words, class Model, class Form>
 inline void stress_pass(const Model &model, const Families &fam, const BondGeometry<D> &geo, const BondState &state,
                         std::size_t i, const PointTotals<D> &totals, double *c33, Workspace<D> &ws, Form &form,
                         KernelStats &stats)
@@ -108,7 +110,7 @@ inline void stress_pass(const Model &model, const Families &fam, const BondGeome
       form.none(q);
       continue;
     }
-    const BondKinematics<D> k = bond_kinematics<D>(ba + q * W, intact, W, ws.point, totals);
+    const BondKinematics<D> k = bond_kinematics<D, Words>(ba + q * W, intact, W, ws.point, totals);
     if (__builtin_expect(!k.usable, 0)) { // K went singular since the geometry was computed
       ++stats.unusable;
       form.none(q);
@@ -187,7 +189,7 @@ template <int D> struct EnergyConsistentForm {
   }
 };
 
-template <int D, bool Corrected, class Model>
+template <int D, std::size_t Words, bool Corrected, class Model>
 void bond_only_range(const Model &model, const PointCloud &ref, const double *y, const Families &fam,
                      const BondGeometry<D> &geo, const BondState &state, double *c33, double *bond_force,
                      Workspace<D> &ws, std::size_t begin, std::size_t end, KernelStats &stats)
@@ -197,11 +199,11 @@ void bond_only_range(const Model &model, const PointCloud &ref, const double *y,
     BondOnlyForm<D, Corrected> form{bond_force + D * fam.offsets[i], ws.point.offset.data(),
                                     ws.point.family_volume.data(),
                                     Corrected ? geo.correction.data() + D * D * i : nullptr, totals};
-    stress_pass<D>(model, fam, geo, state, i, totals, c33, ws, form, stats);
+    stress_pass<D, Words>(model, fam, geo, state, i, totals, c33, ws, form, stats);
   }
 }
 
-template <int D, class Model>
+template <int D, std::size_t Words, class Model>
 void energy_consistent_range(const Model &model, const PointCloud &ref, const double *y, const Families &fam,
                              const BondGeometry<D> &geo, const BondState &state, double *c33, double *bond_force,
                              Workspace<D> &ws, std::size_t begin, std::size_t end, KernelStats &stats)
@@ -214,7 +216,7 @@ void energy_consistent_range(const Model &model, const PointCloud &ref, const do
     for (std::size_t w = 0; w < W; ++w) ws.energetic[w] = 0;
     EnergyConsistentForm<D> form{ws.bond_stress.data(), ws.energetic.data(), ws.point.member.data(), {}, 0.0};
     form.stress_total.zero();
-    stress_pass<D>(model, fam, geo, state, i, totals, c33, ws, form, stats);
+    stress_pass<D, Words>(model, fam, geo, state, i, totals, c33, ws, form, stats);
     // Pass 2: t_ip = omega_i S_ip (x_p - x_i), S_ip = the sum of M_iq over q in B_ip
     // (BA masks are symmetric within a family: ba_force_energy.hpp).
     double *t = bond_force + D * o;
@@ -229,7 +231,7 @@ void energy_consistent_range(const Model &model, const PointCloud &ref, const do
         for (int r = 0; r < D; ++r) t[D * p + r] = 0.0;
         continue;
       }
-      const StressRecord<D> S = masked_sum(ba + p * W, ws.energetic.data(), W, ws.bond_stress.data(),
+      const StressRecord<D> S = masked_sum<Words>(ba + p * W, ws.energetic.data(), W, ws.bond_stress.data(),
                                            form.stress_total, ws.point.in.data(), ws.point.out.data());
       for (int r = 0; r < D; ++r) {
         double s = 0.0;
@@ -240,9 +242,19 @@ void energy_consistent_range(const Model &model, const PointCloud &ref, const do
   }
 }
 
-} // namespace detail
+template <int D, std::size_t Words, class Model>
+void forces_range(ForceForm form, const Model &model, const PointCloud &ref, const double *y, const Families &fam,
+                  const BondGeometry<D> &geo, const BondState &state, double *c33, double *bond_force,
+                  Workspace<D> &ws, std::size_t begin, std::size_t end, KernelStats &stats)
+{
+  if (form == ForceForm::energy_consistent)
+    energy_consistent_range<D, Words>(model, ref, y, fam, geo, state, c33, bond_force, ws, begin, end, stats);
+  else if (geo.corrected())
+    bond_only_range<D, Words, true>(model, ref, y, fam, geo, state, c33, bond_force, ws, begin, end, stats);
+  else bond_only_range<D, Words, false>(model, ref, y, fam, geo, state, c33, bond_force, ws, begin, end, stats);
+}
 
-enum class ForceForm { bond_only, energy_consistent };
+} // namespace detail
 
 // Bond forces t_ij (D per bond) of the family points [begin, end) in the given form.
 // y: current positions of every local point (ring-2 ghosts included), D per point.
@@ -258,13 +270,12 @@ KernelStats compute_bond_forces(ForceForm form, const Model &model, const PointC
 {
   KernelStats stats;
   ws.reserve(families);
-  if (form == ForceForm::energy_consistent)
-    detail::energy_consistent_range<D>(model, ref, y, families, geometry, state, c33, bond_force, ws, begin, end,
-                                       stats);
-  else if (geometry.corrected())
-    detail::bond_only_range<D, true>(model, ref, y, families, geometry, state, c33, bond_force, ws, begin, end, stats);
-  else
-    detail::bond_only_range<D, false>(model, ref, y, families, geometry, state, c33, bond_force, ws, begin, end, stats);
+  switch (families.mask_words) { // 1: 2D up to 64 members; 2, 3: 3D at delta <= 3.8 dx
+  case 1: detail::forces_range<D, 1>(form, model, ref, y, families, geometry, state, c33, bond_force, ws, begin, end, stats); break;
+  case 2: detail::forces_range<D, 2>(form, model, ref, y, families, geometry, state, c33, bond_force, ws, begin, end, stats); break;
+  case 3: detail::forces_range<D, 3>(form, model, ref, y, families, geometry, state, c33, bond_force, ws, begin, end, stats); break;
+  default: detail::forces_range<D, 0>(form, model, ref, y, families, geometry, state, c33, bond_force, ws, begin, end, stats);
+  }
   return stats;
 }
 

@@ -13,7 +13,7 @@
 // How it is computed: as in 2D. Per point i, each family member k gets one record of
 //   (y_k - y_i) (x) (x_k - x_i) V_k   (D x D, row-major),
 //   (x_k - x_i) (x) (x_k - x_i) V_k   (its upper triangle, sym_index),   V_k,
-// padded to whole 4-double vectors (2D: 8 doubles, 3D: 16), formed once and reused by
+// padded to whole vectors (2D: 8 doubles, 3D: 16), formed once and reused by
 // all of i's bonds. A bond's N, K and V(B) are then one masked sum of the records (BA
 // mask AND intact mask) in family order, or the point's total minus the others when
 // the BA family holds more than half of the intact members. For D = 2 every one of
@@ -54,28 +54,36 @@ template <int D> inline bool regular(double det, double tr)
   return tr > 0.0 && det > bound;
 }
 
-typedef double Lane4 __attribute__((vector_size(32)));
+// The widest vector the target has: 8 doubles with AVX-512 (a 3D record, 16 doubles,
+// is then two adds), else 4. Element-wise sums in the same order either way, so the
+// width changes no bit of any result.
+#if defined(__AVX512F__)
+inline constexpr int vector_doubles = 8;
+#else
+inline constexpr int vector_doubles = 4;
+#endif
+typedef double Vector __attribute__((vector_size(8 * vector_doubles)));
 
-// n doubles in whole 4-double vectors, summed one vector at a time.
-template <int N> struct alignas(32) Packed {
-  static constexpr int quads = (N + 3) / 4;
-  Lane4                v[quads];
-  double               operator[](int k) const { return v[k / 4][k % 4]; }
-  void                 set(int k, double a) { v[k / 4][k % 4] = a; }
+// N doubles in whole vectors, summed one vector at a time.
+template <int N> struct alignas(8 * vector_doubles) Packed {
+  static constexpr int V = vector_doubles, vectors = (N + V - 1) / V;
+  Vector               v[vectors];
+  double               operator[](int k) const { return v[k / V][k % V]; }
+  void                 set(int k, double a) { v[k / V][k % V] = a; }
   void                 zero()
   {
-    for (int q = 0; q < quads; ++q) v[q] = Lane4{0.0, 0.0, 0.0, 0.0};
+    for (int q = 0; q < vectors; ++q) v[q] = Vector{};
   }
   Packed &operator+=(const Packed &o)
   {
-    for (int q = 0; q < quads; ++q) v[q] += o.v[q];
+    for (int q = 0; q < vectors; ++q) v[q] += o.v[q];
     return *this;
   }
 };
 template <int N> inline Packed<N> operator+(Packed<N> a, const Packed<N> &b) { return a += b; }
 template <int N> inline Packed<N> operator-(Packed<N> a, const Packed<N> &b)
 {
-  for (int q = 0; q < Packed<N>::quads; ++q) a.v[q] -= b.v[q];
+  for (int q = 0; q < Packed<N>::vectors; ++q) a.v[q] -= b.v[q];
   return a;
 }
 
@@ -114,11 +122,16 @@ template <class R> inline R sum_selected(const std::uint64_t *bits, std::size_t 
 // The sum of the records of the members in the BA family (ba) and in `members`;
 // total = the sum over all of `members` in order. When the BA family holds more than
 // half of them: total minus the others (which form depends on the masks alone, so
-// the result is the same on any rank). in, out: work space of `words` words.
-template <class R>
+// the result is the same on any rank). Words: the mask words if known at compile time
+// (the kernels dispatch 1, 2 and 3; the masks then stay in registers), else 0 and
+// `words` at run time with in, out as work space.
+template <std::size_t Words, class R>
 inline R masked_sum(const std::uint64_t *ba, const std::uint64_t *members, std::size_t words, const R *records,
-                    const R &total, std::uint64_t *in, std::uint64_t *out)
+                    const R &total, std::uint64_t *in_space, std::uint64_t *out_space)
 {
+  std::uint64_t  in_local[Words ? Words : 1], out_local[Words ? Words : 1];
+  std::uint64_t *in = Words ? in_local : in_space, *out = Words ? out_local : out_space;
+  if constexpr (Words > 0) words = Words;
   int n_in = 0, n_out = 0;
   for (std::size_t w = 0; w < words; ++w) {
     in[w]  = ba[w] & members[w];
@@ -206,12 +219,12 @@ inline PointTotals<D> gather_point(const PointCloud &ref, const double *y, const
 }
 
 // F, K^{-1} and V(B) of a bond (ba: its BA mask) from the gathered point.
-template <int D>
+template <int D, std::size_t Words = 0>
 inline BondKinematics<D> bond_kinematics(const std::uint64_t *ba, const std::uint64_t *intact, std::size_t W,
                                          PointScratch<D> &ws, const PointTotals<D> &totals)
 {
   using L                 = Member<D>;
-  const MemberRecord<D> S = masked_sum(ba, intact, W, ws.member.data(), totals.total, ws.in.data(), ws.out.data());
+  const MemberRecord<D> S = masked_sum<Words>(ba, intact, W, ws.member.data(), totals.total, ws.in.data(), ws.out.data());
   BondKinematics<D>     k;
   double                K[sym_size<D>];
   for (int s = 0; s < sym_size<D>; ++s) K[s] = S[L::shape + s];
