@@ -15,6 +15,8 @@
 //   bond_only      compute_bond_forces, the paper's form (eq 23), no correction
 //   corrected      the same with the tensor stress correction (g -> M_i^{-1} g)
 //   energy         the energy-consistent form (ba_force_energy.hpp's, in 3D)
+//   lanes_*        the same three with the lane path of the law (Compressible3DLanes,
+//                  nd/compressible_lanes.hpp: lane_count bonds at a time, no libm cbrt)
 //   identity       the bond-only kernel with P = F: gather, masked sums, K^{-1}, F,
 //                  stores, no constitutive cost
 //   assemble       assemble_force_density, f_i = sum_j (t_ij - t_ji) V_j
@@ -33,6 +35,7 @@
 #include "bapd/gent.hpp"
 #include "bapd/material.hpp"
 #include "bapd/nd/ba_force.hpp"
+#include "bapd/nd/compressible_lanes.hpp"
 #include "bapd/nd/family.hpp"
 
 using namespace bapd;
@@ -111,7 +114,8 @@ int main(int argc, char **argv)
 
   MaterialParameters p; // the paper's hydrogel (examples/*.yaml)
   p.D = 2.0 / (1000.0 * p.mu);
-  const Gent3D gent{p};
+  const Gent3D                        gent{p};
+  const nd::Compressible3DLanes<Gent> gent_lanes{ParametersOf<Gent>(p)};
 
   std::vector<double> t(3 * fam.n_bonds()), f(3 * cloud.size());
   nd::Workspace<3>    ws;
@@ -128,6 +132,9 @@ int main(int argc, char **argv)
   const double bond_only = time_min(reps, run(nd::ForceForm::bond_only, gent, geo));
   const double corr      = time_min(reps, run(nd::ForceForm::bond_only, gent, corrected));
   const double energy    = time_min(reps, run(nd::ForceForm::energy_consistent, gent, geo));
+  const double lanes_bo  = time_min(reps, run(nd::ForceForm::bond_only, gent_lanes, geo));
+  const double lanes_co  = time_min(reps, run(nd::ForceForm::bond_only, gent_lanes, corrected));
+  const double lanes_ec  = time_min(reps, run(nd::ForceForm::energy_consistent, gent_lanes, geo));
   const double ident     = time_min(reps, run(nd::ForceForm::bond_only, identity, geo));
   const double assemble  = time_min(reps, [&](int) {
     nd::assemble_force_density<3>(fam, cloud, t.data(), cloud.size(), f.data());
@@ -140,10 +147,15 @@ int main(int argc, char **argv)
   line("Gent3D bond-only (kernel)", bond_only, evaluated);
   line("Gent3D bond-only, tensor correction (kernel)", corr, evaluated);
   line("Gent3D energy-consistent (kernel)", energy, evaluated);
+  line("Gent3D lanes bond-only (kernel)", lanes_bo, evaluated);
+  line("Gent3D lanes bond-only, tensor correction", lanes_co, evaluated);
+  line("Gent3D lanes energy-consistent (kernel)", lanes_ec, evaluated);
   line("kernel only (P = F)", ident, evaluated);
   line("assemble_force_density", assemble, nb);
   line("force evaluation, bond-only + assembly", bond_only + assemble, evaluated);
   line("force evaluation, energy-consistent + assembly", energy + assemble, evaluated);
+  line("force evaluation, lanes bond-only + assembly", lanes_bo + assemble, evaluated);
+  line("force evaluation, lanes energy-consistent + assembly", lanes_ec + assemble, evaluated);
 
   // Memory: every per-point and per-bond array of a 3D force evaluation (no c33: 3D
   // needs no plane-stress solve). Per point: x, y, f (3 doubles each), volume,
@@ -156,8 +168,10 @@ int main(int argc, char **argv)
   std::printf("  arrays: %.0f B/point (%.0f per point + %.0f per bond x %.1f bonds)\n", bytes, per_point, per_bond, nb / np);
   if (table)
     std::printf("RESULT side=%d factor=%.3f points=%zu bonds=%zu evaluated=%zu mask_words=%zu bond_only_ns=%.3f "
-                "corrected_ns=%.3f energy_ns=%.3f identity_ns=%.3f assemble_ns=%.3f bytes_per_point=%.0f\n",
+                "corrected_ns=%.3f energy_ns=%.3f lanes_bond_only_ns=%.3f lanes_corrected_ns=%.3f lanes_energy_ns=%.3f "
+                "identity_ns=%.3f assemble_ns=%.3f bytes_per_point=%.0f\n",
                 side, factor, cloud.size(), fam.n_bonds(), stats.evaluated, fam.mask_words, 1e9 * bond_only / evaluated,
-                1e9 * corr / evaluated, 1e9 * energy / evaluated, 1e9 * ident / evaluated, 1e9 * assemble / nb, bytes);
+                1e9 * corr / evaluated, 1e9 * energy / evaluated, 1e9 * lanes_bo / evaluated,
+                1e9 * lanes_co / evaluated, 1e9 * lanes_ec / evaluated, 1e9 * ident / evaluated, 1e9 * assemble / nb, bytes);
   return 0;
 }

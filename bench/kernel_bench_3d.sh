@@ -33,7 +33,11 @@ assert int(r['bonds']) == bonds, (r['bonds'], bonds)
 bo = float(r['bond_only_ns']) + float(r['assemble_ns'])
 ec = float(r['energy_ns']) + float(r['assemble_ns'])
 co = float(r['corrected_ns']) + float(r['assemble_ns'])
+lbo = float(r['lanes_bond_only_ns']) + float(r['assemble_ns'])
+lco = float(r['lanes_corrected_ns']) + float(r['assemble_ns'])
+lec = float(r['lanes_energy_ns']) + float(r['assemble_ns'])
 print(f"LAMMPS peri/lps: {lammps:.1f} ns/bond on the same {bonds} bonds")
-for name, t in (("bond-only", bo), ("bond-only corrected", co), ("energy-consistent", ec)):
+for name, t in (("bond-only", bo), ("bond-only corrected", co), ("energy-consistent", ec),
+                ("lanes bond-only", lbo), ("lanes bond-only corrected", lco), ("lanes energy-consistent", lec)):
     print(f"bapd 3D {name} force evaluation: {t:.1f} ns/bond = {lammps / t:.2f} x LAMMPS's per-bond rate (goal >= 0.5)")
 PY

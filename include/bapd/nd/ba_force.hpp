@@ -31,6 +31,8 @@
 //
 // Determinism: every sum runs in family order and nothing depends on the local
 // numbering (as in 2D).
+#include <algorithm>
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -48,12 +50,29 @@ template <int D> struct Workspace {
   std::vector<std::uint64_t>   energetic;   // which of them carry energy
   std::vector<FailedBond>      failed;      // every failed bond of the last call
   bool                         keep_warm_start = false; // read c33, do not write it back
+  // What a form keeps of a bond between its kinematics and its P (data_stride a slot:
+  // g of the bond-only form, K^{-1} of the energy-consistent one). Models with a lane
+  // path (has_lanes: PlaneStress in 2D, Compressible3DLanes in 3D) get the point's
+  // bonds after the loop, lane_count at a time: F by component (D x D arrays of
+  // lane_stride), the c33 warm start and the position q of each (as ba_force.hpp).
+  static constexpr std::size_t data_stride = sym_size<D> > D ? sym_size<D> : D;
+  std::size_t                  lane_stride = 0; // max_family_size rounded up to lane_count
+  std::vector<double>          pending_F, pending_c33, pending_data;
+  std::vector<std::size_t>     pending_q;
 
   void reserve(const Families &f)
   {
     point.reserve(f);
     if (bond_stress.size() < f.max_family_size) bond_stress.resize(f.max_family_size);
     if (energetic.size() < f.mask_words) energetic.resize(f.mask_words);
+    const std::size_t L = lane_count, stride = (std::max<std::size_t>(f.max_family_size, 1) + L - 1) / L * L;
+    if (lane_stride < stride) {
+      lane_stride = stride;
+      pending_F.assign(D * D * stride, 0.0);
+      pending_c33.assign(stride, 0.0);
+      pending_data.assign(data_stride * stride, 0.0);
+      pending_q.assign(stride, 0);
+    }
   }
 };
 
@@ -90,10 +109,63 @@ inline auto energy_of(const M &m, const Mat<D> &F, double &, double &psi, long) 
   failed.push_back({i, q, status});
 }
 
+template <int D, class Model>
+[[gnu::noinline, gnu::cold]] StressStatus model_lane_fallback(const Model &model, const Mat<D> &F, double &c33, Mat<D> &P)
+{
+  return stress_of<D>(model, F, c33, P, 0);
+}
+
+// The model over the n bonds of point i collected in ws.pending_*, lane_count at a
+// time (Model::stress_lanes); a lane it does not finish goes through the scalar
+// stress() (ba_force.hpp's model_lanes, for any D). Bonds are taken in family order,
+// so failures are recorded and form.stress() is called in loop order.
+template <int D, class Model, class Form>
+void model_lanes(const Model &model, Workspace<D> &ws, std::size_t n, std::size_t i, std::size_t o, double *c33,
+                 Form &form, KernelStats &stats)
+{
+  constexpr int     DD = D * D;
+  const std::size_t S = ws.lane_stride, L = lane_count;
+  double           *Fc = ws.pending_F.data(), *cw = ws.pending_c33.data();
+  for (std::size_t l = n; l < (n + L - 1) / L * L; ++l) { // unused lanes: the rest state
+    for (int k = 0; k < DD; ++k) Fc[k * S + l] = k % (D + 1) == 0 ? 1.0 : 0.0;
+    cw[l] = 0.0;
+  }
+  for (std::size_t j = 0; j < n; j += L) {
+    std::array<Lanes, DD> F, P;
+    for (int k = 0; k < DD; ++k) F[k] = bapd::detail::load_lanes(Fc + k * S + j);
+    Lanes          c    = bapd::detail::load_lanes(cw + j);
+    const LaneMask done = model.stress_lanes(F, c, P);
+    for (std::size_t l = 0; l < L && j + l < n; ++l) {
+      const std::size_t q = ws.pending_q[j + l];
+      double            cb;
+      Mat<D>            Pb;
+      if (done[l]) {
+        cb = c[l];
+        for (int k = 0; k < DD; ++k) Pb[k] = P[k][l];
+      } else {
+        cb = cw[j + l];
+        Mat<D> Fb;
+        for (int k = 0; k < DD; ++k) Fb[k] = F[k][l];
+        const StressStatus status = model_lane_fallback<D>(model, Fb, cb, Pb);
+        if (__builtin_expect(status != StressStatus::ok, 0)) {
+          record_failure(stats, ws.failed, i, q, status);
+          form.none(q);
+          continue;
+        }
+      }
+      if (c33 && !ws.keep_warm_start) c33[o + q] = cb;
+      form.stress(j + l, q, Pb);
+    }
+  }
+}
+
 // The first pass of both forms over the bonds of point i: F_iq (eq 9) and P(F_iq)
-// from the model; the form is told, in family order, form.none(q) (no stress: broken,
-// K not usable, or model failed) or form.stress(q, k, P) (ba_force.hpp's stress_pass,
-// without the lanes).
+// from the model. The form is told, in family order (ba_force.hpp's stress_pass):
+//   form.none(q)               no stress: broken, K not usable, or the model failed;
+//   form.collect(slot, q, k)   the kinematics, before the model (the form keeps what
+//                              it needs in ws.pending_data, data_stride a slot);
+//   form.stress(slot, q, P)    P(F_iq) of the bond collected in slot.
+// A model with stress_lanes (has_lanes) gets the bonds after the loop (model_lanes).
 template <int D, std::size_t Words, class Model, class Form>
 inline void stress_pass(const Model &model, const Families &fam, const BondGeometry<D> &geo, const BondState &state,
                         std::size_t i, const PointTotals<D> &totals, double *c33, Workspace<D> &ws, Form &form,
@@ -102,6 +174,7 @@ inline void stress_pass(const Model &model, const Families &fam, const BondGeome
   const std::size_t    W = fam.mask_words, o = fam.offsets[i], m = fam.size(i);
   const std::uint64_t *intact = state.intact_mask(i), *usable = geo.usable.data() + i * W;
   const std::uint64_t *ba     = fam.ba_mask.data() + o * W;
+  std::size_t          pending = 0; // bonds collected for the lanes
   for (std::size_t q = 0; q < m; ++q) {
     const std::uint64_t bit   = std::uint64_t{1} << (q % 64);
     const bool          alive = intact[q / 64] & bit;
@@ -118,6 +191,15 @@ inline void stress_pass(const Model &model, const Families &fam, const BondGeome
     }
     double c = c33 ? c33[o + q] : 0.0; // <= 0: no warm start
     ++stats.evaluated;
+    if constexpr (bapd::detail::HasLanes<Model>::value) {
+      const std::size_t S = ws.lane_stride;
+      form.collect(pending, q, k);
+      for (int comp = 0; comp < D * D; ++comp) ws.pending_F[comp * S + pending] = k.F[comp];
+      ws.pending_c33[pending] = c;
+      ws.pending_q[pending++] = q;
+      continue;
+    }
+    form.collect(0, q, k);
     Mat<D>             P;
     const StressStatus status = stress_of<D>(model, k.F, c, P, 0);
     if (__builtin_expect(status != StressStatus::ok, 0)) {
@@ -126,23 +208,26 @@ inline void stress_pass(const Model &model, const Families &fam, const BondGeome
       continue;
     }
     if (c33 && !ws.keep_warm_start) c33[o + q] = c;
-    form.stress(q, k, P);
+    form.stress(0, q, P);
   }
+  if constexpr (bapd::detail::HasLanes<Model>::value) model_lanes<D>(model, ws, pending, i, o, c33, form, stats);
 }
 
 // Bond-only (eq 23): t_iq = P g_iq, g_iq = force_scale C_i K^{-1} xi_iq.
 template <int D, bool Corrected> struct BondOnlyForm {
-  double               *t; // the point's bond forces, D per bond
-  const double         *off, *fvk, *C;
-  const PointTotals<D> &totals;
+  static constexpr std::size_t stride = Workspace<D>::data_stride;
+  double                      *t;    // the point's bond forces, D per bond
+  double                      *data; // ws.pending_data: g_iq, D of each slot
+  const double                *off, *fvk, *C;
+  const PointTotals<D>        &totals;
 
   void none(std::size_t q)
   {
     for (int r = 0; r < D; ++r) t[D * q + r] = 0.0;
   }
-  void stress(std::size_t q, const BondKinematics<D> &k, const Mat<D> &P)
+  void collect(std::size_t slot, std::size_t q, const BondKinematics<D> &k)
   {
-    double g[D];
+    double *g = data + stride * slot;
     force_vector<D>(k, force_scale<D>(k, totals, fvk[q]), off + D * q, g);
     if constexpr (Corrected) { // g -> C_i g (compiled out without a correction)
       double h[D];
@@ -153,6 +238,10 @@ template <int D, bool Corrected> struct BondOnlyForm {
       }
       for (int r = 0; r < D; ++r) g[r] = h[r];
     }
+  }
+  void stress(std::size_t slot, std::size_t q, const Mat<D> &P)
+  {
+    const double *g = data + stride * slot;
     for (int r = 0; r < D; ++r) {
       double s = 0.0;
       for (int c = 0; c < D; ++c) s += P[D * r + c] * g[c];
@@ -164,22 +253,29 @@ template <int D, bool Corrected> struct BondOnlyForm {
 // Energy-consistent, pass 1: M_iq = V_q P(F_iq) K_iq^{-1}, their sum in family order,
 // sum_q V_q and the mask of the bonds that carry energy.
 template <int D> struct EnergyConsistentForm {
-  StressRecord<D>       *M;
-  std::uint64_t         *energetic;
-  const MemberRecord<D> *rec;
-  StressRecord<D>        stress_total;
-  double                 volume = 0.0;
+  static constexpr std::size_t stride = Workspace<D>::data_stride;
+  StressRecord<D>             *M;
+  std::uint64_t               *energetic;
+  double                      *data; // ws.pending_data: K^{-1} (upper triangle) of each slot
+  const MemberRecord<D>       *rec;
+  StressRecord<D>              stress_total;
+  double                       volume = 0.0;
 
-  void none(std::size_t) {}
-  void stress(std::size_t q, const BondKinematics<D> &k, const Mat<D> &P)
+  void none(std::size_t) {} // no energy: M_iq is not read (its bit stays clear)
+  void collect(std::size_t slot, std::size_t, const BondKinematics<D> &k)
   {
-    const double    v = rec[q][Member<D>::volume];
+    for (int c = 0; c < sym_size<D>; ++c) data[stride * slot + c] = k.shape_tensor_inv[c];
+  }
+  void stress(std::size_t slot, std::size_t q, const Mat<D> &P)
+  {
+    const double   *ki = data + stride * slot;
+    const double    v  = rec[q][Member<D>::volume];
     StressRecord<D> mq;
     mq.zero();
     for (int r = 0; r < D; ++r)
       for (int c = 0; c < D; ++c) {
         double s = 0.0;
-        for (int m = 0; m < D; ++m) s += P[D * r + m] * k.kinv(m, c);
+        for (int m = 0; m < D; ++m) s += P[D * r + m] * ki[sym_index<D>(m, c)];
         mq.set(D * r + c, v * s);
       }
     M[q] = mq;
@@ -196,7 +292,7 @@ void bond_only_range(const Model &model, const PointCloud &ref, const double *y,
 {
   for (std::size_t i = begin; i < end; ++i) {
     const PointTotals<D>    totals = gather_point<D>(ref, y, fam, i, state.intact_mask(i), ws.point);
-    BondOnlyForm<D, Corrected> form{bond_force + D * fam.offsets[i], ws.point.offset.data(),
+    BondOnlyForm<D, Corrected> form{bond_force + D * fam.offsets[i], ws.pending_data.data(), ws.point.offset.data(),
                                     ws.point.family_volume.data(),
                                     Corrected ? geo.correction.data() + D * D * i : nullptr, totals};
     stress_pass<D, Words>(model, fam, geo, state, i, totals, c33, ws, form, stats);
@@ -214,7 +310,8 @@ void energy_consistent_range(const Model &model, const PointCloud &ref, const do
     const std::uint64_t *intact = state.intact_mask(i), *ba = fam.ba_mask.data() + o * W;
     const PointTotals<D> totals = gather_point<D>(ref, y, fam, i, intact, ws.point);
     for (std::size_t w = 0; w < W; ++w) ws.energetic[w] = 0;
-    EnergyConsistentForm<D> form{ws.bond_stress.data(), ws.energetic.data(), ws.point.member.data(), {}, 0.0};
+    EnergyConsistentForm<D> form{ws.bond_stress.data(), ws.energetic.data(), ws.pending_data.data(),
+                                 ws.point.member.data(), {}, 0.0};
     form.stress_total.zero();
     stress_pass<D, Words>(model, fam, geo, state, i, totals, c33, ws, form, stats);
     // Pass 2: t_ip = omega_i S_ip (x_p - x_i), S_ip = the sum of M_iq over q in B_ip
