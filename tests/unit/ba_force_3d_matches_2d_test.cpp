@@ -127,10 +127,20 @@ TEST(GenericCore2D, PlaneStrainGentEnergyConsistentForcesAreThe2DKernelsBitForBi
   expect_same_forces(c, GentPlaneStrain{gel()}, nd::ForceForm::energy_consistent, StressCorrection::none);
 }
 
+TEST(GenericCore2D, TwoMaskWordsGiveThe2DKernelsForcesBitForBit)
+{
+  // delta = 5.015 dx: 80 neighbours, two mask words (the 2D kernel's run-time-width
+  // path, the generic core's Words = 2).
+  CutPlate c(20, 0.1, 14, 5.015);
+  ASSERT_EQ(c.d.families.mask_words, 2u);
+  expect_same_forces(c, GentPlaneStrain{gel()}, nd::ForceForm::bond_only, StressCorrection::tensor);
+  expect_same_forces(c, GentPlaneStrain{gel()}, nd::ForceForm::energy_consistent, StressCorrection::none);
+}
+
 TEST(GenericCore2D, PlaneStressGentWithWarmStartsIsThe2DKernelsBitForBit)
 {
-  // The 2D kernel runs PlaneStress in lanes, bit for bit its scalar solve
-  // (plane_stress.hpp), which the generic core calls: the same bits, c33 included.
+  // Both cores run PlaneStress in lanes (stress_lanes, lane_count bonds at a time,
+  // the failed lanes through the scalar solve): the same bits, c33 included.
   CutPlate c(16, 0.1, 13);
   expect_same_forces(c, test::hydrogel(), nd::ForceForm::bond_only, StressCorrection::tensor);
   expect_same_forces(c, test::hydrogel(), nd::ForceForm::energy_consistent, StressCorrection::none);

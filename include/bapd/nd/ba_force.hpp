@@ -17,17 +17,19 @@
 //
 // The model is a template parameter (inlined into the loop, nothing virtual per
 // bond), with either of the two stress signatures of the existing laws:
-//   StressStatus stress(const Mat<D> &F, Mat<D> &P) const          (Compressible3D)
+//   StressStatus stress(const Mat<D> &F, Mat<D> &P) const             (Compressible3D)
 //   StressStatus stress(const Mat<D> &F, double &c33, Mat<D> &P) const (2D PlaneStrain,
 //        PlaneStress: c33 is the out-of-plane warm start, read from and written to
 //        the optional c33 array, one per bond, as in 2D)
-// and energy(F, psi) or energy(F, c33, psi) likewise.
+// and energy(F, psi) or energy(F, c33, psi) likewise. A model with has_lanes and
+//   LaneMask stress_lanes(const std::array<Lanes, D*D> &F, Lanes &c33, std::array<Lanes, D*D> &P) const
+// (PlaneStress in 2D, Compressible3DLanes in 3D: nd/compressible_lanes.hpp) gets the
+// point's bonds after the first loop, lane_count at a time (model_lanes); a lane it
+// does not finish goes through its scalar stress().
 //
 // For D = 2 every operation is the 2D kernel's in its order (nd/bond_geometry.hpp),
-// so the D = 2 instantiation gives its bond forces bit for bit with a scalar model
-// (PlaneStrain). What the 2D kernel has and this one has not yet: the lane path
-// (PlaneStress four or eight bonds at a time, lanes.hpp) and the Words = 1
-// specialisation; docs/architecture.md, "3D (stage 1)", says what the switch needs.
+// lanes included, so the D = 2 instantiation gives its bond forces and c33 bit for
+// bit (ba_force_3d_matches_2d_test.cpp).
 //
 // Determinism: every sum runs in family order and nothing depends on the local
 // numbering (as in 2D).
