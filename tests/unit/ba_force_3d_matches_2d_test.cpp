@@ -11,7 +11,9 @@
 #include <vector>
 
 #include "bapd/gent.hpp"
+#include "bapd/damage.hpp"
 #include "bapd/nd/ba_force.hpp"
+#include "bapd/nd/damage.hpp"
 #include "bapd/nd/family.hpp"
 #include "unit/kernel_fixtures.hpp"
 #include "unit/test_models.hpp"
@@ -144,6 +146,19 @@ TEST(GenericCore2D, PlaneStressGentWithWarmStartsIsThe2DKernelsBitForBit)
   CutPlate c(16, 0.1, 13);
   expect_same_forces(c, test::hydrogel(), nd::ForceForm::bond_only, StressCorrection::tensor);
   expect_same_forces(c, test::hydrogel(), nd::ForceForm::energy_consistent, StressCorrection::none);
+}
+
+TEST(GenericCore2D, CriticalStretchBreaksThe2DBondsBitForBit)
+{
+  const CutPlate           c(20, 0.2, 15);
+  BondState                s2 = c.d.state, sn = c.d.state;
+  std::vector<std::size_t> t2, tn;
+  const std::size_t        b2 = break_bonds(c.d.cloud, c.y.data(), c.d.families, 1.22, s2, t2);
+  const std::size_t        bn = nd::break_bonds<2>(c.d.cloud, c.y.data(), c.d.families, 1.22, sn, tn);
+  EXPECT_GT(b2, 1000u); // not vacuous
+  EXPECT_EQ(bn, b2);
+  EXPECT_EQ(sn.intact, s2.intact);
+  EXPECT_EQ(tn, t2);
 }
 
 } // namespace

@@ -11,7 +11,9 @@
 
 #include "bapd/arruda_boyce.hpp"
 #include "bapd/mooney_rivlin.hpp"
+#include "bapd/damage.hpp"
 #include "bapd/nd/compressible_lanes.hpp"
+#include "bapd/nd/damage.hpp"
 #include "bapd/ogden.hpp"
 #include "bapd/yeoh.hpp"
 #include "unit/kernel_fixtures_3d.hpp"
@@ -86,6 +88,39 @@ TEST(BaForce3D, AffineMotionGivesZeroNetForceTwoHorizonsFromTheBoundary)
       EXPECT_LT(worst, 1e-13) << name(form) << " law " << law;
       EXPECT_GT(boundary_max, 1e-2) << name(form); // not vacuous: the free faces are not in equilibrium
     }
+}
+
+TEST(BaForce3D, CriticalStretchBreaksBothCopiesAndDamages)
+{
+  // y = A x with stretch 1.3 along x only: a bond's stretch is |A xi| / |xi|, above
+  // s_c = 1.2 for bonds close to the x axis (0.25 xi_x^2 > 0.44 (xi_y^2 + xi_z^2)), below it
+  // for the others; both copies of a bond agree, and the damage (eq 38) of an interior
+  // point is the volume fraction of its broken bonds.
+  Body3D                   b(9);
+  const std::vector<double> y = b.affine({1.3, 0, 0, 0, 1.0, 0, 0, 0, 1.0});
+  std::vector<std::size_t> touched;
+  const std::size_t        broken = nd::break_bonds<3>(b.cloud, y.data(), b.families, 1.2, b.state, touched);
+  ASSERT_GT(broken, 0u);
+  std::size_t counted = 0;
+  for (std::size_t i = 0; i < b.size(); ++i)
+    for (std::size_t q = 0; q < b.families.size(i); ++q) {
+      const std::size_t bond = b.families.offsets[i] + q, j = static_cast<std::size_t>(b.families.neighbour[bond]);
+      const double      d0 = b.cloud.x[3 * j] - b.cloud.x[3 * i], d1 = b.cloud.x[3 * j + 1] - b.cloud.x[3 * i + 1],
+                   d2 = b.cloud.x[3 * j + 2] - b.cloud.x[3 * i + 2];
+      const bool should_break = 0.25 * d0 * d0 > 0.44 * (d1 * d1 + d2 * d2); // 1.69 d0^2 + r^2 > 1.44 (d0^2 + r^2)
+      ASSERT_EQ(!b.state.is_intact(i, q), should_break) << i << " " << q;
+      const std::size_t back = static_cast<std::size_t>(b.families.reverse[bond]) - b.families.offsets[j];
+      ASSERT_EQ(b.state.is_intact(i, q), b.state.is_intact(j, back)); // both copies
+      counted += should_break;
+    }
+  EXPECT_EQ(broken, counted);
+  std::vector<double> damage(b.size());
+  point_damage(b.cloud, b.families, b.state, b.size(), damage.data());
+  const std::size_t centre = 4 + 9 * 4 + 81 * 4;
+  std::size_t       lost   = 0;
+  for (std::size_t q = 0; q < b.families.size(centre); ++q) lost += !b.state.is_intact(centre, q);
+  EXPECT_NEAR(damage[centre], static_cast<double>(lost) / 122.0, 1e-15); // equal volumes: a count
+  EXPECT_GT(damage[centre], 0.0);
 }
 
 // Every 3D law of the registry runs through the same generic core (the model is a
