@@ -13,6 +13,7 @@
 #include "bapd/gent.hpp"
 #include "bapd/material.hpp"
 #include "bapd/nd/ba_force.hpp"
+#include "bapd/nd/compressible_lanes.hpp"
 #include "bapd/nd/family.hpp"
 
 namespace {
@@ -75,19 +76,24 @@ TEST(Allocation3D, ForceEvaluationAllocatesNothing)
   nd::compute_bond_geometry<3>(cloud, fam, state, geo);
   MaterialParameters p;
   p.D = 2.0 / (100.0 * p.mu);
-  const Gent3D        gent{p};
+  const Gent3D                        gent{p};
+  const nd::Compressible3DLanes<Gent> gent_lanes{ParametersOf<Gent>(p)};
   std::vector<double> y(cloud.x), t(3 * fam.n_bonds()), f(3 * cloud.size());
   for (std::size_t k = 0; k < y.size(); k += 3) y[k] *= 1.1; // 10 % stretch in x
   nd::Workspace<3> ws;
-  for (nd::ForceForm form : {nd::ForceForm::bond_only, nd::ForceForm::energy_consistent}) {
-    ASSERT_TRUE(nd::compute_bond_forces<3>(form, gent, cloud, y.data(), fam, geo, state, nullptr, t.data(), ws).ok()); // warm-up
-    KernelStats s;
-    const long  count = CountAllocations([&] {
-      s = nd::compute_bond_forces<3>(form, gent, cloud, y.data(), fam, geo, state, nullptr, t.data(), ws);
-      nd::assemble_force_density<3>(fam, cloud, t.data(), cloud.size(), f.data());
-      nd::strain_energy<3>(gent, cloud, y.data(), fam, geo, state, nullptr, cloud.size(), ws);
-    });
-    EXPECT_EQ(count, 0) << "operator new calls in one 3D force evaluation";
-    EXPECT_EQ(s.evaluated, fam.n_bonds()); // it did evaluate every bond
-  }
+  auto check = [&](const auto &model, const char *name) {
+    for (nd::ForceForm form : {nd::ForceForm::bond_only, nd::ForceForm::energy_consistent}) {
+      ASSERT_TRUE(nd::compute_bond_forces<3>(form, model, cloud, y.data(), fam, geo, state, nullptr, t.data(), ws).ok()); // warm-up
+      KernelStats s;
+      const long  count = CountAllocations([&] {
+        s = nd::compute_bond_forces<3>(form, model, cloud, y.data(), fam, geo, state, nullptr, t.data(), ws);
+        nd::assemble_force_density<3>(fam, cloud, t.data(), cloud.size(), f.data());
+        nd::strain_energy<3>(model, cloud, y.data(), fam, geo, state, nullptr, cloud.size(), ws);
+      });
+      EXPECT_EQ(count, 0) << name << ": operator new calls in one 3D force evaluation";
+      EXPECT_EQ(s.evaluated, fam.n_bonds()); // it did evaluate every bond
+    }
+  };
+  check(gent, "Gent3D");
+  check(gent_lanes, "Compressible3DLanes<Gent>");
 }
