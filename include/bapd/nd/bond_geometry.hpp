@@ -23,10 +23,10 @@
 //
 // Usable K: K is symmetric positive semi-definite; det K / (tr K)^D ~ 1 / cond(K)
 // up to a constant. On a lattice K in units of V dx^2 has integer entries, so a
-// regular K has det >= 1 while tr K is at most (members) x delta^2: in 3D below 1300
-// at delta = 3.515 dx (178 members), so the ratio is >= 1 / 1300^3 ~ 5e-10, while a
-// degenerate K (coplanar members) has det at round-off, ratio ~ 1e-16. The threshold
-// 1e-12 sits between them with two orders of margin above and four below. In 2D it
+// regular K has det >= 1 while tr K is at most (members) x (delta/dx)^2: in 3D below
+// 2200 at delta = 3.515 dx (178 x 12.4), so the ratio is >= 1 / 2200^3 ~ 1e-10, while
+// a degenerate K (coplanar members) has det at round-off, ratio ~ 1e-16. The
+// threshold 1e-12 sits between them with two orders of margin above and four below. In 2D it
 // is the 2D kernel's 1e-8 (bond_geometry.hpp says why), so both decide alike.
 #include <cstddef>
 #include <cstdint>
