@@ -1,0 +1,460 @@
+#pragma once
+// Bond-associated NOSB bond forces in D = 2 or 3 dimensions, both force forms
+// (paper eqs 9, 23; METHOD.md sections 2-3): the dimension-generic form of
+// ba_force.hpp and ba_force_energy.hpp, one code path instantiated per D.
+//
+// Bond-only (the paper's, eq 23), for every intact bond b = (i -> j) with a usable K:
+//   t_ij = P(F_ij) g_ij,   g_ij = 1/2 phi_xi/phi C_i K_ij^{-1} (x_j - x_i)
+// with C_i the stress correction (tensor: M_i^{-1}, so that a uniform P gives
+// sum_j t_ij (x) xi_ij V_j = P at every point; nd/bond_geometry.hpp).
+// Energy-consistent (ba_force_energy.hpp derives it; nothing in it depends on D):
+//   t_ip = omega_i S_ip (x_p - x_i),  S_ip = sum_{q : p in intact B_iq} V_q P(F_iq) K_iq^{-1},
+//   omega_i = 1 / sum_q V_q over the bonds of i that carry energy,
+// which makes f_i = -(1/V_i) dW/dy_i for W = strain_energy() below.
+// Either way the force density of an owned point is
+//   f_i = sum_j (t_ij - t_ji) V_j                                                 (eq 1)
+// (assemble_force_density), so linear momentum is conserved pair by pair.
+//
+// The model is a template parameter (inlined into the loop, nothing virtual per
+// bond), with either of the two stress signatures of the existing laws:
+//   StressStatus stress(const Mat<D> &F, Mat<D> &P) const             (Compressible3D)
+//   StressStatus stress(const Mat<D> &F, double &c33, Mat<D> &P) const (2D PlaneStrain,
+//        PlaneStress: c33 is the out-of-plane warm start, read from and written to
+//        the optional c33 array, one per bond, as in 2D)
+// and energy(F, psi) or energy(F, c33, psi) likewise. A model with has_lanes and
+//   LaneMask stress_lanes(const std::array<Lanes, D*D> &F, Lanes &c33, std::array<Lanes, D*D> &P) const
+// (PlaneStress in 2D, Compressible3DLanes in 3D: nd/compressible_lanes.hpp) gets the
+// point's bonds after the first loop, lane_count at a time (model_lanes); a lane it
+// does not finish goes through its scalar stress().
+//
+// For D = 2 every operation is the 2D kernel's in its order (nd/bond_geometry.hpp),
+// lanes included, so the D = 2 instantiation gives its bond forces and c33 bit for
+// bit (ba_force_3d_matches_2d_test.cpp).
+//
+// Determinism: every sum runs in family order and nothing depends on the local
+// numbering (as in 2D).
+#include <algorithm>
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "bapd/ba_force.hpp" // KernelStats, FailedBond
+#include "bapd/nd/bond_geometry.hpp"
+
+namespace bapd::nd {
+
+// The kernels' work space: the point scratch, the energy-consistent form's per-bond
+// stresses, and the failed bonds of the last call. Sized once (reserve).
+template <int D> struct Workspace {
+  PointScratch<D>              point;
+  std::vector<StressRecord<D>> bond_stress; // M_iq = V_q P(F_iq) K_iq^{-1} of the point's bonds
+  std::vector<std::uint64_t>   energetic;   // which of them carry energy
+  std::vector<FailedBond>      failed;      // every failed bond of the last call
+  bool                         keep_warm_start = false; // read c33, do not write it back
+  // What a form keeps of a bond between its kinematics and its P (data_stride a slot:
+  // g of the bond-only form, K^{-1} of the energy-consistent one). Models with a lane
+  // path (has_lanes: PlaneStress in 2D, Compressible3DLanes in 3D) get the point's
+  // bonds after the loop, lane_count at a time: F by component (D x D arrays of
+  // lane_stride), the c33 warm start and the position q of each (as ba_force.hpp).
+  static constexpr std::size_t data_stride = sym_size<D> > D ? sym_size<D> : D;
+  std::size_t                  lane_stride = 0; // max_family_size rounded up to lane_count
+  std::vector<double>          pending_F, pending_c33, pending_data;
+  std::vector<std::size_t>     pending_q;
+
+  void reserve(const Families &f)
+  {
+    point.reserve(f);
+    if (bond_stress.size() < f.max_family_size) bond_stress.resize(f.max_family_size);
+    if (energetic.size() < f.mask_words) energetic.resize(f.mask_words);
+    const std::size_t L = lane_count, stride = (std::max<std::size_t>(f.max_family_size, 1) + L - 1) / L * L;
+    if (lane_stride < stride) {
+      lane_stride = stride;
+      pending_F.assign(D * D * stride, 0.0);
+      pending_c33.assign(stride, 0.0);
+      pending_data.assign(data_stride * stride, 0.0);
+      pending_q.assign(stride, 0);
+    }
+  }
+};
+
+enum class ForceForm { bond_only, energy_consistent };
+
+namespace detail {
+
+// The two stress and energy signatures (see the top of this file); int is preferred.
+template <int D, class M>
+inline auto stress_of(const M &m, const Mat<D> &F, double &c33, Mat<D> &P, int) -> decltype(m.stress(F, c33, P))
+{
+  return m.stress(F, c33, P);
+}
+template <int D, class M>
+inline auto stress_of(const M &m, const Mat<D> &F, double &, Mat<D> &P, long) -> decltype(m.stress(F, P))
+{
+  return m.stress(F, P);
+}
+template <int D, class M>
+inline auto energy_of(const M &m, const Mat<D> &F, double &c33, double &psi, int) -> decltype(m.energy(F, c33, psi))
+{
+  return m.energy(F, c33, psi);
+}
+template <int D, class M>
+inline auto energy_of(const M &m, const Mat<D> &F, double &, double &psi, long) -> decltype(m.energy(F, psi))
+{
+  return m.energy(F, psi);
+}
+
+[[gnu::noinline, gnu::cold]] inline void record_failure(KernelStats &stats, std::vector<FailedBond> &failed,
+                                                        std::size_t i, std::size_t q, StressStatus status)
+{
+  stats.record(i, q, status);
+  failed.push_back({i, q, status});
+}
+
+template <int D, class Model>
+[[gnu::noinline, gnu::cold]] StressStatus model_lane_fallback(const Model &model, const Mat<D> &F, double &c33, Mat<D> &P)
+{
+  return stress_of<D>(model, F, c33, P, 0);
+}
+
+// The model over the n bonds of point i collected in ws.pending_*, lane_count at a
+// time (Model::stress_lanes); a lane it does not finish goes through the scalar
+// stress() (ba_force.hpp's model_lanes, for any D). Bonds are taken in family order,
+// so failures are recorded and form.stress() is called in loop order.
+template <int D, class Model, class Form>
+void model_lanes(const Model &model, Workspace<D> &ws, std::size_t n, std::size_t i, std::size_t o, double *c33,
+                 Form &form, KernelStats &stats)
+{
+  constexpr int     DD = D * D;
+  const std::size_t S = ws.lane_stride, L = lane_count;
+  double           *Fc = ws.pending_F.data(), *cw = ws.pending_c33.data();
+  for (std::size_t l = n; l < (n + L - 1) / L * L; ++l) { // unused lanes: the rest state
+    for (int k = 0; k < DD; ++k) Fc[k * S + l] = k % (D + 1) == 0 ? 1.0 : 0.0;
+    cw[l] = 0.0;
+  }
+  for (std::size_t j = 0; j < n; j += L) {
+    std::array<Lanes, DD> F, P;
+    for (int k = 0; k < DD; ++k) F[k] = bapd::detail::load_lanes(Fc + k * S + j);
+    Lanes          c    = bapd::detail::load_lanes(cw + j);
+    const LaneMask done = model.stress_lanes(F, c, P);
+    for (std::size_t l = 0; l < L && j + l < n; ++l) {
+      const std::size_t q = ws.pending_q[j + l];
+      double            cb;
+      Mat<D>            Pb;
+      if (done[l]) {
+        cb = c[l];
+        for (int k = 0; k < DD; ++k) Pb[k] = P[k][l];
+      } else {
+        cb = cw[j + l];
+        Mat<D> Fb;
+        for (int k = 0; k < DD; ++k) Fb[k] = F[k][l];
+        const StressStatus status = model_lane_fallback<D>(model, Fb, cb, Pb);
+        if (__builtin_expect(status != StressStatus::ok, 0)) {
+          record_failure(stats, ws.failed, i, q, status);
+          form.none(q);
+          continue;
+        }
+      }
+      if (c33 && !ws.keep_warm_start) c33[o + q] = cb;
+      form.stress(j + l, q, Pb);
+    }
+  }
+}
+
+// The first pass of both forms over the bonds of point i: F_iq (eq 9) and P(F_iq)
+// from the model. The form is told, in family order (ba_force.hpp's stress_pass):
+//   form.none(q)               no stress: broken, K not usable, or the model failed;
+//   form.collect(slot, q, k)   the kinematics, before the model (the form keeps what
+//                              it needs in ws.pending_data, data_stride a slot);
+//   form.stress(slot, q, P)    P(F_iq) of the bond collected in slot.
+// A model with stress_lanes (has_lanes) gets the bonds after the loop (model_lanes).
+template <int D, std::size_t Words, class Model, class Form>
+inline void stress_pass(const Model &model, const Families &fam, const BondGeometry<D> &geo, const BondState &state,
+                        std::size_t i, const PointTotals<D> &totals, double *c33, Workspace<D> &ws, Form &form,
+                        KernelStats &stats)
+{
+  const std::size_t    W = fam.mask_words, o = fam.offsets[i], m = fam.size(i);
+  const std::uint64_t *intact = state.intact_mask(i), *usable = geo.usable.data() + i * W;
+  const std::uint64_t *ba     = fam.ba_mask.data() + o * W;
+  std::size_t          pending = 0; // bonds collected for the lanes
+  for (std::size_t q = 0; q < m; ++q) {
+    const std::uint64_t bit   = std::uint64_t{1} << (q % 64);
+    const bool          alive = intact[q / 64] & bit;
+    if (!(alive && (usable[q / 64] & bit))) {
+      stats.unusable += alive;
+      form.none(q);
+      continue;
+    }
+    const BondKinematics<D> k = bond_kinematics<D, Words>(ba + q * W, intact, W, ws.point, totals);
+    if (__builtin_expect(!k.usable, 0)) { // K went singular since the geometry was computed
+      ++stats.unusable;
+      form.none(q);
+      continue;
+    }
+    double c = c33 ? c33[o + q] : 0.0; // <= 0: no warm start
+    ++stats.evaluated;
+    if constexpr (bapd::detail::HasLanes<Model>::value) {
+      const std::size_t S = ws.lane_stride;
+      form.collect(pending, q, k);
+      for (int comp = 0; comp < D * D; ++comp) ws.pending_F[comp * S + pending] = k.F[comp];
+      ws.pending_c33[pending] = c;
+      ws.pending_q[pending++] = q;
+      continue;
+    }
+    form.collect(0, q, k);
+    Mat<D>             P;
+    const StressStatus status = stress_of<D>(model, k.F, c, P, 0);
+    if (__builtin_expect(status != StressStatus::ok, 0)) {
+      record_failure(stats, ws.failed, i, q, status);
+      form.none(q);
+      continue;
+    }
+    if (c33 && !ws.keep_warm_start) c33[o + q] = c;
+    form.stress(0, q, P);
+  }
+  if constexpr (bapd::detail::HasLanes<Model>::value) model_lanes<D>(model, ws, pending, i, o, c33, form, stats);
+}
+
+// Bond-only (eq 23): t_iq = P g_iq, g_iq = force_scale C_i K^{-1} xi_iq.
+template <int D, bool Corrected> struct BondOnlyForm {
+  static constexpr std::size_t stride = Workspace<D>::data_stride;
+  double                      *t;    // the point's bond forces, D per bond
+  double                      *data; // ws.pending_data: g_iq, D of each slot
+  const double                *off, *fvk, *C;
+  const PointTotals<D>        &totals;
+
+  void none(std::size_t q)
+  {
+    for (int r = 0; r < D; ++r) t[D * q + r] = 0.0;
+  }
+  void collect(std::size_t slot, std::size_t q, const BondKinematics<D> &k)
+  {
+    double *g = data + stride * slot;
+    force_vector<D>(k, force_scale<D>(k, totals, fvk[q]), off + D * q, g);
+    if constexpr (Corrected) { // g -> C_i g (compiled out without a correction)
+      double h[D];
+      for (int r = 0; r < D; ++r) {
+        double s = 0.0;
+        for (int c = 0; c < D; ++c) s += C[D * r + c] * g[c];
+        h[r] = s;
+      }
+      for (int r = 0; r < D; ++r) g[r] = h[r];
+    }
+  }
+  void stress(std::size_t slot, std::size_t q, const Mat<D> &P)
+  {
+    const double *g = data + stride * slot;
+    for (int r = 0; r < D; ++r) {
+      double s = 0.0;
+      for (int c = 0; c < D; ++c) s += P[D * r + c] * g[c];
+      t[D * q + r] = s;
+    }
+  }
+};
+
+// Energy-consistent, pass 1: M_iq = V_q P(F_iq) K_iq^{-1}, their sum in family order,
+// sum_q V_q and the mask of the bonds that carry energy.
+template <int D> struct EnergyConsistentForm {
+  static constexpr std::size_t stride = Workspace<D>::data_stride;
+  StressRecord<D>             *M;
+  std::uint64_t               *energetic;
+  double                      *data; // ws.pending_data: K^{-1} (upper triangle) of each slot
+  const MemberRecord<D>       *rec;
+  StressRecord<D>              stress_total;
+  double                       volume = 0.0;
+
+  void none(std::size_t) {} // no energy: M_iq is not read (its bit stays clear)
+  void collect(std::size_t slot, std::size_t, const BondKinematics<D> &k)
+  {
+    for (int c = 0; c < sym_size<D>; ++c) data[stride * slot + c] = k.shape_tensor_inv[c];
+  }
+  void stress(std::size_t slot, std::size_t q, const Mat<D> &P)
+  {
+    const double   *ki = data + stride * slot;
+    const double    v  = rec[q][Member<D>::volume];
+    StressRecord<D> mq;
+    mq.zero();
+    for (int r = 0; r < D; ++r)
+      for (int c = 0; c < D; ++c) {
+        double s = 0.0;
+        for (int m = 0; m < D; ++m) s += P[D * r + m] * ki[sym_index<D>(m, c)];
+        mq.set(D * r + c, v * s);
+      }
+    M[q] = mq;
+    stress_total += mq;
+    volume += v;
+    energetic[q / 64] |= std::uint64_t{1} << (q % 64);
+  }
+};
+
+template <int D, std::size_t Words, bool Corrected, class Model>
+void bond_only_range(const Model &model, const PointCloud &ref, const double *y, const Families &fam,
+                     const BondGeometry<D> &geo, const BondState &state, double *c33, double *bond_force,
+                     Workspace<D> &ws, std::size_t begin, std::size_t end, KernelStats &stats)
+{
+  for (std::size_t i = begin; i < end; ++i) {
+    const PointTotals<D>    totals = gather_point<D>(ref, y, fam, i, state.intact_mask(i), ws.point);
+    BondOnlyForm<D, Corrected> form{bond_force + D * fam.offsets[i], ws.pending_data.data(), ws.point.offset.data(),
+                                    ws.point.family_volume.data(),
+                                    Corrected ? geo.correction.data() + D * D * i : nullptr, totals};
+    stress_pass<D, Words>(model, fam, geo, state, i, totals, c33, ws, form, stats);
+  }
+}
+
+template <int D, std::size_t Words, class Model>
+void energy_consistent_range(const Model &model, const PointCloud &ref, const double *y, const Families &fam,
+                             const BondGeometry<D> &geo, const BondState &state, double *c33, double *bond_force,
+                             Workspace<D> &ws, std::size_t begin, std::size_t end, KernelStats &stats)
+{
+  const std::size_t W = fam.mask_words;
+  for (std::size_t i = begin; i < end; ++i) {
+    const std::size_t    o = fam.offsets[i], m = fam.size(i);
+    const std::uint64_t *intact = state.intact_mask(i), *ba = fam.ba_mask.data() + o * W;
+    const PointTotals<D> totals = gather_point<D>(ref, y, fam, i, intact, ws.point);
+    for (std::size_t w = 0; w < W; ++w) ws.energetic[w] = 0;
+    EnergyConsistentForm<D> form{ws.bond_stress.data(), ws.energetic.data(), ws.pending_data.data(),
+                                 ws.point.member.data(), {}, 0.0};
+    form.stress_total.zero();
+    stress_pass<D, Words>(model, fam, geo, state, i, totals, c33, ws, form, stats);
+    // Pass 2: t_ip = omega_i S_ip (x_p - x_i), S_ip = the sum of M_iq over q in B_ip
+    // (BA masks are symmetric within a family: ba_force_energy.hpp).
+    double *t = bond_force + D * o;
+    if (form.volume == 0.0) { // no bond of i carries energy
+      for (std::size_t k = 0; k < D * m; ++k) t[k] = 0.0;
+      continue;
+    }
+    const double  omega = 1.0 / form.volume;
+    const double *off   = ws.point.offset.data();
+    for (std::size_t p = 0; p < m; ++p) {
+      if (!((intact[p / 64] >> (p % 64)) & 1u)) {
+        for (int r = 0; r < D; ++r) t[D * p + r] = 0.0;
+        continue;
+      }
+      const StressRecord<D> S = masked_sum<Words>(ba + p * W, ws.energetic.data(), W, ws.bond_stress.data(),
+                                           form.stress_total, ws.point.in.data(), ws.point.out.data());
+      for (int r = 0; r < D; ++r) {
+        double s = 0.0;
+        for (int c = 0; c < D; ++c) s += S[D * r + c] * off[D * p + c];
+        t[D * p + r] = omega * s;
+      }
+    }
+  }
+}
+
+template <int D, std::size_t Words, class Model>
+void forces_range(ForceForm form, const Model &model, const PointCloud &ref, const double *y, const Families &fam,
+                  const BondGeometry<D> &geo, const BondState &state, double *c33, double *bond_force,
+                  Workspace<D> &ws, std::size_t begin, std::size_t end, KernelStats &stats)
+{
+  if (form == ForceForm::energy_consistent)
+    energy_consistent_range<D, Words>(model, ref, y, fam, geo, state, c33, bond_force, ws, begin, end, stats);
+  else if (geo.corrected())
+    bond_only_range<D, Words, true>(model, ref, y, fam, geo, state, c33, bond_force, ws, begin, end, stats);
+  else bond_only_range<D, Words, false>(model, ref, y, fam, geo, state, c33, bond_force, ws, begin, end, stats);
+}
+
+} // namespace detail
+
+// Bond forces t_ij (D per bond) of the family points [begin, end) in the given form.
+// y: current positions of every local point (ring-2 ghosts included), D per point.
+// c33: per-bond warm start of 2D models that have one (may be nullptr; ignored by
+// models without). Broken bonds, bonds without a usable K and bonds whose model fails
+// get t_ij = 0 (bond-only; the energy-consistent t_ij of a bond without energy is
+// generally not 0). Failed bonds are counted and appended to ws.failed.
+template <int D, class Model>
+KernelStats compute_bond_forces(ForceForm form, const Model &model, const PointCloud &ref, const double *y,
+                                const Families &families, const BondGeometry<D> &geometry, const BondState &state,
+                                double *c33, double *bond_force, Workspace<D> &ws, std::size_t begin,
+                                std::size_t end)
+{
+  KernelStats stats;
+  ws.reserve(families);
+  switch (families.mask_words) { // 1: 2D up to 64 members; 2, 3: 3D at delta <= 3.8 dx
+  case 1: detail::forces_range<D, 1>(form, model, ref, y, families, geometry, state, c33, bond_force, ws, begin, end, stats); break;
+  case 2: detail::forces_range<D, 2>(form, model, ref, y, families, geometry, state, c33, bond_force, ws, begin, end, stats); break;
+  case 3: detail::forces_range<D, 3>(form, model, ref, y, families, geometry, state, c33, bond_force, ws, begin, end, stats); break;
+  default: detail::forces_range<D, 0>(form, model, ref, y, families, geometry, state, c33, bond_force, ws, begin, end, stats);
+  }
+  return stats;
+}
+
+// All family points [0, n_family); clears ws.failed first.
+template <int D, class Model>
+KernelStats compute_bond_forces(ForceForm form, const Model &model, const PointCloud &ref, const double *y,
+                                const Families &families, const BondGeometry<D> &geometry, const BondState &state,
+                                double *c33, double *bond_force, Workspace<D> &ws)
+{
+  ws.failed.clear();
+  return compute_bond_forces<D>(form, model, ref, y, families, geometry, state, c33, bond_force, ws, 0,
+                                families.n_family);
+}
+
+// f_i = sum_j (t_ij - t_ji) V_j for the owned points [0, n_owned), in family order
+// (eq 1 without body force). Throws std::logic_error if a neighbour of an owned point
+// has no family here (t_ji unknown).
+template <int D>
+void assemble_force_density(const Families &families, const PointCloud &ref, const double *bond_force,
+                            std::size_t n_owned, double *force_density);
+
+// Strain energy W = sum_i V_i sum_j Psi(F_ij) V_j / sum_j V_j over the bonds of i that
+// carry energy (as strain_energy of ba_force.hpp): the energy whose gradient the
+// energy-consistent form is, Psi(A) x volume for an affine motion. c33 (may be
+// nullptr) is read only. Writes E_i to point_energy[i] if given.
+template <int D, class Model>
+double strain_energy(const Model &model, const PointCloud &ref, const double *y, const Families &families,
+                     const BondGeometry<D> &geometry, const BondState &state, const double *c33,
+                     std::size_t n_points, Workspace<D> &ws, KernelStats *stats = nullptr,
+                     double *point_energy = nullptr)
+{
+  ws.reserve(families);
+  const std::size_t W = families.mask_words;
+  KernelStats       local;
+  double            total = 0.0;
+  for (std::size_t i = 0; i < n_points; ++i) {
+    const std::size_t    o      = families.offsets[i], m = families.size(i);
+    const std::uint64_t *intact = state.intact_mask(i);
+    const PointTotals<D> totals = gather_point<D>(ref, y, families, i, intact, ws.point);
+    double               num = 0.0, den = 0.0;
+    for (std::size_t q = 0; q < m; ++q) {
+      if (!state.is_intact(i, q)) continue;
+      const BondKinematics<D> k = bond_kinematics<D>(families.ba(o + q), intact, W, ws.point, totals);
+      if (!geometry.is_usable(i, q) || !k.usable) {
+        ++local.unusable;
+        continue;
+      }
+      double c = c33 ? c33[o + q] : 0.0, psi = 0.0;
+      ++local.evaluated;
+      const StressStatus status = detail::energy_of<D>(model, k.F, c, psi, 0);
+      if (status != StressStatus::ok) {
+        local.record(i, q, status);
+        continue;
+      }
+      const double vj = ref.volume[static_cast<std::size_t>(families.neighbour[o + q])];
+      num += psi * vj;
+      den += vj;
+    }
+    const double e = den > 0 ? ref.volume[i] * (num / den) : 0.0;
+    if (point_energy) point_energy[i] = e;
+    total += e;
+  }
+  if (stats) *stats = local;
+  return total;
+}
+
+// F_ij of bond q of point i (slow path, tests and output): zero if the bond is broken
+// or its K not usable.
+template <int D>
+Mat<D> bond_deformation_gradient(const PointCloud &ref, const double *y, const Families &families,
+                                 const BondGeometry<D> &geometry, const BondState &state, std::size_t i,
+                                 std::size_t q)
+{
+  if (!state.is_intact(i, q) || !geometry.is_usable(i, q)) return Mat<D>{};
+  PointScratch<D> s;
+  s.reserve(families);
+  const PointTotals<D>    totals = gather_point<D>(ref, y, families, i, state.intact_mask(i), s);
+  const BondKinematics<D> k      = bond_kinematics<D>(families.ba(families.offsets[i] + q), state.intact_mask(i),
+                                                      families.mask_words, s, totals);
+  return k.usable ? k.F : Mat<D>{};
+}
+
+} // namespace bapd::nd

@@ -1,0 +1,313 @@
+#pragma once
+// Bond-associated kinematics in D = 2 or 3 dimensions (paper eqs 8, 9, 11, 15, 23;
+// METHOD.md sections 2-3): the dimension-generic form of bond_geometry.hpp.
+//
+// Per intact bond b = (i -> j), with B = the intact members of the BA family B_ij:
+//   K_ij          = sum_{k in B} (x_k - x_i) (x) (x_k - x_i) V_k               (eq 8)
+//   F_ij          = [ sum_{k in B} (y_k - y_i) (x) (x_k - x_i) V_k ] K_ij^{-1}  (eq 9)
+//   phi_xi(i, j)  = V(B) / V(H_i)                                              (eq 15)
+//   phi(i, j)     = V(H_i) / (V(H_i) + V(H_j))                                 (eq 11)
+//   force_scale   = 1/2 phi_xi / phi,   g_ij = force_scale C_i K_ij^{-1} (x_j - x_i)
+// with C_i the stress correction of the point (stress_correction.hpp; I without one).
+//
+// How it is computed: as in 2D. Per point i, each family member k gets one record of
+//   (y_k - y_i) (x) (x_k - x_i) V_k   (D x D, row-major),
+//   (x_k - x_i) (x) (x_k - x_i) V_k   (its upper triangle, sym_index),   V_k,
+// padded to whole vectors (2D: 8 doubles, 3D: 16), formed once and reused by
+// all of i's bonds. A bond's N, K and V(B) are then one masked sum of the records (BA
+// mask AND intact mask) in family order, or the point's total minus the others when
+// the BA family holds more than half of the intact members. For D = 2 every one of
+// these operations is the 2D kernel's, in its order (the same two alternating
+// accumulators, the same K^{-1} formula), so the D = 2 instantiation gives the 2D
+// kernel's F, g and t bit for bit (ba_force_3d_matches_2d_test.cpp holds it to that).
+//
+// Usable K: K is symmetric positive semi-definite; det K / (tr K)^D ~ 1 / cond(K)
+// up to a constant. On a lattice K in units of V dx^2 has integer entries, so a
+// regular K has det >= 1 while tr K is at most (members) x (delta/dx)^2: in 3D below
+// 2200 at delta = 3.515 dx (178 x 12.4), so the ratio is >= 1 / 2200^3 ~ 1e-10, while
+// a degenerate K (coplanar members) has det at round-off, ratio ~ 1e-16. The
+// threshold 1e-12 sits between them with two orders of margin above and four below. In 2D it
+// is the 2D kernel's 1e-8 (bond_geometry.hpp says why), so both decide alike.
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "bapd/body.hpp"
+#include "bapd/bond_state.hpp"
+#include "bapd/family.hpp"
+#include "bapd/nd/tensor.hpp"
+#include "bapd/stress_correction.hpp"
+
+namespace bapd::nd {
+
+template <int D> inline constexpr double shape_tensor_degeneracy = D == 2 ? 1e-8 : 1e-12;
+
+// det > threshold (tr)^D, with tr > 0: K (or the virial M_i) regular. The product is
+// formed as the 2D kernel forms it, (threshold tr) tr [tr].
+template <int D> inline bool regular(double det, double tr)
+{
+  double bound = shape_tensor_degeneracy<D> * tr;
+  for (int r = 1; r < D; ++r) bound = bound * tr;
+  return tr > 0.0 && det > bound;
+}
+
+// The widest vector the target has: 8 doubles with AVX-512 (a 3D record, 16 doubles,
+// is then two adds), else 4. Element-wise sums in the same order either way, so the
+// width changes no bit of any result.
+#if defined(__AVX512F__)
+inline constexpr int vector_doubles = 8;
+#else
+inline constexpr int vector_doubles = 4;
+#endif
+typedef double Vector __attribute__((vector_size(8 * vector_doubles)));
+
+// N doubles in whole vectors, summed one vector at a time.
+template <int N> struct alignas(8 * vector_doubles) Packed {
+  static constexpr int V = vector_doubles, vectors = (N + V - 1) / V;
+  Vector               v[vectors];
+  double               operator[](int k) const { return v[k / V][k % V]; }
+  void                 set(int k, double a) { v[k / V][k % V] = a; }
+  void                 zero()
+  {
+    for (int q = 0; q < vectors; ++q) v[q] = Vector{};
+  }
+  Packed &operator+=(const Packed &o)
+  {
+    for (int q = 0; q < vectors; ++q) v[q] += o.v[q];
+    return *this;
+  }
+};
+template <int N> inline Packed<N> operator+(Packed<N> a, const Packed<N> &b) { return a += b; }
+template <int N> inline Packed<N> operator-(Packed<N> a, const Packed<N> &b)
+{
+  for (int q = 0; q < Packed<N>::vectors; ++q) a.v[q] -= b.v[q];
+  return a;
+}
+
+// The per-member record: deformation (D x D), shape (upper triangle), V_k.
+template <int D> struct Member {
+  static constexpr int deformation = 0, shape = D * D, volume = D * D + sym_size<D>, size = volume + 1;
+  using Record                     = Packed<size>;
+};
+template <int D> using MemberRecord = typename Member<D>::Record;
+// V_q P(F_iq) K_iq^{-1} of a bond (the energy-consistent form, ba_force.hpp).
+template <int D> using StressRecord = Packed<D * D>;
+
+// Sums of records over the set bits p of bits[0 .. words), in increasing p: two
+// accumulators, alternating (the 2D kernel's sum_selected, bond_geometry.hpp).
+template <class R> inline R sum_selected(const std::uint64_t *bits, std::size_t words, const R *records)
+{
+  R s0, s1;
+  s0.zero();
+  s1.zero();
+  for (std::size_t w = 0; w < words; ++w) {
+    std::uint64_t     m    = bits[w];
+    const std::size_t base = 64 * w;
+    while (m) {
+      std::size_t p = base + static_cast<std::size_t>(__builtin_ctzll(m));
+      m &= m - 1;
+      s0 += records[p];
+      if (!m) break;
+      p = base + static_cast<std::size_t>(__builtin_ctzll(m));
+      m &= m - 1;
+      s1 += records[p];
+    }
+  }
+  return s0 + s1;
+}
+
+// The sum of the records of the members in the BA family (ba) and in `members`;
+// total = the sum over all of `members` in order. When the BA family holds more than
+// half of them: total minus the others (which form depends on the masks alone, so
+// the result is the same on any rank). Words: the mask words if known at compile time
+// (the kernels dispatch 1, 2 and 3; the masks then stay in registers), else 0 and
+// `words` at run time with in, out as work space.
+template <std::size_t Words, class R>
+inline R masked_sum(const std::uint64_t *ba, const std::uint64_t *members, std::size_t words, const R *records,
+                    const R &total, std::uint64_t *in_space, std::uint64_t *out_space)
+{
+  std::uint64_t  in_local[Words ? Words : 1], out_local[Words ? Words : 1];
+  std::uint64_t *in = Words ? in_local : in_space, *out = Words ? out_local : out_space;
+  if constexpr (Words > 0) words = Words;
+  int n_in = 0, n_out = 0;
+  for (std::size_t w = 0; w < words; ++w) {
+    in[w]  = ba[w] & members[w];
+    out[w] = ~ba[w] & members[w];
+    n_in += __builtin_popcountll(in[w]);
+    n_out += __builtin_popcountll(out[w]);
+  }
+  if (n_in <= n_out) return sum_selected(in, words, records);
+  return total - sum_selected(out, words, records);
+}
+
+// Per-member data of the point being processed, sized once for the largest family
+// (nothing is allocated per evaluation).
+template <int D> struct PointScratch {
+  std::vector<MemberRecord<D>> member;        // records of the point's members
+  std::vector<double>          offset;        // x_k - x_i, D per member
+  std::vector<double>          family_volume; // V(H_k) per member
+  std::vector<std::uint64_t>   in, out;       // masked_sum's work space, mask_words each
+
+  void reserve(const Families &f)
+  {
+    if (member.size() < f.max_family_size) {
+      member.resize(f.max_family_size);
+      offset.resize(D * f.max_family_size);
+      family_volume.resize(f.max_family_size);
+    }
+    if (in.size() < f.mask_words) {
+      in.resize(f.mask_words);
+      out.resize(f.mask_words);
+    }
+  }
+};
+
+// What one point's bonds share: the sum of its intact records and V(H_i).
+template <int D> struct PointTotals {
+  MemberRecord<D> total;
+  double          family_volume;                      // V(H_i)
+  double          half_inverse_family_volume_squared; // 1 / (2 V(H_i)^2)
+};
+
+// What one bond needs, from the masked sums.
+template <int D> struct BondKinematics {
+  Mat<D> F;                                // eq 9
+  double shape_tensor_inv[sym_size<D>];    // K^{-1}, upper triangle
+  double volume;                           // V(B)
+  bool   usable;                           // K regular (if not, nothing else is set)
+  double kinv(int r, int c) const { return shape_tensor_inv[sym_index<D>(r, c)]; }
+};
+
+// Fills the records of point i (y: current positions, D per point; y = x gives the
+// reference quantities) and returns its totals over the intact members.
+template <int D>
+inline PointTotals<D> gather_point(const PointCloud &ref, const double *y, const Families &fam, std::size_t i,
+                                   const std::uint64_t *intact, PointScratch<D> &ws)
+{
+  using L                 = Member<D>;
+  const std::size_t   o   = fam.offsets[i], m = fam.offsets[i + 1] - o;
+  const double       *x   = ref.x.data(), *vol = ref.volume.data(), *fv = ref.family_volume.data();
+  const std::int32_t *nb  = fam.neighbour.data() + o;
+  MemberRecord<D>    *rec = ws.member.data();
+  double             *off = ws.offset.data(), *fvk = ws.family_volume.data();
+  MemberRecord<D>     total;
+  total.zero();
+  for (std::size_t p = 0; p < m; ++p) {
+    const std::size_t k = static_cast<std::size_t>(nb[p]);
+    const double      v = vol[k];
+    double            d[D], e[D], a[D];
+    for (int r = 0; r < D; ++r) {
+      d[r] = x[D * k + r] - x[D * i + r];
+      e[r] = y[D * k + r] - y[D * i + r];
+      a[r] = d[r] * v;
+      off[D * p + r] = d[r];
+    }
+    fvk[p] = fv[k];
+    MemberRecord<D> &R = rec[p];
+    R.zero();
+    for (int r = 0; r < D; ++r)
+      for (int c = 0; c < D; ++c) R.set(L::deformation + D * r + c, e[r] * a[c]);
+    for (int r = 0; r < D; ++r)
+      for (int c = r; c < D; ++c) R.set(L::shape + sym_index<D>(r, c), d[r] * a[c]);
+    R.set(L::volume, v);
+    if ((intact[p / 64] >> (p % 64)) & 1u) total += R;
+  }
+  return {total, fv[i], 0.5 / (fv[i] * fv[i])};
+}
+
+// F, K^{-1} and V(B) of a bond (ba: its BA mask) from the gathered point.
+template <int D, std::size_t Words = 0>
+inline BondKinematics<D> bond_kinematics(const std::uint64_t *ba, const std::uint64_t *intact, std::size_t W,
+                                         PointScratch<D> &ws, const PointTotals<D> &totals)
+{
+  using L                 = Member<D>;
+  const MemberRecord<D> S = masked_sum<Words>(ba, intact, W, ws.member.data(), totals.total, ws.in.data(), ws.out.data());
+  BondKinematics<D>     k;
+  double                K[sym_size<D>];
+  for (int s = 0; s < sym_size<D>; ++s) K[s] = S[L::shape + s];
+  double tr = K[0] + K[sym_index<D>(1, 1)];
+  if constexpr (D == 3) tr = tr + K[sym_index<D>(2, 2)];
+  double det;
+  if constexpr (D == 2) det = K[0] * K[2] - K[1] * K[1];
+  else det = K[0] * (K[3] * K[5] - K[4] * K[4]) + K[1] * (K[2] * K[4] - K[1] * K[5]) + K[2] * (K[1] * K[4] - K[2] * K[3]);
+  k.usable = regular<D>(det, tr);
+  if (!k.usable) return k;
+  symmetric_inverse<D>(K, k.shape_tensor_inv);
+  k.volume = S[L::volume];
+  for (int r = 0; r < D; ++r)
+    for (int c = 0; c < D; ++c) {
+      double f = 0.0;
+      for (int m = 0; m < D; ++m) f += S[L::deformation + D * r + m] * k.kinv(m, c);
+      k.F[D * r + c] = f;
+    }
+  return k;
+}
+
+// 1/2 phi_xi / phi = V(B) (V(H_i) + V(H_j)) / (2 V(H_i)^2)   (eqs 11, 15, 23)
+template <int D> inline double force_scale(const BondKinematics<D> &k, const PointTotals<D> &t, double family_volume_j)
+{
+  return k.volume * (t.family_volume + family_volume_j) * t.half_inverse_family_volume_squared;
+}
+
+// g = force_scale K^{-1} xi (uncorrected).
+template <int D> inline void force_vector(const BondKinematics<D> &k, double scale, const double *xi, double *g)
+{
+  for (int r = 0; r < D; ++r) {
+    double s = 0.0;
+    for (int c = 0; c < D; ++c) s += k.kinv(r, c) * xi[c];
+    g[r] = scale * s;
+  }
+}
+
+// Which intact bonds have a usable K (per family point), and the stress correction
+// C_i (D x D per family point) when one is set before compute_bond_geometry. As
+// bapd::BondGeometry, with C_i of any D.
+template <int D> struct BondGeometry {
+  std::size_t                mask_words = 1;
+  std::vector<std::uint64_t> usable;   // bit q: intact and K usable
+  std::vector<std::uint64_t> singular; // bit q: intact, K not usable
+  StressCorrection           stress_correction = StressCorrection::none;
+  std::vector<double>        correction; // C_i, D x D row-major per family point
+  PointScratch<D>            scratch;
+  std::vector<std::uint64_t> reference_mask;
+
+  bool is_usable(std::size_t i, std::size_t q) const { return (usable[i * mask_words + q / 64] >> (q % 64)) & 1u; }
+  bool corrected() const { return stress_correction != StressCorrection::none; }
+  Mat<D> correction_of(std::size_t i) const
+  {
+    Mat<D> C = identity<D>();
+    if (corrected())
+      for (int k = 0; k < D * D; ++k) C[k] = correction[D * D * i + k];
+    return C;
+  }
+  std::size_t count_unusable(std::size_t n_points) const
+  {
+    std::size_t n = 0;
+    for (std::size_t w = 0; w < n_points * mask_words; ++w)
+      n += static_cast<std::size_t>(__builtin_popcountll(singular[w]));
+    return n;
+  }
+};
+
+// Sizes the geometry and computes it for every family point, with C_i if
+// geometry.stress_correction is set (from M_i of the reference family, every bond of
+// t = 0 intact: as in 2D, bond_geometry.cpp says why). Needs cloud.family_volume of
+// every neighbour. Returns the intact bonds whose K is not usable. Throws
+// std::invalid_argument if a needed family volume is missing or not positive.
+template <int D>
+std::size_t compute_bond_geometry(const PointCloud &cloud, const Families &families, const BondState &state,
+                                  BondGeometry<D> &geometry);
+// Recomputes the usable bits of the listed points only (after break_bond); C_i stays.
+template <int D>
+std::size_t compute_bond_geometry(const PointCloud &cloud, const Families &families, const BondState &state,
+                                  BondGeometry<D> &geometry, const std::vector<std::size_t> &points);
+
+// M_i = sum_j g_ij (x) xi_ij V_j over the usable intact bonds of i (g uncorrected):
+// the virial tensor whose inverse the tensor correction is (slow path, tests).
+template <int D>
+Mat<D> virial_tensor(const PointCloud &cloud, const Families &families, const BondState &state, std::size_t i);
+
+} // namespace bapd::nd
