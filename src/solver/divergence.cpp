@@ -15,28 +15,48 @@ RunawayEnergyMonitor::RunawayEnergyMonitor(RunawayCriterion criterion)
 {
 }
 
-void RunawayEnergyMonitor::Start(double floor)
+void RunawayEnergyMonitor::Start(double floor, double tick)
 {
   started_   = true;
   floor_     = floor;
+  tick_      = tick;
   segment_   = -1;
   head_      = 0;
   count_     = 0;
+  last_bin_  = -1;
   suspected_ = false;
 }
 
-RunawayEnergyMonitor::Verdict RunawayEnergyMonitor::Kinetic(PetscInt step, PetscInt segment, double kinetic)
+RunawayEnergyMonitor::Verdict RunawayEnergyMonitor::Kinetic(PetscInt step, PetscInt segment, double kinetic, double t)
 {
+  // The tick of this step: the nearest whole number of full steps (on full steps t is
+  // k tick up to round-off: one step a tick).
+  bin_ = tick_ > 0 ? std::llround(t / tick_) : (long long)step;
   if (segment != segment_) { // the grip speed changed: growth from here on is measured anew
     segment_ = segment;
     head_ = count_ = 0; // the window holds slots [0, count_) until it is full
+    last_bin_      = -1;
   }
   const std::size_t capacity = kinetic_.size();
-  kinetic_[head_]            = kinetic;
-  steps_[head_]              = step;
-  head_                      = (head_ + 1) % capacity;
-  count_                     = std::min(count_ + 1, capacity);
-  if (suspected_) return kinetic >= overflow ? Verdict::diverged : Verdict::measure_total;
+  if (count_ > 0 && bin_ <= last_bin_) { // the same tick: its slot keeps the smallest KE
+    const std::size_t newest = (head_ + capacity - 1) % capacity;
+    if (kinetic < kinetic_[newest]) kinetic_[newest] = kinetic, steps_[newest] = step;
+  } else {
+    kinetic_[head_] = kinetic;
+    steps_[head_]   = step;
+    head_           = (head_ + 1) % capacity;
+    count_          = std::min(count_ + 1, capacity);
+    last_bin_       = bin_;
+  }
+  if (suspected_) {
+    if (kinetic >= overflow) return Verdict::diverged;
+    // Measured once a tick, and whenever KE doubled since the last measurement: a blow-up
+    // on short steps is caught within a doubling of its energy, while a crack's KE,
+    // which rises from round-off to a share of the stored energy, costs a few dozen.
+    if (bin_ <= total_bin_ && kinetic < 2 * measured_kinetic_) return Verdict::fine;
+    measured_kinetic_ = kinetic;
+    return Verdict::measure_total;
+  }
   if (!(kinetic > floor_)) return Verdict::fine;
   // The smallest KE of the window (the newest value included: never below itself).
   double   low      = kinetic;
@@ -46,12 +66,15 @@ RunawayEnergyMonitor::Verdict RunawayEnergyMonitor::Kinetic(PetscInt step, Petsc
   if (!(kinetic >= criterion_.growth * low) && kinetic < overflow) return Verdict::fine;
   suspected_       = true;
   suspect_step_    = step;
+  suspect_bin_     = bin_;
+  total_bin_       = bin_ - 1;
   suspect_kinetic_ = kinetic;
   low_step_        = low_step;
   low_kinetic_     = low;
   first_total_     = -1;
   before_total_    = -1;
   total_step_      = step;
+  measured_kinetic_ = kinetic;
   // Energies this large overflow the internal-energy sum: no need to confirm.
   return kinetic >= overflow ? Verdict::diverged : Verdict::measure_total;
 }
@@ -60,6 +83,7 @@ RunawayEnergyMonitor::Verdict RunawayEnergyMonitor::Total(PetscInt step, double 
 {
   if (!suspected_) return Verdict::fine;
   total_step_ = step;
+  total_bin_  = bin_;
   total_      = total;
   if (first_total_ < 0) {
     first_total_ = max_total_ = total;
@@ -73,13 +97,14 @@ RunawayEnergyMonitor::Verdict RunawayEnergyMonitor::Total(PetscInt step, double 
   }
   if (total >= criterion_.confirm_growth * first_total_ || !std::isfinite(total)) return Verdict::diverged;
   max_total_ = std::max(max_total_, total);
-  if (step - suspect_step_ >= criterion_.confirm_steps) {
+  if (bin_ - suspect_bin_ >= criterion_.confirm_steps) {
     // Energy moved between kinds but was not created (a crack, a vibration): clear the
     // suspicion. Kinetic energy cannot exceed the total one without new work, so the
     // next suspicion needs KE past the total measured here.
     suspected_ = false;
     floor_     = std::max(floor_, max_total_);
     head_ = count_ = 0;
+    last_bin_      = -1;
   }
   return Verdict::fine;
 }
@@ -137,7 +162,7 @@ PetscErrorCode CheckRunawayEnergy(const RunawayInputs &inputs, RunawayEnergyMoni
     double mass = 0;
     for (PetscInt i = 0; i < n; ++i) mass += scene.density * layout.cloud.volume[i];
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &mass, 1, MPI_DOUBLE, MPI_SUM, comm));
-    monitor.Start(KineticFloor(scene, *inputs.schedule, mass, dt));
+    monitor.Start(KineticFloor(scene, *inputs.schedule, mass, dt), dt); // a tick: the full step
   }
   // Kinetic energy and the fastest owned point (for the message), one pass. The sum is
   // reproducible: the same bits on every rank and on any number of ranks, so every
@@ -158,7 +183,7 @@ PetscErrorCode CheckRunawayEnergy(const RunawayInputs &inputs, RunawayEnergyMoni
 
   const Schedule &s       = *inputs.schedule;
   const PetscInt  segment = (PetscInt)(std::upper_bound(s.time.begin(), s.time.end(), t) - s.time.begin());
-  RunawayEnergyMonitor::Verdict verdict = monitor.Kinetic(step, segment, kinetic);
+  RunawayEnergyMonitor::Verdict verdict = monitor.Kinetic(step, segment, kinetic, t);
   if (verdict == RunawayEnergyMonitor::Verdict::measure_total) {
     double kin, internal, before = -1;
     bool   known = false;

@@ -15,15 +15,16 @@ namespace {
 
 // Feeds the monitor kinetic(step) and total(step) for steps 1..steps, measuring the
 // total energy whenever it asks, with the total of the step before (as the driver does
-// while -checkpoint_on_error keeps that state) unless `before` is false. Returns the
-// step of divergence (0: none) and counts the total-energy measurements.
+// while -checkpoint_on_error keeps that state) unless `before` is false; step k is at
+// time k dt. Returns the step of divergence (0: none) and counts the total-energy
+// measurements.
 template <class Kinetic, class Total>
 PetscInt Feed(RunawayEnergyMonitor &monitor, PetscInt steps, Kinetic kinetic, Total total, int *measurements = nullptr,
-              bool before = true)
+              bool before = true, double dt = 0)
 {
   int count = 0;
   for (PetscInt step = 1; step <= steps; ++step) {
-    Verdict verdict = monitor.Kinetic(step, 0, kinetic(step));
+    Verdict verdict = monitor.Kinetic(step, 0, kinetic(step), dt * (double)step);
     if (verdict == Verdict::measure_total) {
       ++count;
       verdict = monitor.Total(step, total(step), before ? total(step - 1) : -1.0);
@@ -107,6 +108,52 @@ TEST(RunawayEnergy, CatchesEnergyCreatedInOneStep)
   RunawayEnergyMonitor blind;
   blind.Start(1e-6);
   EXPECT_EQ(Feed(blind, 300, kinetic, total, nullptr, false), 0);
+}
+
+// The bond-only form fluttering at a running crack tip while the travel limit has cut
+// the step to 1/1000 of the full one (the short notched scene, -force_form bond_only:
+// KE from 9e-3 J to 223 J with 0.03 J stored, exit 0 and every bond broken before the
+// monitor counted in ticks). KE grows 1 % a step, 2e4 a tick: a few per cent over a
+// window of 50 steps, far past 1000 over 50 ticks; the total grows tenfold within 10
+// ticks. Counted in steps (no tick), the same history is never suspected.
+TEST(RunawayEnergy, CatchesABlowUpOnShortenedSteps)
+{
+  const double tick = 1e-4, dt = 1e-3 * tick; // [s]
+  const auto   kinetic = [](PetscInt step) { return 1e-8 * std::pow(1.01, (double)step); };
+  const auto   total   = [&](PetscInt step) { return 0.03 + kinetic(step); };
+  RunawayEnergyMonitor monitor;
+  monitor.Start(1e-9, tick);
+  int            measured = 0;
+  const PetscInt stop     = Feed(monitor, 20000, kinetic, total, &measured, true, dt);
+  EXPECT_GT(stop, 0);
+  // Suspected at step 696 (KE 1000 x the first tick's smallest), measured at each
+  // doubling of KE (every 70 steps), diverged once the total passed 0.3 J (step 1731).
+  EXPECT_GE(stop, 1731);
+  EXPECT_LE(stop, 1801);
+  EXPECT_LE(measured, 17); // log2(0.3 / 1e-5) + 2: not one a step
+  RunawayEnergyMonitor steps;
+  steps.Start(1e-9);
+  EXPECT_EQ(Feed(steps, 20000, kinetic, total, nullptr, true, dt), 0);
+}
+
+// A crack running on steps cut to 1/1000 by the travel limit: KE rises from round-off
+// to half the stored energy within 30 ticks (30000 steps), the total does not grow.
+// Suspected, then cleared, measuring the total energy once a tick while suspected.
+TEST(RunawayEnergy, LetsACrackRunOnShortenedSteps)
+{
+  const double tick = 1e-4, dt = 1e-3 * tick, stored = 1e-3; // [s], [s], [J]
+  const auto   kinetic = [&](PetscInt step) {
+    return step < 10000 ? 1e-18 : stored * 0.5 * std::min(1.0, std::pow((double)(step - 10000) / 30000.0, 2));
+  };
+  RunawayEnergyMonitor monitor;
+  monitor.Start(1e-10, tick);
+  int measured = 0;
+  EXPECT_EQ(Feed(monitor, 60000, kinetic, [&](PetscInt) { return stored; }, &measured, true, dt), 0);
+  EXPECT_GT(measured, 0);  // it was suspected...
+  // ...and measured at the suspicion (KE 1e-10 J, step 10013), then once a tick (10
+  // ticks) or a doubling of KE (19 doublings to 5.6e-5 J by the end of the 10 ticks):
+  // at most 30, not 10000.
+  EXPECT_LE(measured, 30);
 }
 
 // A ramp from rest: the grips' work raises both energies as a power of time.
