@@ -122,6 +122,9 @@ void solid_bounds(const Solid &s, P3 &lo, P3 &hi)
       lo[r] = std::min(s.a[r], s.b[r]) - s.radius, hi[r] = std::max(s.a[r], s.b[r]) + s.radius;
       break;
     case Solid::Kind::sphere: lo[r] = s.a[r] - s.radius, hi[r] = s.a[r] + s.radius; break;
+    case Solid::Kind::mesh:
+      lo[r] = s.mesh->lo[r], hi[r] = s.mesh->lo[r] + static_cast<double>(s.mesh->count[r]) * s.mesh->cell;
+      break;
     }
 }
 
@@ -154,7 +157,93 @@ Grid body_grid(const SolidBody &body)
   return g;
 }
 
+// Six times the signed volume of (a, b, c, d).
+double orient(const double *a, const double *b, const double *c, const double *d)
+{
+  const P3 u = minus(b, a), v = minus(c, a), w = minus(d, a);
+  return dot(u, cross(v, w));
+}
+
+// Faces inclusive, either orientation: the four sub-volumes' signs agree (zeros allowed).
+bool tetrahedron_contains(const double *t, const double *p)
+{
+  const double d0 = orient(p, t + 3, t + 6, t + 9), d1 = orient(t, p, t + 6, t + 9);
+  const double d2 = orient(t, t + 3, p, t + 9), d3 = orient(t, t + 3, t + 6, p);
+  const double tol = 1e-12 * std::fabs(orient(t, t + 3, t + 6, t + 9));
+  const bool   neg = d0 < -tol || d1 < -tol || d2 < -tol || d3 < -tol, pos = d0 > tol || d1 > tol || d2 > tol || d3 > tol;
+  return !(neg && pos);
+}
+
+void tetrahedron_range(const TetrahedronSet &set, std::size_t t, std::array<int64_t, 3> &first, std::array<int64_t, 3> &last)
+{
+  const double *c = &set.corners[12 * t];
+  for (int r = 0; r < 3; ++r) {
+    const double lo = std::min({c[r], c[3 + r], c[6 + r], c[9 + r]}), hi = std::max({c[r], c[3 + r], c[6 + r], c[9 + r]});
+    first[r] = std::clamp(static_cast<int64_t>(std::floor((lo - set.lo[r]) / set.cell)), int64_t{0}, set.count[r] - 1);
+    last[r]  = std::clamp(static_cast<int64_t>(std::floor((hi - set.lo[r]) / set.cell)), int64_t{0}, set.count[r] - 1);
+  }
+}
+
 } // namespace
+
+void index_tetrahedra(TetrahedronSet &set)
+{
+  const std::size_t n = set.size();
+  if (n == 0) return;
+  P3 lo{set.corners[0], set.corners[1], set.corners[2]}, hi = lo;
+  for (std::size_t k = 0; k < 4 * n; ++k)
+    for (int r = 0; r < 3; ++r) lo[r] = std::min(lo[r], set.corners[3 * k + r]), hi[r] = std::max(hi[r], set.corners[3 * k + r]);
+  P3 side;
+  for (int r = 0; r < 3; ++r) side[r] = std::max(hi[r] - lo[r], 1e-300);
+  set.cell = std::cbrt(side[0] * side[1] * side[2] / static_cast<double>(n));
+  for (int r = 0; r < 3; ++r) set.count[r] = std::max<int64_t>(1, static_cast<int64_t>(std::ceil(side[r] / set.cell)));
+  set.lo = lo;
+  // Two passes over the tetrahedra's bounding boxes: count, then fill.
+  std::vector<int64_t> count(static_cast<std::size_t>(set.count[0] * set.count[1] * set.count[2]) + 1, 0);
+  for (int pass = 0; pass < 2; ++pass) {
+    if (pass == 1) {
+      set.offsets.assign(count.size(), 0);
+      for (std::size_t k = 1; k < count.size(); ++k) set.offsets[k] = set.offsets[k - 1] + count[k - 1];
+      set.members.assign(static_cast<std::size_t>(set.offsets.back()), 0);
+      std::fill(count.begin(), count.end(), 0);
+    }
+    for (std::size_t t = 0; t < n; ++t) {
+      std::array<int64_t, 3> a, b;
+      tetrahedron_range(set, t, a, b);
+      for (int64_t k = a[2]; k <= b[2]; ++k)
+        for (int64_t j = a[1]; j <= b[1]; ++j)
+          for (int64_t i = a[0]; i <= b[0]; ++i) {
+            const std::size_t q = static_cast<std::size_t>((k * set.count[1] + j) * set.count[0] + i);
+            if (pass == 1) set.members[static_cast<std::size_t>(set.offsets[q] + count[q])] = static_cast<int64_t>(t);
+            ++count[q];
+          }
+    }
+  }
+}
+
+bool tetrahedra_contain(const TetrahedronSet &set, const double *p)
+{
+  if (set.offsets.empty()) return false;
+  std::array<int64_t, 3> b;
+  for (int r = 0; r < 3; ++r) {
+    const int64_t i = static_cast<int64_t>(std::floor((p[r] - set.lo[r]) / set.cell));
+    // A point on the grid's far face belongs to the last bucket.
+    b[r] = i == set.count[r] && p[r] <= set.lo[r] + static_cast<double>(set.count[r]) * set.cell ? i - 1 : i;
+    if (b[r] < 0 || b[r] >= set.count[r]) return false;
+  }
+  const std::size_t q = static_cast<std::size_t>((b[2] * set.count[1] + b[1]) * set.count[0] + b[0]);
+  for (int64_t k = set.offsets[q]; k < set.offsets[q + 1]; ++k)
+    if (tetrahedron_contains(&set.corners[12 * static_cast<std::size_t>(set.members[static_cast<std::size_t>(k)])], p))
+      return true;
+  return false;
+}
+
+Solid make_mesh(std::shared_ptr<const TetrahedronSet> mesh, Solid::Op op)
+{
+  Solid s;
+  s.kind = Solid::Kind::mesh, s.op = op, s.mesh = std::move(mesh);
+  return s;
+}
 
 Solid make_box(const P3 &lo, const P3 &hi, Solid::Op op)
 {
@@ -196,6 +285,7 @@ bool solid_contains(const Solid &s, const double *p)
     const P3 q = minus(p, s.a.data());
     return dot(q, q) < s.radius * s.radius;
   }
+  case Solid::Kind::mesh: return tetrahedra_contain(*s.mesh, p);
   }
   return false;
 }
@@ -220,6 +310,14 @@ double solid_volume(const Solid &s)
     return M_PI * s.radius * s.radius * std::sqrt(dot(axis, axis));
   }
   case Solid::Kind::sphere: return 4.0 / 3.0 * M_PI * s.radius * s.radius * s.radius;
+  case Solid::Kind::mesh: {
+    double v = 0;
+    for (std::size_t t = 0; t < s.mesh->size(); ++t) {
+      const double *c = &s.mesh->corners[12 * t];
+      v += std::fabs(orient(c, c + 3, c + 6, c + 9)) / 6;
+    }
+    return v;
+  }
   }
   return 0;
 }
@@ -245,6 +343,10 @@ std::string solid_problem(const Solid &s)
   case Solid::Kind::sphere:
     if (!finite(s.a)) return "its centre must be finite numbers";
     if (!(s.radius > 0) || !std::isfinite(s.radius)) return format("its radius must be > 0 (got %g)", s.radius);
+    return "";
+  case Solid::Kind::mesh:
+    if (!s.mesh || s.mesh->size() == 0 || s.mesh->offsets.empty())
+      return "it holds no tetrahedron (read a Gmsh 3D volume into it and index it)";
     return "";
   }
   return "unknown kind";
@@ -410,6 +512,7 @@ const char *to_string(Solid::Kind kind)
   case Solid::Kind::box: return "box";
   case Solid::Kind::cylinder: return "cylinder";
   case Solid::Kind::sphere: return "sphere";
+  case Solid::Kind::mesh: return "mesh";
   }
   return "unknown";
 }

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <memory>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -157,6 +158,31 @@ TEST(Shape3D, UnionDifferenceIntersectionInOrder)
   for (const auto &p : cells_of(points_of({plug}))) DP.insert(p);
   ASSERT_GT(DP.size(), D.size());
   EXPECT_EQ(cells_of(points_of({box, with(sphere, Solid::Op::subtract), plug})), DP);
+}
+
+TEST(Shape3D, TetrahedraOfABoxHoldItsPoints)
+{
+  // A box cut into Kuhn's six tetrahedra (one per order of the axes, all sharing the
+  // diagonal lo-hi): the mesh solid keeps exactly the box's points, even those on the
+  // inner faces (x = y etc. pass through cell centres: faces are inclusive), and its
+  // volume is the box's.
+  const P3 lo{0, 0, 0}, hi{6 * kDx, 5 * kDx, 4 * kDx};
+  auto     mesh   = std::make_shared<nd::TetrahedronSet>();
+  const int axes[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+  for (const auto &order : axes) {
+    P3 v = lo;
+    mesh->corners.insert(mesh->corners.end(), v.begin(), v.end());
+    for (int step = 0; step < 3; ++step) {
+      v[order[step]] = hi[order[step]];
+      mesh->corners.insert(mesh->corners.end(), v.begin(), v.end());
+    }
+  }
+  nd::index_tetrahedra(*mesh);
+  EXPECT_NEAR(nd::solid_volume(nd::make_mesh(mesh)), 120 * kDx * kDx * kDx, 1e-12 * 120 * kDx * kDx * kDx);
+  EXPECT_EQ(points_of({nd::make_mesh(mesh)}).x, points_of({nd::make_box(lo, hi)}).x);
+  // Just outside a face, and a corner (inclusive).
+  EXPECT_FALSE(nd::tetrahedra_contain(*mesh, P3{6.0001 * kDx, 2 * kDx, 2 * kDx}.data()));
+  EXPECT_TRUE(nd::tetrahedra_contain(*mesh, hi.data()));
 }
 
 // The brute-force rule of a notch on the plane x = c, the rectangle (y0, y1) x (z0, z1):

@@ -11,10 +11,11 @@
 // that order. A box [origin, origin + n dx] holds exactly the points of box_lattice.
 //
 // Boundaries (as the 2D shapes and the hole rule of lattice.hpp): a point on a box's
-// face or a cylinder's end cap is inside; on a sphere or a cylinder's curved surface it
-// is outside (a point on a hole's rim is material).
+// face, a cylinder's end cap or a mesh's boundary is inside; on a sphere or a
+// cylinder's curved surface it is outside (a point on a hole's rim is material).
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -24,14 +25,33 @@
 
 namespace bapd::nd {
 
+// Tetrahedra (12 numbers each: the four corners' x, y, z) with a bucket grid over their
+// bounding box, so that a point finds the few that may hold it: the volume of a Gmsh 3D
+// mesh (gmsh_volume3d.hpp reads it), the 3D form of shape.hpp's TriangleSet.
+struct TetrahedronSet {
+  std::vector<double>    corners;          // 12 per tetrahedron [m]
+  std::array<double, 3>  lo{};             // the grid's lower corner [m]
+  double                 cell = 1;         // bucket size [m]
+  std::array<int64_t, 3> count{};          // buckets per axis
+  std::vector<int64_t>   offsets, members; // CSR: tetrahedra overlapping each bucket
+  std::string            file;             // the Gmsh file it came from, for messages
+  std::size_t            size() const { return corners.size() / 12; }
+};
+// Builds the bucket grid of `set` (about one tetrahedron a bucket).
+void index_tetrahedra(TetrahedronSet &set);
+// Whether the point lies in one of the tetrahedra (faces inclusive, to 1e-12 of the
+// tetrahedron's volume, as triangles_contain).
+bool tetrahedra_contain(const TetrahedronSet &set, const double *p);
+
 struct Solid {
-  enum class Kind { box, cylinder, sphere };
+  enum class Kind { box, cylinder, sphere, mesh };
   using Op = Shape::Op; // add, subtract, intersect (shape.hpp)
   Kind                  kind = Kind::box;
   Op                    op   = Op::add;
   std::array<double, 3> lo{}, hi{}; // box: opposite corners [m]
   std::array<double, 3> a{}, b{};   // cylinder: the axis's end points (cap centres); sphere: a = centre [m]
   double                radius = 0; // cylinder, sphere [m]
+  std::shared_ptr<const TetrahedronSet> mesh; // mesh: its tetrahedra, indexed
 };
 
 // Convenience constructors.
@@ -39,6 +59,7 @@ Solid make_box(const std::array<double, 3> &lo, const std::array<double, 3> &hi,
 Solid make_cylinder(const std::array<double, 3> &a, const std::array<double, 3> &b, double radius,
                     Solid::Op op = Solid::Op::add);
 Solid make_sphere(const std::array<double, 3> &centre, double radius, Solid::Op op = Solid::Op::add);
+Solid make_mesh(std::shared_ptr<const TetrahedronSet> mesh, Solid::Op op = Solid::Op::add);
 
 // A planar polygon: n >= 3 vertices in 3D (x0,y0,z0,x1,...), closed implicitly.
 struct PlanarPolygon {
