@@ -141,7 +141,7 @@ Grid body_grid(const SolidBody &body)
   bool any = false;
   for (const Solid &s : body.solids) {
     if (!solid_adds(s)) continue;
-    P3 a, b;
+    P3 a{}, b{};
     solid_bounds(s, a, b);
     for (int r = 0; r < 3; ++r) lo[r] = any ? std::min(lo[r], a[r]) : a[r], hi[r] = any ? std::max(hi[r], b[r]) : b[r];
     any = true;
