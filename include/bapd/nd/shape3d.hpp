@@ -1,6 +1,6 @@
 #pragma once
 // 3D bodies (issue 21, the body stage of 3D; docs/architecture.md "3D (stage 1)"): solids
-// (boxes, cylinders, spheres) combined in order, the cell-centred lattice clipped to
+// (boxes, cylinders, spheres, Gmsh volumes as tetrahedra) combined in order, the cell-centred lattice clipped to
 // them, and planar polygon notches as a BondCut for nd::build_families<3>.
 //
 // A body starts empty; each solid, in the order listed, adds to it, subtracts from it or
@@ -79,7 +79,8 @@ bool solid_contains(const Solid &solid, const double *p);
 // Whether the body keeps the point: the solids applied in order to an empty start.
 bool body_contains(const std::vector<Solid> &solids, const double *p);
 
-// The solid's volume [m^3] (analytic; for estimates and tests).
+// The solid's volume [m^3] (analytic; a mesh: the sum of its tetrahedra's; for
+// estimates and tests).
 double solid_volume(const Solid &solid);
 
 // "" for a usable solid, else what is wrong with it ("its radius must be > 0 (got -1)").
@@ -98,7 +99,8 @@ std::string planar_polygon_problem(const PlanarPolygon &polygon);
 // 1e-12 of the polygon's size) are NOT cut: a notch is a crack of zero thickness, and
 // a bond that only touches it does not pass through it. Symmetric in a and b.
 // Place a notch on the lattice's cell faces (origin + i dx) and its edges off the cell
-// centres' lines, so that no bond is a boundary case.
+// centres' lines, so that no bond is a boundary case. Prepares the polygon on every call
+// (for a single test); polygon_notches prepares once for many bonds.
 bool polygon_cuts(const PlanarPolygon &polygon, const double *a, const double *b);
 
 // The BondCut for nd::build_families<3>: a bond is cut by any of the polygons. Each
