@@ -49,6 +49,10 @@ public:
   // With a warm start the caller owns (advanced in place, 1 per bond): a probe of the
   // operator, e.g. the stable-step estimate, that leaves the operator's state as it was.
   PetscErrorCode EvaluateWithWarmStart(const double *u_owned, double *force_density, std::vector<double> &c33);
+  // With warm starts that are only read (1 per bond; the operator's own, warm_start(),
+  // or the caller's): a probe that needs no copy of them (8 B a bond). Leaves the
+  // operator's state and c33 as they were.
+  PetscErrorCode EvaluateFrom(const double *u_owned, double *force_density, const std::vector<double> &c33);
   // V_i W_i of the owned points at u_owned (strain_energy, ba_force.hpp).
   PetscErrorCode PointEnergies(const double *u_owned, double *energy);
 

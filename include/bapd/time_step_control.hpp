@@ -130,7 +130,8 @@ private:
   PetscErrorCode MixSeed(MPI_Comm comm);
   static constexpr double seed_weight = 0.05;
   static constexpr PetscInt rising_iterations = 4; // fewest iterations while the shortened step's lambda rises
-  PetscErrorCode PowerStep(MPI_Comm comm, ForceOperator &force, const double *u0, const double *a0, double shift, double *lambda);
+  PetscErrorCode PowerStep(MPI_Comm comm, ForceOperator &force, const std::vector<double> &c33, std::vector<double> *advance,
+                           const double *u0, const double *a0, double shift, double *lambda);
 
   TimeStepOptions options_;
   double   stable_dt_ = 0, stable_now_ = 0, lambda_rest_ = 0, lambda_ = 0, lambda_largest_ = 0;
@@ -150,7 +151,7 @@ private:
   bool     recording_ = false, recorded_ = false;
   // Scratch sized at set-up: no allocation in a step.
   std::vector<char>   held_;
-  std::vector<double> v_, seed_, u_rec_, a_rec_, u_probe_, a_probe_, sq_, c33_;
+  std::vector<double> v_, seed_, u_rec_, a_rec_, u_probe_, a_probe_, sq_; // (no C33 copy: the probes read the operator's)
 };
 
 } // namespace bapd

@@ -90,16 +90,7 @@ PetscErrorCode ForceOperator::Evaluate(const double *u_owned, double *force_dens
     PetscCall(Kernel(u_owned, force_density, c33_.data(), &stats_));
     PetscFunctionReturn(0);
   }
-  // Reads the warm start without writing it back. The failed-bond list is the
-  // committed evaluation's, for the breaking pass after the step: it is set aside
-  // (a swap of buffers, no allocation) and put back.
-  kept_failed_.swap(workspace_.failed);
-  KernelStats looked;
-  workspace_.keep_warm_start = true;
-  const PetscErrorCode ierr  = Kernel(u_owned, force_density, c33_.data(), &looked);
-  workspace_.keep_warm_start = false;
-  kept_failed_.swap(workspace_.failed);
-  PetscCall(ierr);
+  PetscCall(EvaluateFrom(u_owned, force_density, c33_)); // reads the warm start, writes nothing back
   PetscFunctionReturn(0);
 }
 
@@ -111,6 +102,24 @@ PetscErrorCode ForceOperator::EvaluateWithWarmStart(const double *u_owned, doubl
   PetscCheck(c33.size() == c33_.size(), comm_, PETSC_ERR_ARG_SIZ, "EvaluateWithWarmStart: %zu warm starts for %zu bonds", c33.size(),
              c33_.size());
   PetscCall(Kernel(u_owned, force_density, c33.data(), &probe));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ForceOperator::EvaluateFrom(const double *u_owned, double *force_density, const std::vector<double> &c33)
+{
+  KernelStats probe;
+
+  PetscFunctionBegin;
+  PetscCheck(c33.size() == c33_.size(), comm_, PETSC_ERR_ARG_SIZ, "EvaluateFrom: %zu warm starts for %zu bonds", c33.size(), c33_.size());
+  // The kernel reads c33 and writes nothing back (ws.keep_warm_start: the const_cast is
+  // never written through). The failed-bond list is the committed evaluation's, for the
+  // breaking pass after the step: it is set aside (a swap of buffers, no allocation).
+  kept_failed_.swap(workspace_.failed);
+  workspace_.keep_warm_start = true;
+  const PetscErrorCode ierr  = Kernel(u_owned, force_density, const_cast<double *>(c33.data()), &probe);
+  workspace_.keep_warm_start = false;
+  kept_failed_.swap(workspace_.failed);
+  PetscCall(ierr);
   PetscFunctionReturn(0);
 }
 

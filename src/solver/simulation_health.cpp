@@ -71,10 +71,18 @@ PetscErrorCode Simulation::DiagnoseDivergence()
   const PetscInt n = 2 * layout_.n_owned;
 
   PetscFunctionBegin;
-  const std::vector<double> &c33 = good ? output_.good_c33 : force_.warm_start();
   PetscCall(VecGetArrayRead(good ? output_.good_state : X_, &x));
   std::vector<double> u(x, x + n);
   PetscCall(VecRestoreArrayRead(good ? output_.good_state : X_, &x));
+  // The last good state's C33, solved again from a cold start (it keeps no per-bond
+  // copy, simulation_output.hpp): the same values to the solve's tolerance.
+  std::vector<double> good_c33;
+  if (good) {
+    std::vector<double> unused(n);
+    good_c33.assign(force_.warm_start().size(), 0.0);
+    PetscCall(force_.EvaluateWithWarmStart(u.data(), unused.data(), good_c33));
+  }
+  const std::vector<double> &c33 = good ? good_c33 : force_.warm_start();
   PetscReal now;
   PetscCall(TSGetTime(ts_, &now));
   const double t = good ? output_.good_time : now;

@@ -94,7 +94,6 @@ PetscErrorCode Simulation::SaveGoodState(PetscInt step, double t)
 {
   PetscFunctionBegin;
   PetscCall(VecCopy(X_, output_.good_state));
-  output_.good_c33.assign(force_.warm_start().begin(), force_.warm_start().end()); // same size every step: no allocation
   output_.good_step = step;
   output_.good_time = t;
   if (step % SimulationOutput::earlier_interval == 0) {
@@ -143,7 +142,15 @@ PetscErrorCode Simulation::OutputOnDivergence()
   PetscFunctionBegin;
   if (!output_.checkpoint.on_error || output_.good_step < 0) PetscFunctionReturn(0);
   PetscCall(VecCopy(output_.good_state, X_));
-  std::copy(output_.good_c33.begin(), output_.good_c33.end(), force_.warm_start().begin());
+  {
+    // Its C33, solved again from a cold start (simulation_output.hpp); the bond state
+    // is the good state's already.
+    const double *x;
+    std::fill(force_.warm_start().begin(), force_.warm_start().end(), 0.0);
+    PetscCall(VecGetArrayRead(X_, &x));
+    PetscCall(force_.EvaluateWithWarmStart(x, force_density_.data(), force_.warm_start()));
+    PetscCall(VecRestoreArrayRead(X_, &x));
+  }
   PetscCall(TSSetStepNumber(ts_, output_.good_step));
   PetscCall(TSSetTime(ts_, output_.good_time));
   if (output_.fields.enabled) PetscCall(WriteFields(output_.good_step, output_.good_time));

@@ -72,12 +72,15 @@ PetscErrorCode TimeStepOptionsFromOptions(MPI_Comm comm, TimeStepOptions *option
 
 namespace {
 
-// The acceleration of the free dofs, M^{-1} f, with the held ones zero.
-PetscErrorCode ProbeAcceleration(ForceOperator &force, std::vector<double> &c33, double inv_rho, const std::vector<char> &held,
-                                 const double *u, double *a)
+// The acceleration of the free dofs, M^{-1} f, with the held ones zero. The C33 warm
+// starts are c33, only read (issue 20: no per-bond copy, 8 B a bond), or, with advance
+// (the set-up's iteration), read from and advanced in *advance.
+PetscErrorCode ProbeAcceleration(ForceOperator &force, const std::vector<double> &c33, std::vector<double> *advance, double inv_rho,
+                                 const std::vector<char> &held, const double *u, double *a)
 {
   PetscFunctionBegin;
-  PetscCall(force.EvaluateWithWarmStart(u, a, c33));
+  if (advance) PetscCall(force.EvaluateWithWarmStart(u, a, *advance));
+  else PetscCall(force.EvaluateFrom(u, a, c33));
   for (std::size_t k = 0; k < held.size(); ++k) a[k] = held[k] ? 0.0 : a[k] * inv_rho;
   PetscFunctionReturn(0);
 }
@@ -86,8 +89,9 @@ PetscErrorCode ProbeAcceleration(ForceOperator &force, std::vector<double> &c33,
 
 // One power iteration about (u0, a0 = M^{-1} f(u0)): v <- A v with A v = -(a(u0 + eps
 // v/|v|) - a0) / eps, and the Rayleigh quotient of the unit vector v/|v|. The
-// warm starts C33 are the caller's copy (c33_), so the operator's are untouched.
-PetscErrorCode TimeStepControl::PowerStep(MPI_Comm comm, ForceOperator &force, const double *u0, const double *a0, double shift, double *lambda)
+// warm starts C33: c33 read only, or *advance (ProbeAcceleration).
+PetscErrorCode TimeStepControl::PowerStep(MPI_Comm comm, ForceOperator &force, const std::vector<double> &c33, std::vector<double> *advance,
+                                          const double *u0, const double *a0, double shift, double *lambda)
 {
   const PetscInt n = (PetscInt)v_.size();
   double         norm2;
@@ -98,7 +102,7 @@ PetscErrorCode TimeStepControl::PowerStep(MPI_Comm comm, ForceOperator &force, c
   PetscCheck(norm2 > 0, comm, PETSC_ERR_USER, "Every degree of freedom is held by a load set: nothing moves");
   const double inv = 1.0 / std::sqrt(norm2);
   for (PetscInt k = 0; k < n; ++k) u_probe_[k] = u0[k] + eps_ * v_[k] * inv;
-  PetscCall(ProbeAcceleration(force, c33_, inv_rho_, held_, u_probe_.data(), a_probe_.data()));
+  PetscCall(ProbeAcceleration(force, c33, advance, inv_rho_, held_, u_probe_.data(), a_probe_.data()));
   ++evaluations_;
   for (PetscInt k = 0; k < n; ++k) a_probe_[k] = held_[k] ? 0.0 : -(a_probe_[k] - a0[k]) / eps_;
   for (PetscInt k = 0; k < n; ++k) sq_[k] = a_probe_[k] * v_[k] * inv;
@@ -142,7 +146,6 @@ PetscErrorCode TimeStepControl::EstimateStable(MPI_Comm comm, const Scene &scene
   u_probe_.assign(n, 0.0);
   a_probe_.assign(n, 0.0);
   sq_.assign(n, 0.0);
-  c33_.assign(force.warm_start().size(), 0.0); // the iteration's own warm starts
   // A deterministic start with energy in every wavelength: a hash of the natural id.
   for (PetscInt i = 0; i < layout.n_owned; ++i)
     for (int c = 0; c < 2; ++c) {
@@ -154,9 +157,16 @@ PetscErrorCode TimeStepControl::EstimateStable(MPI_Comm comm, const Scene &scene
     }
   seed_ = v_;
   std::vector<double> u0(n, 0.0), a0(n); // set-up only
-  PetscCall(ProbeAcceleration(force, c33_, inv_rho_, held_, u0.data(), a0.data()));
+  // The iteration's warm starts are the operator's own, zero (no warm start) at set-up,
+  // advanced probe by probe and set back to zero after it, so that the operator is left
+  // as it was without a per-bond copy.
+  std::vector<double> &c33 = force.warm_start();
+  PetscCheck(std::all_of(c33.begin(), c33.end(), [](double c) { return c == 0.0; }), comm, PETSC_ERR_PLIB,
+             "EstimateStable: the operator has warm starts already (it must run before any evaluation)");
+  PetscCall(ProbeAcceleration(force, c33, &c33, inv_rho_, held_, u0.data(), a0.data()));
   double lambda = 0.0;
-  for (PetscInt it = 0; it < 60; ++it) PetscCall(PowerStep(comm, force, u0.data(), a0.data(), 0.0, &lambda));
+  for (PetscInt it = 0; it < 60; ++it) PetscCall(PowerStep(comm, force, c33, &c33, u0.data(), a0.data(), 0.0, &lambda));
+  std::fill(c33.begin(), c33.end(), 0.0);
   evaluations_ = 0; // counts the re-estimates' cost only
   PetscCheck(std::isfinite(lambda) && lambda > 0, comm, PETSC_ERR_USER,
              "Could not estimate a stable time step (lambda_max = %g): check -material_mu, -material_D and -material_density", lambda);
@@ -199,15 +209,16 @@ void TimeStepControl::Record(const double *u, const double *a)
 
 // A few power iterations about the latest evaluation of the dynamics, warm-started from
 // the last eigenvector: the Rayleigh quotient follows lambda_max as the state changes.
-// The C33 warm starts are a copy of the operator's committed ones (converged at that
-// very state), so the operator is left as it was and a restart (which restores them)
-// repeats the estimate bit for bit.
+// Every probe reads the operator's committed C33 warm starts (converged at that very
+// state, 1e-7 dx from the probe) and writes none back, so the operator is left as it
+// was and a restart (which restores them) repeats the estimate bit for bit. (Until
+// issue 20 the probes advanced a copy of them, 8 B a bond, from probe to probe: the
+// same start for the first probe, one at round-off distance for the later ones.)
 PetscErrorCode TimeStepControl::Reestimate(MPI_Comm comm, ForceOperator &force, bool loading, PetscInt *iterations)
 {
   PetscFunctionBegin;
   const double               wall      = MPI_Wtime();
   const std::vector<double> &committed = force.warm_start();
-  std::copy(committed.begin(), committed.end(), c33_.begin());
   // At least `iterations` iterations, more (up to max_iterations) while the quotient
   // still moves by more than `tolerance`: in a steady state the warm start is already
   // converged and one iteration confirms it; when the fastest mode moves elsewhere
@@ -247,7 +258,7 @@ PetscErrorCode TimeStepControl::Reestimate(MPI_Comm comm, ForceOperator &force, 
   double       last_change = 0;
   PetscInt     it     = 0;
   while (it < options_.max_iterations) {
-    PetscCall(PowerStep(comm, force, u_rec_.data(), a_rec_.data(), options_.shift * lambda_, &lambda));
+    PetscCall(PowerStep(comm, force, committed, nullptr, u_rec_.data(), a_rec_.data(), options_.shift * lambda_, &lambda));
     ++it;
     if (!std::isfinite(lambda)) break;
     const double change   = std::fabs(lambda - previous);
@@ -379,11 +390,10 @@ PetscErrorCode TimeStepControl::SharpEstimate(MPI_Comm comm, ForceOperator &forc
 {
   PetscFunctionBegin;
   std::copy(u, u + u_rec_.size(), u_rec_.begin());
-  std::copy(c33.begin(), c33.end(), c33_.begin());
-  PetscCall(ProbeAcceleration(force, c33_, inv_rho_, held_, u_rec_.data(), a_rec_.data()));
+  PetscCall(ProbeAcceleration(force, c33, nullptr, inv_rho_, held_, u_rec_.data(), a_rec_.data()));
   double lambda = lambda_, best = lambda_;
   for (PetscInt it = 0; it < iterations; ++it) {
-    PetscCall(PowerStep(comm, force, u_rec_.data(), a_rec_.data(), options_.shift * best, &lambda));
+    PetscCall(PowerStep(comm, force, c33, nullptr, u_rec_.data(), a_rec_.data(), options_.shift * best, &lambda));
     if (std::isfinite(lambda) && lambda > best) best = lambda;
   }
   *stable = 2.0 / std::sqrt(1.1 * best);
