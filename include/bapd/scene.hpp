@@ -37,6 +37,9 @@ struct Scene {
   // -force_stress_correction (stress_correction.hpp): the bond-only force made to give
   // sum_j t_ij (x) xi_ij V_j = P; the identity for the energy-consistent form.
   StressCorrection   stress_correction = StressCorrection::none;
+  // -force_patch_correction (patch_correction.hpp): the bond-only force made to pass the
+  // affine patch test on given points (lambda per point, formed at setup).
+  bool               patch_correction = false;
   MaterialParameters material;
   double             density = 1000.0; // kg/m^3
 

@@ -9,6 +9,7 @@
 
 #include "bapd/help.hpp"
 #include "bapd/geometry.hpp"
+#include "bapd/patch_correction.hpp"
 
 namespace bapd {
 
@@ -109,6 +110,14 @@ PetscErrorCode Simulation::BuildBody()
     global               = make_points(scene_.body, scene_.horizon_factor);
     Families all         = build_families(global, global.size(), horizon, scene_.body.notches);
     compute_family_volumes(global, all);
+    if (scene_.patch_correction) { // lambda per point, shipped with the points (patch_correction.hpp)
+      PatchCorrectionReport report;
+      global.patch_correction = compute_patch_correction(global, all, scene_.stress_correction, &report);
+      PetscCall(PetscPrintf(PETSC_COMM_SELF,
+                            "Patch correction: %zu interior points, largest interior force under an affine motion %.2g -> %.2g of "
+                            "its terms (%zu iterations)\n",
+                            report.interior, report.before, report.after, report.iterations));
+    }
     offsets.assign(all.offsets.begin(), all.offsets.end());
     neighbours.assign(all.neighbour.begin(), all.neighbour.end());
   }

@@ -10,6 +10,7 @@
 #include <random>
 
 #include "bapd/geometry.hpp"
+#include "bapd/patch_correction.hpp"
 #include "unit/kernel_fixtures.hpp"
 #include "unit/test_models.hpp"
 
@@ -248,9 +249,14 @@ namespace {
 // horizons from the sheet's edge: C_j of a neighbour j reads V(H_k) of j's neighbours), over the force a unit strain makes
 // there (sum_j (|t_ij| + |t_ji|) V_j / |P|): 0 up to round-off where the discrete
 // divergence of a constant stress vanishes.
-double interior_affine_residual(const Body2D &body, StressCorrection correction, bool energy_consistent)
+double interior_affine_residual(const Body2D &body, StressCorrection correction, bool energy_consistent,
+                                bool patch = false, PatchCorrectionReport *report = nullptr)
 {
   test::Discretisation d(make_points(body, kFactor), correction);
+  if (patch) {
+    d.cloud.patch_correction = compute_patch_correction(d.cloud, d.families, correction, report);
+    compute_bond_geometry(d.cloud, d.families, d.state, d.geometry); // C_i with the patch's H_i
+  }
   const Mat2           A = {1.1, 0.05, 0.02, 0.95};
   const std::vector<double>    y = d.affine(A);
   test::SaintVenantKirchhoff2D svk;
@@ -275,5 +281,72 @@ TEST(NonUniformPatch, AffineMotionLeavesNoInteriorForceOnARegularCloudGivenAsPoi
       EXPECT_LT(interior_affine_residual(jittered_body(30, 0.0, 0.0), c, ec), 1e-12) << (ec ? "energy-consistent" : "bond-only");
 }
 
+} // namespace
+} // namespace bapd
+
+namespace bapd {
+namespace {
+TEST(NonUniformPatch, Probe)
+{
+  struct C { const char *name; Body2D body; };
+  std::vector<C> cs = {{"regular", jittered_body(30, 0.0, 0.0)}, {"jit0.1", jittered_body(30, 0.1, 0.0)},
+                       {"jit0.2", jittered_body(30, 0.2, 0.0)}, {"vol30", jittered_body(30, 0.0, 0.3)},
+                       {"jit0.25v", jittered_body(20, 0.25)},
+                       {"graded40", graded_body(40)}, {"graded80", graded_body(80)}};
+  for (auto &c : cs) {
+    PatchCorrectionReport r;
+    const double a = interior_affine_residual(c.body, StressCorrection::tensor, false);
+    const double b = interior_affine_residual(c.body, StressCorrection::tensor, false, true, &r);
+    {
+      test::Discretisation d(make_points(c.body, kFactor), StressCorrection::tensor);
+      d.cloud.patch_correction = compute_patch_correction(d.cloud, d.families, StressCorrection::tensor);
+      compute_bond_geometry(d.cloud, d.families, d.state, d.geometry);
+      const Mat2           A = {1.2, 0.1, -0.05, 0.9};
+      const std::vector<double>    y = d.affine(A);
+      test::SaintVenantKirchhoff2D svk;
+      double                       c33 = 0;
+      Mat2                         P;
+      svk.stress(A, c33, P);
+      std::vector<double> t, f;
+      d.forces(svk, y, t, f);
+      double worst = 0, hg = 0;
+      for (std::size_t i = 0; i < d.size(); ++i) {
+        worst = std::max(worst, test::norm(test::bond_force_virial(d, t, i) - P) / test::norm(P));
+        for (std::size_t q = 0; q < d.families.size(i); ++q) {
+          const std::size_t j = d.families.neighbour[d.families.offsets[i] + q];
+          const double x0 = d.cloud.x[2 * j] - d.cloud.x[2 * i], x1 = d.cloud.x[2 * j + 1] - d.cloud.x[2 * i + 1];
+          const BondShape sh = bond_shape(d.cloud, d.families, d.state, i, q);
+          double h0 = 0, h1 = 0;
+          add_patch_term(d.cloud.patch_correction.data() + 2 * i, d.cloud.patch_correction.data() + 2 * j, x0, x1, h0, h1);
+          hg = std::max(hg, std::hypot(h0, h1) / std::hypot(sh.force_vector[0], sh.force_vector[1]));
+        }
+      }
+      std::printf("   virial error %.3g, |h|/|g| %.3g\n", worst, hg);
+    }
+    std::printf("%-10s before %.3g after %.3g  (report: interior %zu it %zu before %.3g after %.3g)\n", c.name, a, b, r.interior, r.iterations, r.before, r.after);
+  }
+}
+} // namespace
+} // namespace bapd
+namespace bapd {
+namespace {
+TEST(NonUniformPatch, ProbeRows)
+{
+  for (StressCorrection c : {StressCorrection::none, StressCorrection::tensor}) {
+    test::Discretisation d(make_points(jittered_body(30, 0.0, 0.0), kFactor), c);
+    const Mat2 A = {1.1, 0.05, 0.02, 0.95};
+    const std::vector<double> y = d.affine(A);
+    test::SaintVenantKirchhoff2D svk;
+    std::vector<double> t, f;
+    d.forces(svk, y, t, f);
+    std::vector<double> row(15, 0.0);
+    for (std::size_t i = 0; i < d.size(); ++i) {
+      int ix = (int)std::floor(d.cloud.x[2 * i] / kDx), iy = (int)std::floor(d.cloud.x[2 * i + 1] / kDx);
+      int r = std::min({ix, iy, 29 - ix, 29 - iy});
+      row[r] = std::max(row[r], std::hypot(f[2 * i], f[2 * i + 1]) / test::force_terms(d, t, i));
+    }
+    for (int r = 0; r < 15; ++r) std::printf("%s row %d: %.3g\n", to_string(c), r, row[r]);
+  }
+}
 } // namespace
 } // namespace bapd
