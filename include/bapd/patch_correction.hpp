@@ -30,19 +30,20 @@
 // quantity of the points, shipped with them like V(H), so every rank layout gets the
 // same bits.
 //
-// Which points are interior: those whose neighbourhood reaches no edge. An edge point
+// Which points are interior: those more than one horizon from an edge. An edge point
 // is one whose bonds leave an angular gap wider than a right angle (a point of the
-// outer row of a straight edge has a gap of about 180 degrees, one of the second row
-// about 50 at 0.25 dx jitter; a notch's faces count, as no bond crosses it); the
-// boundary layer is every point within two bonds of an edge point (d_i reaches two
-// horizons) and every point with a bond whose K is not usable either way (its force
-// vector is 0, not g).
+// outer row of a straight edge has a gap of about 180 degrees; a notch's faces count,
+// as no bond crosses it); the boundary layer is the edge points and every point bonded
+// to one, and every point with a bond whose K is not usable either way (its force
+// vector is 0, not g). Why one horizon and not the two that d_i reaches:
+// patch_correction.cpp (boundary_layer).
 //
 // What it does not do: the tensor correction's virial sum_j t_ij (x) xi_ij V_j = P is
-// perturbed by sum_j h_ij (x) xi_ij V_j (docs/discretisations.md gives the size); the
-// energy-consistent form is not corrected (its forces are a gradient: a correction
-// would have to be an energy's). On a lattice the correction is off (d_i = 0 there
-// already; lambda would be round-off), so lattice runs are bit for bit what they were.
+// perturbed by sum_j h_ij (x) xi_ij V_j (0.3-1 % on average over a cloud, up to 14 % at
+// a point; docs/discretisations.md); the energy-consistent form is not corrected (its
+// forces are a gradient: a correction would have to be an energy's). On the lattice the
+// correction is off (its interior passes by symmetry), so lattice runs are bit for bit
+// what they were.
 #include <cstddef>
 #include <vector>
 

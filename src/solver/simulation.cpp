@@ -4,6 +4,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstring>
+#include <exception>
 #include <filesystem>
 #include <limits>
 
@@ -100,6 +101,7 @@ PetscErrorCode Simulation::BuildBody()
   const double       horizon = scene_.horizon();
   PointCloud         global;
   std::vector<int>   offsets, neighbours;
+  int                patch_failed = 0;
 
   PetscFunctionBegin;
   PetscCall(PetscLogStagePush(stage_partition_));
@@ -112,15 +114,24 @@ PetscErrorCode Simulation::BuildBody()
     compute_family_volumes(global, all);
     if (scene_.patch_correction) { // lambda per point, shipped with the points (patch_correction.hpp)
       PatchCorrectionReport report;
-      global.patch_correction = compute_patch_correction(global, all, scene_.stress_correction, &report);
-      PetscCall(PetscPrintf(PETSC_COMM_SELF,
-                            "Patch correction: %zu interior points, largest interior force under an affine motion %.2g -> %.2g of "
-                            "its terms (%zu iterations)\n",
-                            report.interior, report.before, report.after, report.iterations));
+      try {
+        global.patch_correction = compute_patch_correction(global, all, scene_.stress_correction, &report);
+        PetscCall(PetscPrintf(PETSC_COMM_SELF,
+                              "Patch correction: %zu interior points, largest interior force under an affine motion %.2g -> %.2g "
+                              "of its terms (%zu iterations)\n",
+                              report.interior, report.before, report.after, report.iterations));
+      } catch (const std::exception &e) {
+        patch_failed = 1;
+        PetscCall(PetscFPrintf(PETSC_COMM_SELF, stderr, "%s\n", e.what()));
+      }
     }
     offsets.assign(all.offsets.begin(), all.offsets.end());
     neighbours.assign(all.neighbour.begin(), all.neighbour.end());
   }
+  PetscCallMPI(MPI_Bcast(&patch_failed, 1, MPI_INT, 0, comm_)); // every rank stops together
+  PetscCheck(!patch_failed, comm_, PETSC_ERR_USER,
+             "-force_patch_correction: the affine patch correction could not be solved on these points (above); run "
+             "with -force_patch_correction off");
   PetscCall(DistributePoints(comm_, global, offsets, neighbours, &layout_));
   PetscCall(PetscLogStagePop());
 

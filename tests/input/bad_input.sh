@@ -187,6 +187,11 @@ expect_error centroids_no_elements "-body_cut_file: '$source_dir/tests/geometry/
   -body_cut_type mesh -body_cut_file "$source_dir/tests/geometry/lines_only.geo" -body_cut_discretisation centroids
 expect_error centroids_not_mesh "-body_cut_discretisation centroids: only a mesh shape" "$scene" "${sh[@]}" -body_cut_type circle \
   -body_cut_centre 0.005,0.005 -body_cut_radius 0.002 -body_cut_discretisation centroids
+# -force_patch_correction (patch_correction.hpp): a word that is not a choice, and on
+# with the energy-consistent form, which it does not correct.
+expect_error patch_correction_word "-force_patch_correction 'maybe' is not a choice" "$cloud_scene" -force_patch_correction maybe
+expect_error patch_correction_energy "-force_patch_correction on corrects the bond-only force only" "$cloud_scene" \
+  -force_form energy_consistent -force_patch_correction on
 
 # Options are checked before any work (docs/options.md): a typo or a bad -ts_* value
 # stops the run before the scene is shown and the body is built.
