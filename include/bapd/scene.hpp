@@ -97,6 +97,12 @@ const std::vector<std::string> &SceneWarnings();
 // 64-bit: a fine -body_dx can ask for more than 2^31 points (refused, see below).
 int64_t ScenePointEstimate(const Scene &scene);
 
+// The memory check of the scene (before anything is built, with the lattice's pi x
+// horizon_factor^2 bonds a point) again with the real point and bond counts (given
+// points with their own horizons have more bonds a point: "either reaches", geometry.hpp).
+// Collective; refuses with the option to change if the body does not fit.
+PetscErrorCode CheckBodyMemory(MPI_Comm comm, const Scene &scene, int64_t points, int64_t bonds);
+
 const char *to_string(ForceForm form);
 
 } // namespace bapd

@@ -128,6 +128,10 @@ PetscErrorCode Simulation::BuildBody()
     offsets.assign(all.offsets.begin(), all.offsets.end());
     neighbours.assign(all.neighbour.begin(), all.neighbour.end());
   }
+  // The memory check with the real bond count (the scene's assumed the lattice's).
+  int64_t counts[2] = {static_cast<int64_t>(global.size()), static_cast<int64_t>(offsets.empty() ? 0 : offsets.back())};
+  PetscCallMPI(MPI_Bcast(counts, 2, MPI_INT64_T, 0, comm_));
+  PetscCall(CheckBodyMemory(comm_, scene_, counts[0], counts[1]));
   PetscCallMPI(MPI_Bcast(&patch_failed, 1, MPI_INT, 0, comm_)); // every rank stops together
   PetscCheck(!patch_failed, comm_, PETSC_ERR_USER,
              "-force_patch_correction: the affine patch correction could not be solved on these points (above); run "
