@@ -34,12 +34,9 @@ std::vector<double> force_vectors(const PointCloud &cloud, const Families &fam, 
       const BondKinematics k  = W == 1 ? detail::bond_kinematics<1>(ba, intact, 1, s, totals)
                                        : detail::bond_kinematics<0>(ba, intact, W, s, totals);
       if (!k.usable) continue;
-      const double  f  = detail::force_scale(k, totals, s.family_volume[q]);
-      const double *ki = k.shape_tensor_inv;
-      const double  d0 = s.offset[2 * q], d1 = s.offset[2 * q + 1];
-      const double  g0 = f * (ki[0] * d0 + ki[1] * d1), g1 = f * (ki[1] * d0 + ki[2] * d1);
-      g[2 * (o + q)]     = C[0] * g0 + C[1] * g1;
-      g[2 * (o + q) + 1] = C[2] * g0 + C[3] * g1;
+      const Vec2 v       = detail::force_vector(k, totals, s, q);
+      g[2 * (o + q)]     = C[0] * v[0] + C[1] * v[1];
+      g[2 * (o + q) + 1] = C[2] * v[0] + C[3] * v[1];
     }
   }
   return g;
