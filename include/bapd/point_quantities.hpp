@@ -19,7 +19,8 @@
 // with g_ij = w_ij K_ij^{-1} xi_ij; sum_j B_ij = C_i M_i = I for the tensor correction,
 // so an affine motion again gives P_i = P(A) at every point (and the interior figure
 // for the scalar one). With -force_patch_correction C_i g_ij gets the kernel's h_ij
-// added (patch_correction.hpp), and sum_j B_ij = I + sum_j h_ij (x) xi_ij V_j. F_i and lambda_3,i keep the scalar weights a_ij.
+// added (patch_correction.hpp), and sum_j B_ij = I + sum_j h_ij (x) xi_ij V_j.
+// F_i and lambda_3,i keep the scalar weights a_ij.
 //   Cauchy stress      sigma_i = P_i F_i^T / J_i,  J_i = det F~_i lambda_3,i
 //   energy density     W_i = sum_j Psi(F_ij) V_j / sum_j V_j (strain_energy(),
 //                      ba_force.hpp: the internal energy of history.csv is sum V_i W_i)
