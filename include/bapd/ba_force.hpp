@@ -9,7 +9,9 @@
 // With -force_stress_correction (stress_correction.hpp, docs/stress_consistency.md)
 // g_ij becomes C_i g_ij, C_i = M_i^{-1} or I / m_i from BondGeometry, so that a
 // uniform P gives sum_j t_ij (x) xi_ij V_j = P (P M_i without it); the pairing of
-// eq 1, and so linear momentum, is untouched.
+// eq 1, and so linear momentum, is untouched. With -force_patch_correction
+// (patch_correction.hpp: given points) g_ij gets h_ij = ((lambda_i - lambda_j) . xi) xi
+// added, so that an affine motion leaves no interior force on an irregular cloud.
 //
 // The loop is written once here and templated on the constitutive model (any type
 // with `StressStatus stress(const Mat2 &F, double &c33, Mat2 &P) const`), so the
@@ -41,6 +43,7 @@
 #include "bapd/bond_state.hpp"
 #include "bapd/family.hpp"
 #include "bapd/lanes.hpp"
+#include "bapd/patch_correction.hpp"
 #include "bapd/stress_status.hpp"
 #include "bapd/tensor.hpp"
 
@@ -301,6 +304,10 @@ template <bool Corrected> struct BondOnlyForm {
   double            *data; // ws.pending_data: g_ij, 2 of 3 per slot
   const double      *off, *fvk, *C;
   const PointTotals &totals;
+  // -force_patch_correction (patch_correction.hpp): lambda of the point and of every
+  // local point, and the point's neighbours; lambda_i nullptr: off (the lattice).
+  const double       *lambda_i, *lambda;
+  const std::int32_t *nb;
 
   void none(std::size_t q) { t[2 * q] = t[2 * q + 1] = 0.0; }
   void collect(std::size_t slot, std::size_t q, const BondKinematics &k)
@@ -310,6 +317,7 @@ template <bool Corrected> struct BondOnlyForm {
     const double  d0 = off[2 * q], d1 = off[2 * q + 1];
     double        g0 = f * (ki[0] * d0 + ki[1] * d1), g1 = f * (ki[1] * d0 + ki[2] * d1);
     correct<Corrected>(C, g0, g1);
+    if (lambda_i) add_patch_term(lambda_i, lambda + 2 * nb[q], d0, d1, g0, g1); // h_ij
     data[3 * slot]     = g0;
     data[3 * slot + 1] = g1;
   }
@@ -326,12 +334,13 @@ void bond_forces_range(const Model &model, const PointCloud &ref, const double *
                        const BondGeometry &geo, const BondState &state, double *c33, double *bond_force,
                        BondKernelWorkspace &ws, std::size_t begin, std::size_t end, KernelStats &stats)
 {
-  std::size_t evaluated = 0, unusable = 0;
+  std::size_t   evaluated = 0, unusable = 0;
+  const double *lambda = ref.patch_correction.empty() ? nullptr : ref.patch_correction.data();
   for (std::size_t i = begin; i < end; ++i) {
     const KernelPoint       pt = begin_point<Words>(ref, y, fam, geo, state, i, ws);
     BondOnlyForm<Corrected> form{bond_force + 2 * pt.offset, ws.pending_data.data(), pt.s.offset.data(),
                                  pt.s.family_volume.data(), Corrected ? geo.correction.data() + 4 * i : nullptr,
-                                 pt.totals};
+                                 pt.totals, lambda ? lambda + 2 * i : nullptr, lambda, fam.neighbour.data() + pt.offset};
     stress_pass<Words>(model, pt, i, c33, ws, form, evaluated, unusable, stats);
   }
   stats.evaluated += evaluated;

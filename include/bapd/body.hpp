@@ -66,6 +66,8 @@ struct PointCloud {
   // delta_i, the point's own horizon [m] (geometry.hpp); empty: every point has the
   // one horizon passed to build_families (the uniform lattice).
   std::vector<double>  horizon;
+  // lambda_i of -force_patch_correction (patch_correction.hpp), 2 per point; empty: off.
+  std::vector<double>  patch_correction;
   std::size_t          size() const { return volume.size(); }
 };
 

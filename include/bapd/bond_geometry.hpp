@@ -232,6 +232,16 @@ inline double force_scale(const BondKinematics &k, const PointTotals &totals, do
   return k.volume * (totals.family_volume + family_volume_j) * totals.half_inverse_family_volume_squared;
 }
 
+// g_ij = force_scale K^{-1} (x_j - x_i) of the bond at position q of the gathered point
+// (eq 23; the kernel's BondOnlyForm::collect forms the same product in the same order).
+inline Vec2 force_vector(const BondKinematics &k, const PointTotals &totals, const PointScratch &s, std::size_t q)
+{
+  const double  f  = force_scale(k, totals, s.family_volume[q]);
+  const double *ki = k.shape_tensor_inv;
+  const double  d0 = s.offset[2 * q], d1 = s.offset[2 * q + 1];
+  return {f * (ki[0] * d0 + ki[1] * d1), f * (ki[1] * d0 + ki[2] * d1)};
+}
+
 } // namespace detail
 
 // Which intact bonds have a usable K, per family point (for counts and reports; the

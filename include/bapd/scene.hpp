@@ -37,6 +37,9 @@ struct Scene {
   // -force_stress_correction (stress_correction.hpp): the bond-only force made to give
   // sum_j t_ij (x) xi_ij V_j = P; the identity for the energy-consistent form.
   StressCorrection   stress_correction = StressCorrection::none;
+  // -force_patch_correction (patch_correction.hpp): the bond-only force made to pass the
+  // affine patch test on given points (lambda per point, formed at setup).
+  bool               patch_correction = false;
   MaterialParameters material;
   double             density = 1000.0; // kg/m^3
 
@@ -93,6 +96,12 @@ const std::vector<std::string> &SceneWarnings();
 // (hole_containing, lattice.hpp); given points, those that are material.
 // 64-bit: a fine -body_dx can ask for more than 2^31 points (refused, see below).
 int64_t ScenePointEstimate(const Scene &scene);
+
+// The memory check of the scene (before anything is built, with the lattice's pi x
+// horizon_factor^2 bonds a point) again with the real point and bond counts (given
+// points with their own horizons have more bonds a point: "either reaches", geometry.hpp).
+// Collective; refuses with the option to change if the body does not fit.
+PetscErrorCode CheckBodyMemory(MPI_Comm comm, const Scene &scene, int64_t points, int64_t bonds);
 
 const char *to_string(ForceForm form);
 

@@ -45,7 +45,7 @@ struct SceneInput {
   std::vector<ShapeInput>  shapes;
   std::string              cloud; // -body_cloud: a point cloud file instead of the lattice
   std::string              model = "gent", formulation = "plane_stress", force_form = "energy_consistent",
-                           stress_correction = "auto", grip_field = "auto", grip_placement = "outside";
+                           stress_correction = "auto", patch_correction = "auto", grip_field = "auto", grip_placement = "outside";
   bool                     D_set = false, bulk_ratio_set = false;
   double                   bulk_ratio = 1000.0;
   bool                     critical_stretch_set = false;

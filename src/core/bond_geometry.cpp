@@ -113,10 +113,9 @@ void point_correction(const PointCloud &cloud, const Families &fam, BondGeometry
                                        : detail::bond_kinematics<0>(ba, all, W, scratch, totals);
       if (!k.usable) continue;
       // M_i += g_ij (x) xi_ij V_j, g_ij = force_scale K^{-1} xi_ij: the kernel's g, bit for bit
-      const double  f  = detail::force_scale(k, totals, scratch.family_volume[q]);
-      const double *ki = k.shape_tensor_inv;
-      const double  d0 = scratch.offset[2 * q], d1 = scratch.offset[2 * q + 1], v = scratch.shape[q].v[3];
-      const double  g0 = f * (ki[0] * d0 + ki[1] * d1), g1 = f * (ki[1] * d0 + ki[2] * d1);
+      const Vec2   g  = detail::force_vector(k, totals, scratch, q);
+      const double d0 = scratch.offset[2 * q], d1 = scratch.offset[2 * q + 1], v = scratch.shape[q].v[3];
+      const double g0 = g[0], g1 = g[1];
       M[0] += g0 * d0 * v;
       M[1] += g0 * d1 * v;
       M[2] += g1 * d0 * v;

@@ -58,9 +58,13 @@ PetscErrorCode DistributePoints(MPI_Comm comm, const PointCloud &global_cloud, c
   PetscCallMPI(MPI_Comm_size(comm, &size));
   PetscInt n_global = (PetscInt)global_cloud.size(), edge_cut = 0;
   PetscCallMPI(MPI_Bcast(&n_global, 1, MPIU_INT, 0, comm));
-  // Reals per point: x, y, V, V(H), and delta_i when the points have their own horizons.
-  int R = global_cloud.horizon.empty() ? 4 : 5;
+  // Reals per point: x, y, V, V(H), and delta_i when the points have their own horizons,
+  // then lambda_i (2) with -force_patch_correction.
+  int R = global_cloud.horizon.empty() ? 4 : 5, L = global_cloud.patch_correction.empty() ? 0 : 2;
   PetscCallMPI(MPI_Bcast(&R, 1, MPI_INT, 0, comm));
+  PetscCallMPI(MPI_Bcast(&L, 1, MPI_INT, 0, comm));
+  const int H = R; // where lambda starts in a point's reals
+  R += L;
   PetscCheck(n_global >= size, comm, PETSC_ERR_USER, "The body has %" PetscInt_FMT " points, fewer than the %d ranks: run on fewer ranks or refine -body_dx", n_global, size);
 
   std::vector<int>      my_ids;
@@ -96,7 +100,8 @@ PetscErrorCode DistributePoints(MPI_Comm comm, const PointCloud &global_cloud, c
         real[R * k + 1] = global_cloud.x[2 * i + 1];
         real[R * k + 2] = global_cloud.volume[i];
         real[R * k + 3] = global_cloud.family_volume[i];
-        if (R == 5) real[R * k + 4] = global_cloud.horizon[i];
+        if (H == 5) real[R * k + 4] = global_cloud.horizon[i];
+        for (int l = 0; l < L; ++l) real[R * k + H + l] = global_cloud.patch_correction[2 * i + l];
       }
       PetscInt c[3] = {(PetscInt)rp.owned.size(), (PetscInt)rp.ring1.size(), (PetscInt)rp.ring2.size()};
       if (r == 0) {
@@ -137,13 +142,15 @@ PetscErrorCode DistributePoints(MPI_Comm comm, const PointCloud &global_cloud, c
   c.volume.resize(m);
   c.family_volume.resize(m);
   c.natural_id.assign(my_ids.begin(), my_ids.end());
-  c.horizon.resize(R == 5 ? m : 0);
+  c.horizon.resize(H == 5 ? m : 0);
+  c.patch_correction.resize(L * m);
   for (std::size_t k = 0; k < m; ++k) {
     c.x[2 * k]          = my_real[R * k];
     c.x[2 * k + 1]      = my_real[R * k + 1];
     c.volume[k]         = my_real[R * k + 2];
     c.family_volume[k]  = my_real[R * k + 3];
-    if (R == 5) c.horizon[k] = my_real[R * k + 4];
+    if (H == 5) c.horizon[k] = my_real[R * k + 4];
+    for (int l = 0; l < L; ++l) c.patch_correction[L * k + l] = my_real[R * k + H + l];
   }
   PetscFunctionReturn(0);
 }

@@ -111,6 +111,7 @@ PetscErrorCode SceneView(MPI_Comm comm, const Scene &s)
   if (s.stress_correction != StressCorrection::none) // (absent by default: the summary stays as it was)
     text += Format(", stress correction %s%s", to_string(s.stress_correction),
                    s.force_form == ForceForm::energy_consistent ? " (the identity for this form)" : "");
+  if (s.patch_correction) text += ", patch correction on";
   text += "\n";
   if (s.failure) text += Format("  failure   bonds break past stretch s_c = %g\n", s.critical_stretch);
   else text += "  failure   none\n";

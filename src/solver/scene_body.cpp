@@ -131,15 +131,15 @@ double AvailableMemoryBytes()
   return kib * 1024.0;
 }
 
-// Refuses, before anything is built, a lattice that cannot fit: the points, their
-// bonds (about pi x horizon_factor^2 a point) and the memory they need, against what
+// Refuses a body that cannot fit: the points, their bonds (before anything is built:
+// about pi x horizon_factor^2 a point, the lattice's; after rank 0 has built the bond
+// graph: the real count, CheckBodyMemory) and the memory they need, against what
 // the node of rank 0 has available for the ranks it runs. The cost per point is the
 // one measured at delta = 3.015 dx (docs/performance.md section 2: 1.83 KB, 27.9
 // bonds a point), scaled with the bonds a point has.
-PetscErrorCode CheckMemory(MPI_Comm comm, const Scene &scene, int64_t points)
+PetscErrorCode CheckMemory(MPI_Comm comm, const Scene &scene, int64_t points, double bonds_per_point)
 {
   const double bytes_per_point_paper = 1.9e3, horizon_factor_paper = 3.015;
-  const double bonds_per_point       = M_PI * scene.horizon_factor * scene.horizon_factor;
   const double bytes_per_point = bytes_per_point_paper * bonds_per_point / (M_PI * horizon_factor_paper * horizon_factor_paper);
   PetscMPIInt  size, rank, node_ranks;
   MPI_Comm     node;
@@ -486,7 +486,14 @@ PetscErrorCode CheckBody(MPI_Comm comm, const SceneInput &in, Scene *scene)
 PetscErrorCode CheckBodyFits(MPI_Comm comm, const Scene &scene)
 {
   PetscFunctionBeginUser;
-  PetscCall(CheckMemory(comm, scene, ScenePointEstimate(scene)));
+  PetscCall(CheckMemory(comm, scene, ScenePointEstimate(scene), M_PI * scene.horizon_factor * scene.horizon_factor));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode CheckBodyMemory(MPI_Comm comm, const Scene &scene, int64_t points, int64_t bonds)
+{
+  PetscFunctionBeginUser;
+  PetscCall(CheckMemory(comm, scene, points, points > 0 ? static_cast<double>(bonds) / static_cast<double>(points) : 0.0));
   PetscFunctionReturn(0);
 }
 

@@ -4,11 +4,13 @@
 #include <cerrno>
 #include <cmath>
 #include <cstring>
+#include <exception>
 #include <filesystem>
 #include <limits>
 
 #include "bapd/help.hpp"
 #include "bapd/geometry.hpp"
+#include "bapd/patch_correction.hpp"
 
 namespace bapd {
 
@@ -93,12 +95,49 @@ PetscErrorCode Simulation::CheckOptionsEarly()
   PetscFunctionReturn(0);
 }
 
+namespace {
+
+// Given points are not checked for pieces by the scene (FindCut looks at holes and
+// notches on the lattice): here the bond graph itself is. Writes "" if every point is
+// bonded to the rest, else the message: how many pieces, the smallest one's size and a
+// point of it (an isolated point has no stiffness at all; a loose piece moves freely).
+void DescribePieces(const PointCloud &cloud, const Families &fam, const std::string &source, char *message, std::size_t size)
+{
+  const std::size_t        n = fam.n_family;
+  std::vector<std::size_t> parent(n);
+  for (std::size_t i = 0; i < n; ++i) parent[i] = i;
+  auto find = [&](std::size_t i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  };
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t b = fam.offsets[i]; b < fam.offsets[i + 1]; ++b) parent[find(i)] = find(static_cast<std::size_t>(fam.neighbour[b]));
+  std::vector<std::size_t> count(n, 0);
+  std::size_t              n_pieces = 0;
+  for (std::size_t i = 0; i < n; ++i) n_pieces += count[find(i)]++ == 0;
+  message[0] = '\0';
+  if (n_pieces <= 1) return;
+  std::size_t smallest = 0; // the first point of the smallest piece
+  for (std::size_t i = 1; i < n; ++i)
+    if (count[find(i)] < count[find(smallest)]) smallest = i;
+  std::snprintf(message, size,
+                "%s: the given points fall apart into %zu pieces with no bond between them (the smallest: %zu point(s), e.g. "
+                "point %lld at (%g, %g) m): a piece not bonded to the rest has no stiffness against it. Remove the "
+                "stray points from the file, close the gap, or raise -horizon_factor",
+                source.c_str(), n_pieces, count[find(smallest)], static_cast<long long>(cloud.natural_id[smallest]), cloud.x[2 * smallest],
+                cloud.x[2 * smallest + 1]);
+}
+
+} // namespace
+
 // Body, partition, layout, families and reference bond geometry.
 PetscErrorCode Simulation::BuildBody()
 {
   const double       horizon = scene_.horizon();
   PointCloud         global;
   std::vector<int>   offsets, neighbours;
+  int                patch_failed = 0;
+  char               pieces[512]  = ""; // rank 0: the message if given points fall apart
 
   PetscFunctionBegin;
   PetscCall(PetscLogStagePush(stage_partition_));
@@ -109,9 +148,33 @@ PetscErrorCode Simulation::BuildBody()
     global               = make_points(scene_.body, scene_.horizon_factor);
     Families all         = build_families(global, global.size(), horizon, scene_.body.notches);
     compute_family_volumes(global, all);
+    if (scene_.body.given_points) DescribePieces(global, all, scene_.body.given_points->source, pieces, sizeof pieces);
+    if (scene_.patch_correction && !pieces[0]) { // lambda per point, shipped with the points (patch_correction.hpp)
+      PatchCorrectionReport report;
+      try {
+        global.patch_correction = compute_patch_correction(global, all, scene_.stress_correction, &report);
+        PetscCall(PetscPrintf(PETSC_COMM_SELF,
+                              "Patch correction: %zu interior points, largest interior force under an affine motion %.2g -> %.2g "
+                              "of its terms (%zu iterations)\n",
+                              report.interior, report.before, report.after, report.iterations));
+      } catch (const std::exception &e) {
+        patch_failed = 1;
+        PetscCall(PetscFPrintf(PETSC_COMM_SELF, stderr, "%s\n", e.what()));
+      }
+    }
     offsets.assign(all.offsets.begin(), all.offsets.end());
     neighbours.assign(all.neighbour.begin(), all.neighbour.end());
   }
+  PetscCallMPI(MPI_Bcast(pieces, sizeof pieces, MPI_CHAR, 0, comm_));
+  PetscCheck(!pieces[0], comm_, PETSC_ERR_USER, "%s", pieces);
+  // The memory check with the real bond count (the scene's assumed the lattice's).
+  int64_t counts[2] = {static_cast<int64_t>(global.size()), static_cast<int64_t>(offsets.empty() ? 0 : offsets.back())};
+  PetscCallMPI(MPI_Bcast(counts, 2, MPI_INT64_T, 0, comm_));
+  PetscCall(CheckBodyMemory(comm_, scene_, counts[0], counts[1]));
+  PetscCallMPI(MPI_Bcast(&patch_failed, 1, MPI_INT, 0, comm_)); // every rank stops together
+  PetscCheck(!patch_failed, comm_, PETSC_ERR_USER,
+             "-force_patch_correction: the affine patch correction could not be solved on these points (above); run "
+             "with -force_patch_correction off");
   PetscCall(DistributePoints(comm_, global, offsets, neighbours, &layout_));
   PetscCall(PetscLogStagePop());
 

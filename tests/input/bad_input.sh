@@ -182,6 +182,7 @@ write_cloud no_volume.csv "x,y,vol,block_id"
 sed '3s/,2.5e-10,/,0,/' cloud.csv > zero_volume.csv
 sed '5s/,2.5e-10,/,-1e-10,/' cloud.csv > negative_volume.csv
 { cat cloud.csv; sed -n 3p cloud.csv; } > duplicate.csv
+awk -F, 'NR == 1 || $1 < 0.0045 || $1 > 0.0065' cloud.csv > two_pieces.csv # a 2 mm gap > delta = 1.5 mm
 echo "x,y,volume" > not_hdf5.h5
 expect_error cloud_missing "-body_cloud: cannot open 'no_such.csv'" "$cloud_scene" -body_cloud no_such.csv
 expect_error cloud_unreadable "-body_cloud: 'not_hdf5.h5' is not an HDF5 file" "$cloud_scene" -body_cloud not_hdf5.h5
@@ -201,6 +202,14 @@ expect_error centroids_no_elements "-body_cut_file: '$source_dir/tests/geometry/
   -body_cut_type mesh -body_cut_file "$source_dir/tests/geometry/lines_only.geo" -body_cut_discretisation centroids
 expect_error centroids_not_mesh "-body_cut_discretisation centroids: only a mesh shape" "$scene" "${sh[@]}" -body_cut_type circle \
   -body_cut_centre 0.005,0.005 -body_cut_radius 0.002 -body_cut_discretisation centroids
+expect_error cloud_two_pieces "two_pieces.csv: the given points fall apart into 2 pieces with no bond between them (the smallest: 140 point(s)" \
+  "$cloud_scene" -body_cloud two_pieces.csv
+
+# -force_patch_correction (patch_correction.hpp): a word that is not a choice, and on
+# with the energy-consistent form, which it does not correct.
+expect_error patch_correction_word "-force_patch_correction 'maybe' is not a choice" "$cloud_scene" -force_patch_correction maybe
+expect_error patch_correction_energy "-force_patch_correction on corrects the bond-only force only" "$cloud_scene" \
+  -force_form energy_consistent -force_patch_correction on
 
 # Options are checked before any work (docs/options.md): a typo or a bad -ts_* value
 # stops the run before the scene is shown and the body is built.

@@ -39,10 +39,11 @@ elif [ "$case" = dogbone ] || [ "$case" = double_edge_notched ]; then
          -load_schedule 0,1,0.02,1.05 -output_interval 20 -progress_interval 100000 -output_final_state)
 elif [ "$case" = cloud ]; then
   # The graded point cloud of examples/point_cloud.yaml (own volumes and horizons, a hole
-  # cut by the scene, the bond-only form with the tensor correction), stretched briefly.
+  # cut by the scene, the bond-only form with the tensor correction and the affine patch
+  # correction, lambda per point shipped with the points), stretched briefly.
   scene=(-options_file_yaml "$BAPD_SOURCE_DIR/examples/point_cloud.yaml"
          -body_cloud "$BAPD_SOURCE_DIR/examples/geometry/graded_sheet.csv"
-         -load_schedule 0,1,0.05,1.2 -output_interval 50 -progress_interval 100000 -output_final_state)
+         -force_form bond_only -load_schedule 0,1,0.05,1.2 -output_interval 50 -progress_interval 100000 -output_final_state)
 elif [ "$case" = fracture ] || [ "$case" = fracture_corrected ]; then
   # Stretch the sheet fast enough that the notch opens and bonds break within the run.
   scene+=(-load_schedule 0,1,0.2,1.6 -failure_critical_stretch 2.0)

@@ -1,0 +1,81 @@
+#pragma once
+// The affine patch test on irregular points (issue 18 item 5, METHOD.md section 2:
+// "the net internal force of an interior point is zero under an affine motion"),
+// -force_patch_correction (docs/discretisations.md).
+//
+// Why it fails without a correction. An affine motion gives F_ij = A on every usable
+// bond, so one P for every bond, and the bond-only force (eq 23, with the stress
+// correction C_i of stress_correction.hpp) is t_ij = P g_ij, g_ij = C_i w_ij K_ij^{-1}
+// xi_ij. The force density is then
+//   f_i = sum_j (t_ij - t_ji) V_j = P d_i,   d_i = sum_j (g_ij - g_ji) V_j,
+// the discrete divergence of a constant tensor. On a lattice d_i = 0 by symmetry at
+// every point whose neighbourhood (two horizons: g_ji reads V(H_j)) is whole; on a
+// jittered or graded cloud it is 3-20 % of sum_j (|g_ij| + |g_ji|) V_j and does not
+// shrink with refinement (the family's rim takes points in and out irregularly).
+//
+// The correction. Every bond gets an added force vector along itself,
+//   g_ij -> g_ij + h_ij,   h_ij = ((lambda_i - lambda_j) . xi_ij) xi_ij,
+// from one vector lambda per point (2 doubles, 16 bytes a point). h_ji = -h_ij
+// (xi_ji = -xi_ij), so t_ij and t_ji stay an action-reaction pair and linear
+// momentum is exact as before; the added force is central, like a bond-based
+// spring's. lambda solves, at every interior point i,
+//   d_i + sum_j 2 ((lambda_i - lambda_j) . xi_ij) xi_ij V_j = 0,
+// which, times V_i, is A lambda = -V_i d_i with A_ii = sum_j 2 V_i V_j xi (x) xi and
+// A_ij = -2 V_i V_j xi (x) xi: a graph Laplacian with positive semi-definite tensor
+// weights, symmetric. At the boundary layer lambda = 0 (Dirichlet): there f_i = P d_i
+// is the traction a free edge needs (the forces a grip holds), which must stay; the
+// interior's corrections flow into it, and sum_i V_i f_i = 0 still holds. A is then
+// positive definite, solved by conjugate gradients (block-Jacobi preconditioned) to
+// round-off, once, on the whole cloud (rank 0 at setup): lambda is a reference
+// quantity of the points, shipped with them like V(H), so every rank layout gets the
+// same bits.
+//
+// Which points are interior: those more than one horizon from an edge. An edge point
+// is one whose bonds leave an angular gap wider than a right angle (a point of the
+// outer row of a straight edge has a gap of about 180 degrees; a notch's faces count,
+// as no bond crosses it); the boundary layer is the edge points and every point bonded
+// to one, and every point with a bond whose K is not usable either way (its force
+// vector is 0, not g). Why one horizon and not the two that d_i reaches:
+// patch_correction.cpp (boundary_layer).
+//
+// What it does not do: the tensor correction's virial sum_j t_ij (x) xi_ij V_j = P is
+// perturbed by sum_j h_ij (x) xi_ij V_j (0.3-1 % on average over a cloud, up to 14 % at
+// a point; docs/discretisations.md); the energy-consistent form is not corrected (its
+// forces are a gradient: a correction would have to be an energy's). On the lattice the
+// correction is off (its interior passes by symmetry), so lattice runs are bit for bit
+// what they were.
+#include <cstddef>
+#include <vector>
+
+#include "bapd/body.hpp"
+#include "bapd/family.hpp"
+#include "bapd/stress_correction.hpp"
+
+namespace bapd {
+
+// h_ij added to g_ij: lambda_i, lambda_j (2 each), xi = (d0, d1). The kernel and the
+// solve below use this one function, so they agree.
+inline void add_patch_term(const double *lambda_i, const double *lambda_j, double d0, double d1, double &g0,
+                           double &g1)
+{
+  const double s = (lambda_i[0] - lambda_j[0]) * d0 + (lambda_i[1] - lambda_j[1]) * d1;
+  g0 += s * d0;
+  g1 += s * d1;
+}
+
+struct PatchCorrectionReport {
+  std::size_t interior   = 0; // points with d_i = 0 imposed
+  std::size_t iterations = 0; // conjugate-gradient iterations
+  double      before     = 0; // largest interior |d_i| / sum_j (|g_ij| + |g_ji|) V_j without lambda
+  double      after      = 0; // the same with lambda
+};
+
+// lambda, 2 per point (0 in the boundary layer), for the bond-only force with the
+// stress correction `stress_correction` (as compute_bond_geometry forms C_i). Needs
+// families of every point of the cloud (n_family = cloud.size(), no ghosts) and
+// cloud.family_volume. Throws std::invalid_argument if the families are not the whole
+// cloud's, std::runtime_error if the solve does not reach round-off.
+std::vector<double> compute_patch_correction(const PointCloud &cloud, const Families &families,
+                                             StressCorrection stress_correction, PatchCorrectionReport *report = nullptr);
+
+} // namespace bapd
