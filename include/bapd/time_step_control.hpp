@@ -8,8 +8,10 @@
 // The step in use is dt = min(dt_stiffness, dt_travel):
 //  - dt_stiffness = base x sqrt(lambda_rest / lambda_now), at most the base step,
 //    where lambda is the largest eigenvalue of M^{-1} K (Velocity Verlet is stable for
-//    dt < 2 / sqrt(lambda_max)); lambda_now comes from a power iteration on the
-//    current tangent, K v = -(f(u + eps v) - f(u)) / eps, warm-started from the last
+//    dt < 2 / sqrt(lambda_max)); lambda_now comes from a Krylov search on the
+//    current tangent, K v = -(f(u + eps v) - f(u)) / eps (the largest Rayleigh
+//    quotient over the space of the evaluations, -time_step_krylov; or the power
+//    iteration's), warm-started from the last
 //    eigenvector: a few force evaluations every -time_step_reestimate steps (more
 //    often while lambda moves, up to -time_step_reestimate_backoff x less often while
 //    the estimates find nothing that would move the step). It shrinks at once when

@@ -164,6 +164,10 @@ PetscErrorCode TimeStepControl::KrylovStart(MPI_Comm comm)
 
   PetscFunctionBegin;
   PetscCall(Dot(comm, v_.data(), v_.data(), &norm2));
+  if (!std::isfinite(norm2)) { // a wrecked state's search left a NaN (a diagnosis): the start vector again
+    std::copy(seed_.begin(), seed_.end(), v_.begin());
+    PetscCall(Dot(comm, v_.data(), v_.data(), &norm2));
+  }
   PetscCheck(norm2 > 0, comm, PETSC_ERR_USER, "Every degree of freedom is held by a load set: nothing moves");
   const double inv = 1.0 / std::sqrt(norm2);
   for (PetscInt k = 0; k < n; ++k) basis_[k] = v_[k] * inv;
