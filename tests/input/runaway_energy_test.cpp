@@ -209,6 +209,18 @@ TEST(DivergenceAdvice, TheBondOnlyFormsOwnInstabilityWhenAllElseIsSound)
   f.bond_only = false;
   const std::string energy = DivergenceAdvice(f);
   EXPECT_NE(energy.find("Cause: not found"), std::string::npos) << energy;
+  // The same run as the diagnosis's sharper (Krylov) estimate saw it: the state reached
+  // stiff (dt 1.44 x its stable step), 13 steps before the margin intact (dt 0.8 x):
+  // the stiffness is the blow-up's, still the form's instability; without the earlier
+  // state, or with its margin spent, the step.
+  f.bond_only = true;
+  f.stable_rest = 5.119e-4, f.dt = f.base = 3.8644e-4, f.stable = 2.6919e-4;
+  f.stable_earlier = 4.8305e-4, f.chain_reach = 0.4511, f.chain_reach_earlier = 0.2555, f.earlier_steps = 13;
+  const std::string stiff = DivergenceAdvice(f);
+  EXPECT_NE(stiff.find("Cause: an instability of the bond-only force form"), std::string::npos) << stiff;
+  f.stable_earlier = 1.05 * f.dt;
+  const std::string spent = DivergenceAdvice(f);
+  EXPECT_NE(spent.find("Cause: the time step (the material stiffened faster than the re-estimate followed)"), std::string::npos) << spent;
 }
 
 // The map's plane-strain K = 1e5 mu plate, energy-consistent, step fixed at rest (the
