@@ -318,8 +318,8 @@ PetscErrorCode TimeStepControl::EstimateStable(MPI_Comm comm, const Scene &scene
   PetscCall(PetscPrintf(comm, "Stable time step %.4e s (power iteration, lambda_max = %.4e 1/s^2); using dt = %.4e s (%.3g x stable)\n",
                         stable_dt_, lambda, dt_, dt_ / stable_dt_));
   if (options_.interval > 0)
-    PetscCall(PetscPrintf(comm, "Time step: re-estimated every %" PetscInt_FMT " steps (%" PetscInt_FMT " to %" PetscInt_FMT " power iterations about the current state), at most %.4e s%s\n",
-                          options_.interval, options_.iterations, std::max(options_.iterations, options_.max_iterations), dt_,
+    PetscCall(PetscPrintf(comm, "Time step: re-estimated every %" PetscInt_FMT " steps (%" PetscInt_FMT " to %" PetscInt_FMT " %s about the current state), at most %.4e s%s\n",
+                          options_.interval, options_.iterations, std::max(options_.iterations, options_.max_iterations), options_.krylov ? "Krylov steps" : "power iterations", dt_,
                           travel_ > 0 ? "; shorter while points with bonds fly" : ""));
   if (travel_ > 0 && travel_auto_)
     PetscCall(PetscPrintf(comm, "Time step: with failure on, no point with bonds moves more than 0.1 dx in one step (-time_step_travel 0 turns it off)\n"));
