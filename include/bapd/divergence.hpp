@@ -125,7 +125,9 @@ struct DivergenceFacts {
   double chain_reach_earlier = 0, bond_stretch_earlier = 1, applied_stretch_earlier = 1; // ...and its chain reach
 };
 // In this order (the first that fits): a step above the stable step at rest ->
-// -time_step_safety (or -time_step); the chain limit (0.8 <= reach <= 1.05: the Gent
+// -time_step_safety (or -time_step); a step fixed at rest above 0.9 x the stable step
+// of the state 10 to 20 steps before the failure (the safety factor's margin spent
+// while the material stiffens) -> -time_step_safety or -time_step_reestimate; the chain limit (0.8 <= reach <= 1.05: the Gent
 // stiffness mu Jm / (Jm + 3 - I1bar) is 5 x its rest value and unbounded beyond; a
 // larger reach is a state the blow-up already wrecked) -> the law's limit option
 // (-material_Jm; Arruda-Boyce: -material_lambda_m) and the stretch (also when the last
@@ -138,7 +140,9 @@ struct DivergenceFacts {
 // already wrecked, reach > 1.05, in a run whose lambda_max rose 4 x: the chain limit); the
 // bond-only form with less damping than its free edges need (100 1/s, section 1), in a
 // state less than half-way to the law's limit 10 to 20 steps before (closer, the
-// stiffening is the cause) -> -damping or -force_form energy_consistent; a
+// stiffening is the cause) -> -damping or -force_form energy_consistent (before it:
+// the bond-only form below 2.5 dx, whose rest state can be unstable, section 1 ->
+// -force_form energy_consistent or -horizon_factor); a
 // re-estimated step above the state's -> -time_step_safety; with everything else sound,
 // the bond-only form's own instability (the corners next to outside grips in pure
 // shear, stretch 4.7 to 6.6) -> -force_form energy_consistent. The order matters: a chain-limited state has a tiny stable

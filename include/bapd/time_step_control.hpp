@@ -8,8 +8,10 @@
 // The step in use is dt = min(dt_stiffness, dt_travel):
 //  - dt_stiffness = base x sqrt(lambda_rest / lambda_now), at most the base step,
 //    where lambda is the largest eigenvalue of M^{-1} K (Velocity Verlet is stable for
-//    dt < 2 / sqrt(lambda_max)); lambda_now comes from a power iteration on the
-//    current tangent, K v = -(f(u + eps v) - f(u)) / eps, warm-started from the last
+//    dt < 2 / sqrt(lambda_max)); lambda_now comes from a Krylov search on the
+//    current tangent, K v = -(f(u + eps v) - f(u)) / eps (the largest Rayleigh
+//    quotient over the space of the evaluations, -time_step_krylov; or the power
+//    iteration's), warm-started from the last
 //    eigenvector: a few force evaluations every -time_step_reestimate steps (more
 //    often while lambda moves, up to -time_step_reestimate_backoff x less often while
 //    the estimates find nothing that would move the step). It shrinks at once when
@@ -46,7 +48,9 @@ struct TimeStepOptions {
   double   stretch    = 0.05; // ...and whenever the applied stretch moved by this much since the last one
   double   shift      = 0.45; // the power iteration runs on A - shift lambda I: faster convergence to lambda_max
   PetscInt backoff    = 4;    // while the estimates find nothing that moves the step, interval and stretch grow up to this x
+  bool     krylov     = true; // Rayleigh-Ritz on the Krylov space of the iterations (Arnoldi) instead of the last power iterate
   bool     monitor    = false; // a line per re-estimate (measurements, docs/stability.md section 8)
+  PetscInt reference  = 0;     // measurements: every 25 steps, also a converged lambda_max of the same state (this many evaluations, not counted)
 };
 // Reads (and lists under -help) the options. Collective.
 PetscErrorCode TimeStepOptionsFromOptions(MPI_Comm comm, TimeStepOptions *options);
@@ -129,9 +133,32 @@ private:
   // Mixes seed_weight x the start vector into the eigenvector (Reestimate explains).
   PetscErrorCode MixSeed(MPI_Comm comm);
   static constexpr double seed_weight = 0.05;
+  // With the Krylov search: the Krylov space keeps the warm start's mode whatever the
+  // weight (it holds v and A v, ...), so the seed can carry more of the modes that rose
+  // elsewhere. The Jm = 8 plate's stretch-2 mode near the hole (2.0 x lambda_rest) was
+  // found at once with 0.5 and never with 0.05 (the estimate stayed at 1.3 x through the
+  // hold; docs/stability.md section 8).
+  static constexpr double krylov_seed_weight = 0.5;
   static constexpr PetscInt rising_iterations = 4; // fewest iterations while the shortened step's lambda rises
   PetscErrorCode PowerStep(MPI_Comm comm, ForceOperator &force, const std::vector<double> &c33, std::vector<double> *advance,
                            const double *u0, const double *a0, double shift, double *lambda);
+  // The Krylov search (-time_step_krylov): KrylovStart takes v_ (any length) as the
+  // first basis vector; KrylovStep j (from 0) applies A to basis vector j (one force
+  // evaluation), orthogonalises the result against the basis (twice: classical
+  // Gram-Schmidt, reproducible sums) into vector j + 1, and returns the largest
+  // eigenvalue of the symmetric part of the projected (j + 1) x (j + 1) matrix: the
+  // largest Rayleigh quotient over the whole space, never below the power iterate's
+  // (which lies in it). KrylovFinish leaves the Ritz vector of the last step in v_.
+  PetscErrorCode KrylovStart(MPI_Comm comm);
+  PetscErrorCode KrylovStep(MPI_Comm comm, ForceOperator &force, const std::vector<double> &c33, const double *u0, const double *a0, PetscInt j, double *lambda, bool *exhausted);
+  void           KrylovFinish(PetscInt steps);
+  PetscErrorCode Dot(MPI_Comm comm, const double *x, const double *y, double *result);
+  // Restarted Krylov about (u_rec_, a_rec_) from v_ with the seed mixed in, `iterations`
+  // evaluations (probes with the warm starts c33, read only): the largest quotient found. Leaves the Ritz vector in v_.
+  PetscErrorCode RestartedKrylov(MPI_Comm comm, ForceOperator &force, const std::vector<double> &c33, PetscInt iterations, double *best);
+  // -time_step_monitor_reference: the converged lambda_max of the state of the latest
+  // evaluation, printed next to the estimate in use; leaves the estimate's state as it was.
+  PetscErrorCode Reference(MPI_Comm comm, ForceOperator &force, PetscInt step);
 
   TimeStepOptions options_;
   double   stable_dt_ = 0, stable_now_ = 0, lambda_rest_ = 0, lambda_ = 0, lambda_largest_ = 0;
@@ -152,6 +179,13 @@ private:
   // Scratch sized at set-up: no allocation in a step.
   std::vector<char>   held_;
   std::vector<double> v_, seed_, u_rec_, a_rec_, u_probe_, a_probe_, sq_; // (no C33 copy: the probes read the operator's)
+  // Krylov: max_iterations + 1 basis vectors of the owned dofs, one after another; the
+  // projected matrix (row-major, krylov_cap x krylov_cap) and the Ritz vector's
+  // coefficients.
+  static constexpr PetscInt krylov_cap = 16;
+  PetscInt            krylov_size_ = 0; // basis vectors allocated
+  std::vector<double> basis_, projected_, ritz_;
+  PetscErrorCode      KrylovReserve(PetscInt vectors);
 };
 
 } // namespace bapd

@@ -411,7 +411,7 @@ def t_spectrum_narrow(root):
 
 
 def _cause(r):
-    m = re.search(r"Cause: ([^.]*)\.", r.error)
+    m = re.search(r"Cause: (.*?)\.(?:\s|$)", r.error)  # up to the first full stop (not the one of a number)
     return m.group(1) if m else ("" if r.rc == 0 else "(no cause named)")
 
 

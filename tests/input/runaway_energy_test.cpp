@@ -203,7 +203,7 @@ TEST(DivergenceAdvice, AWreckedLastStateIsJudgedByTheStateBeforeTheBlowUp)
   EXPECT_NE(stiffened.find("Cause: the time step (the material stiffened; the step was fixed at rest; measured 19 steps"), std::string::npos)
     << stiffened;
   EXPECT_NE(stiffened.find("-time_step_reestimate 50"), std::string::npos) << stiffened;
-  f.stable_earlier = 1.05 * f.dt; // it had not
+  f.stable_earlier = 1.25 * f.dt; // it had not: the safety factor's margin intact (dt = 0.8 x that state's stable step)
   const std::string sound = DivergenceAdvice(f);
   EXPECT_NE(sound.find("Cause: flutter"), std::string::npos) << sound;
   f.stable_earlier = 0; // no earlier state (fewer than 10 steps, or -checkpoint_on_error 0): as before
@@ -256,4 +256,71 @@ TEST(DivergenceAdvice, TheBondOnlyFormsOwnInstabilityWhenAllElseIsSound)
   f.bond_only = false;
   const std::string energy = DivergenceAdvice(f);
   EXPECT_NE(energy.find("Cause: not found"), std::string::npos) << energy;
+  // The same run as the diagnosis's sharper (Krylov) estimate saw it: the state reached
+  // stiff (dt 1.44 x its stable step), 13 steps before the margin intact (dt 0.8 x):
+  // the stiffness is the blow-up's, still the form's instability; without the earlier
+  // state, or with its margin spent, the step.
+  f.bond_only = true;
+  f.stable_rest = 5.119e-4, f.dt = f.base = 3.8644e-4, f.stable = 2.6919e-4;
+  f.stable_earlier = 4.8305e-4, f.chain_reach = 0.4511, f.chain_reach_earlier = 0.2555, f.earlier_steps = 13;
+  const std::string stiff = DivergenceAdvice(f);
+  EXPECT_NE(stiff.find("Cause: an instability of the bond-only force form"), std::string::npos) << stiff;
+  f.stable_earlier = 1.05 * f.dt;
+  const std::string spent = DivergenceAdvice(f);
+  EXPECT_NE(spent.find("Cause: the time step (the material stiffened faster than the re-estimate followed)"), std::string::npos) << spent;
+}
+
+// The map's plane-strain K = 1e5 mu plate, energy-consistent, step fixed at rest (the
+// facts its diagnosis printed): 13 steps before the blow-up the fixed step was 0.96 x
+// that state's stable step, the safety factor's margin spent while the material
+// stiffened. It was called "a bulk modulus too stiff ... whatever the step", yet
+// -time_step_safety 0.5 and the re-estimated step both run it: the time step, and the
+// fix is to let it follow the material. With the step re-estimated (it followed the
+// material) or the margin intact, the bulk modulus stays the cause.
+TEST(DivergenceAdvice, AFixedStepThatSpentItsMarginIsNotCalledTheBulkModulus)
+{
+  DivergenceFacts f;
+  f.stable_rest = 1.3905e-5, f.stable = 3.4584e-6;
+  f.dt = f.base = 1.1124e-5;
+  f.chain_reach = 0.0828, f.limit_value = 162.6, f.plane_strain = true, f.bulk_ratio = 1e5, f.bond_only = false, f.damping = 50;
+  f.reestimating = false;
+  f.earlier_steps = 13, f.stable_earlier = 1.1586e-5, f.chain_reach_earlier = 0.0077;
+  const std::string fixed = DivergenceAdvice(f);
+  EXPECT_NE(fixed.find("Cause: the time step (the material stiffened; the step was fixed at rest and had spent the margin"), std::string::npos)
+    << fixed;
+  EXPECT_NE(fixed.find("-time_step_reestimate 50"), std::string::npos) << fixed;
+  EXPECT_EQ(fixed.find("bulk"), std::string::npos) << fixed;
+  f.stable_earlier = 1.25 * f.dt; // the margin intact
+  const std::string intact = DivergenceAdvice(f);
+  EXPECT_NE(intact.find("Cause: a bulk modulus too stiff"), std::string::npos) << intact;
+  f.stable_earlier = 1.1586e-5, f.reestimating = true; // the step followed the material
+  const std::string followed = DivergenceAdvice(f);
+  EXPECT_NE(followed.find("Cause: a bulk modulus too stiff"), std::string::npos) << followed;
+}
+
+// The map's bond-only plate at 2 dx (facts from its diagnosis): it stops at stretch
+// 1.17 whether the step is fixed or re-estimated, at safety 0.2 and with damping 1000
+// alike, and it was called "the time step" (fixed) and "flutter" (re-estimated). The
+// step was sound 13 steps before the failure: the bond-only form at that horizon,
+// with either step; at the paper's horizon the same facts are the step (fixed) and
+// flutter (re-estimated) as before.
+TEST(DivergenceAdvice, TheBondOnlyFormBelowTwoAndAHalfDxIsNeitherTheStepNorFlutter)
+{
+  DivergenceFacts f;
+  f.stable_rest = 9.4626e-4, f.stable = 1.5943e-5; // the last good state is a wreck
+  f.dt = f.base = 7.5701e-4;
+  f.chain_reach = 0.762, f.limit_value = 8, f.bond_only = true, f.damping = 50, f.horizon_factor = 2;
+  f.earlier_steps = 13, f.stable_earlier = 9.4626e-4, f.chain_reach_earlier = 0.0787;
+  for (bool reestimating : {false, true}) {
+    f.reestimating          = reestimating;
+    const std::string small = DivergenceAdvice(f);
+    EXPECT_NE(small.find("Cause: the bond-only force form at -horizon_factor 2 (below 2.5)"), std::string::npos) << small;
+    EXPECT_NE(small.find("-force_form energy_consistent"), std::string::npos) << small;
+    EXPECT_EQ(small.find("-time_step_safety"), std::string::npos) << small;
+  }
+  f.horizon_factor = 3.015;
+  f.reestimating   = false;
+  EXPECT_NE(DivergenceAdvice(f).find("Cause: the time step"), std::string::npos);
+  f.reestimating = true;
+  EXPECT_NE(DivergenceAdvice(f).find("Cause: flutter"), std::string::npos);
 }

@@ -65,6 +65,23 @@ check stiff_bulk "a bulk modulus too stiff for plane strain" "-material_bulk_rat
 check stiffened_fixed_step "the time step (the material stiffened; the step was fixed at rest" "-time_step_reestimate 50" \
   "-time_step_reestimate 50" "${plate[@]}" -options_file_yaml "$src/examples/plate_hole_fast.yaml" -material_formulation plane_strain \
   -material_bulk_ratio 10 -load_schedule 0,1,0.05,1.5,0.1,1.5 -time_step_reestimate 0
+# The same scene with K = 1e5 mu in the energy-consistent form, the fast route: the fixed
+# step spends the safety factor's margin as the material stiffens (0.96 x the stable
+# step 13 steps before the blow-up at stretch 1.31). It was called "a bulk modulus too
+# stiff ... whatever the step"; the re-estimated step runs it (so does safety 0.5).
+check stiffened_fixed_step_bulk "the time step (the material stiffened; the step was fixed at rest and had spent the margin" \
+  "-time_step_reestimate 50" "-time_step_reestimate 50" "${plate[@]}" -options_file_yaml "$src/examples/plate_hole_fast.yaml" \
+  -material_formulation plane_strain -material_bulk_ratio 1e5 -force_form energy_consistent -load_schedule 0,1,0.05,1.5,0.1,1.5 \
+  -time_step_reestimate 0
+# The bond-only form at 2 dx (the map's Jm = 8 plate): it stops at stretch 1.17 with the
+# step fixed or re-estimated, at safety 0.2 and with damping 1000 alike (it was called
+# "the time step" and "flutter"); the energy-consistent form and a horizon of 3 dx run it.
+small_horizon=("${plate[@]}" -options_file_yaml "$src/examples/plate_hole_fast.yaml" -material_Jm 8 -horizon_factor 2
+               -force_form bond_only -load_schedule 0,1,0.05,1.5,1.05,1.5,1.1,2.0,2.1,2.0)
+check small_horizon_fixed_step "the bond-only force form at -horizon_factor 2" "-force_form energy_consistent" \
+  "-force_form energy_consistent" "${small_horizon[@]}" -time_step_reestimate 0
+check small_horizon "the bond-only force form at -horizon_factor 2" "-horizon_factor 2.5 to 4" "-horizon_factor 3.015" "${small_horizon[@]}"
+
 # The undamped bond-only sheet flutters at its free edges; damping 200 cures it, and
 # so does the energy-consistent form (below).
 check flutter "flutter of the bond-only force form" "-damping" "-damping 200" \
