@@ -36,6 +36,7 @@ struct ProbeInput {
   std::string         name;
   std::vector<double> at;
   bool                at_set = false;
+  std::string         group, file; // -probe_NAME_group (a Gmsh physical point) and its file
 };
 
 struct SceneInput {
@@ -70,7 +71,10 @@ PetscErrorCode CheckMaterial(MPI_Comm comm, const SceneInput &in, Scene *scene);
 // Loading (scene_loading.cpp): -load_sets, -load_schedule, -load_NAME_*.
 PetscErrorCode ReadLoading(MPI_Comm comm, Scene *scene, SceneInput *in);
 PetscErrorCode CheckLoading(MPI_Comm comm, const SceneInput &in, Scene *scene);
-// Probes (scene_probes.cpp): -probes, -probe_NAME_at.
+// The Gmsh files the body reads (its mesh shapes): where a physical group's file
+// defaults to (load sets and probes by group).
+std::vector<std::string> BodyGmshFiles(const Body2D &body);
+// Probes (scene_probes.cpp): -probes, -probe_NAME_at or -probe_NAME_group.
 PetscErrorCode ReadProbes(MPI_Comm comm, SceneInput *in);
 PetscErrorCode CheckProbes(MPI_Comm comm, const SceneInput &in, Scene *scene);
 // Output and time stepping (scene_run.cpp): -output_*, -time_step*, -damping,

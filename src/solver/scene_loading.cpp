@@ -29,15 +29,6 @@ bool ParseComponent(const std::string &text, ComponentLoad *load)
 
 const char *const kRegionChoices = "top, bottom, left, right, box, polygon, curve or group";
 
-// The Gmsh files the body reads (its mesh shapes), where a group's file defaults to.
-std::vector<std::string> BodyGmshFiles(const Body2D &body)
-{
-  std::vector<std::string> files;
-  for (const Shape &s : body.shapes)
-    if (s.kind == Shape::Kind::mesh && std::find(files.begin(), files.end(), s.file) == files.end()) files.push_back(s.file);
-  return files;
-}
-
 // Region group: the physical group -load_S_group of -load_S_file (default: the body's
 // one Gmsh file) as the set's area (a physical surface) or segments (a curve or points).
 PetscErrorCode ReadGroup(MPI_Comm comm, const LoadInput &li, const Body2D &body, LoadSet *set)
@@ -373,6 +364,14 @@ const char *to_string(ComponentLoad load)
   case ComponentLoad::stretch: return "stretch";
   }
   return "unknown";
+}
+
+std::vector<std::string> BodyGmshFiles(const Body2D &body)
+{
+  std::vector<std::string> files;
+  for (const Shape &s : body.shapes)
+    if (s.kind == Shape::Kind::mesh && std::find(files.begin(), files.end(), s.file) == files.end()) files.push_back(s.file);
+  return files;
 }
 
 } // namespace bapd

@@ -1,10 +1,12 @@
 // The probes section: named points whose displacement is recorded (-probes,
-// -probe_NAME_at). A probe must lie on material: in the body and outside every hole
-// (the hole rule of lattice.hpp). Which point it reads at run time: ProbeLocate
-// (scene_selection.cpp).
+// -probe_NAME_at, or -probe_NAME_group: a physical point of a Gmsh file, so that a
+// probe drawn in the geometry moves with it). A probe must lie on material: in the
+// body and outside every hole (the hole rule of lattice.hpp). Which point it reads at
+// run time: ProbeLocate (scene_selection.cpp).
 #include <algorithm>
 #include <string>
 
+#include "bapd/gmsh_shape.hpp"
 #include "bapd/lattice.hpp"
 #include "bapd/options_reader.hpp"
 #include "bapd/scene_input.hpp"
@@ -25,13 +27,46 @@ PetscErrorCode ReadProbes(MPI_Comm comm, SceneInput *in)
     const std::string title  = "Probe " + name;
     probe.name               = name;
     PetscCall(ReadOptionBlock(comm, prefix.c_str(), title.c_str(), [&](OptionReader &r) -> PetscErrorCode {
-      PetscCall(r.RealArray("-at", "Position x,y [m]; the nearest material point is recorded (required)", &probe.at, &probe.at_set));
+      PetscCall(r.RealArray("-at", "Position x,y [m]; the nearest material point is recorded (this or -group is required)", &probe.at,
+                            &probe.at_set));
+      PetscCall(r.String("-group", "A physical point of a Gmsh file (Physical Point(\"name\") = {k};): the probe is placed at it", &probe.group));
+      PetscCall(r.String("-file", "The Gmsh .geo or .msh file of -group (default: the body's mesh shape's file)", &probe.file));
       return 0;
     }));
     in->probes.push_back(probe);
   }
   PetscFunctionReturn(0);
 }
+
+namespace {
+
+// -probe_NAME_group: the position of a physical point (one node) of the Gmsh file.
+PetscErrorCode ProbeAtGroup(MPI_Comm comm, const ProbeInput &pi, const Body2D &body, Probe *p)
+{
+  const char *n = pi.name.c_str();
+  PetscFunctionBeginUser;
+  std::string file = pi.file;
+  if (file.empty()) {
+    const std::vector<std::string> files = BodyGmshFiles(body);
+    SceneCheck(files.size() == 1, comm,
+               "-probe_%s_file is required for probe '%s': the body reads %zu Gmsh files (mesh shapes), so the file of group '%s' is not "
+               "implied: give the .geo or .msh that names it",
+               n, n, files.size(), pi.group.c_str());
+    file = files[0];
+  }
+  GmshGroup         group;
+  const std::string problem = ReadGmshGroup(file, pi.group, &group);
+  SceneCheck(problem.empty(), comm, "-probe_%s_group %s: %s", n, pi.group.c_str(), problem.c_str());
+  SceneCheck(group.dim == 0 && group.segments.size() == 4, comm,
+             "-probe_%s_group %s: a probe is one point, but group '%s' of '%s' is %s: name a physical point of one node "
+             "(Physical Point(\"%s\") = {k};), or place the probe by -probe_%s_at x,y",
+             n, pi.group.c_str(), pi.group.c_str(), file.c_str(),
+             group.dim == 2 ? "a physical surface" : group.dim == 1 ? "a physical curve" : "several points", pi.group.c_str(), n);
+  p->x = group.segments[0], p->y = group.segments[1];
+  PetscFunctionReturn(0);
+}
+
+} // namespace
 
 PetscErrorCode CheckProbes(MPI_Comm comm, const SceneInput &in, Scene *scene)
 {
@@ -41,18 +76,25 @@ PetscErrorCode CheckProbes(MPI_Comm comm, const SceneInput &in, Scene *scene)
   scene->probes.clear();
   for (const ProbeInput &pi : in.probes) {
     const char *n = pi.name.c_str();
-    SceneCheck(pi.at_set, comm, "-probe_%s_at is required for probe '%s': give its position x,y in m%s", n, n,
-               MisspeltHint("-probe_" + pi.name + "_at").c_str());
-    SceneCheck(pi.at.size() == 2, comm, "-probe_%s_at holds %zu numbers: give exactly two, x,y in m", n, pi.at.size());
-    const Probe p = {pi.name, pi.at[0], pi.at[1]};
+    SceneCheck(!(pi.at_set && !pi.group.empty()), comm, "probe '%s' has both -probe_%s_at and -probe_%s_group: give one of them", n, n, n);
+    Probe p = {pi.name, 0, 0};
+    if (!pi.group.empty()) PetscCall(ProbeAtGroup(comm, pi, b, &p));
+    else {
+      SceneCheck(pi.at_set, comm, "-probe_%s_at is required for probe '%s': give its position x,y in m, or a Gmsh physical point by -probe_%s_group%s",
+                 n, n, n, MisspeltHint("-probe_" + pi.name + "_at").c_str());
+      SceneCheck(pi.at.size() == 2, comm, "-probe_%s_at holds %zu numbers: give exactly two, x,y in m", n, pi.at.size());
+      p.x = pi.at[0], p.y = pi.at[1];
+    }
+    const std::string where = pi.group.empty() ? "-probe_" + pi.name + "_at" : "-probe_" + pi.name + "_group " + pi.group + " at";
+    const char       *w     = where.c_str();
     SceneCheck(p.x >= -tol && p.x <= b.width + tol && p.y >= -tol && p.y <= b.height + tol, comm,
-               "-probe_%s_at (%g, %g) m lies outside the body [0, %g] x [0, %g] m: move it onto the body", n, p.x, p.y, b.width, b.height);
+               "%s (%g, %g) m lies outside the body [0, %g] x [0, %g] m: move it onto the body", w, p.x, p.y, b.width, b.height);
     const int hole = hole_containing(b, p.x, p.y);
     SceneCheck(hole < 0, comm,
-               "-probe_%s_at (%g, %g) m lies inside hole %d, where there is no material: move it onto the body (a hole's edge is fine)", n, p.x,
+               "%s (%g, %g) m lies inside hole %d, where there is no material: move it onto the body (a hole's edge is fine)", w, p.x,
                p.y, hole + 1);
     const int shape = b.shapes.empty() ? -1 : shape_removing(b.shapes, p.x, p.y);
-    SceneCheck(shape < 0, comm, "-probe_%s_at (%g, %g) m lies where shape '%s' (%s) removed the material: move it onto the body", n, p.x,
+    SceneCheck(shape < 0, comm, "%s (%g, %g) m lies where shape '%s' (%s) removed the material: move it onto the body", w, p.x,
                p.y, shape < 0 ? "" : b.shapes[shape].name.c_str(), shape < 0 ? "" : to_string(b.shapes[shape].op));
     scene->probes.push_back(p);
   }

@@ -170,6 +170,14 @@ expect_error curve_selects_nothing "-load_top_points: the curve selects no mater
   -load_top_region curve -load_top_points 0,0.01,0.01,0.01 -load_top_depth 0.0002
 expect_error group_placed_outside "-load_top_placement outside: load set 'top' is a group" "$scene" "${den[@]}" -load_top_region group \
   -load_top_group grip_bottom -load_top_placement outside
+# Probes by physical point (scene_probes.cpp)
+pp="$source_dir/tests/geometry/probe_point.geo"
+ppb=(-body_shapes sq -body_sq_type mesh -body_sq_op intersect -body_sq_file "$pp" -probes p)
+expect_error probe_group_curve "-probe_p_group top_edge: a probe is one point, but group 'top_edge' of '$pp' is a physical curve" \
+  "$scene" "${ppb[@]}" -probe_p_group top_edge
+expect_error probe_group_missing "-probe_p_group centre: '$pp' has no physical group named 'centre'" "$scene" "${ppb[@]}" -probe_p_group centre
+expect_error probe_at_and_group "probe 'p' has both -probe_p_at and -probe_p_group: give one of them" "$scene" "${ppb[@]}" \
+  -probe_p_group gauge -probe_p_at 0.005,0.005
 # Point clouds (-body_cloud, point_cloud_file.hpp) and element centroids (geometry.hpp):
 # cloud.csv is a good 20 x 20 cloud of the 10 mm sheet; each case spoils one thing.
 cloud_scene="$fixtures/cloud.yaml"
