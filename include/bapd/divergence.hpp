@@ -116,6 +116,7 @@ struct DivergenceFacts {
   double applied_stretch = 1;  // the schedule's stretch at that time [-]
   bool   plane_strain = false, bond_only = true;
   double bulk_ratio   = 0;     // K / mu
+  double critical_stretch = 0; // -failure_critical_stretch with failure on (0: off)
   double damping      = 0;     // [1/s] (the floor, with -relaxation adaptive)
   bool   reestimating = true;  // -time_step_reestimate > 0: the step followed the material
   double horizon_factor = 3.015;

@@ -97,6 +97,7 @@ PetscErrorCode Simulation::DiagnoseDivergence()
   f.bond_only    = scene_.force_form == ForceForm::bond_only;
   f.bulk_ratio   = 2.0 / (scene_.material.D * scene_.material.mu);
   f.damping      = scene_.damping;
+  f.critical_stretch = scene_.failure ? scene_.critical_stretch : 0.0;
   f.reestimating = step_control_.reestimating();
   f.horizon_factor = scene_.horizon_factor;
   f.stiffening     = step_control_.largest_lambda() / step_control_.lambda_rest();

@@ -236,6 +236,12 @@ TEST(DivergenceAdvice, NotFlutterWhenTheStateBeforeWasNearTheChainLimit)
   const std::string limit = DivergenceAdvice(f);
   EXPECT_NE(limit.find("Cause: the Gent chain limit"), std::string::npos) << limit;
   EXPECT_NE(limit.find("raise -material_Jm (now 3)"), std::string::npos) << limit;
+  EXPECT_NE(limit.find("or enable failure (-failure_critical_stretch)"), std::string::npos) << limit;
+  // With failure on, its fix is a lower critical stretch, not the option already set.
+  f.critical_stretch = 7.2;
+  const std::string failing = DivergenceAdvice(f);
+  EXPECT_EQ(failing.find("enable failure"), std::string::npos) << failing;
+  EXPECT_NE(failing.find("or lower -failure_critical_stretch (now 7.2) so that such bonds break first"), std::string::npos) << failing;
   EXPECT_NE(limit.find("end the load below stretch 1.85"), std::string::npos) << limit;
 }
 
