@@ -1,5 +1,6 @@
 // A Gmsh file as the triangles of a shape, and its physical groups (gmsh_shape.hpp).
 #include "bapd/gmsh_shape.hpp"
+#include "bapd/gmsh_session.hpp"
 
 #include <gmsh.h>
 
@@ -25,26 +26,11 @@ int CornerCount(int type)
   }
 }
 
-// gmsh::initialize / finalize around one read, on every path.
-struct GmshSession {
-  GmshSession()
-  {
-    gmsh::initialize(0, nullptr, false);
-    gmsh::option::setNumber("General.Terminal", 0);
-    gmsh::option::setNumber("General.Verbosity", 0);
-  }
-  ~GmshSession() { gmsh::finalize(); }
-};
-
-// Opens `file` in a Gmsh session of its own and runs `read` on the model, meshed in
-// 2D unless the file holds 2D elements already. Returns what went wrong or "".
+// Opens `file` (WithGmshFile) and runs `read` on the model, meshed in 2D unless the
+// file holds 2D elements already. Returns what went wrong or "".
 template <class Read> std::string WithMeshedFile(const std::string &file, Read read)
 {
-  if (std::FILE *f = std::fopen(file.c_str(), "rb")) std::fclose(f);
-  else return "cannot open '" + file + "' (check the path; it is read relative to the directory bapd runs in)";
-  GmshSession session; // finalised on every return below
-  try {
-    gmsh::open(file);
+  return WithGmshFile(file, [&]() -> std::string {
     std::vector<int>                      types;
     std::vector<std::vector<std::size_t>> tags, nodes;
     gmsh::model::mesh::getElements(types, tags, nodes, 2);
@@ -55,14 +41,7 @@ template <class Read> std::string WithMeshedFile(const std::string &file, Read r
       gmsh::model::mesh::generate(2);
     }
     return read();
-  } catch (...) {
-    std::string last;
-    try {
-      gmsh::logger::getLastError(last);
-    } catch (...) {
-    }
-    return "Gmsh cannot read '" + file + "'" + (last.empty() ? std::string(" (not a .geo or .msh file?)") : ": " + last);
-  }
+  });
 }
 
 // The model's node coordinates by tag (x, y; z ignored).

@@ -1,5 +1,6 @@
 // A Gmsh 3D volume as tetrahedra (gmsh_volume3d.hpp).
 #include "bapd/gmsh_volume3d.hpp"
+#include "bapd/gmsh_session.hpp"
 
 #include <gmsh.h>
 
@@ -13,17 +14,6 @@ namespace {
 
 // Gmsh's tetrahedron element types (4-, 10-, 20-, 35-, 56-node); corner nodes come first.
 bool IsTetrahedron(int type) { return type == 4 || type == 11 || type == 29 || type == 30 || type == 31; }
-
-// gmsh::initialize / finalize around one read, on every path.
-struct GmshSession3D {
-  GmshSession3D()
-  {
-    gmsh::initialize(0, nullptr, false);
-    gmsh::option::setNumber("General.Terminal", 0);
-    gmsh::option::setNumber("General.Verbosity", 0);
-  }
-  ~GmshSession3D() { gmsh::finalize(); }
-};
 
 std::string ReadOpenModel(const std::string &file, nd::TetrahedronSet *set)
 {
@@ -66,20 +56,7 @@ std::string ReadGmshTetrahedra(const std::string &file, nd::TetrahedronSet *tetr
 {
   *tetrahedra      = nd::TetrahedronSet{};
   tetrahedra->file = file;
-  if (std::FILE *f = std::fopen(file.c_str(), "rb")) std::fclose(f);
-  else return "cannot open '" + file + "' (check the path; it is read relative to the directory bapd runs in)";
-  GmshSession3D session; // finalised on every return below
-  try {
-    gmsh::open(file);
-    return ReadOpenModel(file, tetrahedra);
-  } catch (...) {
-    std::string last;
-    try {
-      gmsh::logger::getLastError(last);
-    } catch (...) {
-    }
-    return "Gmsh cannot read '" + file + "'" + (last.empty() ? std::string(" (not a .geo or .msh file?)") : ": " + last);
-  }
+  return WithGmshFile(file, [&] { return ReadOpenModel(file, tetrahedra); });
 }
 
 } // namespace bapd
