@@ -28,16 +28,18 @@ By symmetry about x = 5, y = 10 and z = 2 the default solves the octant
 moved by (lambda - 1) 10 mm) and maps the results back (--full: the whole block).
 Meshes: gmsh tetrahedra, size h, h/2 within 2.5 mm of the hole (--hole-refinement),
 second-order geometry. P2 displacement-only (the condensed energy has no pressure
-field; K = 1000 mu is nearly incompressible, which P2 handles and P1 does not: P1 on the
-finest mesh shows the locking).
+field; K = 1000 mu is nearly incompressible, which P2 handles and P1 does not: --p1
+solves P1 on the finest mesh too, to show the locking). Newton with a backtracking line
+search (gent_fe.GentSolid): a displacement step's volume error costs K times its square.
 
 --slab: the plane-strain check instead. The block's x-y section (quarter by symmetry)
 solved in 2D plane strain (bapd's PlaneStrain: F33 = 1) and as a 3D slab 1 mm thick
 with uz = 0 on both faces, the slab's mesh the 2D triangles extruded (one layer of
 prisms, split into tetrahedra), so the 3D P2 space contains the 2D one.
 
---all: the convergence study (h = 2, 1, 0.5 and P1 on 0.5), then the slab check at
-h = 2, 1 and 0.5; writes docs-ready CSVs and the JSON reference (scripts/fe/results/).
+--all: the convergence study (P2, h = 1.41, 1, 0.71), then the slab check at the same
+sizes; writes block_hole_3d.csv, block_hole_3d.json (the reference: finest values, their
+estimated error, the lattice probes) and slab_plane_strain.csv (scripts/fe/results/).
 """
 import json
 import os
@@ -193,8 +195,9 @@ def solve_block(h, degree, bulk_ratio, lambdas, *, full=False, refinement=0.5,
                   + ", ".join(f"{k} {v[lam]:.6f}" for k, v in values.items() if k != "s"),
                   file=sys.stderr)
 
-    # K = 1000 mu: the first linear step's volume error costs K times its square, so
-    # Newton's basin is narrow at the start; a step of 0.01 converges in 5 iterations.
+    # K = 1000 mu: a displacement step's volume error costs K times its square, so
+    # Newton's basin is narrow (the line search of GentSolid keeps it going); steps
+    # grow while Newton takes at most 10 iterations.
     fe.march(set_load, lambdas, on_target, dlam0=FIRST_STEP, fast_iterations=10, dlam_max=0.25,
             verbose=verbose)
     values["lattice"] = {k: (lattice[k], v) for k, v in at_lattice.items()}
@@ -367,12 +370,17 @@ def write_reference(args, solves):
 
 
 def main():
-    ap = gent_fe.study_arguments(__doc__, [2.0, 1.0, 0.5], [1.25, 1.5], "block_hole_3d.csv")
+    # Refined by sqrt(2): Newton at K = 1000 mu takes about 200 factorisations a solve,
+    # so h = 0.5 (about 7 times the dofs of h = 1) would take most of an hour.
+    ap = gent_fe.study_arguments(__doc__, [2**0.5, 1.0, 2**-0.5], [1.25, 1.5],
+                                 "block_hole_3d.csv")
     ap.add_argument("--full", action="store_true", help="whole block instead of the octant")
     ap.add_argument("--hole-refinement", type=float, default=0.5,
                     help="element size next to the hole over h (1: uniform)")
     ap.add_argument("--lattice-dx", type=float, nargs="*", default=[0.5, 0.25, 0.2],
                     help="bapd spacings (mm) whose probe lattice points get FE values")
+    ap.add_argument("--p1", action="store_true",
+                    help="P1 on the finest mesh too (it locks at K = 1000 mu; slow Newton)")
     ap.add_argument("--slab", action="store_true", help="the slab / plane-strain check only")
     ap.add_argument("--all", action="store_true",
                     help="the convergence study and the slab check, default sizes")

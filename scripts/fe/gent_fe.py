@@ -575,7 +575,8 @@ def run_study(args, quantities, solve):
         name = formulation_name(bulk)
         print(header)
         p2 = {c: [] for c in columns}
-        for degree, h in [(2, h) for h in sizes] + [(1, sizes[-1])]:
+        p1 = [(1, sizes[-1])] if getattr(args, "p1", True) else []
+        for degree, h in [(2, h) for h in sizes] + p1:
             timer = Timer()
             values, info = solve(h, degree, bulk, lambdas)
             t = timer()
