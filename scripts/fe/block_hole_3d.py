@@ -27,19 +27,23 @@ By symmetry about x = 5, y = 10 and z = 2 the default solves the octant
 [0, 5] x [10, 20] x [2, 4] (ux = 0 on x = 5, uy = 0 on y = 10, uz = 0 on z = 2, the top
 moved by (lambda - 1) 10 mm) and maps the results back (--full: the whole block).
 Meshes: gmsh tetrahedra, size h, h/2 within 2.5 mm of the hole (--hole-refinement),
-second-order geometry. P2 displacement-only (the condensed energy has no pressure
-field; K = 1000 mu is nearly incompressible, which P2 handles and P1 does not: --p1
-solves P1 on the finest mesh too, to show the locking). Newton with a backtracking line
-search (gent_fe.GentSolid): a displacement step's volume error costs K times its square.
+second-order geometry. Two discretisations of the same continuum problem:
+  --mixed (the reference): Taylor-Hood, u in P2 and a pressure in P1
+    (gent_fe.GentSolidMixed), free of volumetric locking; 27 Newton iterations a solve;
+  default: P2 displacement only (gent_fe.GentSolid), which at K = 1000 mu (nu = 0.4995)
+    is locking-limited: it converges slowly and from the stiff side, and its Newton
+    needs a line search and 140 to 280 factorisations a solve (--p1: P1 on the finest
+    mesh too, which locks outright).
 
 --slab: the plane-strain check instead. The block's x-y section (quarter by symmetry)
 solved in 2D plane strain (bapd's PlaneStrain: F33 = 1) and as a 3D slab 1 mm thick
 with uz = 0 on both faces, the slab's mesh the 2D triangles extruded (one layer of
 prisms, split into tetrahedra), so the 3D P2 space contains the 2D one.
 
---all: the convergence study (P2, h = 1.41, 1, 0.71), then the slab check at the same
-sizes; writes block_hole_3d.csv, block_hole_3d.json (the reference: finest values, their
-estimated error, the lattice probes) and slab_plane_strain.csv (scripts/fe/results/).
+--all: the mixed reference (h = 1.41, 1, 0.71, 0.5), the displacement-only P2 study
+(h = 1.41, 1, 0.71) and the slab check (same sizes): block_hole_3d.csv and .json (the
+reference: finest values, their estimated error, the lattice probes),
+block_hole_3d_p2.csv and .json, slab_plane_strain.csv, in scripts/fe/results/.
 """
 import json
 import os
@@ -135,7 +139,7 @@ class BlockSolution:
     def values(self, points, lam):
         points = np.asarray(points, dtype=float)
         if self.full:
-            return gent_fe.point_values(self.fe.u, points)
+            return gent_fe.point_values(self.fe.displacement(), points)
         q = points.copy()
         sign = np.ones_like(q)
         for axis, mid, upper in ((0, XC, False), (1, YC, True), (2, THICKNESS / 2, True)):
@@ -143,16 +147,16 @@ class BlockSolution:
             across = q[:, axis] < mid if upper else q[:, axis] > mid
             q[across, axis] = 2 * mid - q[across, axis]
             sign[across, axis] = -1.0
-        u = gent_fe.point_values(self.fe.u, q) * sign
+        u = gent_fe.point_values(self.fe.displacement(), q) * sign
         u[:, 1] += (lam - 1.0) * HEIGHT / 2     # the octant's y = 10 plane moves by half
         return u
 
 
 def solve_block(h, degree, bulk_ratio, lambdas, *, full=False, refinement=0.5,
-                lattice_dx=(), verbose=False):
+                lattice_dx=(), mixed=False, verbose=False):
     build = octant_build(h, refinement)
     msh = gent_fe.mesh_from_gmsh(lambda g, hh: build(g, hh, full), h, dim=3)
-    fe = gent_fe.GentSolid(msh, degree, bulk_ratio)
+    fe = (gent_fe.GentSolidMixed if mixed else gent_fe.GentSolid)(msh, degree, bulk_ratio)
     y0 = 0.0 if full else YC
     top = fe.facets(lambda x: np.isclose(x[1], HEIGHT))
     low = fe.facets(lambda x: np.isclose(x[1], y0))
@@ -308,7 +312,7 @@ def block_study(args):
         values, info = solve_block(h, degree, bulk, lambdas, full=args.full,
                                    refinement=args.hole_refinement,
                                    lattice_dx=args.lattice_dx if degree == 2 else (),
-                                   verbose=args.verbose)
+                                   mixed=args.mixed, verbose=args.verbose)
         solves[(degree, h)] = (values, info)
         return values, info
 
@@ -317,7 +321,9 @@ def block_study(args):
           f"mm along z at ({XC:g}, {YC:g}), compressible 3D Gent K = {args.bulk_ratio:g} mu, "
           f"clamped grips (bottom held, top moved (lambda - 1) {HEIGHT:g} mm), "
           f"{'whole block' if args.full else 'octant by symmetry'}, h / "
-          f"{1 / args.hole_refinement:g} near the hole: s (kPa), probe displacements (mm)")
+          f"{1 / args.hole_refinement:g} near the hole, "
+          f"{'mixed P2-P1 (u, p)' if args.mixed else 'P2 displacement only'}: s (kPa), "
+          "probe displacements (mm)")
     gent_fe.run_study(args, QUANTITIES, solve)
     write_reference(args, solves)
 
@@ -370,28 +376,44 @@ def write_reference(args, solves):
 
 
 def main():
-    # Refined by sqrt(2): Newton at K = 1000 mu takes about 200 factorisations a solve,
-    # so h = 0.5 (about 7 times the dofs of h = 1) would take most of an hour.
+    # Refined by sqrt(2). The mixed model (the reference) takes about 27 factorisations a
+    # solve; the displacement-only P2 about 140 to 280 (Newton limited by K times a volume
+    # error squared), so its finest default is h = 0.71 (8.5 minutes on one core).
     ap = gent_fe.study_arguments(__doc__, [2**0.5, 1.0, 2**-0.5], [1.25, 1.5],
-                                 "block_hole_3d.csv")
+                                 "block_hole_3d_p2.csv")
     ap.add_argument("--full", action="store_true", help="whole block instead of the octant")
     ap.add_argument("--hole-refinement", type=float, default=0.5,
                     help="element size next to the hole over h (1: uniform)")
     ap.add_argument("--lattice-dx", type=float, nargs="*", default=[0.5, 0.25, 0.2],
                     help="bapd spacings (mm) whose probe lattice points get FE values")
+    ap.add_argument("--mixed", action="store_true",
+                    help="Taylor-Hood P2-P1 (u, p) instead of P2 displacement only: the same "
+                         "law without volumetric locking (gent_fe.GentSolidMixed); writes "
+                         "block_hole_3d.csv / .json unless --csv is given")
     ap.add_argument("--p1", action="store_true",
                     help="P1 on the finest mesh too (it locks at K = 1000 mu; slow Newton)")
     ap.add_argument("--slab", action="store_true", help="the slab / plane-strain check only")
     ap.add_argument("--all", action="store_true",
-                    help="the convergence study and the slab check, default sizes")
+                    help="everything docs/fe_reference.md shows: the mixed reference (h down to "
+                         "0.5), the displacement-only P2 study and the slab check")
     args = ap.parse_args()
-    if args.all or not args.slab:
+    results = os.path.dirname(args.csv)
+    if args.mixed and "--csv" not in sys.argv:
+        args.csv = os.path.join(results, "block_hole_3d.csv")
+    if args.all:
+        sizes = list(args.sizes)
+        args.mixed, args.sizes = True, sizes + [0.5]
+        args.csv = os.path.join(results, "block_hole_3d.csv")
+        block_study(args)
+        args.mixed, args.sizes = False, sizes
+        args.csv = os.path.join(results, "block_hole_3d_p2.csv")
+        block_study(args)
+    elif not args.slab:
         block_study(args)
     if args.all or args.slab:
         sizes = args.sizes[:2] if args.quick else args.sizes
         slab_study(sizes, args.bulk_ratio, sorted(args.lambdas),
-                   os.path.join(os.path.dirname(args.csv), "slab_plane_strain.csv"),
-                   args.verbose)
+                   os.path.join(results, "slab_plane_strain.csv"), args.verbose)
 
 
 if __name__ == "__main__":

@@ -44,17 +44,26 @@ def closed_form_P(F, bulk_ratio, mu=gent_fe.MU_KPA, Jm=gent_fe.JM):
     return G * q * (F - trC / 3.0 * Finv_t) + (J * J - 1.0) / D * Finv_t
 
 
-def check(dim, degree, bulk_ratio):
+def check(dim, degree, bulk_ratio, mixed=False):
     if dim == 3:
         msh = dmesh.create_unit_cube(MPI.COMM_WORLD, 2, 2, 2)
         F = F3
     else:
         msh = dmesh.create_unit_square(MPI.COMM_WORLD, 3, 3)
         F = F2
-    fe = gent_fe.GentSolid(msh, degree, bulk_ratio)
-    boundary = fe.facets(lambda x: np.full(x.shape[1], True))
-    target = fem.Function(fe.V)
-    fe.bcs.append(fem.dirichletbc(target, fem.locate_dofs_topological(fe.V, dim - 1, boundary)))
+    if mixed:
+        fe = gent_fe.GentSolidMixed(msh, degree, bulk_ratio)
+        V, _ = fe.space.sub(0).collapse()
+        target = fem.Function(V)
+        fe_boundary = fe.facets(lambda x: np.full(x.shape[1], True))
+        dofs = fem.locate_dofs_topological((fe.space.sub(0), V), dim - 1, fe_boundary)
+        fe.bcs.append(fem.dirichletbc(target, dofs, fe.space.sub(0)))
+    else:
+        fe = gent_fe.GentSolid(msh, degree, bulk_ratio)
+        boundary = fe.facets(lambda x: np.full(x.shape[1], True))
+        target = fem.Function(fe.V)
+        fe.bcs.append(fem.dirichletbc(target, fem.locate_dofs_topological(fe.V, dim - 1,
+                                                                          boundary)))
     H = F - np.eye(dim)
 
     def set_load(t):
@@ -69,15 +78,17 @@ def check(dim, degree, bulk_ratio):
                               for j in range(dim)] for i in range(dim)])
 
     fe.march(set_load, [2.0], on_target, dlam0=0.25)
-    exact_u = fem.Function(fe.V)
+    u = fe.displacement()
+    exact_u = fem.Function(u.function_space)
     exact_u.interpolate(lambda x: H @ x[:dim])
-    u_err = float(np.max(np.abs(fe.u.x.array - exact_u.x.array)))
+    u_err = float(np.max(np.abs(u.x.array - exact_u.x.array)))
     want = closed_form_P(F if dim == 3 else np.pad(F, (0, 1)) + np.diag([0, 0, 1.0]), bulk_ratio)
     want = want[:dim, :dim]
     err = float(np.max(np.abs(got["P"] - want)) / np.max(np.abs(want)))
     # Exact representation: only round-off and the Newton tolerance (1e-8 mm) remain.
     ok = err < 1e-9 and u_err < 1e-9
-    print(f"{'3D' if dim == 3 else 'plane strain'} P{degree} K={bulk_ratio:g}mu: mean P vs eq 26 "
+    name = "3D mixed P2-P1" if mixed else f"{'3D' if dim == 3 else 'plane strain'} P{degree}"
+    print(f"{name} K={bulk_ratio:g}mu: mean P vs eq 26 "
           f"rel. error {err:.1e}, max |u - (F - I) X| {u_err:.1e} mm {'ok' if ok else 'FAIL'}")
     return ok
 
@@ -88,6 +99,7 @@ def main():
         for degree in (1, 2):
             for bulk in (1000.0, 10.0):
                 failures += not check(dim, degree, bulk)
+    failures += not check(3, 2, 1000.0, mixed=True)
     sys.exit(1 if failures else 0)
 
 

@@ -92,6 +92,7 @@ class GentProblem:
         self.dx = ufl.Measure("dx", domain=msh, metadata=md)
         self.V = fem.VectorFunctionSpace(msh, ("CG", degree))
         self.u = fem.Function(self.V, name="u")
+        self.space = self.V      # the unknown's space (a mixed one holds V as sub(0))
         self.bcs = []
         self.steps_taken = 0
         self.newton_iterations = 0
@@ -100,6 +101,13 @@ class GentProblem:
 
     def update_local(self):
         pass
+
+    def displacement(self):
+        """The displacement Function (for point values)."""
+        return self.u
+
+    def _u_part(self, f):
+        return f
 
     def cells(self):
         return self.msh.topology.index_map(self.tdim).size_local
@@ -119,9 +127,9 @@ class GentProblem:
 
     def reaction_form(self, component, facets):
         """Form of the consistent reaction in `component` on the facets' dofs."""
-        w = fem.Function(self.V)
+        w = fem.Function(self.space)
         w.x.array[self.dofs(component, facets)] = 1.0
-        return fem.form(self.thickness * ufl.inner(self.P, ufl.grad(w)) * self.dx)
+        return fem.form(self.thickness * ufl.inner(self.P, ufl.grad(self._u_part(w))) * self.dx)
 
     # -- Newton with load stepping ------------------------------------------------------
     def _make_solver(self):
@@ -232,6 +240,45 @@ class GentSolid(GentProblem):
         # Nearly incompressible (K = 1000 mu): a full Newton step from the predictor can
         # overshoot into J <= 0 near the hole; backtracking keeps the steps large.
         self.line_search = True
+
+
+class GentSolidMixed(GentProblem):
+    """The law of GentSolid in 3D, discretised without volumetric locking: Taylor-Hood
+    (u in P2, a pressure p in P1) on the Hu-Washizu functional with the volume variable
+    eliminated in closed form,
+        Pi(u, p) = int Psi_iso(F) + U(Theta(p)) + p (J - Theta(p)) dV,
+        U(J) = (1/D)((J^2 - 1)/2 - ln J),  Theta = U'^-1:  Theta(p) = (D p + sqrt(D^2 p^2 + 4))/2.
+    Stationary in p: J = Theta(p), i.e. p = U'(J); in u: P = P_iso + p J F^-T. The same
+    continuum problem as GentSolid (bapd's Compressible3D), not the same discretisation:
+    the constraint is imposed in the P1 sense, so K = 1000 mu does not lock the P2
+    displacement and Newton is not limited by K times a volume error squared."""
+
+    def __init__(self, msh, degree, bulk_ratio, mu=MU_KPA, Jm=JM, quadrature_degree=None):
+        self._setup(msh, degree, mu, Jm, bulk_ratio, quadrature_degree)
+        cell = msh.ufl_cell()
+        element = ufl.MixedElement([ufl.VectorElement("CG", cell, degree),
+                                    ufl.FiniteElement("CG", cell, degree - 1)])
+        self.space = fem.FunctionSpace(msh, element)
+        self.V = self.space.sub(0)
+        self.u = fem.Function(self.space, name="u_p")
+        u, p = ufl.split(self.u)
+        v, q = ufl.TestFunctions(self.space)
+        Fv = ufl.variable(ufl.Identity(self.tdim) + ufl.grad(u))
+        J = ufl.det(Fv)
+        psi_iso = gent_isochoric(ufl.tr(Fv.T * Fv) * J**(-2.0 / 3.0), mu, Jm)
+        D = self.D
+        theta = (D * p + ufl.sqrt(D * D * p * p + 4.0)) / 2.0
+        self.P = ufl.diff(psi_iso, Fv) + p * ufl.diff(J, Fv)
+        self.residual = (ufl.inner(self.P, ufl.grad(v)) + (J - theta) * q) * self.dx
+        self.jacobian = ufl.derivative(self.residual, self.u, ufl.TrialFunction(self.space))
+        self.factorisation = "cholesky"    # symmetric indefinite: LDL^T
+        self.line_search = True
+
+    def displacement(self):
+        return self.u.sub(0).collapse()
+
+    def _u_part(self, f):
+        return ufl.split(f)[0]
 
 
 class GentPlaneStress(GentProblem):
@@ -516,8 +563,8 @@ def formulation_name(bulk_ratio):
 
 
 def dofs_of(problem):
-    im = problem.V.dofmap.index_map
-    return (im.size_local + im.num_ghosts) * problem.V.dofmap.index_map_bs
+    im = problem.space.dofmap.index_map
+    return (im.size_local + im.num_ghosts) * problem.space.dofmap.index_map_bs
 
 
 def richardson(values, ratio=2.0):
