@@ -113,17 +113,7 @@ def add_hole_size_field(gmsh, h, refinement):
         return
     hole = [tag for dim, tag in gmsh.model.getEntities(2)
             if gmsh.model.getType(dim, tag) == "Cylinder"]
-    f = gmsh.model.mesh.field
-    dist = f.add("Distance")
-    f.setNumbers(dist, "FacesList", hole)
-    f.setNumber(dist, "NumPointsPerCurve", 40)
-    thr = f.add("Threshold")
-    f.setNumber(thr, "InField", dist)
-    f.setNumber(thr, "SizeMin", refinement * h)
-    f.setNumber(thr, "SizeMax", h)
-    f.setNumber(thr, "DistMin", 0.0)
-    f.setNumber(thr, "DistMax", RADIUS)
-    f.setAsBackgroundMesh(thr)
+    gent_fe.refine_near(gmsh, "FacesList", hole, refinement * h, h, 0.0, RADIUS, 40)
     gmsh.option.setNumber("Mesh.MeshSizeExtendFromBoundary", 0)
     gmsh.option.setNumber("Mesh.MeshSizeFromPoints", 0)
     gmsh.option.setNumber("Mesh.MeshSizeFromCurvature", 0)

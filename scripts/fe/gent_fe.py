@@ -146,15 +146,7 @@ class GentProblem:
         solver.max_it = 12
         solver.error_on_nonconvergence = False
         solver.report = VERBOSE_NEWTON
-        ksp = solver.krylov_solver
-        ksp.setType("preonly")
-        ksp.getPC().setType(self.factorisation)
-        ksp.getPC().setFactorSolverType("mumps")
-        if self.factorisation == "cholesky":
-            # MUMPS's Cholesky reads the upper triangle; the flag must outlive the
-            # reassemblies (symmetric indefinite LDL^T, no SPD assumption).
-            solver.A.setOption(PETSc.Mat.Option.SYMMETRIC, True)
-            solver.A.setOption(PETSc.Mat.Option.SYMMETRY_ETERNAL, True)
+        direct_solver(solver.krylov_solver, solver.A, self.factorisation)
         return problem, solver
 
     def march(self, set_load, targets, on_target, dlam0=0.05, dlam_max=0.2,
@@ -374,6 +366,35 @@ class GentPlaneStress(GentProblem):
                                                      vals[:, :, 1].ravel())) * self.D))
 
 
+def direct_solver(ksp, A, factorisation):
+    """MUMPS through the KSP: "lu", or "cholesky" (LDL^T) for a symmetric A."""
+    ksp.setType("preonly")
+    ksp.getPC().setType(factorisation)
+    ksp.getPC().setFactorSolverType("mumps")
+    if factorisation == "cholesky":
+        # MUMPS's Cholesky reads the upper triangle; the flag must outlive the
+        # reassemblies (symmetric indefinite LDL^T, no SPD assumption).
+        A.setOption(PETSc.Mat.Option.SYMMETRIC, True)
+        A.setOption(PETSc.Mat.Option.SYMMETRY_ETERNAL, True)
+
+
+def refine_near(gmsh, kind, tags, size_min, size_max, dist_min, dist_max, points):
+    """Background size field: size_min within dist_min of the entities (kind "CurvesList"
+    or "FacesList"), growing linearly to size_max at dist_max; `points` samples a curve."""
+    field = gmsh.model.mesh.field
+    dist = field.add("Distance")
+    field.setNumbers(dist, kind, tags)
+    field.setNumber(dist, "NumPointsPerCurve", points)
+    thr = field.add("Threshold")
+    field.setNumber(thr, "InField", dist)
+    field.setNumber(thr, "SizeMin", size_min)
+    field.setNumber(thr, "SizeMax", size_max)
+    field.setNumber(thr, "DistMin", dist_min)
+    field.setNumber(thr, "DistMax", dist_max)
+    field.setAsBackgroundMesh(thr)
+    return thr
+
+
 class _NewtonLineSearch:
     """Newton with a backtracking line search on the residual norm (PETSc SNES newtonls,
     bt), with the NewtonSolver's interface (solve(u) -> (iterations, converged)) and its
@@ -401,13 +422,7 @@ class _NewtonLineSearch:
         PETSc.Options()["gent_fe_snes_linesearch_type"] = "bt"
         snes.setFromOptions()
         snes.setConvergenceTest(self._converged)
-        ksp = snes.getKSP()
-        ksp.setType("preonly")
-        ksp.getPC().setType(gent.factorisation)
-        ksp.getPC().setFactorSolverType("mumps")
-        if gent.factorisation == "cholesky":
-            self.A.setOption(PETSc.Mat.Option.SYMMETRIC, True)
-            self.A.setOption(PETSc.Mat.Option.SYMMETRY_ETERNAL, True)
+        direct_solver(snes.getKSP(), self.A, gent.factorisation)
         self.snes = snes
 
     def _residual(self, snes, x, b):
