@@ -333,7 +333,9 @@ def write_reference(args, solves):
                        "grips": "bottom face y = 0 held; top face y = 20 held in x, z and "
                                 "moved by (lambda - 1) 20 mm in y",
                        "s": "top reaction / (10 mm x 4 mm), kPa"},
-           "fe": {"element": "P2 tetrahedra, second-order geometry", "sizes_mm": p2,
+           "fe": {"element": ("Taylor-Hood P2-P1 (u, p) tetrahedra" if args.mixed else
+                              "P2 tetrahedra, displacement only") + ", second-order geometry",
+                  "sizes_mm": p2,
                   "hole_refinement": args.hole_refinement,
                   "dofs": [solves[(2, h)][1]["dofs"] for h in p2]},
            "probes": {n: {"point_mm": list(p), "components": c} for n, (p, c) in PROBES.items()},
