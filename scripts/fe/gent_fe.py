@@ -1,5 +1,8 @@
-"""Plane-stress Gent hyperelasticity in dolfinx 0.5 (Debian bookworm): the finite-element
-reference that bapd's accuracy figures are measured against (issues 14, 18, 21).
+"""Gent hyperelasticity in dolfinx 0.5 (Debian bookworm): the finite-element references
+that bapd's accuracy figures are measured against (issues 14, 18, 21). Plane stress
+(GentPlaneStress, below); the compressible 3D and plane-strain law of bapd's
+Compressible3D and PlaneStrain (GentSolid: displacement only; GentSolidMixed: 3D,
+Taylor-Hood u-p, free of volumetric locking), all on GentProblem's load stepping.
 
 Units: mm for lengths, kPa for stresses, so forces come out in kPa mm^2 = mN and a
 force over an area in mm^2 is a stress in kPa.
