@@ -1,5 +1,8 @@
-"""Plane-stress Gent hyperelasticity in dolfinx 0.5 (Debian bookworm): the finite-element
-reference that bapd's accuracy figures are measured against (issues 14, 18, 21).
+"""Gent hyperelasticity in dolfinx 0.5 (Debian bookworm): the finite-element references
+that bapd's accuracy figures are measured against (issues 14, 18, 21). Plane stress
+(GentPlaneStress, below); the compressible 3D and plane-strain law of bapd's
+Compressible3D and PlaneStrain (GentSolid: displacement only; GentSolidMixed: 3D,
+Taylor-Hood u-p, free of volumetric locking), all on GentProblem's load stepping.
 
 Units: mm for lengths, kPa for stresses, so forces come out in kPa mm^2 = mN and a
 force over an area in mm^2 is a stress in kPa.
@@ -53,26 +56,233 @@ BULK_RATIO = 1000.0    # bapd's default K / mu (docs/options.md, -material_bulk_
 VERBOSE_NEWTON = False  # the NewtonSolver's per-iteration report (debugging)
 
 
-class GentPlaneStress:
-    """Displacement problem of a plane-stress Gent sheet of thickness `thickness` (mm)."""
+def gent_isochoric(I1bar, mu, Jm):
+    """Paper eq 24's isochoric term, -(mu Jm / 2) ln(1 - (I1bar - 3)/Jm) (UFL)."""
+    return -(mu * Jm / 2) * ufl.ln(1 - (I1bar - 3) / Jm)
 
-    def __init__(self, msh, degree, thickness, mu=MU_KPA, Jm=JM, bulk_ratio=None,
-                 quadrature_degree=None):
+
+def gent_compressible(trC, J, mu, Jm, D):
+    """Psi of METHOD.md section 4 from tr C and J (UFL): the isochoric term at
+    I1bar = tr C J^(-2/3) plus (1/D) ((J^2 - 1)/2 - ln J); bapd's Compressible3D
+    (include/bapd/hyperelastic.hpp), PlaneStrain (J = J~, tr C = tr C~ + 1) and
+    PlaneStress (C33 solved) are this energy."""
+    return (gent_isochoric(trC * J**(-2.0 / 3.0), mu, Jm)
+            + (1.0 / D) * ((J**2 - 1) / 2 - ufl.ln(J)))
+
+
+class GentProblem:
+    """What every Gent displacement problem shares: the P1/P2 space, the quadrature,
+    Dirichlet conditions on boundary facets, consistent reactions, and Newton with load
+    stepping. A subclass sets self.P (first Piola-Kirchhoff stress, UFL), self.residual
+    and self.jacobian; self.local is a quadrature-point Function that update_local()
+    recomputes before every assembly (plane stress's C33), or None."""
+
+    thickness = 1.0      # the residual's factor: the sheet's thickness in 2D, 1 in 3D
+    local = None
+
+    def _setup(self, msh, degree, mu, Jm, bulk_ratio, quadrature_degree):
         self.msh = msh
+        self.tdim = msh.topology.dim
         self.degree = degree
-        self.thickness = thickness
         self.mu, self.Jm = mu, Jm
         self.compressible = bulk_ratio is not None
         self.D = 2.0 / (bulk_ratio * mu) if self.compressible else None
-        # 2 p: the stiffness integrand of P2 on straight triangles is of degree 2 p - 2
+        # 2 p: the stiffness integrand of P2 on straight cells is of degree 2 p - 2
         # for a linear law; the Gent terms are not polynomial, the quadrature error
         # converges with the mesh and is part of the discretisation error we measure.
         self.q = quadrature_degree or 2 * degree
         md = {"quadrature_degree": self.q, "quadrature_scheme": "default"}
         self.dx = ufl.Measure("dx", domain=msh, metadata=md)
-
         self.V = fem.VectorFunctionSpace(msh, ("CG", degree))
         self.u = fem.Function(self.V, name="u")
+        self.space = self.V      # the unknown's space (a mixed one holds V as sub(0))
+        self.bcs = []
+        self.steps_taken = 0
+        self.newton_iterations = 0
+        self.factorisation = "lu"
+        self.line_search = False
+
+    def update_local(self):
+        pass
+
+    def displacement(self):
+        """The displacement Function (for point values)."""
+        return self.u
+
+    def _u_part(self, f):
+        return f
+
+    def cells(self):
+        return self.msh.topology.index_map(self.tdim).size_local
+
+    # -- boundary conditions ------------------------------------------------------------
+    def facets(self, marker):
+        return dmesh.locate_entities_boundary(self.msh, self.tdim - 1, marker)
+
+    def dofs(self, component, facets):
+        return fem.locate_dofs_topological(self.V.sub(component), self.tdim - 1, facets)
+
+    def add_bc(self, component, facets, value=0.0):
+        """u_component = value on the facets; returns the Constant to move it."""
+        c = fem.Constant(self.msh, PETSc.ScalarType(value))
+        self.bcs.append(fem.dirichletbc(c, self.dofs(component, facets), self.V.sub(component)))
+        return c
+
+    def reaction_form(self, component, facets):
+        """Form of the consistent reaction in `component` on the facets' dofs."""
+        w = fem.Function(self.space)
+        w.x.array[self.dofs(component, facets)] = 1.0
+        return fem.form(self.thickness * ufl.inner(self.P, ufl.grad(self._u_part(w))) * self.dx)
+
+    # -- Newton with load stepping ------------------------------------------------------
+    def _make_solver(self):
+        if self.line_search:
+            return None, _NewtonLineSearch(self)
+        problem = _Problem(self)
+        solver = dolfinx.nls.petsc.NewtonSolver(MPI.COMM_WORLD, problem)
+        solver.convergence_criterion = "incremental"
+        # The correction's l2 norm (mm) stalls at 1e-11..1e-10 from round-off; Newton
+        # converges quadratically (1e-5 -> 1e-10), so 1e-8 mm leaves the reactions exact to
+        # about 1e-12 and never waits on the round-off floor.
+        solver.rtol = 1e-12
+        solver.atol = 1e-8
+        solver.max_it = 12
+        solver.error_on_nonconvergence = False
+        solver.report = VERBOSE_NEWTON
+        direct_solver(solver.krylov_solver, solver.A, self.factorisation)
+        return problem, solver
+
+    def march(self, set_load, targets, on_target, dlam0=0.05, dlam_max=0.2,
+              dlam_min=1e-4, fast_iterations=4, verbose=False):
+        """Steps lambda from 1 through the sorted targets. set_load(lam) moves the
+        Dirichlet Constants; on_target(lam) is called at each target (converged)."""
+        if not hasattr(self, "_solver"):
+            self._problem, self._solver = self._make_solver()
+        lam, dlam = 1.0, dlam0
+        set_load(lam)
+        u_old = self.u.x.array.copy()        # converged at lam
+        u_older, lam_older = u_old.copy(), lam
+        c_old = self.local.x.array.copy() if self.local is not None else None
+        for target in targets:
+            while lam < target - 1e-12:
+                step = min(dlam, target - lam)
+                lam_new = target if step == target - lam else lam + step
+                # Linear extrapolation of the last two converged states.
+                if lam > lam_older:
+                    ratio = step / (lam - lam_older)
+                    self.u.x.array[:] = u_old + ratio * (u_old - u_older)
+                else:
+                    self.u.x.array[:] = u_old
+                set_load(lam_new)
+                ok = True
+                try:
+                    n, converged = self._solver.solve(self.u)
+                    ok = converged and np.all(np.isfinite(self.u.x.array))
+                except RuntimeError:
+                    ok, n = False, 0
+                if not ok:
+                    self.u.x.array[:] = u_old
+                    if self.local is not None:
+                        self.local.x.array[:] = c_old
+                    # A diverged Newton can leave inf in the solver's matrix and factor,
+                    # and every retry then diverges too: start the retry from a new one.
+                    self._problem, self._solver = self._make_solver()
+                    dlam = step / 2
+                    if verbose:
+                        print(f"    lambda {lam_new:.5f}: no convergence, step -> {dlam:.2e}",
+                              file=sys.stderr)
+                    if dlam < dlam_min:
+                        raise RuntimeError(f"load stepping stalled at lambda = {lam:.5f}")
+                    continue
+                self.steps_taken += 1
+                self.newton_iterations += n
+                u_older, lam_older = u_old, lam
+                u_old = self.u.x.array.copy()
+                if self.local is not None:
+                    c_old = self.local.x.array.copy()
+                lam = lam_new
+                if n <= fast_iterations and step == dlam:
+                    dlam = min(1.5 * dlam, dlam_max)
+            on_target(lam)
+
+
+
+class GentSolid(GentProblem):
+    """Compressible Gent with the full 3D energy (bapd's Compressible3D, paper eqs 24,
+    26): a 3D body, or a 2D section in plane strain (F = diag(F~, 1), bapd's
+    PlaneStrain) of thickness `thickness` (mm). Displacement only: bulk_ratio is
+    required (an incompressible 3D or plane-strain law needs a pressure field)."""
+
+    def __init__(self, msh, degree, bulk_ratio, thickness=1.0, mu=MU_KPA, Jm=JM,
+                 quadrature_degree=None):
+        if bulk_ratio is None:
+            raise ValueError("GentSolid: 3D and plane strain are compressible only "
+                             "(give bulk_ratio)")
+        self._setup(msh, degree, mu, Jm, bulk_ratio, quadrature_degree)
+        self.thickness = thickness if self.tdim == 2 else 1.0
+        v = ufl.TestFunction(self.V)
+        du = ufl.TrialFunction(self.V)
+        Fv = ufl.variable(ufl.Identity(self.tdim) + ufl.grad(self.u))
+        # In plane strain tr C = tr C~ + 1 and J = J~: F33 = 1 enters only there.
+        trC = ufl.tr(Fv.T * Fv) + (1.0 if self.tdim == 2 else 0.0)
+        psi = gent_compressible(trC, ufl.det(Fv), mu, Jm, self.D)
+        self.P = ufl.diff(psi, Fv)
+        self.residual = self.thickness * ufl.inner(self.P, ufl.grad(v)) * self.dx
+        self.jacobian = ufl.derivative(self.residual, self.u, du)
+        # The tangent is symmetric (a hyperelastic energy; dolfinx zeroes the Dirichlet
+        # rows and columns alike): an LDL^T factorisation halves the 3D cost.
+        self.factorisation = "cholesky"
+        # Nearly incompressible (K = 1000 mu): a full Newton step from the predictor can
+        # overshoot into J <= 0 near the hole; backtracking keeps the steps large.
+        self.line_search = True
+
+
+class GentSolidMixed(GentProblem):
+    """The law of GentSolid in 3D, discretised without volumetric locking: Taylor-Hood
+    (u in P2, a pressure p in P1) on the Hu-Washizu functional with the volume variable
+    eliminated in closed form,
+        Pi(u, p) = int Psi_iso(F) + U(Theta(p)) + p (J - Theta(p)) dV,
+        U(J) = (1/D)((J^2 - 1)/2 - ln J),  Theta = U'^-1:  Theta(p) = (D p + sqrt(D^2 p^2 + 4))/2.
+    Stationary in p: J = Theta(p), i.e. p = U'(J); in u: P = P_iso + p J F^-T. The same
+    continuum problem as GentSolid (bapd's Compressible3D), not the same discretisation:
+    the constraint is imposed in the P1 sense, so K = 1000 mu does not lock the P2
+    displacement and Newton is not limited by K times a volume error squared."""
+
+    def __init__(self, msh, degree, bulk_ratio, mu=MU_KPA, Jm=JM, quadrature_degree=None):
+        self._setup(msh, degree, mu, Jm, bulk_ratio, quadrature_degree)
+        cell = msh.ufl_cell()
+        element = ufl.MixedElement([ufl.VectorElement("CG", cell, degree),
+                                    ufl.FiniteElement("CG", cell, degree - 1)])
+        self.space = fem.FunctionSpace(msh, element)
+        self.V = self.space.sub(0)
+        self.u = fem.Function(self.space, name="u_p")
+        u, p = ufl.split(self.u)
+        v, q = ufl.TestFunctions(self.space)
+        Fv = ufl.variable(ufl.Identity(self.tdim) + ufl.grad(u))
+        J = ufl.det(Fv)
+        psi_iso = gent_isochoric(ufl.tr(Fv.T * Fv) * J**(-2.0 / 3.0), mu, Jm)
+        D = self.D
+        theta = (D * p + ufl.sqrt(D * D * p * p + 4.0)) / 2.0
+        self.P = ufl.diff(psi_iso, Fv) + p * ufl.diff(J, Fv)
+        self.residual = (ufl.inner(self.P, ufl.grad(v)) + (J - theta) * q) * self.dx
+        self.jacobian = ufl.derivative(self.residual, self.u, ufl.TrialFunction(self.space))
+        self.factorisation = "cholesky"    # symmetric indefinite: LDL^T
+        self.line_search = True
+
+    def displacement(self):
+        return self.u.sub(0).collapse()
+
+    def _u_part(self, f):
+        return ufl.split(f)[0]
+
+
+class GentPlaneStress(GentProblem):
+    """Displacement problem of a plane-stress Gent sheet of thickness `thickness` (mm)."""
+
+    def __init__(self, msh, degree, thickness, mu=MU_KPA, Jm=JM, bulk_ratio=None,
+                 quadrature_degree=None):
+        self._setup(msh, degree, mu, Jm, bulk_ratio, quadrature_degree)
+        self.thickness = thickness
         v = ufl.TestFunction(self.V)
         du = ufl.TrialFunction(self.V)
         Ft = ufl.Identity(2) + ufl.grad(self.u)
@@ -82,8 +292,7 @@ class GentPlaneStress:
         h = thickness
         mu, Jm = self.mu, self.Jm
         if not self.compressible:
-            I1 = ufl.tr(Ct) + 1.0 / Jt**2
-            psi = -(mu * Jm / 2) * ufl.ln(1 - (I1 - 3) / Jm)
+            psi = gent_isochoric(ufl.tr(Ct) + 1.0 / Jt**2, mu, Jm)
             self.P = ufl.diff(psi, Fv)
             self.residual = h * ufl.inner(self.P, ufl.grad(v)) * self.dx
             self.jacobian = ufl.derivative(self.residual, self.u, du)
@@ -92,11 +301,9 @@ class GentPlaneStress:
             self.Q = fem.FunctionSpace(msh, Qe)
             self.C33 = fem.Function(self.Q, name="C33")
             self.C33.x.array[:] = 1.0
+            self.local = self.C33
             cv = ufl.variable(self.C33)
-            J = ufl.sqrt(cv) * Jt
-            I1bar = (ufl.tr(Ct) + cv) * J**(-2.0 / 3.0)
-            psi = (-(mu * Jm / 2) * ufl.ln(1 - (I1bar - 3) / Jm)
-                   + (1.0 / self.D) * ((J**2 - 1) / 2 - ufl.ln(J)))
+            psi = gent_compressible(ufl.tr(Ct) + cv, ufl.sqrt(cv) * Jt, mu, Jm, self.D)
             self.P = ufl.diff(psi, Fv)
             psi_Fc = ufl.diff(self.P, cv)
             psi_cc = ufl.diff(ufl.diff(psi, cv), cv)
@@ -107,13 +314,14 @@ class GentPlaneStress:
                              / psi_cc * self.dx)
             points, _ = create_quadrature(msh.ufl_cell().cellname(), self.q, "default")
             self._kin = fem.Expression(ufl.as_vector([ufl.tr(Ct), Jt]), points)
-            ncells = msh.topology.index_map(2).size_local
+            ncells = self.cells()
             self._cells = np.arange(ncells, dtype=np.int32)
             self._qdofs = self.Q.dofmap.list.array.reshape(ncells, -1)
             self._nq = points.shape[0]
-        self.bcs = []
-        self.steps_taken = 0
-        self.newton_iterations = 0
+
+    def update_local(self):
+        if self.compressible:
+            self.update_c33()
 
     # -- compressible plane stress: the local S33 = 0 solve ---------------------------
     def s33_residual(self, c, trCt, Jt):
@@ -160,93 +368,102 @@ class GentPlaneStress:
         return float(np.max(np.abs(self.s33_residual(c, vals[:, :, 0].ravel(),
                                                      vals[:, :, 1].ravel())) * self.D))
 
-    # -- boundary conditions ------------------------------------------------------------
-    def facets(self, marker):
-        return dmesh.locate_entities_boundary(self.msh, 1, marker)
 
-    def dofs(self, component, facets):
-        return fem.locate_dofs_topological(self.V.sub(component), 1, facets)
+def direct_solver(ksp, A, factorisation):
+    """MUMPS through the KSP: "lu", or "cholesky" (LDL^T) for a symmetric A."""
+    ksp.setType("preonly")
+    ksp.getPC().setType(factorisation)
+    ksp.getPC().setFactorSolverType("mumps")
+    if factorisation == "cholesky":
+        # MUMPS's Cholesky reads the upper triangle; the flag must outlive the
+        # reassemblies (symmetric indefinite LDL^T, no SPD assumption).
+        A.setOption(PETSc.Mat.Option.SYMMETRIC, True)
+        A.setOption(PETSc.Mat.Option.SYMMETRY_ETERNAL, True)
 
-    def add_bc(self, component, facets, value=0.0):
-        """u_component = value on the facets; returns the Constant to move it."""
-        c = fem.Constant(self.msh, PETSc.ScalarType(value))
-        self.bcs.append(fem.dirichletbc(c, self.dofs(component, facets), self.V.sub(component)))
-        return c
 
-    def reaction_form(self, component, facets):
-        """Form of the consistent reaction in `component` on the facets' dofs."""
-        w = fem.Function(self.V)
-        w.x.array[self.dofs(component, facets)] = 1.0
-        return fem.form(self.thickness * ufl.inner(self.P, ufl.grad(w)) * self.dx)
+def refine_near(gmsh, kind, tags, size_min, size_max, dist_min, dist_max, points):
+    """Background size field: size_min within dist_min of the entities (kind "CurvesList"
+    or "FacesList"), growing linearly to size_max at dist_max; `points` samples a curve."""
+    field = gmsh.model.mesh.field
+    dist = field.add("Distance")
+    field.setNumbers(dist, kind, tags)
+    field.setNumber(dist, "NumPointsPerCurve", points)
+    thr = field.add("Threshold")
+    field.setNumber(thr, "InField", dist)
+    field.setNumber(thr, "SizeMin", size_min)
+    field.setNumber(thr, "SizeMax", size_max)
+    field.setNumber(thr, "DistMin", dist_min)
+    field.setNumber(thr, "DistMax", dist_max)
+    field.setAsBackgroundMesh(thr)
+    return thr
 
-    # -- Newton with load stepping ------------------------------------------------------
-    def _make_solver(self):
-        problem = _Problem(self)
-        solver = dolfinx.nls.petsc.NewtonSolver(MPI.COMM_WORLD, problem)
-        solver.convergence_criterion = "incremental"
-        # The correction's l2 norm (mm) stalls at 1e-11..1e-10 from round-off; Newton
-        # converges quadratically (1e-5 -> 1e-10), so 1e-8 mm leaves the reactions exact to
-        # about 1e-12 and never waits on the round-off floor.
-        solver.rtol = 1e-12
-        solver.atol = 1e-8
-        solver.max_it = 12
-        solver.error_on_nonconvergence = False
-        solver.report = VERBOSE_NEWTON
-        ksp = solver.krylov_solver
-        ksp.setType("preonly")
-        ksp.getPC().setType("lu")
-        ksp.getPC().setFactorSolverType("mumps")
-        return problem, solver
 
-    def march(self, set_load, targets, on_target, dlam0=0.05, dlam_max=0.2,
-              dlam_min=1e-4, fast_iterations=4, verbose=False):
-        """Steps lambda from 1 through the sorted targets. set_load(lam) moves the
-        Dirichlet Constants; on_target(lam) is called at each target (converged)."""
-        if not hasattr(self, "_solver"):
-            self._problem, self._solver = self._make_solver()
-        lam, dlam = 1.0, dlam0
-        set_load(lam)
-        u_old = self.u.x.array.copy()        # converged at lam
-        u_older, lam_older = u_old.copy(), lam
-        c_old = self.C33.x.array.copy() if self.compressible else None
-        for target in targets:
-            while lam < target - 1e-12:
-                step = min(dlam, target - lam)
-                lam_new = lam + step
-                # Linear extrapolation of the last two converged states.
-                if lam > lam_older:
-                    ratio = step / (lam - lam_older)
-                    self.u.x.array[:] = u_old + ratio * (u_old - u_older)
-                else:
-                    self.u.x.array[:] = u_old
-                set_load(lam_new)
-                ok = True
-                try:
-                    n, converged = self._solver.solve(self.u)
-                    ok = converged and np.all(np.isfinite(self.u.x.array))
-                except RuntimeError:
-                    ok, n = False, 0
-                if not ok:
-                    self.u.x.array[:] = u_old
-                    if self.compressible:
-                        self.C33.x.array[:] = c_old
-                    dlam = step / 2
-                    if verbose:
-                        print(f"    lambda {lam_new:.5f}: no convergence, step -> {dlam:.2e}",
-                              file=sys.stderr)
-                    if dlam < dlam_min:
-                        raise RuntimeError(f"load stepping stalled at lambda = {lam:.5f}")
-                    continue
-                self.steps_taken += 1
-                self.newton_iterations += n
-                u_older, lam_older = u_old, lam
-                u_old = self.u.x.array.copy()
-                if self.compressible:
-                    c_old = self.C33.x.array.copy()
-                lam = lam_new
-                if n <= fast_iterations and step == dlam:
-                    dlam = min(1.5 * dlam, dlam_max)
-            on_target(lam)
+class _NewtonLineSearch:
+    """Newton with a backtracking line search on the residual norm (PETSc SNES newtonls,
+    bt), with the NewtonSolver's interface (solve(u) -> (iterations, converged)) and its
+    stopping rule: the Newton correction below 1e-8 mm. The Dirichlet values enter as
+    in dolfinx's NewtonSolver (lifting with x0 = x, so the first correction moves the
+    constrained dofs onto them)."""
+
+    ATOL_MM = 1e-8
+    MAX_IT = 25
+
+    def __init__(self, gent):
+        from dolfinx.fem import petsc as fp
+        self.gent = gent
+        self.L = fem.form(gent.residual)
+        self.a = fem.form(gent.jacobian)
+        self.A = fp.create_matrix(self.a)
+        self.b = fp.create_vector(self.L)
+        self.x = gent.u.vector.duplicate()
+        snes = PETSc.SNES().create(MPI.COMM_WORLD)
+        snes.setFunction(self._residual, self.b)
+        snes.setJacobian(self._jacobian, self.A)
+        snes.setType("newtonls")
+        # petsc4py 3.18 has no SNESLineSearch object: the type goes through the options.
+        snes.setOptionsPrefix("gent_fe_")
+        PETSc.Options()["gent_fe_snes_linesearch_type"] = "bt"
+        snes.setFromOptions()
+        snes.setConvergenceTest(self._converged)
+        direct_solver(snes.getKSP(), self.A, gent.factorisation)
+        self.snes = snes
+
+    def _residual(self, snes, x, b):
+        from dolfinx.fem import petsc as fp
+        x.ghostUpdate(addv=PETSc.InsertMode.INSERT, mode=PETSc.ScatterMode.FORWARD)
+        x.copy(self.gent.u.vector)
+        self.gent.u.x.scatter_forward()
+        self.gent.update_local()
+        with b.localForm() as local:
+            local.set(0.0)
+        fp.assemble_vector(b, self.L)
+        fp.apply_lifting(b, [self.a], bcs=[self.gent.bcs], x0=[x], scale=-1.0)
+        b.ghostUpdate(addv=PETSc.InsertMode.ADD, mode=PETSc.ScatterMode.REVERSE)
+        fp.set_bc(b, self.gent.bcs, x, -1.0)
+
+    def _jacobian(self, snes, x, A, P):
+        from dolfinx.fem import petsc as fp
+        A.zeroEntries()
+        fp.assemble_matrix(A, self.a, bcs=self.gent.bcs)
+        A.assemble()
+
+    def _converged(self, snes, it, norms):
+        _, step_norm, residual_norm = norms
+        R = PETSc.SNES.ConvergedReason
+        if not np.isfinite(residual_norm):
+            return R.DIVERGED_FNORM_NAN
+        if it > 0 and step_norm < self.ATOL_MM:
+            return R.CONVERGED_SNORM_RELATIVE
+        if it >= self.MAX_IT:
+            return R.DIVERGED_MAX_IT
+        return R.ITERATING
+
+    def solve(self, u):
+        u.vector.copy(self.x)
+        self.snes.solve(None, self.x)
+        self.x.copy(u.vector)
+        u.x.scatter_forward()
+        return self.snes.getIterationNumber(), self.snes.getConvergedReason() > 0
 
 
 class _Problem(dolfinx.fem.petsc.NonlinearProblem):
@@ -258,27 +475,26 @@ class _Problem(dolfinx.fem.petsc.NonlinearProblem):
 
     def form(self, x):
         super().form(x)
-        if self.gent.compressible:
-            self.gent.update_c33()
+        self.gent.update_local()
 
 
-def mesh_from_gmsh(build, h, geometry_order=2):
+def mesh_from_gmsh(build, h, geometry_order=2, dim=2):
     """dolfinx mesh of the gmsh model that build(gmsh, h) makes (it returns the surface
-    tags, synchronised; it may add a size field), element size at most h;
-    geometry_order 2 puts the edge mid-nodes on the curves, so P2 does not lose its
-    order to a polygonal hole."""
+    tags, or the volume tags with dim = 3, synchronised; it may add a size field),
+    element size at most h; geometry_order 2 puts the edge mid-nodes on the curves
+    (and surfaces), so P2 does not lose its order to a polygonal hole."""
     import gmsh
     from dolfinx.io import gmshio
     gmsh.initialize()
     gmsh.option.setNumber("General.Terminal", 0)
     gmsh.model.add("fe")
-    surfaces = build(gmsh, h)
+    entities = build(gmsh, h)
     gmsh.model.occ.synchronize()
-    gmsh.model.addPhysicalGroup(2, surfaces, 1)
+    gmsh.model.addPhysicalGroup(dim, entities, 1)
     gmsh.option.setNumber("Mesh.CharacteristicLengthMax", h)
-    gmsh.model.mesh.generate(2)
+    gmsh.model.mesh.generate(dim)
     gmsh.model.mesh.setOrder(geometry_order)
-    msh, _, _ = gmshio.model_to_mesh(gmsh.model, MPI.COMM_WORLD, 0, gdim=2)
+    msh, _, _ = gmshio.model_to_mesh(gmsh.model, MPI.COMM_WORLD, 0, gdim=dim)
     gmsh.finalize()
     return msh
 
@@ -338,16 +554,26 @@ def gripped_specimen_main(description, title, csv_name, build, lambdas, *, heigh
 
 
 def point_value(function, point):
-    """Value of a vector Function at a point of the mesh (x, y) in mm."""
+    """Value of a vector Function at a point of the mesh, (x, y) or (x, y, z) in mm."""
+    return point_values(function, [point])[0]
+
+
+def point_values(function, points):
+    """Values of a vector Function at points of the mesh (rows (x, y) or (x, y, z), mm)."""
     from dolfinx import geometry
     msh = function.function_space.mesh
-    p = np.array([[point[0], point[1], 0.0]])
+    p = np.zeros((len(points), 3))
+    for i, q in enumerate(points):
+        p[i, :len(q)] = q
     tree = geometry.BoundingBoxTree(msh, msh.topology.dim)
     candidates = geometry.compute_collisions(tree, p)
-    cells = geometry.compute_colliding_cells(msh, candidates, p)
-    if len(cells.links(0)) == 0:
-        raise RuntimeError(f"point {point} is not in the mesh")
-    return function.eval(p, cells.links(0)[:1])
+    colliding = geometry.compute_colliding_cells(msh, candidates, p)
+    cells = []
+    for i in range(len(p)):
+        if len(colliding.links(i)) == 0:
+            raise RuntimeError(f"point {tuple(points[i])} is not in the mesh")
+        cells.append(colliding.links(i)[0])
+    return function.eval(p, np.array(cells, dtype=np.int32)).reshape(len(points), -1)
 
 
 def formulation_name(bulk_ratio):
@@ -355,8 +581,8 @@ def formulation_name(bulk_ratio):
 
 
 def dofs_of(problem):
-    im = problem.V.dofmap.index_map
-    return (im.size_local + im.num_ghosts) * problem.V.dofmap.index_map_bs
+    im = problem.space.dofmap.index_map
+    return (im.size_local + im.num_ghosts) * problem.space.dofmap.index_map_bs
 
 
 def richardson(values, ratio=2.0):
@@ -414,7 +640,8 @@ def run_study(args, quantities, solve):
         name = formulation_name(bulk)
         print(header)
         p2 = {c: [] for c in columns}
-        for degree, h in [(2, h) for h in sizes] + [(1, sizes[-1])]:
+        p1 = [(1, sizes[-1])] if getattr(args, "p1", True) else []
+        for degree, h in [(2, h) for h in sizes] + p1:
             timer = Timer()
             values, info = solve(h, degree, bulk, lambdas)
             t = timer()
@@ -458,9 +685,9 @@ def run_study(args, quantities, solve):
 
 def solve_info(fe):
     """The bookkeeping run_study prints for a solved problem."""
-    return {"cells": fe.msh.topology.index_map(2).size_local, "dofs": dofs_of(fe),
+    return {"cells": fe.cells(), "dofs": dofs_of(fe),
             "steps": fe.steps_taken, "newton": fe.newton_iterations,
-            "s33": fe.s33_check() if fe.compressible else 0.0}
+            "s33": fe.s33_check() if fe.local is not None else 0.0}
 
 
 def pure_shear_analytic(lam, mu=MU_KPA, Jm=JM):

@@ -48,17 +48,7 @@ def build_waisted(gmsh, h, grip_depth):
     for box in [(8, 28.5, 12, 31.5), (6.9, 45.9, 13.1, 52.1)]:
         near += [tag for _, tag in gmsh.model.getEntitiesInBoundingBox(
             box[0], box[1], -1, box[2], box[3], 1, dim=1)]
-    field = gmsh.model.mesh.field
-    dist = field.add("Distance")
-    field.setNumbers(dist, "CurvesList", near)
-    field.setNumber(dist, "NumPointsPerCurve", 200)
-    thr = field.add("Threshold")
-    field.setNumber(thr, "InField", dist)
-    field.setNumber(thr, "SizeMin", h / 4)
-    field.setNumber(thr, "SizeMax", h)
-    field.setNumber(thr, "DistMin", 1.0)
-    field.setNumber(thr, "DistMax", 1.0 + 3 * h)
-    field.setAsBackgroundMesh(thr)
+    gent_fe.refine_near(gmsh, "CurvesList", near, h / 4, h, 1.0, 1.0 + 3 * h, 200)
     return [tag for _, tag in cut]
 
 
