@@ -40,7 +40,8 @@
 //
 // What it does not do: the tensor correction's virial sum_j t_ij (x) xi_ij V_j = P is
 // perturbed by sum_j h_ij (x) xi_ij V_j (0.3-1 % on average over a cloud, up to 14 % at
-// a point; docs/discretisations.md); the energy-consistent form is not corrected (its
+// a point; docs/discretisations.md; compute_virial_patch_correction below keeps both);
+// the energy-consistent form is not corrected (its
 // forces are a gradient: a correction would have to be an energy's). On the lattice the
 // correction is off (its interior passes by symmetry), so lattice runs are bit for bit
 // what they were.

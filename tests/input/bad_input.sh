@@ -219,6 +219,9 @@ expect_error cloud_block_missing "-load_top_block 7: no point of 'cloud.csv' has
 expect_error block_on_lattice "-load_top_region block: block ids come with the points of a cloud" "$scene" -load_top_region block \
   -load_top_block 1
 expect_error probe_block_many "-probe_p_block 1: a probe is one point, but block 1 has 400 points" "$cloud_scene" -probes p -probe_p_block 1
+# The affine field for two region grips needs one wholly above the other.
+expect_error region_grips_overlap "-load_grip_field affine: load sets 'bottom' and 'top' overlap in y" "$scene" -load_grip_field affine \
+  -load_top_region box -load_top_box 0,0.004,0.01,0.01 -load_bottom_region box -load_bottom_box 0,0,0.01,0.006
 # A cloud that needs more memory than the machine has (here by a huge horizon, so that
 # the file stays small): the fix names the cloud and the horizon, not -body_dx.
 expect_error cloud_needs_more_memory "-body_cloud 'cloud.csv' gives 400 material points" "$cloud_scene" -horizon_factor 3000
