@@ -174,20 +174,34 @@ std::size_t conjugate_gradients(const Apply &apply, const Precondition &precondi
   return it;
 }
 
+// What both solves start from: the kernel's force vectors g of every bond (reference
+// state, nothing broken) and the boundary layer. Throws std::invalid_argument (naming
+// `who`) unless the families are the whole cloud's.
+struct SetupGeometry {
+  std::vector<double> g;
+  std::vector<char>   layer;
+  SetupGeometry(const PointCloud &cloud, const Families &families, StressCorrection stress_correction, const char *who)
+  {
+    if (families.n_family != cloud.size() || families.reverse.size() != families.n_bonds())
+      throw std::invalid_argument(std::string(who) + ": needs the families of every point of the cloud");
+    BondState    state(families);
+    BondGeometry geo;
+    geo.stress_correction = stress_correction;
+    compute_bond_geometry(cloud, families, state, geo);
+    g     = force_vectors(cloud, families, state, geo);
+    layer = boundary_layer(cloud, families, g);
+  }
+};
+
 } // namespace
 
 std::vector<double> compute_patch_correction(const PointCloud &cloud, const Families &families,
                                              StressCorrection stress_correction, PatchCorrectionReport *report)
 {
-  const std::size_t n = families.n_family;
-  if (n != cloud.size() || families.reverse.size() != families.n_bonds())
-    throw std::invalid_argument("compute_patch_correction: needs the families of every point of the cloud");
-  BondState    state(families);
-  BondGeometry geo;
-  geo.stress_correction = stress_correction;
-  compute_bond_geometry(cloud, families, state, geo);
-  const std::vector<double> g      = force_vectors(cloud, families, state, geo);
-  const std::vector<char>   layer  = boundary_layer(cloud, families, g);
+  const std::size_t         n = families.n_family;
+  const SetupGeometry       setup(cloud, families, stress_correction, "compute_patch_correction");
+  const std::vector<double> &g = setup.g;
+  const std::vector<char>   &layer = setup.layer;
 
   // The block-Jacobi preconditioner A_ii^{-1}; the defect without lambda.
   std::vector<double>   Dinv(4 * n, 0.0);
@@ -343,15 +357,10 @@ bool invert_block(double *a, std::size_t m)
 std::vector<double> compute_virial_patch_correction(const PointCloud &cloud, const Families &families,
                                                     StressCorrection stress_correction, PatchCorrectionReport *report)
 {
-  const std::size_t n = families.n_family, nb = families.n_bonds();
-  if (n != cloud.size() || families.reverse.size() != nb)
-    throw std::invalid_argument("compute_virial_patch_correction: needs the families of every point of the cloud");
-  BondState    state(families);
-  BondGeometry geo;
-  geo.stress_correction = stress_correction;
-  compute_bond_geometry(cloud, families, state, geo);
-  const std::vector<double> g     = force_vectors(cloud, families, state, geo);
-  const std::vector<char>   layer = boundary_layer(cloud, families, g);
+  const std::size_t         n = families.n_family, nb = families.n_bonds();
+  const SetupGeometry       setup(cloud, families, stress_correction, "compute_virial_patch_correction");
+  const std::vector<double> &g = setup.g;
+  const std::vector<char>   &layer = setup.layer;
   const std::vector<double> none;
 
   // Right-hand side (-V_i d_i at interior points, 0 for the virial rows) and the

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <random>
+#include <vector>
 
 #include "bapd/geometry.hpp"
 #include "bapd/patch_correction.hpp"
@@ -56,6 +57,18 @@ Body2D graded_body(int n, double a = 1.0)
     }
   body.given_points = std::make_shared<GivenPoints>(g);
   return body;
+}
+
+// The bond forces t and force densities f of the affine motion y = A X (Saint
+// Venant-Kirchhoff, bond-only), and the P of A: the one stress of every bond.
+Mat2 affine_forces(test::Discretisation &d, const Mat2 &A, std::vector<double> &t, std::vector<double> &f)
+{
+  test::SaintVenantKirchhoff2D svk;
+  double                       c33 = 0;
+  Mat2                         P;
+  EXPECT_EQ(svk.stress(A, c33, P), StressStatus::ok);
+  d.forces(svk, d.affine(A), t, f);
+  return P;
 }
 
 TEST(GeometryStage, LatticeProducerIsMakeLatticeBitForBit)
@@ -191,14 +204,9 @@ TEST_P(NonUniformCloud, TensorCorrectionGivesUniformStressAsTheVirialAtEveryPoin
   // reference families, bond_geometry.hpp), boundary points included.
   test::Discretisation d(make_points(body(), kFactor), StressCorrection::tensor);
   const Mat2           A = {1.2, 0.1, -0.05, 0.9};
-  const std::vector<double>    y = d.affine(A);
-  test::SaintVenantKirchhoff2D svk;
-  double                       c33 = 0;
-  Mat2                         P;
-  ASSERT_EQ(svk.stress(A, c33, P), StressStatus::ok);
-  std::vector<double> t, f;
-  d.forces(svk, y, t, f);
-  double worst = 0;
+  std::vector<double>  t, f;
+  const Mat2           P = affine_forces(d, A, t, f);
+  double               worst = 0;
   for (std::size_t i = 0; i < d.size(); ++i) {
     worst = std::max(worst, test::norm(test::bond_force_virial(d, t, i) - P) / test::norm(P));
   }
@@ -206,7 +214,7 @@ TEST_P(NonUniformCloud, TensorCorrectionGivesUniformStressAsTheVirialAtEveryPoin
   // Without the correction the virial is P M_i, M_i != I on an irregular cloud.
   test::Discretisation plain(make_points(body(), kFactor));
   std::vector<double>  t0, f0;
-  plain.forces(svk, y, t0, f0);
+  affine_forces(plain, A, t0, f0);
   double off = 0;
   for (std::size_t i = 0; i < plain.size(); ++i)
     off = std::max(off, test::norm(virial_tensor(plain.cloud, plain.families, plain.state, i) - Mat2{1, 0, 0, 1}));
@@ -282,21 +290,24 @@ TEST(NonUniformPatch, AffineMotionLeavesNoInteriorForceOnARegularCloudGivenAsPoi
       EXPECT_LT(interior_affine_residual(jittered_body(30, 0.0, 0.0), c, ec), 1e-12) << (ec ? "energy-consistent" : "bond-only");
 }
 
+// The irregular clouds of the patch tests (docs/discretisations.md's tables).
+struct NamedCloud {
+  const char *name;
+  Body2D      body;
+};
+std::vector<NamedCloud> irregular_clouds()
+{
+  return {{"jittered 0.2 dx", jittered_body(30, 0.2, 0.0)}, {"volumes +-30 %", jittered_body(30, 0.0, 0.3)}, {"graded 1:3", graded_body(40)}};
+}
+
 TEST(NonUniformPatch, PatchCorrectionLeavesNoInteriorForceOnIrregularClouds)
 {
   // -force_patch_correction (patch_correction.hpp): lambda solved so that the discrete
   // divergence of a constant stress vanishes at every interior point. Without it the
   // interior force is 3-14 % of its terms (docs/discretisations.md), with it round-off:
   // CG to 1e-14 of the right-hand side, then ~60 terms of size 1 each.
-  struct Cloud {
-    const char *name;
-    Body2D      body;
-  };
-  const Cloud clouds[] = {{"jittered 0.2 dx", jittered_body(30, 0.2, 0.0)},
-                          {"volumes +-30 %", jittered_body(30, 0.0, 0.3)},
-                          {"graded 1:3", graded_body(40)}};
   for (StressCorrection c : {StressCorrection::none, StressCorrection::tensor})
-    for (const Cloud &cloud : clouds) {
+    for (const NamedCloud &cloud : irregular_clouds()) {
       PatchCorrectionReport report;
       EXPECT_GT(interior_affine_residual(cloud.body, c, false), 0.02) << cloud.name; // the defect is there
       EXPECT_LT(interior_affine_residual(cloud.body, c, false, true, &report), 1e-12) << cloud.name << ", " << to_string(c);
@@ -335,14 +346,9 @@ VirialPatchFigures virial_patch_figures(const Body2D &body, StressCorrection cor
   test::Discretisation d(make_points(body, kFactor), correction);
   const std::vector<double> Y = compute_virial_patch_correction(d.cloud, d.families, correction, &out.report);
   const Mat2                A = {1.1, 0.05, 0.02, 0.95};
-  const std::vector<double> y = d.affine(A);
-  test::SaintVenantKirchhoff2D svk;
-  double                       c33 = 0;
-  Mat2                         P;
-  EXPECT_EQ(svk.stress(A, c33, P), StressStatus::ok);
-  std::vector<double> t, f;
-  d.forces(svk, y, t, f);
-  std::vector<double> tc = t; // + P c_ij xi_ij where the kernel gives the bond a force
+  std::vector<double>       t, f;
+  const Mat2                P  = affine_forces(d, A, t, f);
+  std::vector<double>       tc = t; // + P c_ij xi_ij where the kernel gives the bond a force
   for (std::size_t i = 0; i < d.size(); ++i)
     for (std::size_t b = d.families.offsets[i]; b < d.families.offsets[i + 1]; ++b) {
       if (t[2 * b] == 0.0 && t[2 * b + 1] == 0.0) continue;
@@ -376,7 +382,7 @@ VirialPatchFigures virial_patch_figures(const Body2D &body, StressCorrection cor
   test::Discretisation l(make_points(body, kFactor), correction);
   l.cloud.patch_correction = compute_patch_correction(l.cloud, l.families, correction);
   std::vector<double> tl, fl;
-  l.forces(svk, y, tl, fl);
+  affine_forces(l, A, tl, fl);
   for (std::size_t i = 0; i < l.size(); ++i)
     out.virial_lambda = std::max(out.virial_lambda, test::norm(test::bond_force_virial(l, tl, i) - P) / test::norm(P));
   return out;
@@ -387,15 +393,9 @@ TEST(NonUniformPatch, VirialPatchCorrectionKeepsThePatchTestAndTheVirial)
   // Issue 18 item 5: the lambda correction passes the patch test but moves the virial
   // (7-14 % at a point); c_ij = (mu_i - mu_j) . xi + xi . S_i xi passes both, to
   // round-off, on every irregular cloud of the lambda test.
-  struct Cloud {
-    const char *name;
-    Body2D      body;
-  };
-  const Cloud clouds[] = {{"jittered 0.1 dx", jittered_body(30, 0.1, 0.0)},
-                          {"jittered 0.2 dx", jittered_body(30, 0.2, 0.0)},
-                          {"volumes +-30 %", jittered_body(30, 0.0, 0.3)},
-                          {"graded 1:3", graded_body(40)}};
-  for (const Cloud &cloud : clouds) {
+  std::vector<NamedCloud> clouds = irregular_clouds();
+  clouds.insert(clouds.begin(), {"jittered 0.1 dx", jittered_body(30, 0.1, 0.0)});
+  for (const NamedCloud &cloud : clouds) {
     const VirialPatchFigures v = virial_patch_figures(cloud.body, StressCorrection::tensor);
     std::printf("%-16s interior force %.3g -> %.3g, virial error lambda %.3g, c_ij %.3g, momentum %.2g, %zu CG iterations\n",
                 cloud.name, v.before, v.after, v.virial_lambda, v.virial_after, v.momentum, v.report.iterations);
