@@ -128,13 +128,13 @@ PetscErrorCode Loading::SetAffineLevers(const Scene &scene, const Layout &layout
   const double H = scene.body.height, dx = scene.body.dx;
   double       y_top = 0, y_bottom = 0;
   bool         edge  = false;
+  PetscFunctionBegin;
   for (const LoadSet &l : scene.loads) {
     if (l.y == ComponentLoad::free) continue;
     const bool inside = l.placement == GripPlacement::inside;
     if (l.region == LoadSet::Region::top) y_top = inside ? H - l.layers * dx : H, edge = true;
     if (l.region == LoadSet::Region::bottom) y_bottom = inside ? l.layers * dx : 0.0, edge = true;
   }
-  PetscFunctionBegin;
   if (!edge) { // two region grips (CheckLoading): their extent in y, the same on any rank count (min/max)
     double      lo[2], hi[2]; // per set: lowest y - h/2, -(highest y + h/2)
     std::size_t k = 0;
