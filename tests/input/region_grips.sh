@@ -7,6 +7,7 @@
 # beyond each edge, affine). The points are the same (shifted by 3 mm), so the top
 # grip's reaction must agree to round-off at every row of history.csv; the same tabs
 # with the rigid field (the region default) must not (the test can tell the two apart).
+# On 2 ranks the boxes must give the same bits as on 1.
 #   region_grips.sh        (ctest sets BAPD_EXE and BAPD_SOURCE_DIR)
 set -euo pipefail
 work="input_region_grips"
