@@ -70,6 +70,7 @@ struct PatchCorrectionReport {
   double      before     = 0; // largest interior |d_i| / sum_j (|g_ij| + |g_ji|) V_j without lambda
   double      after      = 0; // the same with lambda
   double      virial     = 0; // largest |sum_j h_ij (x) xi_ij V_j| / |sum_j g_ij (x) xi_ij V_j| over all points
+  double      term       = 0; // largest |h_ij| / |g_ij| over the bonds that carry force (virial-keeping solve)
 };
 
 // lambda, 2 per point (0 in the boundary layer), for the bond-only force with the

@@ -433,6 +433,8 @@ std::vector<double> compute_virial_patch_correction(const PointCloud &cloud, con
       bond_offset(cloud, families, i, b, x0, x1);
       const double vj = cloud.volume[j];
       scale += (std::hypot(g[2 * b], g[2 * b + 1]) + std::hypot(g[2 * rb], g[2 * rb + 1])) * vj;
+      const double gn = std::hypot(g[2 * b], g[2 * b + 1]);
+      if (gn > 0) out.term = std::max(out.term, std::abs(c[b]) * std::hypot(x0, x1) / gn);
       d[0] += (g[2 * b] - g[2 * rb] + (c[b] + c[rb]) * x0) * vj;
       d[1] += (g[2 * b + 1] - g[2 * rb + 1] + (c[b] + c[rb]) * x1) * vj;
       h[0] += c[b] * x0 * x0 * vj;

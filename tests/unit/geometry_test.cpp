@@ -397,8 +397,9 @@ TEST(NonUniformPatch, VirialPatchCorrectionKeepsThePatchTestAndTheVirial)
   clouds.insert(clouds.begin(), {"jittered 0.1 dx", jittered_body(30, 0.1, 0.0)});
   for (const NamedCloud &cloud : clouds) {
     const VirialPatchFigures v = virial_patch_figures(cloud.body, StressCorrection::tensor);
-    std::printf("%-16s interior force %.3g -> %.3g, virial error lambda %.3g, c_ij %.3g, momentum %.2g, %zu CG iterations\n",
-                cloud.name, v.before, v.after, v.virial_lambda, v.virial_after, v.momentum, v.report.iterations);
+    std::printf("%-16s interior force %.3g -> %.3g, virial error lambda %.3g, c_ij %.3g, momentum %.2g, %zu CG iterations, "
+                "largest |h_ij| / |g_ij| %.2g\n",
+                cloud.name, v.before, v.after, v.virial_lambda, v.virial_after, v.momentum, v.report.iterations, v.report.term);
     EXPECT_GT(v.before, 0.02) << cloud.name;        // the defect is there
     EXPECT_GT(v.virial_lambda, 0.02) << cloud.name; // and the lambda correction moves the virial
     EXPECT_LT(v.after, 1e-12) << cloud.name;        // both hold with c_ij
