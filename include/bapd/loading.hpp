@@ -62,7 +62,7 @@ public:
                          double end_current, double t, PetscInt hold_done);
 
 private:
-  void SetAffineLevers(const Scene &scene, const Layout &layout);
+  PetscErrorCode SetAffineLevers(const Scene &scene, const Layout &layout); // collective
 
   MPI_Comm                    comm_   = MPI_COMM_NULL;
   const Layout               *layout_ = nullptr;

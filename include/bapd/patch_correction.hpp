@@ -40,7 +40,8 @@
 //
 // What it does not do: the tensor correction's virial sum_j t_ij (x) xi_ij V_j = P is
 // perturbed by sum_j h_ij (x) xi_ij V_j (0.3-1 % on average over a cloud, up to 14 % at
-// a point; docs/discretisations.md); the energy-consistent form is not corrected (its
+// a point; docs/discretisations.md; compute_virial_patch_correction below keeps both);
+// the energy-consistent form is not corrected (its
 // forces are a gradient: a correction would have to be an energy's). On the lattice the
 // correction is off (its interior passes by symmetry), so lattice runs are bit for bit
 // what they were.
@@ -68,6 +69,8 @@ struct PatchCorrectionReport {
   std::size_t iterations = 0; // conjugate-gradient iterations
   double      before     = 0; // largest interior |d_i| / sum_j (|g_ij| + |g_ji|) V_j without lambda
   double      after      = 0; // the same with lambda
+  double      virial     = 0; // largest |sum_j h_ij (x) xi_ij V_j| / |sum_j g_ij (x) xi_ij V_j| over all points
+  double      term       = 0; // largest |h_ij| / |g_ij| over the bonds that carry force (virial-keeping solve)
 };
 
 // lambda, 2 per point (0 in the boundary layer), for the bond-only force with the
@@ -77,5 +80,43 @@ struct PatchCorrectionReport {
 // cloud's, std::runtime_error if the solve does not reach round-off.
 std::vector<double> compute_patch_correction(const PointCloud &cloud, const Families &families,
                                              StressCorrection stress_correction, PatchCorrectionReport *report = nullptr);
+
+// ---------------------------------------------------------------------------------
+// The patch test AND the virial (issue 18 item 5; docs/discretisations.md "Keeping the
+// virial"). Not wired into the kernel yet: the setup solve, its test harness
+// (tests/unit/geometry_test.cpp, NonUniformPatch.VirialPatchCorrection*) and the hook
+// the kernel needs (below) are here; the force loop still takes lambda only.
+//
+// Unknown: one central term per usable bond, h_ij = c_ij xi_ij (8 bytes a bond if it
+// were stored), c_ji independent of c_ij. Constraints, under an affine motion (one P):
+//   patch, every interior point (2):  d_i + sum_j (c_ij + c_ji) xi_ij V_j = 0
+//     (h_ij - h_ji = (c_ij + c_ji) xi_ij);
+//   virial, every point (3; central terms have no skew part):
+//     sum_j c_ij xi_ij (x) xi_ij V_j = 0,
+//   so that sum_j t_ij (x) xi_ij V_j keeps its value (P with the tensor correction).
+// The minimum of sum_ij V_i V_j c_ij^2 under these (a least-change solution) is, by
+// the Lagrange conditions, in the span of the constraint rows:
+//   c_ij = (mu_i - mu_j) . xi_ij + xi_ij . S_i xi_ij,
+// with mu_i (2, 0 in the boundary layer) the patch multipliers and S_i (3, symmetric)
+// the virial multipliers. So the per-bond correction needs 5 numbers a point, not a
+// number a bond (40 B a point against ~8 x 27 = 216 B), and the kernel hook is one
+// term per bond: s = virial_patch_coefficient(y_i, y_j, xi); g_ij += s xi_ij, with
+// y_j a ghost's mu (the same ring-1 exchange as lambda today). (mu, S) solve A y = r,
+// A = B W^-1 B^T (5 x 5 blocks on the bond graph, 3 x 3 in the layer), symmetric
+// positive definite when B has full row rank: an affine mu with S = sym grad mu makes
+// every c_ij = 0 (the null space of B^T), and mu = 0 in the layer removes it.
+inline constexpr std::size_t kVirialPatchStride = 5; // mu0, mu1, S00, S01, S11
+
+inline double virial_patch_coefficient(const double *y_i, const double *y_j, double d0, double d1)
+{
+  return (y_i[0] - y_j[0]) * d0 + (y_i[1] - y_j[1]) * d1 + y_i[2] * d0 * d0 + 2.0 * y_i[3] * d0 * d1 + y_i[4] * d1 * d1;
+}
+
+// (mu, S), 5 per point, for the bond-only force with `stress_correction`; the same
+// preconditions and errors as compute_patch_correction. report->after is the largest
+// interior patch defect and report->virial the largest virial change, with c_ij.
+std::vector<double> compute_virial_patch_correction(const PointCloud &cloud, const Families &families,
+                                                    StressCorrection          stress_correction,
+                                                    PatchCorrectionReport    *report = nullptr);
 
 } // namespace bapd

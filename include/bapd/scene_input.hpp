@@ -17,8 +17,9 @@ struct LoadInput {
   std::string         name, region, x = "free", y = "free", placement = "auto"; // auto: -load_grip_placement's
   std::string         group, file; // region group: the physical group and its Gmsh file
   bool                region_set = false, box_set = false, layers_set = false, depth_set = false, x_scale_set = false,
-                      y_scale_set = false, points_set = false;
+                      y_scale_set = false, points_set = false, block_set = false;
   std::vector<double> box, points; // points: region polygon or curve
+  PetscInt            block = 0;   // region block: the block id of the given points
   PetscInt            layers  = 1;
   double              depth   = 0.0;
   double              x_scale = 1.0, y_scale = 1.0;
@@ -37,6 +38,8 @@ struct ProbeInput {
   std::vector<double> at;
   bool                at_set = false;
   std::string         group, file; // -probe_NAME_group (a Gmsh physical point) and its file
+  PetscInt            block     = 0; // -probe_NAME_block: a block id of the cloud with one point
+  bool                block_set = false;
 };
 
 struct SceneInput {

@@ -39,7 +39,7 @@ enum class GripPlacement { outside, inside };
 // surface holds the points inside its elements; a physical curve or point, the
 // points closer than `depth` to it).
 struct LoadSet {
-  enum class Region { top, bottom, left, right, box, polygon, curve, group };
+  enum class Region { top, bottom, left, right, box, polygon, curve, group, block };
   std::string   name;
   Region        region    = Region::top;
   GripPlacement placement = GripPlacement::inside; // edge regions (the others are inside)
@@ -56,7 +56,18 @@ struct LoadSet {
   double              depth = 0.0;          // [m]
   double              reach[4] = {0, 0, 0, 0}; // the segments' bounding box grown by depth
   std::string         group, file;          // group: the physical group and its Gmsh file
+  // block: the given points (-body_cloud) of block id `block`, found by position:
+  // their (x, y), sorted, compared bit for bit (a point keeps the coordinates read from
+  // the cloud, and two points never share a position: the cloud check refuses it).
+  int64_t             block = 0;
+  std::vector<double> block_points;
 };
+
+// The (x, y) of the given points of block id `block`, sorted (LoadSet::block_points).
+// Empty when there are no given points or no point has that id.
+std::vector<double> BlockPoints(const Body2D &body, int64_t block);
+// The block ids the given points have, "1, 2, 5" (for messages; at most 20 shown).
+std::string BlockIdList(const Body2D &body);
 
 // Whether the point at reference position (px, py) belongs to `set` (the predicate
 // LoadSetSelect applies to every owned point).

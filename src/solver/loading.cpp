@@ -2,7 +2,9 @@
 #include "bapd/loading.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <limits>
 
 #include "bapd/reproducible_sum.hpp"
 
@@ -43,6 +45,11 @@ PetscErrorCode Loading::Setup(MPI_Comm comm, const Scene &scene, const Layout &l
                       n, set.group.c_str(), set.file.c_str(), n,
                       set.segments.empty() ? "no material point lies inside its elements (is it a surface of the body?)"
                                            : ("no point lies closer to it than -load_" + set.name + "_depth: raise the depth, or check that it lies on the body").c_str());
+      else if (set.region == LoadSet::Region::block)
+        std::snprintf(msg, sizeof msg,
+                      "-load_%s_block %lld selects no material point for load set '%s': the body's shapes or holes cut away "
+                      "all %zu points of that block",
+                      n, static_cast<long long>(set.block), n, set.block_points.size() / 2);
       else if (set.region == LoadSet::Region::polygon || set.region == LoadSet::Region::curve)
         std::snprintf(msg, sizeof msg,
                       "-load_%s_points: the %s selects no material point for load set '%s': %s (points sit at ((i + 1/2) dx, (j + "
@@ -75,7 +82,7 @@ PetscErrorCode Loading::Setup(MPI_Comm comm, const Scene &scene, const Layout &l
     else *it = d;
   }
   constrained_ = std::move(unique);
-  if (scene.grip_field == GripField::affine) SetAffineLevers(scene, layout);
+  if (scene.grip_field == GripField::affine) PetscCall(SetAffineLevers(scene, layout));
   terms_.assign(2 * most, 0.0);
   PetscFunctionReturn(0);
 }
@@ -111,15 +118,47 @@ void Loading::Apply(double t, double *u, double *v) const
 // inside. L_free = y_inner,top - y_inner,bottom (CheckLoading made sure both exist).
 // The x dofs keep what the set says: a clamp holds x (the free region's lateral
 // contraction vanishes at the grip line, so u_x = 0 continues it).
-void Loading::SetAffineLevers(const Scene &scene, const Layout &layout)
+// Two region grips (box, polygon, curve, group, block: no edge set holds y) are the
+// same for any shape: the grip line of each is where its points end towards the
+// other, half a point spacing (sqrt(V/t)) beyond its innermost point; the upper set
+// is the top grip, and the two must not overlap in y. That is the outside treatment's
+// equivalent for grips on the body's own points (docs/options.md "Grips outside").
+PetscErrorCode Loading::SetAffineLevers(const Scene &scene, const Layout &layout)
 {
   const double H = scene.body.height, dx = scene.body.dx;
   double       y_top = 0, y_bottom = 0;
+  bool         edge  = false;
+  PetscFunctionBegin;
   for (const LoadSet &l : scene.loads) {
     if (l.y == ComponentLoad::free) continue;
     const bool inside = l.placement == GripPlacement::inside;
-    if (l.region == LoadSet::Region::top) y_top = inside ? H - l.layers * dx : H;
-    if (l.region == LoadSet::Region::bottom) y_bottom = inside ? l.layers * dx : 0.0;
+    if (l.region == LoadSet::Region::top) y_top = inside ? H - l.layers * dx : H, edge = true;
+    if (l.region == LoadSet::Region::bottom) y_bottom = inside ? l.layers * dx : 0.0, edge = true;
+  }
+  if (!edge) { // two region grips (CheckLoading): their extent in y, the same on any rank count (min/max)
+    double      lo[2], hi[2]; // per set: lowest y - h/2, -(highest y + h/2)
+    std::size_t k = 0;
+    const char *names[2] = {"", ""};
+    for (std::size_t s = 0; s < scene.loads.size(); ++s) {
+      if (scene.loads[s].y == ComponentLoad::free) continue;
+      lo[k] = hi[k] = std::numeric_limits<double>::max();
+      for (PetscInt p : load_points_[s].points) {
+        const double y = layout.cloud.x[2 * p + 1], h = std::sqrt(layout.cloud.volume[p] / scene.body.thickness);
+        lo[k]          = std::min(lo[k], y - 0.5 * h);
+        hi[k]          = std::min(hi[k], -(y + 0.5 * h));
+      }
+      names[k++] = scene.loads[s].name.c_str();
+    }
+    PetscCheck(k == 2, comm_, PETSC_ERR_PLIB, "SetAffineLevers: %zu region grips hold y, not 2", k);
+    double ext[4] = {lo[0], hi[0], lo[1], hi[1]};
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, ext, 4, MPI_DOUBLE, MPI_MIN, comm_));
+    const int top = ext[2] > ext[0] ? 1 : 0, bottom = 1 - top;
+    y_top         = ext[2 * top];
+    y_bottom      = -ext[2 * bottom + 1];
+    PetscCheck(y_top >= y_bottom, comm_, PETSC_ERR_USER,
+               "-load_grip_field affine: load sets '%s' and '%s' overlap in y (the lower reaches y = %g m, the upper starts at %g m): an "
+               "affine grip field needs a top grip wholly above a bottom grip; use -load_grip_field rigid, or grips that do not overlap",
+               names[bottom], names[top], y_bottom, y_top);
   }
   const double gradient = reference_length_ / (y_top - y_bottom);
   for (ConstrainedDof &d : constrained_) {
@@ -128,6 +167,7 @@ void Loading::SetAffineLevers(const Scene &scene, const Layout &layout)
     if (y > y_top) d.lever = gradient * (y - y_top);
     else if (y < y_bottom) d.lever = gradient * (y - y_bottom);
   }
+  PetscFunctionReturn(0);
 }
 
 PetscErrorCode Loading::Reactions(const double *force_density, double *reaction)

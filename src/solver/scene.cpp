@@ -128,6 +128,7 @@ PetscErrorCode SceneView(MPI_Comm comm, const Scene &s)
       where = l.segments.empty() ? Format("physical surface '%s' of %s", l.group.c_str(), l.file.c_str())
                                  : Format("within %g m of physical group '%s' of %s", l.depth, l.group.c_str(), l.file.c_str());
       break;
+    case LoadSet::Region::block: where = Format("block %lld of the cloud (%zu points)", static_cast<long long>(l.block), l.block_points.size() / 2); break;
     default: where = Format("%s edge, %d row(s) %s", to_string(l.region), l.layers, to_string(l.placement));
     }
     text += Format("  load set  %s: %s; x %s, y %s\n", l.name.c_str(), where.c_str(), component(l.x, l.x_scale).c_str(),

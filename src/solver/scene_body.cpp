@@ -157,15 +157,36 @@ PetscErrorCode CheckMemory(MPI_Comm comm, const Scene &scene, int64_t points, do
   if (available <= 0 || needed <= available) PetscFunctionReturn(0);
   const double gb = 1e9;
   // Points go as 1/dx^2: the spacing at which the estimate just fits.
-  const double dx_fit = scene.body.dx * std::sqrt(needed / available);
+  const double      dx_fit = scene.body.dx * std::sqrt(needed / available);
+  const std::string what   = Format("%lld material points and %.3g bonds, about %.3g GB (%.3g GB on each of %d rank(s); %.2g KB a point "
+                                    "at delta = %g x spacing), but this machine has %.3g GB available (MemAvailable, /proc/meminfo)",
+                                    static_cast<long long>(points), static_cast<double>(points) * bonds_per_point,
+                                    static_cast<double>(points) * bytes_per_point / gb, per_rank / gb, size, bytes_per_point / 1e3,
+                                    scene.horizon_factor, available / gb);
+  // Given points have no -body_dx (it is refused with them): the fix is fewer points at
+  // their source, about needed / available times fewer (a spacing that much coarser).
+  const Body2D &b = scene.body;
+  if (b.given_points) {
+    const Shape *mesh = nullptr;
+    for (const Shape &s : b.shapes)
+      if (s.centroids) mesh = &s;
+    const double coarser = 1.05 * std::sqrt(needed / available);
+    if (mesh)
+      SETERRQ(comm, PETSC_ERR_USER, "%s",
+              Format("-body_%s_discretisation centroids: the elements of '%s' give %s: mesh it about %.2g times coarser (e.g. a "
+                     "larger characteristic length in the .geo, or gmsh -clscale %.2g), use -body_%s_discretisation lattice with "
+                     "a -body_dx of your choice, or run on more machines",
+                     mesh->name.c_str(), b.given_points->source.c_str(), what.c_str(), coarser, coarser, mesh->name.c_str())
+                  .c_str());
+    SETERRQ(comm, PETSC_ERR_USER, "%s",
+            Format("-body_cloud '%s' gives %s: give a cloud about %.2g times coarser in spacing (%.2g times fewer points), a smaller "
+                   "-horizon_factor (bonds go as its square), or run on more machines",
+                   b.given_points->source.c_str(), what.c_str(), coarser, coarser * coarser)
+                .c_str());
+  }
   SETERRQ(comm, PETSC_ERR_USER, "%s",
-          Format("-body_dx %g m asks for about %lld material points and %.3g bonds, about %.3g GB (%.3g GB on each of %d rank(s); "
-                 "%.2g KB a point at delta = %g dx), but this machine has %.3g GB available (MemAvailable, /proc/meminfo): choose "
-                 "-body_dx %.2g or coarser, or run on more machines",
-                 scene.body.dx, static_cast<long long>(points), static_cast<double>(points) * bonds_per_point,
-                 static_cast<double>(points) * bytes_per_point / gb, per_rank / gb, size, bytes_per_point / 1e3,
-                 scene.horizon_factor, available / gb, 1.05 * dx_fit)
-            .c_str());
+          Format("-body_dx %g m asks for about %s: choose -body_dx %.2g or coarser, or run on more machines", b.dx, what.c_str(), 1.05 * dx_fit)
+              .c_str());
 }
 
 // One shape of -body_shapes, checked and converted (angles to radians).

@@ -27,7 +27,7 @@ bool ParseComponent(const std::string &text, ComponentLoad *load)
   return true;
 }
 
-const char *const kRegionChoices = "top, bottom, left, right, box, polygon, curve or group";
+const char *const kRegionChoices = "top, bottom, left, right, box, polygon, curve, group or block";
 
 // Region group: the physical group -load_S_group of -load_S_file (default: the body's
 // one Gmsh file) as the set's area (a physical surface) or segments (a curve or points).
@@ -62,6 +62,25 @@ PetscErrorCode ReadGroup(MPI_Comm comm, const LoadInput &li, const Body2D &body,
   PetscFunctionReturn(0);
 }
 
+// Region block: the given points of block id -load_S_block (the cloud's block column).
+PetscErrorCode ReadBlock(MPI_Comm comm, const LoadInput &li, const Body2D &body, LoadSet *set)
+{
+  const char *n = li.name.c_str();
+  PetscFunctionBeginUser;
+  SceneCheck(li.block_set, comm, "-load_%s_block is required with -load_%s_region block: give a block id of the point cloud%s", n, n,
+             MisspeltHint("-load_" + li.name + "_block").c_str());
+  SceneCheck(body.given_points != nullptr, comm,
+             "-load_%s_region block: block ids come with the points of a cloud (-body_cloud, column block_id), and this body is a "
+             "lattice: choose another region (box, polygon, curve, group)",
+             n);
+  set->block        = static_cast<int64_t>(li.block);
+  set->block_points = BlockPoints(body, set->block);
+  SceneCheck(!set->block_points.empty(), comm,
+             "-load_%s_block %" PetscInt_FMT ": no point of '%s' has block id %" PetscInt_FMT " (its block ids: %s): give one of them", n,
+             li.block, body.given_points->source.c_str(), li.block, BlockIdList(body).c_str());
+  PetscFunctionReturn(0);
+}
+
 } // namespace
 
 PetscErrorCode ReadLoading(MPI_Comm comm, Scene *scene, SceneInput *in)
@@ -78,7 +97,7 @@ PetscErrorCode ReadLoading(MPI_Comm comm, Scene *scene, SceneInput *in)
                        "region) | inside (the specimen's edge rows: the paper's grips)",
                        &in->grip_placement));
     PetscCall(r.String("-load_grip_field",
-                       "y of the top and bottom grips' points: rigid (one u per grip) | affine (the continuation of the free "
+                       "y of the top and bottom grips' points (or of two region grips, the top one above): rigid (one u per grip) | affine (the continuation of the free "
                        "region's mean stretch into the grip; docs/stress_consistency.md) | auto (affine for a top and a bottom "
                        "grip outside, else rigid)",
                        &in->grip_field));
@@ -94,13 +113,14 @@ PetscErrorCode ReadLoading(MPI_Comm comm, Scene *scene, SceneInput *in)
     PetscCall(ReadOptionBlock(comm, prefix.c_str(), title.c_str(), [&](OptionReader &r) -> PetscErrorCode {
       PetscCall(r.String("-region",
                          "Points held: top | bottom | left | right (edge layers) | box | polygon | curve (points near a polyline) | "
-                         "group (a Gmsh physical group) (required)",
+                         "group (a Gmsh physical group) | block (a block id of the point cloud) (required)",
                          &set.region, &set.region_set));
       PetscCall(r.RealArray("-box", "Region box xmin,ymin,xmax,ymax [m] (region box)", &set.box, &set.box_set));
       PetscCall(r.RealArray("-points", "Region polygon (closed) or curve (open polyline): vertices x0,y0,x1,y1,... [m]", &set.points,
                             &set.points_set));
       PetscCall(r.String("-group", "Region group: the name of a physical surface, curve or point of the Gmsh file", &set.group));
       PetscCall(r.String("-file", "Region group: the Gmsh .geo or .msh file (default: the body's mesh shape's file)", &set.file));
+      PetscCall(r.Int("-block", "Region block: the block id (-body_cloud's block_id column) whose points the set holds", &set.block, &set.block_set));
       PetscCall(r.String("-placement", "outside (beyond the specimen's edge) | inside (the specimen's edge rows) | auto (-load_grip_placement's); edge "
                          "regions (the others are inside)",
                          &set.placement));
@@ -182,6 +202,7 @@ PetscErrorCode CheckLoading(MPI_Comm comm, const SceneInput &in, Scene *scene)
     else if (region == "polygon") set.region = LoadSet::Region::polygon;
     else if (region == "curve") set.region = LoadSet::Region::curve;
     else if (region == "group") set.region = LoadSet::Region::group;
+    else if (region == "block") set.region = LoadSet::Region::block;
     else SETERRQ(comm, PETSC_ERR_USER, "%s", Format("-load_%s_region '%s' is not a region: choose %s", n, li.region.c_str(), kRegionChoices).c_str());
     const bool edge = set.region == LoadSet::Region::top || set.region == LoadSet::Region::bottom ||
                       set.region == LoadSet::Region::left || set.region == LoadSet::Region::right;
@@ -192,6 +213,7 @@ PetscErrorCode CheckLoading(MPI_Comm comm, const SceneInput &in, Scene *scene)
           {li.points_set, "points", set.region == LoadSet::Region::polygon || set.region == LoadSet::Region::curve, "regions polygon and curve"},
           {!li.group.empty(), "group", set.region == LoadSet::Region::group, "region group"},
           {!li.file.empty(), "file", set.region == LoadSet::Region::group, "region group"},
+          {li.block_set, "block", set.region == LoadSet::Region::block, "region block"},
           {li.layers_set, "layers", edge || curve_like, "edge regions, curve and group"},
           {li.depth_set, "depth", edge || curve_like, "edge regions, curve and group"}})
       SceneCheck(!given || fits, comm, "-load_%s_%s is set but -load_%s_region is %s: it is used by %s only; remove it or change the region",
@@ -246,6 +268,8 @@ PetscErrorCode CheckLoading(MPI_Comm comm, const SceneInput &in, Scene *scene)
                  to_string(set.region), n, b.width, b.height);
     } else if (set.region == LoadSet::Region::group) {
       PetscCall(ReadGroup(comm, li, b, &set));
+    } else if (set.region == LoadSet::Region::block) {
+      PetscCall(ReadBlock(comm, li, b, &set));
     } else {
       const std::string placement = Lower(li.placement) == "auto" ? to_string(default_placement) : Lower(li.placement);
       if (placement == "outside") set.placement = GripPlacement::outside;
@@ -307,9 +331,13 @@ PetscErrorCode CheckLoading(MPI_Comm comm, const SceneInput &in, Scene *scene)
                                   n, n, n)));
     scene->loads.push_back(set);
   }
-  int top = 0, bottom = 0, outside = 0; // the sets holding y at the top and bottom edges
+  int top = 0, bottom = 0, outside = 0, edges = 0, regions = 0; // the sets holding y at the top and bottom edges, and elsewhere
   for (const LoadSet &l : scene->loads) {
     if (l.y == ComponentLoad::free) continue;
+    const bool is_edge = l.region == LoadSet::Region::top || l.region == LoadSet::Region::bottom ||
+                         l.region == LoadSet::Region::left || l.region == LoadSet::Region::right;
+    edges += is_edge;
+    regions += !is_edge;
     top += l.region == LoadSet::Region::top;
     bottom += l.region == LoadSet::Region::bottom;
     outside += (l.region == LoadSet::Region::top || l.region == LoadSet::Region::bottom) && l.placement == GripPlacement::outside;
@@ -321,11 +349,15 @@ PetscErrorCode CheckLoading(MPI_Comm comm, const SceneInput &in, Scene *scene)
   else if (field == "affine") scene->grip_field = GripField::affine;
   else SETERRQ(comm, PETSC_ERR_USER, "%s", Format("-load_grip_field '%s' is not a choice: choose rigid, affine or auto", in.grip_field.c_str()).c_str());
   if (scene->grip_field == GripField::affine) {
-    SceneCheck(top == 1 && bottom == 1, comm,
+    // Edge grips: one top and one bottom. Region grips (any shape: the outside
+    // treatment's equivalent, Loading::SetAffineLevers): exactly two sets hold y, and
+    // no edge set does; which is the top one is found from their points at setup.
+    SceneCheck((top == 1 && bottom == 1) || (edges == 0 && regions == 2), comm,
                "-load_grip_field affine continues the stretch between a top and a bottom grip, but the load sets hold y at %d top "
-               "and %d bottom edge(s): give exactly one of each (-load_NAME_region top|bottom with -load_NAME_y fixed or stretch), "
-               "or use -load_grip_field rigid",
-               top, bottom);
+               "and %d bottom edge(s) (%d edges in all) and %d other region(s): give exactly one of each edge (-load_NAME_region top|bottom with "
+               "-load_NAME_y fixed or stretch), or exactly two regions and no edge (a box, polygon, curve, group or block above "
+               "the other), or use -load_grip_field rigid",
+               top, bottom, edges, regions);
   }
   PetscFunctionReturn(0);
 }
@@ -341,6 +373,7 @@ const char *to_string(LoadSet::Region region)
   case LoadSet::Region::polygon: return "polygon";
   case LoadSet::Region::curve: return "curve";
   case LoadSet::Region::group: return "group";
+  case LoadSet::Region::block: return "block";
   }
   return "unknown";
 }

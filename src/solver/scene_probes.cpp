@@ -10,6 +10,7 @@
 #include "bapd/lattice.hpp"
 #include "bapd/options_reader.hpp"
 #include "bapd/scene_input.hpp"
+#include "bapd/scene_loading.hpp"
 
 namespace bapd {
 
@@ -31,6 +32,8 @@ PetscErrorCode ReadProbes(MPI_Comm comm, SceneInput *in)
                             &probe.at_set));
       PetscCall(r.String("-group", "A physical point of a Gmsh file (Physical Point(\"name\") = {k};): the probe is placed at it", &probe.group));
       PetscCall(r.String("-file", "The Gmsh .geo or .msh file of -group (default: the body's mesh shape's file)", &probe.file));
+      PetscCall(r.Int("-block", "A block id of the point cloud (-body_cloud's block_id column) that one point has: the probe reads it",
+                      &probe.block, &probe.block_set));
       return 0;
     }));
     in->probes.push_back(probe);
@@ -66,6 +69,26 @@ PetscErrorCode ProbeAtGroup(MPI_Comm comm, const ProbeInput &pi, const Body2D &b
   PetscFunctionReturn(0);
 }
 
+// -probe_NAME_block: the position of the one given point with that block id.
+PetscErrorCode ProbeAtBlock(MPI_Comm comm, const ProbeInput &pi, const Body2D &body, Probe *p)
+{
+  const char *n = pi.name.c_str();
+  PetscFunctionBeginUser;
+  SceneCheck(body.given_points != nullptr, comm,
+             "-probe_%s_block: block ids come with the points of a cloud (-body_cloud, column block_id), and this body is a lattice: "
+             "place the probe by -probe_%s_at x,y",
+             n, n);
+  const std::vector<double> at = BlockPoints(body, static_cast<int64_t>(pi.block));
+  SceneCheck(!at.empty(), comm, "-probe_%s_block %" PetscInt_FMT ": no point of '%s' has block id %" PetscInt_FMT " (its block ids: %s): give one of them",
+             n, pi.block, body.given_points->source.c_str(), pi.block, BlockIdList(body).c_str());
+  SceneCheck(at.size() == 2, comm,
+             "-probe_%s_block %" PetscInt_FMT ": a probe is one point, but block %" PetscInt_FMT " has %zu points: give the probe its own block id, or "
+             "place it by -probe_%s_at x,y",
+             n, pi.block, pi.block, at.size() / 2, n);
+  p->x = at[0], p->y = at[1];
+  PetscFunctionReturn(0);
+}
+
 } // namespace
 
 PetscErrorCode CheckProbes(MPI_Comm comm, const SceneInput &in, Scene *scene)
@@ -77,15 +100,20 @@ PetscErrorCode CheckProbes(MPI_Comm comm, const SceneInput &in, Scene *scene)
   for (const ProbeInput &pi : in.probes) {
     const char *n = pi.name.c_str();
     SceneCheck(!(pi.at_set && !pi.group.empty()), comm, "probe '%s' has both -probe_%s_at and -probe_%s_group: give one of them", n, n, n);
+    SceneCheck(!(pi.block_set && (pi.at_set || !pi.group.empty())), comm, "probe '%s' has both -probe_%s_block and -probe_%s_%s: give one of them",
+               n, n, n, pi.at_set ? "at" : "group");
     Probe p = {pi.name, 0, 0};
     if (!pi.group.empty()) PetscCall(ProbeAtGroup(comm, pi, b, &p));
+    else if (pi.block_set) PetscCall(ProbeAtBlock(comm, pi, b, &p));
     else {
       SceneCheck(pi.at_set, comm, "-probe_%s_at is required for probe '%s': give its position x,y in m, or a Gmsh physical point by -probe_%s_group%s",
                  n, n, n, MisspeltHint("-probe_" + pi.name + "_at").c_str());
       SceneCheck(pi.at.size() == 2, comm, "-probe_%s_at holds %zu numbers: give exactly two, x,y in m", n, pi.at.size());
       p.x = pi.at[0], p.y = pi.at[1];
     }
-    const std::string where = pi.group.empty() ? "-probe_" + pi.name + "_at" : "-probe_" + pi.name + "_group " + pi.group + " at";
+    const std::string where = !pi.group.empty() ? "-probe_" + pi.name + "_group " + pi.group + " at"
+                              : pi.block_set ? "-probe_" + pi.name + "_block " + std::to_string(pi.block) + " at"
+                                             : "-probe_" + pi.name + "_at";
     const char       *w     = where.c_str();
     SceneCheck(p.x >= -tol && p.x <= b.width + tol && p.y >= -tol && p.y <= b.height + tol, comm,
                "%s (%g, %g) m lies outside the body [0, %g] x [0, %g] m: move it onto the body", w, p.x, p.y, b.width, b.height);

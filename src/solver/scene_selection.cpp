@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "bapd/scene.hpp"
@@ -46,6 +48,30 @@ void SetCurveReach(LoadSet *set)
   }
 }
 
+std::vector<double> BlockPoints(const Body2D &body, int64_t block)
+{
+  std::vector<std::pair<double, double>> found;
+  if (body.given_points)
+    for (std::size_t p = 0; p < body.given_points->size(); ++p)
+      if (body.given_points->block[p] == block) found.emplace_back(body.given_points->x[2 * p], body.given_points->x[2 * p + 1]);
+  std::sort(found.begin(), found.end());
+  std::vector<double> out;
+  out.reserve(2 * found.size());
+  for (const auto &[x, y] : found) out.insert(out.end(), {x, y});
+  return out;
+}
+
+std::string BlockIdList(const Body2D &body)
+{
+  if (!body.given_points) return "";
+  std::vector<int64_t> ids(body.given_points->block);
+  std::sort(ids.begin(), ids.end());
+  ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+  std::string list;
+  for (std::size_t k = 0; k < ids.size() && k < 20; ++k) list += (k ? ", " : "") + std::to_string(ids[k]);
+  return ids.size() > 20 ? list + ", ..." : list;
+}
+
 bool LoadSetContains(const Scene &scene, const LoadSet &set, double px, double py)
 {
   const Body2D &b     = scene.body;
@@ -67,6 +93,18 @@ bool LoadSetContains(const Scene &scene, const LoadSet &set, double px, double p
   case LoadSet::Region::polygon: return shape_contains(set.area, px, py);
   case LoadSet::Region::curve: return NearSegments(set, px, py);
   case LoadSet::Region::group: return set.segments.empty() ? shape_contains(set.area, px, py) : NearSegments(set, px, py);
+  case LoadSet::Region::block: {
+    // Binary search over the sorted (x, y) pairs; exact comparison (BlockPoints).
+    const std::size_t n = set.block_points.size() / 2;
+    std::size_t       lo = 0, hi = n;
+    while (lo < hi) {
+      const std::size_t mid = (lo + hi) / 2;
+      const double      mx = set.block_points[2 * mid], my = set.block_points[2 * mid + 1];
+      if (mx < px || (mx == px && my < py)) lo = mid + 1;
+      else hi = mid;
+    }
+    return lo < n && set.block_points[2 * lo] == px && set.block_points[2 * lo + 1] == py;
+  }
   }
   return false;
 }

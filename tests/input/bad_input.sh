@@ -212,6 +212,19 @@ expect_error centroids_not_mesh "-body_cut_discretisation centroids: only a mesh
   -body_cut_centre 0.005,0.005 -body_cut_radius 0.002 -body_cut_discretisation centroids
 expect_error cloud_two_pieces "two_pieces.csv: the given points fall apart into 2 pieces with no bond between them (the smallest: 140 point(s)" \
   "$cloud_scene" -body_cloud two_pieces.csv
+# Block ids as load sets (-load_S_region block): an id no point has (the ids there are
+# listed), and a lattice body, which has no block ids.
+expect_error cloud_block_missing "-load_top_block 7: no point of 'cloud.csv' has block id 7 (its block ids: 1): give one of them" \
+  "$cloud_scene" -load_top_region block -load_top_block 7
+expect_error block_on_lattice "-load_top_region block: block ids come with the points of a cloud" "$scene" -load_top_region block \
+  -load_top_block 1
+expect_error probe_block_many "-probe_p_block 1: a probe is one point, but block 1 has 400 points" "$cloud_scene" -probes p -probe_p_block 1
+# The affine field for two region grips needs one wholly above the other.
+expect_error region_grips_overlap "-load_grip_field affine: load sets 'bottom' and 'top' overlap in y" "$scene" -load_grip_field affine \
+  -load_top_region box -load_top_box 0,0.004,0.01,0.01 -load_bottom_region box -load_bottom_box 0,0,0.01,0.006
+# A cloud that needs more memory than the machine has (here by a huge horizon, so that
+# the file stays small): the fix names the cloud and the horizon, not -body_dx.
+expect_error cloud_needs_more_memory "-body_cloud 'cloud.csv' gives 400 material points" "$cloud_scene" -horizon_factor 3000
 
 # -force_patch_correction (patch_correction.hpp): a word that is not a choice, and on
 # with the energy-consistent form, which it does not correct.

@@ -547,7 +547,7 @@ TEST_F(SceneOptions, RejectsEachInvalidInputNamingItsOption)
     {"set name with a dash", {{"-load_sets", "top-grip"}}, "-load_sets", "letters"},
     {"set listed twice", {{"-load_sets", "top,bottom,top"}}, "-load_sets", "twice"},
     {"region missing", {{"-load_top_region", "<erase>"}}, "-load_top_region", "required"},
-    {"unknown region", {{"-load_top_region", "middle"}}, "-load_top_region", "top, bottom, left, right, box, polygon, curve or group"},
+    {"unknown region", {{"-load_top_region", "middle"}}, "-load_top_region", "top, bottom, left, right, box, polygon, curve, group or block"},
     {"polygon without points", {{"-load_top_region", "polygon"}}, "-load_top_points", "required"},
     {"polygon of two vertices", {{"-load_top_region", "polygon"}, {"-load_top_points", "0,0,0.01,0"}}, "-load_top_points", "at least 3 vertices"},
     {"polygon crossing itself", {{"-load_top_region", "polygon"}, {"-load_top_points", "0,0,0.01,0.01,0.01,0,0,0.01"}}, "-load_top_points", "cross"},
