@@ -95,6 +95,12 @@ public:
   // the diagnosis of a divergence (divergence.hpp), once. Collective.
   PetscErrorCode SharpEstimate(MPI_Comm comm, ForceOperator &force, const double *u, const std::vector<double> &c33, PetscInt iterations,
                                double *stable);
+  // With failure on: counts the intact bonds of the owned points (an exact sum, the same
+  // on any number of ranks), so that AfterStep sees whether the step's breaking pass
+  // broke any since the last count, which makes the recorded evaluation stale for the
+  // re-estimate's base point. Before the first step (the run's, or a restart's), then
+  // by AfterStep. Collective.
+  PetscErrorCode CountIntact(MPI_Comm comm, const Layout &layout, const Families &families, const BondState &state, bool *changed = nullptr);
   // Restart: the step in use (header time_step) and the estimate's state.
   PetscErrorCode Restore(double dt, const TimeStepState &state, TS ts);
 
@@ -123,7 +129,8 @@ public:
 private:
   // loading: the applied stretch moved since the last estimate; psi: the stiffening
   // indicator of the state (0: not computed, -time_step_reestimate_indicator 0).
-  PetscErrorCode Reestimate(MPI_Comm comm, ForceOperator &force, bool loading, double psi, PetscInt *iterations);
+  // broke: bonds broke after the recorded evaluation (its a(u) is evaluated again).
+  PetscErrorCode Reestimate(MPI_Comm comm, ForceOperator &force, bool loading, double psi, bool broke, PetscInt *iterations);
   // The lambda_max above which the base step would be shortened (outside the dead band).
   double ShorteningThreshold() const { return lambda_rest_ / ((1.0 - options_.band) * (1.0 - options_.band)); }
   // The back-off and the early stop spend part of the margin the safety factor leaves
@@ -195,6 +202,7 @@ private:
   double   inv_rho_ = 0, eps_ = 0, floor_ = 0.1;
   double   span_ = 0;          // I1bar_limit - 3 of the law (0: no limit)
   bool     plane_strain_ = false, failure_ = false;
+  long long intact_ = -1;      // intact bonds of the owned points at the last count (-1: not counted)
   double   psi_ = 0;           // the stiffening indicator at the last search (0: none yet)
   PetscInt next_estimate_ = 0, estimates_ = 0, evaluations_ = 0, kinks_ = 0;
   double   estimate_stretch_ = 1; // the applied stretch at the last re-estimate

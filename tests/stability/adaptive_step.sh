@@ -89,7 +89,7 @@ python3 "$src/tests/mpi/compare_runs.py" --tolerance 0 "$work/whole" "$work/seco
   fail "the continuation differs from the uninterrupted run"
 echo "restart at step $N (dt $at_n s < base $base s) continues bit for bit on 2 and 3 ranks"
 
-# A checkpoint of format 3 (no back-off attributes in /time_step) is still read: the
+# A checkpoint of format 3 (no back-off or indicator attributes in /time_step) is still read: the
 #    same file with them removed and its checksum and version set as version 3 wrote
 #    them; the continuation restarts the back-off and runs on (not bit for bit: the
 #    next re-estimates may come at other steps).
@@ -106,12 +106,15 @@ entry = lambda tag, index, bits: mix(mix(tag ^ mix(index)) ^ bits)  # checkpoint
 bits = lambda x: struct.unpack("<Q", struct.pack("<d", x))[0]
 shutil.copy(sys.argv[1], sys.argv[2])
 with h5py.File(sys.argv[2], "r+") as f:
-    assert f.attrs["format_version"] == 4, f.attrs["format_version"]
+    assert f.attrs["format_version"] == 5, f.attrs["format_version"]
     g = f["time_step"]
     interval, increment = int(g.attrs["interval_now"]), float(g.attrs["stretch_increment"])
-    del g.attrs["interval_now"], g.attrs["stretch_increment"]
+    indicator = float(g.attrs["indicator"])  # format 5
+    del g.attrs["interval_now"], g.attrs["stretch_increment"], g.attrs["indicator"]
     h = int(f.attrs["content_hash"])
     h = (h - entry(13, 7, interval) - entry(13, 8, bits(increment))) % (1 << 64)
+    if indicator > 0:
+        h = (h - entry(13, 9, bits(indicator))) % (1 << 64)
     f.attrs.modify("content_hash", h)
     f.attrs.modify("format_version", 3)
 PY
