@@ -88,6 +88,17 @@ run 3 "$work/second_np3" -restart "$work/first/checkpoint.h5" -ts_max_steps $M |
 python3 "$src/tests/mpi/compare_runs.py" --tolerance 0 "$work/whole" "$work/second_np2" "$work/second_np3" ||
   fail "the continuation differs from the uninterrupted run"
 echo "restart at step $N (dt $at_n s < base $base s) continues bit for bit on 2 and 3 ranks"
+# The same with the stiffening indicator (-time_step_reestimate_indicator): its value at
+# the last search is in the checkpoint (format 5), and a search has run by step N.
+ind=(-time_step_reestimate_indicator)
+run 2 "$work/ind_whole" "${scene[@]}" "${ind[@]}" -ts_max_steps $M || fail "indicator: whole run failed"
+run 2 "$work/ind_first" "${scene[@]}" "${ind[@]}" -ts_max_steps $N -checkpoint_interval $N || fail "indicator: first run failed"
+"${PYTHON:-/usr/bin/python3}" -c "import h5py, sys; v = h5py.File(sys.argv[1])['time_step'].attrs['indicator']; sys.exit(not v > 1)" \
+  "$work/ind_first/checkpoint.h5" || fail "indicator: no search before the checkpoint (its indicator is not > 1)"
+run 3 "$work/ind_second" -restart "$work/ind_first/checkpoint.h5" -ts_max_steps $M || fail "indicator: restart on 3 ranks failed"
+python3 "$src/tests/mpi/compare_runs.py" --tolerance 0 "$work/ind_whole" "$work/ind_second" ||
+  fail "indicator: the continuation differs from the uninterrupted run"
+echo "with the stiffening indicator too"
 
 # A checkpoint of format 3 (no back-off or indicator attributes in /time_step) is still read: the
 #    same file with them removed and its checksum and version set as version 3 wrote
