@@ -173,8 +173,8 @@ private:
   // evaluations (probes with the warm starts c33, read only): the largest quotient found. Leaves the Ritz vector in v_.
   PetscErrorCode RestartedKrylov(MPI_Comm comm, ForceOperator &force, const std::vector<double> &c33, PetscInt iterations, double *best);
   // Whether the force has a kink (a bond switching its state) at the recorded state along
-  // the unit Ritz vector: the Rayleigh quotient from both sides disagrees. Time step control
-  // .cpp explains; two force evaluations.
+  // the unit Ritz vector: the Rayleigh quotient from both sides disagrees
+  // (time_step_control.cpp explains); two force evaluations.
   PetscErrorCode Kink(MPI_Comm comm, ForceOperator &force, const std::vector<double> &c33, double lambda, bool *kink);
   static constexpr double kink_jump     = 4.0; // an estimate above this x the last one (or lambda_rest) is checked
   static constexpr double kink_mismatch = 0.5; // ...and dropped when its two sides differ by more than this fraction
