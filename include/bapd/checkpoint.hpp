@@ -50,7 +50,7 @@
 
 namespace bapd {
 
-constexpr std::int64_t kCheckpointFormatVersion       = 4;
+constexpr std::int64_t kCheckpointFormatVersion       = 5;
 constexpr std::int64_t kCheckpointOldestFormatVersion = 1; // still read
 
 // -checkpoint_interval, -checkpoint_on_error, -restart.
@@ -99,6 +99,9 @@ struct CheckpointHeader {
   // Its back-off (version 4; 0 in older files: the continuation starts it again).
   std::int64_t        step_interval_now = 0;
   double              step_stretch_increment = 0;
+  // The stiffening indicator at the last search (version 5; 0 in older files: the
+  // continuation's next estimate searches, as at the start).
+  double              step_indicator = 0;
 };
 
 // The state of the rank layout, read from (written to) a checkpoint.

@@ -51,6 +51,7 @@ struct TimeStepOptions {
   bool     krylov     = true; // Rayleigh-Ritz on the Krylov space of the iterations (Arnoldi) instead of the last power iterate
   bool     monitor    = false; // a line per re-estimate (measurements, docs/stability.md section 8)
   PetscInt reference  = 0;     // measurements: every 25 steps, also a converged lambda_max of the same state (this many evaluations, not counted)
+  bool     indicator  = false; // the search only when the points' stiffening indicator rose (StiffeningIndicator): measured, not the default
 };
 // Reads (and lists under -help) the options. Collective.
 PetscErrorCode TimeStepOptionsFromOptions(MPI_Comm comm, TimeStepOptions *options);
@@ -65,6 +66,7 @@ struct TimeStepState {
   double   shortest = 0;
   PetscInt interval_now = 0;      // steps between re-estimates now (backed off while quiet); 0: not stored (format 3)
   double   stretch_increment = 0; // ...and the stretch increment now
+  double   indicator = 0;         // the stiffening indicator at the last search; 0: not stored (format 4)
 };
 
 class TimeStepControl {
@@ -93,6 +95,12 @@ public:
   // the diagnosis of a divergence (divergence.hpp), once. Collective.
   PetscErrorCode SharpEstimate(MPI_Comm comm, ForceOperator &force, const double *u, const std::vector<double> &c33, PetscInt iterations,
                                double *stable);
+  // With failure on: counts the intact bonds of the owned points (an exact sum, the same
+  // on any number of ranks), so that AfterStep sees whether the step's breaking pass
+  // broke any since the last count, which makes the recorded evaluation stale for the
+  // re-estimate's base point. Before the first step (the run's, or a restart's), then
+  // by AfterStep. Collective.
+  PetscErrorCode CountIntact(MPI_Comm comm, const Layout &layout, const Families &families, const BondState &state, bool *changed = nullptr);
   // Restart: the step in use (header time_step) and the estimate's state.
   PetscErrorCode Restore(double dt, const TimeStepState &state, TS ts);
 
@@ -110,6 +118,7 @@ public:
   PetscInt shortened_by_travel() const { return by_travel_; }       // ...shorter still because points flew
   PetscInt estimates() const { return estimates_; }                 // re-estimates so far (this process's run)
   PetscInt estimate_evaluations() const { return evaluations_; }    // force evaluations they cost
+  PetscInt kinks() const { return kinks_; }                         // estimates dropped as a kink of the force (Kink)
   double   estimate_seconds() const { return estimate_wall_; }      // wall time they cost (this rank)
   double   shortest() const { return shortest_dt_; }
   double   largest_lambda() const { return lambda_largest_; }
@@ -118,8 +127,10 @@ public:
   double       *eigenvector() { return v_.data(); }
 
 private:
-  // loading: the applied stretch moved since the last estimate.
-  PetscErrorCode Reestimate(MPI_Comm comm, ForceOperator &force, bool loading, PetscInt *iterations);
+  // loading: the applied stretch moved since the last estimate; psi: the stiffening
+  // indicator of the state (0: not computed, -time_step_reestimate_indicator 0).
+  // broke: bonds broke after the recorded evaluation (its a(u) is evaluated again).
+  PetscErrorCode Reestimate(MPI_Comm comm, ForceOperator &force, bool loading, double psi, bool broke, PetscInt *iterations);
   // The lambda_max above which the base step would be shortened (outside the dead band).
   double ShorteningThreshold() const { return lambda_rest_ / ((1.0 - options_.band) * (1.0 - options_.band)); }
   // The back-off and the early stop spend part of the margin the safety factor leaves
@@ -139,7 +150,12 @@ private:
   // found at once with 0.5 and never with 0.05 (the estimate stayed at 1.3 x through the
   // hold; docs/stability.md section 8).
   static constexpr double krylov_seed_weight = 0.5;
-  static constexpr PetscInt rising_iterations = 4; // fewest iterations while the shortened step's lambda rises
+  static constexpr PetscInt rising_iterations = 4;
+  // The indicator's growth since the last search that calls the next one (Reestimate).
+  // 1.5: lambda_max grew about as psi^0.4 on the Jm = 8 plate (psi 5.9 -> 15.8 while
+  // lambda 1.29 -> 1.9 x), so about 18 % in lambda; (1 + band)^2 searched on every ramp
+  // estimate (45 evaluations, the mode found 40 steps later).
+  static constexpr double search_growth = 1.5; // fewest iterations while the shortened step's lambda rises
   PetscErrorCode PowerStep(MPI_Comm comm, ForceOperator &force, const std::vector<double> &c33, std::vector<double> *advance,
                            const double *u0, const double *a0, double shift, double *lambda);
   // The Krylov search (-time_step_krylov): KrylovStart takes v_ (any length) as the
@@ -156,9 +172,24 @@ private:
   // Restarted Krylov about (u_rec_, a_rec_) from v_ with the seed mixed in, `iterations`
   // evaluations (probes with the warm starts c33, read only): the largest quotient found. Leaves the Ritz vector in v_.
   PetscErrorCode RestartedKrylov(MPI_Comm comm, ForceOperator &force, const std::vector<double> &c33, PetscInt iterations, double *best);
+  // Whether the force has a kink (a bond switching its state) at the recorded state along
+  // the unit Ritz vector: the Rayleigh quotient from both sides disagrees
+  // (time_step_control.cpp explains); two force evaluations.
+  PetscErrorCode Kink(MPI_Comm comm, ForceOperator &force, const std::vector<double> &c33, double lambda, bool *kink);
+  static constexpr double kink_jump     = 4.0; // an estimate above this x the last one (or lambda_rest) is checked
+  static constexpr double kink_mismatch = 0.5; // ...and dropped when its two sides differ by more than this fraction
   // -time_step_monitor_reference: the converged lambda_max of the state of the latest
   // evaluation, printed next to the estimate in use; leaves the estimate's state as it was.
   PetscErrorCode Reference(MPI_Comm comm, ForceOperator &force, PetscInt step);
+  // The stiffening indicator of the recorded state (u_rec_): the largest over the owned
+  // points of psi_i = g_i^2 I1bar_i / 3, with F_i the point's own deformation gradient
+  // (intact bonds, volume weights), I1bar_i its isochoric first invariant (plane stress:
+  // C33 = 1 / det C~, i.e. J = 1; plane strain: C33 = 1) and g_i = 1 / (1 - (I1bar_i -
+  // 3) / (I1bar_limit - 3)) the Gent factor (1 for a law without a limit). A bond loop
+  // with a handful of flops per bond, no constitutive solve: about 1/50 of a force
+  // evaluation. The maximum is exact (MPI_MAX): the same on any number of ranks.
+  PetscErrorCode StiffeningIndicator(MPI_Comm comm, const Layout &layout, const Families &families, const BondState &state,
+                                     ForceOperator &force, double *psi);
 
   TimeStepOptions options_;
   double   stable_dt_ = 0, stable_now_ = 0, lambda_rest_ = 0, lambda_ = 0, lambda_largest_ = 0;
@@ -169,7 +200,11 @@ private:
   bool     travel_auto_  = false;
   double   travel_given_ = 0; // [m] the limit asked for (or chosen), before SetBaseStep
   double   inv_rho_ = 0, eps_ = 0, floor_ = 0.1;
-  PetscInt next_estimate_ = 0, estimates_ = 0, evaluations_ = 0;
+  double   span_ = 0;          // I1bar_limit - 3 of the law (0: no limit)
+  bool     plane_strain_ = false, failure_ = false;
+  long long intact_ = -1;      // intact bonds of the owned points at the last count (-1: not counted)
+  double   psi_ = 0;           // the stiffening indicator at the last search (0: none yet)
+  PetscInt next_estimate_ = 0, estimates_ = 0, evaluations_ = 0, kinks_ = 0;
   double   estimate_stretch_ = 1; // the applied stretch at the last re-estimate
   PetscInt interval_now_ = 0;     // steps between re-estimates now: the option's, or up to backoff x it while quiet
   double   stretch_now_  = 0;     // the stretch increment that triggers one now (likewise)

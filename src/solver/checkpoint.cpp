@@ -160,6 +160,7 @@ std::uint64_t HeaderHash(const CheckpointHeader &h)
            Entry(13, 5, (std::uint64_t)h.step_by_travel) + Entry(13, 6, Bits(h.step_stretch));
   if (h.step_interval_now > 0) // absent in versions 1 to 3
     sum += Entry(13, 7, (std::uint64_t)h.step_interval_now) + Entry(13, 8, Bits(h.step_stretch_increment));
+  if (h.step_indicator > 0) sum += Entry(13, 9, Bits(h.step_indicator)); // absent in versions 1 to 4, and before any search
   return sum;
 }
 
@@ -384,6 +385,7 @@ PetscErrorCode WriteCheckpoint(MPI_Comm comm, const std::string &path, const Nat
       PetscCall(f.WriteAttribute("/time_step", "stretch", header->step_stretch));
       PetscCall(f.WriteAttribute("/time_step", "interval_now", header->step_interval_now));
       PetscCall(f.WriteAttribute("/time_step", "stretch_increment", header->step_stretch_increment));
+      PetscCall(f.WriteAttribute("/time_step", "indicator", header->step_indicator));
       PetscCall(f.WriteBlock("/time_step/eigenvector", H5T_NATIVE_DOUBLE, P, 2, order.point_start, order.point_count, eigenvector.data()));
     }
     const hsize_t frames = header->field_frames.size() / 2;
@@ -496,6 +498,8 @@ std::string ReadHeaderSerial(const std::string &path, CheckpointHeader *h)
       if (h->format_version >= 4 && (!H5ReadAttribute(file, "/time_step", "interval_now", &h->step_interval_now) || h->step_interval_now < 1 ||
                                      !H5ReadAttribute(file, "/time_step", "stretch_increment", &h->step_stretch_increment)))
         damaged("attribute /time_step/interval_now or stretch_increment is missing");
+      if (h->format_version >= 5 && !H5ReadAttribute(file, "/time_step", "indicator", &h->step_indicator))
+        damaged("attribute /time_step/indicator is missing");
       if (H5DatasetShape(file, "/time_step/eigenvector") != std::vector<hsize_t>{P, 2})
         damaged("dataset /time_step/eigenvector is missing or has the wrong shape");
     }
@@ -523,13 +527,13 @@ PetscErrorCode ReadCheckpointHeader(MPI_Comm comm, const std::string &path, Chec
                              (long long)header->relaxation_records, (long long)header->step_next_estimate,
                              (long long)header->step_by_stiffness,  (long long)header->step_by_travel,
                              (long long)header->step_interval_now};
-  double        reals[12] = {header->time,        header->time_step,         header->stretch, header->geometry.dx,
+  double        reals[13] = {header->time,        header->time_step,         header->stretch, header->geometry.dx,
                              header->geometry.horizon, header->end_time_original, header->end_time,
                              header->step_lambda, header->step_stiffness_dt, header->step_shortest, header->step_stretch,
-                             header->step_stretch_increment};
+                             header->step_stretch_increment, header->step_indicator};
   std::uint64_t hashes[2] = {header->content_hash, header->geometry.hash};
   PetscCallMPI(MPI_Bcast(ints, 11, MPI_LONG_LONG, 0, comm));
-  PetscCallMPI(MPI_Bcast(reals, 12, MPI_DOUBLE, 0, comm));
+  PetscCallMPI(MPI_Bcast(reals, 13, MPI_DOUBLE, 0, comm));
   PetscCallMPI(MPI_Bcast(hashes, 2, MPI_UINT64_T, 0, comm));
   header->step             = (PetscInt)ints[0];
   header->ranks            = ints[1];
@@ -547,6 +551,7 @@ PetscErrorCode ReadCheckpointHeader(MPI_Comm comm, const std::string &path, Chec
   header->step_shortest      = reals[9];
   header->step_stretch       = reals[10];
   header->step_stretch_increment = reals[11];
+  header->step_indicator         = reals[12];
   header->end_time_original = reals[5];
   header->end_time          = reals[6];
   header->time             = reals[0];

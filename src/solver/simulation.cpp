@@ -331,6 +331,9 @@ PetscErrorCode Simulation::Run()
 {
   PetscFunctionBegin;
   if (scene_.help_only) PetscFunctionReturn(0);
+  // The intact bonds the first step starts from (a restart's included): the re-estimate
+  // knows from them whether a step's breaking pass changed the bonds (time_step_control.hpp).
+  PetscCall(step_control_.CountIntact(comm_, layout_, families_, bond_state_));
   PetscCall(PetscLogStagePush(stage_step_));
   PetscCall(TSSolve(ts_, X_));
   PetscCall(PetscLogStagePop());
@@ -354,6 +357,9 @@ PetscErrorCode Simulation::Advance(PetscInt steps)
   PetscCall(TSGetStepNumber(ts_, &step));
   PetscCall(TSSetMaxSteps(ts_, step + steps));
   PetscCall(TSSetMaxTime(ts_, PETSC_MAX_REAL));
+  // The intact bonds the first step starts from (a restart's included): the re-estimate
+  // knows from them whether a step's breaking pass changed the bonds (time_step_control.hpp).
+  PetscCall(step_control_.CountIntact(comm_, layout_, families_, bond_state_));
   PetscCall(PetscLogStagePush(stage_step_));
   PetscCall(TSSolve(ts_, X_));
   PetscCall(PetscLogStagePop());

@@ -267,6 +267,8 @@ PetscErrorCode Simulation::TimeStepSummary(PetscInt steps)
   if (c.reestimating() && c.estimates() > 0)
     PetscCall(PetscPrintf(comm_, "time step: re-estimated %" PetscInt_FMT " time(s) (%" PetscInt_FMT " force evaluations, %.1f s); lambda_max up to %.3g x its value at rest\n",
                           c.estimates(), c.estimate_evaluations(), c.estimate_seconds(), c.largest_lambda() / c.lambda_rest()));
+  if (c.kinks() > 0) // TimeStepControl::Kink: a bond at a switch, read from both sides
+    PetscCall(PetscPrintf(comm_, "time step: %" PetscInt_FMT " estimate(s) dropped: a kink of the force (a bond switching its state), not a stiffness\n", c.kinks()));
   if (c.shortened_steps() > 0) {
     char travel[96] = "";
     if (c.shortened_by_travel() > 0)

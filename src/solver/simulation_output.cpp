@@ -288,6 +288,7 @@ PetscErrorCode Simulation::WriteCheckpointFile(PetscInt step, double t, const ch
     header.step_stretch       = s.stretch;
     header.step_interval_now  = s.interval_now;
     header.step_stretch_increment = s.stretch_increment;
+    header.step_indicator     = s.indicator;
     state.step_eigenvector    = step_control_.eigenvector();
   }
   const PetscErrorCode written = WriteCheckpoint(comm_, path, output_.order, families_, &header, state);
@@ -370,6 +371,7 @@ PetscErrorCode Simulation::RestoreCheckpoint()
     s.stretch       = header.step_stretch;
     s.interval_now  = (PetscInt)header.step_interval_now;
     s.stretch_increment = header.step_stretch_increment;
+    s.indicator         = header.step_indicator;
     PetscCall(step_control_.Restore(header.time_step, s, ts_));
   }
   if (header.time_step != step_control_.current())

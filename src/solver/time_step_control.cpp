@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "bapd/law_registry.hpp"
 #include "bapd/options_reader.hpp"
 #include "bapd/reproducible_sum.hpp"
 
@@ -46,6 +47,11 @@ PetscErrorCode TimeStepOptionsFromOptions(MPI_Comm comm, TimeStepOptions *option
                      "Each re-estimate takes the largest Rayleigh quotient over the Krylov space its force evaluations span (Arnoldi, "
                      "Rayleigh-Ritz) instead of the last power iterate's: the same evaluations, a sharper estimate (0: the power iteration)",
                      &options->krylov));
+    PetscCall(r.Bool("-time_step_reestimate_indicator",
+                     "Measurements (off by default): while the step is shortened, the re-estimate searches (at least 4 Krylov steps, the "
+                     "start vector mixed into the warm start) only when the points' stiffening indicator (their largest Gent factor "
+                     "squared x I1bar / 3) grew by 1.5 x since the last search, instead of whenever the load moves (0: the latter)",
+                     &options->indicator));
     PetscCall(r.Bool("-time_step_monitor", "Print a line per re-estimate of the stable step (step, lambda_max, stable step, step in use)",
                      &options->monitor));
     PetscCall(r.Int("-time_step_monitor_reference",
@@ -282,6 +288,10 @@ PetscErrorCode TimeStepControl::EstimateStable(MPI_Comm comm, const Scene &scene
   // sheet): following it would stop the run, and such points are the travel limit's
   // (section 5), so the stiffness step stays above half the base step.
   floor_        = options_.floor > 0 ? options_.floor : (scene.failure ? 0.5 : 0.1);
+  const LawEntry &law = law_entry(scene.model);
+  span_         = law.limit ? law.I1bar_limit(scene.material) - 3.0 : 0.0;
+  plane_strain_ = scene.formulation == Formulation::plane_strain;
+  failure_      = scene.failure;
   travel_auto_  = scene.time_step_travel < 0;
   travel_given_ = (travel_auto_ ? (scene.failure ? 0.1 : 0.0) : scene.time_step_travel) * scene.body.dx;
   held_.assign(n, 0);
@@ -361,7 +371,7 @@ void TimeStepControl::Record(const double *u, const double *a)
 // was and a restart (which restores them) repeats the estimate bit for bit. (Until
 // issue 20 the probes advanced a copy of them, 8 B a bond, from probe to probe: the
 // same start for the first probe, one at round-off distance for the later ones.)
-PetscErrorCode TimeStepControl::Reestimate(MPI_Comm comm, ForceOperator &force, bool loading, PetscInt *iterations)
+PetscErrorCode TimeStepControl::Reestimate(MPI_Comm comm, ForceOperator &force, bool loading, double psi, bool broke, PetscInt *iterations)
 {
   PetscFunctionBegin;
   const double               wall      = MPI_Wtime();
@@ -377,6 +387,18 @@ PetscErrorCode TimeStepControl::Reestimate(MPI_Comm comm, ForceOperator &force, 
   // more increments of the last size (r = 0.9) stay below that threshold the step stays
   // at the base step, and the iteration stops (the plate's first ramp, where lambda_max
   // falls to 0.88 x its value at rest: 18 force evaluations became 10).
+  // When the step's breaking pass broke bonds, the base point is evaluated again: the
+  // recorded a(u) is the dynamics' evaluation, made before that pass, and the probes
+  // see the bonds broken since, so the quotient read their forces over eps as a
+  // stiffness (rank_invariance.fracture_corrected: 7.5e13 1/s^2, 1.2e6 x lambda_rest,
+  // measured from both sides as +3.2e13 and -3.2e13, the signature of a base point off
+  // the probes' force; the stiffness step then sat at the floor, 0.5 x, for the rest of
+  // the run). Only then: with failure on at every estimate it doubled the short
+  // notched sheet's cost (19 -> 38 evaluations in 1000 steps).
+  if (broke) {
+    PetscCall(ProbeAcceleration(force, committed, nullptr, inv_rho_, held_, u_rec_.data(), a_rec_.data()));
+    ++evaluations_;
+  }
   const bool   at_base   = stiffness_dt_ >= base_dt_ && Margin();
   const double threshold = ShorteningThreshold();
   // While the step is shortened by stiffness it rests on this estimate, so the warm
@@ -388,7 +410,23 @@ PetscErrorCode TimeStepControl::Reestimate(MPI_Comm comm, ForceOperator &force, 
   // seed_weight^2 / 2 (0.1 %, inside the tolerance); the Krylov search, whose space
   // holds the warm start's mode whatever the mixture, takes krylov_seed_weight. Measured: without it the 2 mm
   // Jm = 3 plate still blew up at stretch 1.90 with the rising iterations below.
-  if (stiffness_dt_ < base_dt_) PetscCall(MixSeed(comm));
+  //
+  // With the stiffening indicator (-time_step_reestimate_indicator, StiffeningIndicator;
+  // off by default) the search (the seed and the rising iterations below) runs only when
+  // the indicator grew by search_growth since the last search, or none has run: the
+  // rest of the time the warm start is the last Ritz vector and one or two Krylov steps
+  // follow it. On the Jm = 8 plate (docs/stability.md section 8) it cut 50 evaluations
+  // to 39 and still found the stretch-2 mode at step 513, but the indicator grows ten
+  // times as much as lambda_max (psi 1.3 -> 18.5 while lambda_max goes 1.0 -> 2.0 x) and
+  // where the search lands decides whether the mode is found: a proxy, not a bound.
+  const bool shortened = stiffness_dt_ < base_dt_;
+  const bool search    = shortened && (!(psi > 0) || !(psi_ > 0) || psi > search_growth * psi_);
+  // (Also taking the latest estimate at the base step as the reference saved 5 more
+  // evaluations but put a search at step 501 of the Jm = 8 plate, just before the
+  // stretch-2 mode took over, and no search after it: the run ended at 1.35 x lambda_rest
+  // where lambda_max is 2.0 x.)
+  if (search && psi > 0) psi_ = psi;
+  if (shortened && (search || !(psi > 0))) PetscCall(MixSeed(comm));
   // And while it is shortened and the load moves (or the last estimate shortened it,
   // lambda having risen past the band), at least rising_iterations: a quotient still
   // climbing by less than the tolerance per iteration is not settled then, as the
@@ -399,8 +437,7 @@ PetscErrorCode TimeStepControl::Reestimate(MPI_Comm comm, ForceOperator &force, 
   // (From lambda = 1.5 x lambda_rest only, it saved the fast-route plate 7 of 30
   // evaluations but left the Jm = 8 plate at 1.3 x through its stretch-2 hold, where
   // lambda_max is 2.0 x: its step then sat at 0.99 x the stable one.)
-  const bool     shortened = stiffness_dt_ < base_dt_;
-  const bool     rising    = shortened && (loading || stiffness_dt_ == StiffnessTarget());
+  const bool     rising    = shortened && (psi > 0 ? search : loading || stiffness_dt_ == StiffnessTarget());
   const PetscInt fewest = rising ? std::min(std::max(options_.iterations, rising_iterations), options_.max_iterations) : options_.iterations;
   double       lambda = 0, previous = lambda_;
   double       last_change = 0;
@@ -427,6 +464,12 @@ PetscErrorCode TimeStepControl::Reestimate(MPI_Comm comm, ForceOperator &force, 
     if (it >= fewest && (settled || harmless)) break;
   }
   if (options_.krylov && std::isfinite(lambda)) KrylovFinish(it);
+  // A jump is checked from both sides before it is believed (Kink).
+  if (std::isfinite(lambda) && lambda > kink_jump * std::max(lambda_, lambda_rest_)) {
+    bool kink = false;
+    PetscCall(Kink(comm, force, committed, lambda, &kink));
+    if (kink) lambda = lambda_, ++kinks_;
+  }
   *iterations = it;
   ++estimates_;
   // A quotient that is not positive or not finite (a static instability, a NaN the
@@ -466,7 +509,11 @@ PetscErrorCode TimeStepControl::AfterStep(MPI_Comm comm, PetscInt step, double s
     estimate_stretch_          = stretch;
     const double   before = lambda_, stiffness_before = stiffness_dt_;
     PetscInt       iterations         = 0;
-    PetscCall(Reestimate(comm, force, stretch_moved > 0, &iterations));
+    double psi = 0;
+    if (options_.indicator) PetscCall(StiffeningIndicator(comm, layout, families, state, force, &psi));
+    bool broke = false;
+    if (failure_) PetscCall(CountIntact(comm, layout, families, state, &broke));
+    PetscCall(Reestimate(comm, force, stretch_moved > 0, psi, broke, &iterations));
     // Shrinks at once; grows back by at most 2 x band per estimate: a quotient that
     // drops is not trusted at once (the warm-started iteration can lose the fastest
     // mode for a while when it moves: a Jm = 3 plate at stretch 2 showed lambda_max
@@ -504,10 +551,11 @@ PetscErrorCode TimeStepControl::AfterStep(MPI_Comm comm, PetscInt step, double s
     }
     next_estimate_ = step + (sooner ? std::max<PetscInt>(1, options_.interval / 5) : interval_now_);
     if (options_.monitor)
-      PetscCall(PetscPrintf(comm, "re-estimate %" PetscInt_FMT " after step %" PetscInt_FMT " (%s, %" PetscInt_FMT " iteration(s)): lambda_max %.6e 1/s^2 (%.4g x at rest), stable %.4e s, stiffness step %.4e s (%.4g x base), next in %" PetscInt_FMT " steps or %.3g in stretch, %" PetscInt_FMT " force evaluations, %.3f s so far\n",
-                            estimates_, step, by_step ? "steps" : "stretch", iterations, lambda_, lambda_ / lambda_rest_, stable_now_, stiffness_dt_,
+      PetscCall(PetscPrintf(comm, "re-estimate %" PetscInt_FMT " after step %" PetscInt_FMT " (%s, %" PetscInt_FMT " iteration(s), indicator %.4g, at the last search %.4g): lambda_max %.6e 1/s^2 (%.4g x at rest), stable %.4e s, stiffness step %.4e s (%.4g x base), next in %" PetscInt_FMT " steps or %.3g in stretch, %" PetscInt_FMT " force evaluations, %.3f s so far\n",
+                            estimates_, step, by_step ? "steps" : "stretch", iterations, psi, psi_, lambda_, lambda_ / lambda_rest_, stable_now_, stiffness_dt_,
                             stiffness_dt_ / base_dt_, next_estimate_ - step, stretch_now_, evaluations_, estimate_wall_));
   }
+  else if (failure_ && options_.interval > 0) PetscCall(CountIntact(comm, layout, families, state)); // for the next estimate
   if (options_.reference > 0 && recorded_ && step % 25 == 0) PetscCall(Reference(comm, force, step));
   double dt = stiffness_dt_;
   bool   flying = false;
@@ -622,6 +670,92 @@ PetscErrorCode TimeStepControl::MixSeed(MPI_Comm comm)
   PetscFunctionReturn(0);
 }
 
+// The difference quotient A v = -(a(u + eps v) - a(u)) / eps assumes a force that is
+// differentiable at u and a base point a(u) of the same bonds as the probes. A bond at
+// the edge of the model's failure (inverted, at the chain limit, its C33 solve not
+// converging) carries its force at u and none at the probe 1e-7 dx away (or the
+// reverse), and the quotient reads that jump over eps as a stiffness (as it read the
+// bonds broken after the base point's evaluation, Reestimate). So the
+// Rayleigh quotient of the unit Ritz vector v is measured from both sides, q+ = -v .
+// (a(u + eps v) - a(u)) / eps and q- = v . (a(u - eps v) - a(u)) / eps: for a smooth
+// force they agree to O(eps) (a stiffening material's included: the Jm = 3 plate's
+// 40 x is smooth at this scale); a switch between u and one of the probes moves only
+// one of them. Two force evaluations, only for an estimate that jumped by kink_jump.
+PetscErrorCode TimeStepControl::Kink(MPI_Comm comm, ForceOperator &force, const std::vector<double> &c33, double lambda, bool *kink)
+{
+  const PetscInt n = (PetscInt)v_.size();
+  double         q[2], norm2;
+
+  PetscFunctionBegin;
+  PetscCall(Dot(comm, v_.data(), v_.data(), &norm2));
+  const double inv = 1.0 / std::sqrt(norm2);
+  for (int side = 0; side < 2; ++side) {
+    const double sign = side == 0 ? 1.0 : -1.0;
+    for (PetscInt k = 0; k < n; ++k) u_probe_[k] = u_rec_[k] + sign * eps_ * v_[k] * inv;
+    PetscCall(ProbeAcceleration(force, c33, nullptr, inv_rho_, held_, u_probe_.data(), a_probe_.data()));
+    ++evaluations_;
+    for (PetscInt k = 0; k < n; ++k) sq_[k] = held_[k] ? 0.0 : -sign * (a_probe_[k] - a_rec_[k]) / eps_ * v_[k] * inv;
+    PetscCall(ReproducibleSum(comm, 1, n, sq_.data(), &q[side]));
+  }
+  *kink = !(std::fabs(q[0] - q[1]) <= kink_mismatch * std::max(std::fabs(q[0]), std::fabs(q[1])));
+  if (options_.monitor)
+    PetscCall(PetscPrintf(comm, "re-estimate: lambda_max %.6e 1/s^2 (%.4g x at rest) checked from both sides: %.6e and %.6e 1/s^2: %s\n", lambda,
+                          lambda / lambda_rest_, q[0], q[1], *kink ? "a kink of the force (a bond at a switch), not a stiffness: the estimate is dropped" : "smooth"));
+  if (*kink) v_ = seed_; // the Ritz vector sits on the switch: start again from the white vector
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode TimeStepControl::StiffeningIndicator(MPI_Comm comm, const Layout &layout, const Families &families, const BondState &state,
+                                                   ForceOperator &force, double *psi)
+{
+  PetscFunctionBegin;
+  PetscCall(force.UpdatePositions(u_rec_.data()));
+  const double *y = force.positions(), *x = layout.cloud.x.data(), *V = layout.cloud.volume.data();
+  double        top = 1.0;
+  for (PetscInt i = 0; i < layout.n_owned; ++i) {
+    // N = sum V_j eta (x) xi and K = sum V_j xi (x) xi over the intact bonds: F = N K^-1.
+    double n00 = 0, n01 = 0, n10 = 0, n11 = 0, k00 = 0, k01 = 0, k11 = 0;
+    for (std::size_t q = 0; q < families.size((std::size_t)i); ++q) {
+      if (!state.is_intact((std::size_t)i, q)) continue;
+      const std::size_t j  = (std::size_t)families.neighbour[families.offsets[i] + q];
+      const double      ex = x[2 * j] - x[2 * i], ey = x[2 * j + 1] - x[2 * i + 1];
+      const double      hx = y[2 * j] - y[2 * i], hy = y[2 * j + 1] - y[2 * i + 1];
+      const double      w  = V[j];
+      n00 += w * hx * ex, n01 += w * hx * ey, n10 += w * hy * ex, n11 += w * hy * ey;
+      k00 += w * ex * ex, k01 += w * ex * ey, k11 += w * ey * ey;
+    }
+    const double dk = k00 * k11 - k01 * k01;
+    if (!(dk > 1e-8 * (k00 + k11) * (k00 + k11))) continue; // too few bonds left for a shape tensor
+    const double i00 = k11 / dk, i01 = -k01 / dk, i11 = k00 / dk;
+    const double f00 = n00 * i00 + n01 * i01, f01 = n00 * i01 + n01 * i11, f10 = n10 * i00 + n11 * i01, f11 = n10 * i01 + n11 * i11;
+    const double J2d = f00 * f11 - f01 * f10;
+    if (!(J2d > 0)) continue; // an inverted point: the health check's business
+    const double trc   = f00 * f00 + f01 * f01 + f10 * f10 + f11 * f11;
+    const double I1bar = plane_strain_ ? (trc + 1.0) * std::pow(J2d, -2.0 / 3.0) : trc + 1.0 / (J2d * J2d);
+    double       g     = 1.0;
+    if (span_ > 0) g = 1.0 / std::max(1.0 - (I1bar - 3.0) / span_, 1e-3);
+    top = std::max(top, g * g * I1bar / 3.0);
+  }
+  PetscCallMPI(MPI_Allreduce(&top, psi, 1, MPI_DOUBLE, MPI_MAX, comm));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode TimeStepControl::CountIntact(MPI_Comm comm, const Layout &layout, const Families &families, const BondState &state, bool *changed)
+{
+  PetscFunctionBegin;
+  if (changed) *changed = false;
+  if (!failure_ || options_.interval <= 0) PetscFunctionReturn(0);
+  long long count = 0;
+  for (PetscInt i = 0; i < layout.n_owned; ++i) {
+    const std::uint64_t *intact = state.intact_mask((std::size_t)i);
+    for (std::size_t w = 0; w < families.mask_words; ++w) count += __builtin_popcountll(intact[w]);
+  }
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &count, 1, MPI_LONG_LONG, MPI_SUM, comm));
+  if (changed) *changed = intact_ >= 0 && count != intact_;
+  intact_ = count;
+  PetscFunctionReturn(0);
+}
+
 TimeStepState TimeStepControl::state() const
 {
   TimeStepState s;
@@ -634,6 +768,7 @@ TimeStepState TimeStepControl::state() const
   s.shortest      = shortest_dt_;
   s.interval_now  = interval_now_;
   s.stretch_increment = stretch_now_;
+  s.indicator     = psi_;
   return s;
 }
 
@@ -659,6 +794,7 @@ PetscErrorCode TimeStepControl::Restore(double dt, const TimeStepState &state, T
       interval_now_ = state.interval_now;
       stretch_now_  = state.stretch_increment;
     }
+    psi_ = state.indicator; // format 5 on; 0 (older): the next estimate searches, as at the start
   }
   if (dt > 0 && dt < base_dt_ && (travel_ > 0 || options_.interval > 0)) {
     dt_ = dt;
