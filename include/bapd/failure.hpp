@@ -31,6 +31,8 @@ public:
   // bonds whose model failed in the step's force evaluation (cleared here); updates
   // the bond state and the geometry of the points whose bonds broke. Collective.
   PetscErrorCode Break(const double *y, std::vector<FailedBond> &failed, BondState &state, BondGeometry &geometry);
+  // Whether the last Break broke bonds on this rank (owned or ghost copies). Local.
+  bool broke() const { return !touched_.empty(); }
 
 private:
   PetscErrorCode SynchroniseGhosts(BondState &state);

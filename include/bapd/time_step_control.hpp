@@ -87,20 +87,16 @@ public:
   // After a step: the re-estimate when due (about the last recorded evaluation, with
   // the operator's committed warm starts copied: side-effect free), then the travel
   // limit over the owned velocities v (2 per point), then the step the TS takes next.
-  // Collective.
+  // broke: this rank's breaking pass of the step broke bonds (Failure::broke), which
+  // makes the recorded evaluation stale as the re-estimate's base point; combined over
+  // the ranks only when an estimate is due. Collective.
   PetscErrorCode AfterStep(MPI_Comm comm, PetscInt step, double stretch, const Layout &layout, const Families &families, const BondState &state,
-                           ForceOperator &force, const double *v, TS ts);
+                           ForceOperator &force, const double *v, bool broke, TS ts);
   // The stable step of the state (u: owned, 2 per point; c33: its warm starts, 1 per
   // bond) by `iterations` shifted power iterations from the current eigenvector: for
   // the diagnosis of a divergence (divergence.hpp), once. Collective.
   PetscErrorCode SharpEstimate(MPI_Comm comm, ForceOperator &force, const double *u, const std::vector<double> &c33, PetscInt iterations,
                                double *stable);
-  // With failure on: counts the intact bonds of the owned points (an exact sum, the same
-  // on any number of ranks), so that AfterStep sees whether the step's breaking pass
-  // broke any since the last count, which makes the recorded evaluation stale for the
-  // re-estimate's base point. Before the first step (the run's, or a restart's), then
-  // by AfterStep. Collective.
-  PetscErrorCode CountIntact(MPI_Comm comm, const Layout &layout, const Families &families, const BondState &state, bool *changed = nullptr);
   // Restart: the step in use (header time_step) and the estimate's state.
   PetscErrorCode Restore(double dt, const TimeStepState &state, TS ts);
 
@@ -202,7 +198,6 @@ private:
   double   inv_rho_ = 0, eps_ = 0, floor_ = 0.1;
   double   span_ = 0;          // I1bar_limit - 3 of the law (0: no limit)
   bool     plane_strain_ = false, failure_ = false;
-  long long intact_ = -1;      // intact bonds of the owned points at the last count (-1: not counted)
   double   psi_ = 0;           // the stiffening indicator at the last search (0: none yet)
   PetscInt next_estimate_ = 0, estimates_ = 0, evaluations_ = 0, kinks_ = 0;
   double   estimate_stretch_ = 1; // the applied stretch at the last re-estimate

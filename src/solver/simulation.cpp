@@ -314,7 +314,8 @@ PetscErrorCode Simulation::PostStep(TS ts)
   // latest evaluation when due, shortened while points fly: time_step_control.hpp).
     const double *xr;
     PetscCall(VecGetArrayRead(X, &xr));
-    PetscCall(sim->step_control_.AfterStep(sim->comm_, step, sim->loading_.stretch_at(t), sim->layout_, sim->families_, sim->bond_state_, sim->force_, xr + n, ts));
+    PetscCall(sim->step_control_.AfterStep(sim->comm_, step, sim->loading_.stretch_at(t), sim->layout_, sim->families_, sim->bond_state_, sim->force_, xr + n,
+                                           sim->scene_.failure && sim->failure_.broke(), ts));
     PetscCall(VecRestoreArrayRead(X, &xr));
     sim->relaxation_.FollowStableStep(sim->step_control_.stable_now()); // its cap, 2 omega_max
   }
@@ -331,9 +332,6 @@ PetscErrorCode Simulation::Run()
 {
   PetscFunctionBegin;
   if (scene_.help_only) PetscFunctionReturn(0);
-  // The intact bonds the first step starts from (a restart's included): the re-estimate
-  // knows from them whether a step's breaking pass changed the bonds (time_step_control.hpp).
-  PetscCall(step_control_.CountIntact(comm_, layout_, families_, bond_state_));
   PetscCall(PetscLogStagePush(stage_step_));
   PetscCall(TSSolve(ts_, X_));
   PetscCall(PetscLogStagePop());
@@ -357,9 +355,6 @@ PetscErrorCode Simulation::Advance(PetscInt steps)
   PetscCall(TSGetStepNumber(ts_, &step));
   PetscCall(TSSetMaxSteps(ts_, step + steps));
   PetscCall(TSSetMaxTime(ts_, PETSC_MAX_REAL));
-  // The intact bonds the first step starts from (a restart's included): the re-estimate
-  // knows from them whether a step's breaking pass changed the bonds (time_step_control.hpp).
-  PetscCall(step_control_.CountIntact(comm_, layout_, families_, bond_state_));
   PetscCall(PetscLogStagePush(stage_step_));
   PetscCall(TSSolve(ts_, X_));
   PetscCall(PetscLogStagePop());

@@ -496,7 +496,7 @@ PetscErrorCode TimeStepControl::Reestimate(MPI_Comm comm, ForceOperator &force, 
 // than the travel limit, and returns once they slow down. The maximum is exact
 // (MPI_MAX of doubles), so the step is the same on any number of ranks.
 PetscErrorCode TimeStepControl::AfterStep(MPI_Comm comm, PetscInt step, double stretch, const Layout &layout, const Families &families,
-                                          const BondState &state, ForceOperator &force, const double *v, TS ts)
+                                          const BondState &state, ForceOperator &force, const double *v, bool broke_here, TS ts)
 {
   PetscFunctionBegin;
   // Due after `interval` steps, or sooner on a fast ramp: a ramp of the fast route
@@ -512,7 +512,7 @@ PetscErrorCode TimeStepControl::AfterStep(MPI_Comm comm, PetscInt step, double s
     double psi = 0;
     if (options_.indicator) PetscCall(StiffeningIndicator(comm, layout, families, state, force, &psi));
     bool broke = false;
-    if (failure_) PetscCall(CountIntact(comm, layout, families, state, &broke));
+    if (failure_) PetscCallMPI(MPI_Allreduce(&broke_here, &broke, 1, MPI_C_BOOL, MPI_LOR, comm));
     PetscCall(Reestimate(comm, force, stretch_moved > 0, psi, broke, &iterations));
     // Shrinks at once; grows back by at most 2 x band per estimate: a quotient that
     // drops is not trusted at once (the warm-started iteration can lose the fastest
@@ -555,7 +555,6 @@ PetscErrorCode TimeStepControl::AfterStep(MPI_Comm comm, PetscInt step, double s
                             estimates_, step, by_step ? "steps" : "stretch", iterations, psi, psi_, lambda_, lambda_ / lambda_rest_, stable_now_, stiffness_dt_,
                             stiffness_dt_ / base_dt_, next_estimate_ - step, stretch_now_, evaluations_, estimate_wall_));
   }
-  else if (failure_ && options_.interval > 0) PetscCall(CountIntact(comm, layout, families, state)); // for the next estimate
   if (options_.reference > 0 && recorded_ && step % 25 == 0) PetscCall(Reference(comm, force, step));
   double dt = stiffness_dt_;
   bool   flying = false;
@@ -737,22 +736,6 @@ PetscErrorCode TimeStepControl::StiffeningIndicator(MPI_Comm comm, const Layout 
     top = std::max(top, g * g * I1bar / 3.0);
   }
   PetscCallMPI(MPI_Allreduce(&top, psi, 1, MPI_DOUBLE, MPI_MAX, comm));
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode TimeStepControl::CountIntact(MPI_Comm comm, const Layout &layout, const Families &families, const BondState &state, bool *changed)
-{
-  PetscFunctionBegin;
-  if (changed) *changed = false;
-  if (!failure_ || options_.interval <= 0) PetscFunctionReturn(0);
-  long long count = 0;
-  for (PetscInt i = 0; i < layout.n_owned; ++i) {
-    const std::uint64_t *intact = state.intact_mask((std::size_t)i);
-    for (std::size_t w = 0; w < families.mask_words; ++w) count += __builtin_popcountll(intact[w]);
-  }
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &count, 1, MPI_LONG_LONG, MPI_SUM, comm));
-  if (changed) *changed = intact_ >= 0 && count != intact_;
-  intact_ = count;
   PetscFunctionReturn(0);
 }
 
