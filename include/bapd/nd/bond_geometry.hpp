@@ -271,8 +271,12 @@ template <int D> struct BondGeometry {
   std::vector<std::uint64_t> singular; // bit q: intact, K not usable
   StressCorrection           stress_correction = StressCorrection::none;
   std::vector<double>        correction; // C_i, D x D row-major per family point
+  // Work space of compute_bond_geometry, sized with the geometry, so that a time step
+  // in which bonds break allocates nothing (STYLE.md, "Data").
   PointScratch<D>            scratch;
   std::vector<std::uint64_t> reference_mask;
+  std::vector<std::uint32_t> done_in_pass; // per family point: the last recomputation that did it
+  std::uint32_t              pass = 0;
 
   bool is_usable(std::size_t i, std::size_t q) const { return (usable[i * mask_words + q / 64] >> (q % 64)) & 1u; }
   bool corrected() const { return stress_correction != StressCorrection::none; }
@@ -300,10 +304,27 @@ template <int D> struct BondGeometry {
 template <int D>
 std::size_t compute_bond_geometry(const PointCloud &cloud, const Families &families, const BondState &state,
                                   BondGeometry<D> &geometry);
-// Recomputes the usable bits of the listed points only (after break_bond); C_i stays.
+// Recomputes the usable bits of the listed points only (after break_bond / break_bonds;
+// the stress correction C_i is a reference quantity and stays). A geometry not yet
+// sized for these families is sized first (the only allocation). Duplicates in
+// points are harmless (each point is done once). Returns the intact bonds of those
+// points whose K is not usable.
 template <int D>
 std::size_t compute_bond_geometry(const PointCloud &cloud, const Families &families, const BondState &state,
                                   BondGeometry<D> &geometry, const std::vector<std::size_t> &points);
+
+// The reference quantities of bond q of point i in the current state (slow path, for
+// tests and output; the kernel's arithmetic).
+template <int D> struct BondShape {
+  bool   usable = false;
+  double shape_tensor_inv[sym_size<D>]{}; // K^{-1}, upper triangle
+  double volume_fraction = 0;             // phi_xi (eq 15)
+  double force_scale     = 0;             // 1/2 phi_xi / phi
+  Vec<D> force_vector{};                  // g_ij = force_scale K^{-1} (x_j - x_i), uncorrected
+};
+template <int D>
+BondShape<D> bond_shape(const PointCloud &cloud, const Families &families, const BondState &state, std::size_t i,
+                        std::size_t q);
 
 // M_i = sum_j g_ij (x) xi_ij V_j over the usable intact bonds of i (g uncorrected):
 // the virial tensor whose inverse the tensor correction is (slow path, tests).
