@@ -288,15 +288,15 @@ template <int D> struct EnergyConsistentForm {
   {
     const double   *ki = data + stride * slot;
     const double    v  = rec[q][Member<D>::volume];
-    StressRecord<D> mq;
-    mq.zero();
+    double          m_iq[StressRecord<D>::vectors * StressRecord<D>::V] = {};
     for (int r = 0; r < D; ++r)
       for (int c = 0; c < D; ++c) {
         double s = 0.0;
         for (int m = 0; m < D; ++m) s += P[D * r + m] * ki[sym_index<D>(m, c)];
-        mq.set(D * r + c, v * s);
+        m_iq[D * r + c] = v * s;
       }
-    M[q] = mq;
+    const StressRecord<D> mq = StressRecord<D>::from(m_iq); // in registers (Packed::from)
+    M[q]                     = mq;
     stress_total += mq;
     volume += v;
     energetic[q / 64] |= std::uint64_t{1} << (q % 64);

@@ -33,6 +33,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "bapd/body.hpp"
@@ -73,6 +74,17 @@ template <int N> struct alignas(8 * vector_doubles) Packed {
   void                 zero()
   {
     for (int q = 0; q < vectors; ++q) v[q] = Vector{};
+  }
+  // From N doubles (a holds whole vectors: the rest is zero): each vector is built
+  // from its scalars in registers ({a[0], a[1], ...}), not stored lane by lane and read
+  // back as a vector (a store-forwarding stall per record: set() in gather_point cost
+  // the D = 2 kernel 10-20 %, kernel_bench --versus-nd).
+  static Packed from(const double *a) { return from(a, std::make_index_sequence<V>{}); }
+  template <std::size_t... I> static Packed from(const double *a, std::index_sequence<I...>)
+  {
+    Packed p;
+    for (int q = 0; q < vectors; ++q) p.v[q] = Vector{a[q * V + static_cast<int>(I)]...};
+    return p;
   }
   Packed &operator+=(const Packed &o)
   {
@@ -206,13 +218,14 @@ inline PointTotals<D> gather_point(const PointCloud &ref, const double *y, const
       off[D * p + r] = d[r];
     }
     fvk[p] = fv[k];
-    MemberRecord<D> &R = rec[p];
-    R.zero();
+    double f[MemberRecord<D>::vectors * MemberRecord<D>::V] = {};
     for (int r = 0; r < D; ++r)
-      for (int c = 0; c < D; ++c) R.set(L::deformation + D * r + c, e[r] * a[c]);
+      for (int c = 0; c < D; ++c) f[L::deformation + D * r + c] = e[r] * a[c];
     for (int r = 0; r < D; ++r)
-      for (int c = r; c < D; ++c) R.set(L::shape + sym_index<D>(r, c), d[r] * a[c]);
-    R.set(L::volume, v);
+      for (int c = r; c < D; ++c) f[L::shape + sym_index<D>(r, c)] = d[r] * a[c];
+    f[L::volume]             = v;
+    const MemberRecord<D> R = MemberRecord<D>::from(f);
+    rec[p]                  = R;
     if ((intact[p / 64] >> (p % 64)) & 1u) total += R;
   }
   return {total, fv[i], 0.5 / (fv[i] * fv[i])};
