@@ -8,8 +8,8 @@
 namespace bapd {
 
 PetscErrorCode ForceOperator::Setup(MPI_Comm comm, const Scene &scene, const Layout &layout, const Families &families,
-                                    const nd::BondGeometry<2> &geometry, const BondState &state, PetscLogStage stage_ghost,
-                                    PetscLogStage stage_force)
+                                    const nd::BondGeometry<2> &geometry, const BondState &state,
+                                    PetscLogStage stage_ghost, PetscLogStage stage_force)
 {
   PetscFunctionBegin;
   comm_        = comm;
@@ -23,16 +23,16 @@ PetscErrorCode ForceOperator::Setup(MPI_Comm comm, const Scene &scene, const Lay
   y_.assign(layout.cloud.x.begin(), layout.cloud.x.end());
   // The constitutive model is chosen here, once; inside the closure it is a concrete
   // type and the bond loop is compiled for it.
-  const PointCloud   *cloud = &layout.cloud;
-  const Families     *f     = &families;
-  const nd::BondGeometry<2> *g = &geometry;
-  const BondState           *s = &state;
+  const PointCloud          *cloud = &layout.cloud;
+  const Families            *f     = &families;
+  const nd::BondGeometry<2> *g     = &geometry;
+  const BondState           *s     = &state;
   // -force_form: both forms write t_ij per bond, and assemble_force_density turns
   // either into f_i (the energy-consistent t_ij make it -(1/V_i) dW/dy_i).
   const nd::ForceForm form =
       scene.force_form == ForceForm::energy_consistent ? nd::ForceForm::energy_consistent : nd::ForceForm::bond_only;
   with_model(scene.model, scene.formulation, scene.material, [&](const auto &model) {
-    using Model   = std::decay_t<decltype(model)>;
+    using Model  = std::decay_t<decltype(model)>;
     bond_forces_ = [this, form, cloud, f, g, s, m = Model(model)](const double *y, double *c33) {
       return nd::compute_bond_forces<2>(form, m, *cloud, y, *f, *g, *s, c33, bond_force_.data(), workspace_);
     };
