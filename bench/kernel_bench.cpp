@@ -12,6 +12,12 @@
 //                 run under `valgrind --tool=callgrind --collect-atstart=no`
 //                 (bench/callgrind_kernel.sh does this and reads the profiles)
 //   --table       also print one machine-readable line, `RESULT key=value ...`
+//   --versus-nd   the 2D kernel against the dimension-generic core at D = 2
+//                 (nd/ba_force.hpp, issue 21 stage 2), both forms, warm c33: the two
+//                 alternate repetition by repetition (A B A B: a shared machine's load
+//                 falls on both alike), the minimum thread CPU time of each and the
+//                 ratio nd / 2D; also checks that both give the same bond forces and
+//                 c33 bit for bit
 //   --only NAME   run only the region NAME (gent_warm, energy_warm, gent_dynamics,
 //                 identity, assemble), reps times, and print its time: for a sampling
 //                 profiler (`perf record -e cpu-clock kernel_bench --only energy_warm
@@ -60,6 +66,7 @@
 #include "bapd/ba_force_energy.hpp"
 #include "bapd/bond_geometry.hpp"
 #include "bapd/family.hpp"
+#include "bapd/nd/ba_force.hpp"
 #include "bapd/gent.hpp"
 #include "bapd/material.hpp"
 #include "bapd/lattice.hpp"
@@ -149,6 +156,7 @@ struct Options {
   bool   callgrind = false;
   bool   table     = false;
   bool   clock     = false;
+  bool   versus_nd = false;
   double motion    = 1e-5; // dx: how far the two position states are apart (one time step's motion)
   double dynamics  = 5e-4; // dx: the same for gent_dynamics
   std::string only;        // --only: one region
@@ -172,6 +180,7 @@ Options parse(int argc, char **argv)
     else if (s == "--callgrind") o.callgrind = true;
     else if (s == "--table") o.table = true;
     else if (s == "--clock") o.clock = true;
+    else if (s == "--versus-nd") o.versus_nd = true;
     else if (s == "--motion") o.motion = std::atof(next());
     else if (s == "--dynamics-motion") o.dynamics = std::atof(next());
     else if (s == "--only") o.only = next();
@@ -326,6 +335,53 @@ int main(int argc, char **argv)
                 "evals_cold=%.4f\n",
                 o.side, o.factor, cloud.size(), fam.n_bonds(), stats.evaluated, Fs[0].size(), evals_warm, evals_cold);
     return sink == 12345.0;
+  }
+
+  if (o.versus_nd) { // the switch of issue 21 stage 2: same bits, same speed?
+    nd::BondGeometry<2> geo_nd;
+    nd::compute_bond_geometry<2>(cloud, fam, state, geo_nd);
+    nd::Workspace<2>    ws_nd;
+    std::vector<double> t_nd(t.size()), c_old[2], c_nd[2];
+    struct Form {
+      const char   *name;
+      nd::ForceForm form;
+    } forms[] = {{"bond-only, Gent plane stress, warm c33", nd::ForceForm::bond_only},
+                 {"energy-consistent, Gent plane stress, warm c33", nd::ForceForm::energy_consistent}};
+    for (const Form &fm : forms) {
+      const bool energy = fm.form == nd::ForceForm::energy_consistent;
+      auto       old_run = [&](int r) {
+        if (energy)
+          compute_energy_consistent_bond_forces(gent, cloud, ys[r % 2], fam, geo, state, c_old[0].data(), t.data(), ws);
+        else compute_bond_forces(gent, cloud, ys[r % 2], fam, geo, state, c_old[0].data(), t.data(), ws);
+      };
+      auto nd_run = [&](int r) {
+        nd::compute_bond_forces<2>(fm.form, gent, cloud, ys[r % 2], fam, geo_nd, state, c_nd[0].data(), t_nd.data(),
+                                   ws_nd);
+      };
+      c_old[0].assign(fam.n_bonds(), 0.0);
+      c_nd[0].assign(fam.n_bonds(), 0.0);
+      old_run(1); // warm starts at y_b, as gent_warm
+      nd_run(1);
+      Timing a, b;
+      for (int r = 0; r < o.reps; ++r) { // alternate: the load of the moment falls on both
+        Timing ta, tb; // and in turn first: neither always finds the other's caches
+        if (r % 2) tb = time_min(1, [&](int) { nd_run(r); });
+        ta = time_min(1, [&](int) { old_run(r); });
+        if (!(r % 2)) tb = time_min(1, [&](int) { nd_run(r); });
+        a.cpu = std::min(a.cpu, ta.cpu);
+        b.cpu = std::min(b.cpu, tb.cpu);
+      }
+      const bool same = t == t_nd && c_old[0] == c_nd[0];
+      std::printf("  %-48s 2D %7.2f ns/bond, nd<2> %7.2f ns/bond, nd / 2D = %.4f; bond forces and c33 %s\n", fm.name,
+                  1e9 * a.cpu / evaluated, 1e9 * b.cpu / evaluated, b.cpu / a.cpu,
+                  same ? "identical" : "DIFFER");
+      if (o.table)
+        std::printf("RESULT form=%s old_ns=%.3f nd_ns=%.3f ratio=%.4f identical=%d\n",
+                    energy ? "energy_consistent" : "bond_only", 1e9 * a.cpu / evaluated, 1e9 * b.cpu / evaluated,
+                    b.cpu / a.cpu, same ? 1 : 0);
+      if (!same) return 1;
+    }
+    return 0;
   }
 
   if (!o.only.empty()) {

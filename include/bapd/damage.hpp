@@ -7,22 +7,12 @@
 #include "bapd/body.hpp"
 #include "bapd/bond_state.hpp"
 #include "bapd/family.hpp"
+#include "bapd/nd/damage.hpp"
 
 namespace bapd {
 
-// Breaks, for good, every intact bond of the family points whose stretch
-// s = |y_j - y_i| / |x_j - x_i| exceeds critical_stretch (eq 7), tested as
-// |y_j - y_i|^2 > s_c^2 |x_j - x_i|^2. Both directed copies of a bond see the same
-// bits (differences are negated exactly), so (i, j) and (j, i) always agree, on any
-// rank, without communication. Fills touched_points (cleared first, sorted, unique)
-// with the points whose geometry must be recomputed
-// (compute_bond_geometry(..., touched_points)). Returns the number of directed bonds
-// broken at points [0, n_counted) (default: every family point; pass n_owned for a
-// count that sums over ranks without ghost copies: each broken bond then counts once
-// per end point, twice in all).
-std::size_t break_bonds(const PointCloud &cloud, const double *y, const Families &families,
-                        double critical_stretch, BondState &state, std::vector<std::size_t> &touched_points,
-                        std::size_t n_counted = static_cast<std::size_t>(-1));
+// Breaking by critical stretch (eq 7) is nd::break_bonds<D> (nd/damage.hpp, included
+// here), one code path for 2D and 3D.
 
 // Breaks the bonds whose model failed in the last kernel call (ws.failed), both
 // directed copies where present; appends their end points to touched_points (then

@@ -10,11 +10,10 @@
 
 #include <vector>
 
-#include "bapd/ba_force.hpp"
-#include "bapd/bond_geometry.hpp"
 #include "bapd/bond_state.hpp"
 #include "bapd/family.hpp"
 #include "bapd/layout.hpp"
+#include "bapd/nd/ba_force.hpp"
 
 namespace bapd {
 
@@ -30,7 +29,8 @@ public:
   // One breaking pass after a step at positions y (every local point), with the
   // bonds whose model failed in the step's force evaluation (cleared here); updates
   // the bond state and the geometry of the points whose bonds broke. Collective.
-  PetscErrorCode Break(const double *y, std::vector<FailedBond> &failed, BondState &state, BondGeometry &geometry);
+  PetscErrorCode Break(const double *y, std::vector<FailedBond> &failed, BondState &state,
+                       nd::BondGeometry<2> &geometry);
   // Whether the last Break broke bonds on this rank (owned or ghost copies). Local.
   bool broke() const { return !touched_.empty(); }
 

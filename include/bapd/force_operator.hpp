@@ -1,6 +1,6 @@
 #pragma once
 // The force operator: displacement of the owned points in, force density out
-// (paper eq 23, or the energy-consistent form of ba_force_energy.hpp). It owns what
+// (paper eq 23, or the energy-consistent form; nd/ba_force.hpp at D = 2). It owns what
 // an evaluation needs and nothing else: the ghosted displacement (two rings of
 // ghosts, layout.hpp), the current positions y = x + u of every local point, the
 // plane-stress warm starts C33 (one per bond), the bond forces t_ij, the kernel's
@@ -18,11 +18,10 @@
 #include <functional>
 #include <vector>
 
-#include "bapd/ba_force.hpp"
-#include "bapd/bond_geometry.hpp"
 #include "bapd/bond_state.hpp"
 #include "bapd/family.hpp"
 #include "bapd/layout.hpp"
+#include "bapd/nd/ba_force.hpp"
 #include "bapd/scene.hpp"
 
 namespace bapd {
@@ -38,7 +37,7 @@ public:
 
   // stage_ghost and stage_force: the -log_view stages of the exchange and the bond loop.
   PetscErrorCode Setup(MPI_Comm comm, const Scene &scene, const Layout &layout, const Families &families,
-                       const BondGeometry &geometry, const BondState &state, PetscLogStage stage_ghost,
+                       const nd::BondGeometry<2> &geometry, const BondState &state, PetscLogStage stage_ghost,
                        PetscLogStage stage_force);
 
   // y = x + u over every local point, after the ghost exchange of u (owned, 2 per point).
@@ -73,7 +72,7 @@ private:
   std::vector<double>      y_;          // current positions, 2 per local point
   std::function<KernelStats(const double *y, double *c33)> bond_forces_; // the model, chosen once
   std::function<void(const double *y, double *energy)>     point_energies_;
-  BondKernelWorkspace      workspace_;
+  nd::Workspace<2>         workspace_;
   std::vector<FailedBond>  kept_failed_; // the committed list while a keep evaluation runs
   KernelStats              stats_;
   Vec                      u_ghosted_   = nullptr; // displacement with two rings of ghosts

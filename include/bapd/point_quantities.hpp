@@ -32,16 +32,16 @@
 // Output only, outside the time step: it uses the slow per-bond path
 // (bond_shape, bond_deformation_gradient) and reads c33 as the warm start of the
 // model's C33 solve without writing it.
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <vector>
 
-#include "bapd/ba_force.hpp"
 #include "bapd/body.hpp"
-#include "bapd/bond_geometry.hpp"
 #include "bapd/bond_state.hpp"
 #include "bapd/family.hpp"
 #include "bapd/material.hpp"
+#include "bapd/nd/ba_force.hpp"
 #include "bapd/tensor.hpp"
 
 namespace bapd {
@@ -84,8 +84,8 @@ inline Mat2 cauchy_stress(const Mat2 &P, const Mat2 &F, double lambda_3)
 // (1 per bond, may be nullptr).
 template <class Model>
 void point_quantities(const Model &model, const PointCloud &cloud, const double *y, const Families &families,
-                      const BondGeometry &geometry, const BondState &state, const double *c33, std::size_t n_points,
-                      StressWeights weights, PointQuantities &out)
+                      const nd::BondGeometry<2> &geometry, const BondState &state, const double *c33,
+                      std::size_t n_points, StressWeights weights, PointQuantities &out)
 {
   out.resize(n_points);
   const bool virial = geometry.corrected() && weights == StressWeights::bond_force;
@@ -95,10 +95,10 @@ void point_quantities(const Model &model, const PointCloud &cloud, const double 
     const Mat2 C = geometry.correction_of(i);
     for (std::size_t q = 0; q < families.size(i); ++q) {
       if (!state.is_intact(i, q) || !geometry.is_usable(i, q)) continue;
-      const BondShape shape = bond_shape(cloud, families, state, i, q);
+      const nd::BondShape<2> shape = nd::bond_shape<2>(cloud, families, state, i, q);
       if (!shape.usable) continue;
       const std::size_t b = families.offsets[i] + q;
-      const Mat2        F = bond_deformation_gradient(cloud, y, families, geometry, state, i, q);
+      const Mat2        F = nd::bond_deformation_gradient<2>(cloud, y, families, geometry, state, i, q);
       double            c = c33 ? c33[b] : 0.0;
       Mat2              P;
       if (model.stress(F, c, P) != StressStatus::ok) continue; // the kernel gives it t = 0
@@ -109,7 +109,8 @@ void point_quantities(const Model &model, const PointCloud &cloud, const double 
         Vec2              h  = C * shape.force_vector;
         const double      d0 = cloud.x[2 * j] - cloud.x[2 * i], d1 = cloud.x[2 * j + 1] - cloud.x[2 * i + 1];
         if (!cloud.patch_correction.empty()) // h_ij of the kernel (patch_correction.hpp)
-          add_patch_term(cloud.patch_correction.data() + 2 * i, cloud.patch_correction.data() + 2 * j, d0, d1, h[0], h[1]);
+          nd::add_patch_term<2>(cloud.patch_correction.data() + 2 * i, cloud.patch_correction.data() + 2 * j,
+                                std::array<double, 2>{d0, d1}.data(), h.data());
         P_sum                = P_sum + P * Mat2{v * h[0] * d0, v * h[0] * d1, v * h[1] * d0, v * h[1] * d1};
       } else P_sum = P_sum + a * P;
       F_sum          = F_sum + a * F;
@@ -128,14 +129,16 @@ void point_quantities(const Model &model, const PointCloud &cloud, const double 
     }
     out.thickness_stretch[i] = lambda_3;
   }
-  BondKernelWorkspace ws;
-  strain_energy(model, cloud, y, families, geometry, state, c33, n_points, ws, nullptr, out.strain_energy_density.data());
+  nd::Workspace<2> ws;
+  nd::strain_energy<2>(model, cloud, y, families, geometry, state, c33, n_points, ws, nullptr,
+                       out.strain_energy_density.data());
   for (std::size_t i = 0; i < n_points; ++i) out.strain_energy_density[i] /= cloud.volume[i]; // V_i W_i -> W_i
 }
 
 // The same for the run-time model (with_model, models.hpp).
 void point_quantities(ModelKind kind, Formulation formulation, const MaterialParameters &material,
-                      const PointCloud &cloud, const double *y, const Families &families, const BondGeometry &geometry,
+                      const PointCloud &cloud, const double *y, const Families &families,
+                      const nd::BondGeometry<2> &geometry,
                       const BondState &state, const double *c33, std::size_t n_points, StressWeights weights,
                       PointQuantities &out);
 

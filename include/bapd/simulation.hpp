@@ -16,8 +16,6 @@
 #include <string>
 #include <vector>
 
-#include "bapd/ba_force.hpp"
-#include "bapd/bond_geometry.hpp"
 #include "bapd/bond_state.hpp"
 #include "bapd/cadence.hpp"
 #include "bapd/divergence.hpp"
@@ -118,9 +116,9 @@ private:
   Layout      layout_;
 
   // The body's bonds, shared by the objects below (failure changes the last two).
-  Families     families_;
-  BondState    bond_state_;
-  BondGeometry geometry_;
+  Families            families_;
+  BondState           bond_state_;
+  nd::BondGeometry<2> geometry_; // the dimension-generic core at D = 2 (nd/bond_geometry.hpp)
 
   ForceOperator   force_;        // u -> f (force_operator.hpp)
   Loading         loading_;      // grips, schedule, reactions (loading.hpp)

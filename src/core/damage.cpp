@@ -12,39 +12,6 @@ void sort_unique(std::vector<std::size_t> &v)
 }
 } // namespace
 
-std::size_t break_bonds(const PointCloud &cloud, const double *y, const Families &families,
-                        double critical_stretch, BondState &state, std::vector<std::size_t> &touched_points,
-                        std::size_t n_counted)
-{
-  touched_points.clear();
-  const double      *x   = cloud.x.data();
-  const double       sc2 = critical_stretch * critical_stretch;
-  const std::size_t  W   = state.mask_words;
-  std::size_t        broken = 0;
-  for (std::size_t i = 0; i < families.n_family; ++i) {
-    const std::size_t o = families.offsets[i], m = families.size(i);
-    bool              any = false;
-    for (std::size_t q = 0; q < m; ++q) {
-      std::uint64_t      &word = state.intact[i * W + q / 64];
-      const std::uint64_t bit  = std::uint64_t{1} << (q % 64);
-      if (!(word & bit)) continue;
-      const std::size_t j  = static_cast<std::size_t>(families.neighbour[o + q]);
-      const double      d0 = x[2 * j] - x[2 * i], d1 = x[2 * j + 1] - x[2 * i + 1];
-      const double      e0 = y[2 * j] - y[2 * i], e1 = y[2 * j + 1] - y[2 * i + 1];
-      if (e0 * e0 + e1 * e1 > sc2 * (d0 * d0 + d1 * d1)) {
-        word &= ~bit;
-        broken += i < n_counted;
-        any = true;
-      }
-    }
-    if (any) touched_points.push_back(i);
-  }
-  // (j, i) is broken in j's own pass when j has a family here, so i and j are both
-  // listed already; a ring-2 j has no geometry to recompute.
-  sort_unique(touched_points);
-  return broken;
-}
-
 std::size_t break_failed_bonds(const Families &families, BondState &state, const std::vector<FailedBond> &failed,
                                std::vector<std::size_t> &touched_points)
 {

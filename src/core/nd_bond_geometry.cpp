@@ -14,7 +14,7 @@ void check_family_volume(const PointCloud &cloud, std::size_t j)
 {
   const double v = j < cloud.family_volume.size() ? cloud.family_volume[j] : std::nan("");
   if (!(v > 0) || !std::isfinite(v))
-    throw std::invalid_argument("nd::compute_bond_geometry: family volume V(H) of the point with natural id " +
+    throw std::invalid_argument("compute_bond_geometry: family volume V(H) of the point with natural id " +
                                 std::to_string(cloud.natural_id[j]) + " is missing or not positive (" +
                                 std::to_string(v) + "); call compute_family_volumes, and ship V(H) of ring-2 ghosts");
 }
@@ -22,7 +22,7 @@ void check_family_volume(const PointCloud &cloud, std::size_t j)
 void check_state(const Families &families, const BondState &state)
 {
   if (state.mask_words != families.mask_words || state.intact.size() != families.n_family * families.mask_words)
-    throw std::invalid_argument("nd::compute_bond_geometry: the bond state does not match the families");
+    throw std::invalid_argument("compute_bond_geometry: the bond state does not match the families");
 }
 
 void check_point_volumes(const PointCloud &cloud, const Families &fam, std::size_t i)
@@ -102,6 +102,8 @@ template <int D> void size_geometry(const PointCloud &cloud, const Families &fam
   geometry.singular.assign(families.n_family * W, 0);
   geometry.scratch.reserve(families);
   geometry.reference_mask.assign(W, 0);
+  geometry.done_in_pass.assign(families.n_family, 0);
+  geometry.pass = 0;
   if (!geometry.corrected()) {
     geometry.correction.clear();
     return;
@@ -138,16 +140,43 @@ std::size_t compute_bond_geometry(const PointCloud &cloud, const Families &famil
   if (geometry.mask_words != families.mask_words || geometry.usable.size() != families.n_family * families.mask_words ||
       geometry.correction.size() != (geometry.corrected() ? D * D * families.n_family : 0))
     size_geometry<D>(cloud, families, geometry);
-  std::vector<std::size_t> unique(points); // set-up and breaking only: not per step
-  std::sort(unique.begin(), unique.end());
-  unique.erase(std::unique(unique.begin(), unique.end()), unique.end());
-  std::size_t not_usable = 0;
-  for (std::size_t i : unique) {
+  for (std::size_t i : points)
     if (i >= families.n_family)
-      throw std::out_of_range("nd::compute_bond_geometry: point " + std::to_string(i) + " has no family");
+      throw std::out_of_range("compute_bond_geometry: point " + std::to_string(i) + " has no family");
+  // Each point once, so that the count is right: a point is marked with the number of
+  // this pass (no copy of the list, no clearing; a pass that throws leaves marks that
+  // the next pass does not read).
+  if (++geometry.pass == 0) {
+    std::fill(geometry.done_in_pass.begin(), geometry.done_in_pass.end(), 0);
+    geometry.pass = 1;
+  }
+  std::size_t not_usable = 0;
+  for (std::size_t i : points) {
+    if (geometry.done_in_pass[i] == geometry.pass) continue;
+    geometry.done_in_pass[i] = geometry.pass;
     not_usable += point_geometry<D>(cloud, families, state, geometry, i);
   }
   return not_usable;
+}
+
+template <int D>
+BondShape<D> bond_shape(const PointCloud &cloud, const Families &families, const BondState &state, std::size_t i,
+                        std::size_t q)
+{
+  BondShape<D> out;
+  if (!state.is_intact(i, q)) return out;
+  PointScratch<D> s;
+  s.reserve(families);
+  const std::uint64_t    *intact = state.intact_mask(i);
+  const PointTotals<D>    totals = gather_point<D>(cloud, cloud.x.data(), families, i, intact, s);
+  const BondKinematics<D> k      = bond_kinematics<D>(families.ba(families.offsets[i] + q), intact, families.mask_words, s, totals);
+  if (!k.usable) return out;
+  out.usable = true;
+  for (int c = 0; c < sym_size<D>; ++c) out.shape_tensor_inv[c] = k.shape_tensor_inv[c];
+  out.volume_fraction = k.volume / cloud.family_volume[i];
+  out.force_scale     = force_scale<D>(k, totals, s.family_volume[q]);
+  force_vector<D>(k, out.force_scale, s.offset.data() + D * q, out.force_vector.data());
+  return out;
 }
 
 template <int D>
@@ -164,6 +193,8 @@ template std::size_t compute_bond_geometry<2>(const PointCloud &, const Families
                                               const std::vector<std::size_t> &);
 template std::size_t compute_bond_geometry<3>(const PointCloud &, const Families &, const BondState &, BondGeometry<3> &,
                                               const std::vector<std::size_t> &);
+template BondShape<2> bond_shape<2>(const PointCloud &, const Families &, const BondState &, std::size_t, std::size_t);
+template BondShape<3> bond_shape<3>(const PointCloud &, const Families &, const BondState &, std::size_t, std::size_t);
 template Mat<2> virial_tensor<2>(const PointCloud &, const Families &, const BondState &, std::size_t);
 template Mat<3> virial_tensor<3>(const PointCloud &, const Families &, const BondState &, std::size_t);
 

@@ -35,19 +35,19 @@ template <int D> void check_cloud(const PointCloud &cloud, std::size_t n_family,
 {
   const std::size_t n = cloud.size();
   if (cloud.x.size() != D * n || cloud.natural_id.size() != n)
-    throw std::invalid_argument("nd::build_families: x must hold " + std::to_string(D) +
+    throw std::invalid_argument("build_families: x must hold " + std::to_string(D) +
                                 " and natural_id 1 entry per volume entry");
   if (!cloud.horizon.empty() && cloud.horizon.size() != n)
-    throw std::invalid_argument("nd::build_families: horizon must be empty or hold 1 entry per volume entry");
+    throw std::invalid_argument("build_families: horizon must be empty or hold 1 entry per volume entry");
   for (double h : cloud.horizon)
     if (!(h > 0) || !std::isfinite(h))
-      throw std::invalid_argument("nd::build_families: a point's horizon must be a positive number (got " +
+      throw std::invalid_argument("build_families: a point's horizon must be a positive number (got " +
                                   std::to_string(h) + ")");
   if (!(horizon > 0) || !std::isfinite(horizon))
-    throw std::invalid_argument("nd::build_families: the horizon must be a positive number (got " +
+    throw std::invalid_argument("build_families: the horizon must be a positive number (got " +
                                 std::to_string(horizon) + ")");
   if (n_family > n)
-    throw std::invalid_argument("nd::build_families: n_family = " + std::to_string(n_family) +
+    throw std::invalid_argument("build_families: n_family = " + std::to_string(n_family) +
                                 " exceeds the number of points " + std::to_string(n));
 }
 
@@ -141,11 +141,11 @@ Families build_families(const PointCloud &cloud, std::size_t n_family, double ho
     for (std::size_t p = 1; p < candidates.size(); ++p)
       if (cloud.natural_id[static_cast<std::size_t>(candidates[p])] ==
           cloud.natural_id[static_cast<std::size_t>(candidates[p - 1])])
-        throw std::invalid_argument("nd::build_families: natural id " +
+        throw std::invalid_argument("build_families: natural id " +
                                     std::to_string(cloud.natural_id[static_cast<std::size_t>(candidates[p])]) +
                                     " appears twice in the point cloud");
     if (fam.neighbour.size() + candidates.size() > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max()))
-      throw std::runtime_error("nd::build_families: more than 2^31 bonds on this rank; use more ranks");
+      throw std::runtime_error("build_families: more than 2^31 bonds on this rank; use more ranks");
     fam.neighbour.insert(fam.neighbour.end(), candidates.begin(), candidates.end());
     fam.offsets[i + 1]  = fam.neighbour.size();
     fam.max_family_size = std::max(fam.max_family_size, candidates.size());
@@ -180,7 +180,7 @@ Families build_families(const PointCloud &cloud, std::size_t n_family, double ho
         return cloud.natural_id[static_cast<std::size_t>(k)] < id;
       });
       if (it == last || static_cast<std::size_t>(*it) != i)
-        throw std::runtime_error("nd::build_families: point with natural id " + std::to_string(cloud.natural_id[j]) +
+        throw std::runtime_error("build_families: point with natural id " + std::to_string(cloud.natural_id[j]) +
                                  " lacks the reverse bond to natural id " + std::to_string(cloud.natural_id[i]));
       fam.reverse[b] = static_cast<std::int32_t>(it - fam.neighbour.begin());
     }

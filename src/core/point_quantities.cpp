@@ -6,7 +6,8 @@
 namespace bapd {
 
 void point_quantities(ModelKind kind, Formulation formulation, const MaterialParameters &material,
-                      const PointCloud &cloud, const double *y, const Families &families, const BondGeometry &geometry,
+                      const PointCloud &cloud, const double *y, const Families &families,
+                      const nd::BondGeometry<2> &geometry,
                       const BondState &state, const double *c33, std::size_t n_points, StressWeights weights,
                       PointQuantities &out)
 {

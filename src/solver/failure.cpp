@@ -4,6 +4,7 @@
 #include <algorithm>
 
 #include "bapd/damage.hpp"
+#include "bapd/nd/damage.hpp"
 
 namespace bapd {
 
@@ -65,7 +66,7 @@ PetscErrorCode Failure::SynchroniseGhosts(BondState &state)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode Failure::Break(const double *y, std::vector<FailedBond> &failed, BondState &state, BondGeometry &geometry)
+PetscErrorCode Failure::Break(const double *y, std::vector<FailedBond> &failed, BondState &state, nd::BondGeometry<2> &geometry)
 {
   PetscFunctionBegin;
   touched_.clear();
@@ -75,10 +76,10 @@ PetscErrorCode Failure::Break(const double *y, std::vector<FailedBond> &failed, 
   // owned point and the stale bit never enters an owned force (see README).
   break_failed_bonds(*families_, state, failed, touched_);
   failed.clear();
-  break_bonds(layout_->cloud, y, *families_, critical_stretch_, state, stretched_);
+  nd::break_bonds<2>(layout_->cloud, y, *families_, critical_stretch_, state, stretched_);
   touched_.insert(touched_.end(), stretched_.begin(), stretched_.end());
   PetscCall(SynchroniseGhosts(state));
-  if (!touched_.empty()) compute_bond_geometry(layout_->cloud, *families_, state, geometry, touched_);
+  if (!touched_.empty()) nd::compute_bond_geometry<2>(layout_->cloud, *families_, state, geometry, touched_);
   PetscFunctionReturn(0);
 }
 

@@ -3,14 +3,13 @@
 
 #include <cstring>
 
-#include "bapd/ba_force_energy.hpp"
 #include "bapd/models.hpp"
 
 namespace bapd {
 
 PetscErrorCode ForceOperator::Setup(MPI_Comm comm, const Scene &scene, const Layout &layout, const Families &families,
-                                    const BondGeometry &geometry, const BondState &state, PetscLogStage stage_ghost,
-                                    PetscLogStage stage_force)
+                                    const nd::BondGeometry<2> &geometry, const BondState &state,
+                                    PetscLogStage stage_ghost, PetscLogStage stage_force)
 {
   PetscFunctionBegin;
   comm_        = comm;
@@ -24,24 +23,22 @@ PetscErrorCode ForceOperator::Setup(MPI_Comm comm, const Scene &scene, const Lay
   y_.assign(layout.cloud.x.begin(), layout.cloud.x.end());
   // The constitutive model is chosen here, once; inside the closure it is a concrete
   // type and the bond loop is compiled for it.
-  const PointCloud   *cloud = &layout.cloud;
-  const Families     *f     = &families;
-  const BondGeometry *g     = &geometry;
-  const BondState    *s     = &state;
+  const PointCloud          *cloud = &layout.cloud;
+  const Families            *f     = &families;
+  const nd::BondGeometry<2> *g     = &geometry;
+  const BondState           *s     = &state;
+  // -force_form: both forms write t_ij per bond, and assemble_force_density turns
+  // either into f_i (the energy-consistent t_ij make it -(1/V_i) dW/dy_i).
+  const nd::ForceForm form =
+      scene.force_form == ForceForm::energy_consistent ? nd::ForceForm::energy_consistent : nd::ForceForm::bond_only;
   with_model(scene.model, scene.formulation, scene.material, [&](const auto &model) {
-    using Model = std::decay_t<decltype(model)>;
-    // -force_form: both forms write t_ij per bond, and assemble_force_density turns
-    // either into f_i (the energy-consistent t_ij make it -(1/V_i) dW/dy_i).
-    if (scene.force_form == ForceForm::energy_consistent)
-      bond_forces_ = [this, cloud, f, g, s, m = Model(model)](const double *y, double *c33) {
-        return compute_energy_consistent_bond_forces(m, *cloud, y, *f, *g, *s, c33, bond_force_.data(), workspace_);
-      };
-    else
-      bond_forces_ = [this, cloud, f, g, s, m = Model(model)](const double *y, double *c33) {
-        return compute_bond_forces(m, *cloud, y, *f, *g, *s, c33, bond_force_.data(), workspace_);
-      };
+    using Model  = std::decay_t<decltype(model)>;
+    bond_forces_ = [this, form, cloud, f, g, s, m = Model(model)](const double *y, double *c33) {
+      return nd::compute_bond_forces<2>(form, m, *cloud, y, *f, *g, *s, c33, bond_force_.data(), workspace_);
+    };
     point_energies_ = [this, cloud, f, g, s, m = Model(model)](const double *y, double *energy) {
-      strain_energy(m, *cloud, y, *f, *g, *s, c33_.data(), (std::size_t)layout_->n_owned, workspace_, nullptr, energy);
+      nd::strain_energy<2>(m, *cloud, y, *f, *g, *s, c33_.data(), (std::size_t)layout_->n_owned, workspace_, nullptr,
+                           energy);
     };
   });
   PetscCall(CreateGhostedVector(comm, layout, &u_ghosted_));
@@ -78,7 +75,7 @@ PetscErrorCode ForceOperator::Kernel(const double *u_owned, double *force_densit
   PetscCall(UpdatePositions(u_owned));
   PetscCall(PetscLogStagePush(stage_force_));
   *stats = bond_forces_(y_.data(), c33);
-  assemble_force_density(*families_, layout_->cloud, bond_force_.data(), (std::size_t)layout_->n_owned, force_density);
+  nd::assemble_force_density<2>(*families_, layout_->cloud, bond_force_.data(), (std::size_t)layout_->n_owned, force_density);
   PetscCall(PetscLogStagePop());
   PetscFunctionReturn(0);
 }

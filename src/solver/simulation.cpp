@@ -186,7 +186,7 @@ PetscErrorCode Simulation::BuildBody()
   // energy-consistent form is stress-consistent as it is: stress_correction.hpp)
   geometry_.stress_correction =
       scene_.force_form == ForceForm::bond_only ? scene_.stress_correction : StressCorrection::none;
-  compute_bond_geometry(layout_.cloud, families_, bond_state_, geometry_);
+  nd::compute_bond_geometry<2>(layout_.cloud, families_, bond_state_, geometry_);
 
   PetscCall(force_.Setup(comm_, scene_, layout_, families_, geometry_, bond_state_, stage_ghost_, stage_force_));
   if (scene_.failure) PetscCall(failure_.Setup(comm_, layout_, families_, scene_.critical_stretch));

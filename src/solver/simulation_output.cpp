@@ -344,7 +344,7 @@ PetscErrorCode Simulation::RestoreCheckpoint()
   if (relaxation_.active()) relaxation_.RestoreLatest((int)header.relaxation_records);
   PetscCall(VecRestoreArray(X_, &x));
   // The reference geometry of the families with their broken bonds, as the run had it.
-  compute_bond_geometry(layout_.cloud, families_, bond_state_, geometry_);
+  nd::compute_bond_geometry<2>(layout_.cloud, families_, bond_state_, geometry_);
   force_.ForgetStats();
   PetscCall(TSSetStepNumber(ts_, header.step));
   PetscCall(TSSetTime(ts_, header.time));

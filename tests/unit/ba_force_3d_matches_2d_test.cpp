@@ -7,6 +7,8 @@
 // (stage 1)"): the rank-invariance, restart and baseline tests keep their bits.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <vector>
 
@@ -148,17 +150,40 @@ TEST(GenericCore2D, PlaneStressGentWithWarmStartsIsThe2DKernelsBitForBit)
   expect_same_forces(c, test::hydrogel(), nd::ForceForm::energy_consistent, StressCorrection::none);
 }
 
-TEST(GenericCore2D, CriticalStretchBreaksThe2DBondsBitForBit)
+TEST(GenericCore2D, PatchCorrectionIsThe2DKernelsBitForBit)
 {
-  const CutPlate           c(20, 0.2, 15);
-  BondState                s2 = c.d.state, sn = c.d.state;
-  std::vector<std::size_t> t2, tn;
-  const std::size_t        b2 = break_bonds(c.d.cloud, c.y.data(), c.d.families, 1.22, s2, t2);
-  const std::size_t        bn = nd::break_bonds<2>(c.d.cloud, c.y.data(), c.d.families, 1.22, sn, tn);
-  EXPECT_GT(b2, 1000u); // not vacuous
-  EXPECT_EQ(bn, b2);
-  EXPECT_EQ(sn.intact, s2.intact);
-  EXPECT_EQ(tn, t2);
+  // -force_patch_correction: h_ij = ((lambda_i - lambda_j) . xi) xi added to g_ij
+  // (patch_correction.hpp). The kernel only reads lambda, so any lambda exercises
+  // its line; a field with both signs, sized so that h is of the order of g for an
+  // interior bond (|g| ~ 1 / (m V dx), |h| ~ |lambda| dx^2, m ~ 28 members): it moves
+  // the bond forces by about 1 % of the largest (an edge bond's).
+  CutPlate            c(20, 0.1, 16);
+  const std::size_t   n = c.d.size(), nb = c.d.families.n_bonds();
+  const double        scale = 1.0 / (28.0 * std::pow(test::kPlateDx, 5));
+  std::vector<double> t0(2 * nb), t1(2 * nb);
+  nd::Workspace<2>    ws;
+  for (StressCorrection k : {StressCorrection::none, StressCorrection::tensor}) {
+    set_correction(c.d, k);
+    const GenericPlate g(c, k);
+    c.d.cloud.patch_correction.clear();
+    nd::compute_bond_forces<2>(nd::ForceForm::bond_only, GentPlaneStrain{gel()}, c.d.cloud, c.y.data(), c.d.families,
+                               g.geometry, c.d.state, nullptr, t0.data(), ws);
+    c.d.cloud.patch_correction.resize(2 * n);
+    for (std::size_t i = 0; i < n; ++i) {
+      c.d.cloud.patch_correction[2 * i]     = scale * std::sin(0.7 * static_cast<double>(i));
+      c.d.cloud.patch_correction[2 * i + 1] = scale * std::cos(1.3 * static_cast<double>(i));
+    }
+    nd::compute_bond_forces<2>(nd::ForceForm::bond_only, GentPlaneStrain{gel()}, c.d.cloud, c.y.data(), c.d.families,
+                               g.geometry, c.d.state, nullptr, t1.data(), ws);
+    double change = 0.0, size = 0.0;
+    for (std::size_t k2 = 0; k2 < 2 * nb; ++k2) {
+      change = std::max(change, std::abs(t1[k2] - t0[k2]));
+      size   = std::max(size, std::abs(t0[k2]));
+    }
+    EXPECT_GT(change, 1e-3 * size) << "lambda changes the forces (not vacuous)";
+    expect_same_forces(c, GentPlaneStrain{gel()}, nd::ForceForm::bond_only, k);
+    expect_same_forces(c, test::hydrogel(), nd::ForceForm::bond_only, k); // the lane path
+  }
 }
 
 } // namespace

@@ -774,7 +774,7 @@ TEST(BaForce, TensorCorrectedPointStressIsTheVirialOfTheForce)
   for (double &v : noisy) v += test::random_between(rng, -0.05, 0.05) * kDx;
   for (const std::vector<double> *state : {&affine, static_cast<const std::vector<double> *>(&noisy)}) {
     PointQuantities out;
-    point_quantities(model, d.cloud, state->data(), d.families, d.geometry, d.state, nullptr, d.size(),
+    point_quantities(model, d.cloud, state->data(), d.families, test::nd_geometry(d), d.state, nullptr, d.size(),
                      StressWeights::bond_force, out);
     std::vector<double> t, f;
     d.forces(model, *state, t, f);

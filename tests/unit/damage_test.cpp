@@ -27,7 +27,7 @@ TEST(Damage, StretchedBondBreaksForBothCopiesAndStaysBrokenAfterUnloading)
   std::vector<double>  y   = d.cloud.x;
   y[2 * p] += 0.8; // pull the centre point to the right by 0.8 dx
   std::vector<std::size_t> touched;
-  const std::size_t        broken = break_bonds(d.cloud, y.data(), d.families, s_c, d.state, touched);
+  const std::size_t        broken = nd::break_bonds<2>(d.cloud, y.data(), d.families, s_c, d.state, touched);
   // Expected: exactly the bonds of p whose stretch exceeds s_c, seen from both ends.
   std::size_t expected = 0;
   for (std::size_t q = 0; q < d.families.size(p); ++q) {
@@ -50,10 +50,10 @@ TEST(Damage, StretchedBondBreaksForBothCopiesAndStaysBrokenAfterUnloading)
   EXPECT_EQ(d.state.count_broken(d.families, d.size()), 2 * expected);
   compute_bond_geometry(d.cloud, d.families, d.state, d.geometry, touched);
   // Nothing more breaks under the same load.
-  EXPECT_EQ(break_bonds(d.cloud, y.data(), d.families, s_c, d.state, touched), 0u);
+  EXPECT_EQ(nd::break_bonds<2>(d.cloud, y.data(), d.families, s_c, d.state, touched), 0u);
 
   // Unload: nothing heals, nothing new breaks, and the body is force free again.
-  EXPECT_EQ(break_bonds(d.cloud, d.cloud.x.data(), d.families, s_c, d.state, touched), 0u);
+  EXPECT_EQ(nd::break_bonds<2>(d.cloud, d.cloud.x.data(), d.families, s_c, d.state, touched), 0u);
   EXPECT_TRUE(touched.empty());
   EXPECT_EQ(d.state.count_broken(d.families, d.size()), 2 * expected);
   test::SaintVenantKirchhoff2D svk;

@@ -196,7 +196,7 @@ void expect_rank_local_views_reproduce_one_rank(Kernel kernel, StressCorrection 
   const double s_c = 1.45;
   // One rank: break by stretch, recompute, forces.
   std::vector<std::size_t> touched;
-  ASSERT_GT(break_bonds(d.cloud, y.data(), d.families, s_c, d.state, touched), 10u);
+  ASSERT_GT(nd::break_bonds<2>(d.cloud, y.data(), d.families, s_c, d.state, touched), 10u);
   compute_bond_geometry(d.cloud, d.families, d.state, d.geometry, touched);
   std::vector<double> t(2 * d.families.n_bonds(), 0.0), f(2 * d.size(), 0.0), c33(d.families.n_bonds(), 0.0);
   {
@@ -215,7 +215,7 @@ void expect_rank_local_views_reproduce_one_rank(Kernel kernel, StressCorrection 
     std::vector<double> ly(2 * v.cloud.size());
     for (std::size_t k = 0; k < v.global.size(); ++k) ly[2 * k] = y[2 * v.global[k]], ly[2 * k + 1] = y[2 * v.global[k] + 1];
     std::vector<std::size_t> lt;
-    break_bonds(v.cloud, ly.data(), lf, s_c, ls, lt);
+    nd::break_bonds<2>(v.cloud, ly.data(), lf, s_c, ls, lt);
     BondGeometry lg;
     lg.stress_correction = correction;
     compute_bond_geometry(v.cloud, lf, ls, lg);

@@ -66,7 +66,7 @@ void check_affine(Formulation formulation, StressWeights weights, const Mat2 &A)
   const test::Discretisation d(test::plate(16, 12));
   const std::vector<double>  y = d.affine(A, 2e-3, -1e-3);
   PointQuantities            q;
-  point_quantities(ModelKind::gent, formulation, kGel, d.cloud, y.data(), d.families, d.geometry, d.state, nullptr,
+  point_quantities(ModelKind::gent, formulation, kGel, d.cloud, y.data(), d.families, test::nd_geometry(d), d.state, nullptr,
                    d.size(), weights, q);
   const Expected e     = model_at(formulation, A);
   const double   scale = test::norm(e.P);
@@ -109,7 +109,7 @@ TEST(PointQuantities, RotationRotatesTheStress)
   PointQuantities            a, b;
   const std::vector<double>  ya = d.affine(kStretch), yb = d.affine(QA);
   for (auto [y, out] : {std::pair{&ya, &a}, std::pair{&yb, &b}})
-    point_quantities(ModelKind::gent, Formulation::plane_stress, kGel, d.cloud, y->data(), d.families, d.geometry,
+    point_quantities(ModelKind::gent, Formulation::plane_stress, kGel, d.cloud, y->data(), d.families, test::nd_geometry(d),
                      d.state, nullptr, d.size(), StressWeights::bond_force, *out);
   for (std::size_t i = 0; i < d.size(); ++i) {
     const Mat2 P = at(a.nominal_stress, i), sigma = at(a.cauchy_stress, i);
@@ -136,7 +136,7 @@ TEST(PointQuantities, PointWithoutBondsGetsZeros)
   compute_bond_geometry(d.cloud, d.families, d.state, d.geometry, touched);
   const std::vector<double> y = d.affine(kStretch);
   PointQuantities           q;
-  point_quantities(ModelKind::gent, Formulation::plane_stress, kGel, d.cloud, y.data(), d.families, d.geometry, d.state,
+  point_quantities(ModelKind::gent, Formulation::plane_stress, kGel, d.cloud, y.data(), d.families, test::nd_geometry(d), d.state,
                    nullptr, d.size(), StressWeights::bond_force, q);
   for (int c = 0; c < 4; ++c) {
     EXPECT_EQ(q.nominal_stress[4 * lone + c], 0.0);

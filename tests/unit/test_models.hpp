@@ -15,6 +15,7 @@
 #include "bapd/family.hpp"
 #include "bapd/lattice.hpp"
 #include "bapd/material.hpp"
+#include "bapd/nd/bond_geometry.hpp"
 #include "bapd/tensor.hpp"
 
 namespace bapd::test {
@@ -159,6 +160,16 @@ struct Discretisation {
 
 // Uniform in [lo, hi) from the raw 32-bit engine output (the same sequence on every
 // standard library).
+// The driver's geometry (nd::BondGeometry<2>, issue 21 stage 2) of d's current bond
+// state, with d's stress correction: for the output path (point_quantities).
+inline nd::BondGeometry<2> nd_geometry(const Discretisation &d)
+{
+  nd::BondGeometry<2> g;
+  g.stress_correction = d.geometry.stress_correction;
+  nd::compute_bond_geometry<2>(d.cloud, d.families, d.state, g);
+  return g;
+}
+
 inline double random_between(std::mt19937 &rng, double lo, double hi)
 {
   return lo + (hi - lo) * (static_cast<double>(rng()) / 4294967296.0);

@@ -80,6 +80,16 @@ template <int D> struct Workspace {
 
 enum class ForceForm { bond_only, energy_consistent };
 
+// -force_patch_correction (patch_correction.hpp): h_ij = ((lambda_i - lambda_j) . xi) xi
+// added to g_ij (lambda: D per point). For D = 2 the 2D add_patch_term's operations
+// in its order.
+template <int D> inline void add_patch_term(const double *lambda_i, const double *lambda_j, const double *xi, double *g)
+{
+  double s = (lambda_i[0] - lambda_j[0]) * xi[0];
+  for (int r = 1; r < D; ++r) s = s + (lambda_i[r] - lambda_j[r]) * xi[r];
+  for (int r = 0; r < D; ++r) g[r] += s * xi[r];
+}
+
 namespace detail {
 
 // The two stress and energy signatures (see the top of this file); int is preferred.
@@ -215,13 +225,18 @@ inline void stress_pass(const Model &model, const Families &fam, const BondGeome
   if constexpr (bapd::detail::HasLanes<Model>::value) model_lanes<D>(model, ws, pending, i, o, c33, form, stats);
 }
 
-// Bond-only (eq 23): t_iq = P g_iq, g_iq = force_scale C_i K^{-1} xi_iq.
+// Bond-only (eq 23): t_iq = P g_iq, g_iq = force_scale C_i K^{-1} xi_iq (+ h_iq with
+// the patch correction).
 template <int D, bool Corrected> struct BondOnlyForm {
   static constexpr std::size_t stride = Workspace<D>::data_stride;
   double                      *t;    // the point's bond forces, D per bond
   double                      *data; // ws.pending_data: g_iq, D of each slot
   const double                *off, *fvk, *C;
   const PointTotals<D>        &totals;
+  // -force_patch_correction: lambda of the point and of every local point (D each),
+  // the point's neighbours; lambda_i nullptr: off (the lattice, and 3D for now).
+  const double                *lambda_i = nullptr, *lambda = nullptr;
+  const std::int32_t          *nb       = nullptr;
 
   void none(std::size_t q)
   {
@@ -240,6 +255,7 @@ template <int D, bool Corrected> struct BondOnlyForm {
       }
       for (int r = 0; r < D; ++r) g[r] = h[r];
     }
+    if (lambda_i) add_patch_term<D>(lambda_i, lambda + D * nb[q], off + D * q, g); // h_iq
   }
   void stress(std::size_t slot, std::size_t q, const Mat<D> &P)
   {
@@ -272,15 +288,15 @@ template <int D> struct EnergyConsistentForm {
   {
     const double   *ki = data + stride * slot;
     const double    v  = rec[q][Member<D>::volume];
-    StressRecord<D> mq;
-    mq.zero();
+    double          m_iq[StressRecord<D>::vectors * StressRecord<D>::V] = {};
     for (int r = 0; r < D; ++r)
       for (int c = 0; c < D; ++c) {
         double s = 0.0;
         for (int m = 0; m < D; ++m) s += P[D * r + m] * ki[sym_index<D>(m, c)];
-        mq.set(D * r + c, v * s);
+        m_iq[D * r + c] = v * s;
       }
-    M[q] = mq;
+    const StressRecord<D> mq = StressRecord<D>::from(m_iq); // in registers (Packed::from)
+    M[q]                     = mq;
     stress_total += mq;
     volume += v;
     energetic[q / 64] |= std::uint64_t{1} << (q % 64);
@@ -292,11 +308,18 @@ void bond_only_range(const Model &model, const PointCloud &ref, const double *y,
                      const BondGeometry<D> &geo, const BondState &state, double *c33, double *bond_force,
                      Workspace<D> &ws, std::size_t begin, std::size_t end, KernelStats &stats)
 {
+  const double *lambda = ref.patch_correction.empty() ? nullptr : ref.patch_correction.data();
   for (std::size_t i = begin; i < end; ++i) {
     const PointTotals<D>    totals = gather_point<D>(ref, y, fam, i, state.intact_mask(i), ws.point);
-    BondOnlyForm<D, Corrected> form{bond_force + D * fam.offsets[i], ws.pending_data.data(), ws.point.offset.data(),
+    BondOnlyForm<D, Corrected> form{bond_force + D * fam.offsets[i],
+                                    ws.pending_data.data(),
+                                    ws.point.offset.data(),
                                     ws.point.family_volume.data(),
-                                    Corrected ? geo.correction.data() + D * D * i : nullptr, totals};
+                                    Corrected ? geo.correction.data() + D * D * i : nullptr,
+                                    totals,
+                                    lambda ? lambda + D * i : nullptr,
+                                    lambda,
+                                    fam.neighbour.data() + fam.offsets[i]};
     stress_pass<D, Words>(model, fam, geo, state, i, totals, c33, ws, form, stats);
   }
 }

@@ -33,6 +33,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "bapd/body.hpp"
@@ -73,6 +74,17 @@ template <int N> struct alignas(8 * vector_doubles) Packed {
   void                 zero()
   {
     for (int q = 0; q < vectors; ++q) v[q] = Vector{};
+  }
+  // From N doubles (a holds whole vectors: the rest is zero): each vector is built
+  // from its scalars in registers ({a[0], a[1], ...}), not stored lane by lane and read
+  // back as a vector (a store-forwarding stall per record: set() in gather_point cost
+  // the D = 2 kernel 10-20 %, kernel_bench --versus-nd).
+  static Packed from(const double *a) { return from(a, std::make_index_sequence<V>{}); }
+  template <std::size_t... I> static Packed from(const double *a, std::index_sequence<I...>)
+  {
+    Packed p;
+    for (int q = 0; q < vectors; ++q) p.v[q] = Vector{a[q * V + static_cast<int>(I)]...};
+    return p;
   }
   Packed &operator+=(const Packed &o)
   {
@@ -206,13 +218,14 @@ inline PointTotals<D> gather_point(const PointCloud &ref, const double *y, const
       off[D * p + r] = d[r];
     }
     fvk[p] = fv[k];
-    MemberRecord<D> &R = rec[p];
-    R.zero();
+    double f[MemberRecord<D>::vectors * MemberRecord<D>::V] = {};
     for (int r = 0; r < D; ++r)
-      for (int c = 0; c < D; ++c) R.set(L::deformation + D * r + c, e[r] * a[c]);
+      for (int c = 0; c < D; ++c) f[L::deformation + D * r + c] = e[r] * a[c];
     for (int r = 0; r < D; ++r)
-      for (int c = r; c < D; ++c) R.set(L::shape + sym_index<D>(r, c), d[r] * a[c]);
-    R.set(L::volume, v);
+      for (int c = r; c < D; ++c) f[L::shape + sym_index<D>(r, c)] = d[r] * a[c];
+    f[L::volume]             = v;
+    const MemberRecord<D> R = MemberRecord<D>::from(f);
+    rec[p]                  = R;
     if ((intact[p / 64] >> (p % 64)) & 1u) total += R;
   }
   return {total, fv[i], 0.5 / (fv[i] * fv[i])};
@@ -271,8 +284,12 @@ template <int D> struct BondGeometry {
   std::vector<std::uint64_t> singular; // bit q: intact, K not usable
   StressCorrection           stress_correction = StressCorrection::none;
   std::vector<double>        correction; // C_i, D x D row-major per family point
+  // Work space of compute_bond_geometry, sized with the geometry, so that a time step
+  // in which bonds break allocates nothing (STYLE.md, "Data").
   PointScratch<D>            scratch;
   std::vector<std::uint64_t> reference_mask;
+  std::vector<std::uint32_t> done_in_pass; // per family point: the last recomputation that did it
+  std::uint32_t              pass = 0;
 
   bool is_usable(std::size_t i, std::size_t q) const { return (usable[i * mask_words + q / 64] >> (q % 64)) & 1u; }
   bool corrected() const { return stress_correction != StressCorrection::none; }
@@ -300,10 +317,27 @@ template <int D> struct BondGeometry {
 template <int D>
 std::size_t compute_bond_geometry(const PointCloud &cloud, const Families &families, const BondState &state,
                                   BondGeometry<D> &geometry);
-// Recomputes the usable bits of the listed points only (after break_bond); C_i stays.
+// Recomputes the usable bits of the listed points only (after break_bond / break_bonds;
+// the stress correction C_i is a reference quantity and stays). A geometry not yet
+// sized for these families is sized first (the only allocation). Duplicates in
+// points are harmless (each point is done once). Returns the intact bonds of those
+// points whose K is not usable.
 template <int D>
 std::size_t compute_bond_geometry(const PointCloud &cloud, const Families &families, const BondState &state,
                                   BondGeometry<D> &geometry, const std::vector<std::size_t> &points);
+
+// The reference quantities of bond q of point i in the current state (slow path, for
+// tests and output; the kernel's arithmetic).
+template <int D> struct BondShape {
+  bool   usable = false;
+  double shape_tensor_inv[sym_size<D>]{}; // K^{-1}, upper triangle
+  double volume_fraction = 0;             // phi_xi (eq 15)
+  double force_scale     = 0;             // 1/2 phi_xi / phi
+  Vec<D> force_vector{};                  // g_ij = force_scale K^{-1} (x_j - x_i), uncorrected
+};
+template <int D>
+BondShape<D> bond_shape(const PointCloud &cloud, const Families &families, const BondState &state, std::size_t i,
+                        std::size_t q);
 
 // M_i = sum_j g_ij (x) xi_ij V_j over the usable intact bonds of i (g uncorrected):
 // the virial tensor whose inverse the tensor correction is (slow path, tests).
