@@ -145,7 +145,8 @@ PetscErrorCode CheckpointMergeOptions(MPI_Comm comm);
 // the real signal in the file $BAPD_SIGNAL_FILE (InterruptName). The handlers only
 // record the signal; the driver asks, once per step and collectively, whether any
 // rank got one (Simulation::OutputAfterStep). A second SIGTERM / SIGINT / SIGUSR2
-// while the first is pending ends the process the default way. SIGXFSZ is ignored:
+// 2 s or more after the first, while it is pending, ends the process the default way
+// (one sooner is the same request arriving twice, e.g. through `timeout`). SIGXFSZ is ignored:
 // a file past a size limit (ulimit -f) is then a write error that bapd reports.
 void InstallInterruptHandlers();
 void RestoreInterruptHandlers();

@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <string>
+#include <time.h>
 
 #include "bapd/checkpoint.hpp"
 
@@ -14,17 +15,31 @@ namespace bapd {
 namespace {
 
 volatile std::sig_atomic_t interrupt_signal = 0, checkpoint_requests = 0;
+volatile std::sig_atomic_t first_interrupt_second = 0; // CLOCK_MONOTONIC, whole seconds
 struct sigaction           previous_term, previous_int, previous_usr1, previous_usr2, previous_xfsz;
 int                        installed = 0;
 
+// Seconds on the monotonic clock; clock_gettime is async-signal-safe (POSIX).
+long MonotonicSecond()
+{
+  struct timespec now;
+  return clock_gettime(CLOCK_MONOTONIC, &now) == 0 ? (long)now.tv_sec : 0;
+}
+
 extern "C" void OnInterrupt(int signal)
 {
-  if (interrupt_signal) { // a second one: stop now, the default way
-    std::signal(signal, SIG_DFL);
-    std::raise(signal);
+  if (!interrupt_signal) {
+    interrupt_signal       = signal;
+    first_interrupt_second = (std::sig_atomic_t)MonotonicSecond();
     return;
   }
-  interrupt_signal = signal;
+  // One request often arrives twice within a moment: `timeout` passes its signal to
+  // run_mpi.sh and to its process group (which holds run_mpi.sh as well), and run_mpi.sh
+  // passes each on as SIGUSR2. Only a second signal 2 s or more after the first is a
+  // user asking to stop now; it ends the process the default way.
+  if (MonotonicSecond() - (long)first_interrupt_second < 2) return;
+  std::signal(signal, SIG_DFL);
+  std::raise(signal);
 }
 
 extern "C" void OnCheckpointRequest(int) { checkpoint_requests = checkpoint_requests + 1; }

@@ -12,7 +12,11 @@ rm -rf "$work" && mkdir -p "$work" || exit 1
 
 for sig in INT TERM; do
   start_long "$work/$sig.log" "$ranks" -output_dir "$work/$sig"
+  # Twice, 0.3 s apart: one request can arrive twice (`timeout` passes a signal to
+  # run_mpi.sh and to its process group), and must still stop cleanly, not kill.
   kill -$sig $PID
+  sleep 0.3
+  kill -$sig $PID 2> /dev/null
   finish_long
   stopped_cleanly "interrupted by SIG$sig at step" "-restart $work/$sig/checkpoint.h5"
   [ -f "$work/$sig/checkpoint.h5" ] || fail "no checkpoint after SIG$sig"
