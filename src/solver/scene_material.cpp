@@ -63,8 +63,9 @@ PetscErrorCode ReadMaterial(MPI_Comm comm, Scene *scene, SceneInput *in)
                        "Bond-only force made to pass the affine patch test on irregular points (no interior force "
                        "under an affine motion; docs/discretisations.md): virial (the patch test and each point's "
                        "virial stress, 5 numbers a point) | on (the patch test only, lambda: 2 numbers a point) | off | "
-                       "auto (virial for given points: a cloud or element centroids, with -force_form bond_only; off on "
-                       "the lattice, which passes both as it is)",
+                       "auto (virial for given points: a cloud or element centroids, with -force_form bond_only, as it "
+                       "keeps the stress consistency that on loses and is the closest to the FE of the three on the "
+                       "centroid dogbone; off on the lattice, which passes both as it is)",
                        &in->patch_correction));
     PetscCall(r.Real("-material_mu", "Shear modulus mu [Pa] (paper: 4.55e3)", &m.mu));
     // every law's own parameters (defaults: the members' initialisers), listed for all
@@ -119,8 +120,10 @@ PetscErrorCode CheckMaterial(MPI_Comm comm, const SceneInput &in, Scene *scene)
     SETERRQ(comm, PETSC_ERR_USER, "%s",
             Format("-force_stress_correction '%s' is not a correction: choose none (the paper's force), tensor, scalar or auto",
                    in.stress_correction.c_str()).c_str());
-  // auto: on where the points are irregular (given points); the lattice passes the
-  // patch test by symmetry and keeps its forces bit for bit (patch_correction.hpp).
+  // auto: virial where the points are irregular (given points): the patch test and the
+  // stress consistency both, and the closest to the FE on the centroid dogbone
+  // (docs/discretisations.md); the lattice passes both by symmetry and keeps its forces
+  // bit for bit (patch_correction.hpp).
   const std::string patch = Lower(in.patch_correction);
   if (patch == "auto")
     scene->patch_correction = scene->force_form == ForceForm::bond_only && scene->body.given_points ? PatchCorrection::virial
