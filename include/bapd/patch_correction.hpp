@@ -69,8 +69,8 @@ inline void add_patch_term(const double *lambda_i, const double *lambda_j, doubl
 struct PatchCorrectionReport {
   std::size_t interior   = 0; // points with d_i = 0 imposed
   std::size_t iterations = 0; // conjugate-gradient iterations
-  double      before     = 0; // largest interior |d_i| / sum_j (|g_ij| + |g_ji|) V_j without lambda
-  double      after      = 0; // the same with lambda
+  double      before     = 0; // largest interior |d_i| / sum_j (|g_ij| + |g_ji|) V_j without the correction
+  double      after      = 0; // the same with it (lambda, or c_ij of the virial-keeping solve)
   double      virial     = 0; // largest |sum_j h_ij (x) xi_ij V_j| / |sum_j g_ij (x) xi_ij V_j| over all points
   double      term       = 0; // largest |h_ij| / |g_ij| over the bonds that carry force
   double      residual   = 0; // the conjugate gradients' final ||r|| / ||b||

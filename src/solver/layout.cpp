@@ -67,7 +67,7 @@ PetscErrorCode DistributePoints(MPI_Comm comm, const PointCloud &global_cloud, c
       L = global_cloud.patch_correction.empty() ? 0 : (global_cloud.patch_virial ? (int)kVirialPatchStride : 2);
   PetscCallMPI(MPI_Bcast(&R, 1, MPI_INT, 0, comm));
   PetscCallMPI(MPI_Bcast(&L, 1, MPI_INT, 0, comm));
-  const int H = R; // where lambda starts in a point's reals
+  const int H = R; // where the patch correction's numbers start in a point's reals
   R += L;
   PetscCheck(n_global >= size, comm, PETSC_ERR_USER, "The body has %" PetscInt_FMT " points, fewer than the %d ranks: run on fewer ranks or refine -body_dx", n_global, size);
 
