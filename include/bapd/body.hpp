@@ -66,8 +66,10 @@ struct PointCloud {
   // delta_i, the point's own horizon [m] (geometry.hpp); empty: every point has the
   // one horizon passed to build_families (the uniform lattice).
   std::vector<double>  horizon;
-  // lambda_i of -force_patch_correction (patch_correction.hpp), 2 per point; empty: off.
+  // -force_patch_correction (patch_correction.hpp): lambda_i, D per point (on), or with
+  // patch_virial (mu_i, S_i), D + D(D+1)/2 per point (virial: 5 in 2D); empty: off.
   std::vector<double>  patch_correction;
+  bool                 patch_virial = false;
   std::size_t          size() const { return volume.size(); }
 };
 

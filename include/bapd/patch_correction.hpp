@@ -38,14 +38,16 @@
 // vector is 0, not g). Why one horizon and not the two that d_i reaches:
 // patch_correction.cpp (boundary_layer).
 //
-// What it does not do: the tensor correction's virial sum_j t_ij (x) xi_ij V_j = P is
-// perturbed by sum_j h_ij (x) xi_ij V_j (0.3-1 % on average over a cloud, up to 14 % at
-// a point; docs/discretisations.md; compute_virial_patch_correction below keeps both);
+// What it does not do (-force_patch_correction on): the tensor correction's virial
+// sum_j t_ij (x) xi_ij V_j = P is perturbed by sum_j h_ij (x) xi_ij V_j (0.3-1 % on
+// average over a cloud, up to 14 % at a point; docs/discretisations.md;
+// compute_virial_patch_correction below, -force_patch_correction virial, keeps both);
 // the energy-consistent form is not corrected (its
 // forces are a gradient: a correction would have to be an energy's). On the lattice the
 // correction is off (its interior passes by symmetry), so lattice runs are bit for bit
 // what they were.
 #include <cstddef>
+#include <string>
 #include <vector>
 
 #include "bapd/body.hpp"
@@ -67,11 +69,15 @@ inline void add_patch_term(const double *lambda_i, const double *lambda_j, doubl
 struct PatchCorrectionReport {
   std::size_t interior   = 0; // points with d_i = 0 imposed
   std::size_t iterations = 0; // conjugate-gradient iterations
-  double      before     = 0; // largest interior |d_i| / sum_j (|g_ij| + |g_ji|) V_j without lambda
-  double      after      = 0; // the same with lambda
+  double      before     = 0; // largest interior |d_i| / sum_j (|g_ij| + |g_ji|) V_j without the correction
+  double      after      = 0; // the same with it (lambda, or c_ij of the virial-keeping solve)
   double      virial     = 0; // largest |sum_j h_ij (x) xi_ij V_j| / |sum_j g_ij (x) xi_ij V_j| over all points
-  double      term       = 0; // largest |h_ij| / |g_ij| over the bonds that carry force (virial-keeping solve)
+  double      term       = 0; // largest |h_ij| / |g_ij| over the bonds that carry force
+  double      residual   = 0; // the conjugate gradients' final ||r|| / ||b||
 };
+
+// The report as the run's set-up prints it (two lines; simulation.cpp BuildBody).
+std::string describe_patch_correction(const PatchCorrectionReport &report, bool virial);
 
 // lambda, 2 per point (0 in the boundary layer), for the bond-only force with the
 // stress correction `stress_correction` (as compute_bond_geometry forms C_i). Needs
@@ -83,9 +89,12 @@ std::vector<double> compute_patch_correction(const PointCloud &cloud, const Fami
 
 // ---------------------------------------------------------------------------------
 // The patch test AND the virial (issue 18 item 5; docs/discretisations.md "Keeping the
-// virial"). Not wired into the kernel yet: the setup solve, its test harness
-// (tests/unit/geometry_test.cpp, NonUniformPatch.VirialPatchCorrection*) and the hook
-// the kernel needs (below) are here; the force loop still takes lambda only.
+// virial"): -force_patch_correction virial (the default for given points with the
+// bond-only form). The setup solve is here; the kernel forms c_ij from the points'
+// numbers (nd::add_patch_term with virial, nd/ba_force.hpp; PointCloud::patch_virial),
+// tested outside the kernel (tests/unit/geometry_test.cpp,
+// NonUniformPatch.VirialPatchCorrection*) and through the driver
+// (tests/geometry/PatchCorrectionDriver.cpp).
 //
 // Unknown: one central term per usable bond, h_ij = c_ij xi_ij (8 bytes a bond if it
 // were stored), c_ji independent of c_ij. Constraints, under an affine motion (one P):
@@ -99,13 +108,13 @@ std::vector<double> compute_patch_correction(const PointCloud &cloud, const Fami
 //   c_ij = (mu_i - mu_j) . xi_ij + xi_ij . S_i xi_ij,
 // with mu_i (2, 0 in the boundary layer) the patch multipliers and S_i (3, symmetric)
 // the virial multipliers. So the per-bond correction needs 5 numbers a point, not a
-// number a bond (40 B a point against ~8 x 27 = 216 B), and the kernel hook is one
-// term per bond: s = virial_patch_coefficient(y_i, y_j, xi); g_ij += s xi_ij, with
-// y_j a ghost's mu (the same ring-1 exchange as lambda today). (mu, S) solve A y = r,
+// number a bond (40 B a point against ~8 x 27 = 216 B), and the kernel forms one
+// term per bond: s = c_ij; g_ij += s xi_ij, with y_j a ring-1 ghost's mu (shipped
+// with the points at setup, as lambda: layout.cpp). (mu, S) solve A y = r,
 // A = B W^-1 B^T (5 x 5 blocks on the bond graph, 3 x 3 in the layer), symmetric
 // positive definite when B has full row rank: an affine mu with S = sym grad mu makes
 // every c_ij = 0 (the null space of B^T), and mu = 0 in the layer removes it.
-inline constexpr std::size_t kVirialPatchStride = 5; // mu0, mu1, S00, S01, S11
+inline constexpr std::size_t kVirialPatchStride = 5; // mu0, mu1, S00, S01, S11 (nd::patch_stride<2>(true))
 
 inline double virial_patch_coefficient(const double *y_i, const double *y_j, double d0, double d1)
 {

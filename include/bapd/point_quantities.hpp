@@ -19,7 +19,9 @@
 // with g_ij = w_ij K_ij^{-1} xi_ij; sum_j B_ij = C_i M_i = I for the tensor correction,
 // so an affine motion again gives P_i = P(A) at every point (and the interior figure
 // for the scalar one). With -force_patch_correction C_i g_ij gets the kernel's h_ij
-// added (patch_correction.hpp), and sum_j B_ij = I + sum_j h_ij (x) xi_ij V_j.
+// added (patch_correction.hpp), and sum_j B_ij = I + sum_j h_ij (x) xi_ij V_j: I + a
+// few percent at a point with lambda (on), I again with virial (its S_i is solved so
+// that sum_j h_ij (x) xi_ij V_j = 0).
 // F_i and lambda_3,i keep the scalar weights a_ij.
 //   Cauchy stress      sigma_i = P_i F_i^T / J_i,  J_i = det F~_i lambda_3,i
 //   energy density     W_i = sum_j Psi(F_ij) V_j / sum_j V_j (strain_energy(),
@@ -108,9 +110,11 @@ void point_quantities(const Model &model, const PointCloud &cloud, const double 
         const std::size_t j  = static_cast<std::size_t>(families.neighbour[b]);
         Vec2              h  = C * shape.force_vector;
         const double      d0 = cloud.x[2 * j] - cloud.x[2 * i], d1 = cloud.x[2 * j + 1] - cloud.x[2 * i + 1];
-        if (!cloud.patch_correction.empty()) // h_ij of the kernel (patch_correction.hpp)
-          nd::add_patch_term<2>(cloud.patch_correction.data() + 2 * i, cloud.patch_correction.data() + 2 * j,
-                                std::array<double, 2>{d0, d1}.data(), h.data());
+        if (!cloud.patch_correction.empty()) { // h_ij of the kernel (patch_correction.hpp)
+          const std::size_t S = nd::patch_stride<2>(cloud.patch_virial);
+          nd::add_patch_term<2>(cloud.patch_correction.data() + S * i, cloud.patch_correction.data() + S * j,
+                                std::array<double, 2>{d0, d1}.data(), h.data(), cloud.patch_virial);
+        }
         P_sum                = P_sum + P * Mat2{v * h[0] * d0, v * h[0] * d1, v * h[1] * d0, v * h[1] * d1};
       } else P_sum = P_sum + a * P;
       F_sum          = F_sum + a * F;

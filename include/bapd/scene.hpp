@@ -26,6 +26,9 @@ namespace bapd {
 // strain energy (ba_force_energy.hpp, METHOD.md section 3), whose undamped motion
 // conserves energy where the bond-only form's grows near free surfaces (flutter).
 enum class ForceForm { bond_only, energy_consistent };
+// -force_patch_correction (patch_correction.hpp): off; on = lambda, 2 numbers a point
+// (the patch test); virial = (mu, S), 5 numbers a point (the patch test and the virial).
+enum class PatchCorrection { off, lambda, virial };
 
 struct Scene {
   Body2D body;
@@ -38,8 +41,9 @@ struct Scene {
   // sum_j t_ij (x) xi_ij V_j = P; the identity for the energy-consistent form.
   StressCorrection   stress_correction = StressCorrection::none;
   // -force_patch_correction (patch_correction.hpp): the bond-only force made to pass the
-  // affine patch test on given points (lambda per point, formed at setup).
-  bool               patch_correction = false;
+  // affine patch test on given points (lambda per point, formed at setup), and with
+  // virial to keep each point's virial as well ((mu, S) per point).
+  PatchCorrection    patch_correction = PatchCorrection::off;
   MaterialParameters material;
   double             density = 1000.0; // kg/m^3
 
@@ -104,5 +108,6 @@ int64_t ScenePointEstimate(const Scene &scene);
 PetscErrorCode CheckBodyMemory(MPI_Comm comm, const Scene &scene, int64_t points, int64_t bonds);
 
 const char *to_string(ForceForm form);
+const char *to_string(PatchCorrection c); // the option's word: off, on, virial
 
 } // namespace bapd

@@ -31,6 +31,8 @@
 
 namespace bapd {
 
+struct PointQuantities;
+
 struct ProbePoint {
   PetscInt owner_rank  = -1; // rank that owns the point
   PetscInt local_index = -1; // on the owner
@@ -60,6 +62,9 @@ public:
   double        stable_time_step() const { return step_control_.stable(); }
   // Force density (2 per owned point) for the owned displacements u_owned.
   PetscErrorCode ComputeForceDensity(const double *u_owned, double *force_density);
+  // Force density as above and the per-point stress, F, lambda_3 and W of the owned
+  // points (point_quantities.hpp), as the field output forms them.
+  PetscErrorCode ComputePointQuantities(const double *u_owned, double *force_density, PointQuantities *quantities);
   // Total energy pieces and broken bonds, reproducible across rank layouts.
   PetscErrorCode Energies(double *kinetic, double *internal, Vec state = nullptr); // state: X_ if nullptr
   PetscErrorCode BrokenBondCount(PetscInt *count);

@@ -2,11 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 
-#include "bapd/bond_geometry.hpp"
 #include "bapd/bond_state.hpp"
+#include "bapd/nd/bond_geometry.hpp"
 
 namespace bapd {
 
@@ -14,29 +15,23 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-// The kernel's force vector of every bond (BondOnlyForm::collect, ba_force.hpp):
-// g = C_i w K^{-1} xi for a usable bond, 0 for one that carries no force.
+// The kernel's force vector of every bond (BondOnlyForm::collect, nd/ba_force.hpp):
+// g = C_i w K^{-1} xi for a usable bond, 0 for one that carries no force. The slow
+// per-bond path of nd:: (bond_shape: the kernel's arithmetic), once at setup.
 std::vector<double> force_vectors(const PointCloud &cloud, const Families &fam, const BondState &state,
-                                  BondGeometry &geo)
+                                  const nd::BondGeometry<2> &geo)
 {
   std::vector<double> g(2 * fam.n_bonds(), 0.0);
-  PointScratch       &s = geo.scratch;
-  const std::size_t   W = fam.mask_words;
   for (std::size_t i = 0; i < fam.n_family; ++i) {
-    const std::size_t o = fam.offsets[i], m = fam.size(i);
-    if (m == 0) continue;
-    const std::uint64_t *intact = state.intact_mask(i);
-    const PointTotals    totals = W == 1 ? detail::gather_point<1>(cloud, cloud.x.data(), fam, i, intact, s)
-                                         : detail::gather_point<0>(cloud, cloud.x.data(), fam, i, intact, s);
-    const Mat2           C      = geo.correction_of(i);
-    for (std::size_t q = 0; q < m; ++q) {
-      const std::uint64_t *ba = fam.ba(o + q);
-      const BondKinematics k  = W == 1 ? detail::bond_kinematics<1>(ba, intact, 1, s, totals)
-                                       : detail::bond_kinematics<0>(ba, intact, W, s, totals);
+    const nd::Mat<2> C = geo.correction_of(i);
+    for (std::size_t q = 0; q < fam.size(i); ++q) {
+      if (!geo.is_usable(i, q)) continue;
+      const nd::BondShape<2> k = nd::bond_shape<2>(cloud, fam, state, i, q);
       if (!k.usable) continue;
-      const Vec2 v       = detail::force_vector(k, totals, s, q);
-      g[2 * (o + q)]     = C[0] * v[0] + C[1] * v[1];
-      g[2 * (o + q) + 1] = C[2] * v[0] + C[3] * v[1];
+      const nd::Vec<2> &v   = k.force_vector;
+      const std::size_t b   = fam.offsets[i] + q;
+      g[2 * b]              = C[0] * v[0] + C[1] * v[1];
+      g[2 * b + 1]          = C[2] * v[0] + C[3] * v[1];
     }
   }
   return g;
@@ -146,10 +141,10 @@ double dot(const std::vector<double> &a, const std::vector<double> &b)
 // x (0 on entry) solving A x = b by preconditioned conjugate gradients to round-off,
 // ||r|| <= 1e-14 ||b||, at most `most` iterations; one thread, in index order, so the
 // same bits on every run. apply(p, q): q = A p; precondition(r, z): z = M^-1 r. Returns
-// the iterations taken.
+// the iterations taken; *residual: ||r|| / ||b|| at the end (the recurrence's r).
 template <class Apply, class Precondition>
 std::size_t conjugate_gradients(const Apply &apply, const Precondition &precondition, const std::vector<double> &b,
-                                std::vector<double> &x, std::size_t most)
+                                std::vector<double> &x, std::size_t most, double *residual)
 {
   std::vector<double> r = b, z(b.size()), p(b.size()), q(b.size());
   precondition(r, z);
@@ -171,6 +166,7 @@ std::size_t conjugate_gradients(const Apply &apply, const Precondition &precondi
     rz                   = rz_next;
     for (std::size_t k = 0; k < b.size(); ++k) p[k] = z[k] + beta * p[k];
   }
+  *residual = bnorm > 0.0 ? std::sqrt(dot(r, r)) / bnorm : 0.0;
   return it;
 }
 
@@ -184,10 +180,10 @@ struct SetupGeometry {
   {
     if (families.n_family != cloud.size() || families.reverse.size() != families.n_bonds())
       throw std::invalid_argument(std::string(who) + ": needs the families of every point of the cloud");
-    BondState    state(families);
-    BondGeometry geo;
+    BondState           state(families);
+    nd::BondGeometry<2> geo;
     geo.stress_correction = stress_correction;
-    compute_bond_geometry(cloud, families, state, geo);
+    nd::compute_bond_geometry<2>(cloud, families, state, geo);
     g     = force_vectors(cloud, families, state, geo);
     layer = boundary_layer(cloud, families, g);
   }
@@ -245,7 +241,7 @@ std::vector<double> compute_patch_correction(const PointCloud &cloud, const Fami
     }
   };
   out.iterations = conjugate_gradients([&](const std::vector<double> &in, std::vector<double> &res) { apply(cloud, families, layer, in, res); },
-                                       precondition, b, lambda, 20 * n + 100);
+                                       precondition, b, lambda, 20 * n + 100, &out.residual);
   double residual = 0.0; // the defect with lambda, evaluated as the kernel forms it
   for (std::size_t i = 0; i < n; ++i) {
     if (layer[i]) continue;
@@ -261,7 +257,8 @@ std::vector<double> compute_patch_correction(const PointCloud &cloud, const Fami
       const double      x0 = cloud.x[2 * j] - cloud.x[2 * i], x1 = cloud.x[2 * j + 1] - cloud.x[2 * i + 1], vj = cloud.volume[j];
       double            a0, a1;
       corrected_vector(cloud, families, g, lambda, i, k, a0, a1);
-      const double e0 = a0 - g[2 * k], e1 = a1 - g[2 * k + 1];
+      const double e0 = a0 - g[2 * k], e1 = a1 - g[2 * k + 1], gn = std::hypot(g[2 * k], g[2 * k + 1]);
+      if (gn > 0) out.term = std::max(out.term, std::hypot(e0, e1) / gn);
       const double hv[4] = {e0 * x0, e0 * x1, e1 * x0, e1 * x1}, gv[4] = {g[2 * k] * x0, g[2 * k] * x1, g[2 * k + 1] * x0, g[2 * k + 1] * x1};
       for (int m = 0; m < 4; ++m) {
         h[m] += hv[m] * vj;
@@ -281,6 +278,7 @@ std::vector<double> compute_patch_correction(const PointCloud &cloud, const Fami
 namespace {
 
 constexpr std::size_t kS = kVirialPatchStride;
+static_assert(kVirialPatchStride == 2 + nd::sym_size<2>, "the kernel reads (mu, S) with stride D + sym_size<D>");
 
 // xi of bond b = (i -> j).
 inline void bond_offset(const PointCloud &cloud, const Families &fam, std::size_t i, std::size_t b, double &x0, double &x1)
@@ -420,7 +418,7 @@ std::vector<double> compute_virial_patch_correction(const PointCloud &cloud, con
     bond_coefficients(cloud, families, g, in, c);
     constraint_rows(cloud, families, layer, c, res);
   };
-  out.iterations = conjugate_gradients(apply_A, precondition, rhs, y, 20 * n + 100);
+  out.iterations = conjugate_gradients(apply_A, precondition, rhs, y, 20 * n + 100, &out.residual);
 
   // What the kernel would form: the patch defect at interior points and the virial
   // change at every point, with h_ij = c_ij xi_ij on the force-carrying bonds.
@@ -455,6 +453,18 @@ std::vector<double> compute_virial_patch_correction(const PointCloud &cloud, con
                              std::to_string(out.after) + " of its terms and the virial changes by " +
                              std::to_string(out.virial) + " (the solve did not converge)");
   return y;
+}
+
+std::string describe_patch_correction(const PatchCorrectionReport &r, bool virial)
+{
+  char text[512];
+  std::snprintf(text, sizeof text,
+                "Patch correction %s: %zu interior points; largest interior force under an affine motion %.2g -> %.2g of "
+                "its terms, largest change of a point's virial %.2g\n"
+                "  (solved on rank 0: %zu conjugate-gradient iterations, residual %.2g of the right-hand side; largest "
+                "|h_ij|/|g_ij| %.2g)\n",
+                virial ? "virial" : "on", r.interior, r.before, r.after, r.virial, r.iterations, r.residual, r.term);
+  return text;
 }
 
 } // namespace bapd

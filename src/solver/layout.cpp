@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "bapd/partition.hpp"
+#include "bapd/patch_correction.hpp"
 
 namespace bapd {
 
@@ -59,11 +60,14 @@ PetscErrorCode DistributePoints(MPI_Comm comm, const PointCloud &global_cloud, c
   PetscInt n_global = (PetscInt)global_cloud.size(), edge_cut = 0;
   PetscCallMPI(MPI_Bcast(&n_global, 1, MPIU_INT, 0, comm));
   // Reals per point: x, y, V, V(H), and delta_i when the points have their own horizons,
-  // then lambda_i (2) with -force_patch_correction.
-  int R = global_cloud.horizon.empty() ? 4 : 5, L = global_cloud.patch_correction.empty() ? 0 : 2;
+  // then the patch correction's numbers with -force_patch_correction: lambda_i (2, on)
+  // or mu_i, S_i (5, virial; patch_correction.hpp), the ring-1 points' included, which
+  // the kernel reads as neighbours.
+  int R = global_cloud.horizon.empty() ? 4 : 5,
+      L = global_cloud.patch_correction.empty() ? 0 : (global_cloud.patch_virial ? (int)kVirialPatchStride : 2);
   PetscCallMPI(MPI_Bcast(&R, 1, MPI_INT, 0, comm));
   PetscCallMPI(MPI_Bcast(&L, 1, MPI_INT, 0, comm));
-  const int H = R; // where lambda starts in a point's reals
+  const int H = R; // where the patch correction's numbers start in a point's reals
   R += L;
   PetscCheck(n_global >= size, comm, PETSC_ERR_USER, "The body has %" PetscInt_FMT " points, fewer than the %d ranks: run on fewer ranks or refine -body_dx", n_global, size);
 
@@ -101,7 +105,7 @@ PetscErrorCode DistributePoints(MPI_Comm comm, const PointCloud &global_cloud, c
         real[R * k + 2] = global_cloud.volume[i];
         real[R * k + 3] = global_cloud.family_volume[i];
         if (H == 5) real[R * k + 4] = global_cloud.horizon[i];
-        for (int l = 0; l < L; ++l) real[R * k + H + l] = global_cloud.patch_correction[2 * i + l];
+        for (int l = 0; l < L; ++l) real[R * k + H + l] = global_cloud.patch_correction[L * i + l];
       }
       PetscInt c[3] = {(PetscInt)rp.owned.size(), (PetscInt)rp.ring1.size(), (PetscInt)rp.ring2.size()};
       if (r == 0) {
@@ -144,6 +148,7 @@ PetscErrorCode DistributePoints(MPI_Comm comm, const PointCloud &global_cloud, c
   c.natural_id.assign(my_ids.begin(), my_ids.end());
   c.horizon.resize(H == 5 ? m : 0);
   c.patch_correction.resize(L * m);
+  c.patch_virial = L == (int)kVirialPatchStride;
   for (std::size_t k = 0; k < m; ++k) {
     c.x[2 * k]          = my_real[R * k];
     c.x[2 * k + 1]      = my_real[R * k + 1];

@@ -37,6 +37,16 @@ const char *to_string(ForceForm form)
   return "unknown";
 }
 
+const char *to_string(PatchCorrection c)
+{
+  switch (c) {
+  case PatchCorrection::off: return "off";
+  case PatchCorrection::lambda: return "on";
+  case PatchCorrection::virial: return "virial";
+  }
+  return "unknown";
+}
+
 PetscErrorCode SceneFromOptions(MPI_Comm comm, Scene *scene)
 {
   SceneInput in;
@@ -111,7 +121,7 @@ PetscErrorCode SceneView(MPI_Comm comm, const Scene &s)
   if (s.stress_correction != StressCorrection::none) // (absent by default: the summary stays as it was)
     text += Format(", stress correction %s%s", to_string(s.stress_correction),
                    s.force_form == ForceForm::energy_consistent ? " (the identity for this form)" : "");
-  if (s.patch_correction) text += ", patch correction on";
+  if (s.patch_correction != PatchCorrection::off) text += Format(", patch correction %s", to_string(s.patch_correction));
   text += "\n";
   if (s.failure) text += Format("  failure   bonds break past stretch s_c = %g\n", s.critical_stretch);
   else text += "  failure   none\n";

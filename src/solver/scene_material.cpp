@@ -61,8 +61,11 @@ PetscErrorCode ReadMaterial(MPI_Comm comm, Scene *scene, SceneInput *in)
                        &in->stress_correction));
     PetscCall(r.String("-force_patch_correction",
                        "Bond-only force made to pass the affine patch test on irregular points (no interior force "
-                       "under an affine motion; docs/discretisations.md): on | off | auto (on for given points: a "
-                       "cloud or element centroids, with -force_form bond_only; off on the lattice, which passes it as it is)",
+                       "under an affine motion; docs/discretisations.md): virial (the patch test and each point's "
+                       "virial stress, 5 numbers a point) | on (the patch test only, lambda: 2 numbers a point) | off | "
+                       "auto (virial for given points: a cloud or element centroids, with -force_form bond_only, as it "
+                       "keeps the stress consistency that on loses and is the closest to the FE of the three on the "
+                       "centroid dogbone; off on the lattice, which passes both as it is)",
                        &in->patch_correction));
     PetscCall(r.Real("-material_mu", "Shear modulus mu [Pa] (paper: 4.55e3)", &m.mu));
     // every law's own parameters (defaults: the members' initialisers), listed for all
@@ -117,17 +120,24 @@ PetscErrorCode CheckMaterial(MPI_Comm comm, const SceneInput &in, Scene *scene)
     SETERRQ(comm, PETSC_ERR_USER, "%s",
             Format("-force_stress_correction '%s' is not a correction: choose none (the paper's force), tensor, scalar or auto",
                    in.stress_correction.c_str()).c_str());
-  // auto: on where the points are irregular (given points); the lattice passes the
-  // patch test by symmetry and keeps its forces bit for bit (patch_correction.hpp).
+  // auto: virial where the points are irregular (given points): the patch test and the
+  // stress consistency both, and the closest to the FE on the centroid dogbone
+  // (docs/discretisations.md); the lattice passes both by symmetry and keeps its forces
+  // bit for bit (patch_correction.hpp).
   const std::string patch = Lower(in.patch_correction);
-  if (patch == "auto") scene->patch_correction = scene->force_form == ForceForm::bond_only && scene->body.given_points;
-  else if (patch == "on" || patch == "off") scene->patch_correction = patch == "on";
+  if (patch == "auto")
+    scene->patch_correction = scene->force_form == ForceForm::bond_only && scene->body.given_points ? PatchCorrection::virial
+                                                                                                  : PatchCorrection::off;
+  else if (patch == "virial") scene->patch_correction = PatchCorrection::virial;
+  else if (patch == "on" || patch == "off") scene->patch_correction = patch == "on" ? PatchCorrection::lambda : PatchCorrection::off;
   else
     SETERRQ(comm, PETSC_ERR_USER, "%s",
-            Format("-force_patch_correction '%s' is not a choice: choose on, off or auto (on for a point cloud or element centroids)",
+            Format("-force_patch_correction '%s' is not a choice: choose virial, on, off or auto (virial for a point cloud or "
+                   "element centroids)",
                    in.patch_correction.c_str()).c_str());
-  SceneCheck(!(scene->patch_correction && scene->force_form != ForceForm::bond_only), comm,
-             "-force_patch_correction on corrects the bond-only force only: add -force_form bond_only, or leave the option at auto");
+  SceneCheck(!(scene->patch_correction != PatchCorrection::off && scene->force_form != ForceForm::bond_only), comm,
+             "-force_patch_correction %s corrects the bond-only force only: add -force_form bond_only, or leave the option at auto",
+             to_string(scene->patch_correction));
 
   SceneCheck(!(in.D_set && in.bulk_ratio_set), comm,
              "-material_D and -material_bulk_ratio both set the compressibility (D = 2/(bulk_ratio mu)): give only one of them");

@@ -149,14 +149,14 @@ PetscErrorCode Simulation::BuildBody()
     Families all         = build_families(global, global.size(), horizon, scene_.body.notches);
     compute_family_volumes(global, all);
     if (scene_.body.given_points) DescribePieces(global, all, scene_.body.given_points->source, pieces, sizeof pieces);
-    if (scene_.patch_correction && !pieces[0]) { // lambda per point, shipped with the points (patch_correction.hpp)
+    if (scene_.patch_correction != PatchCorrection::off && !pieces[0]) { // per point, shipped with the points (patch_correction.hpp)
+      const bool            virial = scene_.patch_correction == PatchCorrection::virial;
       PatchCorrectionReport report;
       try {
-        global.patch_correction = compute_patch_correction(global, all, scene_.stress_correction, &report);
-        PetscCall(PetscPrintf(PETSC_COMM_SELF,
-                              "Patch correction: %zu interior points, largest interior force under an affine motion %.2g -> %.2g "
-                              "of its terms (%zu iterations)\n",
-                              report.interior, report.before, report.after, report.iterations));
+        global.patch_correction = virial ? compute_virial_patch_correction(global, all, scene_.stress_correction, &report)
+                                         : compute_patch_correction(global, all, scene_.stress_correction, &report);
+        global.patch_virial     = virial;
+        PetscCall(PetscPrintf(PETSC_COMM_SELF, "%s", describe_patch_correction(report, virial).c_str()));
       } catch (const std::exception &e) {
         patch_failed = 1;
         PetscCall(PetscFPrintf(PETSC_COMM_SELF, stderr, "%s\n", e.what()));
@@ -173,8 +173,8 @@ PetscErrorCode Simulation::BuildBody()
   PetscCall(CheckBodyMemory(comm_, scene_, counts[0], counts[1]));
   PetscCallMPI(MPI_Bcast(&patch_failed, 1, MPI_INT, 0, comm_)); // every rank stops together
   PetscCheck(!patch_failed, comm_, PETSC_ERR_USER,
-             "-force_patch_correction: the affine patch correction could not be solved on these points (above); run "
-             "with -force_patch_correction off");
+             "-force_patch_correction %s: the affine patch correction could not be solved on these points (above); run "
+             "with -force_patch_correction off", to_string(scene_.patch_correction));
   PetscCall(DistributePoints(comm_, global, offsets, neighbours, &layout_));
   PetscCall(PetscLogStagePop());
 

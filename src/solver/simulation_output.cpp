@@ -198,10 +198,7 @@ PetscErrorCode Simulation::WriteFields(PetscInt step, double t)
   // state (and the C33 warm start) without changing it.
   std::vector<double> force(2 * n);
   PointQuantities     quantities;
-  PetscCall(ComputeForceDensity(x, force.data())); // leaves the warm starts as they were
-  point_quantities(scene_.model, scene_.formulation, scene_.material, layout_.cloud, force_.positions(), families_, geometry_,
-                   bond_state_, force_.warm_start().data(), (std::size_t)n,
-                   scene_.force_form == ForceForm::energy_consistent ? StressWeights::bond_energy : StressWeights::bond_force, quantities);
+  PetscCall(ComputePointQuantities(x, force.data(), &quantities)); // leaves the warm starts as they were
   fields.volume        = layout_.cloud.volume.data();
   fields.force_density = force.data();
   fields.quantities    = &quantities;
@@ -210,6 +207,17 @@ PetscErrorCode Simulation::WriteFields(PetscInt step, double t)
   PetscCall(written);
   PetscCall(PetscLogEventEnd(event_fields, 0, 0, 0, 0));
   PetscCall(PetscLogStagePop());
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Simulation::ComputePointQuantities(const double *u_owned, double *force_density, PointQuantities *quantities)
+{
+  PetscFunctionBegin;
+  PetscCall(ComputeForceDensity(u_owned, force_density)); // sets the positions, ghosts included
+  point_quantities(scene_.model, scene_.formulation, scene_.material, layout_.cloud, force_.positions(), families_, geometry_,
+                   bond_state_, force_.warm_start().data(), (std::size_t)layout_.n_owned,
+                   scene_.force_form == ForceForm::energy_consistent ? StressWeights::bond_energy : StressWeights::bond_force,
+                   *quantities);
   PetscFunctionReturn(0);
 }
 

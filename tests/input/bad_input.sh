@@ -226,11 +226,13 @@ expect_error region_grips_overlap "-load_grip_field affine: load sets 'bottom' a
 # the file stays small): the fix names the cloud and the horizon, not -body_dx.
 expect_error cloud_needs_more_memory "-body_cloud 'cloud.csv' gives 400 material points" "$cloud_scene" -horizon_factor 3000
 
-# -force_patch_correction (patch_correction.hpp): a word that is not a choice, and on
-# with the energy-consistent form, which it does not correct.
+# -force_patch_correction (patch_correction.hpp): a word that is not a choice, and on or
+# virial with the energy-consistent form, which neither corrects.
 expect_error patch_correction_word "-force_patch_correction 'maybe' is not a choice" "$cloud_scene" -force_patch_correction maybe
 expect_error patch_correction_energy "-force_patch_correction on corrects the bond-only force only" "$cloud_scene" \
   -force_form energy_consistent -force_patch_correction on
+expect_error patch_correction_energy_virial "-force_patch_correction virial corrects the bond-only force only" "$cloud_scene" \
+  -force_form energy_consistent -force_patch_correction virial
 
 # Options are checked before any work (docs/options.md): a typo or a bad -ts_* value
 # stops the run before the scene is shown and the body is built.

@@ -40,7 +40,7 @@ elif [ "$case" = dogbone ] || [ "$case" = double_edge_notched ]; then
 elif [ "$case" = cloud ]; then
   # The graded point cloud of examples/point_cloud.yaml (own volumes and horizons, a hole
   # cut by the scene, the bond-only form with the tensor correction and the affine patch
-  # correction, lambda per point shipped with the points), stretched briefly.
+  # correction (auto: virial, 5 numbers a point shipped with the points), stretched briefly.
   scene=(-options_file_yaml "$BAPD_SOURCE_DIR/examples/point_cloud.yaml"
          -body_cloud "$BAPD_SOURCE_DIR/examples/geometry/graded_sheet.csv"
          -force_form bond_only -load_schedule 0,1,0.05,1.2 -output_interval 50 -progress_interval 100000 -output_final_state)

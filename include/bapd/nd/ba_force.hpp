@@ -80,13 +80,19 @@ template <int D> struct Workspace {
 
 enum class ForceForm { bond_only, energy_consistent };
 
-// -force_patch_correction (patch_correction.hpp): h_ij = ((lambda_i - lambda_j) . xi) xi
-// added to g_ij (lambda: D per point). For D = 2 the 2D add_patch_term's operations
-// in its order.
-template <int D> inline void add_patch_term(const double *lambda_i, const double *lambda_j, const double *xi, double *g)
+// -force_patch_correction (patch_correction.hpp): h_ij = c_ij xi added to g_ij, from
+// patch_stride<D>(virial) numbers a point. on: lambda (D), c_ij = (lambda_i - lambda_j) . xi;
+// virial: (mu, S_i upper triangle by sym_index), c_ij = (mu_i - mu_j) . xi + xi . S_i xi.
+// For D = 2 the operations of the 2D add_patch_term and virial_patch_coefficient in their order.
+template <int D> constexpr std::size_t patch_stride(bool virial) { return virial ? D + sym_size<D> : D; }
+template <int D>
+inline void add_patch_term(const double *lambda_i, const double *lambda_j, const double *xi, double *g, bool virial = false)
 {
   double s = (lambda_i[0] - lambda_j[0]) * xi[0];
   for (int r = 1; r < D; ++r) s = s + (lambda_i[r] - lambda_j[r]) * xi[r];
+  if (virial)
+    for (int r = 0; r < D; ++r)
+      for (int c = r; c < D; ++c) s = s + (r == c ? 1.0 : 2.0) * lambda_i[D + sym_index<D>(r, c)] * xi[r] * xi[c];
   for (int r = 0; r < D; ++r) g[r] += s * xi[r];
 }
 
@@ -233,10 +239,12 @@ template <int D, bool Corrected> struct BondOnlyForm {
   double                      *data; // ws.pending_data: g_iq, D of each slot
   const double                *off, *fvk, *C;
   const PointTotals<D>        &totals;
-  // -force_patch_correction: lambda of the point and of every local point (D each),
-  // the point's neighbours; lambda_i nullptr: off (the lattice, and 3D for now).
+  // -force_patch_correction: lambda of the point and of every local point
+  // (patch_stride<D>(virial) each), the point's neighbours; lambda_i nullptr: off (the
+  // lattice, and 3D for now).
   const double                *lambda_i = nullptr, *lambda = nullptr;
   const std::int32_t          *nb       = nullptr;
+  bool                         virial   = false;
 
   void none(std::size_t q)
   {
@@ -255,7 +263,7 @@ template <int D, bool Corrected> struct BondOnlyForm {
       }
       for (int r = 0; r < D; ++r) g[r] = h[r];
     }
-    if (lambda_i) add_patch_term<D>(lambda_i, lambda + D * nb[q], off + D * q, g); // h_iq
+    if (lambda_i) add_patch_term<D>(lambda_i, lambda + patch_stride<D>(virial) * nb[q], off + D * q, g, virial); // h_iq
   }
   void stress(std::size_t slot, std::size_t q, const Mat<D> &P)
   {
@@ -308,7 +316,8 @@ void bond_only_range(const Model &model, const PointCloud &ref, const double *y,
                      const BondGeometry<D> &geo, const BondState &state, double *c33, double *bond_force,
                      Workspace<D> &ws, std::size_t begin, std::size_t end, KernelStats &stats)
 {
-  const double *lambda = ref.patch_correction.empty() ? nullptr : ref.patch_correction.data();
+  const double     *lambda = ref.patch_correction.empty() ? nullptr : ref.patch_correction.data();
+  const std::size_t stride = patch_stride<D>(ref.patch_virial);
   for (std::size_t i = begin; i < end; ++i) {
     const PointTotals<D>    totals = gather_point<D>(ref, y, fam, i, state.intact_mask(i), ws.point);
     BondOnlyForm<D, Corrected> form{bond_force + D * fam.offsets[i],
@@ -317,9 +326,10 @@ void bond_only_range(const Model &model, const PointCloud &ref, const double *y,
                                     ws.point.family_volume.data(),
                                     Corrected ? geo.correction.data() + D * D * i : nullptr,
                                     totals,
-                                    lambda ? lambda + D * i : nullptr,
+                                    lambda ? lambda + stride * i : nullptr,
                                     lambda,
-                                    fam.neighbour.data() + fam.offsets[i]};
+                                    fam.neighbour.data() + fam.offsets[i],
+                                    ref.patch_virial};
     stress_pass<D, Words>(model, fam, geo, state, i, totals, c33, ws, form, stats);
   }
 }
