@@ -1,6 +1,7 @@
 #pragma once
 // Time-step control: the stable step of the linearised system (power iteration on
-// the force operator), re-estimated during the run as the material stiffens or
+// the force operator; the estimate is time_step_estimate.cpp, the policy
+// time_step_control.cpp), re-estimated during the run as the material stiffens or
 // softens (-time_step_reestimate), and the shortening while points fly
 // (-time_step_travel, docs/stability.md sections 5 and 8). SetBaseStep is where a new
 // base step enters (the -ts_dt override at set-up).
@@ -123,6 +124,11 @@ public:
   double       *eigenvector() { return v_.data(); }
 
 private:
+  // The acceleration of the free dofs, M^{-1} f, the held ones zero, of a probe u: the
+  // C33 warm starts c33 only read, or read from and advanced in *advance (the set-up's
+  // iteration). time_step_estimate.cpp.
+  static PetscErrorCode ProbeAcceleration(ForceOperator &force, const std::vector<double> &c33, std::vector<double> *advance, double inv_rho,
+                                          const std::vector<char> &held, const double *u, double *a);
   // loading: the applied stretch moved since the last estimate; psi: the stiffening
   // indicator of the state (0: not computed, -time_step_reestimate_indicator 0).
   // broke: bonds broke after the recorded evaluation (its a(u) is evaluated again).
