@@ -181,7 +181,7 @@ void model_lanes(const Model &model, Workspace<D> &ws, std::size_t n, std::size_
 template <int D, std::size_t Words, class Model, class Form>
 inline void stress_pass(const Model &model, const Families &fam, const BondGeometry<D> &geo, const BondState &state,
                         std::size_t i, const PointTotals<D> &totals, double *c33, Workspace<D> &ws, Form &form,
-                        KernelStats &stats)
+                        std::size_t &evaluated, std::size_t &unusable, KernelStats &stats)
 {
   const std::size_t    W = fam.mask_words, o = fam.offsets[i], m = fam.size(i);
   const std::uint64_t *intact = state.intact_mask(i), *usable = geo.usable.data() + i * W;
@@ -191,18 +191,18 @@ inline void stress_pass(const Model &model, const Families &fam, const BondGeome
     const std::uint64_t bit   = std::uint64_t{1} << (q % 64);
     const bool          alive = intact[q / 64] & bit;
     if (!(alive && (usable[q / 64] & bit))) {
-      stats.unusable += alive;
+      unusable += alive;
       form.none(q);
       continue;
     }
     const BondKinematics<D> k = bond_kinematics<D, Words>(ba + q * W, intact, W, ws.point, totals);
     if (__builtin_expect(!k.usable, 0)) { // K went singular since the geometry was computed
-      ++stats.unusable;
+      ++unusable;
       form.none(q);
       continue;
     }
     double c = c33 ? c33[o + q] : 0.0; // <= 0: no warm start
-    ++stats.evaluated;
+    ++evaluated;
     if constexpr (bapd::detail::HasLanes<Model>::value) {
       const std::size_t S = ws.lane_stride;
       form.collect(pending, q, k);
@@ -249,8 +249,8 @@ template <int D, bool Corrected> struct BondOnlyForm {
     if constexpr (Corrected) { // g -> C_i g (compiled out without a correction)
       double h[D];
       for (int r = 0; r < D; ++r) {
-        double s = 0.0;
-        for (int c = 0; c < D; ++c) s += C[D * r + c] * g[c];
+        double s = C[D * r] * g[0];
+        for (int c = 1; c < D; ++c) s += C[D * r + c] * g[c];
         h[r] = s;
       }
       for (int r = 0; r < D; ++r) g[r] = h[r];
@@ -261,8 +261,8 @@ template <int D, bool Corrected> struct BondOnlyForm {
   {
     const double *g = data + stride * slot;
     for (int r = 0; r < D; ++r) {
-      double s = 0.0;
-      for (int c = 0; c < D; ++c) s += P[D * r + c] * g[c];
+      double s = P[D * r] * g[0];
+      for (int c = 1; c < D; ++c) s += P[D * r + c] * g[c];
       t[D * q + r] = s;
     }
   }
@@ -291,8 +291,8 @@ template <int D> struct EnergyConsistentForm {
     double          m_iq[StressRecord<D>::vectors * StressRecord<D>::V] = {};
     for (int r = 0; r < D; ++r)
       for (int c = 0; c < D; ++c) {
-        double s = 0.0;
-        for (int m = 0; m < D; ++m) s += P[D * r + m] * ki[sym_index<D>(m, c)];
+        double s = P[D * r] * ki[sym_index<D>(0, c)];
+        for (int m = 1; m < D; ++m) s += P[D * r + m] * ki[sym_index<D>(m, c)];
         m_iq[D * r + c] = v * s;
       }
     const StressRecord<D> mq = StressRecord<D>::from(m_iq); // in registers (Packed::from)
@@ -309,6 +309,7 @@ void bond_only_range(const Model &model, const PointCloud &ref, const double *y,
                      Workspace<D> &ws, std::size_t begin, std::size_t end, KernelStats &stats)
 {
   const double *lambda = ref.patch_correction.empty() ? nullptr : ref.patch_correction.data();
+  std::size_t   evaluated = 0, unusable = 0; // locals, not stats.*: no reload per bond (pending_q may alias)
   for (std::size_t i = begin; i < end; ++i) {
     const PointTotals<D>    totals = gather_point<D>(ref, y, fam, i, state.intact_mask(i), ws.point);
     BondOnlyForm<D, Corrected> form{bond_force + D * fam.offsets[i],
@@ -320,8 +321,10 @@ void bond_only_range(const Model &model, const PointCloud &ref, const double *y,
                                     lambda ? lambda + D * i : nullptr,
                                     lambda,
                                     fam.neighbour.data() + fam.offsets[i]};
-    stress_pass<D, Words>(model, fam, geo, state, i, totals, c33, ws, form, stats);
+    stress_pass<D, Words>(model, fam, geo, state, i, totals, c33, ws, form, evaluated, unusable, stats);
   }
+  stats.evaluated += evaluated;
+  stats.unusable += unusable;
 }
 
 template <int D, std::size_t Words, class Model>
@@ -330,6 +333,7 @@ void energy_consistent_range(const Model &model, const PointCloud &ref, const do
                              Workspace<D> &ws, std::size_t begin, std::size_t end, KernelStats &stats)
 {
   const std::size_t W = fam.mask_words;
+  std::size_t       evaluated = 0, unusable = 0; // as in bond_only_range
   for (std::size_t i = begin; i < end; ++i) {
     const std::size_t    o = fam.offsets[i], m = fam.size(i);
     const std::uint64_t *intact = state.intact_mask(i), *ba = fam.ba_mask.data() + o * W;
@@ -338,7 +342,7 @@ void energy_consistent_range(const Model &model, const PointCloud &ref, const do
     EnergyConsistentForm<D> form{ws.bond_stress.data(), ws.energetic.data(), ws.pending_data.data(),
                                  ws.point.member.data(), {}, 0.0};
     form.stress_total.zero();
-    stress_pass<D, Words>(model, fam, geo, state, i, totals, c33, ws, form, stats);
+    stress_pass<D, Words>(model, fam, geo, state, i, totals, c33, ws, form, evaluated, unusable, stats);
     // Pass 2: t_ip = omega_i S_ip (x_p - x_i), S_ip = the sum of M_iq over q in B_ip
     // (BA masks are symmetric within a family: ba_force_energy.hpp).
     double *t = bond_force + D * o;
@@ -356,12 +360,14 @@ void energy_consistent_range(const Model &model, const PointCloud &ref, const do
       const StressRecord<D> S = masked_sum<Words>(ba + p * W, ws.energetic.data(), W, ws.bond_stress.data(),
                                            form.stress_total, ws.point.in.data(), ws.point.out.data());
       for (int r = 0; r < D; ++r) {
-        double s = 0.0;
-        for (int c = 0; c < D; ++c) s += S[D * r + c] * off[D * p + c];
+        double s = S[D * r] * off[D * p];
+        for (int c = 1; c < D; ++c) s += S[D * r + c] * off[D * p + c];
         t[D * p + r] = omega * s;
       }
     }
   }
+  stats.evaluated += evaluated;
+  stats.unusable += unusable;
 }
 
 template <int D, std::size_t Words, class Model>

@@ -207,13 +207,20 @@ inline PointTotals<D> gather_point(const PointCloud &ref, const double *y, const
   double             *off = ws.offset.data(), *fvk = ws.family_volume.data();
   MemberRecord<D>     total;
   total.zero();
+  // x_i and y_i in registers: the stores below could alias x and y for the compiler,
+  // which would then load them again for every member.
+  double xi[D], yi[D];
+  for (int r = 0; r < D; ++r) {
+    xi[r] = x[D * i + r];
+    yi[r] = y[D * i + r];
+  }
   for (std::size_t p = 0; p < m; ++p) {
     const std::size_t k = static_cast<std::size_t>(nb[p]);
     const double      v = vol[k];
     double            d[D], e[D], a[D];
     for (int r = 0; r < D; ++r) {
-      d[r] = x[D * k + r] - x[D * i + r];
-      e[r] = y[D * k + r] - y[D * i + r];
+      d[r] = x[D * k + r] - xi[r];
+      e[r] = y[D * k + r] - yi[r];
       a[r] = d[r] * v;
       off[D * p + r] = d[r];
     }
@@ -252,8 +259,8 @@ inline BondKinematics<D> bond_kinematics(const std::uint64_t *ba, const std::uin
   k.volume = S[L::volume];
   for (int r = 0; r < D; ++r)
     for (int c = 0; c < D; ++c) {
-      double f = 0.0;
-      for (int m = 0; m < D; ++m) f += S[L::deformation + D * r + m] * k.kinv(m, c);
+      double f = S[L::deformation + D * r] * k.kinv(0, c); // sums start at their first term (dot)
+      for (int m = 1; m < D; ++m) f += S[L::deformation + D * r + m] * k.kinv(m, c);
       k.F[D * r + c] = f;
     }
   return k;
@@ -269,8 +276,8 @@ template <int D> inline double force_scale(const BondKinematics<D> &k, const Poi
 template <int D> inline void force_vector(const BondKinematics<D> &k, double scale, const double *xi, double *g)
 {
   for (int r = 0; r < D; ++r) {
-    double s = 0.0;
-    for (int c = 0; c < D; ++c) s += k.kinv(r, c) * xi[c];
+    double s = k.kinv(r, 0) * xi[0];
+    for (int c = 1; c < D; ++c) s += k.kinv(r, c) * xi[c];
     g[r] = scale * s;
   }
 }
