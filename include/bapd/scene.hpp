@@ -17,15 +17,10 @@
 #include "bapd/scene_loading.hpp"
 #include "bapd/scene_probes.hpp"
 #include "bapd/scene_schedule.hpp"
+#include "bapd/force_form.hpp"
 #include "bapd/stress_correction.hpp"
 
 namespace bapd {
-
-// Which bond force the kernel computes (-force_form): the paper's bond-only form
-// (eq 23, ba_force.hpp), or the energy-consistent one, minus the gradient of the
-// strain energy (ba_force_energy.hpp, METHOD.md section 3), whose undamped motion
-// conserves energy where the bond-only form's grows near free surfaces (flutter).
-enum class ForceForm { bond_only, energy_consistent };
 
 struct Scene {
   Body2D body;
@@ -102,7 +97,5 @@ int64_t ScenePointEstimate(const Scene &scene);
 // points with their own horizons have more bonds a point: "either reaches", geometry.hpp).
 // Collective; refuses with the option to change if the body does not fit.
 PetscErrorCode CheckBodyMemory(MPI_Comm comm, const Scene &scene, int64_t points, int64_t bonds);
-
-const char *to_string(ForceForm form);
 
 } // namespace bapd

@@ -37,9 +37,13 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
+#include <type_traits>
 #include <vector>
 
-#include "bapd/ba_force.hpp" // KernelStats, FailedBond
+#include "bapd/force_form.hpp"
+#include "bapd/kernel_stats.hpp"
+#include "bapd/lanes.hpp"
 #include "bapd/nd/bond_geometry.hpp"
 
 namespace bapd::nd {
@@ -78,8 +82,6 @@ template <int D> struct Workspace {
   }
 };
 
-enum class ForceForm { bond_only, energy_consistent };
-
 // -force_patch_correction (patch_correction.hpp): h_ij = ((lambda_i - lambda_j) . xi) xi
 // added to g_ij (lambda: D per point). For D = 2 the 2D add_patch_term's operations
 // in its order.
@@ -114,6 +116,17 @@ inline auto energy_of(const M &m, const Mat<D> &F, double &, double &psi, long) 
   return m.energy(F, psi);
 }
 
+// Whether a model has a lane path (has_lanes = true and stress_lanes).
+template <class M, class = void> struct HasLanes : std::false_type {};
+template <class M> struct HasLanes<M, std::enable_if_t<M::has_lanes>> : std::true_type {};
+
+inline Lanes load_lanes(const double *p)
+{
+  Lanes v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+
 [[gnu::noinline, gnu::cold]] inline void record_failure(KernelStats &stats, std::vector<FailedBond> &failed,
                                                         std::size_t i, std::size_t q, StressStatus status)
 {
@@ -144,8 +157,8 @@ void model_lanes(const Model &model, Workspace<D> &ws, std::size_t n, std::size_
   }
   for (std::size_t j = 0; j < n; j += L) {
     std::array<Lanes, DD> F, P;
-    for (int k = 0; k < DD; ++k) F[k] = bapd::detail::load_lanes(Fc + k * S + j);
-    Lanes          c    = bapd::detail::load_lanes(cw + j);
+    for (int k = 0; k < DD; ++k) F[k] = load_lanes(Fc + k * S + j);
+    Lanes          c    = load_lanes(cw + j);
     const LaneMask done = model.stress_lanes(F, c, P);
     for (std::size_t l = 0; l < L && j + l < n; ++l) {
       const std::size_t q = ws.pending_q[j + l];
@@ -203,7 +216,7 @@ inline void stress_pass(const Model &model, const Families &fam, const BondGeome
     }
     double c = c33 ? c33[o + q] : 0.0; // <= 0: no warm start
     ++evaluated;
-    if constexpr (bapd::detail::HasLanes<Model>::value) {
+    if constexpr (HasLanes<Model>::value) {
       const std::size_t S = ws.lane_stride;
       form.collect(pending, q, k);
       for (int comp = 0; comp < D * D; ++comp) ws.pending_F[comp * S + pending] = k.F[comp];
@@ -222,7 +235,7 @@ inline void stress_pass(const Model &model, const Families &fam, const BondGeome
     if (c33 && !ws.keep_warm_start) c33[o + q] = c;
     form.stress(0, q, P);
   }
-  if constexpr (bapd::detail::HasLanes<Model>::value) model_lanes<D>(model, ws, pending, i, o, c33, form, stats);
+  if constexpr (HasLanes<Model>::value) model_lanes<D>(model, ws, pending, i, o, c33, form, stats);
 }
 
 // Bond-only (eq 23): t_iq = P g_iq, g_iq = force_scale C_i K^{-1} xi_iq (+ h_iq with
