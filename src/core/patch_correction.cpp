@@ -5,8 +5,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "bapd/bond_geometry.hpp"
 #include "bapd/bond_state.hpp"
+#include "bapd/nd/bond_geometry.hpp"
 
 namespace bapd {
 
@@ -14,27 +14,26 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-// The kernel's force vector of every bond (BondOnlyForm::collect, ba_force.hpp):
+// The kernel's force vector of every bond (BondOnlyForm::collect, nd/ba_force.hpp):
 // g = C_i w K^{-1} xi for a usable bond, 0 for one that carries no force.
 std::vector<double> force_vectors(const PointCloud &cloud, const Families &fam, const BondState &state,
-                                  BondGeometry &geo)
+                                  nd::BondGeometry<2> &geo)
 {
-  std::vector<double> g(2 * fam.n_bonds(), 0.0);
-  PointScratch       &s = geo.scratch;
-  const std::size_t   W = fam.mask_words;
+  std::vector<double>  g(2 * fam.n_bonds(), 0.0);
+  nd::PointScratch<2> &s = geo.scratch;
+  const std::size_t    W = fam.mask_words;
   for (std::size_t i = 0; i < fam.n_family; ++i) {
     const std::size_t o = fam.offsets[i], m = fam.size(i);
     if (m == 0) continue;
-    const std::uint64_t *intact = state.intact_mask(i);
-    const PointTotals    totals = W == 1 ? detail::gather_point<1>(cloud, cloud.x.data(), fam, i, intact, s)
-                                         : detail::gather_point<0>(cloud, cloud.x.data(), fam, i, intact, s);
-    const Mat2           C      = geo.correction_of(i);
+    const std::uint64_t     *intact = state.intact_mask(i);
+    const nd::PointTotals<2> totals = nd::gather_point<2>(cloud, cloud.x.data(), fam, i, intact, s);
+    const Mat2               C      = geo.correction_of(i);
     for (std::size_t q = 0; q < m; ++q) {
-      const std::uint64_t *ba = fam.ba(o + q);
-      const BondKinematics k  = W == 1 ? detail::bond_kinematics<1>(ba, intact, 1, s, totals)
-                                       : detail::bond_kinematics<0>(ba, intact, W, s, totals);
+      const std::uint64_t        *ba = fam.ba(o + q);
+      const nd::BondKinematics<2> k  = nd::bond_kinematics<2>(ba, intact, W, s, totals);
       if (!k.usable) continue;
-      const Vec2 v       = detail::force_vector(k, totals, s, q);
+      Vec2 v;
+      nd::force_vector<2>(k, nd::force_scale<2>(k, totals, s.family_volume[q]), s.offset.data() + 2 * q, v.data());
       g[2 * (o + q)]     = C[0] * v[0] + C[1] * v[1];
       g[2 * (o + q) + 1] = C[2] * v[0] + C[3] * v[1];
     }
@@ -184,10 +183,10 @@ struct SetupGeometry {
   {
     if (families.n_family != cloud.size() || families.reverse.size() != families.n_bonds())
       throw std::invalid_argument(std::string(who) + ": needs the families of every point of the cloud");
-    BondState    state(families);
-    BondGeometry geo;
+    BondState           state(families);
+    nd::BondGeometry<2> geo;
     geo.stress_correction = stress_correction;
-    compute_bond_geometry(cloud, families, state, geo);
+    nd::compute_bond_geometry<2>(cloud, families, state, geo);
     g     = force_vectors(cloud, families, state, geo);
     layer = boundary_layer(cloud, families, g);
   }
