@@ -219,8 +219,8 @@ int main(int argc, char **argv)
   const Families fam   = build_families(cloud, cloud.size(), o.factor * dx, body.notches);
   compute_family_volumes(cloud, fam);
   const BondState state(fam);
-  BondGeometry    geo;
-  compute_bond_geometry(cloud, fam, state, geo);
+  nd::BondGeometry<2>    geo;
+  nd::compute_bond_geometry<2>(cloud, fam, state, geo);
   const double setup = wall_seconds() - s0;
   const double np = static_cast<double>(cloud.size()), nb = static_cast<double>(fam.n_bonds());
   std::printf("%d x %d lattice, delta = %.3f dx: %zu points, %zu bonds (%.2f per point), mask words %zu; setup %.2f s\n",
@@ -250,8 +250,8 @@ int main(int argc, char **argv)
   const GentPlaneStress gent{p};
 
   std::vector<double> c33(fam.n_bonds(), 0.0), t(2 * fam.n_bonds()), f(2 * cloud.size());
-  BondKernelWorkspace ws;
-  KernelStats         stats = compute_bond_forces(gent, cloud, ys[1], fam, geo, state, c33.data(), t.data(), ws);
+  nd::Workspace<2> ws;
+  KernelStats         stats = nd::compute_bond_forces<2>(ForceForm::bond_only, gent, cloud, ys[1], fam, geo, state, c33.data(), t.data(), ws);
   const double        evaluated = static_cast<double>(stats.evaluated);
   if (!stats.ok()) std::printf("warning: %zu bonds failed in the model\n", stats.failed());
 
@@ -262,7 +262,7 @@ int main(int argc, char **argv)
     Fs[s].reserve(fam.n_bonds());
     for (std::size_t i = 0; i < cloud.size(); ++i)
       for (std::size_t q = 0; q < fam.size(i); ++q)
-        if (geo.is_usable(i, q)) Fs[s].push_back(bond_deformation_gradient(cloud, ys[s], fam, geo, state, i, q));
+        if (geo.is_usable(i, q)) Fs[s].push_back(nd::bond_deformation_gradient<2>(cloud, ys[s], fam, geo, state, i, q));
   }
   c_model.assign(Fs[0].size(), 0.0);
   {
@@ -283,7 +283,7 @@ int main(int argc, char **argv)
     Mat2                P;
     for (std::size_t i = 0; i < cloud.size(); ++i)
       for (std::size_t q = 0; q < fam.size(i); ++q)
-        if (geo.is_usable(i, q)) gent.stress(bond_deformation_gradient(cloud, y_c.data(), fam, geo, state, i, q), c[k++], P);
+        if (geo.is_usable(i, q)) gent.stress(nd::bond_deformation_gradient<2>(cloud, y_c.data(), fam, geo, state, i, q), c[k++], P);
     for (k = 0; k < Fs[0].size(); ++k) evals_dyn += gent.solve(Fs[0][k], c[k]).evaluations;
     evals_dyn /= static_cast<double>(Fs[0].size());
   }
@@ -291,22 +291,22 @@ int main(int argc, char **argv)
 
   double sink     = 0;
   auto   gent_run = [&](int r) {
-    compute_bond_forces(gent, cloud, ys[r % 2], fam, geo, state, c33.data(), t.data(), ws);
+    nd::compute_bond_forces<2>(ForceForm::bond_only, gent, cloud, ys[r % 2], fam, geo, state, c33.data(), t.data(), ws);
   };
   std::vector<double> c33_dyn(fam.n_bonds(), 0.0);
-  compute_bond_forces(gent, cloud, ys_dyn[1], fam, geo, state, c33_dyn.data(), t.data(), ws);
+  nd::compute_bond_forces<2>(ForceForm::bond_only, gent, cloud, ys_dyn[1], fam, geo, state, c33_dyn.data(), t.data(), ws);
   auto dynamics_run = [&](int r) {
-    compute_bond_forces(gent, cloud, ys_dyn[r % 2], fam, geo, state, c33_dyn.data(), t.data(), ws);
+    nd::compute_bond_forces<2>(ForceForm::bond_only, gent, cloud, ys_dyn[r % 2], fam, geo, state, c33_dyn.data(), t.data(), ws);
   };
   std::vector<double> c33_energy(c33); // its own warm start, from the same state
   auto                energy_run = [&](int r) {
-    compute_energy_consistent_bond_forces(gent, cloud, ys[r % 2], fam, geo, state, c33_energy.data(), t.data(), ws);
+    nd::compute_bond_forces<2>(ForceForm::energy_consistent, gent, cloud, ys[r % 2], fam, geo, state, c33_energy.data(), t.data(), ws);
   };
   auto cold_run = [&](int r) {
-    compute_bond_forces(gent, cloud, ys[r % 2], fam, geo, state, nullptr, t.data(), ws);
+    nd::compute_bond_forces<2>(ForceForm::bond_only, gent, cloud, ys[r % 2], fam, geo, state, nullptr, t.data(), ws);
   };
   auto identity_run = [&](int r) {
-    compute_bond_forces(IdentityStress{}, cloud, ys[r % 2], fam, geo, state, nullptr, t.data(), ws);
+    nd::compute_bond_forces<2>(ForceForm::bond_only, IdentityStress{}, cloud, ys[r % 2], fam, geo, state, nullptr, t.data(), ws);
   };
   auto model_run = [&](int r) {
     const std::vector<Mat2> &F = Fs[r % 2];
@@ -316,7 +316,7 @@ int main(int argc, char **argv)
       sink += P[0];
     }
   };
-  auto assemble_run = [&](int) { assemble_force_density(fam, cloud, t.data(), cloud.size(), f.data()); };
+  auto assemble_run = [&](int) { nd::assemble_force_density<2>(fam, cloud, t.data(), cloud.size(), f.data()); };
 
   if (o.callgrind) {
     // Warm c33 is at y_b (last evaluation above); the profiled evaluation is at y_a.
@@ -338,25 +338,25 @@ int main(int argc, char **argv)
   }
 
   if (o.versus_nd) { // the switch of issue 21 stage 2: same bits, same speed?
-    nd::BondGeometry<2> geo_nd;
-    nd::compute_bond_geometry<2>(cloud, fam, state, geo_nd);
-    nd::Workspace<2>    ws_nd;
+    BondGeometry        geo_old; // the 2D kernel's (bond_geometry.hpp)
+    compute_bond_geometry(cloud, fam, state, geo_old);
+    BondKernelWorkspace ws_old;
     std::vector<double> t_nd(t.size()), c_old[2], c_nd[2];
     struct Form {
       const char   *name;
-      nd::ForceForm form;
-    } forms[] = {{"bond-only, Gent plane stress, warm c33", nd::ForceForm::bond_only},
-                 {"energy-consistent, Gent plane stress, warm c33", nd::ForceForm::energy_consistent}};
+      ForceForm form;
+    } forms[] = {{"bond-only, Gent plane stress, warm c33", ForceForm::bond_only},
+                 {"energy-consistent, Gent plane stress, warm c33", ForceForm::energy_consistent}};
     for (const Form &fm : forms) {
-      const bool energy = fm.form == nd::ForceForm::energy_consistent;
+      const bool energy = fm.form == ForceForm::energy_consistent;
       auto       old_run = [&](int r) {
         if (energy)
-          compute_energy_consistent_bond_forces(gent, cloud, ys[r % 2], fam, geo, state, c_old[0].data(), t.data(), ws);
-        else compute_bond_forces(gent, cloud, ys[r % 2], fam, geo, state, c_old[0].data(), t.data(), ws);
+          compute_energy_consistent_bond_forces(gent, cloud, ys[r % 2], fam, geo_old, state, c_old[0].data(), t.data(), ws_old);
+        else compute_bond_forces(gent, cloud, ys[r % 2], fam, geo_old, state, c_old[0].data(), t.data(), ws_old);
       };
       auto nd_run = [&](int r) {
-        nd::compute_bond_forces<2>(fm.form, gent, cloud, ys[r % 2], fam, geo_nd, state, c_nd[0].data(), t_nd.data(),
-                                   ws_nd);
+        nd::compute_bond_forces<2>(fm.form, gent, cloud, ys[r % 2], fam, geo, state, c_nd[0].data(), t_nd.data(),
+                                   ws);
       };
       c_old[0].assign(fam.n_bonds(), 0.0);
       c_nd[0].assign(fam.n_bonds(), 0.0);

@@ -133,7 +133,7 @@ TEST(PointQuantities, PointWithoutBondsGetsZeros)
     if (q == d.families.size(lone)) break;
     break_bond(d.families, d.state, lone, q, &touched);
   }
-  compute_bond_geometry(d.cloud, d.families, d.state, d.geometry, touched);
+  nd::compute_bond_geometry<2>(d.cloud, d.families, d.state, d.geometry, touched);
   const std::vector<double> y = d.affine(kStretch);
   PointQuantities           q;
   point_quantities(ModelKind::gent, Formulation::plane_stress, kGel, d.cloud, y.data(), d.families, test::nd_geometry(d), d.state,
