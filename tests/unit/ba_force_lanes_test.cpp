@@ -1,4 +1,4 @@
-// The bond kernel's four-bond path (ba_force.hpp: model_lanes, PlaneStress::stress_lanes)
+// The bond kernel's four-bond path (nd/ba_force.hpp: model_lanes, PlaneStress::stress_lanes)
 // on a non-affine field with Gent: bit for bit the bond forces and C33 of the same
 // kernel run one bond at a time, for both force forms, with cold and with warm starts;
 // and the workspace's keep_warm_start, which evaluates without writing C33 back.

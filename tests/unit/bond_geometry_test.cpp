@@ -10,7 +10,7 @@
 namespace bapd {
 namespace {
 
-TEST(nd::BondGeometry<2>, ShapeTensorInverseInvertsTheBondAssociatedShapeTensor)
+TEST(BondGeometry, ShapeTensorInverseInvertsTheBondAssociatedShapeTensor)
 {
   Body2D body = test::plate(16, 16, 0.5e-3);
   body.holes.push_back({8 * 0.5e-3, 8 * 0.5e-3, 2.2 * 0.5e-3});
@@ -35,7 +35,7 @@ TEST(nd::BondGeometry<2>, ShapeTensorInverseInvertsTheBondAssociatedShapeTensor)
     }
 }
 
-TEST(nd::BondGeometry<2>, ForceScaleIsHalfTheVolumeFractionOverPhi)
+TEST(BondGeometry, ForceScaleIsHalfTheVolumeFractionOverPhi)
 {
   test::Discretisation d(test::plate(20, 20, 0.5e-3));
   const Families      &f = d.families;
@@ -60,7 +60,7 @@ TEST(nd::BondGeometry<2>, ForceScaleIsHalfTheVolumeFractionOverPhi)
   }
 }
 
-TEST(nd::BondGeometry<2>, KernelCatchesAShapeTensorThatWentSingularSinceTheGeometry)
+TEST(BondGeometry, KernelCatchesAShapeTensorThatWentSingularSinceTheGeometry)
 {
   // Break bonds without recomputing the geometry: the kernel still must not divide by
   // a singular K (it repeats the test), and counts the bond as unusable.
@@ -78,7 +78,7 @@ TEST(nd::BondGeometry<2>, KernelCatchesAShapeTensorThatWentSingularSinceTheGeome
   EXPECT_EQ(d.geometry.count_unusable(d.size()), 0u); // stale, as set up
 }
 
-TEST(nd::BondGeometry<2>, MissingGhostFamilyVolumeIsReported)
+TEST(BondGeometry, MissingGhostFamilyVolumeIsReported)
 {
   test::Discretisation d(test::plate(12, 12, 0.5e-3));
   PointCloud           c = d.cloud;

@@ -138,7 +138,8 @@ TEST(Damage, BreakingABondChangesTheShapeTensorsOfItsEndPointsOnly)
     if (p == i || p == k) continue;
     for (std::size_t q = 0; q < d.families.size(p); ++q) {
       const nd::BondShape<2> after = nd::bond_shape<2>(d.cloud, d.families, d.state, p, q);
-      ASSERT_EQ(after.shape_tensor_inv, before[d.families.offsets[p] + q].shape_tensor_inv);
+      for (int c = 0; c < 3; ++c) // K^{-1}'s upper triangle (a C array: element by element)
+        ASSERT_EQ(after.shape_tensor_inv[c], before[d.families.offsets[p] + q].shape_tensor_inv[c]);
       ASSERT_EQ(after.force_scale, before[d.families.offsets[p] + q].force_scale);
     }
   }

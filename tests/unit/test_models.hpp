@@ -137,7 +137,7 @@ struct Discretisation {
     return s;
   }
 
-  // The same with the energy-consistent bond forces (ba_force_energy.hpp).
+  // The same with the energy-consistent bond forces (nd/ba_force.hpp).
   template <class Model> KernelStats energy_consistent_forces(const Model &model, const std::vector<double> &y,
                                                               std::vector<double> &bond_force,
                                                               std::vector<double> &f) const
