@@ -1,38 +1,64 @@
 #pragma once
 // Bond-associated NOSB bond forces in D = 2 or 3 dimensions, both force forms
-// (paper eqs 9, 23; METHOD.md sections 2-3): the dimension-generic form of
-// ba_force.hpp and ba_force_energy.hpp, one code path instantiated per D.
+// (paper eqs 9, 23; METHOD.md sections 2-3): the one kernel for 2D and 3D (issue 21;
+// stage 3 retired the 2D-only ba_force.hpp and ba_force_energy.hpp, whose operations
+// D = 2 does in their order).
 //
 // Bond-only (the paper's, eq 23), for every intact bond b = (i -> j) with a usable K:
 //   t_ij = P(F_ij) g_ij,   g_ij = 1/2 phi_xi/phi C_i K_ij^{-1} (x_j - x_i)
 // with C_i the stress correction (tensor: M_i^{-1}, so that a uniform P gives
-// sum_j t_ij (x) xi_ij V_j = P at every point; nd/bond_geometry.hpp).
-// Energy-consistent (ba_force_energy.hpp derives it; nothing in it depends on D):
-//   t_ip = omega_i S_ip (x_p - x_i),  S_ip = sum_{q : p in intact B_iq} V_q P(F_iq) K_iq^{-1},
-//   omega_i = 1 / sum_q V_q over the bonds of i that carry energy,
-// which makes f_i = -(1/V_i) dW/dy_i for W = strain_energy() below.
+// sum_j t_ij (x) xi_ij V_j = P at every point; nd/bond_geometry.hpp,
+// stress_correction.hpp) and, with -force_patch_correction (patch_correction.hpp),
+// h_ij = ((lambda_i - lambda_j) . xi) xi added to g_ij.
+//
+// Energy-consistent (METHOD.md section 3; after Breitzman & Dayal 2018): the force
+// density is minus the gradient of the stored energy
+//   W = sum_i V_i omega_i sum_{b = (i -> j)} V_j Psi(F_ij),   omega_i = 1 / sum_b V_j,
+// both sums over the bonds of i that carry energy (intact, usable K, model ok): the
+// energy strain_energy() reports (W = Psi(A) x volume for an affine motion). The
+// bond-only force is not the gradient of any energy: its tangent is not symmetric
+// next to a free surface, which gives complex eigenvalues and undamped motions that
+// grow whatever the time step (ba_force_energy_test.cpp). The derivation, for any D:
+// F_ij = sum_{m in B} (y_m - y_i) (x) g_m, g_m = K_ij^{-1}(x_m - x_i) V_m (B = the
+// intact members of B_ij, eq 9), so with M_b = omega_i V_j P(F_ij) K_ij^{-1}
+//   dW/dy_m += V_i M_b (x_m - x_i) V_m   (m in B),
+//   dW/dy_i -= V_i M_b sum_{m in B} (x_m - x_i) V_m.
+// Collect, for a bond (i -> p), the stresses of the bonds of i whose BA family holds p:
+//   S_ip = sum_{q : p in intact B_iq} V_q P(F_iq) K_iq^{-1},   t_ip = omega_i S_ip (x_p - x_i)
+// (t_ip = 0 if the bond (i -> p) is broken). Then f_k = -(1/V_k) dW/dy_k becomes
+// sum_j (t_kj - t_jk) V_j, the bond-only assembly (eq 1) with these t_ij: momentum is
+// conserved pair by pair, nothing depends on the local numbering, and the halo is the
+// same (t_ij needs i's family only). BA masks are symmetric within a family (p in B_iq
+// iff q in B_ip: both are |x_p - x_q| <= delta, computed with the same bits either
+// way; build_families), so the bonds q with p in B_iq are the set bits of bond
+// (i -> p)'s own BA mask, and S_ip is one masked sum of the per-bond M_iq with the
+// code (and the "total minus the others" shortcut) of F_ij's sums. A bond that is
+// broken, has no usable K or whose model fails has no energy; its end point p still
+// counts in the other bonds' F_iq, so t_ip is generally not 0 unless (i -> p) is broken.
+//
 // Either way the force density of an owned point is
 //   f_i = sum_j (t_ij - t_ji) V_j                                                 (eq 1)
-// (assemble_force_density), so linear momentum is conserved pair by pair.
+// (assemble_force_density). Per point i the kernel runs one loop over its bonds (F_ij
+// from the masked sums, then P: stress_pass), and the energy-consistent form a second
+// (S_ip and t_ip); nothing per bond is stored beyond t_ij and c33.
 //
 // The model is a template parameter (inlined into the loop, nothing virtual per
 // bond), with either of the two stress signatures of the existing laws:
 //   StressStatus stress(const Mat<D> &F, Mat<D> &P) const             (Compressible3D)
 //   StressStatus stress(const Mat<D> &F, double &c33, Mat<D> &P) const (2D PlaneStrain,
 //        PlaneStress: c33 is the out-of-plane warm start, read from and written to
-//        the optional c33 array, one per bond, as in 2D)
+//        the optional c33 array, one per bond)
 // and energy(F, psi) or energy(F, c33, psi) likewise. A model with has_lanes and
 //   LaneMask stress_lanes(const std::array<Lanes, D*D> &F, Lanes &c33, std::array<Lanes, D*D> &P) const
 // (PlaneStress in 2D, Compressible3DLanes in 3D: nd/compressible_lanes.hpp) gets the
 // point's bonds after the first loop, lane_count at a time (model_lanes); a lane it
-// does not finish goes through its scalar stress().
+// does not finish goes through its scalar stress(). Nothing is allocated per call
+// (Workspace is sized once), except the list of failed bonds in the rare call where a
+// model fails.
 //
-// For D = 2 every operation is the 2D kernel's in its order (nd/bond_geometry.hpp),
-// lanes included, so the D = 2 instantiation gives its bond forces and c33 bit for
-// bit (ba_force_3d_matches_2d_test.cpp).
-//
-// Determinism: every sum runs in family order and nothing depends on the local
-// numbering (as in 2D).
+// Determinism: every sum runs in family order (families are sorted by natural id) and
+// nothing depends on the local numbering, so a rank's owned points get bit for bit the
+// bond forces and force densities of a one-rank run.
 #include <algorithm>
 #include <array>
 #include <cstddef>
@@ -60,7 +86,7 @@ template <int D> struct Workspace {
   // g of the bond-only form, K^{-1} of the energy-consistent one). Models with a lane
   // path (has_lanes: PlaneStress in 2D, Compressible3DLanes in 3D) get the point's
   // bonds after the loop, lane_count at a time: F by component (D x D arrays of
-  // lane_stride), the c33 warm start and the position q of each (as ba_force.hpp).
+  // lane_stride), the c33 warm start and the position q of each.
   static constexpr std::size_t data_stride = sym_size<D> > D ? sym_size<D> : D;
   std::size_t                  lane_stride = 0; // max_family_size rounded up to lane_count
   std::vector<double>          pending_F, pending_c33, pending_data;
@@ -142,7 +168,8 @@ template <int D, class Model>
 
 // The model over the n bonds of point i collected in ws.pending_*, lane_count at a
 // time (Model::stress_lanes); a lane it does not finish goes through the scalar
-// stress() (ba_force.hpp's model_lanes, for any D). Bonds are taken in family order,
+// stress(), which gives bit for bit what stress_lanes gives where that finishes
+// (plane_stress.hpp), so a bond's result does not depend on its lane. Bonds are taken in family order,
 // so failures are recorded and form.stress() is called in loop order.
 template <int D, class Model, class Form>
 void model_lanes(const Model &model, Workspace<D> &ws, std::size_t n, std::size_t i, std::size_t o, double *c33,
@@ -185,7 +212,7 @@ void model_lanes(const Model &model, Workspace<D> &ws, std::size_t n, std::size_
 }
 
 // The first pass of both forms over the bonds of point i: F_iq (eq 9) and P(F_iq)
-// from the model. The form is told, in family order (ba_force.hpp's stress_pass):
+// from the model. The form is told, in family order:
 //   form.none(q)               no stress: broken, K not usable, or the model failed;
 //   form.collect(slot, q, k)   the kinematics, before the model (the form keeps what
 //                              it needs in ws.pending_data, data_stride a slot);
@@ -357,7 +384,7 @@ void energy_consistent_range(const Model &model, const PointCloud &ref, const do
     form.stress_total.zero();
     stress_pass<D, Words>(model, fam, geo, state, i, totals, c33, ws, form, evaluated, unusable, stats);
     // Pass 2: t_ip = omega_i S_ip (x_p - x_i), S_ip = the sum of M_iq over q in B_ip
-    // (BA masks are symmetric within a family: ba_force_energy.hpp).
+    // (BA masks are symmetric within a family: see the top of this file).
     double *t = bond_force + D * o;
     if (form.volume == 0.0) { // no bond of i carries energy
       for (std::size_t k = 0; k < D * m; ++k) t[k] = 0.0;
@@ -439,7 +466,7 @@ void assemble_force_density(const Families &families, const PointCloud &ref, con
                             std::size_t n_owned, double *force_density);
 
 // Strain energy W = sum_i V_i sum_j Psi(F_ij) V_j / sum_j V_j over the bonds of i that
-// carry energy (as strain_energy of ba_force.hpp): the energy whose gradient the
+// carry energy: the energy whose gradient the
 // energy-consistent form is, Psi(A) x volume for an affine motion. c33 (may be
 // nullptr) is read only. Writes E_i to point_energy[i] if given.
 template <int D, class Model>
