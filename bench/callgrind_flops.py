@@ -102,11 +102,11 @@ def part_of(path, fn_name, line, ranges_cache):
         if path not in ranges_cache:
             ranges_cache[path] = function_ranges(path)
         fn = enclosing(ranges_cache[path], line)
-        return {"gather_point": "gather (per point)", "sum_selected": "masked sums", "masked_sums": "masked sums",
+        return {"gather_point": "gather (per point)", "sum_selected": "masked sums", "masked_sums": "masked sums", "masked_sum": "masked sums",
                 "bond_kinematics": "K^-1 and F", "force_scale": "force vector"}.get(fn, "geometry: " + fn)
     if base == "ba_force.hpp":
         return "kernel loop, force vector, stores"
-    if base == "ba_force.cpp" or (fn_name and "assemble_force_density" in fn_name):
+    if base == "nd_ba_force.cpp" or (fn_name and "assemble_force_density" in fn_name):
         return "assembly"
     return "other"
 

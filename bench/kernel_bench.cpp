@@ -1,5 +1,5 @@
 // Force-kernel benchmark (issue 7, benchmark 1): bond evaluations per second per core
-// of the BA kernel (compute_bond_forces, ba_force.hpp) with the Gent plane-stress
+// of the BA kernel (nd::compute_bond_forces<2>, nd/ba_force.hpp) with the Gent plane-stress
 // model on a square lattice, and the pieces it is made of.
 //
 //   kernel_bench [--side N] [--factor f] [--reps r] [--callgrind] [--table]
@@ -12,16 +12,11 @@
 //                 run under `valgrind --tool=callgrind --collect-atstart=no`
 //                 (bench/callgrind_kernel.sh does this and reads the profiles)
 //   --table       also print one machine-readable line, `RESULT key=value ...`
-//   --versus-nd   the 2D kernel against the dimension-generic core at D = 2
-//                 (nd/ba_force.hpp, issue 21 stage 2), both forms, warm c33: the two
-//                 alternate repetition by repetition (A B A B: a shared machine's load
-//                 falls on both alike), the minimum thread CPU time of each and the
-//                 ratio nd / 2D; also checks that both give the same bond forces and
-//                 c33 bit for bit
 //   --only NAME   run only the region NAME (gent_warm, energy_warm, gent_dynamics,
 //                 identity, assemble), reps times, and print its time: for a sampling
 //                 profiler (`perf record -e cpu-clock kernel_bench --only energy_warm
 //                 --reps 200`; docs/performance.md, section 1c)
+// Per bond against LAMMPS peri/lps in the same run: bench/kernel_bench_lammps.sh.
 //
 // What is measured (every time is the minimum over reps of the thread CPU time, which
 // a busy shared machine disturbs much less than wall clock; the minimum wall time is
@@ -41,7 +36,7 @@
 //   model       GentPlaneStress::stress alone on every bond's F (warm c33): the scalar
 //               solve, one bond at a time (the bond kernel runs stress_lanes, four)
 //   assemble    assemble_force_density, f_i = sum_j (t_ij - t_ji) V_j
-//   energy_warm compute_energy_consistent_bond_forces (ba_force_energy.hpp) as gent_warm:
+//   energy_warm the energy-consistent form (ForceForm::energy_consistent) as gent_warm:
 //               the energy-consistent form, assembled by the same assemble_force_density
 // "bond evaluation" = one intact bond with a usable K handed to the model (eq 23),
 // KernelStats::evaluated; a full force evaluation is gent_warm + assemble.
@@ -62,9 +57,6 @@
 #include <string>
 #include <vector>
 
-#include "bapd/ba_force.hpp"
-#include "bapd/ba_force_energy.hpp"
-#include "bapd/bond_geometry.hpp"
 #include "bapd/family.hpp"
 #include "bapd/nd/ba_force.hpp"
 #include "bapd/gent.hpp"
@@ -156,7 +148,6 @@ struct Options {
   bool   callgrind = false;
   bool   table     = false;
   bool   clock     = false;
-  bool   versus_nd = false;
   double motion    = 1e-5; // dx: how far the two position states are apart (one time step's motion)
   double dynamics  = 5e-4; // dx: the same for gent_dynamics
   std::string only;        // --only: one region
@@ -180,7 +171,6 @@ Options parse(int argc, char **argv)
     else if (s == "--callgrind") o.callgrind = true;
     else if (s == "--table") o.table = true;
     else if (s == "--clock") o.clock = true;
-    else if (s == "--versus-nd") o.versus_nd = true;
     else if (s == "--motion") o.motion = std::atof(next());
     else if (s == "--dynamics-motion") o.dynamics = std::atof(next());
     else if (s == "--only") o.only = next();
@@ -219,8 +209,8 @@ int main(int argc, char **argv)
   const Families fam   = build_families(cloud, cloud.size(), o.factor * dx, body.notches);
   compute_family_volumes(cloud, fam);
   const BondState state(fam);
-  BondGeometry    geo;
-  compute_bond_geometry(cloud, fam, state, geo);
+  nd::BondGeometry<2>    geo;
+  nd::compute_bond_geometry<2>(cloud, fam, state, geo);
   const double setup = wall_seconds() - s0;
   const double np = static_cast<double>(cloud.size()), nb = static_cast<double>(fam.n_bonds());
   std::printf("%d x %d lattice, delta = %.3f dx: %zu points, %zu bonds (%.2f per point), mask words %zu; setup %.2f s\n",
@@ -250,8 +240,8 @@ int main(int argc, char **argv)
   const GentPlaneStress gent{p};
 
   std::vector<double> c33(fam.n_bonds(), 0.0), t(2 * fam.n_bonds()), f(2 * cloud.size());
-  BondKernelWorkspace ws;
-  KernelStats         stats = compute_bond_forces(gent, cloud, ys[1], fam, geo, state, c33.data(), t.data(), ws);
+  nd::Workspace<2> ws;
+  KernelStats         stats = nd::compute_bond_forces<2>(ForceForm::bond_only, gent, cloud, ys[1], fam, geo, state, c33.data(), t.data(), ws);
   const double        evaluated = static_cast<double>(stats.evaluated);
   if (!stats.ok()) std::printf("warning: %zu bonds failed in the model\n", stats.failed());
 
@@ -262,7 +252,7 @@ int main(int argc, char **argv)
     Fs[s].reserve(fam.n_bonds());
     for (std::size_t i = 0; i < cloud.size(); ++i)
       for (std::size_t q = 0; q < fam.size(i); ++q)
-        if (geo.is_usable(i, q)) Fs[s].push_back(bond_deformation_gradient(cloud, ys[s], fam, geo, state, i, q));
+        if (geo.is_usable(i, q)) Fs[s].push_back(nd::bond_deformation_gradient<2>(cloud, ys[s], fam, geo, state, i, q));
   }
   c_model.assign(Fs[0].size(), 0.0);
   {
@@ -283,7 +273,7 @@ int main(int argc, char **argv)
     Mat2                P;
     for (std::size_t i = 0; i < cloud.size(); ++i)
       for (std::size_t q = 0; q < fam.size(i); ++q)
-        if (geo.is_usable(i, q)) gent.stress(bond_deformation_gradient(cloud, y_c.data(), fam, geo, state, i, q), c[k++], P);
+        if (geo.is_usable(i, q)) gent.stress(nd::bond_deformation_gradient<2>(cloud, y_c.data(), fam, geo, state, i, q), c[k++], P);
     for (k = 0; k < Fs[0].size(); ++k) evals_dyn += gent.solve(Fs[0][k], c[k]).evaluations;
     evals_dyn /= static_cast<double>(Fs[0].size());
   }
@@ -291,22 +281,22 @@ int main(int argc, char **argv)
 
   double sink     = 0;
   auto   gent_run = [&](int r) {
-    compute_bond_forces(gent, cloud, ys[r % 2], fam, geo, state, c33.data(), t.data(), ws);
+    nd::compute_bond_forces<2>(ForceForm::bond_only, gent, cloud, ys[r % 2], fam, geo, state, c33.data(), t.data(), ws);
   };
   std::vector<double> c33_dyn(fam.n_bonds(), 0.0);
-  compute_bond_forces(gent, cloud, ys_dyn[1], fam, geo, state, c33_dyn.data(), t.data(), ws);
+  nd::compute_bond_forces<2>(ForceForm::bond_only, gent, cloud, ys_dyn[1], fam, geo, state, c33_dyn.data(), t.data(), ws);
   auto dynamics_run = [&](int r) {
-    compute_bond_forces(gent, cloud, ys_dyn[r % 2], fam, geo, state, c33_dyn.data(), t.data(), ws);
+    nd::compute_bond_forces<2>(ForceForm::bond_only, gent, cloud, ys_dyn[r % 2], fam, geo, state, c33_dyn.data(), t.data(), ws);
   };
   std::vector<double> c33_energy(c33); // its own warm start, from the same state
   auto                energy_run = [&](int r) {
-    compute_energy_consistent_bond_forces(gent, cloud, ys[r % 2], fam, geo, state, c33_energy.data(), t.data(), ws);
+    nd::compute_bond_forces<2>(ForceForm::energy_consistent, gent, cloud, ys[r % 2], fam, geo, state, c33_energy.data(), t.data(), ws);
   };
   auto cold_run = [&](int r) {
-    compute_bond_forces(gent, cloud, ys[r % 2], fam, geo, state, nullptr, t.data(), ws);
+    nd::compute_bond_forces<2>(ForceForm::bond_only, gent, cloud, ys[r % 2], fam, geo, state, nullptr, t.data(), ws);
   };
   auto identity_run = [&](int r) {
-    compute_bond_forces(IdentityStress{}, cloud, ys[r % 2], fam, geo, state, nullptr, t.data(), ws);
+    nd::compute_bond_forces<2>(ForceForm::bond_only, IdentityStress{}, cloud, ys[r % 2], fam, geo, state, nullptr, t.data(), ws);
   };
   auto model_run = [&](int r) {
     const std::vector<Mat2> &F = Fs[r % 2];
@@ -316,7 +306,7 @@ int main(int argc, char **argv)
       sink += P[0];
     }
   };
-  auto assemble_run = [&](int) { assemble_force_density(fam, cloud, t.data(), cloud.size(), f.data()); };
+  auto assemble_run = [&](int) { nd::assemble_force_density<2>(fam, cloud, t.data(), cloud.size(), f.data()); };
 
   if (o.callgrind) {
     // Warm c33 is at y_b (last evaluation above); the profiled evaluation is at y_a.
@@ -335,53 +325,6 @@ int main(int argc, char **argv)
                 "evals_cold=%.4f\n",
                 o.side, o.factor, cloud.size(), fam.n_bonds(), stats.evaluated, Fs[0].size(), evals_warm, evals_cold);
     return sink == 12345.0;
-  }
-
-  if (o.versus_nd) { // the switch of issue 21 stage 2: same bits, same speed?
-    nd::BondGeometry<2> geo_nd;
-    nd::compute_bond_geometry<2>(cloud, fam, state, geo_nd);
-    nd::Workspace<2>    ws_nd;
-    std::vector<double> t_nd(t.size()), c_old[2], c_nd[2];
-    struct Form {
-      const char   *name;
-      nd::ForceForm form;
-    } forms[] = {{"bond-only, Gent plane stress, warm c33", nd::ForceForm::bond_only},
-                 {"energy-consistent, Gent plane stress, warm c33", nd::ForceForm::energy_consistent}};
-    for (const Form &fm : forms) {
-      const bool energy = fm.form == nd::ForceForm::energy_consistent;
-      auto       old_run = [&](int r) {
-        if (energy)
-          compute_energy_consistent_bond_forces(gent, cloud, ys[r % 2], fam, geo, state, c_old[0].data(), t.data(), ws);
-        else compute_bond_forces(gent, cloud, ys[r % 2], fam, geo, state, c_old[0].data(), t.data(), ws);
-      };
-      auto nd_run = [&](int r) {
-        nd::compute_bond_forces<2>(fm.form, gent, cloud, ys[r % 2], fam, geo_nd, state, c_nd[0].data(), t_nd.data(),
-                                   ws_nd);
-      };
-      c_old[0].assign(fam.n_bonds(), 0.0);
-      c_nd[0].assign(fam.n_bonds(), 0.0);
-      old_run(1); // warm starts at y_b, as gent_warm
-      nd_run(1);
-      Timing a, b;
-      for (int r = 0; r < o.reps; ++r) { // alternate: the load of the moment falls on both
-        Timing ta, tb; // and in turn first: neither always finds the other's caches
-        if (r % 2) tb = time_min(1, [&](int) { nd_run(r); });
-        ta = time_min(1, [&](int) { old_run(r); });
-        if (!(r % 2)) tb = time_min(1, [&](int) { nd_run(r); });
-        a.cpu = std::min(a.cpu, ta.cpu);
-        b.cpu = std::min(b.cpu, tb.cpu);
-      }
-      const bool same = t == t_nd && c_old[0] == c_nd[0];
-      std::printf("  %-48s 2D %7.2f ns/bond, nd<2> %7.2f ns/bond, nd / 2D = %.4f; bond forces and c33 %s\n", fm.name,
-                  1e9 * a.cpu / evaluated, 1e9 * b.cpu / evaluated, b.cpu / a.cpu,
-                  same ? "identical" : "DIFFER");
-      if (o.table)
-        std::printf("RESULT form=%s old_ns=%.3f nd_ns=%.3f ratio=%.4f identical=%d\n",
-                    energy ? "energy_consistent" : "bond_only", 1e9 * a.cpu / evaluated, 1e9 * b.cpu / evaluated,
-                    b.cpu / a.cpu, same ? 1 : 0);
-      if (!same) return 1;
-    }
-    return 0;
   }
 
   if (!o.only.empty()) {

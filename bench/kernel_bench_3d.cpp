@@ -14,7 +14,7 @@
 // machine mean little: compare ratios from one run, bench/kernel_bench_3d.sh):
 //   bond_only      compute_bond_forces, the paper's form (eq 23), no correction
 //   corrected      the same with the tensor stress correction (g -> M_i^{-1} g)
-//   energy         the energy-consistent form (ba_force_energy.hpp's, in 3D)
+//   energy         the energy-consistent form (nd/ba_force.hpp's, in 3D)
 //   lanes_*        the same three with the lane path of the law (Compressible3DLanes,
 //                  nd/compressible_lanes.hpp: lane_count bonds at a time, no libm cbrt)
 //   identity       the bond-only kernel with P = F: gather, masked sums, K^{-1}, F,
@@ -119,23 +119,23 @@ int main(int argc, char **argv)
 
   std::vector<double> t(3 * fam.n_bonds()), f(3 * cloud.size());
   nd::Workspace<3>    ws;
-  const KernelStats   stats = nd::compute_bond_forces<3>(nd::ForceForm::bond_only, gent, cloud, ys[0], fam, geo, state,
+  const KernelStats   stats = nd::compute_bond_forces<3>(ForceForm::bond_only, gent, cloud, ys[0], fam, geo, state,
                                                          nullptr, t.data(), ws);
   if (!stats.ok()) std::printf("warning: %zu bonds failed in the model\n", stats.failed());
   const double evaluated = static_cast<double>(stats.evaluated);
-  auto         run       = [&](nd::ForceForm form, const auto &model, const nd::BondGeometry<3> &g) {
+  auto         run       = [&](ForceForm form, const auto &model, const nd::BondGeometry<3> &g) {
     return [&, form](int r) {
       nd::compute_bond_forces<3>(form, model, cloud, ys[r % 2], fam, g, state, nullptr, t.data(), ws);
     };
   };
   const IdentityStress identity;
-  const double bond_only = time_min(reps, run(nd::ForceForm::bond_only, gent, geo));
-  const double corr      = time_min(reps, run(nd::ForceForm::bond_only, gent, corrected));
-  const double energy    = time_min(reps, run(nd::ForceForm::energy_consistent, gent, geo));
-  const double lanes_bo  = time_min(reps, run(nd::ForceForm::bond_only, gent_lanes, geo));
-  const double lanes_co  = time_min(reps, run(nd::ForceForm::bond_only, gent_lanes, corrected));
-  const double lanes_ec  = time_min(reps, run(nd::ForceForm::energy_consistent, gent_lanes, geo));
-  const double ident     = time_min(reps, run(nd::ForceForm::bond_only, identity, geo));
+  const double bond_only = time_min(reps, run(ForceForm::bond_only, gent, geo));
+  const double corr      = time_min(reps, run(ForceForm::bond_only, gent, corrected));
+  const double energy    = time_min(reps, run(ForceForm::energy_consistent, gent, geo));
+  const double lanes_bo  = time_min(reps, run(ForceForm::bond_only, gent_lanes, geo));
+  const double lanes_co  = time_min(reps, run(ForceForm::bond_only, gent_lanes, corrected));
+  const double lanes_ec  = time_min(reps, run(ForceForm::energy_consistent, gent_lanes, geo));
+  const double ident     = time_min(reps, run(ForceForm::bond_only, identity, geo));
   const double assemble  = time_min(reps, [&](int) {
     nd::assemble_force_density<3>(fam, cloud, t.data(), cloud.size(), f.data());
   });

@@ -3,10 +3,10 @@
 #include <cstddef>
 #include <vector>
 
-#include "bapd/ba_force.hpp"
 #include "bapd/body.hpp"
 #include "bapd/bond_state.hpp"
 #include "bapd/family.hpp"
+#include "bapd/kernel_stats.hpp"
 #include "bapd/nd/damage.hpp"
 
 namespace bapd {

@@ -52,7 +52,7 @@ public:
   // or the caller's): a probe that needs no copy of them (8 B a bond). Leaves the
   // operator's state and c33 as they were.
   PetscErrorCode EvaluateFrom(const double *u_owned, double *force_density, const std::vector<double> &c33);
-  // V_i W_i of the owned points at u_owned (strain_energy, ba_force.hpp).
+  // V_i W_i of the owned points at u_owned (strain_energy, nd/ba_force.hpp).
   PetscErrorCode PointEnergies(const double *u_owned, double *energy);
 
   const double            *positions() const { return y_.data(); } // of the last evaluation

@@ -19,7 +19,7 @@
 // spacing (the rule "both reach", min, would leave a fine point beside points more
 // than delta_i away with too few or collinear neighbours toward them). The BA family
 // is B_ij = {k in H_i : k in H_j} (the discrete H_x ∩ H_x', METHOD.md section 1).
-// phi (eq 11) and phi_xi (eq 15) take the volumes as they are (bond_geometry.hpp):
+// phi (eq 11) and phi_xi (eq 15) take the volumes as they are (nd/bond_geometry.hpp):
 // V(H_i) is the sum of the family's volumes, V(B_ij) that of B_ij.
 #include <cmath>
 #include <cstdint>

@@ -9,7 +9,7 @@
 //   P_i = sum_j a_ij P(F_ij) / sum_j a_ij,   a_ij = 1/2 phi_xi/phi V_j,
 // over the bonds that carry force (intact, usable K, model ok), and F_i, lambda_3,i
 // are the means of F_ij and sqrt(C33_ij) with the same weights. For the energy-
-// consistent form (ba_force_energy.hpp) the weights are those of its energy,
+// consistent form (nd/ba_force.hpp) the weights are those of its energy,
 // a_ij = V_j (omega_i V_j). Either way an affine motion (F_ij = A for every bond)
 // gives P_i = P(A), F_i = A up to round-off, at the boundary too.
 // With a stress correction of the bond-only force (-force_stress_correction,
@@ -25,7 +25,7 @@
 // F_i and lambda_3,i keep the scalar weights a_ij.
 //   Cauchy stress      sigma_i = P_i F_i^T / J_i,  J_i = det F~_i lambda_3,i
 //   energy density     W_i = sum_j Psi(F_ij) V_j / sum_j V_j (strain_energy(),
-//                      ba_force.hpp: the internal energy of history.csv is sum V_i W_i)
+//                      nd/ba_force.hpp: the internal energy of history.csv is sum V_i W_i)
 // In-plane components only: the 2D models give P~ (P_33 = sigma_33 = 0 in plane
 // stress; in plane strain sigma_33 is not formed). lambda_3 = sqrt(C33) is the
 // thickness stretch of a plane-stress sheet (1 in plane strain). A point none of

@@ -17,15 +17,11 @@
 #include "bapd/scene_loading.hpp"
 #include "bapd/scene_probes.hpp"
 #include "bapd/scene_schedule.hpp"
+#include "bapd/force_form.hpp"
 #include "bapd/stress_correction.hpp"
 
 namespace bapd {
 
-// Which bond force the kernel computes (-force_form): the paper's bond-only form
-// (eq 23, ba_force.hpp), or the energy-consistent one, minus the gradient of the
-// strain energy (ba_force_energy.hpp, METHOD.md section 3), whose undamped motion
-// conserves energy where the bond-only form's grows near free surfaces (flutter).
-enum class ForceForm { bond_only, energy_consistent };
 // -force_patch_correction (patch_correction.hpp): off; on = lambda, 2 numbers a point
 // (the patch test); virial = (mu, S), 5 numbers a point (the patch test and the virial).
 enum class PatchCorrection { off, lambda, virial };
@@ -107,7 +103,6 @@ int64_t ScenePointEstimate(const Scene &scene);
 // Collective; refuses with the option to change if the body does not fit.
 PetscErrorCode CheckBodyMemory(MPI_Comm comm, const Scene &scene, int64_t points, int64_t bonds);
 
-const char *to_string(ForceForm form);
 const char *to_string(PatchCorrection c); // the option's word: off, on, virial
 
 } // namespace bapd

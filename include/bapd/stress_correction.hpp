@@ -11,7 +11,7 @@
 //   scalar: t_ij = w_ij P(F_ij) K_ij^{-1} xi_ij / m_i, m_i = tr M_i / 2  (sum = P where
 //           M_i is isotropic: the interior of a square lattice; a normalisation of the
 //           influence function)
-// The energy-consistent form (ba_force_energy.hpp) needs none: its sum is the mean of
+// The energy-consistent form (nd/ba_force.hpp) needs none: its sum is the mean of
 // its bond stresses, P for a uniform P, at every point.
 
 namespace bapd {

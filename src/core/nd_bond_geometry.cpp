@@ -1,6 +1,6 @@
 // The dimension-generic bond geometry (nd/bond_geometry.hpp): usable K per bond and the
-// stress correction C_i, instantiated for D = 2 and 3. The arithmetic is that of
-// bond_geometry.cpp, written for any D (for D = 2 the same operations in the same order).
+// stress correction C_i, instantiated for D = 2 and 3 (for D = 2 the operations of the
+// retired bond_geometry.cpp, in its order); to_string / parse of StressCorrection.
 #include "bapd/nd/bond_geometry.hpp"
 
 #include <algorithm>
@@ -108,6 +108,13 @@ template <int D> void size_geometry(const PointCloud &cloud, const Families &fam
     geometry.correction.clear();
     return;
   }
+  // C_i from M_i of the point's reference family: every bond that exists at t = 0
+  // intact (pre-notch bonds never exist), whatever the bond state. Breaking does not
+  // change C_i: the correction calibrates the discretisation, while a broken bond is
+  // damage and must soften the point. Rebuilding C_i from the intact bonds would give
+  // a point with most bonds broken a large M_i^{-1} (M_i -> 0), i.e. the full stress P
+  // through a nearly detached point and a stiffness far above the one the stable step
+  // was estimated with (the fracture rank-invariance scene diverged that way).
   geometry.correction.assign(D * D * families.n_family, 0.0);
   std::uint64_t *all = geometry.reference_mask.data();
   for (std::size_t i = 0; i < families.n_family; ++i) {
@@ -199,3 +206,27 @@ template Mat<2> virial_tensor<2>(const PointCloud &, const Families &, const Bon
 template Mat<3> virial_tensor<3>(const PointCloud &, const Families &, const BondState &, std::size_t);
 
 } // namespace bapd::nd
+
+namespace bapd {
+
+const char *to_string(StressCorrection c)
+{
+  switch (c) {
+  case StressCorrection::none: return "none";
+  case StressCorrection::tensor: return "tensor";
+  case StressCorrection::scalar: return "scalar";
+  }
+  return "?";
+}
+
+bool parse(const std::string &name, StressCorrection &c)
+{
+  for (StressCorrection k : {StressCorrection::none, StressCorrection::tensor, StressCorrection::scalar})
+    if (name == to_string(k)) {
+      c = k;
+      return true;
+    }
+  return false;
+}
+
+} // namespace bapd

@@ -29,8 +29,7 @@ PetscErrorCode ForceOperator::Setup(MPI_Comm comm, const Scene &scene, const Lay
   const BondState           *s     = &state;
   // -force_form: both forms write t_ij per bond, and assemble_force_density turns
   // either into f_i (the energy-consistent t_ij make it -(1/V_i) dW/dy_i).
-  const nd::ForceForm form =
-      scene.force_form == ForceForm::energy_consistent ? nd::ForceForm::energy_consistent : nd::ForceForm::bond_only;
+  const ForceForm form = scene.force_form;
   with_model(scene.model, scene.formulation, scene.material, [&](const auto &model) {
     using Model  = std::decay_t<decltype(model)>;
     bond_forces_ = [this, form, cloud, f, g, s, m = Model(model)](const double *y, double *c33) {

@@ -28,15 +28,6 @@
 
 namespace bapd {
 
-const char *to_string(ForceForm form)
-{
-  switch (form) {
-  case ForceForm::bond_only: return "bond_only";
-  case ForceForm::energy_consistent: return "energy_consistent";
-  }
-  return "unknown";
-}
-
 const char *to_string(PatchCorrection c)
 {
   switch (c) {

@@ -87,7 +87,7 @@ TEST(Allocation3D, ForceEvaluationAllocatesNothing)
   for (std::size_t k = 0; k < y.size(); k += 3) y[k] *= 1.1; // 10 % stretch in x
   nd::Workspace<3> ws;
   auto check = [&](const auto &model, const char *name) {
-    for (nd::ForceForm form : {nd::ForceForm::bond_only, nd::ForceForm::energy_consistent}) {
+    for (ForceForm form : {ForceForm::bond_only, ForceForm::energy_consistent}) {
       ASSERT_TRUE(nd::compute_bond_forces<3>(form, model, cloud, y.data(), fam, geo, state, nullptr, t.data(), ws).ok()); // warm-up
       KernelStats s;
       const long  count = CountAllocations([&] {

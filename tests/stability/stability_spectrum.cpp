@@ -39,9 +39,8 @@
 #include <string>
 #include <vector>
 
-#include "bapd/ba_force.hpp"
-#include "bapd/ba_force_energy.hpp"
-#include "bapd/bond_geometry.hpp"
+#include "bapd/nd/ba_force.hpp"
+#include "bapd/nd/bond_geometry.hpp"
 #include "bapd/bond_state.hpp"
 #include "bapd/errors.hpp"
 #include "bapd/family.hpp"
@@ -226,7 +225,7 @@ PetscErrorCode AlongTheRun(const std::vector<double> &stretches, FILE *summary, 
     PetscCall(Analyse(A, free_dofs.size(), free_dofs, layout.cloud.x.data(), &sp));
     char label[64];
     std::snprintf(label, sizeof label, "stretch%.3g", target);
-    const char *form = scene.force_form == bapd::ForceForm::energy_consistent ? "energy_consistent" : "bond_only";
+    const char *form = bapd::to_string(scene.force_form);
     PetscCall(WriteState(summary, dir, label, lambda, 0.0, form, free_dofs.size(), sim.stable_time_step(), 0, sp));
     PetscCall(PetscPrintf(PETSC_COMM_SELF,
                           "stretch %.4f: lambda_max %.4e 1/s^2 (stable step %.4e s; solver's estimate at rest %.4e s), "
@@ -253,7 +252,7 @@ PetscErrorCode BrokenBonds(const std::vector<double> &fractions, FILE *summary, 
   for (std::size_t d = 0; d < 2 * n; ++d) free_dofs[d] = (PetscInt)d;
   for (double p : fractions) {
     bapd::BondState    state(families);
-    bapd::BondGeometry geometry;
+    bapd::nd::BondGeometry<2> geometry;
     std::mt19937       rng(12345);
     std::uniform_real_distribution<double> uniform(0.0, 1.0);
     std::size_t        broken = 0;
@@ -262,24 +261,21 @@ PetscErrorCode BrokenBonds(const std::vector<double> &fractions, FILE *summary, 
         const std::size_t j = (std::size_t)families.neighbour[families.offsets[i] + q];
         if (j > i && uniform(rng) < p) broken += bapd::break_bond(families, state, i, q);
       }
-    const PetscInt unusable = (PetscInt)bapd::compute_bond_geometry(cloud, families, state, geometry);
+    const PetscInt unusable = (PetscInt)bapd::nd::compute_bond_geometry<2>(cloud, families, state, geometry);
     const std::size_t total = families.n_bonds() / 2;
     for (int form = 0; form < 2; ++form) {
       std::vector<double>    A;
-      bapd::BondKernelWorkspace ws;
+      bapd::nd::Workspace<2> ws;
       std::vector<double>    bond_force(2 * families.n_bonds());
       Forces                 forces = [&](const std::vector<double> &u, std::vector<double> &f) {
         std::vector<double> y(cloud.x);
         for (std::size_t k = 0; k < y.size(); ++k) y[k] += u[k];
         bapd::with_model(scene.model, scene.formulation, scene.material, [&](const auto &model) {
-          ws.failed.clear();
-          if (form == 1)
-            bapd::compute_energy_consistent_bond_forces(model, cloud, y.data(), families, geometry, state, nullptr, bond_force.data(),
-                                                        ws, 0, families.n_family);
-          else bapd::compute_bond_forces(model, cloud, y.data(), families, geometry, state, nullptr, bond_force.data(), ws);
+          bapd::nd::compute_bond_forces<2>(form == 1 ? bapd::ForceForm::energy_consistent : bapd::ForceForm::bond_only, model,
+                                           cloud, y.data(), families, geometry, state, nullptr, bond_force.data(), ws);
         });
         f.assign(2 * n, 0.0);
-        bapd::assemble_force_density(families, cloud, bond_force.data(), n, f.data());
+        bapd::nd::assemble_force_density<2>(families, cloud, bond_force.data(), n, f.data());
         return PetscErrorCode(0);
       };
       PetscCall(BuildOperator(forces, std::vector<double>(2 * n, 0.0), free_dofs, scene.density, 1e-5 * scene.body.dx, &A));

@@ -21,7 +21,6 @@
 namespace bapd {
 namespace {
 
-using nd::ForceForm;
 using test3d::Body3D;
 using test3d::kDx;
 using test3d::Mat3d;

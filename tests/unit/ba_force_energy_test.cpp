@@ -1,5 +1,5 @@
-// The energy-consistent BA force (ba_force_energy.hpp): it is minus the gradient of
-// strain_energy(), its tangent is symmetric, Verlet conserves its energy, it conserves
+// The energy-consistent BA force (nd/ba_force.hpp): it is minus the gradient of
+// nd::strain_energy<2>(), its tangent is symmetric, Verlet conserves its energy, it conserves
 // angular momentum, and it keeps the bond-only form's linear momentum balance,
 // objectivity, patch test, failure reporting and rank-layout independence.
 #include <gtest/gtest.h>
@@ -10,7 +10,6 @@
 #include <random>
 #include <set>
 
-#include "bapd/ba_force_energy.hpp"
 #include "bapd/damage.hpp"
 #include "bapd/gent.hpp"
 #include "unit/kernel_fixtures.hpp"
@@ -49,7 +48,7 @@ TEST(BaForceEnergy, BaMasksAreSymmetricWithinAFamily)
   }
 }
 
-// f = -(1/V) dW/dy straight from the definition of W (ba_force_energy.hpp): every
+// f = -(1/V) dW/dy straight from the definition of W (nd/ba_force.hpp): every
 // bond's dPsi/dF scattered to the members of its BA family (found by distance, not by
 // the masks) and to its origin. No symmetry of the masks, no complement sums.
 template <class Model>
@@ -66,9 +65,9 @@ std::vector<double> reference_force(const test::Discretisation &d, const Model &
     std::vector<Term> terms;
     double            den = 0;
     for (std::size_t q = 0; q < fam.size(i); ++q) {
-      const BondShape shape = bond_shape(c, fam, d.state, i, q);
+      const nd::BondShape<2> shape = nd::bond_shape<2>(c, fam, d.state, i, q);
       if (!d.state.is_intact(i, q) || !d.geometry.is_usable(i, q) || !shape.usable) continue;
-      const Mat2 F = bond_deformation_gradient(c, y.data(), fam, d.geometry, d.state, i, q);
+      const Mat2 F = nd::bond_deformation_gradient<2>(c, y.data(), fam, d.geometry, d.state, i, q);
       double     c33 = 0;
       Mat2       P;
       if (model.stress(F, c33, P) != StressStatus::ok) continue;
@@ -114,22 +113,22 @@ TEST(BaForceEnergy, ForceMatchesAStraightforwardGradientOfTheEnergy)
   }
 }
 
-// max_k |f_k + (1/V_k) dW/dy_k| / max |f| by central differences of strain_energy().
+// max_k |f_k + (1/V_k) dW/dy_k| / max |f| by central differences of nd::strain_energy<2>().
 template <class Model> double finite_difference_error(const CutPlate &c, const Model &model, double h)
 {
   const test::Discretisation &d = c.d;
   std::vector<double>         y = c.y, t(2 * d.families.n_bonds()), f(y.size()), c33(d.families.n_bonds(), 0.0);
-  BondKernelWorkspace         ws;
-  EXPECT_TRUE(compute_energy_consistent_bond_forces(model, d.cloud, y.data(), d.families, d.geometry, d.state,
+  nd::Workspace<2>         ws;
+  EXPECT_TRUE(nd::compute_bond_forces<2>(ForceForm::energy_consistent, model, d.cloud, y.data(), d.families, d.geometry, d.state,
                                                     c33.data(), t.data(), ws).ok());
-  assemble_force_density(d.families, d.cloud, t.data(), d.size(), f.data());
+  nd::assemble_force_density<2>(d.families, d.cloud, t.data(), d.size(), f.data());
   double worst = 0;
   for (std::size_t k = 0; k < y.size(); ++k) { // (c33: the plane-stress solve's warm start, read only)
     const double y0 = y[k];
     y[k]            = y0 + h;
-    const double Wp = strain_energy(model, d.cloud, y.data(), d.families, d.geometry, d.state, c33.data(), d.size(), ws);
+    const double Wp = nd::strain_energy<2>(model, d.cloud, y.data(), d.families, d.geometry, d.state, c33.data(), d.size(), ws);
     y[k]            = y0 - h;
-    const double Wm = strain_energy(model, d.cloud, y.data(), d.families, d.geometry, d.state, c33.data(), d.size(), ws);
+    const double Wm = nd::strain_energy<2>(model, d.cloud, y.data(), d.families, d.geometry, d.state, c33.data(), d.size(), ws);
     y[k]            = y0;
     const double fd = -(Wp - Wm) / (2 * h) / d.cloud.volume[k / 2];
     worst           = std::max(worst, std::abs(fd - f[k]));
@@ -273,7 +272,7 @@ TEST(BaForceEnergy, StiffnessIsSymmetricAtFreeEdgesCornersAndNotchTipsWhereBondO
 // Velocity Verlet on a free 12 x 12 sheet (SVK, rho = 1000 kg/m^3), from a small
 // sinusoidal displacement at rest, dt = dt_factor x the form's stable step (power
 // iteration). The relative energy error |H_n - H_0| / H_0,
-// H = kinetic + strain_energy(), is sampled every 10 steps.
+// H = kinetic + nd::strain_energy<2>(), is sampled every 10 steps.
 struct VerletRun {
   double dt = 0, duration = 0;
   double early_max = 0;      // max relative error over steps 1 .. 1000
@@ -327,12 +326,12 @@ template <bool EnergyConsistent> VerletRun verlet(int steps, double dt_factor)
     y[2 * i] += 0.01 * kDx * std::sin(kPi * X) * std::cos(2 * kPi * Y);
     y[2 * i + 1] += 0.01 * kDx * std::cos(3 * kPi * X) * std::sin(kPi * Y);
   }
-  BondKernelWorkspace ws;
+  nd::Workspace<2> ws;
   auto energy = [&]() {
     double kinetic = 0;
     for (std::size_t i = 0; i < n; ++i)
       kinetic += 0.5 * rho * d.cloud.volume[i] * (vel[2 * i] * vel[2 * i] + vel[2 * i + 1] * vel[2 * i + 1]);
-    return kinetic + strain_energy(svk, d.cloud, y.data(), d.families, d.geometry, d.state, nullptr, n, ws);
+    return kinetic + nd::strain_energy<2>(svk, d.cloud, y.data(), d.families, d.geometry, d.state, nullptr, n, ws);
   };
   const double H0 = energy();
   acceleration(y, a);
@@ -396,9 +395,9 @@ TEST(BaForceEnergy, RankLocalCloudReproducesOneRankForcesBitForBit)
 {
   const GentPlaneStress gent = hydrogel();
   test::expect_rank_local_views_reproduce_one_rank([&](const PointCloud &cloud, const double *y, const Families &f,
-                                                       const BondGeometry &g, const BondState &s, double *c33,
-                                                       double *t, BondKernelWorkspace &ws) {
-    return compute_energy_consistent_bond_forces(gent, cloud, y, f, g, s, c33, t, ws);
+                                                       const nd::BondGeometry<2> &g, const BondState &s, double *c33,
+                                                       double *t, nd::Workspace<2> &ws) {
+    return nd::compute_bond_forces<2>(ForceForm::energy_consistent, gent, cloud, y, f, g, s, c33, t, ws);
   });
 }
 
@@ -410,10 +409,10 @@ TEST(BaForceEnergy, ModelFailuresAreReportedLikeTheBondOnlyKernelAndCarryNoEnerg
   std::vector<double>  y = d.cloud.x;
   for (std::size_t i = 0; i < d.size(); ++i) y[2 * i] += d.cloud.x[2 * i] * d.cloud.x[2 * i] / L; // F_xx = 1 + 2x/L
   std::vector<double>  c33_bo(d.families.n_bonds(), 7.0), c33_ec(c33_bo), t(2 * d.families.n_bonds());
-  BondKernelWorkspace  ws_bo, ws_ec;
-  const KernelStats    bo = compute_bond_forces(model, d.cloud, y.data(), d.families, d.geometry, d.state,
+  nd::Workspace<2>  ws_bo, ws_ec;
+  const KernelStats    bo = nd::compute_bond_forces<2>(ForceForm::bond_only, model, d.cloud, y.data(), d.families, d.geometry, d.state,
                                                 c33_bo.data(), t.data(), ws_bo);
-  const KernelStats    ec = compute_energy_consistent_bond_forces(model, d.cloud, y.data(), d.families, d.geometry,
+  const KernelStats    ec = nd::compute_bond_forces<2>(ForceForm::energy_consistent, model, d.cloud, y.data(), d.families, d.geometry,
                                                                   d.state, c33_ec.data(), t.data(), ws_ec);
   ASSERT_GT(ec.chain_limit, 1000u);
   EXPECT_EQ(ec.chain_limit, bo.chain_limit);
@@ -432,7 +431,7 @@ TEST(BaForceEnergy, ModelFailuresAreReportedLikeTheBondOnlyKernelAndCarryNoEnerg
   // Carry no energy: the force is the reference gradient with the failed bonds left
   // out of W (their model's stress is absent from every sum and from omega).
   std::vector<double>       f(2 * d.size());
-  assemble_force_density(d.families, d.cloud, t.data(), d.size(), f.data());
+  nd::assemble_force_density<2>(d.families, d.cloud, t.data(), d.size(), f.data());
   const std::vector<double> r     = reference_force(d, model, y);
   const double              scale = max_abs(r);
   for (std::size_t k = 0; k < f.size(); ++k) ASSERT_NEAR(f[k], r[k], 1e-12 * scale) << "dof " << k; // round-off

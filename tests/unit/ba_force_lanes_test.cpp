@@ -1,4 +1,4 @@
-// The bond kernel's four-bond path (ba_force.hpp: model_lanes, PlaneStress::stress_lanes)
+// The bond kernel's four-bond path (nd/ba_force.hpp: model_lanes, PlaneStress::stress_lanes)
 // on a non-affine field with Gent: bit for bit the bond forces and C33 of the same
 // kernel run one bond at a time, for both force forms, with cold and with warm starts;
 // and the workspace's keep_warm_start, which evaluates without writing C33 back.
@@ -10,8 +10,7 @@
 #include <random>
 #include <vector>
 
-#include "bapd/ba_force.hpp"
-#include "bapd/ba_force_energy.hpp"
+#include "bapd/nd/ba_force.hpp"
 #include "bapd/gent.hpp"
 #include "bapd/material.hpp"
 #include "unit/kernel_fixtures.hpp"
@@ -49,13 +48,13 @@ std::vector<double> bond_forces(const Model &model, const test::Discretisation &
                                 std::vector<double> &c33, bool keep_warm_start = false, bool energy_consistent = false)
 {
   std::vector<double> t(2 * d.families.n_bonds(), 0.0);
-  BondKernelWorkspace ws;
+  nd::Workspace<2> ws;
   ws.keep_warm_start = keep_warm_start;
   const KernelStats s =
       energy_consistent
-          ? compute_energy_consistent_bond_forces(model, d.cloud, y.data(), d.families, d.geometry, d.state, c33.data(),
+          ? nd::compute_bond_forces<2>(ForceForm::energy_consistent, model, d.cloud, y.data(), d.families, d.geometry, d.state, c33.data(),
                                                   t.data(), ws)
-          : compute_bond_forces(model, d.cloud, y.data(), d.families, d.geometry, d.state, c33.data(), t.data(), ws);
+          : nd::compute_bond_forces<2>(ForceForm::bond_only, model, d.cloud, y.data(), d.families, d.geometry, d.state, c33.data(), t.data(), ws);
   EXPECT_TRUE(s.ok());
   EXPECT_GT(s.evaluated, d.families.n_bonds() / 2); // most bonds are intact and usable
   return t;

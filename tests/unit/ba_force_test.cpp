@@ -8,7 +8,7 @@
 #include <random>
 #include <set>
 
-#include "bapd/ba_force.hpp"
+#include "bapd/nd/ba_force.hpp"
 #include "bapd/damage.hpp"
 #include "bapd/gent.hpp"
 #include "bapd/point_quantities.hpp"
@@ -32,8 +32,8 @@ double unit_strain_force(const test::Discretisation &d, std::size_t i, double mo
   for (std::size_t q = 0; q < d.families.size(i); ++q) {
     const std::size_t b = d.families.offsets[i] + q, j = static_cast<std::size_t>(d.families.neighbour[b]);
     const std::size_t r = static_cast<std::size_t>(d.families.reverse[b]) - d.families.offsets[j];
-    const Vec2        g = bond_shape(d.cloud, d.families, d.state, i, q).force_vector;
-    const Vec2        h = bond_shape(d.cloud, d.families, d.state, j, r).force_vector;
+    const Vec2        g = nd::bond_shape<2>(d.cloud, d.families, d.state, i, q).force_vector;
+    const Vec2        h = nd::bond_shape<2>(d.cloud, d.families, d.state, j, r).force_vector;
     s += (std::hypot(g[0], g[1]) + std::hypot(h[0], h[1])) * d.cloud.volume[j];
   }
   return modulus * s;
@@ -144,7 +144,7 @@ TEST(BaForce, BondForcesMatchAStraightforwardImplementationOfEq23)
   std::vector<std::size_t> touched;
   for (std::size_t i = 0; i < d.size(); i += 3)
     for (std::size_t q = 1; q < d.families.size(i); q += 5) break_bond(d.families, d.state, i, q, &touched);
-  compute_bond_geometry(d.cloud, d.families, d.state, d.geometry, touched);
+  nd::compute_bond_geometry<2>(d.cloud, d.families, d.state, d.geometry, touched);
   test::SaintVenantKirchhoff2D svk;
   std::vector<double>          t, f;
   EXPECT_TRUE(d.forces(svk, y, t, f).ok());
@@ -195,7 +195,7 @@ TEST(BaForce, WideHorizonWithTwoMaskWordsPassesThePatchTest)
   for (std::size_t i = 0; i < d.size(); ++i)
     for (std::size_t q = 0; q < d.families.size(i); ++q)
       if (d.geometry.is_usable(i, q))
-        worst_F = std::max(worst_F, test::norm(bond_deformation_gradient(d.cloud, y.data(), d.families, d.geometry,
+        worst_F = std::max(worst_F, test::norm(nd::bond_deformation_gradient<2>(d.cloud, y.data(), d.families, d.geometry,
                                                                          d.state, i, q) - kLargeAffine) / test::norm(kLargeAffine));
   EXPECT_LT(worst_F, 1e-12); // as in the 3.015 dx patch test
   std::vector<double> t, f;
@@ -245,7 +245,7 @@ TEST(BaForce, ConservesLinearMomentumWithNotchHoleAndBrokenBonds)
   std::vector<std::size_t> touched;
   for (std::size_t i = 0; i < d.size(); ++i)
     for (std::size_t q = 0; q < d.families.size(i); q += 7) break_bond(d.families, d.state, i, q, &touched);
-  compute_bond_geometry(d.cloud, d.families, d.state, d.geometry, touched);
+  nd::compute_bond_geometry<2>(d.cloud, d.families, d.state, d.geometry, touched);
   ASSERT_GT(d.state.count_broken(d.families, d.size()), 1000u);
 
   test::SaintVenantKirchhoff2D svk;
@@ -293,7 +293,7 @@ double interior_stiffness_factor(double horizon_factor)
 void set_correction(test::Discretisation &d, StressCorrection c)
 {
   d.geometry.stress_correction = c;
-  compute_bond_geometry(d.cloud, d.families, d.state, d.geometry);
+  nd::compute_bond_geometry<2>(d.cloud, d.families, d.state, d.geometry);
 }
 
 enum class Form { bond_only, energy_consistent };
@@ -392,7 +392,7 @@ TEST(BaForce, StressCorrectionMakesTheInteriorModulusTheContinuumOne)
 TEST(BaForce, EnergyConsistentFormHasTheContinuumModulusWithoutACorrection)
 {
   // sum_p t_ip (x) xi_ip V_p = omega_i sum_q V_q P_iq K_iq^{-1} K_iq = the mean of the
-  // bond stresses (ba_force_energy.hpp): the energy-consistent form is stress-
+  // bond stresses (nd/ba_force.hpp): the energy-consistent form is stress-
   // consistent as it is, which is why -force_stress_correction leaves it alone.
   const double eps = 1e-4;
   for (double h : {2.515, 3.015, 3.515}) {
@@ -413,7 +413,7 @@ TEST(BaForce, InteriorVirialTensorIsTheLatticeFigureAndItsCorrectionItsInverse)
     test::Discretisation d(test::plate(26, 26, kDx), h);
     set_correction(d, StressCorrection::tensor);
     const std::size_t i = 13 * 26 + 13; // 13 rows from every edge: 3.7 horizons
-    const Mat2        M = virial_tensor(d.cloud, d.families, d.state, i), C = d.geometry.correction_of(i);
+    const Mat2        M = nd::virial_tensor<2>(d.cloud, d.families, d.state, i), C = d.geometry.correction_of(i);
     const double      m = interior_stiffness_factor(h);
     // The same sums in another order: round-off of ~40 terms of size 1.
     EXPECT_NEAR(M[0], m, 1e-13);
@@ -537,19 +537,20 @@ TEST(BaForce, StrainEnergyOfAffineMotionIsTheContinuumEnergy)
   body.holes.push_back({10.3 * kDx, 9.6 * kDx, 3.4 * kDx});
   test::Discretisation        d(body);
   test::SaintVenantKirchhoff2D svk;
-  BondKernelWorkspace          ws;
+  nd::Workspace<2>          ws;
   KernelStats                  stats;
   const std::vector<double>    y = d.affine(kLargeAffine, 1.0e-2, 2.0e-2);
-  const double                 W = strain_energy(svk, d.cloud, y.data(), d.families, d.geometry, d.state, nullptr,
+  const double                 W = nd::strain_energy<2>(svk, d.cloud, y.data(), d.families, d.geometry, d.state, nullptr,
                                                  d.size(), ws, &stats);
   double c = 0, psi = 0, volume = 0;
   svk.energy(kLargeAffine, c, psi);
   for (double v : d.cloud.volume) volume += v;
   EXPECT_NEAR(W, psi * volume, 1e-12 * psi * volume); // Psi(F_ij) = Psi(A) + round-off
   EXPECT_EQ(stats.evaluated, d.families.n_bonds());
-  EXPECT_EQ(strain_energy(svk, d.cloud, y.data(), d.families, d.geometry, d.state, d.size()), W);
+  nd::Workspace<2> fresh; // a second evaluation, in a workspace of its own: the same bits
+  EXPECT_EQ(nd::strain_energy<2>(svk, d.cloud, y.data(), d.families, d.geometry, d.state, nullptr, d.size(), fresh), W);
   std::vector<double> per_point(d.size());
-  strain_energy(svk, d.cloud, y.data(), d.families, d.geometry, d.state, nullptr, d.size(), ws, nullptr, per_point.data());
+  nd::strain_energy<2>(svk, d.cloud, y.data(), d.families, d.geometry, d.state, nullptr, d.size(), ws, nullptr, per_point.data());
   double sum = 0;
   for (std::size_t i = 0; i < d.size(); ++i) {
     EXPECT_NEAR(per_point[i], psi * d.cloud.volume[i], 1e-12 * psi * d.cloud.volume[i]); // as above, per point
@@ -567,15 +568,15 @@ TEST(BaForce, ModelFailureIsCountedReportedAndCarriesNoForce)
   std::vector<double>  y = d.cloud.x;
   for (std::size_t i = 0; i < d.size(); ++i) y[2 * i] += d.cloud.x[2 * i] * d.cloud.x[2 * i] / L;
   std::vector<double>      c33(d.families.n_bonds(), 7.0), t(2 * d.families.n_bonds(), 99.0);
-  BondKernelWorkspace      ws;
-  const KernelStats        s = compute_bond_forces(model, d.cloud, y.data(), d.families, d.geometry, d.state,
+  nd::Workspace<2>      ws;
+  const KernelStats        s = nd::compute_bond_forces<2>(ForceForm::bond_only, model, d.cloud, y.data(), d.families, d.geometry, d.state,
                                                    c33.data(), t.data(), ws);
   std::set<std::size_t>    expected;
   std::size_t              first = KernelStats::none;
   for (std::size_t i = 0; i < d.size(); ++i)
     for (std::size_t q = 0; q < d.families.size(i); ++q) {
       const std::size_t b = d.families.offsets[i] + q;
-      if (bond_deformation_gradient(d.cloud, y.data(), d.families, d.geometry, d.state, i, q)[0] > 1.5) {
+      if (nd::bond_deformation_gradient<2>(d.cloud, y.data(), d.families, d.geometry, d.state, i, q)[0] > 1.5) {
         expected.insert(b);
         if (first == KernelStats::none) first = i;
         EXPECT_EQ(t[2 * b], 0.0);
@@ -614,9 +615,9 @@ TEST(BaForce, RankLocalCloudReproducesOneRankForcesBitForBit)
 {
   const test::SaintVenantKirchhoff2D svk;
   test::expect_rank_local_views_reproduce_one_rank([&](const PointCloud &cloud, const double *y, const Families &f,
-                                                       const BondGeometry &g, const BondState &s, double *c33,
-                                                       double *t, BondKernelWorkspace &ws) {
-    return compute_bond_forces(svk, cloud, y, f, g, s, c33, t, ws);
+                                                       const nd::BondGeometry<2> &g, const BondState &s, double *c33,
+                                                       double *t, nd::Workspace<2> &ws) {
+    return nd::compute_bond_forces<2>(ForceForm::bond_only, svk, cloud, y, f, g, s, c33, t, ws);
   });
 }
 
@@ -636,7 +637,7 @@ struct CorrectedCutPlate {
     std::vector<std::size_t> touched;
     for (std::size_t i = 0; i < d.size(); ++i)
       for (std::size_t q = 0; q < d.families.size(i); q += 7) break_bond(d.families, d.state, i, q, &touched);
-    compute_bond_geometry(d.cloud, d.families, d.state, d.geometry, touched);
+    nd::compute_bond_geometry<2>(d.cloud, d.families, d.state, d.geometry, touched);
   }
   static Body2D make_body()
   {
@@ -652,9 +653,9 @@ TEST(BaForce, StressCorrectionIsThatOfTheReferenceFamiliesAfterBreakingAndFromSc
   for (StressCorrection c : {StressCorrection::tensor, StressCorrection::scalar}) {
     CorrectedCutPlate p(c);
     ASSERT_GT(p.d.state.count_broken(p.d.families, p.d.size()), 1000u);
-    BondGeometry fresh;
+    nd::BondGeometry<2> fresh;
     fresh.stress_correction = c;
-    compute_bond_geometry(p.d.cloud, p.d.families, p.d.state, fresh);
+    nd::compute_bond_geometry<2>(p.d.cloud, p.d.families, p.d.state, fresh);
     ASSERT_EQ(fresh.correction.size(), 4 * p.d.size());
     EXPECT_EQ(p.d.geometry.correction, fresh.correction); // bit for bit
     EXPECT_EQ(p.d.geometry.usable, fresh.usable);
@@ -753,8 +754,8 @@ TEST(BaForce, StressCorrectedRankLocalCloudReproducesOneRankForcesBitForBit)
   const test::SaintVenantKirchhoff2D svk;
   for (StressCorrection c : {StressCorrection::tensor, StressCorrection::scalar})
     test::expect_rank_local_views_reproduce_one_rank(
-        [&](const PointCloud &cloud, const double *y, const Families &f, const BondGeometry &g, const BondState &s,
-            double *c33, double *t, BondKernelWorkspace &ws) { return compute_bond_forces(svk, cloud, y, f, g, s, c33, t, ws); },
+        [&](const PointCloud &cloud, const double *y, const Families &f, const nd::BondGeometry<2> &g, const BondState &s,
+            double *c33, double *t, nd::Workspace<2> &ws) { return nd::compute_bond_forces<2>(ForceForm::bond_only, svk, cloud, y, f, g, s, c33, t, ws); },
         c);
 }
 
@@ -815,7 +816,7 @@ TEST(BaForce, AssemblyRejectsOwnedPointsWithoutGhostFamilies)
   test::Discretisation d(test::plate(10, 10, kDx));
   const Families       f = build_families(d.cloud, 50, d.horizon, {}); // points 50.. have no family
   std::vector<double>  t(2 * f.n_bonds(), 0.0), fd(2 * 50);
-  EXPECT_THROW(assemble_force_density(f, d.cloud, t.data(), 50, fd.data()), std::logic_error);
+  EXPECT_THROW(nd::assemble_force_density<2>(f, d.cloud, t.data(), 50, fd.data()), std::logic_error);
 }
 
 } // namespace

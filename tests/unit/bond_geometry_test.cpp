@@ -3,8 +3,8 @@
 
 #include <cmath>
 
-#include "bapd/ba_force.hpp"
-#include "bapd/bond_geometry.hpp"
+#include "bapd/nd/ba_force.hpp"
+#include "bapd/nd/bond_geometry.hpp"
 #include "unit/test_models.hpp"
 
 namespace bapd {
@@ -26,7 +26,7 @@ TEST(BondGeometry, ShapeTensorInverseInvertsTheBondAssociatedShapeTensor)
         const double      d0 = d.cloud.x[2 * k] - d.cloud.x[2 * i], d1 = d.cloud.x[2 * k + 1] - d.cloud.x[2 * i + 1];
         k00 += d0 * d0 * d.cloud.volume[k], k01 += d0 * d1 * d.cloud.volume[k], k11 += d1 * d1 * d.cloud.volume[k];
       }
-      const BondShape shape = bond_shape(d.cloud, f, d.state, i, q);
+      const nd::BondShape<2> shape = nd::bond_shape<2>(d.cloud, f, d.state, i, q);
       ASSERT_TRUE(shape.usable);
       const auto &ki    = shape.shape_tensor_inv;
       const Mat2  KKinv = Mat2{k00, k01, k01, k11} * Mat2{ki[0], ki[1], ki[1], ki[2]};
@@ -46,14 +46,14 @@ TEST(BondGeometry, ForceScaleIsHalfTheVolumeFractionOverPhi)
       for (std::size_t p = 0; p < f.size(i); ++p) members += f.ba(b)[p / 64] >> (p % 64) & 1u;
       const double    phi_xi = static_cast<double>(members) / static_cast<double>(f.size(i)); // equal volumes
       const double    phi    = static_cast<double>(f.size(i)) / static_cast<double>(f.size(i) + f.size(j));
-      const BondShape shape  = bond_shape(d.cloud, f, d.state, i, q);
+      const nd::BondShape<2> shape  = nd::bond_shape<2>(d.cloud, f, d.state, i, q);
       EXPECT_NEAR(shape.force_scale, 0.5 * phi_xi / phi, 1e-15); // a few roundings of O(1) numbers
       EXPECT_NEAR(shape.volume_fraction, phi_xi, 1e-15);
     }
   // Interior: phi = 1/2, so the scale is the volume fraction itself (11 to 21 of 28).
   const std::size_t c = 10 * 20 + 10;
   for (std::size_t q = 0; q < 28; ++q) {
-    const double s = bond_shape(d.cloud, f, d.state, c, q).force_scale * 28.0;
+    const double s = nd::bond_shape<2>(d.cloud, f, d.state, c, q).force_scale * 28.0;
     EXPECT_NEAR(s, std::round(s), 1e-13);
     EXPECT_GE(std::round(s), 11.0);
     EXPECT_LE(std::round(s), 21.0);
@@ -85,8 +85,8 @@ TEST(BondGeometry, MissingGhostFamilyVolumeIsReported)
   c.family_volume.clear();
   const Families f = build_families(c, 50, d.horizon, {}); // ring-2 V(H) not shipped
   compute_family_volumes(c, f);
-  BondGeometry g;
-  EXPECT_THROW(compute_bond_geometry(c, f, BondState(f), g), std::invalid_argument);
+  nd::BondGeometry<2> g;
+  EXPECT_THROW(nd::compute_bond_geometry<2>(c, f, BondState(f), g), std::invalid_argument);
 }
 
 } // namespace

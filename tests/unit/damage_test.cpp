@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "bapd/ba_force.hpp"
+#include "bapd/nd/ba_force.hpp"
 #include "bapd/damage.hpp"
 #include "unit/test_models.hpp"
 
@@ -48,7 +48,7 @@ TEST(Damage, StretchedBondBreaksForBothCopiesAndStaysBrokenAfterUnloading)
   EXPECT_TRUE(std::binary_search(touched.begin(), touched.end(), p));
   EXPECT_TRUE(std::is_sorted(touched.begin(), touched.end()));
   EXPECT_EQ(d.state.count_broken(d.families, d.size()), 2 * expected);
-  compute_bond_geometry(d.cloud, d.families, d.state, d.geometry, touched);
+  nd::compute_bond_geometry<2>(d.cloud, d.families, d.state, d.geometry, touched);
   // Nothing more breaks under the same load.
   EXPECT_EQ(nd::break_bonds<2>(d.cloud, y.data(), d.families, s_c, d.state, touched), 0u);
 
@@ -97,18 +97,18 @@ TEST(Damage, BreakingABondChangesTheShapeTensorsOfItsEndPointsOnly)
   test::Discretisation d(test::plate(20, 20, 1.0));
   const std::size_t    i = 10 * 20 + 10, k = 11 * 20 + 12; // offset (2, 1)
   const std::size_t    qk = position_of(d.families, i, k);
-  std::vector<BondShape> before(d.families.n_bonds());
+  std::vector<nd::BondShape<2>> before(d.families.n_bonds());
   for (std::size_t p = 0; p < d.size(); ++p)
     for (std::size_t q = 0; q < d.families.size(p); ++q)
-      before[d.families.offsets[p] + q] = bond_shape(d.cloud, d.families, d.state, p, q);
+      before[d.families.offsets[p] + q] = nd::bond_shape<2>(d.cloud, d.families, d.state, p, q);
   std::vector<std::size_t> touched;
   break_bond(d.families, d.state, i, qk, &touched);
   ASSERT_EQ(touched.size(), 2u);
-  compute_bond_geometry(d.cloud, d.families, d.state, d.geometry, touched);
+  nd::compute_bond_geometry<2>(d.cloud, d.families, d.state, d.geometry, touched);
   std::size_t changed = 0;
   for (std::size_t q = 0; q < d.families.size(i); ++q) {
     const std::size_t b     = d.families.offsets[i] + q;
-    const BondShape   after = bond_shape(d.cloud, d.families, d.state, i, q);
+    const nd::BondShape<2>   after = nd::bond_shape<2>(d.cloud, d.families, d.state, i, q);
     ASSERT_TRUE(d.families.ba(b)[q / 64] >> (q % 64) & 1u); // j in B_ij, always
     const bool k_in = d.families.ba(b)[qk / 64] >> (qk % 64) & 1u;
     if (q == qk) {
@@ -137,14 +137,15 @@ TEST(Damage, BreakingABondChangesTheShapeTensorsOfItsEndPointsOnly)
   for (std::size_t p = 0; p < d.size(); ++p) {
     if (p == i || p == k) continue;
     for (std::size_t q = 0; q < d.families.size(p); ++q) {
-      const BondShape after = bond_shape(d.cloud, d.families, d.state, p, q);
-      ASSERT_EQ(after.shape_tensor_inv, before[d.families.offsets[p] + q].shape_tensor_inv);
+      const nd::BondShape<2> after = nd::bond_shape<2>(d.cloud, d.families, d.state, p, q);
+      for (int c = 0; c < 3; ++c) // K^{-1}'s upper triangle (a C array: element by element)
+        ASSERT_EQ(after.shape_tensor_inv[c], before[d.families.offsets[p] + q].shape_tensor_inv[c]);
       ASSERT_EQ(after.force_scale, before[d.families.offsets[p] + q].force_scale);
     }
   }
   // Recomputing the touched points equals recomputing everything.
-  BondGeometry full;
-  compute_bond_geometry(d.cloud, d.families, d.state, full);
+  nd::BondGeometry<2> full;
+  nd::compute_bond_geometry<2>(d.cloud, d.families, d.state, full);
   EXPECT_EQ(full.usable, d.geometry.usable);
   EXPECT_EQ(full.singular, d.geometry.singular);
 }
@@ -160,7 +161,7 @@ TEST(Damage, BondWithSingularShapeTensorCarriesNoForceAndIsCounted)
     if (d.cloud.x[2 * j + 1] != d.cloud.x[2 * i + 1]) break_bond(d.families, d.state, i, q, &touched);
   }
   touched.push_back(i);
-  const std::size_t not_usable = compute_bond_geometry(d.cloud, d.families, d.state, d.geometry, touched);
+  const std::size_t not_usable = nd::compute_bond_geometry<2>(d.cloud, d.families, d.state, d.geometry, touched);
   EXPECT_EQ(not_usable, 6u); // (+-1, 0), (+-2, 0), (+-3, 0)
   EXPECT_EQ(d.geometry.count_unusable(d.size()), 6u);
   test::SaintVenantKirchhoff2D svk;
@@ -174,7 +175,7 @@ TEST(Damage, BondWithSingularShapeTensorCarriesNoForceAndIsCounted)
     EXPECT_EQ(t[2 * b + 1], 0.0);
   }
   // Recomputing every point's geometry finds the same six: the count is of the state.
-  EXPECT_EQ(compute_bond_geometry(d.cloud, d.families, d.state, d.geometry), 6u);
+  EXPECT_EQ(nd::compute_bond_geometry<2>(d.cloud, d.families, d.state, d.geometry), 6u);
 }
 
 TEST(Damage, NotchBondsAreNotDamage)

@@ -97,7 +97,7 @@ TEST(Family3D, CellSearchFindsWhatADirectSearchFinds)
 
 TEST(Family3D, BaMasksAreSymmetricWithinAFamily)
 {
-  // p in B_iq iff q in B_ip: the premise of the energy-consistent form (ba_force_energy.hpp).
+  // p in B_iq iff q in B_ip: the premise of the energy-consistent form (nd/ba_force.hpp).
   const test3d::Body3D b(8, 3.015);
   std::size_t          checked = 0;
   for (std::size_t i = 0; i < b.size(); i += 7)

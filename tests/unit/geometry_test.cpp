@@ -189,7 +189,7 @@ TEST_P(NonUniformCloud, PhiAndPhiXiTakeTheUnequalVolumes)
         if ((d.families.ba(b)[p / 64] >> (p % 64)) & 1u) VB += v;
       }
       const double    phi = VH / (VH + d.cloud.family_volume[j]), phi_xi = VB / VH;
-      const BondShape s   = bond_shape(d.cloud, d.families, d.state, i, q);
+      const nd::BondShape<2> s   = nd::bond_shape<2>(d.cloud, d.families, d.state, i, q);
       ASSERT_TRUE(s.usable);
       worst  = std::max({worst, std::fabs(s.volume_fraction - phi_xi) / phi_xi, std::fabs(s.force_scale - 0.5 * phi_xi / phi) / s.force_scale});
       spread = std::max(spread, std::fabs(phi - 0.5));
@@ -201,7 +201,7 @@ TEST_P(NonUniformCloud, PhiAndPhiXiTakeTheUnequalVolumes)
 TEST_P(NonUniformCloud, TensorCorrectionGivesUniformStressAsTheVirialAtEveryPoint)
 {
   // sum_j t_ij (x) xi_ij V_j = P C_i M_i = P at every point (C_i formed from the
-  // reference families, bond_geometry.hpp), boundary points included.
+  // reference families, nd/bond_geometry.hpp), boundary points included.
   test::Discretisation d(make_points(body(), kFactor), StressCorrection::tensor);
   const Mat2           A = {1.2, 0.1, -0.05, 0.9};
   std::vector<double>  t, f;
@@ -217,7 +217,7 @@ TEST_P(NonUniformCloud, TensorCorrectionGivesUniformStressAsTheVirialAtEveryPoin
   affine_forces(plain, A, t0, f0);
   double off = 0;
   for (std::size_t i = 0; i < plain.size(); ++i)
-    off = std::max(off, test::norm(virial_tensor(plain.cloud, plain.families, plain.state, i) - Mat2{1, 0, 0, 1}));
+    off = std::max(off, test::norm(nd::virial_tensor<2>(plain.cloud, plain.families, plain.state, i) - Mat2{1, 0, 0, 1}));
   EXPECT_GT(off, 1e-2);
 }
 

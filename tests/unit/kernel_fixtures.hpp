@@ -50,7 +50,7 @@ struct CutPlate {
     std::vector<std::size_t> touched;
     for (std::size_t i = 0; i < d.size(); i += 3)
       for (std::size_t q = 1; q < d.families.size(i); q += 5) break_bond(d.families, d.state, i, q, &touched);
-    compute_bond_geometry(d.cloud, d.families, d.state, d.geometry, touched);
+    nd::compute_bond_geometry<2>(d.cloud, d.families, d.state, d.geometry, touched);
   }
   static Body2D make_body(int n)
   {
@@ -97,7 +97,7 @@ inline double worst_affine_gradient_error(const Discretisation &d, const std::ve
     for (std::size_t q = 0; q < d.families.size(i); ++q) {
       if (!d.geometry.is_usable(i, q)) continue;
       ++*usable;
-      const Mat2 F = bond_deformation_gradient(d.cloud, y.data(), d.families, d.geometry, d.state, i, q);
+      const Mat2 F = nd::bond_deformation_gradient<2>(d.cloud, y.data(), d.families, d.geometry, d.state, i, q);
       worst        = std::max(worst, norm(F - A) / norm(A));
     }
   return worst;
@@ -189,7 +189,7 @@ void expect_rank_local_views_reproduce_one_rank(Kernel kernel, StressCorrection 
   body.notches.push_back({24 * dx, 12.0 * dx, 14.0 * dx, 12.0 * dx});
   Discretisation      d(body);
   d.geometry.stress_correction = correction;
-  compute_bond_geometry(d.cloud, d.families, d.state, d.geometry);
+  nd::compute_bond_geometry<2>(d.cloud, d.families, d.state, d.geometry);
   std::mt19937        rng(3);
   std::vector<double> y = d.affine({1.4, 0.1, 0.0, 0.95});
   for (double &v : y) v += random_between(rng, -0.15, 0.15) * dx;
@@ -197,12 +197,12 @@ void expect_rank_local_views_reproduce_one_rank(Kernel kernel, StressCorrection 
   // One rank: break by stretch, recompute, forces.
   std::vector<std::size_t> touched;
   ASSERT_GT(nd::break_bonds<2>(d.cloud, y.data(), d.families, s_c, d.state, touched), 10u);
-  compute_bond_geometry(d.cloud, d.families, d.state, d.geometry, touched);
+  nd::compute_bond_geometry<2>(d.cloud, d.families, d.state, d.geometry, touched);
   std::vector<double> t(2 * d.families.n_bonds(), 0.0), f(2 * d.size(), 0.0), c33(d.families.n_bonds(), 0.0);
   {
-    BondKernelWorkspace ws;
+    nd::Workspace<2> ws;
     ASSERT_TRUE(kernel(d.cloud, y.data(), d.families, d.geometry, d.state, c33.data(), t.data(), ws).ok());
-    assemble_force_density(d.families, d.cloud, t.data(), d.size(), f.data());
+    nd::assemble_force_density<2>(d.families, d.cloud, t.data(), d.size(), f.data());
   }
   // Two "ranks": a band and its complement, in scrambled local orders.
   for (int part = 0; part < 2; ++part) {
@@ -216,13 +216,13 @@ void expect_rank_local_views_reproduce_one_rank(Kernel kernel, StressCorrection 
     for (std::size_t k = 0; k < v.global.size(); ++k) ly[2 * k] = y[2 * v.global[k]], ly[2 * k + 1] = y[2 * v.global[k] + 1];
     std::vector<std::size_t> lt;
     nd::break_bonds<2>(v.cloud, ly.data(), lf, s_c, ls, lt);
-    BondGeometry lg;
+    nd::BondGeometry<2> lg;
     lg.stress_correction = correction;
-    compute_bond_geometry(v.cloud, lf, ls, lg);
+    nd::compute_bond_geometry<2>(v.cloud, lf, ls, lg);
     std::vector<double> lbf(2 * lf.n_bonds()), lfd(2 * v.n_owned), lc33(lf.n_bonds(), 0.0);
-    BondKernelWorkspace ws;
+    nd::Workspace<2> ws;
     kernel(v.cloud, ly.data(), lf, lg, ls, lc33.data(), lbf.data(), ws);
-    assemble_force_density(lf, v.cloud, lbf.data(), v.n_owned, lfd.data());
+    nd::assemble_force_density<2>(lf, v.cloud, lbf.data(), v.n_owned, lfd.data());
     for (std::size_t k = 0; k < v.n_owned; ++k) {
       const std::size_t gi = v.global[k];
       ASSERT_EQ(lfd[2 * k], f[2 * gi]) << "natural id " << gi; // bit for bit

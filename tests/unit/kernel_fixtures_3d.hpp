@@ -108,7 +108,7 @@ struct Body3D {
     return y;
   }
   template <class Model>
-  KernelStats forces(nd::ForceForm form, const Model &model, const std::vector<double> &y, std::vector<double> &t,
+  KernelStats forces(ForceForm form, const Model &model, const std::vector<double> &y, std::vector<double> &t,
                      std::vector<double> &f) const
   {
     nd::Workspace<3> ws;

@@ -26,7 +26,7 @@ Mat2 rotation(double deg)
 
 Mat2 at(const std::vector<double> &v, std::size_t i) { return {v[4 * i], v[4 * i + 1], v[4 * i + 2], v[4 * i + 3]}; }
 
-// Relative round-off bound: F_ij = A to about cond(K) eps ~ 1e-14 (bond_geometry.hpp),
+// Relative round-off bound: F_ij = A to about cond(K) eps ~ 1e-14 (nd/bond_geometry.hpp),
 // the plane-stress C33 solve stops at ~1e-13 of the stress scale, and the weighted
 // mean of ~28 equal values adds ~28 eps.
 constexpr double kRoundOff = 1e-11;
@@ -133,7 +133,7 @@ TEST(PointQuantities, PointWithoutBondsGetsZeros)
     if (q == d.families.size(lone)) break;
     break_bond(d.families, d.state, lone, q, &touched);
   }
-  compute_bond_geometry(d.cloud, d.families, d.state, d.geometry, touched);
+  nd::compute_bond_geometry<2>(d.cloud, d.families, d.state, d.geometry, touched);
   const std::vector<double> y = d.affine(kStretch);
   PointQuantities           q;
   point_quantities(ModelKind::gent, Formulation::plane_stress, kGel, d.cloud, y.data(), d.families, test::nd_geometry(d), d.state,

@@ -7,15 +7,13 @@
 #include <random>
 #include <vector>
 
-#include "bapd/ba_force.hpp"
-#include "bapd/ba_force_energy.hpp"
+#include "bapd/nd/ba_force.hpp"
 #include "bapd/body.hpp"
-#include "bapd/bond_geometry.hpp"
+#include "bapd/nd/bond_geometry.hpp"
 #include "bapd/bond_state.hpp"
 #include "bapd/family.hpp"
 #include "bapd/lattice.hpp"
 #include "bapd/material.hpp"
-#include "bapd/nd/bond_geometry.hpp"
 #include "bapd/tensor.hpp"
 
 namespace bapd::test {
@@ -91,7 +89,7 @@ struct Discretisation {
   PointCloud   cloud;
   Families     families;
   BondState    state;
-  BondGeometry geometry;
+  nd::BondGeometry<2> geometry;
   double       horizon = 0;
 
   explicit Discretisation(const Body2D &body, double horizon_factor = 3.015)
@@ -100,7 +98,7 @@ struct Discretisation {
     families = build_families(cloud, cloud.size(), horizon, body.notches);
     compute_family_volumes(cloud, families);
     state = BondState(families);
-    compute_bond_geometry(cloud, families, state, geometry);
+    nd::compute_bond_geometry<2>(cloud, families, state, geometry);
   }
   // Points with their own volumes and horizons (geometry.hpp: make_points of given
   // points), with the stress correction C_i if asked.
@@ -111,7 +109,7 @@ struct Discretisation {
     compute_family_volumes(cloud, families);
     state                       = BondState(families);
     geometry.stress_correction  = correction;
-    compute_bond_geometry(cloud, families, state, geometry);
+    nd::compute_bond_geometry<2>(cloud, families, state, geometry);
   }
   std::size_t size() const { return cloud.size(); }
 
@@ -130,26 +128,26 @@ struct Discretisation {
   template <class Model> KernelStats forces(const Model &model, const std::vector<double> &y,
                                             std::vector<double> &bond_force, std::vector<double> &f) const
   {
-    BondKernelWorkspace ws;
+    nd::Workspace<2> ws;
     bond_force.assign(2 * families.n_bonds(), 0.0);
-    const KernelStats s = compute_bond_forces(model, cloud, y.data(), families, geometry, state, nullptr,
+    const KernelStats s = nd::compute_bond_forces<2>(ForceForm::bond_only, model, cloud, y.data(), families, geometry, state, nullptr,
                                               bond_force.data(), ws);
     f.assign(2 * size(), 0.0);
-    assemble_force_density(families, cloud, bond_force.data(), size(), f.data());
+    nd::assemble_force_density<2>(families, cloud, bond_force.data(), size(), f.data());
     return s;
   }
 
-  // The same with the energy-consistent bond forces (ba_force_energy.hpp).
+  // The same with the energy-consistent bond forces (nd/ba_force.hpp).
   template <class Model> KernelStats energy_consistent_forces(const Model &model, const std::vector<double> &y,
                                                               std::vector<double> &bond_force,
                                                               std::vector<double> &f) const
   {
-    BondKernelWorkspace ws;
+    nd::Workspace<2> ws;
     bond_force.assign(2 * families.n_bonds(), 0.0);
-    const KernelStats s = compute_energy_consistent_bond_forces(model, cloud, y.data(), families, geometry, state,
+    const KernelStats s = nd::compute_bond_forces<2>(ForceForm::energy_consistent, model, cloud, y.data(), families, geometry, state,
                                                                 nullptr, bond_force.data(), ws);
     f.assign(2 * size(), 0.0);
-    assemble_force_density(families, cloud, bond_force.data(), size(), f.data());
+    nd::assemble_force_density<2>(families, cloud, bond_force.data(), size(), f.data());
     return s;
   }
 
@@ -158,10 +156,8 @@ struct Discretisation {
   int iy(std::size_t i, double dx) const { return static_cast<int>(std::floor(cloud.x[2 * i + 1] / dx)); }
 };
 
-// Uniform in [lo, hi) from the raw 32-bit engine output (the same sequence on every
-// standard library).
-// The driver's geometry (nd::BondGeometry<2>, issue 21 stage 2) of d's current bond
-// state, with d's stress correction: for the output path (point_quantities).
+// A geometry computed afresh from d's current bond state, with d's stress correction
+// (d.geometry itself may be stale on purpose): for the output path (point_quantities).
 inline nd::BondGeometry<2> nd_geometry(const Discretisation &d)
 {
   nd::BondGeometry<2> g;
@@ -170,6 +166,8 @@ inline nd::BondGeometry<2> nd_geometry(const Discretisation &d)
   return g;
 }
 
+// Uniform in [lo, hi) from the raw 32-bit engine output (the same sequence on every
+// standard library).
 inline double random_between(std::mt19937 &rng, double lo, double hi)
 {
   return lo + (hi - lo) * (static_cast<double>(rng()) / 4294967296.0);

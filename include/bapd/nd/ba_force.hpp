@@ -1,45 +1,75 @@
 #pragma once
 // Bond-associated NOSB bond forces in D = 2 or 3 dimensions, both force forms
-// (paper eqs 9, 23; METHOD.md sections 2-3): the dimension-generic form of
-// ba_force.hpp and ba_force_energy.hpp, one code path instantiated per D.
+// (paper eqs 9, 23; METHOD.md sections 2-3): the one kernel for 2D and 3D (issue 21;
+// stage 3 retired the 2D-only ba_force.hpp and ba_force_energy.hpp, whose operations
+// D = 2 does in their order).
 //
 // Bond-only (the paper's, eq 23), for every intact bond b = (i -> j) with a usable K:
 //   t_ij = P(F_ij) g_ij,   g_ij = 1/2 phi_xi/phi C_i K_ij^{-1} (x_j - x_i)
 // with C_i the stress correction (tensor: M_i^{-1}, so that a uniform P gives
-// sum_j t_ij (x) xi_ij V_j = P at every point; nd/bond_geometry.hpp).
-// Energy-consistent (ba_force_energy.hpp derives it; nothing in it depends on D):
-//   t_ip = omega_i S_ip (x_p - x_i),  S_ip = sum_{q : p in intact B_iq} V_q P(F_iq) K_iq^{-1},
-//   omega_i = 1 / sum_q V_q over the bonds of i that carry energy,
-// which makes f_i = -(1/V_i) dW/dy_i for W = strain_energy() below.
+// sum_j t_ij (x) xi_ij V_j = P at every point; nd/bond_geometry.hpp,
+// stress_correction.hpp) and, with -force_patch_correction (patch_correction.hpp),
+// h_ij = ((lambda_i - lambda_j) . xi) xi added to g_ij.
+//
+// Energy-consistent (METHOD.md section 3; after Breitzman & Dayal 2018): the force
+// density is minus the gradient of the stored energy
+//   W = sum_i V_i omega_i sum_{b = (i -> j)} V_j Psi(F_ij),   omega_i = 1 / sum_b V_j,
+// both sums over the bonds of i that carry energy (intact, usable K, model ok): the
+// energy strain_energy() reports (W = Psi(A) x volume for an affine motion). The
+// bond-only force is not the gradient of any energy: its tangent is not symmetric
+// next to a free surface, which gives complex eigenvalues and undamped motions that
+// grow whatever the time step (ba_force_energy_test.cpp). The derivation, for any D:
+// F_ij = sum_{m in B} (y_m - y_i) (x) g_m, g_m = K_ij^{-1}(x_m - x_i) V_m (B = the
+// intact members of B_ij, eq 9), so with M_b = omega_i V_j P(F_ij) K_ij^{-1}
+//   dW/dy_m += V_i M_b (x_m - x_i) V_m   (m in B),
+//   dW/dy_i -= V_i M_b sum_{m in B} (x_m - x_i) V_m.
+// Collect, for a bond (i -> p), the stresses of the bonds of i whose BA family holds p:
+//   S_ip = sum_{q : p in intact B_iq} V_q P(F_iq) K_iq^{-1},   t_ip = omega_i S_ip (x_p - x_i)
+// (t_ip = 0 if the bond (i -> p) is broken). Then f_k = -(1/V_k) dW/dy_k becomes
+// sum_j (t_kj - t_jk) V_j, the bond-only assembly (eq 1) with these t_ij: momentum is
+// conserved pair by pair, nothing depends on the local numbering, and the halo is the
+// same (t_ij needs i's family only). BA masks are symmetric within a family (p in B_iq
+// iff q in B_ip: both are |x_p - x_q| <= delta, computed with the same bits either
+// way; build_families), so the bonds q with p in B_iq are the set bits of bond
+// (i -> p)'s own BA mask, and S_ip is one masked sum of the per-bond M_iq with the
+// code (and the "total minus the others" shortcut) of F_ij's sums. A bond that is
+// broken, has no usable K or whose model fails has no energy; its end point p still
+// counts in the other bonds' F_iq, so t_ip is generally not 0 unless (i -> p) is broken.
+//
 // Either way the force density of an owned point is
 //   f_i = sum_j (t_ij - t_ji) V_j                                                 (eq 1)
-// (assemble_force_density), so linear momentum is conserved pair by pair.
+// (assemble_force_density). Per point i the kernel runs one loop over its bonds (F_ij
+// from the masked sums, then P: stress_pass), and the energy-consistent form a second
+// (S_ip and t_ip); nothing per bond is stored beyond t_ij and c33.
 //
 // The model is a template parameter (inlined into the loop, nothing virtual per
 // bond), with either of the two stress signatures of the existing laws:
 //   StressStatus stress(const Mat<D> &F, Mat<D> &P) const             (Compressible3D)
 //   StressStatus stress(const Mat<D> &F, double &c33, Mat<D> &P) const (2D PlaneStrain,
 //        PlaneStress: c33 is the out-of-plane warm start, read from and written to
-//        the optional c33 array, one per bond, as in 2D)
+//        the optional c33 array, one per bond)
 // and energy(F, psi) or energy(F, c33, psi) likewise. A model with has_lanes and
 //   LaneMask stress_lanes(const std::array<Lanes, D*D> &F, Lanes &c33, std::array<Lanes, D*D> &P) const
 // (PlaneStress in 2D, Compressible3DLanes in 3D: nd/compressible_lanes.hpp) gets the
 // point's bonds after the first loop, lane_count at a time (model_lanes); a lane it
-// does not finish goes through its scalar stress().
+// does not finish goes through its scalar stress(). Nothing is allocated per call
+// (Workspace is sized once), except the list of failed bonds in the rare call where a
+// model fails.
 //
-// For D = 2 every operation is the 2D kernel's in its order (nd/bond_geometry.hpp),
-// lanes included, so the D = 2 instantiation gives its bond forces and c33 bit for
-// bit (ba_force_3d_matches_2d_test.cpp).
-//
-// Determinism: every sum runs in family order and nothing depends on the local
-// numbering (as in 2D).
+// Determinism: every sum runs in family order (families are sorted by natural id) and
+// nothing depends on the local numbering, so a rank's owned points get bit for bit the
+// bond forces and force densities of a one-rank run.
 #include <algorithm>
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
+#include <type_traits>
 #include <vector>
 
-#include "bapd/ba_force.hpp" // KernelStats, FailedBond
+#include "bapd/force_form.hpp"
+#include "bapd/kernel_stats.hpp"
+#include "bapd/lanes.hpp"
 #include "bapd/nd/bond_geometry.hpp"
 
 namespace bapd::nd {
@@ -56,7 +86,7 @@ template <int D> struct Workspace {
   // g of the bond-only form, K^{-1} of the energy-consistent one). Models with a lane
   // path (has_lanes: PlaneStress in 2D, Compressible3DLanes in 3D) get the point's
   // bonds after the loop, lane_count at a time: F by component (D x D arrays of
-  // lane_stride), the c33 warm start and the position q of each (as ba_force.hpp).
+  // lane_stride), the c33 warm start and the position q of each.
   static constexpr std::size_t data_stride = sym_size<D> > D ? sym_size<D> : D;
   std::size_t                  lane_stride = 0; // max_family_size rounded up to lane_count
   std::vector<double>          pending_F, pending_c33, pending_data;
@@ -77,8 +107,6 @@ template <int D> struct Workspace {
     }
   }
 };
-
-enum class ForceForm { bond_only, energy_consistent };
 
 // -force_patch_correction (patch_correction.hpp): h_ij = c_ij xi added to g_ij, from
 // patch_stride<D>(virial) numbers a point. on: lambda (D), c_ij = (lambda_i - lambda_j) . xi;
@@ -120,6 +148,17 @@ inline auto energy_of(const M &m, const Mat<D> &F, double &, double &psi, long) 
   return m.energy(F, psi);
 }
 
+// Whether a model has a lane path (has_lanes = true and stress_lanes).
+template <class M, class = void> struct HasLanes : std::false_type {};
+template <class M> struct HasLanes<M, std::enable_if_t<M::has_lanes>> : std::true_type {};
+
+inline Lanes load_lanes(const double *p)
+{
+  Lanes v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+
 [[gnu::noinline, gnu::cold]] inline void record_failure(KernelStats &stats, std::vector<FailedBond> &failed,
                                                         std::size_t i, std::size_t q, StressStatus status)
 {
@@ -135,7 +174,8 @@ template <int D, class Model>
 
 // The model over the n bonds of point i collected in ws.pending_*, lane_count at a
 // time (Model::stress_lanes); a lane it does not finish goes through the scalar
-// stress() (ba_force.hpp's model_lanes, for any D). Bonds are taken in family order,
+// stress(), which gives bit for bit what stress_lanes gives where that finishes
+// (plane_stress.hpp), so a bond's result does not depend on its lane. Bonds are taken in family order,
 // so failures are recorded and form.stress() is called in loop order.
 template <int D, class Model, class Form>
 void model_lanes(const Model &model, Workspace<D> &ws, std::size_t n, std::size_t i, std::size_t o, double *c33,
@@ -150,8 +190,8 @@ void model_lanes(const Model &model, Workspace<D> &ws, std::size_t n, std::size_
   }
   for (std::size_t j = 0; j < n; j += L) {
     std::array<Lanes, DD> F, P;
-    for (int k = 0; k < DD; ++k) F[k] = bapd::detail::load_lanes(Fc + k * S + j);
-    Lanes          c    = bapd::detail::load_lanes(cw + j);
+    for (int k = 0; k < DD; ++k) F[k] = load_lanes(Fc + k * S + j);
+    Lanes          c    = load_lanes(cw + j);
     const LaneMask done = model.stress_lanes(F, c, P);
     for (std::size_t l = 0; l < L && j + l < n; ++l) {
       const std::size_t q = ws.pending_q[j + l];
@@ -178,7 +218,7 @@ void model_lanes(const Model &model, Workspace<D> &ws, std::size_t n, std::size_
 }
 
 // The first pass of both forms over the bonds of point i: F_iq (eq 9) and P(F_iq)
-// from the model. The form is told, in family order (ba_force.hpp's stress_pass):
+// from the model. The form is told, in family order:
 //   form.none(q)               no stress: broken, K not usable, or the model failed;
 //   form.collect(slot, q, k)   the kinematics, before the model (the form keeps what
 //                              it needs in ws.pending_data, data_stride a slot);
@@ -187,7 +227,7 @@ void model_lanes(const Model &model, Workspace<D> &ws, std::size_t n, std::size_
 template <int D, std::size_t Words, class Model, class Form>
 inline void stress_pass(const Model &model, const Families &fam, const BondGeometry<D> &geo, const BondState &state,
                         std::size_t i, const PointTotals<D> &totals, double *c33, Workspace<D> &ws, Form &form,
-                        KernelStats &stats)
+                        std::size_t &evaluated, std::size_t &unusable, KernelStats &stats)
 {
   const std::size_t    W = fam.mask_words, o = fam.offsets[i], m = fam.size(i);
   const std::uint64_t *intact = state.intact_mask(i), *usable = geo.usable.data() + i * W;
@@ -197,19 +237,19 @@ inline void stress_pass(const Model &model, const Families &fam, const BondGeome
     const std::uint64_t bit   = std::uint64_t{1} << (q % 64);
     const bool          alive = intact[q / 64] & bit;
     if (!(alive && (usable[q / 64] & bit))) {
-      stats.unusable += alive;
+      unusable += alive;
       form.none(q);
       continue;
     }
     const BondKinematics<D> k = bond_kinematics<D, Words>(ba + q * W, intact, W, ws.point, totals);
     if (__builtin_expect(!k.usable, 0)) { // K went singular since the geometry was computed
-      ++stats.unusable;
+      ++unusable;
       form.none(q);
       continue;
     }
     double c = c33 ? c33[o + q] : 0.0; // <= 0: no warm start
-    ++stats.evaluated;
-    if constexpr (bapd::detail::HasLanes<Model>::value) {
+    ++evaluated;
+    if constexpr (HasLanes<Model>::value) {
       const std::size_t S = ws.lane_stride;
       form.collect(pending, q, k);
       for (int comp = 0; comp < D * D; ++comp) ws.pending_F[comp * S + pending] = k.F[comp];
@@ -228,7 +268,7 @@ inline void stress_pass(const Model &model, const Families &fam, const BondGeome
     if (c33 && !ws.keep_warm_start) c33[o + q] = c;
     form.stress(0, q, P);
   }
-  if constexpr (bapd::detail::HasLanes<Model>::value) model_lanes<D>(model, ws, pending, i, o, c33, form, stats);
+  if constexpr (HasLanes<Model>::value) model_lanes<D>(model, ws, pending, i, o, c33, form, stats);
 }
 
 // Bond-only (eq 23): t_iq = P g_iq, g_iq = force_scale C_i K^{-1} xi_iq (+ h_iq with
@@ -257,8 +297,8 @@ template <int D, bool Corrected> struct BondOnlyForm {
     if constexpr (Corrected) { // g -> C_i g (compiled out without a correction)
       double h[D];
       for (int r = 0; r < D; ++r) {
-        double s = 0.0;
-        for (int c = 0; c < D; ++c) s += C[D * r + c] * g[c];
+        double s = C[D * r] * g[0];
+        for (int c = 1; c < D; ++c) s += C[D * r + c] * g[c];
         h[r] = s;
       }
       for (int r = 0; r < D; ++r) g[r] = h[r];
@@ -269,8 +309,8 @@ template <int D, bool Corrected> struct BondOnlyForm {
   {
     const double *g = data + stride * slot;
     for (int r = 0; r < D; ++r) {
-      double s = 0.0;
-      for (int c = 0; c < D; ++c) s += P[D * r + c] * g[c];
+      double s = P[D * r] * g[0];
+      for (int c = 1; c < D; ++c) s += P[D * r + c] * g[c];
       t[D * q + r] = s;
     }
   }
@@ -299,8 +339,8 @@ template <int D> struct EnergyConsistentForm {
     double          m_iq[StressRecord<D>::vectors * StressRecord<D>::V] = {};
     for (int r = 0; r < D; ++r)
       for (int c = 0; c < D; ++c) {
-        double s = 0.0;
-        for (int m = 0; m < D; ++m) s += P[D * r + m] * ki[sym_index<D>(m, c)];
+        double s = P[D * r] * ki[sym_index<D>(0, c)];
+        for (int m = 1; m < D; ++m) s += P[D * r + m] * ki[sym_index<D>(m, c)];
         m_iq[D * r + c] = v * s;
       }
     const StressRecord<D> mq = StressRecord<D>::from(m_iq); // in registers (Packed::from)
@@ -318,6 +358,7 @@ void bond_only_range(const Model &model, const PointCloud &ref, const double *y,
 {
   const double     *lambda = ref.patch_correction.empty() ? nullptr : ref.patch_correction.data();
   const std::size_t stride = patch_stride<D>(ref.patch_virial);
+  std::size_t       evaluated = 0, unusable = 0; // locals, not stats.*: no reload per bond (pending_q may alias)
   for (std::size_t i = begin; i < end; ++i) {
     const PointTotals<D>    totals = gather_point<D>(ref, y, fam, i, state.intact_mask(i), ws.point);
     BondOnlyForm<D, Corrected> form{bond_force + D * fam.offsets[i],
@@ -330,8 +371,10 @@ void bond_only_range(const Model &model, const PointCloud &ref, const double *y,
                                     lambda,
                                     fam.neighbour.data() + fam.offsets[i],
                                     ref.patch_virial};
-    stress_pass<D, Words>(model, fam, geo, state, i, totals, c33, ws, form, stats);
+    stress_pass<D, Words>(model, fam, geo, state, i, totals, c33, ws, form, evaluated, unusable, stats);
   }
+  stats.evaluated += evaluated;
+  stats.unusable += unusable;
 }
 
 template <int D, std::size_t Words, class Model>
@@ -340,6 +383,7 @@ void energy_consistent_range(const Model &model, const PointCloud &ref, const do
                              Workspace<D> &ws, std::size_t begin, std::size_t end, KernelStats &stats)
 {
   const std::size_t W = fam.mask_words;
+  std::size_t       evaluated = 0, unusable = 0; // as in bond_only_range
   for (std::size_t i = begin; i < end; ++i) {
     const std::size_t    o = fam.offsets[i], m = fam.size(i);
     const std::uint64_t *intact = state.intact_mask(i), *ba = fam.ba_mask.data() + o * W;
@@ -348,9 +392,9 @@ void energy_consistent_range(const Model &model, const PointCloud &ref, const do
     EnergyConsistentForm<D> form{ws.bond_stress.data(), ws.energetic.data(), ws.pending_data.data(),
                                  ws.point.member.data(), {}, 0.0};
     form.stress_total.zero();
-    stress_pass<D, Words>(model, fam, geo, state, i, totals, c33, ws, form, stats);
+    stress_pass<D, Words>(model, fam, geo, state, i, totals, c33, ws, form, evaluated, unusable, stats);
     // Pass 2: t_ip = omega_i S_ip (x_p - x_i), S_ip = the sum of M_iq over q in B_ip
-    // (BA masks are symmetric within a family: ba_force_energy.hpp).
+    // (BA masks are symmetric within a family: see the top of this file).
     double *t = bond_force + D * o;
     if (form.volume == 0.0) { // no bond of i carries energy
       for (std::size_t k = 0; k < D * m; ++k) t[k] = 0.0;
@@ -366,12 +410,14 @@ void energy_consistent_range(const Model &model, const PointCloud &ref, const do
       const StressRecord<D> S = masked_sum<Words>(ba + p * W, ws.energetic.data(), W, ws.bond_stress.data(),
                                            form.stress_total, ws.point.in.data(), ws.point.out.data());
       for (int r = 0; r < D; ++r) {
-        double s = 0.0;
-        for (int c = 0; c < D; ++c) s += S[D * r + c] * off[D * p + c];
+        double s = S[D * r] * off[D * p];
+        for (int c = 1; c < D; ++c) s += S[D * r + c] * off[D * p + c];
         t[D * p + r] = omega * s;
       }
     }
   }
+  stats.evaluated += evaluated;
+  stats.unusable += unusable;
 }
 
 template <int D, std::size_t Words, class Model>
@@ -430,7 +476,7 @@ void assemble_force_density(const Families &families, const PointCloud &ref, con
                             std::size_t n_owned, double *force_density);
 
 // Strain energy W = sum_i V_i sum_j Psi(F_ij) V_j / sum_j V_j over the bonds of i that
-// carry energy (as strain_energy of ba_force.hpp): the energy whose gradient the
+// carry energy: the energy whose gradient the
 // energy-consistent form is, Psi(A) x volume for an affine motion. c33 (may be
 // nullptr) is read only. Writes E_i to point_energy[i] if given.
 template <int D, class Model>

@@ -1,6 +1,7 @@
 #pragma once
 // Bond-associated kinematics in D = 2 or 3 dimensions (paper eqs 8, 9, 11, 15, 23;
-// METHOD.md sections 2-3): the dimension-generic form of bond_geometry.hpp.
+// METHOD.md sections 2-3): the one kernel for 2D and 3D since issue 21 stage 3
+// retired the 2D-only bond_geometry.hpp (D = 2 does its operations in its order).
 //
 // Per intact bond b = (i -> j), with B = the intact members of the BA family B_ij:
 //   K_ij          = sum_{k in B} (x_k - x_i) (x) (x_k - x_i) V_k               (eq 8)
@@ -10,24 +11,35 @@
 //   force_scale   = 1/2 phi_xi / phi,   g_ij = force_scale C_i K_ij^{-1} (x_j - x_i)
 // with C_i the stress correction of the point (stress_correction.hpp; I without one).
 //
-// How it is computed: as in 2D. Per point i, each family member k gets one record of
+// How it is computed. Per point i, each family member k gets one record of
 //   (y_k - y_i) (x) (x_k - x_i) V_k   (D x D, row-major),
 //   (x_k - x_i) (x) (x_k - x_i) V_k   (its upper triangle, sym_index),   V_k,
 // padded to whole vectors (2D: 8 doubles, 3D: 16), formed once and reused by
 // all of i's bonds. A bond's N, K and V(B) are then one masked sum of the records (BA
 // mask AND intact mask) in family order, or the point's total minus the others when
-// the BA family holds more than half of the intact members. For D = 2 every one of
-// these operations is the 2D kernel's, in its order (the same two alternating
-// accumulators, the same K^{-1} formula), so the D = 2 instantiation gives the 2D
-// kernel's F, g and t bit for bit (ba_force_3d_matches_2d_test.cpp holds it to that).
+// the BA family holds more than half of the intact members. K^{-1} and force_scale
+// are therefore formed per bond per evaluation, not stored: storing them (3 + 1
+// doubles a bond in 2D) would cost 0.9 KB per point at delta = 3.015 dx against a
+// memory target of 2 KB per point, while forming them costs ~6 ns a bond (measured on
+// the 2D kernel, docs/performance.md 1b). It also means that a broken bond changes K
+// at once, with nothing to go stale. For D = 2 every operation is the retired 2D
+// kernel's, in its order (the same two alternating accumulators, the same K^{-1}
+// formula), so the switch kept every bit (scripts/compare_binaries.sh, issue 21 stage
+// 2 and 3); ba_force_2d_reference_test.cpp holds D = 2 to the equations.
 //
 // Usable K: K is symmetric positive semi-definite; det K / (tr K)^D ~ 1 / cond(K)
-// up to a constant. On a lattice K in units of V dx^2 has integer entries, so a
+// up to a constant. A bond is usable iff det K > shape_tensor_degeneracy (tr K)^D;
+// one that is not carries no force (the kernel writes t_ij = 0 and counts it).
+// 2D: K in units of V dx^2 has integer entries on a lattice, so a regular K has
+// det >= 1 while (tr K)^2 < 1e6 even for delta = 5 dx: its ratio is >= 1e-6, and a
+// degenerate one (collinear members, a lone member) has ratio ~1e-16; 1e-8 sits
+// between them with two orders of margin on both sides, and a usable K loses at most
+// cond(K) eps < 1e-8 relative accuracy in F.
+// 3D: on a lattice K in units of V dx^2 has integer entries, so a
 // regular K has det >= 1 while tr K is at most (members) x (delta/dx)^2: in 3D below
 // 2200 at delta = 3.515 dx (178 x 12.4), so the ratio is >= 1 / 2200^3 ~ 1e-10, while
 // a degenerate K (coplanar members) has det at round-off, ratio ~ 1e-16. The
-// threshold 1e-12 sits between them with two orders of margin above and four below. In 2D it
-// is the 2D kernel's 1e-8 (bond_geometry.hpp says why), so both decide alike.
+// threshold 1e-12 sits between them with two orders of margin above and four below.
 #include <cstddef>
 #include <cstdint>
 #include <limits>
@@ -78,7 +90,7 @@ template <int N> struct alignas(8 * vector_doubles) Packed {
   // From N doubles (a holds whole vectors: the rest is zero): each vector is built
   // from its scalars in registers ({a[0], a[1], ...}), not stored lane by lane and read
   // back as a vector (a store-forwarding stall per record: set() in gather_point cost
-  // the D = 2 kernel 10-20 %, kernel_bench --versus-nd).
+  // the D = 2 kernel 10-20 % against the retired 2D kernel: docs/performance.md 1g).
   static Packed from(const double *a) { return from(a, std::make_index_sequence<V>{}); }
   template <std::size_t... I> static Packed from(const double *a, std::index_sequence<I...>)
   {
@@ -105,11 +117,12 @@ template <int D> struct Member {
   using Record                     = Packed<size>;
 };
 template <int D> using MemberRecord = typename Member<D>::Record;
-// V_q P(F_iq) K_iq^{-1} of a bond (the energy-consistent form, ba_force.hpp).
+// V_q P(F_iq) K_iq^{-1} of a bond (the energy-consistent form, nd/ba_force.hpp).
 template <int D> using StressRecord = Packed<D * D>;
 
 // Sums of records over the set bits p of bits[0 .. words), in increasing p: two
-// accumulators, alternating (the 2D kernel's sum_selected, bond_geometry.hpp).
+// accumulators, alternating: half the add latency chain, and the order is still fixed
+// by the family alone.
 template <class R> inline R sum_selected(const std::uint64_t *bits, std::size_t words, const R *records)
 {
   R s0, s1;
@@ -207,13 +220,20 @@ inline PointTotals<D> gather_point(const PointCloud &ref, const double *y, const
   double             *off = ws.offset.data(), *fvk = ws.family_volume.data();
   MemberRecord<D>     total;
   total.zero();
+  // x_i and y_i in registers: the stores below could alias x and y for the compiler,
+  // which would then load them again for every member.
+  double xi[D], yi[D];
+  for (int r = 0; r < D; ++r) {
+    xi[r] = x[D * i + r];
+    yi[r] = y[D * i + r];
+  }
   for (std::size_t p = 0; p < m; ++p) {
     const std::size_t k = static_cast<std::size_t>(nb[p]);
     const double      v = vol[k];
     double            d[D], e[D], a[D];
     for (int r = 0; r < D; ++r) {
-      d[r] = x[D * k + r] - x[D * i + r];
-      e[r] = y[D * k + r] - y[D * i + r];
+      d[r] = x[D * k + r] - xi[r];
+      e[r] = y[D * k + r] - yi[r];
       a[r] = d[r] * v;
       off[D * p + r] = d[r];
     }
@@ -252,8 +272,8 @@ inline BondKinematics<D> bond_kinematics(const std::uint64_t *ba, const std::uin
   k.volume = S[L::volume];
   for (int r = 0; r < D; ++r)
     for (int c = 0; c < D; ++c) {
-      double f = 0.0;
-      for (int m = 0; m < D; ++m) f += S[L::deformation + D * r + m] * k.kinv(m, c);
+      double f = S[L::deformation + D * r] * k.kinv(0, c); // sums start at their first term (dot)
+      for (int m = 1; m < D; ++m) f += S[L::deformation + D * r + m] * k.kinv(m, c);
       k.F[D * r + c] = f;
     }
   return k;
@@ -269,15 +289,17 @@ template <int D> inline double force_scale(const BondKinematics<D> &k, const Poi
 template <int D> inline void force_vector(const BondKinematics<D> &k, double scale, const double *xi, double *g)
 {
   for (int r = 0; r < D; ++r) {
-    double s = 0.0;
-    for (int c = 0; c < D; ++c) s += k.kinv(r, c) * xi[c];
+    double s = k.kinv(r, 0) * xi[0];
+    for (int c = 1; c < D; ++c) s += k.kinv(r, c) * xi[c];
     g[r] = scale * s;
   }
 }
 
 // Which intact bonds have a usable K (per family point), and the stress correction
-// C_i (D x D per family point) when one is set before compute_bond_geometry. As
-// bapd::BondGeometry, with C_i of any D.
+// C_i (D x D per family point) when one is set before compute_bond_geometry (for
+// counts and reports; the kernel skips the bonds marked unusable here and repeats the
+// test itself, so a geometry not recomputed after breaking cannot make it divide by a
+// singular K).
 template <int D> struct BondGeometry {
   std::size_t                mask_words = 1;
   std::vector<std::uint64_t> usable;   // bit q: intact and K usable
@@ -311,7 +333,7 @@ template <int D> struct BondGeometry {
 
 // Sizes the geometry and computes it for every family point, with C_i if
 // geometry.stress_correction is set (from M_i of the reference family, every bond of
-// t = 0 intact: as in 2D, bond_geometry.cpp says why). Needs cloud.family_volume of
+// t = 0 intact: nd_bond_geometry.cpp says why). Needs cloud.family_volume of
 // every neighbour. Returns the intact bonds whose K is not usable. Throws
 // std::invalid_argument if a needed family volume is missing or not positive.
 template <int D>

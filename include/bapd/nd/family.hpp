@@ -5,9 +5,9 @@
 // index), which has nothing 2D in it.
 //
 // The cloud is a PointCloud whose x holds D coordinates per point (2D: as
-// make_lattice writes it; 3D: box_lattice below). For D = 2 the result is exactly
-// (every array, bit for bit) that of build_families, given the same bond filter
-// (ba_force_3d_matches_2d_test.cpp checks it): the same distance arithmetic, the same sort.
+// make_lattice writes it; 3D: box_lattice below). For D = 2 build_families (family.hpp)
+// is this with the notch segments as its bond filter (since issue 21 stage 2; the
+// retired 2D builder's arithmetic and sort, so the families kept their bits).
 //
 // Sizes in 3D (interior point, every lattice point within delta): 80 members at
 // delta = 2.515 dx (2 mask words), 122 at 3.015 dx (2 words), 178 at 3.515 dx (3 words).
