@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The same scene on 1, 2, 3 and 4 ranks: the same history, final displacement field
 # (bit for bit: tolerance 0) and set of broken bonds.
-#   rank_invariance.sh elastic|fracture|fracture_corrected|shapes|dogbone|double_edge_notched|cloud
+#   rank_invariance.sh elastic|fracture|fracture_corrected|shapes|waisted_sheet|dogbone|double_edge_notched|cloud
 # (dogbone, double_edge_notched: the examples from Gmsh files, gripped by physical group,
 # pulled a little; on 1, 2 and 3 ranks)
 # (fracture_corrected: fracture with the bond-only form and -force_stress_correction tensor, whose per-point
@@ -32,6 +32,11 @@ if [ "$case" = shapes ]; then
          -load_bottom_region bottom -load_bottom_layers 2 -load_bottom_x fixed -load_bottom_y fixed
          -probes waist -probe_waist_at 0.00425,0.015 -damping 40 -output_interval 50 -progress_interval 100000
          -output_final_state -load_schedule 0,1,0.05,1.2)
+elif [ "$case" = waisted_sheet ]; then
+  # The example as shipped (examples/waisted_sheet.yaml: scene shapes only, discs that
+  # reach outside the sides, an ellipse and a polygon cut out), a short pull.
+  scene=(-options_file_yaml "$BAPD_SOURCE_DIR/examples/waisted_sheet.yaml"
+         -load_schedule 0,1,0.02,1.05 -output_interval 20 -progress_interval 100000 -output_final_state)
 elif [ "$case" = dogbone ] || [ "$case" = double_edge_notched ]; then
   # The example as shipped, its Gmsh file found from the source tree, a short pull.
   scene=(-options_file_yaml "$BAPD_SOURCE_DIR/examples/$case.yaml"
@@ -55,7 +60,7 @@ else
   scene+=(-load_schedule 0,1,0.1,1.3)
 fi
 ranks=(1 2 3 4)
-[ "$case" = dogbone ] || [ "$case" = double_edge_notched ] && ranks=(1 2 3)
+case "$case" in dogbone|double_edge_notched|waisted_sheet) ranks=(1 2 3) ;; esac
 for n in "${ranks[@]}"; do
   mpiexec -n $n --oversubscribe --bind-to none "$BAPD_EXE" "${scene[@]}" -output_dir "$work/np$n" > "$work/np$n.log" 2>&1 ||
     { cat "$work/np$n.log"; exit 1; }
