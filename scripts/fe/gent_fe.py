@@ -50,6 +50,8 @@ from dolfinx import fem, mesh as dmesh
 
 from ffcx.element_interface import create_quadrature
 
+from newton_line_search import NewtonLineSearch, direct_solver
+
 MU_KPA = 4.55          # paper: mu = 4.55 kPa
 JM = 162.6             # paper: Jm = 162.6
 BULK_RATIO = 1000.0    # bapd's default K / mu (docs/options.md, -material_bulk_ratio)
@@ -137,7 +139,7 @@ class GentProblem:
     # -- Newton with load stepping ------------------------------------------------------
     def _make_solver(self):
         if self.line_search:
-            return None, _NewtonLineSearch(self)
+            return None, NewtonLineSearch(self)
         problem = _Problem(self)
         solver = dolfinx.nls.petsc.NewtonSolver(MPI.COMM_WORLD, problem)
         solver.convergence_criterion = "incremental"
@@ -369,18 +371,6 @@ class GentPlaneStress(GentProblem):
                                                      vals[:, :, 1].ravel())) * self.D))
 
 
-def direct_solver(ksp, A, factorisation):
-    """MUMPS through the KSP: "lu", or "cholesky" (LDL^T) for a symmetric A."""
-    ksp.setType("preonly")
-    ksp.getPC().setType(factorisation)
-    ksp.getPC().setFactorSolverType("mumps")
-    if factorisation == "cholesky":
-        # MUMPS's Cholesky reads the upper triangle; the flag must outlive the
-        # reassemblies (symmetric indefinite LDL^T, no SPD assumption).
-        A.setOption(PETSc.Mat.Option.SYMMETRIC, True)
-        A.setOption(PETSc.Mat.Option.SYMMETRY_ETERNAL, True)
-
-
 def refine_near(gmsh, kind, tags, size_min, size_max, dist_min, dist_max, points):
     """Background size field: size_min within dist_min of the entities (kind "CurvesList"
     or "FacesList"), growing linearly to size_max at dist_max; `points` samples a curve."""
@@ -396,74 +386,6 @@ def refine_near(gmsh, kind, tags, size_min, size_max, dist_min, dist_max, points
     field.setNumber(thr, "DistMax", dist_max)
     field.setAsBackgroundMesh(thr)
     return thr
-
-
-class _NewtonLineSearch:
-    """Newton with a backtracking line search on the residual norm (PETSc SNES newtonls,
-    bt), with the NewtonSolver's interface (solve(u) -> (iterations, converged)) and its
-    stopping rule: the Newton correction below 1e-8 mm. The Dirichlet values enter as
-    in dolfinx's NewtonSolver (lifting with x0 = x, so the first correction moves the
-    constrained dofs onto them)."""
-
-    ATOL_MM = 1e-8
-    MAX_IT = 25
-
-    def __init__(self, gent):
-        from dolfinx.fem import petsc as fp
-        self.gent = gent
-        self.L = fem.form(gent.residual)
-        self.a = fem.form(gent.jacobian)
-        self.A = fp.create_matrix(self.a)
-        self.b = fp.create_vector(self.L)
-        self.x = gent.u.vector.duplicate()
-        snes = PETSc.SNES().create(MPI.COMM_WORLD)
-        snes.setFunction(self._residual, self.b)
-        snes.setJacobian(self._jacobian, self.A)
-        snes.setType("newtonls")
-        # petsc4py 3.18 has no SNESLineSearch object: the type goes through the options.
-        snes.setOptionsPrefix("gent_fe_")
-        PETSc.Options()["gent_fe_snes_linesearch_type"] = "bt"
-        snes.setFromOptions()
-        snes.setConvergenceTest(self._converged)
-        direct_solver(snes.getKSP(), self.A, gent.factorisation)
-        self.snes = snes
-
-    def _residual(self, snes, x, b):
-        from dolfinx.fem import petsc as fp
-        x.ghostUpdate(addv=PETSc.InsertMode.INSERT, mode=PETSc.ScatterMode.FORWARD)
-        x.copy(self.gent.u.vector)
-        self.gent.u.x.scatter_forward()
-        self.gent.update_local()
-        with b.localForm() as local:
-            local.set(0.0)
-        fp.assemble_vector(b, self.L)
-        fp.apply_lifting(b, [self.a], bcs=[self.gent.bcs], x0=[x], scale=-1.0)
-        b.ghostUpdate(addv=PETSc.InsertMode.ADD, mode=PETSc.ScatterMode.REVERSE)
-        fp.set_bc(b, self.gent.bcs, x, -1.0)
-
-    def _jacobian(self, snes, x, A, P):
-        from dolfinx.fem import petsc as fp
-        A.zeroEntries()
-        fp.assemble_matrix(A, self.a, bcs=self.gent.bcs)
-        A.assemble()
-
-    def _converged(self, snes, it, norms):
-        _, step_norm, residual_norm = norms
-        R = PETSc.SNES.ConvergedReason
-        if not np.isfinite(residual_norm):
-            return R.DIVERGED_FNORM_NAN
-        if it > 0 and step_norm < self.ATOL_MM:
-            return R.CONVERGED_SNORM_RELATIVE
-        if it >= self.MAX_IT:
-            return R.DIVERGED_MAX_IT
-        return R.ITERATING
-
-    def solve(self, u):
-        u.vector.copy(self.x)
-        self.snes.solve(None, self.x)
-        self.x.copy(u.vector)
-        u.x.scatter_forward()
-        return self.snes.getIterationNumber(), self.snes.getConvergedReason() > 0
 
 
 class _Problem(dolfinx.fem.petsc.NonlinearProblem):
