@@ -7,7 +7,8 @@
 // tag (which array) and its place in the file (global point, component, bond), so it
 // does not depend on which rank held which value: a file written on 2 ranks checks on
 // 3. The tags and places are those of format versions 1 to 5, so their files still
-// check; a D-vector's component c of point p is at D p + c.
+// check; a D-vector's component c of point p is at D p + c. The dimension itself is
+// not in the sums: a wrong one fails the shape checks of the arrays (D columns) first.
 #include <petscsys.h>
 
 #include <cstdint>
