@@ -64,7 +64,7 @@ PetscErrorCode DistributePoints(MPI_Comm comm, const PointCloud &global_cloud, c
   // own horizons, then the patch correction's numbers with -force_patch_correction:
   // lambda_i (D, on) or mu_i, S_i (D + D(D+1)/2, virial: 5 in 2D; patch_correction.hpp,
   // nd::patch_stride), the ring-1 points' included, which the kernel reads as neighbours.
-  constexpr int V = D, VH = D + 1; // where V and V(H) are in a point's reals
+  constexpr int kVolume = D, kFamilyVolume = D + 1, kHorizon = D + 2; // their places in a point's reals
   int R = global_cloud.horizon.empty() ? D + 2 : D + 3,
       L = global_cloud.patch_correction.empty() ? 0 : (int)nd::patch_stride<D>(global_cloud.patch_virial);
   PetscCallMPI(MPI_Bcast(&R, 1, MPI_INT, 0, comm));
@@ -104,9 +104,9 @@ PetscErrorCode DistributePoints(MPI_Comm comm, const PointCloud &global_cloud, c
         const int i     = ids[k];
         pidx[k]         = petsc_index[i];
         for (int d = 0; d < D; ++d) real[R * k + d] = global_cloud.x[D * i + d];
-        real[R * k + V]  = global_cloud.volume[i];
-        real[R * k + VH] = global_cloud.family_volume[i];
-        if (own_horizon) real[R * k + D + 2] = global_cloud.horizon[i];
+        real[R * k + kVolume]       = global_cloud.volume[i];
+        real[R * k + kFamilyVolume] = global_cloud.family_volume[i];
+        if (own_horizon) real[R * k + kHorizon] = global_cloud.horizon[i];
         for (int l = 0; l < L; ++l) real[R * k + H + l] = global_cloud.patch_correction[L * i + l];
       }
       PetscInt c[3] = {(PetscInt)rp.owned.size(), (PetscInt)rp.ring1.size(), (PetscInt)rp.ring2.size()};
@@ -154,9 +154,9 @@ PetscErrorCode DistributePoints(MPI_Comm comm, const PointCloud &global_cloud, c
   c.patch_virial = L == (int)nd::patch_stride<D>(true);
   for (std::size_t k = 0; k < m; ++k) {
     for (int d = 0; d < D; ++d) c.x[D * k + d] = my_real[R * k + d];
-    c.volume[k]        = my_real[R * k + V];
-    c.family_volume[k] = my_real[R * k + VH];
-    if (own_horizon) c.horizon[k] = my_real[R * k + D + 2];
+    c.volume[k]        = my_real[R * k + kVolume];
+    c.family_volume[k] = my_real[R * k + kFamilyVolume];
+    if (own_horizon) c.horizon[k] = my_real[R * k + kHorizon];
     for (int l = 0; l < L; ++l) c.patch_correction[L * k + l] = my_real[R * k + H + l];
   }
   PetscFunctionReturn(0);

@@ -1,6 +1,6 @@
 // The driver's output after a step: field files, checkpoints (periodic, on a signal,
 // on divergence, at the end) and restart from a checkpoint. The formats live in
-// fields.cpp and checkpoint.cpp; this file only moves the Simulation's state in and
+// fields.cpp and checkpoint_*.cpp; this file only moves the Simulation's state in and
 // out of them.
 #include <petscts.h>
 

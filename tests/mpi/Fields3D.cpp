@@ -93,16 +93,20 @@ TEST(Fields3D, VectorsAndTensorsHoldAllThreeComponentsAndTheXdmfDrawsXYZ)
   EXPECT_EQ(dimension, 3);
   EXPECT_EQ(H5Lexists(file, "/thickness_stretch", H5P_DEFAULT), 0); // a 2D quantity
   std::vector<hsize_t> dims;
-  // Vectors: (points, 3), every component the point's (natural id = row), exactly.
+  // Vectors (points, 3) and tensors (points, 9, the full 3 x 3 row-major): every
+  // component the point's (natural id = row), exactly.
   const struct {
     const char *name;
     int         tag;
-  } vectors[] = {{"/displacement", kU}, {"/velocity", kV}, {"/force_density", kForce}};
-  for (const auto &vec : vectors) {
-    const std::vector<double> data = ReadDataset(file, vec.name, &dims);
-    ASSERT_EQ(dims, (std::vector<hsize_t>{N, 3})) << vec.name;
+    hsize_t     columns;
+  } arrays[] = {{"/displacement", kU, 3},       {"/velocity", kV, 3},           {"/force_density", kForce, 3},
+                {"/nominal_stress", kNominal, 9}, {"/cauchy_stress", kCauchy, 9}, {"/deformation_gradient", kDeformation, 9}};
+  for (const auto &array : arrays) {
+    const std::vector<double> data = ReadDataset(file, array.name, &dims);
+    ASSERT_EQ(dims, (std::vector<hsize_t>{N, array.columns})) << array.name;
     for (std::size_t k = 0; k < N; ++k)
-      for (int c = 0; c < 3; ++c) ASSERT_EQ(data[3 * k + c], PointValue((std::int64_t)k, c, vec.tag)) << vec.name << " row " << k;
+      for (int c = 0; c < (int)array.columns; ++c)
+        ASSERT_EQ(data[array.columns * k + c], PointValue((std::int64_t)k, c, array.tag)) << array.name << " row " << k;
   }
   const std::vector<double> reference = ReadDataset(file, "/reference_position", &dims);
   ASSERT_EQ(dims, (std::vector<hsize_t>{N, 3}));
@@ -113,17 +117,6 @@ TEST(Fields3D, VectorsAndTensorsHoldAllThreeComponentsAndTheXdmfDrawsXYZ)
       ASSERT_EQ(reference[3 * k + d], box.global.x[3 * k + d]);
       ASSERT_EQ(position[3 * k + d], box.global.x[3 * k + d] + PointValue((std::int64_t)k, d, kU));
     }
-  // Tensors: (points, 9), the full 3 x 3 row-major.
-  const struct {
-    const char *name;
-    int         tag;
-  } tensors[] = {{"/nominal_stress", kNominal}, {"/cauchy_stress", kCauchy}, {"/deformation_gradient", kDeformation}};
-  for (const auto &t : tensors) {
-    const std::vector<double> data = ReadDataset(file, t.name, &dims);
-    ASSERT_EQ(dims, (std::vector<hsize_t>{N, 9})) << t.name;
-    for (std::size_t k = 0; k < N; ++k)
-      for (int c = 0; c < 9; ++c) ASSERT_EQ(data[9 * k + c], PointValue((std::int64_t)k, c, t.tag)) << t.name << " row " << k;
-  }
   const struct {
     const char *name;
     int         c;

@@ -17,10 +17,11 @@ class Halo3D : public ::testing::Test {
 protected:
   void SetUp() override
   {
-    // 12 x 6 x 5 points at delta = 3.015 dx (the paper's horizon): families of up to
-    // 119 members (two mask words), and long enough in x for ring-2 ghosts on 2 and 3
-    // ranks.
-    ASSERT_EQ(bapd_test::MakeBoxLayout<3>(PETSC_COMM_WORLD, {12, 6, 5}, 3.015, &box), 0);
+    // 12 x 6 x 5 points at delta = 3.015 dx (the paper's horizon), every third point's
+    // own horizon 5 % and 10 % shorter (given points carry theirs through the layout):
+    // families of up to 119 members (two mask words), and long enough in x for ring-2
+    // ghosts on 2 and 3 ranks.
+    ASSERT_EQ(bapd_test::MakeBoxLayout<3>(PETSC_COMM_WORLD, {12, 6, 5}, 3.015, &box, true), 0);
   }
   BoxLayout box;
 };
@@ -31,6 +32,7 @@ TEST_F(Halo3D, EveryPointIsOwnedOnceAndTheRingsHoldTheirExactPositions)
   ASSERT_EQ(l.dimension, 3);
   ASSERT_EQ(l.n_global, 360);
   ASSERT_EQ(l.cloud.x.size(), 3 * (std::size_t)l.n_local());
+  ASSERT_EQ(l.cloud.horizon.size(), (std::size_t)l.n_local());
   PetscInt owned = l.n_owned;
   MPI_Allreduce(MPI_IN_PLACE, &owned, 1, MPIU_INT, MPI_SUM, PETSC_COMM_WORLD);
   EXPECT_EQ(owned, l.n_global);
@@ -44,6 +46,7 @@ TEST_F(Halo3D, EveryPointIsOwnedOnceAndTheRingsHoldTheirExactPositions)
     for (int d = 0; d < 3; ++d) EXPECT_EQ(l.cloud.x[3 * i + d], box.global.x[3 * id + d]) << "point " << id;
     EXPECT_EQ(l.cloud.volume[i], box.global.volume[id]);
     EXPECT_EQ(l.cloud.family_volume[i], box.global.family_volume[id]);
+    EXPECT_EQ(l.cloud.horizon[i], box.global.horizon[id]);
   }
 }
 

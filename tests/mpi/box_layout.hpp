@@ -30,9 +30,11 @@ struct BoxLayout {
 
 // Collective on comm. Every rank builds the whole box (small), rank 0's bond graph is
 // partitioned, and every rank finds the families of its owned and ring-1 points from
-// the two rings it holds (Simulation::BuildBody).
+// the two rings it holds (Simulation::BuildBody). own_horizons: the points get their
+// own horizons (geometry.hpp), 1, 0.95 and 0.9 times horizon_factor dx in turn.
 template <int D>
-PetscErrorCode MakeBoxLayout(MPI_Comm comm, const std::array<int, D> &cells, double horizon_factor, BoxLayout *box)
+PetscErrorCode MakeBoxLayout(MPI_Comm comm, const std::array<int, D> &cells, double horizon_factor, BoxLayout *box,
+                             bool own_horizons = false)
 {
   PetscMPIInt rank;
 
@@ -40,6 +42,8 @@ PetscErrorCode MakeBoxLayout(MPI_Comm comm, const std::array<int, D> &cells, dou
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   box->horizon  = horizon_factor * kBoxDx;
   box->global   = bapd::nd::box_lattice<D>(cells, kBoxDx);
+  if (own_horizons)
+    for (std::size_t i = 0; i < box->global.size(); ++i) box->global.horizon.push_back(box->horizon * (1.0 - 0.05 * (double)(i % 3)));
   box->families = bapd::nd::build_families<D>(box->global, box->global.size(), box->horizon);
   bapd::compute_family_volumes(box->global, box->families);
   std::vector<int> offsets, neighbours;
