@@ -133,7 +133,7 @@ void Pack(const PointFields &fields, int rank, PetscInt i, double *row)
   row[P::damage]    = fields.damage[i];
   row[P::stretch]   = fields.max_bond_stretch[i];
   row[P::volume]    = fields.volume[i];
-  row[P::thickness] = fields.thickness_stretch ? fields.thickness_stretch[i] : 1.0;
+  row[P::thickness] = fields.thickness_stretch ? fields.thickness_stretch[i] : 1.0; // 3D: none, never written
   row[P::energy]    = fields.strain_energy_density[i];
   row[P::rank]      = rank;
 }
