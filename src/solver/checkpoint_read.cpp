@@ -12,26 +12,17 @@ namespace bapd {
 
 namespace {
 
-PetscErrorCode BcastString(MPI_Comm comm, std::string *s)
-{
-  PetscFunctionBegin;
-  unsigned long long n = s->size();
-  PetscCallMPI(MPI_Bcast(&n, 1, MPI_UNSIGNED_LONG_LONG, 0, comm));
-  s->resize(n);
-  if (n) PetscCallMPI(MPI_Bcast(s->data(), (int)n, MPI_CHAR, 0, comm));
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode BcastDoubles(MPI_Comm comm, std::vector<double> *values)
+// Rank 0's text (MPI_CHAR) or numbers (MPI_DOUBLE), on every rank: its length, then it.
+template <class Container>
+PetscErrorCode Bcast(MPI_Comm comm, MPI_Datatype type, Container *values)
 {
   PetscFunctionBegin;
   unsigned long long n = values->size();
   PetscCallMPI(MPI_Bcast(&n, 1, MPI_UNSIGNED_LONG_LONG, 0, comm));
   values->resize(n);
-  if (n) PetscCallMPI(MPI_Bcast(values->data(), (int)n, MPI_DOUBLE, 0, comm));
+  if (n) PetscCallMPI(MPI_Bcast(values->data(), (int)n, type, 0, comm));
   PetscFunctionReturn(0);
 }
-
 
 // Rank 0: everything about the file that can be checked without the scene.
 std::string ReadHeaderSerial(const std::string &path, CheckpointHeader *h)
@@ -149,7 +140,7 @@ PetscErrorCode ReadCheckpointHeader(MPI_Comm comm, const std::string &path, Chec
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   *header = CheckpointHeader();
   if (rank == 0) problem = ReadHeaderSerial(path, header);
-  PetscCall(BcastString(comm, &problem));
+  PetscCall(Bcast(comm, MPI_CHAR, &problem));
   PetscCheck(problem.empty(), comm, PETSC_ERR_FILE_UNEXPECTED, "%s", problem.c_str());
   long long     ints[13]  = {(long long)header->step,            (long long)header->ranks,
                              (long long)header->geometry.points, (long long)header->geometry.bonds,
@@ -194,13 +185,13 @@ PetscErrorCode ReadCheckpointHeader(MPI_Comm comm, const std::string &path, Chec
   header->geometry.horizon = reals[4];
   header->content_hash     = hashes[0];
   header->geometry.hash    = hashes[1];
-  PetscCall(BcastString(comm, &header->reason));
-  PetscCall(BcastString(comm, &header->options));
-  PetscCall(BcastString(comm, &header->history));
-  PetscCall(BcastString(comm, &header->static_states));
-  PetscCall(BcastDoubles(comm, &header->field_frames));
-  PetscCall(BcastDoubles(comm, &header->schedule_original));
-  PetscCall(BcastDoubles(comm, &header->schedule_current));
+  PetscCall(Bcast(comm, MPI_CHAR, &header->reason));
+  PetscCall(Bcast(comm, MPI_CHAR, &header->options));
+  PetscCall(Bcast(comm, MPI_CHAR, &header->history));
+  PetscCall(Bcast(comm, MPI_CHAR, &header->static_states));
+  PetscCall(Bcast(comm, MPI_DOUBLE, &header->field_frames));
+  PetscCall(Bcast(comm, MPI_DOUBLE, &header->schedule_original));
+  PetscCall(Bcast(comm, MPI_DOUBLE, &header->schedule_current));
   PetscFunctionReturn(0);
 }
 
