@@ -3,19 +3,22 @@
 // any number of ranks (STYLE.md: ... -> fields / checkpoint). docs/options.md,
 // "Checkpoints and restart", is the user's view.
 //
-// File layout, format version 4 (every array in natural order, natural_order.hpp;
-// version 3 is version 4 without the back-off attributes of /time_step, version 2
+// File layout, format version 6, D the dimension of the body (2 or 3; every array in
+// natural order, natural_order.hpp). Version 5 is version 6 without the dimension
+// attribute (always D = 2), version 4 version 5 without /time_step's indicator,
+// version 3 version 4 without the back-off attributes of /time_step, version 2
 // version 3 without text_hash and /time_step, version 1 version 2 without /relaxation;
-// all are still read):
-//   /                 attributes format = "bapd checkpoint", format_version, step,
-//                     time_s, time_step_s, stretch, reason, ranks, content_hash,
+// all are still read, as 2D checkpoints.
+//   /                 attributes format = "bapd checkpoint", format_version, dimension,
+//                     step, time_s, time_step_s, stretch, reason, ranks, content_hash,
 //                     text_hash
 //   /geometry         attributes points, bonds, dx_m, horizon_m, hash
-//   /points/displacement   (points, 2) m        /points/velocity (points, 2) m/s
+//   /points/displacement   (points, D) m        /points/velocity (points, D) m/s
 //   /points/family_size    (points) int32
 //   /bonds/intact          (bonds) uint8: 1 intact, 0 broken; bond order = (point,
 //                          then the natural order of its neighbours)
-//   /bonds/c33             (bonds): plane-stress warm start C33 of every bond
+//   /bonds/c33             (bonds): plane-stress warm start C33 of every bond; always
+//                          in 2D, absent in 3D when the run has no warm start
 //   /run/options           text: the options database (PetscOptionsGetAll)
 //   /run/history           text: history.csv up to this step
 //   /run/field_frames      (frames, 2): step and time of the field files so far
@@ -25,18 +28,23 @@
 //                          attributes end_time_original_s, end_time_s, static_hold_done
 //   /relaxation            only with -relaxation adaptive (relaxation.hpp): attribute
 //                          records; /relaxation/displacement, /relaxation/acceleration
-//                          (points, 2): the latest force evaluation, which the next
+//                          (points, D): the latest force evaluation, which the next
 //                          step's damping coefficient is computed against
 //   /time_step             only while the step is re-estimated (time_step_control.hpp):
 //                          attributes lambda_per_s2, stiffness_dt_s, next_estimate,
 //                          by_stiffness, by_travel, shortest_dt_s, stretch, and
 //                          (version 4) interval_now, stretch_increment: the back-off;
-//                          /time_step/eigenvector (points, 2): the power iteration's
+//                          /time_step/eigenvector (points, D): the power iteration's
 //                          vector, which the next re-estimate starts from
 // content_hash is an order-independent checksum of the arrays and of the step, time
 // and schedule attributes; text_hash one of /run/options, /run/history,
 // /run/static_states, /run/field_frames and reason: a damaged file is refused instead
-// of silently continuing from wrong data.
+// of silently continuing from wrong data (checkpoint_checksum.hpp). A checkpoint
+// continues only in its own dimension: ReadCheckpointState<D> refuses another one.
+//
+// The dimension is a template parameter of what reads or writes D-vectors
+// (ComputeGeometryFingerprint, WriteCheckpoint, ReadCheckpointState), instantiated for
+// D = 2 and 3; the header and the options are the same for every D.
 #include <petscsys.h>
 
 #include <cstdint>
@@ -50,7 +58,7 @@
 
 namespace bapd {
 
-constexpr std::int64_t kCheckpointFormatVersion       = 5;
+constexpr std::int64_t kCheckpointFormatVersion       = 6;
 constexpr std::int64_t kCheckpointOldestFormatVersion = 1; // still read
 
 // -checkpoint_interval, -checkpoint_on_error, -restart.
@@ -70,6 +78,8 @@ struct GeometryFingerprint {
   double        dx = 0, horizon = 0;
   std::uint64_t hash = 0; // of natural ids, reference positions and every family
 };
+// Collective; layout.dimension must be D.
+template <int D>
 PetscErrorCode ComputeGeometryFingerprint(MPI_Comm comm, const Layout &layout, const Families &families, double dx,
                                           double horizon, GeometryFingerprint *fingerprint);
 bool SameGeometry(const GeometryFingerprint &a, const GeometryFingerprint &b);
@@ -77,6 +87,8 @@ bool SameGeometry(const GeometryFingerprint &a, const GeometryFingerprint &b);
 // The small part of a checkpoint, the same on every rank after ReadCheckpointHeader.
 struct CheckpointHeader {
   std::int64_t        format_version = kCheckpointFormatVersion;
+  std::int64_t        dimension = 2;  // D of the body (version 6; 2 in older files)
+  bool                has_c33   = true; // the file has /bonds/c33 (always in 2D)
   PetscInt            step = 0;
   double              time = 0, time_step = 0, stretch = 1;
   std::string         reason; // "interval", "interrupted", "last good state", "end"
@@ -104,21 +116,26 @@ struct CheckpointHeader {
   double              step_indicator = 0;
 };
 
-// The state of the rank layout, read from (written to) a checkpoint.
+// The state of the rank layout, read from (written to) a checkpoint; D-vectors hold
+// D numbers a point.
 struct CheckpointState {
-  double          *u = nullptr, *v = nullptr; // owned points, 2 each
+  double          *u = nullptr, *v = nullptr; // owned points, D each
   BondState       *bonds = nullptr;           // family points (write: owned ones used)
-  double          *c33 = nullptr;             // bonds of family points
-  // -relaxation adaptive: the latest recorded evaluation, owned points, 2 each
+  // Bonds of family points. nullptr: the run has no C33 warm start (a 3D model; write:
+  // the file gets no /bonds/c33, which only a 3D checkpoint may lack).
+  double          *c33 = nullptr;
+  // -relaxation adaptive: the latest recorded evaluation, owned points, D each
   // (write: used when header.relaxation_records > 0; read: filled when the file has it).
   double          *relaxation_u = nullptr, *relaxation_a = nullptr;
-  // The power iteration's vector, owned points, 2 each (write: used when
+  // The power iteration's vector, owned points, D each (write: used when
   // header.step_lambda > 0; read: filled when the file has it).
   double          *step_eigenvector = nullptr;
 };
 
 // Collective. Writes `path` through `path.tmp` and a rename, so the last good
-// checkpoint survives a crash while writing. header.content_hash is filled in.
+// checkpoint survives a crash while writing. header.content_hash, dimension and
+// has_c33 are filled in.
+template <int D>
 PetscErrorCode WriteCheckpoint(MPI_Comm comm, const std::string &path, const NaturalOrder &order, const Families &families,
                                CheckpointHeader *header, const CheckpointState &state);
 
@@ -127,8 +144,10 @@ PetscErrorCode WriteCheckpoint(MPI_Comm comm, const std::string &path, const Nat
 // message (PETSC_ERR_FILE_OPEN / PETSC_ERR_FILE_UNEXPECTED).
 PetscErrorCode ReadCheckpointHeader(MPI_Comm comm, const std::string &path, CheckpointHeader *header);
 
-// Collective. Reads the state into the rank layout after checking the geometry
-// (PETSC_ERR_USER if it differs from `geometry`) and the checksum.
+// Collective. Reads the state into the rank layout after checking the dimension and
+// the geometry (PETSC_ERR_USER if the file's differs from D or from `geometry`) and
+// the checksum. A file without /bonds/c33 (3D) leaves state.c33 at 0, the cold start.
+template <int D>
 PetscErrorCode ReadCheckpointState(MPI_Comm comm, const std::string &path, const NaturalOrder &order,
                                    const Families &families, const CheckpointHeader &header,
                                    const GeometryFingerprint &geometry, const CheckpointState &state);

@@ -40,9 +40,13 @@ struct NaturalOrder {
 PetscErrorCode NaturalOrderCreate(MPI_Comm comm, const Layout &layout, const Families &families, NaturalOrder *order);
 
 // Layout -> block (each block entry has one owner): `unit` is the MPI type of one
-// entry (e.g. 2 doubles per point). sf is owned_points or owned_bonds.
+// entry (e.g. D doubles per point). sf is owned_points or owned_bonds.
 PetscErrorCode ToNaturalOrder(PetscSF sf, MPI_Datatype unit, const void *local, void *block);
 // Block -> layout: sf is any of the four maps.
 PetscErrorCode FromNaturalOrder(PetscSF sf, MPI_Datatype unit, const void *block, void *local);
+// The same for `per_entry` doubles an entry (a D-vector a point: D; a run-time count
+// because it is only the size of the unit moved, whatever it means).
+PetscErrorCode DoublesToNaturalOrder(PetscSF sf, int per_entry, const double *local, double *block);
+PetscErrorCode DoublesFromNaturalOrder(PetscSF sf, int per_entry, const double *block, double *local);
 
 } // namespace bapd

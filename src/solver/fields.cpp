@@ -16,42 +16,68 @@ namespace bapd {
 
 namespace {
 
-// One owned point's numbers, sent to the natural block in one exchange.
-enum Packed : int {
-  kDisplacement = 0, kVelocity = 2, kDamage = 4, kLargestStretch = 5, kVolume = 6, kForce = 7,
-  kNominal = 9, kCauchy = 13, kDeformation = 17, kThickness = 21, kEnergy = 22, kRank = 23, kPacked = 24
+// The quantities of a field file.
+enum class Quantity {
+  natural_id, rank, reference, position, displacement, velocity, volume, force, damage, stretch, nominal, cauchy,
+  deformation, thickness, energy
+};
+
+// One owned point's numbers, sent to the natural block in one exchange: where each is
+// in the row (D-vectors D numbers, tensors D x D).
+template <int D>
+struct Packed {
+  static constexpr int displacement = 0, velocity = D, force = 2 * D, nominal = 3 * D, cauchy = nominal + D * D,
+                       deformation = cauchy + D * D, thickness = deformation + D * D, energy = thickness + 1,
+                       damage = energy + 1, stretch = damage + 1, volume = stretch + 1, rank = volume + 1, size = rank + 1;
+  // The first number of a quantity read from the row (a vector's x, a tensor's xx).
+  static int source(Quantity q)
+  {
+    switch (q) {
+    case Quantity::displacement: return displacement;
+    case Quantity::velocity: return velocity;
+    case Quantity::force: return force;
+    case Quantity::nominal: return nominal;
+    case Quantity::cauchy: return cauchy;
+    case Quantity::deformation: return deformation;
+    case Quantity::thickness: return thickness;
+    case Quantity::energy: return energy;
+    case Quantity::damage: return damage;
+    case Quantity::stretch: return stretch;
+    case Quantity::volume: return volume;
+    default: return rank; // natural_id, reference and position are not read from the row
+    }
+  }
 };
 
 enum class Shape { scalar, vector, tensor }; // 1, 3, 9 components in the file
 int components(Shape s) { return s == Shape::scalar ? 1 : s == Shape::vector ? 3 : 9; }
 
-// The datasets of a field file, in the order the XDMF lists them. source: the first
-// packed number (a vector's x, a tensor's xx), or one of the special sources below.
-constexpr int kNaturalId = -1, kRankInt = -2, kReference = -3, kPosition = -4;
+// The datasets of a field file, in the order the XDMF lists them.
 struct FieldArray {
   const char *name;
   Shape       shape;
-  int         source;
-  int         out_of_plane = -1; // tensors: the packed number that is the 33 component (-1: 0)
-  bool        integer() const { return source == kNaturalId || source == kRankInt; }
-  int         precision() const { return source == kRankInt ? 4 : 8; } // int32 rank, else 8 bytes
+  Quantity    quantity;
+  bool        integer() const { return quantity == Quantity::natural_id || quantity == Quantity::rank; }
+  int         precision() const { return quantity == Quantity::rank ? 4 : 8; } // int32 rank, else 8 bytes
+  // lambda_3 is a 2D quantity (the thickness stretch of a sheet): no dataset in 3D.
+  bool        in_dimension(int D) const { return quantity != Quantity::thickness || D == 2; }
 };
 constexpr FieldArray kArrays[] = {
-    {"natural_id", Shape::scalar, kNaturalId},
-    {"rank", Shape::scalar, kRankInt},
-    {"reference_position", Shape::vector, kReference},
-    {"position", Shape::vector, kPosition},
-    {"displacement", Shape::vector, kDisplacement},
-    {"velocity", Shape::vector, kVelocity},
-    {"volume", Shape::scalar, kVolume},
-    {"force_density", Shape::vector, kForce},
-    {"damage", Shape::scalar, kDamage},
-    {"max_bond_stretch", Shape::scalar, kLargestStretch},
-    {"nominal_stress", Shape::tensor, kNominal},
-    {"cauchy_stress", Shape::tensor, kCauchy},
-    {"deformation_gradient", Shape::tensor, kDeformation, kThickness},
-    {"thickness_stretch", Shape::scalar, kThickness},
-    {"strain_energy_density", Shape::scalar, kEnergy},
+    {"natural_id", Shape::scalar, Quantity::natural_id},
+    {"rank", Shape::scalar, Quantity::rank},
+    {"reference_position", Shape::vector, Quantity::reference},
+    {"position", Shape::vector, Quantity::position},
+    {"displacement", Shape::vector, Quantity::displacement},
+    {"velocity", Shape::vector, Quantity::velocity},
+    {"volume", Shape::scalar, Quantity::volume},
+    {"force_density", Shape::vector, Quantity::force},
+    {"damage", Shape::scalar, Quantity::damage},
+    {"max_bond_stretch", Shape::scalar, Quantity::stretch},
+    {"nominal_stress", Shape::tensor, Quantity::nominal},
+    {"cauchy_stress", Shape::tensor, Quantity::cauchy},
+    {"deformation_gradient", Shape::tensor, Quantity::deformation},
+    {"thickness_stretch", Shape::scalar, Quantity::thickness},
+    {"strain_energy_density", Shape::scalar, Quantity::energy},
 };
 
 const FieldArray &Array(const char *name)
@@ -61,52 +87,55 @@ const FieldArray &Array(const char *name)
   return kArrays[0]; // (every caller names one of the table)
 }
 
-// The dataset of a floating-point array from the natural block (kPacked per point).
-void FromBlock(const FieldArray &a, const std::vector<double> &block, const std::vector<double> &reference,
-               PetscInt count, std::vector<double> &out)
+// The dataset of a floating-point array from the natural block (Packed<D>::size per
+// point): D components of a vector, the D x D block of a row-major 3x3 tensor, the rest 0.
+template <int D>
+void FromBlock(const FieldArray &a, const std::vector<double> &block, const std::vector<double> &reference, PetscInt count,
+               std::vector<double> &out)
 {
-  const int c = components(a.shape);
+  using P           = Packed<D>;
+  const int c       = components(a.shape);
+  const int source  = P::source(a.quantity);
+  const bool moving = a.quantity == Quantity::position;
   out.assign((std::size_t)(c * count), 0.0);
   for (PetscInt k = 0; k < count; ++k) {
-    const double *row = block.data() + kPacked * k;
+    const double *row = block.data() + P::size * k;
     double       *o   = out.data() + c * k;
-    if (a.source == kReference || a.source == kPosition) {
-      for (int d = 0; d < 2; ++d) o[d] = reference[2 * k + d] + (a.source == kPosition ? row[kDisplacement + d] : 0.0);
+    if (a.quantity == Quantity::reference || moving) {
+      for (int d = 0; d < D; ++d) o[d] = reference[D * k + d] + (moving ? row[P::displacement + d] : 0.0);
     } else if (a.shape == Shape::scalar) {
-      o[0] = row[a.source];
+      o[0] = row[source];
     } else if (a.shape == Shape::vector) {
-      o[0] = row[a.source];
-      o[1] = row[a.source + 1];
-    } else { // 2x2 (xx, xy, yx, yy) -> row-major 3x3
-      o[0] = row[a.source];
-      o[1] = row[a.source + 1];
-      o[3] = row[a.source + 2];
-      o[4] = row[a.source + 3];
-      if (a.out_of_plane >= 0) o[8] = row[a.out_of_plane];
+      for (int d = 0; d < D; ++d) o[d] = row[source + d];
+    } else {
+      for (int r = 0; r < D; ++r)
+        for (int q = 0; q < D; ++q) o[3 * r + q] = row[source + D * r + q];
+      if (D == 2 && a.quantity == Quantity::deformation) o[8] = row[P::thickness]; // F_33 = lambda_3
     }
   }
 }
 
-// One owned point's numbers in the order of Packed.
+// One owned point's numbers in the order of Packed<D>.
+template <int D>
 void Pack(const PointFields &fields, int rank, PetscInt i, double *row)
 {
-  const PointQuantities &q = *fields.quantities;
-  for (int d = 0; d < 2; ++d) {
-    row[kDisplacement + d] = fields.displacement[2 * i + d];
-    row[kVelocity + d]     = fields.velocity[2 * i + d];
-    row[kForce + d]        = fields.force_density[2 * i + d];
+  using P = Packed<D>;
+  for (int d = 0; d < D; ++d) {
+    row[P::displacement + d] = fields.displacement[D * i + d];
+    row[P::velocity + d]     = fields.velocity[D * i + d];
+    row[P::force + d]        = fields.force_density[D * i + d];
   }
-  for (int c = 0; c < 4; ++c) {
-    row[kNominal + c]     = q.nominal_stress[4 * i + c];
-    row[kCauchy + c]      = q.cauchy_stress[4 * i + c];
-    row[kDeformation + c] = q.deformation_gradient[4 * i + c];
+  for (int c = 0; c < D * D; ++c) {
+    row[P::nominal + c]     = fields.nominal_stress[D * D * i + c];
+    row[P::cauchy + c]      = fields.cauchy_stress[D * D * i + c];
+    row[P::deformation + c] = fields.deformation_gradient[D * D * i + c];
   }
-  row[kDamage]         = fields.damage[i];
-  row[kLargestStretch] = fields.max_bond_stretch[i];
-  row[kVolume]         = fields.volume[i];
-  row[kThickness]      = q.thickness_stretch[i];
-  row[kEnergy]         = q.strain_energy_density[i];
-  row[kRank]           = rank;
+  row[P::damage]    = fields.damage[i];
+  row[P::stretch]   = fields.max_bond_stretch[i];
+  row[P::volume]    = fields.volume[i];
+  row[P::thickness] = fields.thickness_stretch ? fields.thickness_stretch[i] : 1.0; // 3D: none, never written
+  row[P::energy]    = fields.strain_energy_density[i];
+  row[P::rank]      = rank;
 }
 
 // The applied stretch of a frame listed again on restart (FieldFrame::stretch < 0):
@@ -152,6 +181,7 @@ PetscErrorCode FieldOptionsFromOptions(MPI_Comm comm, FieldOptions *options)
   PetscFunctionReturn(0);
 }
 
+template <int D>
 void largest_bond_stretch(const PointCloud &cloud, const double *y, const Families &families, const BondState &state,
                           std::size_t n, double *stretch)
 {
@@ -160,10 +190,14 @@ void largest_bond_stretch(const PointCloud &cloud, const double *y, const Famili
     double largest2 = 0.0; // of the squared stretch: one square root per point
     for (std::size_t b = families.offsets[i]; b < families.offsets[i + 1]; ++b) {
       if (!state.is_intact(i, b - families.offsets[i])) continue;
-      const std::size_t j  = (std::size_t)families.neighbour[b];
-      const double      ex = y[2 * j] - y[2 * i], ey = y[2 * j + 1] - y[2 * i + 1];
-      const double      rx = x[2 * j] - x[2 * i], ry = x[2 * j + 1] - x[2 * i + 1];
-      largest2             = std::max(largest2, (ex * ex + ey * ey) / (rx * rx + ry * ry));
+      const std::size_t j = (std::size_t)families.neighbour[b];
+      double            e2 = 0.0, r2 = 0.0; // |y_j - y_i|^2, |x_j - x_i|^2
+      for (int d = 0; d < D; ++d) {
+        const double e = y[D * j + d] - y[D * i + d], r = x[D * j + d] - x[D * i + d];
+        e2 += e * e;
+        r2 += r * r;
+      }
+      largest2 = std::max(largest2, e2 / r2);
     }
     stretch[i] = std::sqrt(largest2);
   }
@@ -176,12 +210,13 @@ std::string FieldFileName(PetscInt step)
   return name;
 }
 
+template <int D>
 PetscErrorCode WriteFieldFrame(MPI_Comm comm, const NaturalOrder &order, FieldSeries *series, PetscInt step, double time,
                                double stretch, const PointFields &fields)
 {
-  PetscMPIInt  rank;
-  MPI_Datatype unit;
-  PetscInt     owned;
+  using P = Packed<D>;
+  PetscMPIInt rank;
+  PetscInt    owned;
 
   PetscFunctionBegin;
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
@@ -203,21 +238,15 @@ PetscErrorCode WriteFieldFrame(MPI_Comm comm, const NaturalOrder &order, FieldSe
              series->output_dir.c_str());
   PetscCheck(ok, comm, PETSC_ERR_FILE_OPEN, "Cannot create %s/fields: choose a writable -output_dir", series->output_dir.c_str());
 
-  // Owned points -> natural block, kPacked numbers per point in one exchange (the
-  // reference positions once per run).
+  // Owned points -> natural block, Packed<D>::size numbers per point in one exchange
+  // (the reference positions once per run).
   const PetscInt      count = order.point_count;
-  std::vector<double> local(kPacked * owned), block(kPacked * count);
-  for (PetscInt i = 0; i < owned; ++i) Pack(fields, rank, i, local.data() + kPacked * i);
-  PetscCallMPI(MPI_Type_contiguous(kPacked, MPI_DOUBLE, &unit));
-  PetscCallMPI(MPI_Type_commit(&unit));
-  PetscCall(ToNaturalOrder(order.owned_points, unit, local.data(), block.data()));
-  PetscCallMPI(MPI_Type_free(&unit));
-  if (series->reference.size() != (std::size_t)(2 * count)) {
-    series->reference.assign(2 * count, 0.0);
-    PetscCallMPI(MPI_Type_contiguous(2, MPI_DOUBLE, &unit));
-    PetscCallMPI(MPI_Type_commit(&unit));
-    PetscCall(ToNaturalOrder(order.owned_points, unit, fields.reference, series->reference.data()));
-    PetscCallMPI(MPI_Type_free(&unit));
+  std::vector<double> local(P::size * owned), block(P::size * count);
+  for (PetscInt i = 0; i < owned; ++i) Pack<D>(fields, rank, i, local.data() + P::size * i);
+  PetscCall(DoublesToNaturalOrder(order.owned_points, P::size, local.data(), block.data()));
+  if (series->reference.size() != (std::size_t)(D * count)) {
+    series->reference.assign(D * count, 0.0);
+    PetscCall(DoublesToNaturalOrder(order.owned_points, D, fields.reference, series->reference.data()));
   }
 
   const std::string path = series->output_dir + "/" + FieldFileName(step);
@@ -232,19 +261,21 @@ PetscErrorCode WriteFieldFrame(MPI_Comm comm, const NaturalOrder &order, FieldSe
     PetscCall(f.WriteAttribute("/", "step", (std::int64_t)step));
     PetscCall(f.WriteAttribute("/", "time_s", time));
     PetscCall(f.WriteAttribute("/", "stretch", stretch));
+    PetscCall(f.WriteAttribute("/", "dimension", (std::int64_t)D));
     std::vector<double> data;
     for (const FieldArray &a : kArrays) {
+      if (!a.in_dimension(D)) continue;
       const std::string name = std::string("/") + a.name;
-      if (a.source == kNaturalId) {
+      if (a.quantity == Quantity::natural_id) {
         std::vector<std::int64_t> id(count);
         for (PetscInt k = 0; k < count; ++k) id[k] = (std::int64_t)(order.point_start + k);
         PetscCall(f.WriteBlock(name.c_str(), H5T_NATIVE_INT64, N, 0, start, n, id.data()));
-      } else if (a.source == kRankInt) {
+      } else if (a.quantity == Quantity::rank) {
         std::vector<std::int32_t> owner(count);
-        for (PetscInt k = 0; k < count; ++k) owner[k] = (std::int32_t)block[kPacked * k + kRank];
+        for (PetscInt k = 0; k < count; ++k) owner[k] = (std::int32_t)block[P::size * k + P::rank];
         PetscCall(f.WriteBlock(name.c_str(), H5T_NATIVE_INT32, N, 0, start, n, owner.data()));
       } else {
-        FromBlock(a, block, series->reference, count, data);
+        FromBlock<D>(a, block, series->reference, count, data);
         const int c = components(a.shape);
         PetscCall(f.WriteBlock(name.c_str(), H5T_NATIVE_DOUBLE, N, c > 1 ? (hsize_t)c : 0, start, n, data.data()));
       }
@@ -253,10 +284,11 @@ PetscErrorCode WriteFieldFrame(MPI_Comm comm, const NaturalOrder &order, FieldSe
   }
   while (!series->frames.empty() && series->frames.back().step >= step) series->frames.pop_back();
   series->frames.push_back({step, time, stretch});
-  PetscCall(WriteFieldIndex(comm, *series, order.n_points));
+  PetscCall(WriteFieldIndex<D>(comm, *series, order.n_points));
   PetscFunctionReturn(0);
 }
 
+template <int D>
 PetscErrorCode WriteFieldIndex(MPI_Comm comm, const FieldSeries &series, PetscInt n_points)
 {
   PetscMPIInt rank;
@@ -321,7 +353,7 @@ PetscErrorCode WriteFieldIndex(MPI_Comm comm, const FieldSeries &series, PetscIn
         }
         static const char *const type[] = {"Scalar", "Vector", "Tensor"};
         for (const FieldArray &a : kArrays) {
-          if (&a == &Array(geometry)) continue;
+          if (&a == &Array(geometry) || !a.in_dimension(D)) continue;
           std::fprintf(f, "    <Attribute Name=\"%s\" AttributeType=\"%s\" Center=\"Node\">\n", a.name, type[(int)a.shape]);
           item(a);
           std::fprintf(f, "    </Attribute>\n");
@@ -345,5 +377,12 @@ PetscErrorCode WriteFieldIndex(MPI_Comm comm, const FieldSeries &series, PetscIn
              series.output_dir.c_str(), status[1] ? FieldFileName(series.frames[status[1] - 1].step).c_str() : "");
   PetscFunctionReturn(0);
 }
+
+template void largest_bond_stretch<2>(const PointCloud &, const double *, const Families &, const BondState &, std::size_t, double *);
+template void largest_bond_stretch<3>(const PointCloud &, const double *, const Families &, const BondState &, std::size_t, double *);
+template PetscErrorCode WriteFieldFrame<2>(MPI_Comm, const NaturalOrder &, FieldSeries *, PetscInt, double, double, const PointFields &);
+template PetscErrorCode WriteFieldFrame<3>(MPI_Comm, const NaturalOrder &, FieldSeries *, PetscInt, double, double, const PointFields &);
+template PetscErrorCode WriteFieldIndex<2>(MPI_Comm, const FieldSeries &, PetscInt);
+template PetscErrorCode WriteFieldIndex<3>(MPI_Comm, const FieldSeries &, PetscInt);
 
 } // namespace bapd

@@ -40,7 +40,7 @@ PetscErrorCode ForceOperator::Setup(MPI_Comm comm, const Scene &scene, const Lay
                            energy);
     };
   });
-  PetscCall(CreateGhostedVector(comm, layout, &u_ghosted_));
+  PetscCall(CreateGhostedVector<2>(comm, layout, &u_ghosted_));
   PetscFunctionReturn(0);
 }
 

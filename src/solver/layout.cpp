@@ -2,8 +2,8 @@
 
 #include <algorithm>
 
+#include "bapd/nd/ba_force.hpp"
 #include "bapd/partition.hpp"
-#include "bapd/patch_correction.hpp"
 
 namespace bapd {
 
@@ -49,6 +49,7 @@ void CollectRings(int nranks, const std::vector<int> &part, const std::vector<in
 
 } // namespace
 
+template <int D>
 PetscErrorCode DistributePoints(MPI_Comm comm, const PointCloud &global_cloud, const std::vector<int> &offsets,
                                 const std::vector<int> &neighbours, Layout *layout)
 {
@@ -59,15 +60,17 @@ PetscErrorCode DistributePoints(MPI_Comm comm, const PointCloud &global_cloud, c
   PetscCallMPI(MPI_Comm_size(comm, &size));
   PetscInt n_global = (PetscInt)global_cloud.size(), edge_cut = 0;
   PetscCallMPI(MPI_Bcast(&n_global, 1, MPIU_INT, 0, comm));
-  // Reals per point: x, y, V, V(H), and delta_i when the points have their own horizons,
-  // then the patch correction's numbers with -force_patch_correction: lambda_i (2, on)
-  // or mu_i, S_i (5, virial; patch_correction.hpp), the ring-1 points' included, which
-  // the kernel reads as neighbours.
-  int R = global_cloud.horizon.empty() ? 4 : 5,
-      L = global_cloud.patch_correction.empty() ? 0 : (global_cloud.patch_virial ? (int)kVirialPatchStride : 2);
+  // Reals per point: the D coordinates, V, V(H), and delta_i when the points have their
+  // own horizons, then the patch correction's numbers with -force_patch_correction:
+  // lambda_i (D, on) or mu_i, S_i (D + D(D+1)/2, virial: 5 in 2D; patch_correction.hpp,
+  // nd::patch_stride), the ring-1 points' included, which the kernel reads as neighbours.
+  constexpr int kVolume = D, kFamilyVolume = D + 1, kHorizon = D + 2; // their places in a point's reals
+  int R = global_cloud.horizon.empty() ? D + 2 : D + 3,
+      L = global_cloud.patch_correction.empty() ? 0 : (int)nd::patch_stride<D>(global_cloud.patch_virial);
   PetscCallMPI(MPI_Bcast(&R, 1, MPI_INT, 0, comm));
   PetscCallMPI(MPI_Bcast(&L, 1, MPI_INT, 0, comm));
-  const int H = R; // where the patch correction's numbers start in a point's reals
+  const int  H           = R; // where the patch correction's numbers start in a point's reals
+  const bool own_horizon = R == D + 3;
   R += L;
   PetscCheck(n_global >= size, comm, PETSC_ERR_USER, "The body has %" PetscInt_FMT " points, fewer than the %d ranks: run on fewer ranks or refine -body_dx", n_global, size);
 
@@ -100,11 +103,10 @@ PetscErrorCode DistributePoints(MPI_Comm comm, const PointCloud &global_cloud, c
       for (std::size_t k = 0; k < ids.size(); ++k) {
         const int i     = ids[k];
         pidx[k]         = petsc_index[i];
-        real[R * k + 0] = global_cloud.x[2 * i];
-        real[R * k + 1] = global_cloud.x[2 * i + 1];
-        real[R * k + 2] = global_cloud.volume[i];
-        real[R * k + 3] = global_cloud.family_volume[i];
-        if (H == 5) real[R * k + 4] = global_cloud.horizon[i];
+        for (int d = 0; d < D; ++d) real[R * k + d] = global_cloud.x[D * i + d];
+        real[R * k + kVolume]       = global_cloud.volume[i];
+        real[R * k + kFamilyVolume] = global_cloud.family_volume[i];
+        if (own_horizon) real[R * k + kHorizon] = global_cloud.horizon[i];
         for (int l = 0; l < L; ++l) real[R * k + H + l] = global_cloud.patch_correction[L * i + l];
       }
       PetscInt c[3] = {(PetscInt)rp.owned.size(), (PetscInt)rp.ring1.size(), (PetscInt)rp.ring2.size()};
@@ -133,6 +135,7 @@ PetscErrorCode DistributePoints(MPI_Comm comm, const PointCloud &global_cloud, c
   }
   PetscCallMPI(MPI_Bcast(&edge_cut, 1, MPIU_INT, 0, comm));
 
+  layout->dimension   = D;
   layout->n_owned     = my_counts[0];
   layout->n_ring1     = my_counts[1];
   layout->n_ring2     = my_counts[2];
@@ -142,30 +145,36 @@ PetscErrorCode DistributePoints(MPI_Comm comm, const PointCloud &global_cloud, c
   layout->petsc_index = std::move(my_petsc);
   PointCloud &c       = layout->cloud;
   const std::size_t m = my_ids.size();
-  c.x.resize(2 * m);
+  c.x.resize(D * m);
   c.volume.resize(m);
   c.family_volume.resize(m);
   c.natural_id.assign(my_ids.begin(), my_ids.end());
-  c.horizon.resize(H == 5 ? m : 0);
+  c.horizon.resize(own_horizon ? m : 0);
   c.patch_correction.resize(L * m);
-  c.patch_virial = L == (int)kVirialPatchStride;
+  c.patch_virial = L == (int)nd::patch_stride<D>(true);
   for (std::size_t k = 0; k < m; ++k) {
-    c.x[2 * k]          = my_real[R * k];
-    c.x[2 * k + 1]      = my_real[R * k + 1];
-    c.volume[k]         = my_real[R * k + 2];
-    c.family_volume[k]  = my_real[R * k + 3];
-    if (H == 5) c.horizon[k] = my_real[R * k + 4];
+    for (int d = 0; d < D; ++d) c.x[D * k + d] = my_real[R * k + d];
+    c.volume[k]        = my_real[R * k + kVolume];
+    c.family_volume[k] = my_real[R * k + kFamilyVolume];
+    if (own_horizon) c.horizon[k] = my_real[R * k + kHorizon];
     for (int l = 0; l < L; ++l) c.patch_correction[L * k + l] = my_real[R * k + H + l];
   }
   PetscFunctionReturn(0);
 }
 
+template <int D>
 PetscErrorCode CreateGhostedVector(MPI_Comm comm, const Layout &layout, Vec *v)
 {
   PetscFunctionBegin;
+  PetscCheck(layout.dimension == D, comm, PETSC_ERR_PLIB, "CreateGhostedVector<%d> on a layout of dimension %d", D, layout.dimension);
   const PetscInt *ghosts = layout.petsc_index.data() + layout.n_owned;
-  PetscCall(VecCreateGhostBlock(comm, 2, 2 * layout.n_owned, PETSC_DECIDE, layout.n_ghost(), ghosts, v));
+  PetscCall(VecCreateGhostBlock(comm, D, D * layout.n_owned, PETSC_DECIDE, layout.n_ghost(), ghosts, v));
   PetscFunctionReturn(0);
 }
+
+template PetscErrorCode DistributePoints<2>(MPI_Comm, const PointCloud &, const std::vector<int> &, const std::vector<int> &, Layout *);
+template PetscErrorCode DistributePoints<3>(MPI_Comm, const PointCloud &, const std::vector<int> &, const std::vector<int> &, Layout *);
+template PetscErrorCode CreateGhostedVector<2>(MPI_Comm, const Layout &, Vec *);
+template PetscErrorCode CreateGhostedVector<3>(MPI_Comm, const Layout &, Vec *);
 
 } // namespace bapd

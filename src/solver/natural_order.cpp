@@ -127,4 +127,32 @@ PetscErrorCode FromNaturalOrder(PetscSF sf, MPI_Datatype unit, const void *block
   PetscFunctionReturn(0);
 }
 
+namespace {
+
+// The MPI type of per_entry doubles, made for one exchange and freed again.
+PetscErrorCode MoveDoubles(PetscSF sf, int per_entry, const double *from, double *to, bool to_natural)
+{
+  MPI_Datatype unit;
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Type_contiguous(per_entry, MPI_DOUBLE, &unit));
+  PetscCallMPI(MPI_Type_commit(&unit));
+  const PetscErrorCode moved = to_natural ? ToNaturalOrder(sf, unit, from, to) : FromNaturalOrder(sf, unit, from, to);
+  PetscCallMPI(MPI_Type_free(&unit));
+  PetscCall(moved);
+  PetscFunctionReturn(0);
+}
+
+} // namespace
+
+PetscErrorCode DoublesToNaturalOrder(PetscSF sf, int per_entry, const double *local, double *block)
+{
+  return MoveDoubles(sf, per_entry, local, block, true);
+}
+
+PetscErrorCode DoublesFromNaturalOrder(PetscSF sf, int per_entry, const double *block, double *local)
+{
+  return MoveDoubles(sf, per_entry, block, local, false);
+}
+
 } // namespace bapd

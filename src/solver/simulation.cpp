@@ -175,7 +175,7 @@ PetscErrorCode Simulation::BuildBody()
   PetscCheck(!patch_failed, comm_, PETSC_ERR_USER,
              "-force_patch_correction %s: the affine patch correction could not be solved on these points (above); run "
              "with -force_patch_correction off", to_string(scene_.patch_correction));
-  PetscCall(DistributePoints(comm_, global, offsets, neighbours, &layout_));
+  PetscCall(DistributePoints<2>(comm_, global, offsets, neighbours, &layout_));
   PetscCall(PetscLogStagePop());
 
   // Every rank finds the same families for its owned and ring-1 points as rank 0

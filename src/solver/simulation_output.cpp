@@ -1,6 +1,6 @@
 // The driver's output after a step: field files, checkpoints (periodic, on a signal,
 // on divergence, at the end) and restart from a checkpoint. The formats live in
-// fields.cpp and checkpoint.cpp; this file only moves the Simulation's state in and
+// fields.cpp and checkpoint_*.cpp; this file only moves the Simulation's state in and
 // out of them.
 #include <petscts.h>
 
@@ -14,6 +14,7 @@
 #include <sstream>
 
 #include "bapd/damage.hpp"
+#include "bapd/point_quantities.hpp"
 #include "bapd/simulation.hpp"
 
 namespace bapd {
@@ -86,7 +87,7 @@ PetscErrorCode Simulation::CreateNaturalOrder()
   PetscFunctionBegin;
   if (output_.order.created()) PetscFunctionReturn(0);
   PetscCall(NaturalOrderCreate(comm_, layout_, families_, &output_.order));
-  PetscCall(ComputeGeometryFingerprint(comm_, layout_, families_, scene_.body.dx, scene_.horizon(), &output_.geometry));
+  PetscCall(ComputeGeometryFingerprint<2>(comm_, layout_, families_, scene_.body.dx, scene_.horizon(), &output_.geometry));
   PetscFunctionReturn(0);
 }
 
@@ -187,7 +188,7 @@ PetscErrorCode Simulation::WriteFields(PetscInt step, double t)
   PetscCall(VecGetArrayRead(X_, &x));
   PetscCall(force_.UpdatePositions(x)); // y for the stretch; the next force evaluation sets it again
   point_damage(layout_.cloud, families_, bond_state_, (std::size_t)n, damage.data());
-  largest_bond_stretch(layout_.cloud, force_.positions(), families_, bond_state_, (std::size_t)n, largest.data());
+  largest_bond_stretch<2>(layout_.cloud, force_.positions(), families_, bond_state_, (std::size_t)n, largest.data());
   PointFields fields;
   fields.reference        = layout_.cloud.x.data();
   fields.displacement     = x;
@@ -199,10 +200,14 @@ PetscErrorCode Simulation::WriteFields(PetscInt step, double t)
   std::vector<double> force(2 * n);
   PointQuantities     quantities;
   PetscCall(ComputePointQuantities(x, force.data(), &quantities)); // leaves the warm starts as they were
-  fields.volume        = layout_.cloud.volume.data();
-  fields.force_density = force.data();
-  fields.quantities    = &quantities;
-  const PetscErrorCode written = WriteFieldFrame(comm_, output_.order, &output_.series, step, t, loading_.stretch_at(t), fields);
+  fields.volume                = layout_.cloud.volume.data();
+  fields.force_density         = force.data();
+  fields.nominal_stress        = quantities.nominal_stress.data();
+  fields.cauchy_stress         = quantities.cauchy_stress.data();
+  fields.deformation_gradient  = quantities.deformation_gradient.data();
+  fields.thickness_stretch     = quantities.thickness_stretch.data();
+  fields.strain_energy_density = quantities.strain_energy_density.data();
+  const PetscErrorCode written = WriteFieldFrame<2>(comm_, output_.order, &output_.series, step, t, loading_.stretch_at(t), fields);
   PetscCall(VecRestoreArrayRead(X_, &x)); // also when the file could not be written
   PetscCall(written);
   PetscCall(PetscLogEventEnd(event_fields, 0, 0, 0, 0));
@@ -299,7 +304,7 @@ PetscErrorCode Simulation::WriteCheckpointFile(PetscInt step, double t, const ch
     header.step_indicator     = s.indicator;
     state.step_eigenvector    = step_control_.eigenvector();
   }
-  const PetscErrorCode written = WriteCheckpoint(comm_, path, output_.order, families_, &header, state);
+  const PetscErrorCode written = WriteCheckpoint<2>(comm_, path, output_.order, families_, &header, state);
   PetscCall(VecRestoreArray(X_, &x)); // also when the checkpoint could not be written
   PetscCall(written);
   output_.last_checkpoint_step = step;
@@ -348,7 +353,7 @@ PetscErrorCode Simulation::RestoreCheckpoint()
     state.relaxation_a = relaxation_.latest_a();
   }
   if (step_control_.reestimating()) state.step_eigenvector = step_control_.eigenvector();
-  PetscCall(ReadCheckpointState(comm_, path, output_.order, families_, header, output_.geometry, state));
+  PetscCall(ReadCheckpointState<2>(comm_, path, output_.order, families_, header, output_.geometry, state));
   if (relaxation_.active()) relaxation_.RestoreLatest((int)header.relaxation_records);
   PetscCall(VecRestoreArray(X_, &x));
   // The reference geometry of the families with their broken bonds, as the run had it.
@@ -435,7 +440,7 @@ PetscErrorCode Simulation::RestoreCheckpoint()
   output_.series.frames.clear();
   for (std::size_t k = 0; k < present.size(); ++k)
     if (present[k]) output_.series.frames.push_back({(PetscInt)header.field_frames[2 * k], header.field_frames[2 * k + 1]});
-  if (output_.fields.enabled) PetscCall(WriteFieldIndex(comm_, output_.series, layout_.n_global));
+  if (output_.fields.enabled) PetscCall(WriteFieldIndex<2>(comm_, output_.series, layout_.n_global));
 
   PetscCall(PetscPrintf(comm_, "Restart from %s: step %" PetscInt_FMT ", t = %.6e s, stretch %.5f, %" PetscInt_FMT " broken bonds (written by %lld rank(s), %s)\n",
                         path.c_str(), header.step, header.time, loading_.stretch_at(header.time), total_broken_,

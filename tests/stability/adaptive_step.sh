@@ -113,11 +113,12 @@ def mix(z):
     z = ((z ^ (z >> 30)) * 0xBF58476D1CE4E5B9) & m
     z = ((z ^ (z >> 27)) * 0x94D049BB133111EB) & m
     return z ^ (z >> 31)
-entry = lambda tag, index, bits: mix(mix(tag ^ mix(index)) ^ bits)  # checkpoint.cpp, Entry
+entry = lambda tag, index, bits: mix(mix(tag ^ mix(index)) ^ bits)  # checkpoint_checksum.cpp, Entry
 bits = lambda x: struct.unpack("<Q", struct.pack("<d", x))[0]
 shutil.copy(sys.argv[1], sys.argv[2])
 with h5py.File(sys.argv[2], "r+") as f:
-    assert f.attrs["format_version"] == 5, f.attrs["format_version"]
+    assert f.attrs["format_version"] == 6, f.attrs["format_version"]
+    del f.attrs["dimension"]  # format 6 (2 before it)
     g = f["time_step"]
     interval, increment = int(g.attrs["interval_now"]), float(g.attrs["stretch_increment"])
     indicator = float(g.attrs["indicator"])  # format 5
