@@ -80,6 +80,7 @@ struct PointQuantities {
   }
 };
 
+namespace detail {
 // A B with each entry summed from its first term, k = 0, 1 (, 2) in order: for D = 2
 // the operations of tensor.hpp's Mat2 product, so the 2D quantities keep their bits.
 template <int D> inline nd::Mat<D> product(const nd::Mat<D> &A, const nd::Mat<D> &B)
@@ -103,6 +104,7 @@ template <int D> inline nd::Vec<D> product_vector(const nd::Mat<D> &A, const nd:
   }
   return w;
 }
+} // namespace detail
 
 // sigma = P F^T / J. D = 2: the in-plane Cauchy stress of a 2D state, J = det F~
 // lambda_3 (F = diag(F~, lambda_3), so the in-plane block of P F^T is P~ F~^T); D = 3:
@@ -111,7 +113,7 @@ template <int D> inline nd::Mat<D> cauchy_stress(const nd::Mat<D> &P, const nd::
 {
   const double J = D == 2 ? nd::det<D>(F) * lambda_3 : nd::det<D>(F);
   if (!(J > 0.0)) return nd::Mat<D>{};
-  const nd::Mat<D> PFt = product<D>(P, nd::transpose<D>(F));
+  const nd::Mat<D> PFt = detail::product<D>(P, nd::transpose<D>(F));
   nd::Mat<D>       sigma;
   const double     r = 1.0 / J;
   for (int k = 0; k < D * D; ++k) sigma[k] = r * PFt[k];
@@ -149,7 +151,7 @@ void point_quantities(const Model &model, const PointCloud &cloud, const double 
       const double a = weights == StressWeights::bond_force ? shape.force_scale * v : v;
       if (virial) { // P B_ij, B_ij = V_j (C_i g_ij) (x) xi_ij
         const std::size_t j = static_cast<std::size_t>(families.neighbour[b]);
-        nd::Vec<D>        h = product_vector<D>(C, shape.force_vector);
+        nd::Vec<D>        h = detail::product_vector<D>(C, shape.force_vector);
         nd::Vec<D>        d;
         for (int r = 0; r < D; ++r) d[r] = cloud.x[D * j + r] - cloud.x[D * i + r];
         if (!cloud.patch_correction.empty()) { // h_ij of the kernel (patch_correction.hpp)
@@ -160,7 +162,7 @@ void point_quantities(const Model &model, const PointCloud &cloud, const double 
         Mat B;
         for (int r = 0; r < D; ++r)
           for (int s = 0; s < D; ++s) B[D * r + s] = v * h[r] * d[s];
-        const Mat PB = product<D>(P, B);
+        const Mat PB = detail::product<D>(P, B);
         for (int k = 0; k < D * D; ++k) P_sum[k] = P_sum[k] + PB[k];
       } else
         for (int k = 0; k < D * D; ++k) P_sum[k] = P_sum[k] + a * P[k];

@@ -69,25 +69,29 @@ PetscErrorCode ReadGroup(MPI_Comm comm, const LoadInput &li, const Body2D &body,
   PetscFunctionReturn(0);
 }
 
-// Region block: the given points of block id -load_S_block (the cloud's block column).
-PetscErrorCode ReadBlock(MPI_Comm comm, const LoadInput &li, const Body2D &body, LoadSet *set)
+// Region block: the given points of block id -load_S_block (the cloud's block column;
+// a 2D cloud's, or a 3D one's).
+PetscErrorCode ReadBlock(MPI_Comm comm, const LoadInput &li, const Scene &scene, LoadSet *set)
 {
-  const char *n = li.name.c_str();
+  const char   *n     = li.name.c_str();
+  const bool    three = scene.dimension == 3;
+  const Body2D &b2    = scene.body;
+  const Body3D &b3    = scene.body3d;
   PetscFunctionBeginUser;
   SceneCheck(li.block_set, comm, "-load_%s_block is required with -load_%s_region block: give a block id of the point cloud%s", n, n,
              MisspeltHint("-load_" + li.name + "_block").c_str());
-  SceneCheck(body.given_points != nullptr, comm,
+  SceneCheck(three ? b3.given_points != nullptr : b2.given_points != nullptr, comm,
              "-load_%s_region block: block ids come with the points of a cloud (-body_cloud, column block_id), and this body is a "
-             "lattice: choose another region (box, polygon, curve, group)",
-             n);
+             "lattice: choose %s",
+             n, three ? "a face or a box" : "another region (box, polygon, curve, group)");
   set->block        = static_cast<int64_t>(li.block);
-  set->block_points = BlockPoints(body, set->block);
+  set->block_points = three ? BlockPoints3D(b3.given_points->x, b3.given_block, set->block) : BlockPoints(b2, set->block);
   SceneCheck(!set->block_points.empty(), comm,
              "-load_%s_block %" PetscInt_FMT ": no point of '%s' has block id %" PetscInt_FMT " (its block ids: %s): give one of them", n,
-             li.block, body.given_points->source.c_str(), li.block, BlockIdList(body).c_str());
+             li.block, three ? b3.source.c_str() : b2.given_points->source.c_str(), li.block,
+             (three ? BlockIdList(b3.given_block) : BlockIdList(b2)).c_str());
   PetscFunctionReturn(0);
 }
-
 
 // The region word (case-insensitive; the faces also as x-, x+, y-, y+, z-, z+).
 bool ParseRegion(const std::string &text, LoadSet::Region *region)
@@ -159,17 +163,7 @@ PetscErrorCode CheckLoadSet3D(MPI_Comm comm, const LoadInput &li, const SceneInp
                set->box[0], set->box[1], set->box[2], set->box[3], set->box[4], set->box[5], b.lo[0], b.hi[0], b.lo[1], b.hi[1], b.lo[2],
                b.hi[2]);
   } else if (set->region == LoadSet::Region::block) {
-    SceneCheck(li.block_set, comm, "-load_%s_block is required with -load_%s_region block: give a block id of the point cloud%s", n, n,
-               MisspeltHint("-load_" + li.name + "_block").c_str());
-    SceneCheck(b.given_points != nullptr, comm,
-               "-load_%s_region block: block ids come with the points of a cloud (-body_cloud, column block_id), and this body is a "
-               "lattice: choose a face or a box",
-               n);
-    set->block        = static_cast<int64_t>(li.block);
-    set->block_points = BlockPoints3D(b.given_points->x, b.given_block, set->block);
-    SceneCheck(!set->block_points.empty(), comm,
-               "-load_%s_block %" PetscInt_FMT ": no point of '%s' has block id %" PetscInt_FMT " (its block ids: %s): give one of them", n,
-               li.block, b.source.c_str(), li.block, BlockIdList(b.given_block).c_str());
+    PetscCall(ReadBlock(comm, li, scene, set));
   } else {
     SceneCheck(!(li.layers_set && li.depth_set), comm,
                "-load_%s_layers and -load_%s_depth both give the grip's depth: keep one (rows, or metres)", n, n);
@@ -376,7 +370,7 @@ PetscErrorCode CheckLoading(MPI_Comm comm, const SceneInput &in, Scene *scene)
     } else if (set.region == LoadSet::Region::group) {
       PetscCall(ReadGroup(comm, li, b, &set));
     } else if (set.region == LoadSet::Region::block) {
-      PetscCall(ReadBlock(comm, li, b, &set));
+      PetscCall(ReadBlock(comm, li, *scene, &set));
     } else {
       const std::string placement = Lower(li.placement) == "auto" ? to_string(default_placement) : Lower(li.placement);
       if (placement == "outside") set.placement = GripPlacement::outside;
