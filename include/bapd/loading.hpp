@@ -4,6 +4,10 @@
 // schedule and the end time start as the scene's and change only here: a static
 // hold that ends early moves the later knots (EndHold), and a restart puts the moved
 // schedule back (Restore). The scene itself is never written.
+// The dimension D = scene.dimension (2 or 3; issue 21 stage 4) is taken at Setup: a
+// point has D dofs (D p + c) and a load set D reaction components. It is a run-time
+// value, not a template parameter, because nothing here runs per bond (the grips'
+// dofs once a step) and the time-step control takes a Loading of either D.
 #include <petscsys.h>
 
 #include <vector>
@@ -15,7 +19,7 @@ namespace bapd {
 
 // One loaded component of one owned point.
 struct ConstrainedDof {
-  PetscInt      dof;   // 2 * owned point + component
+  PetscInt      dof;   // D * owned point + component
   ComponentLoad kind;  // fixed or stretch
   double        scale; // u = scale * (lambda - 1) * reference_length
   double        lever = 0.0; // -load_grip_field affine: + lever * (lambda - 1) [m]
@@ -35,7 +39,7 @@ public:
   // Holds the loaded components at their prescribed values (v may be nullptr): exact
   // for any TS type.
   void Apply(double t, double *u, double *v) const;
-  // Reactions of every load set (x, y per set: 2 * sets values): the grip holds its
+  // Reactions of every load set (x, y[, z] per set: D * sets values): the grip holds its
   // points still, so it supplies minus the internal force, sum_i -f_i V_i. A
   // reproducible sum: the same bits on any number of ranks. Collective; no allocation.
   // The history rows and the summary both report these.
@@ -47,6 +51,7 @@ public:
   double                             end_time() const { return end_time_; }
   double                             stretch_at(double t) const { return schedule_.stretch_at(t); }
   PetscInt                           segment_at(double t) const; // schedule knots passed at t
+  int                                dimension() const { return dimension_; }
 
   // Static holds: the knot k whose hold t lies in, if that hold has not ended yet
   // (else -1); EndHold(k, t) skips what is left of it, moving the later knots and the
@@ -66,6 +71,7 @@ private:
 
   MPI_Comm                    comm_   = MPI_COMM_NULL;
   const Layout               *layout_ = nullptr;
+  int                         dimension_ = 2; // D: dofs a point
   double                      reference_length_ = 0;
   std::vector<ConstrainedDof> constrained_;
   std::vector<LoadSetPoints>  load_points_;

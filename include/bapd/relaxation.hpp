@@ -23,6 +23,8 @@
 // number of ranks. PETSc's velocity Verlet evaluates the force once a step (at the
 // half-step position), so the pair spans two steps: the latest evaluation is saved in
 // checkpoints (/relaxation, checkpoint.hpp) and a restart continues bit for bit.
+// The dimension D (2 or 3; issue 21 stage 4) is the number of dofs a point: du_i and
+// da_i have D components, held dofs are D i + c.
 #include <petscsys.h>
 
 #include <algorithm>
@@ -36,9 +38,18 @@ const char *to_string(RelaxationKind kind);
 // -relaxation none|adaptive. Collective; also lists the option under -help.
 PetscErrorCode RelaxationFromOptions(MPI_Comm comm, RelaxationKind *kind);
 
-class AdaptiveRelaxation {
+// The kinetic energy of a point of mass m and velocity v (D components),
+// 1/2 m v.v, v.v summed from its first term (for D = 2 the history's arithmetic).
+template <int D> inline double PointKineticEnergy(double m, const double *v)
+{
+  double vv = v[0] * v[0];
+  for (int c = 1; c < D; ++c) vv = vv + v[c] * v[c];
+  return 0.5 * m * vv;
+}
+
+template <int D> class AdaptiveRelaxation {
 public:
-  // n_owned points with volumes `volume` (kept by pointer), held dofs (2 i + c) of
+  // n_owned points with volumes `volume` (kept by pointer), held dofs (D i + c) of
   // the grips, the damping floor (1/s) and the stable step (caps c at 4/dt_stable).
   void Setup(RelaxationKind kind, std::size_t n_owned, const double *volume, const std::vector<PetscInt> &held_dofs,
              double floor, double stable_dt);
@@ -46,7 +57,7 @@ public:
   // The stable step re-estimated during the run (time_step_control.hpp): the cap
   // follows it, 2 omega_max = 4 / dt_stable, so a stiffer material may be damped harder.
   void FollowStableStep(double stable_dt) { cap_ = std::max(floor_, 2.0 * 2.0 / stable_dt); }
-  // Every acceleration the dynamics evaluates (owned u and a, 2 per point): keeps the
+  // Every acceleration the dynamics evaluates (owned u and a, D per point): keeps the
   // last two. A copy, no allocation.
   void Record(const double *u, const double *a);
   // The damping coefficient for this step (1/s). Collective.
@@ -67,12 +78,15 @@ private:
   RelaxationKind      kind_ = RelaxationKind::none;
   std::size_t         n_    = 0;
   const double       *volume_ = nullptr;
-  std::vector<char>   free_;      // 2 per point: 1 unless a grip holds it
+  std::vector<char>   free_;      // D per point: 1 unless a grip holds it
   std::vector<double> u_[2], a_[2];
   std::vector<double> terms_;     // 2 per point: V du.(-da), V |du|^2
   int                 latest_ = 1, recorded_ = 0;
   double              floor_ = 0, cap_ = 0;
   double              last_ = 0, smallest_ = 0, largest_ = 0;
 };
+
+extern template class AdaptiveRelaxation<2>;
+extern template class AdaptiveRelaxation<3>;
 
 } // namespace bapd

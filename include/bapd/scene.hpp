@@ -7,11 +7,14 @@
 // registry have their own headers, included here. The definitions: scene.cpp (reading
 // and checking, SceneView) lists the files of each section.
 #include <petscsys.h>
+#include <array>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "bapd/body.hpp"
+#include "bapd/nd/shape3d.hpp"
 #include "bapd/material.hpp"
 #include "bapd/options.hpp"
 #include "bapd/scene_loading.hpp"
@@ -26,8 +29,28 @@ namespace bapd {
 // (the patch test); virial = (mu, S), 5 numbers a point (the patch test and the virial).
 enum class PatchCorrection { off, lambda, virial };
 
+// A 3D body (-body_dimension 3, or implied by a 3D solid; issue 21 stage 4;
+// docs/options.md "3D bodies"): the solids (boxes, cylinders, spheres, Gmsh volumes)
+// and planar polygon notches of nd/shape3d.hpp on a lattice of spacing dx, or the points
+// of a 3D cloud (nd/point_cloud3d.hpp) clipped by the solids. Checked whole by the scene
+// (scene_body.cpp): the points are built once there, for their count, their extent (the
+// faces of the load sets) and the one-piece check.
+struct Body3D {
+  nd::SolidBody                      solid;        // dx, origin (0, 0, 0), solids in order, notches
+  std::vector<std::string>           solid_names;  // -body_shapes name of each solid, for messages
+  std::shared_ptr<const PointCloud>  given_points; // -body_cloud in 3D (x: 3 a point), clipped; null: the lattice
+  std::vector<int64_t>               given_block;  // block id of each given point
+  std::string                        source;       // the cloud file, for messages
+  int64_t                            points = 0;   // material points of the body
+  std::array<double, 3>              lo{}, hi{};   // the extent of the points' cells [m]: lattice point +- dx/2
+};
+
 struct Scene {
+  // 2 (the plane sheet `body`) or 3 (`body3d`): the driver's D. The 2D driver runs
+  // D = 2 only; a 3D scene is read and checked, then stopped (StopThreeDimensional).
+  int    dimension = 2;
   Body2D body;
+  Body3D body3d;
   double horizon_factor = 3.015; // delta / dx (given points: delta_i / h_i, geometry.hpp)
 
   ModelKind          model       = ModelKind::gent;
@@ -104,5 +127,9 @@ int64_t ScenePointEstimate(const Scene &scene);
 PetscErrorCode CheckBodyMemory(MPI_Comm comm, const Scene &scene, int64_t points, int64_t bonds);
 
 const char *to_string(PatchCorrection c); // the option's word: off, on, virial
+
+// A 3D scene (scene.dimension 3) stops here, after every check, with one message: the
+// driver is 2D until issue 21 stage 4 makes it generic in D. Collective; 0 in 2D.
+PetscErrorCode StopThreeDimensional(MPI_Comm comm, const Scene &scene);
 
 } // namespace bapd

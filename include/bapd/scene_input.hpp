@@ -14,23 +14,23 @@ namespace bapd {
 // What the options said, beyond the values that go straight into the Scene: which
 // were given, and the raw text of lists and choices, for the checks.
 struct LoadInput {
-  std::string         name, region, x = "free", y = "free", placement = "auto"; // auto: -load_grip_placement's
+  std::string         name, region, x = "free", y = "free", z = "free", placement = "auto"; // auto: -load_grip_placement's
   std::string         group, file; // region group: the physical group and its Gmsh file
   bool                region_set = false, box_set = false, layers_set = false, depth_set = false, x_scale_set = false,
-                      y_scale_set = false, points_set = false, block_set = false;
+                      y_scale_set = false, z_scale_set = false, points_set = false, block_set = false;
   std::vector<double> box, points; // points: region polygon or curve
   PetscInt            block = 0;   // region block: the block id of the given points
   PetscInt            layers  = 1;
   double              depth   = 0.0;
-  double              x_scale = 1.0, y_scale = 1.0;
+  double              x_scale = 1.0, y_scale = 1.0, z_scale = 1.0;
 };
 
 struct ShapeInput {
   std::string         name, type, op = "subtract", file, discretisation = "lattice";
   bool                type_set = false;
-  std::vector<double> box, centre, radii, points;
+  std::vector<double> box, centre, radii, points, axis; // axis: a 3D cylinder's end points
   double              radius = 0, angle = 0; // angle in degrees, as given
-  bool                radius_set = false;
+  bool                radius_set = false, op_set = false;
 };
 
 struct ProbeInput {
@@ -48,6 +48,8 @@ struct SceneInput {
   std::vector<std::string> shape_names;
   std::vector<ShapeInput>  shapes;
   std::string              cloud; // -body_cloud: a point cloud file instead of the lattice
+  PetscInt                 dimension = 2; // -body_dimension (2 or 3; 3D solids imply 3)
+  bool                     dimension_set = false, grip_placement_set = false, grip_field_set = false;
   std::string              model = "gent", formulation = "plane_stress", force_form = "energy_consistent",
                            stress_correction = "auto", patch_correction = "auto", grip_field = "auto", grip_placement = "outside";
   bool                     D_set = false, bulk_ratio_set = false;

@@ -38,15 +38,24 @@ enum class GripPlacement { outside, inside };
 // polyline (curve), or a named physical group of a Gmsh file (group: a physical
 // surface holds the points inside its elements; a physical curve or point, the
 // points closer than `depth` to it).
+// In 3D (Scene::dimension 3, issue 21 stage 4) the edge regions are the faces of the
+// body's extent (Body3D::lo, hi): left x-, right x+, bottom y-, top y+, back z-, front
+// z+ (the words x-, x+, y-, y+, z-, z+ name them too), always inside; a box has six
+// numbers; a block is a block id of a 3D cloud; polygon, curve and group are 2D only.
 struct LoadSet {
-  enum class Region { top, bottom, left, right, box, polygon, curve, group, block };
+  enum class Region { top, bottom, left, right, box, polygon, curve, group, block, front, back };
   std::string   name;
   Region        region    = Region::top;
   GripPlacement placement = GripPlacement::inside; // edge regions (the others are inside)
-  double        box[4] = {0, 0, 0, 0}; // xmin, ymin, xmax, ymax (Region::box)
+  // Region::box: the lower corner then the upper, D numbers each: 2D xmin, ymin, xmax,
+  // ymax; 3D xmin, ymin, zmin, xmax, ymax, zmax.
+  double        box[6] = {0, 0, 0, 0, 0, 0};
   int           layers = 1;            // point rows taken at the named edge
-  ComponentLoad x = ComponentLoad::free, y = ComponentLoad::free;
-  double        x_scale = 0.0, y_scale = 0.0;
+  ComponentLoad x = ComponentLoad::free, y = ComponentLoad::free, z = ComponentLoad::free; // z: 3D only
+  double        x_scale = 0.0, y_scale = 0.0, z_scale = 0.0;
+  // Component c (0: x, 1: y, 2: z) and its scale.
+  ComponentLoad component(int c) const { return c == 0 ? x : c == 1 ? y : z; }
+  double        scale(int c) const { return c == 0 ? x_scale : c == 1 ? y_scale : z_scale; }
   // polygon, and a group's physical surface: the points `area` contains (a polygon,
   // edges inclusive; or a mesh shape, the group's triangles).
   Shape               area;
@@ -57,8 +66,9 @@ struct LoadSet {
   double              reach[4] = {0, 0, 0, 0}; // the segments' bounding box grown by depth
   std::string         group, file;          // group: the physical group and its Gmsh file
   // block: the given points (-body_cloud) of block id `block`, found by position:
-  // their (x, y), sorted, compared bit for bit (a point keeps the coordinates read from
-  // the cloud, and two points never share a position: the cloud check refuses it).
+  // their (x, y) (3D: (x, y, z)), sorted, compared bit for bit (a point keeps the
+  // coordinates read from the cloud, and two points never share a position: the cloud
+  // check refuses it).
   int64_t             block = 0;
   std::vector<double> block_points;
 };
@@ -68,10 +78,19 @@ struct LoadSet {
 std::vector<double> BlockPoints(const Body2D &body, int64_t block);
 // The block ids the given points have, "1, 2, 5" (for messages; at most 20 shown).
 std::string BlockIdList(const Body2D &body);
+// The same for the points of a 3D cloud (x: 3 a point, block: one id a point): the
+// (x, y, z) of block `block`, sorted; the ids.
+std::vector<double> BlockPoints3D(const std::vector<double> &x, const std::vector<int64_t> &block, int64_t id);
+std::string         BlockIdList(const std::vector<int64_t> &block);
 
-// Whether the point at reference position (px, py) belongs to `set` (the predicate
-// LoadSetSelect applies to every owned point).
-bool LoadSetContains(const Scene &scene, const LoadSet &set, double px, double py);
+// Whether the point at reference position p (D coordinates; D = scene.dimension)
+// belongs to `set` (the predicate LoadSetSelect applies to every owned point).
+template <int D> bool LoadSetContains(const Scene &scene, const LoadSet &set, const double *p);
+inline bool LoadSetContains(const Scene &scene, const LoadSet &set, double px, double py)
+{
+  const double p[2] = {px, py};
+  return LoadSetContains<2>(scene, set, p);
+}
 
 // Sets set->reach from its segments and depth (call after changing either).
 void SetCurveReach(LoadSet *set);
@@ -82,13 +101,14 @@ void SetCurveReach(LoadSet *set);
 // neighbour whose family reaches the grip's outer edge.
 int GripRows(double depth, double dx);
 
-// The local points (reference positions x, 2 per point, n points) that a load set
+// The local points (reference positions x, D = scene.dimension per point, n points) that a load set
 // holds: inside, within `layers` rows of its edge (top: y > height - layers*dx,
 // bottom: y < layers*dx, left: x < layers*dx, right: x > width - layers*dx); outside,
 // its `layers` rows beyond the edge (top: height < y < height + layers*dx, ...); or
 // where LoadSetContains says for the other regions (a box: edges included). Indices into x, increasing. Pass owned points
 // only; whether a set holds any point at all is for the caller to check over the
-// communicator.
+// communicator. 3D faces: within `layers` rows of the body's extent, inside (x-:
+// x < lo_x + layers dx, ...).
 PetscErrorCode LoadSetSelect(const Scene &scene, const LoadSet &set, const double *x, PetscInt n,
                              std::vector<PetscInt> *selected);
 

@@ -10,9 +10,10 @@ namespace bapd {
 struct Probe {
   std::string name;
   double      x = 0, y = 0; // the material point nearest to (x, y) is recorded
+  double      z = 0;        // 3D only (Scene::dimension 3): (x, y, z)
 };
 
-// Where a probe reads: the point nearest to (probe.x, probe.y), ties broken by the
+// Where a probe reads: the point nearest to (probe.x, probe.y[, probe.z]), ties broken by the
 // lowest natural id, so the choice is the same on any number of ranks.
 struct ProbeLocation {
   PetscMPIInt owner       = -1; // rank that owns the point
@@ -20,7 +21,10 @@ struct ProbeLocation {
   PetscInt    local_index = -1; // index into the owner's x; -1 on the other ranks
   double      distance    = 0;  // from (probe.x, probe.y) to the point [m]
 };
-// Collective. x: owned reference positions (2 per point), natural_id: their ids.
+// Collective. x: owned reference positions (D per point: the 2D driver's default, or
+// the 3D driver's 3, where the distance is to (probe.x, probe.y, probe.z)),
+// natural_id: their ids.
+template <int D = 2>
 PetscErrorCode ProbeLocate(MPI_Comm comm, const Probe &probe, const double *x, const int64_t *natural_id, PetscInt n,
                            ProbeLocation *location);
 

@@ -153,7 +153,7 @@ private:
   RunawayEnergyMonitor energy_monitor_; // divergence by runaway energy (divergence.hpp)
   SimulationOutput output_; // fields, checkpoints, restart
   RelaxationKind     relaxation_kind_ = RelaxationKind::none; // -relaxation
-  AdaptiveRelaxation relaxation_;                             // its damping coefficient (relaxation.hpp)
+  AdaptiveRelaxation<2> relaxation_;                          // its damping coefficient (relaxation.hpp)
 
   PetscLogStage stage_setup_ = 0, stage_partition_ = 0, stage_force_ = 0, stage_ghost_ = 0, stage_step_ = 0,
                 stage_output_ = 0;

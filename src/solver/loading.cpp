@@ -15,6 +15,7 @@ PetscErrorCode Loading::Setup(MPI_Comm comm, const Scene &scene, const Layout &l
   PetscFunctionBegin;
   comm_              = comm;
   layout_            = &layout;
+  dimension_         = scene.dimension;
   reference_length_  = scene.reference_length;
   schedule_          = scene.schedule;
   end_time_          = scene.end_time;
@@ -34,7 +35,12 @@ PetscErrorCode Loading::Setup(MPI_Comm comm, const Scene &scene, const Layout &l
       // them all, and a hole can empty an edge layer.
       const char *n = set.name.c_str();
       char        msg[768];
-      if (set.region == LoadSet::Region::box)
+      if (set.region == LoadSet::Region::box && dimension_ == 3)
+        std::snprintf(msg, sizeof msg,
+                      "-load_%s_box %g,%g,%g,%g,%g,%g selects no material point for load set '%s': widen it to hold a lattice point "
+                      "(points sit at ((i + 1/2) dx, (j + 1/2) dx, (k + 1/2) dx), dx = %g m)",
+                      n, set.box[0], set.box[1], set.box[2], set.box[3], set.box[4], set.box[5], n, scene.body3d.solid.dx);
+      else if (set.region == LoadSet::Region::box)
         std::snprintf(msg, sizeof msg,
                       "-load_%s_box %g,%g,%g,%g selects no material point for load set '%s': widen it to hold a lattice point "
                       "(points sit at ((i + 1/2) dx, (j + 1/2) dx), dx = %g m)",
@@ -49,7 +55,7 @@ PetscErrorCode Loading::Setup(MPI_Comm comm, const Scene &scene, const Layout &l
         std::snprintf(msg, sizeof msg,
                       "-load_%s_block %lld selects no material point for load set '%s': the body's shapes or holes cut away "
                       "all %zu points of that block",
-                      n, static_cast<long long>(set.block), n, set.block_points.size() / 2);
+                      n, static_cast<long long>(set.block), n, set.block_points.size() / dimension_);
       else if (set.region == LoadSet::Region::polygon || set.region == LoadSet::Region::curve)
         std::snprintf(msg, sizeof msg,
                       "-load_%s_points: the %s selects no material point for load set '%s': %s (points sit at ((i + 1/2) dx, (j + "
@@ -68,10 +74,10 @@ PetscErrorCode Loading::Setup(MPI_Comm comm, const Scene &scene, const Layout &l
     most                   = std::max(most, selected.size());
     load_points_[s].points = selected;
     for (PetscInt p : selected)
-      for (int c = 0; c < 2; ++c) {
-        const ComponentLoad kind = c == 0 ? set.x : set.y;
+      for (int c = 0; c < dimension_; ++c) {
+        const ComponentLoad kind = set.component(c);
         if (kind == ComponentLoad::free) continue;
-        constrained_.push_back({2 * p + c, kind, c == 0 ? set.x_scale : set.y_scale});
+        constrained_.push_back({dimension_ * p + c, kind, set.scale(c)});
       }
   }
   // A point in two sets is held by the one named last; keep one entry per dof.
@@ -83,7 +89,7 @@ PetscErrorCode Loading::Setup(MPI_Comm comm, const Scene &scene, const Layout &l
   }
   constrained_ = std::move(unique);
   if (scene.grip_field == GripField::affine) PetscCall(SetAffineLevers(scene, layout));
-  terms_.assign(2 * most, 0.0);
+  terms_.assign(static_cast<std::size_t>(dimension_) * most, 0.0);
   PetscFunctionReturn(0);
 }
 
@@ -162,8 +168,8 @@ PetscErrorCode Loading::SetAffineLevers(const Scene &scene, const Layout &layout
   }
   const double gradient = reference_length_ / (y_top - y_bottom);
   for (ConstrainedDof &d : constrained_) {
-    if (d.dof % 2 != 1) continue;
-    const double y = layout.cloud.x[d.dof]; // (2 p + 1: the y of point p)
+    if (d.dof % dimension_ != 1) continue;
+    const double y = layout.cloud.x[d.dof]; // (D p + 1: the y of point p)
     if (y > y_top) d.lever = gradient * (y - y_top);
     else if (y < y_bottom) d.lever = gradient * (y - y_bottom);
   }
@@ -177,11 +183,10 @@ PetscErrorCode Loading::Reactions(const double *force_density, double *reaction)
   PetscFunctionBegin;
   for (std::size_t s = 0; s < load_points_.size(); ++s) {
     const std::vector<PetscInt> &pts = load_points_[s].points;
-    for (std::size_t k = 0; k < pts.size(); ++k) {
-      terms_[2 * k]     = -force_density[2 * pts[k]] * volume[pts[k]];
-      terms_[2 * k + 1] = -force_density[2 * pts[k] + 1] * volume[pts[k]];
-    }
-    PetscCall(ReproducibleSum(comm_, 2, (PetscInt)pts.size(), terms_.data(), &reaction[2 * s]));
+    const int D = dimension_;
+    for (std::size_t k = 0; k < pts.size(); ++k)
+      for (int c = 0; c < D; ++c) terms_[D * k + c] = -force_density[D * pts[k] + c] * volume[pts[k]];
+    PetscCall(ReproducibleSum(comm_, D, (PetscInt)pts.size(), terms_.data(), &reaction[D * s]));
   }
   PetscFunctionReturn(0);
 }

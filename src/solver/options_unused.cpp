@@ -65,9 +65,9 @@ std::string NestedKeyHint(const std::string &given, const std::vector<std::strin
 std::string UnusedMessage(const std::string &name)
 {
   const std::string suggestion = SuggestOption(name, KnownOptionNames());
-  const std::string set        = UndeclaredName(Lower(name), "-load_", {"_x_scale", "_y_scale", "_region", "_box", "_layers", "_depth", "_placement", "_points", "_group", "_file", "_block", "_x", "_y"});
+  const std::string set        = UndeclaredName(Lower(name), "-load_", {"_x_scale", "_y_scale", "_z_scale", "_region", "_box", "_layers", "_depth", "_placement", "_points", "_group", "_file", "_block", "_x", "_y", "_z"});
   const std::string probe      = UndeclaredName(Lower(name), "-probe_", {"_at", "_group", "_file", "_block"});
-  const std::string shape      = UndeclaredName(Lower(name), "-body_", {"_type", "_op", "_box", "_centre", "_radius", "_radii", "_angle", "_points", "_file"});
+  const std::string shape      = UndeclaredName(Lower(name), "-body_", {"_type", "_op", "_box", "_centre", "_radius", "_radii", "_angle", "_points", "_file", "_axis"});
   std::string       message    = name + " is not a bapd option.";
   if (!set.empty()) message += " '" + set + "' is not one of -load_sets: add it there, or fix the name.";
   else if (!probe.empty()) message += " '" + probe + "' is not one of -probes: add it there, or fix the name.";

@@ -37,7 +37,7 @@ PetscErrorCode RelaxationFromOptions(MPI_Comm comm, RelaxationKind *kind)
   PetscFunctionReturn(0);
 }
 
-void AdaptiveRelaxation::Setup(RelaxationKind kind, std::size_t n_owned, const double *volume, const std::vector<PetscInt> &held_dofs,
+template <int D> void AdaptiveRelaxation<D>::Setup(RelaxationKind kind, std::size_t n_owned, const double *volume, const std::vector<PetscInt> &held_dofs,
                                double floor, double stable_dt)
 {
   kind_   = kind;
@@ -52,25 +52,25 @@ void AdaptiveRelaxation::Setup(RelaxationKind kind, std::size_t n_owned, const d
   largest_  = floor;
   recorded_ = 0;
   if (!active()) return;
-  free_.assign(2 * n_, 1);
+  free_.assign(D * n_, 1);
   for (PetscInt d : held_dofs) free_[(std::size_t)d] = 0;
   for (int k = 0; k < 2; ++k) {
-    u_[k].assign(2 * n_, 0.0);
-    a_[k].assign(2 * n_, 0.0);
+    u_[k].assign(D * n_, 0.0);
+    a_[k].assign(D * n_, 0.0);
   }
   terms_.assign(2 * n_, 0.0);
 }
 
-void AdaptiveRelaxation::Record(const double *u, const double *a)
+template <int D> void AdaptiveRelaxation<D>::Record(const double *u, const double *a)
 {
   if (!active()) return;
   latest_ = 1 - latest_;
-  std::memcpy(u_[latest_].data(), u, sizeof(double) * 2 * n_);
-  std::memcpy(a_[latest_].data(), a, sizeof(double) * 2 * n_);
+  std::memcpy(u_[latest_].data(), u, sizeof(double) * D * n_);
+  std::memcpy(a_[latest_].data(), a, sizeof(double) * D * n_);
   recorded_ = std::min(recorded_ + 1, 2);
 }
 
-PetscErrorCode AdaptiveRelaxation::Damping(MPI_Comm comm, double *c)
+template <int D> PetscErrorCode AdaptiveRelaxation<D>::Damping(MPI_Comm comm, double *c)
 {
   PetscFunctionBegin;
   *c = floor_;
@@ -80,7 +80,7 @@ PetscErrorCode AdaptiveRelaxation::Damping(MPI_Comm comm, double *c)
     const double *a1 = a_[latest_].data(), *a0 = a_[1 - latest_].data();
     for (std::size_t i = 0; i < n_; ++i) {
       double num = 0, den = 0;
-      for (std::size_t k = 2 * i; k < 2 * i + 2; ++k) {
+      for (std::size_t k = D * i; k < D * i + D; ++k) {
         if (!free_[k]) continue;
         const double du = u1[k] - u0[k], da = a1[k] - a0[k];
         num -= du * da;
@@ -99,5 +99,8 @@ PetscErrorCode AdaptiveRelaxation::Damping(MPI_Comm comm, double *c)
   largest_  = std::max(largest_, *c);
   PetscFunctionReturn(0);
 }
+
+template class AdaptiveRelaxation<2>;
+template class AdaptiveRelaxation<3>;
 
 } // namespace bapd

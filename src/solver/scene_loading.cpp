@@ -27,7 +27,14 @@ bool ParseComponent(const std::string &text, ComponentLoad *load)
   return true;
 }
 
-const char *const kRegionChoices = "top, bottom, left, right, box, polygon, curve, group or block";
+const char *const kRegionChoices   = "top, bottom, left, right, box, polygon, curve, group or block";
+const char *const kRegionChoices3D = "a face (left or x-, right or x+, bottom or y-, top or y+, back or z-, front or z+), box or block";
+
+bool IsFace(LoadSet::Region r)
+{
+  return r == LoadSet::Region::top || r == LoadSet::Region::bottom || r == LoadSet::Region::left || r == LoadSet::Region::right ||
+         r == LoadSet::Region::front || r == LoadSet::Region::back;
+}
 
 // Region group: the physical group -load_S_group of -load_S_file (default: the body's
 // one Gmsh file) as the set's area (a physical surface) or segments (a curve or points).
@@ -62,25 +69,117 @@ PetscErrorCode ReadGroup(MPI_Comm comm, const LoadInput &li, const Body2D &body,
   PetscFunctionReturn(0);
 }
 
-// Region block: the given points of block id -load_S_block (the cloud's block column).
-PetscErrorCode ReadBlock(MPI_Comm comm, const LoadInput &li, const Body2D &body, LoadSet *set)
+// Region block: the given points of block id -load_S_block (the cloud's block column;
+// a 2D cloud's, or a 3D one's).
+PetscErrorCode ReadBlock(MPI_Comm comm, const LoadInput &li, const Scene &scene, LoadSet *set)
 {
-  const char *n = li.name.c_str();
+  const char   *n     = li.name.c_str();
+  const bool    three = scene.dimension == 3;
+  const Body2D &b2    = scene.body;
+  const Body3D &b3    = scene.body3d;
   PetscFunctionBeginUser;
   SceneCheck(li.block_set, comm, "-load_%s_block is required with -load_%s_region block: give a block id of the point cloud%s", n, n,
              MisspeltHint("-load_" + li.name + "_block").c_str());
-  SceneCheck(body.given_points != nullptr, comm,
+  SceneCheck(three ? b3.given_points != nullptr : b2.given_points != nullptr, comm,
              "-load_%s_region block: block ids come with the points of a cloud (-body_cloud, column block_id), and this body is a "
-             "lattice: choose another region (box, polygon, curve, group)",
-             n);
+             "lattice: choose %s",
+             n, three ? "a face or a box" : "another region (box, polygon, curve, group)");
   set->block        = static_cast<int64_t>(li.block);
-  set->block_points = BlockPoints(body, set->block);
+  set->block_points = three ? BlockPoints3D(b3.given_points->x, b3.given_block, set->block) : BlockPoints(b2, set->block);
   SceneCheck(!set->block_points.empty(), comm,
              "-load_%s_block %" PetscInt_FMT ": no point of '%s' has block id %" PetscInt_FMT " (its block ids: %s): give one of them", n,
-             li.block, body.given_points->source.c_str(), li.block, BlockIdList(body).c_str());
+             li.block, three ? b3.source.c_str() : b2.given_points->source.c_str(), li.block,
+             (three ? BlockIdList(b3.given_block) : BlockIdList(b2)).c_str());
   PetscFunctionReturn(0);
 }
 
+// The region word (case-insensitive; the faces also as x-, x+, y-, y+, z-, z+).
+bool ParseRegion(const std::string &text, LoadSet::Region *region)
+{
+  static const struct {
+    const char     *word;
+    LoadSet::Region region;
+  } words[] = {{"top", LoadSet::Region::top},       {"y+", LoadSet::Region::top},         {"bottom", LoadSet::Region::bottom},
+               {"y-", LoadSet::Region::bottom},     {"left", LoadSet::Region::left},      {"x-", LoadSet::Region::left},
+               {"right", LoadSet::Region::right},   {"x+", LoadSet::Region::right},       {"front", LoadSet::Region::front},
+               {"z+", LoadSet::Region::front},      {"back", LoadSet::Region::back},      {"z-", LoadSet::Region::back},
+               {"box", LoadSet::Region::box},       {"polygon", LoadSet::Region::polygon}, {"curve", LoadSet::Region::curve},
+               {"group", LoadSet::Region::group},   {"block", LoadSet::Region::block}};
+  const std::string t = Lower(text);
+  for (const auto &w : words)
+    if (t == w.word) {
+      *region = w.region;
+      return true;
+    }
+  return false;
+}
+
+// One load set of a 3D body (Scene::dimension 3): a face of the body's extent (inside,
+// `layers` rows deep), a box of six numbers, or a block id of a 3D cloud.
+PetscErrorCode CheckLoadSet3D(MPI_Comm comm, const LoadInput &li, const SceneInput &in, const Scene &scene, LoadSet *set)
+{
+  const char   *n = li.name.c_str();
+  const Body3D &b = scene.body3d;
+  const double  dx = b.solid.dx;
+  PetscFunctionBeginUser;
+  SceneCheck(set->region != LoadSet::Region::polygon && set->region != LoadSet::Region::curve && set->region != LoadSet::Region::group, comm,
+             "-load_%s_region %s is a 2D region (a shape in the sheet's plane), and this body is 3D: choose %s", n, to_string(set->region),
+             kRegionChoices3D);
+  const bool face = IsFace(set->region);
+  for (const auto &[given, option, fits, which] :
+       {std::tuple{li.box_set, "box", set->region == LoadSet::Region::box, "region box"},
+        {li.points_set, "points", false, "the 2D regions polygon and curve"},
+        {!li.group.empty(), "group", false, "the 2D region group"},
+        {!li.file.empty(), "file", false, "the 2D region group"},
+        {li.block_set, "block", set->region == LoadSet::Region::block, "region block"},
+        {li.layers_set, "layers", face, "the faces"},
+        {li.depth_set, "depth", face, "the faces"}})
+    SceneCheck(!given || fits, comm, "-load_%s_%s is set but -load_%s_region is %s: it is used by %s only; remove it or change the region", n,
+               option, n, to_string(set->region), which);
+  // The faces of a 3D body hold its own points: there are no grip rows outside it.
+  const std::string placement = Lower(li.placement);
+  SceneCheck(placement == "auto" || placement == "inside", comm,
+             "-load_%s_placement %s: a 3D body's load sets hold its own points (inside); grips outside the specimen are 2D only: "
+             "remove it, or set it to inside",
+             n, li.placement.c_str());
+  SceneCheck(!in.grip_placement_set || Lower(in.grip_placement) == "inside", comm,
+             "-load_grip_placement %s: a 3D body's load sets hold its own points (inside); grips outside the specimen are 2D only: "
+             "remove it, or set it to inside",
+             in.grip_placement.c_str());
+  set->placement = GripPlacement::inside;
+  if (set->region == LoadSet::Region::box) {
+    SceneCheck(li.box_set, comm, "-load_%s_box is required with -load_%s_region box: give xmin,ymin,zmin,xmax,ymax,zmax in m%s", n, n,
+               MisspeltHint("-load_" + li.name + "_box").c_str());
+    SceneCheck(li.box.size() == 6, comm, "-load_%s_box holds %zu numbers: a 3D box takes exactly six, xmin,ymin,zmin,xmax,ymax,zmax in m", n,
+               li.box.size());
+    std::copy(li.box.begin(), li.box.end(), set->box);
+    SceneCheck(set->box[0] < set->box[3] && set->box[1] < set->box[4] && set->box[2] < set->box[5], comm,
+               "-load_%s_box %g,%g,%g,%g,%g,%g is empty: the order is xmin,ymin,zmin,xmax,ymax,zmax with each min < max", n, set->box[0],
+               set->box[1], set->box[2], set->box[3], set->box[4], set->box[5]);
+    bool meets = true;
+    for (int r = 0; r < 3; ++r) meets = meets && set->box[3 + r] >= b.lo[r] && set->box[r] <= b.hi[r];
+    SceneCheck(meets, comm,
+               "-load_%s_box %g,%g,%g,%g,%g,%g lies outside the body [%g, %g] x [%g, %g] x [%g, %g] m: move it onto the body", n,
+               set->box[0], set->box[1], set->box[2], set->box[3], set->box[4], set->box[5], b.lo[0], b.hi[0], b.lo[1], b.hi[1], b.lo[2],
+               b.hi[2]);
+  } else if (set->region == LoadSet::Region::block) {
+    PetscCall(ReadBlock(comm, li, scene, set));
+  } else {
+    SceneCheck(!(li.layers_set && li.depth_set), comm,
+               "-load_%s_layers and -load_%s_depth both give the grip's depth: keep one (rows, or metres)", n, n);
+    SceneCheck(!li.depth_set || li.depth > 0, comm, "-load_%s_depth %g m: a grip's depth must be > 0", n, li.depth);
+    SceneCheck(li.layers >= 1, comm, "-load_%s_layers %" PetscInt_FMT ": take at least one point row", n, li.layers);
+    set->layers = li.depth_set ? GripRows(li.depth, dx) : static_cast<int>(li.layers);
+    const int    axis   = set->region == LoadSet::Region::left || set->region == LoadSet::Region::right    ? 0
+                          : set->region == LoadSet::Region::bottom || set->region == LoadSet::Region::top ? 1
+                                                                                                           : 2;
+    const double across = b.hi[axis] - b.lo[axis];
+    SceneCheck(set->layers * dx < across, comm,
+               "-load_%s_layers %d is %g m deep, the whole body along %c (%g m): use fewer rows", n, set->layers, set->layers * dx,
+               "xyz"[axis], across);
+  }
+  PetscFunctionReturn(0);
+}
 } // namespace
 
 PetscErrorCode ReadLoading(MPI_Comm comm, Scene *scene, SceneInput *in)
@@ -95,12 +194,12 @@ PetscErrorCode ReadLoading(MPI_Comm comm, Scene *scene, SceneInput *in)
     PetscCall(r.String("-load_grip_placement",
                        "Where edge grips are, unless a set says: outside (clamps added beyond the specimen, which is the free "
                        "region) | inside (the specimen's edge rows: the paper's grips)",
-                       &in->grip_placement));
+                       &in->grip_placement, &in->grip_placement_set));
     PetscCall(r.String("-load_grip_field",
                        "y of the top and bottom grips' points (or of two region grips, the top one above): rigid (one u per grip) | affine (the continuation of the free "
                        "region's mean stretch into the grip; docs/stress_consistency.md) | auto (affine for a top and a bottom "
                        "grip outside, else rigid)",
-                       &in->grip_field));
+                       &in->grip_field, &in->grip_field_set));
     return 0;
   }));
   PetscCall(CheckNames(comm, in->load_names, "-load_sets", "load set"));
@@ -112,10 +211,11 @@ PetscErrorCode ReadLoading(MPI_Comm comm, Scene *scene, SceneInput *in)
     set.name                 = name;
     PetscCall(ReadOptionBlock(comm, prefix.c_str(), title.c_str(), [&](OptionReader &r) -> PetscErrorCode {
       PetscCall(r.String("-region",
-                         "Points held: top | bottom | left | right (edge layers) | box | polygon | curve (points near a polyline) | "
-                         "group (a Gmsh physical group) | block (a block id of the point cloud) (required)",
+                         "Points held: top | bottom | left | right (edge layers; 3D: faces, with back | front, or x- | x+ | y- | y+ | z- | "
+                         "z+) | box | polygon | curve (points near a polyline) | group (a Gmsh physical group) | block (a block id of "
+                         "the point cloud) (required)",
                          &set.region, &set.region_set));
-      PetscCall(r.RealArray("-box", "Region box xmin,ymin,xmax,ymax [m] (region box)", &set.box, &set.box_set));
+      PetscCall(r.RealArray("-box", "Region box xmin,ymin,xmax,ymax [m] (3D: xmin,ymin,zmin,xmax,ymax,zmax)", &set.box, &set.box_set));
       PetscCall(r.RealArray("-points", "Region polygon (closed) or curve (open polyline): vertices x0,y0,x1,y1,... [m]", &set.points,
                             &set.points_set));
       PetscCall(r.String("-group", "Region group: the name of a physical surface, curve or point of the Gmsh file", &set.group));
@@ -134,8 +234,10 @@ PetscErrorCode ReadLoading(MPI_Comm comm, Scene *scene, SceneInput *in)
                        &set.depth, &set.depth_set));
       PetscCall(r.String("-x", "x component: free | fixed (u = 0) | stretch (follows the schedule)", &set.x));
       PetscCall(r.String("-y", "y component: free | fixed (u = 0) | stretch (follows the schedule)", &set.y));
+      PetscCall(r.String("-z", "z component (3D bodies): free | fixed (u = 0) | stretch (follows the schedule)", &set.z));
       PetscCall(r.Real("-x_scale", "Scale of a stretch x component: u = scale (lambda - 1) L [-]", &set.x_scale, &set.x_scale_set));
       PetscCall(r.Real("-y_scale", "Scale of a stretch y component: u = scale (lambda - 1) L [-]", &set.y_scale, &set.y_scale_set));
+      PetscCall(r.Real("-z_scale", "Scale of a stretch z component (3D bodies): u = scale (lambda - 1) L [-]", &set.z_scale, &set.z_scale_set));
       return 0;
     }));
     in->loads.push_back(set);
@@ -178,7 +280,7 @@ PetscErrorCode CheckLoading(MPI_Comm comm, const SceneInput &in, Scene *scene)
     SceneCheck(scene->reference_length > 0, comm,
                "-load_reference_length %g: the length that turns stretch into displacement must be > 0 m (default: the body height)",
                scene->reference_length);
-  else scene->reference_length = b.height;
+  else scene->reference_length = scene->dimension == 3 ? scene->body3d.hi[1] - scene->body3d.lo[1] : b.height; // (3D: the extent along y)
 
   GripPlacement     default_placement = GripPlacement::outside;
   const std::string placement_all     = Lower(in.grip_placement);
@@ -191,22 +293,21 @@ PetscErrorCode CheckLoading(MPI_Comm comm, const SceneInput &in, Scene *scene)
     LoadSet     set;
     const char *n = li.name.c_str();
     set.name      = li.name;
-    SceneCheck(li.region_set, comm, "-load_%s_region is required for load set '%s': choose %s%s", n, n, kRegionChoices,
+    const bool  three = scene->dimension == 3;
+    const char *choices = three ? kRegionChoices3D : kRegionChoices;
+    SceneCheck(li.region_set, comm, "-load_%s_region is required for load set '%s': choose %s%s", n, n, choices,
                MisspeltHint("-load_" + li.name + "_region").c_str());
-    const std::string region = Lower(li.region);
-    if (region == "top") set.region = LoadSet::Region::top;
-    else if (region == "bottom") set.region = LoadSet::Region::bottom;
-    else if (region == "left") set.region = LoadSet::Region::left;
-    else if (region == "right") set.region = LoadSet::Region::right;
-    else if (region == "box") set.region = LoadSet::Region::box;
-    else if (region == "polygon") set.region = LoadSet::Region::polygon;
-    else if (region == "curve") set.region = LoadSet::Region::curve;
-    else if (region == "group") set.region = LoadSet::Region::group;
-    else if (region == "block") set.region = LoadSet::Region::block;
-    else SETERRQ(comm, PETSC_ERR_USER, "%s", Format("-load_%s_region '%s' is not a region: choose %s", n, li.region.c_str(), kRegionChoices).c_str());
+    if (!ParseRegion(li.region, &set.region))
+      SETERRQ(comm, PETSC_ERR_USER, "%s", Format("-load_%s_region '%s' is not a region: choose %s", n, li.region.c_str(), choices).c_str());
+    SceneCheck(three || (set.region != LoadSet::Region::front && set.region != LoadSet::Region::back), comm,
+               "-load_%s_region %s is a face of a 3D body (z), and this body is a 2D sheet: choose %s (or make the body 3D, "
+               "-body_dimension 3)",
+               n, li.region.c_str(), kRegionChoices);
+    if (three) PetscCall(CheckLoadSet3D(comm, li, in, *scene, &set));
     const bool edge = set.region == LoadSet::Region::top || set.region == LoadSet::Region::bottom ||
                       set.region == LoadSet::Region::left || set.region == LoadSet::Region::right;
     // Each option belongs to some regions; one given to another region is a mistake.
+    if (!three) {
     const bool curve_like = set.region == LoadSet::Region::curve || set.region == LoadSet::Region::group; // (a group may be a curve)
     for (const auto &[given, option, fits, which] :
          {std::tuple{li.box_set, "box", set.region == LoadSet::Region::box, "region box"},
@@ -269,7 +370,7 @@ PetscErrorCode CheckLoading(MPI_Comm comm, const SceneInput &in, Scene *scene)
     } else if (set.region == LoadSet::Region::group) {
       PetscCall(ReadGroup(comm, li, b, &set));
     } else if (set.region == LoadSet::Region::block) {
-      PetscCall(ReadBlock(comm, li, b, &set));
+      PetscCall(ReadBlock(comm, li, *scene, &set));
     } else {
       const std::string placement = Lower(li.placement) == "auto" ? to_string(default_placement) : Lower(li.placement);
       if (placement == "outside") set.placement = GripPlacement::outside;
@@ -303,15 +404,20 @@ PetscErrorCode CheckLoading(MPI_Comm comm, const SceneInput &in, Scene *scene)
         rows = std::max<int64_t>(rows, set.layers);
       }
     }
+    } // (2D)
     if (!set.segments.empty()) SetCurveReach(&set);
 
     SceneCheck(ParseComponent(li.x, &set.x), comm, "-load_%s_x '%s' is not a choice: choose free, fixed or stretch", n, li.x.c_str());
     SceneCheck(ParseComponent(li.y, &set.y), comm, "-load_%s_y '%s' is not a choice: choose free, fixed or stretch", n, li.y.c_str());
-    for (int c = 0; c < 2; ++c) {
-      const char          axis  = c == 0 ? 'x' : 'y';
-      const ComponentLoad load  = c == 0 ? set.x : set.y;
-      const bool          given = c == 0 ? li.x_scale_set : li.y_scale_set;
-      const double        scale = c == 0 ? li.x_scale : li.y_scale;
+    SceneCheck(ParseComponent(li.z, &set.z), comm, "-load_%s_z '%s' is not a choice: choose free, fixed or stretch", n, li.z.c_str());
+    SceneCheck(three || (set.z == ComponentLoad::free && !li.z_scale_set), comm,
+               "-load_%s_z%s is set, but this body is a 2D sheet (x, y): remove it, or make the body 3D (-body_dimension 3)", n,
+               li.z_scale_set ? "_scale" : "");
+    for (int c = 0; c < scene->dimension; ++c) {
+      const char          axis  = "xyz"[c];
+      const ComponentLoad load  = set.component(c);
+      const bool          given = c == 0 ? li.x_scale_set : c == 1 ? li.y_scale_set : li.z_scale_set;
+      const double        scale = c == 0 ? li.x_scale : c == 1 ? li.y_scale : li.z_scale;
       SceneCheck(load == ComponentLoad::stretch || !given, comm,
                  "-load_%s_%c_scale is set but -load_%s_%c is %s: the scale applies to a stretch component only; remove it or set "
                  "-load_%s_%c stretch",
@@ -323,9 +429,13 @@ PetscErrorCode CheckLoading(MPI_Comm comm, const SceneInput &in, Scene *scene)
                  n, axis, MisspeltHint("-load_schedule").c_str());
       if (scale == 0.0)
         PetscCall(Warn(comm, Format("-load_%s_%c_scale is 0: the stretch component never moves (same as -load_%s_%c fixed)", n, axis, n, axis)));
-      (c == 0 ? set.x_scale : set.y_scale) = scale;
+      (c == 0 ? set.x_scale : c == 1 ? set.y_scale : set.z_scale) = scale;
     }
-    if (set.x == ComponentLoad::free && set.y == ComponentLoad::free)
+    if (three && set.x == ComponentLoad::free && set.y == ComponentLoad::free && set.z == ComponentLoad::free)
+      PetscCall(Warn(comm, Format("load set '%s' holds no component (-load_%s_x, -load_%s_y and -load_%s_z are free): it does nothing; set "
+                                  "one of them to fixed or stretch",
+                                  n, n, n, n)));
+    else if (!three && set.x == ComponentLoad::free && set.y == ComponentLoad::free)
       PetscCall(Warn(comm, Format("load set '%s' holds neither component (-load_%s_x and -load_%s_y are free): it does nothing; set "
                                   "one of them to fixed or stretch",
                                   n, n, n)));
@@ -343,6 +453,14 @@ PetscErrorCode CheckLoading(MPI_Comm comm, const SceneInput &in, Scene *scene)
     outside += (l.region == LoadSet::Region::top || l.region == LoadSet::Region::bottom) && l.placement == GripPlacement::outside;
   }
   const std::string field = Lower(in.grip_field);
+  if (scene->dimension == 3) { // (the affine grip field continues a 2D sheet's stretch between its top and bottom grips)
+    SceneCheck(field == "auto" || field == "rigid", comm,
+               "-load_grip_field %s: a 3D body's grips are rigid (the affine grip field is 2D only, for grips outside a sheet): remove "
+               "it, or set it to rigid",
+               in.grip_field.c_str());
+    scene->grip_field = GripField::rigid;
+    PetscFunctionReturn(0);
+  }
   if (field == "auto") // the default: affine where it applies, to a top and a bottom grip outside
     scene->grip_field = top == 1 && bottom == 1 && outside == 2 ? GripField::affine : GripField::rigid;
   else if (field == "rigid") scene->grip_field = GripField::rigid;
@@ -374,6 +492,8 @@ const char *to_string(LoadSet::Region region)
   case LoadSet::Region::curve: return "curve";
   case LoadSet::Region::group: return "group";
   case LoadSet::Region::block: return "block";
+  case LoadSet::Region::front: return "front";
+  case LoadSet::Region::back: return "back";
   }
   return "unknown";
 }

@@ -28,7 +28,7 @@ PetscErrorCode ReadProbes(MPI_Comm comm, SceneInput *in)
     const std::string title  = "Probe " + name;
     probe.name               = name;
     PetscCall(ReadOptionBlock(comm, prefix.c_str(), title.c_str(), [&](OptionReader &r) -> PetscErrorCode {
-      PetscCall(r.RealArray("-at", "Position x,y [m]; the nearest material point is recorded (this or -group is required)", &probe.at,
+      PetscCall(r.RealArray("-at", "Position x,y [m] (3D: x,y,z); the nearest material point is recorded (this or -group is required)", &probe.at,
                             &probe.at_set));
       PetscCall(r.String("-group", "A physical point of a Gmsh file (Physical Point(\"name\") = {k};): the probe is placed at it", &probe.group));
       PetscCall(r.String("-file", "The Gmsh .geo or .msh file of -group (default: the body's mesh shape's file)", &probe.file));
@@ -89,6 +89,45 @@ PetscErrorCode ProbeAtBlock(MPI_Comm comm, const ProbeInput &pi, const Body2D &b
   PetscFunctionReturn(0);
 }
 
+// A probe of a 3D body: -probe_NAME_at x,y,z on material (Body3D's solids keep it; for
+// given points, within the points' extent), or -probe_NAME_block of a 3D cloud.
+PetscErrorCode CheckProbe3D(MPI_Comm comm, const ProbeInput &pi, const Body3D &b, Probe *p)
+{
+  const char *n = pi.name.c_str();
+  PetscFunctionBeginUser;
+  SceneCheck(pi.group.empty(), comm,
+             "-probe_%s_group: Gmsh physical points place probes on a 2D body; this body is 3D: place the probe by -probe_%s_at x,y,z", n,
+             n);
+  if (pi.block_set) {
+    SceneCheck(b.given_points != nullptr, comm,
+               "-probe_%s_block: block ids come with the points of a cloud (-body_cloud, column block_id), and this body is a lattice: "
+               "place the probe by -probe_%s_at x,y,z",
+               n, n);
+    const std::vector<double> at = BlockPoints3D(b.given_points->x, b.given_block, static_cast<int64_t>(pi.block));
+    SceneCheck(at.size() == 3, comm,
+               "-probe_%s_block %" PetscInt_FMT ": a probe is one point, but block %" PetscInt_FMT " has %zu points in '%s' (its block ids: "
+               "%s): give the probe its own block id, or place it by -probe_%s_at x,y,z",
+               n, pi.block, pi.block, at.size() / 3, b.source.c_str(), BlockIdList(b.given_block).c_str(), n);
+    p->x = at[0], p->y = at[1], p->z = at[2];
+    PetscFunctionReturn(0);
+  }
+  SceneCheck(pi.at_set, comm, "-probe_%s_at is required for probe '%s': give its position x,y,z in m%s", n, n,
+             MisspeltHint("-probe_" + pi.name + "_at").c_str());
+  SceneCheck(pi.at.size() == 3, comm, "-probe_%s_at holds %zu numbers: a probe of a 3D body takes exactly three, x,y,z in m", n, pi.at.size());
+  p->x = pi.at[0], p->y = pi.at[1], p->z = pi.at[2];
+  const double tol = 1e-12 * std::max({b.hi[0] - b.lo[0], b.hi[1] - b.lo[1], b.hi[2] - b.lo[2]});
+  bool         in_extent = true;
+  for (int r = 0; r < 3; ++r) in_extent = in_extent && pi.at[r] >= b.lo[r] - tol && pi.at[r] <= b.hi[r] + tol;
+  SceneCheck(in_extent, comm, "-probe_%s_at (%g, %g, %g) m lies outside the body [%g, %g] x [%g, %g] x [%g, %g] m: move it onto the body", n,
+             p->x, p->y, p->z, b.lo[0], b.hi[0], b.lo[1], b.hi[1], b.lo[2], b.hi[2]);
+  if (!b.given_points)
+    SceneCheck(nd::body_contains(b.solid.solids, pi.at.data()), comm,
+               "-probe_%s_at (%g, %g, %g) m lies where the body's solids leave no material (outside the solids that add, or in one "
+               "that subtracts): move it onto the body",
+               n, p->x, p->y, p->z);
+  PetscFunctionReturn(0);
+}
+
 } // namespace
 
 PetscErrorCode CheckProbes(MPI_Comm comm, const SceneInput &in, Scene *scene)
@@ -103,6 +142,11 @@ PetscErrorCode CheckProbes(MPI_Comm comm, const SceneInput &in, Scene *scene)
     SceneCheck(!(pi.block_set && (pi.at_set || !pi.group.empty())), comm, "probe '%s' has both -probe_%s_block and -probe_%s_%s: give one of them",
                n, n, n, pi.at_set ? "at" : "group");
     Probe p = {pi.name, 0, 0};
+    if (scene->dimension == 3) {
+      PetscCall(CheckProbe3D(comm, pi, scene->body3d, &p));
+      scene->probes.push_back(p);
+      continue;
+    }
     if (!pi.group.empty()) PetscCall(ProbeAtGroup(comm, pi, b, &p));
     else if (pi.block_set) PetscCall(ProbeAtBlock(comm, pi, b, &p));
     else {

@@ -2,6 +2,7 @@
 // points a load set holds (LoadSetSelect) and the point a probe reads (ProbeLocate,
 // the same point on any number of ranks). The solver and the tests call these.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -61,10 +62,9 @@ std::vector<double> BlockPoints(const Body2D &body, int64_t block)
   return out;
 }
 
-std::string BlockIdList(const Body2D &body)
+std::string BlockIdList(const std::vector<int64_t> &block)
 {
-  if (!body.given_points) return "";
-  std::vector<int64_t> ids(body.given_points->block);
+  std::vector<int64_t> ids(block);
   std::sort(ids.begin(), ids.end());
   ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
   std::string list;
@@ -72,8 +72,69 @@ std::string BlockIdList(const Body2D &body)
   return ids.size() > 20 ? list + ", ..." : list;
 }
 
-bool LoadSetContains(const Scene &scene, const LoadSet &set, double px, double py)
+std::string BlockIdList(const Body2D &body) { return body.given_points ? BlockIdList(body.given_points->block) : ""; }
+
+std::vector<double> BlockPoints3D(const std::vector<double> &x, const std::vector<int64_t> &block, int64_t id)
 {
+  std::vector<std::array<double, 3>> found;
+  for (std::size_t p = 0; p < block.size(); ++p)
+    if (block[p] == id) found.push_back({x[3 * p], x[3 * p + 1], x[3 * p + 2]});
+  std::sort(found.begin(), found.end());
+  std::vector<double> out;
+  out.reserve(3 * found.size());
+  for (const auto &q : found) out.insert(out.end(), q.begin(), q.end());
+  return out;
+}
+
+namespace {
+
+// Whether p (D coordinates) is one of the sorted D-tuples of `points`: a binary search,
+// exact comparison (BlockPoints).
+template <int D> bool AmongSorted(const std::vector<double> &points, const double *p)
+{
+  const auto less = [](const double *a, const double *b) { return std::lexicographical_compare(a, a + D, b, b + D); };
+  const std::size_t n  = points.size() / D;
+  std::size_t       lo = 0, hi = n;
+  while (lo < hi) {
+    const std::size_t mid = (lo + hi) / 2;
+    if (less(&points[D * mid], p)) lo = mid + 1;
+    else hi = mid;
+  }
+  return lo < n && std::equal(p, p + D, &points[D * lo]);
+}
+
+// 3D: the face regions hold the points within `layers` rows of the body's extent
+// (Body3D::lo, hi: lattice points sit (i + 1/2) dx inside it), as the 2D edges inside.
+bool FaceContains(const Scene &scene, const LoadSet &set, const double *p)
+{
+  const Body3D &b = scene.body3d;
+  const double  depth = set.layers * b.solid.dx;
+  switch (set.region) {
+  case LoadSet::Region::left: return p[0] < b.lo[0] + depth;
+  case LoadSet::Region::right: return p[0] > b.hi[0] - depth;
+  case LoadSet::Region::bottom: return p[1] < b.lo[1] + depth;
+  case LoadSet::Region::top: return p[1] > b.hi[1] - depth;
+  case LoadSet::Region::back: return p[2] < b.lo[2] + depth;
+  case LoadSet::Region::front: return p[2] > b.hi[2] - depth;
+  default: return false;
+  }
+}
+
+} // namespace
+
+template <int D> bool LoadSetContains(const Scene &scene, const LoadSet &set, const double *p)
+{
+  const double px = p[0], py = p[1];
+  if constexpr (D == 3) {
+    switch (set.region) {
+    case LoadSet::Region::box:
+      for (int r = 0; r < 3; ++r)
+        if (!(p[r] >= set.box[r] && p[r] <= set.box[3 + r])) return false;
+      return true;
+    case LoadSet::Region::block: return AmongSorted<3>(set.block_points, p);
+    default: return FaceContains(scene, set, p); // (polygon, curve, group: refused in 3D by CheckLoading)
+    }
+  }
   const Body2D &b     = scene.body;
   const double  depth = set.layers * b.dx; // layer boundaries fall half-way between lattice rows
   if (set.placement == GripPlacement::outside) switch (set.region) {
@@ -93,31 +154,33 @@ bool LoadSetContains(const Scene &scene, const LoadSet &set, double px, double p
   case LoadSet::Region::polygon: return shape_contains(set.area, px, py);
   case LoadSet::Region::curve: return NearSegments(set, px, py);
   case LoadSet::Region::group: return set.segments.empty() ? shape_contains(set.area, px, py) : NearSegments(set, px, py);
-  case LoadSet::Region::block: {
-    // Binary search over the sorted (x, y) pairs; exact comparison (BlockPoints).
-    const std::size_t n = set.block_points.size() / 2;
-    std::size_t       lo = 0, hi = n;
-    while (lo < hi) {
-      const std::size_t mid = (lo + hi) / 2;
-      const double      mx = set.block_points[2 * mid], my = set.block_points[2 * mid + 1];
-      if (mx < px || (mx == px && my < py)) lo = mid + 1;
-      else hi = mid;
-    }
-    return lo < n && set.block_points[2 * lo] == px && set.block_points[2 * lo + 1] == py;
-  }
+  case LoadSet::Region::block: return AmongSorted<2>(set.block_points, p);
+  case LoadSet::Region::front:
+  case LoadSet::Region::back: return false; // (3D only: CheckLoading refuses them in 2D)
   }
   return false;
 }
+template bool LoadSetContains<2>(const Scene &, const LoadSet &, const double *);
+template bool LoadSetContains<3>(const Scene &, const LoadSet &, const double *);
+
+namespace {
+template <int D> void Select(const Scene &scene, const LoadSet &set, const double *x, PetscInt n, std::vector<PetscInt> *selected)
+{
+  selected->clear();
+  for (PetscInt i = 0; i < n; ++i)
+    if (LoadSetContains<D>(scene, set, x + D * i)) selected->push_back(i);
+}
+} // namespace
 
 PetscErrorCode LoadSetSelect(const Scene &scene, const LoadSet &set, const double *x, PetscInt n, std::vector<PetscInt> *selected)
 {
   PetscFunctionBeginUser;
-  selected->clear();
-  for (PetscInt i = 0; i < n; ++i)
-    if (LoadSetContains(scene, set, x[2 * i], x[2 * i + 1])) selected->push_back(i);
+  if (scene.dimension == 3) Select<3>(scene, set, x, n, selected);
+  else Select<2>(scene, set, x, n, selected);
   PetscFunctionReturn(0);
 }
 
+template <int D>
 PetscErrorCode ProbeLocate(MPI_Comm comm, const Probe &probe, const double *x, const int64_t *natural_id, PetscInt n, ProbeLocation *location)
 {
   PetscMPIInt rank;
@@ -127,7 +190,12 @@ PetscErrorCode ProbeLocate(MPI_Comm comm, const Probe &probe, const double *x, c
   int64_t  best_id = std::numeric_limits<int64_t>::max();
   PetscInt best    = -1;
   for (PetscInt i = 0; i < n; ++i) {
-    const double dx = x[2 * i] - probe.x, dy = x[2 * i + 1] - probe.y, d2 = dx * dx + dy * dy;
+    const double dx = x[D * i] - probe.x, dy = x[D * i + 1] - probe.y;
+    double       d2 = dx * dx + dy * dy;
+    if constexpr (D == 3) {
+      const double dz = x[D * i + 2] - probe.z;
+      d2              = d2 + dz * dz;
+    }
     if (d2 < best_d2 || (d2 == best_d2 && natural_id[i] < best_id)) {
       best_d2 = d2;
       best_id = natural_id[i];
@@ -150,5 +218,7 @@ PetscErrorCode ProbeLocate(MPI_Comm comm, const Probe &probe, const double *x, c
   location->distance    = std::sqrt(d2min);
   PetscFunctionReturn(0);
 }
+template PetscErrorCode ProbeLocate<2>(MPI_Comm, const Probe &, const double *, const int64_t *, PetscInt, ProbeLocation *);
+template PetscErrorCode ProbeLocate<3>(MPI_Comm, const Probe &, const double *, const int64_t *, PetscInt, ProbeLocation *);
 
 } // namespace bapd

@@ -58,6 +58,7 @@ PetscErrorCode Simulation::Setup()
     PetscFunctionReturn(0);
   }
   PetscCall(CheckOptionsEarly());
+  PetscCall(StopThreeDimensional(comm_, scene_)); // a 3D scene, checked whole, stops here until the driver is generic in D
   PetscCall(SceneView(comm_, scene_));
   PetscCall(BuildBody());
   PetscCall(loading_.Setup(comm_, scene_, layout_));

@@ -122,7 +122,7 @@ PetscErrorCode Simulation::Energies(double *kinetic, double *internal, Vec state
   const double *v = x + 2 * n;
   for (PetscInt i = 0; i < n; ++i) {
     const double m     = scene_.density * layout_.cloud.volume[i];
-    per_point_[2 * i]     = 0.5 * m * (v[2 * i] * v[2 * i] + v[2 * i + 1] * v[2 * i + 1]);
+    per_point_[2 * i]     = PointKineticEnergy<2>(m, v + 2 * i); // 1/2 m v.v (relaxation.hpp)
     per_point_[2 * i + 1] = point_energy_[i];
   }
   PetscCall(VecRestoreArrayRead(state, &x));
