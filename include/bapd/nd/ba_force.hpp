@@ -227,7 +227,7 @@ void model_lanes(const Model &model, Workspace<D> &ws, std::size_t n, std::size_
 template <int D, std::size_t Words, class Model, class Form>
 inline void stress_pass(const Model &model, const Families &fam, const BondGeometry<D> &geo, const BondState &state,
                         std::size_t i, const PointTotals<D> &totals, double *c33, Workspace<D> &ws, Form &form,
-                        std::size_t &evaluated, std::size_t &unusable, KernelStats &stats)
+                        std::size_t &evaluated, std::size_t &unusable, double &largest_trC, KernelStats &stats)
 {
   const std::size_t    W = fam.mask_words, o = fam.offsets[i], m = fam.size(i);
   const std::uint64_t *intact = state.intact_mask(i), *usable = geo.usable.data() + i * W;
@@ -249,6 +249,11 @@ inline void stress_pass(const Model &model, const Families &fam, const BondGeome
     }
     double c = c33 ? c33[o + q] : 0.0; // <= 0: no warm start
     ++evaluated;
+    // tr C of the bond (in 2D with the out-of-plane C33 of its warm start, 1 without
+    // one): the time step's stiffening trigger (KernelStats::largest_trC).
+    double trC = D == 2 ? (c > 0.0 ? c : 1.0) : 0.0;
+    for (int comp = 0; comp < D * D; ++comp) trC += k.F[comp] * k.F[comp];
+    largest_trC = std::max(largest_trC, trC);
     if constexpr (HasLanes<Model>::value) {
       const std::size_t S = ws.lane_stride;
       form.collect(pending, q, k);
@@ -359,6 +364,7 @@ void bond_only_range(const Model &model, const PointCloud &ref, const double *y,
   const double     *lambda = ref.patch_correction.empty() ? nullptr : ref.patch_correction.data();
   const std::size_t stride = patch_stride<D>(ref.patch_virial);
   std::size_t       evaluated = 0, unusable = 0; // locals, not stats.*: no reload per bond (pending_q may alias)
+  double            largest_trC = 0.0;
   for (std::size_t i = begin; i < end; ++i) {
     const PointTotals<D>    totals = gather_point<D>(ref, y, fam, i, state.intact_mask(i), ws.point);
     BondOnlyForm<D, Corrected> form{bond_force + D * fam.offsets[i],
@@ -371,10 +377,11 @@ void bond_only_range(const Model &model, const PointCloud &ref, const double *y,
                                     lambda,
                                     fam.neighbour.data() + fam.offsets[i],
                                     ref.patch_virial};
-    stress_pass<D, Words>(model, fam, geo, state, i, totals, c33, ws, form, evaluated, unusable, stats);
+    stress_pass<D, Words>(model, fam, geo, state, i, totals, c33, ws, form, evaluated, unusable, largest_trC, stats);
   }
   stats.evaluated += evaluated;
   stats.unusable += unusable;
+  stats.largest_trC = std::max(stats.largest_trC, largest_trC);
 }
 
 template <int D, std::size_t Words, class Model>
@@ -384,6 +391,7 @@ void energy_consistent_range(const Model &model, const PointCloud &ref, const do
 {
   const std::size_t W = fam.mask_words;
   std::size_t       evaluated = 0, unusable = 0; // as in bond_only_range
+  double            largest_trC = 0.0;
   for (std::size_t i = begin; i < end; ++i) {
     const std::size_t    o = fam.offsets[i], m = fam.size(i);
     const std::uint64_t *intact = state.intact_mask(i), *ba = fam.ba_mask.data() + o * W;
@@ -392,7 +400,7 @@ void energy_consistent_range(const Model &model, const PointCloud &ref, const do
     EnergyConsistentForm<D> form{ws.bond_stress.data(), ws.energetic.data(), ws.pending_data.data(),
                                  ws.point.member.data(), {}, 0.0};
     form.stress_total.zero();
-    stress_pass<D, Words>(model, fam, geo, state, i, totals, c33, ws, form, evaluated, unusable, stats);
+    stress_pass<D, Words>(model, fam, geo, state, i, totals, c33, ws, form, evaluated, unusable, largest_trC, stats);
     // Pass 2: t_ip = omega_i S_ip (x_p - x_i), S_ip = the sum of M_iq over q in B_ip
     // (BA masks are symmetric within a family: see the top of this file).
     double *t = bond_force + D * o;
@@ -418,6 +426,7 @@ void energy_consistent_range(const Model &model, const PointCloud &ref, const do
   }
   stats.evaluated += evaluated;
   stats.unusable += unusable;
+  stats.largest_trC = std::max(stats.largest_trC, largest_trC);
 }
 
 template <int D, std::size_t Words, class Model>
