@@ -90,6 +90,8 @@ PetscErrorCode TimeStepOptionsFromOptions(MPI_Comm comm, TimeStepOptions *option
              "-time_step_reestimate_backoff %" PetscInt_FMT ": give a factor >= 1 (default 4; 1 keeps the interval and stretch increment fixed)",
              options->backoff);
   PetscCheck(options->growth > 1, comm, PETSC_ERR_USER, "-time_step_reestimate_growth %g: give a factor > 1 (default 1.5)", options->growth);
+  PetscCheck(!(options->indicator && options->bonds), comm, PETSC_ERR_USER,
+             "-time_step_reestimate_indicator and -time_step_reestimate_bonds: give one of the two indicators");
   PetscCheck(options->band >= 0 && options->band < 0.5, comm, PETSC_ERR_USER,
              "-time_step_band %g: give a fraction in [0, 0.5) (default 0.05)", options->band);
   PetscFunctionReturn(0);
