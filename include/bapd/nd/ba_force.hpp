@@ -179,7 +179,7 @@ template <int D, class Model>
 // so failures are recorded and form.stress() is called in loop order.
 template <int D, class Model, class Form>
 void model_lanes(const Model &model, Workspace<D> &ws, std::size_t n, std::size_t i, std::size_t o, double *c33,
-                 Form &form, KernelStats &stats)
+                 Form &form, double &largest_trC, KernelStats &stats)
 {
   constexpr int     DD = D * D;
   const std::size_t S = ws.lane_stride, L = lane_count;
@@ -188,10 +188,15 @@ void model_lanes(const Model &model, Workspace<D> &ws, std::size_t n, std::size_
     for (int k = 0; k < DD; ++k) Fc[k * S + l] = k % (D + 1) == 0 ? 1.0 : 0.0;
     cw[l] = 0.0;
   }
+  const Lanes zero = Lanes{} + 0.0, one = Lanes{} + 1.0;
+  Lanes       top  = zero; // tr C of the bonds, lane by lane (stress_pass's scalar tr C; unused lanes hold the rest state, 3)
   for (std::size_t j = 0; j < n; j += L) {
     std::array<Lanes, DD> F, P;
     for (int k = 0; k < DD; ++k) F[k] = load_lanes(Fc + k * S + j);
     Lanes          c    = load_lanes(cw + j);
+    Lanes          trC  = D == 2 ? select(c > zero, c, one) : zero;
+    for (int k = 0; k < DD; ++k) trC = trC + F[k] * F[k];
+    top = select(trC > top, trC, top);
     const LaneMask done = model.stress_lanes(F, c, P);
     for (std::size_t l = 0; l < L && j + l < n; ++l) {
       const std::size_t q = ws.pending_q[j + l];
@@ -215,6 +220,7 @@ void model_lanes(const Model &model, Workspace<D> &ws, std::size_t n, std::size_
       form.stress(j + l, q, Pb);
     }
   }
+  for (std::size_t l = 0; l < L; ++l) largest_trC = std::max(largest_trC, top[l]);
 }
 
 // The first pass of both forms over the bonds of point i: F_iq (eq 9) and P(F_iq)
@@ -249,11 +255,6 @@ inline void stress_pass(const Model &model, const Families &fam, const BondGeome
     }
     double c = c33 ? c33[o + q] : 0.0; // <= 0: no warm start
     ++evaluated;
-    // tr C of the bond (in 2D with the out-of-plane C33 of its warm start, 1 without
-    // one): the time step's stiffening trigger (KernelStats::largest_trC).
-    double trC = D == 2 ? (c > 0.0 ? c : 1.0) : 0.0;
-    for (int comp = 0; comp < D * D; ++comp) trC += k.F[comp] * k.F[comp];
-    largest_trC = std::max(largest_trC, trC);
     if constexpr (HasLanes<Model>::value) {
       const std::size_t S = ws.lane_stride;
       form.collect(pending, q, k);
@@ -262,6 +263,12 @@ inline void stress_pass(const Model &model, const Families &fam, const BondGeome
       ws.pending_q[pending++] = q;
       continue;
     }
+    // tr C of the bond (in 2D with the out-of-plane C33 of its warm start, 1 without
+    // one): the time step's stiffening trigger (KernelStats::largest_trC; model_lanes
+    // keeps it for the lane models, a vector at a time).
+    double trC = D == 2 ? (c > 0.0 ? c : 1.0) : 0.0;
+    for (int comp = 0; comp < D * D; ++comp) trC += k.F[comp] * k.F[comp];
+    largest_trC = std::max(largest_trC, trC);
     form.collect(0, q, k);
     Mat<D>             P;
     const StressStatus status = stress_of<D>(model, k.F, c, P, 0);
@@ -273,7 +280,7 @@ inline void stress_pass(const Model &model, const Families &fam, const BondGeome
     if (c33 && !ws.keep_warm_start) c33[o + q] = c;
     form.stress(0, q, P);
   }
-  if constexpr (HasLanes<Model>::value) model_lanes<D>(model, ws, pending, i, o, c33, form, stats);
+  if constexpr (HasLanes<Model>::value) model_lanes<D>(model, ws, pending, i, o, c33, form, largest_trC, stats);
 }
 
 // Bond-only (eq 23): t_iq = P g_iq, g_iq = force_scale C_i K^{-1} xi_iq (+ h_iq with
