@@ -56,7 +56,9 @@ PetscErrorCode TimeStepOptionsFromOptions(MPI_Comm comm, TimeStepOptions *option
                      &options->indicator));
     PetscCall(r.Bool("-time_step_reestimate_bonds",
                      "Measurements (off by default): as -time_step_reestimate_indicator, with the Gent factor of the stiffest bond "
-                     "the force kernel saw in the dynamics' own evaluation (no extra bond loop) as the indicator",
+                     "the force kernel saw in the dynamics' own evaluation (no extra bond loop) as the indicator; a search runs all "
+                     "its Krylov steps, an estimate without one stops after a first step within half the dead band, and from a Gent "
+                     "factor of 4 every shortened estimate searches as without an indicator",
                      &options->bonds));
     PetscCall(r.Real("-time_step_reestimate_growth",
                      "With -time_step_reestimate_indicator or _bonds: the indicator's growth since the last search that calls the next "
