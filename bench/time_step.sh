@@ -11,7 +11,8 @@
 #   bench/time_step.sh [STEPS] [OUTPUT_DIR] [SCENE ...]
 # (default 1000 steps, /tmp/bapd_time_step, scenes plate plate_Jm8 notched_short; also
 # notched (the example, hundreds of seconds), pure_shear, and plate_Jm8_indicator (the
-# search called by the stiffening indicator, -time_step_reestimate_indicator); a STEPS past a scene's end
+# search called by the stiffening indicator, -time_step_reestimate_indicator), and plate_Jm8_bonds (called by
+# the kernel's stiffest bond, -time_step_reestimate_bonds); a STEPS past a scene's end
 # runs it whole).
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -27,6 +28,7 @@ declare -A scenes=(
   [plate]="-options_file_yaml $here/examples/plate_hole.yaml -options_file_yaml $here/examples/plate_hole_fast.yaml"
   [plate_Jm8]="-options_file_yaml $here/examples/plate_hole.yaml -options_file_yaml $here/examples/plate_hole_fast.yaml -material_Jm 8 -load_schedule 0,1,0.05,1.5,1.05,1.5,1.1,2.0,2.1,2.0"
   [plate_Jm8_indicator]="-options_file_yaml $here/examples/plate_hole.yaml -options_file_yaml $here/examples/plate_hole_fast.yaml -material_Jm 8 -load_schedule 0,1,0.05,1.5,1.05,1.5,1.1,2.0,2.1,2.0 -time_step_reestimate_indicator"
+  [plate_Jm8_bonds]="-options_file_yaml $here/examples/plate_hole.yaml -options_file_yaml $here/examples/plate_hole_fast.yaml -material_Jm 8 -load_schedule 0,1,0.05,1.5,1.05,1.5,1.1,2.0,2.1,2.0 -time_step_reestimate_bonds"
   [notched]="-options_file_yaml $here/examples/notched_pure_shear.yaml"
   [notched_short]="-options_file_yaml $here/examples/notched_pure_shear.yaml -body_dx 0.0005 -body_width 0.035 -body_notches 0.025,0.005,0.035,0.005 -probe_notch_mouth_top_at 0.035,0.0052 -probe_notch_mouth_bottom_at 0.035,0.0048 -load_schedule 0,1,0.4,3.4"
   [pure_shear]="-options_file_yaml $here/examples/pure_shear.yaml"

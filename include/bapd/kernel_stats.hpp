@@ -24,6 +24,11 @@ struct KernelStats {
   std::size_t chain_limit    = 0; // model failures (those bonds carry t = 0 this step)
   std::size_t inverted       = 0;
   std::size_t no_convergence = 0;
+  // The largest tr C = tr(F^T F) over the bonds handed to the model (in 2D plus the
+  // out-of-plane C33 of the bond's warm start, 1 without one): 3 at rest. The time
+  // step's stiffening trigger reads it from the dynamics' own evaluation (a maximum:
+  // the same over any split of the points; time_step_control.hpp).
+  double largest_trC = 0.0;
   // The first failed bond in loop order (lowest local point, then family position).
   std::size_t  first_point    = none;
   std::size_t  first_position = none;

@@ -53,6 +53,12 @@ struct TimeStepOptions {
   bool     monitor    = false; // a line per re-estimate (measurements, docs/stability.md section 8)
   PetscInt reference  = 0;     // measurements: every 25 steps, also a converged lambda_max of the same state (this many evaluations, not counted)
   bool     indicator  = false; // the search only when the points' stiffening indicator rose (StiffeningIndicator): measured, not the default
+  bool     bonds      = false; // ...or when the kernel's stiffest bond stiffened (BondIndicator)
+  // The indicator's growth since the last search that calls the next one (Reestimate).
+  // 1.5: lambda_max grew about as psi^0.4 on the Jm = 8 plate (psi 5.9 -> 15.8 while
+  // lambda 1.29 -> 1.9 x), so about 18 % in lambda; (1 + band)^2 searched on every ramp
+  // estimate (45 evaluations, the mode found 40 steps later).
+  double   growth     = 1.5;
 };
 // Reads (and lists under -help) the options. Collective.
 PetscErrorCode TimeStepOptionsFromOptions(MPI_Comm comm, TimeStepOptions *options);
@@ -153,11 +159,7 @@ private:
   // hold; docs/stability.md section 8).
   static constexpr double krylov_seed_weight = 0.5;
   static constexpr PetscInt rising_iterations = 4;
-  // The indicator's growth since the last search that calls the next one (Reestimate).
-  // 1.5: lambda_max grew about as psi^0.4 on the Jm = 8 plate (psi 5.9 -> 15.8 while
-  // lambda 1.29 -> 1.9 x), so about 18 % in lambda; (1 + band)^2 searched on every ramp
-  // estimate (45 evaluations, the mode found 40 steps later).
-  static constexpr double search_growth = 1.5; // fewest iterations while the shortened step's lambda rises
+  static constexpr double   near_limit = 4.0; // -time_step_reestimate_bonds: the Gent factor from which every shortened estimate searches (Reestimate)
   PetscErrorCode PowerStep(MPI_Comm comm, ForceOperator &force, const std::vector<double> &c33, std::vector<double> *advance,
                            const double *u0, const double *a0, double shift, double *lambda);
   // The Krylov search (-time_step_krylov): KrylovStart takes v_ (any length) as the
@@ -192,6 +194,12 @@ private:
   // evaluation. The maximum is exact (MPI_MAX): the same on any number of ranks.
   PetscErrorCode StiffeningIndicator(MPI_Comm comm, const Layout &layout, const Families &families, const BondState &state,
                                      ForceOperator &force, double *psi);
+  // -time_step_reestimate_bonds: the indicator from the dynamics' own evaluation, the
+  // Gent factor g = 1 / (1 - (tr C - 3) / (I1bar_limit - 3)) of the bond with the
+  // largest tr C the kernel saw (KernelStats::largest_trC; tr C / 3 for a law without a
+  // limit); an exact maximum over the ranks. No bond loop here: the kernel kept the
+  // maximum as it went.
+  PetscErrorCode BondIndicator(MPI_Comm comm, const ForceOperator &force, double *psi) const;
 
   TimeStepOptions options_;
   double   stable_dt_ = 0, stable_now_ = 0, lambda_rest_ = 0, lambda_ = 0, lambda_largest_ = 0;

@@ -54,6 +54,16 @@ PetscErrorCode TimeStepOptionsFromOptions(MPI_Comm comm, TimeStepOptions *option
                      "start vector mixed into the warm start) only when the points' stiffening indicator (their largest Gent factor "
                      "squared x I1bar / 3) grew by 1.5 x since the last search, instead of whenever the load moves (0: the latter)",
                      &options->indicator));
+    PetscCall(r.Bool("-time_step_reestimate_bonds",
+                     "Measurements (off by default): as -time_step_reestimate_indicator, with the Gent factor of the stiffest bond "
+                     "the force kernel saw in the dynamics' own evaluation (no extra bond loop) as the indicator; a search runs all "
+                     "its Krylov steps, an estimate without one stops after a first step within half the dead band, and from a Gent "
+                     "factor of 4 every shortened estimate searches as without an indicator",
+                     &options->bonds));
+    PetscCall(r.Real("-time_step_reestimate_growth",
+                     "With -time_step_reestimate_indicator or _bonds: the indicator's growth since the last search that calls the next "
+                     "one [-], > 1 (default 1.5)",
+                     &options->growth));
     PetscCall(r.Bool("-time_step_monitor", "Print a line per re-estimate of the stable step (step, lambda_max, stable step, step in use)",
                      &options->monitor));
     PetscCall(r.Int("-time_step_monitor_reference",
@@ -81,6 +91,9 @@ PetscErrorCode TimeStepOptionsFromOptions(MPI_Comm comm, TimeStepOptions *option
   PetscCheck(options->backoff >= 1, comm, PETSC_ERR_USER,
              "-time_step_reestimate_backoff %" PetscInt_FMT ": give a factor >= 1 (default 4; 1 keeps the interval and stretch increment fixed)",
              options->backoff);
+  PetscCheck(options->growth > 1, comm, PETSC_ERR_USER, "-time_step_reestimate_growth %g: give a factor > 1 (default 1.5)", options->growth);
+  PetscCheck(!(options->indicator && options->bonds), comm, PETSC_ERR_USER,
+             "-time_step_reestimate_indicator and -time_step_reestimate_bonds: give one of the two indicators");
   PetscCheck(options->band >= 0 && options->band < 0.5, comm, PETSC_ERR_USER,
              "-time_step_band %g: give a fraction in [0, 0.5) (default 0.05)", options->band);
   PetscFunctionReturn(0);
@@ -241,13 +254,19 @@ PetscErrorCode TimeStepControl::Reestimate(MPI_Comm comm, ForceOperator &force, 
   // times as much as lambda_max (psi 1.3 -> 18.5 while lambda_max goes 1.0 -> 2.0 x) and
   // where the search lands decides whether the mode is found: a proxy, not a bound.
   const bool shortened = stiffness_dt_ < base_dt_;
-  const bool search    = shortened && (!(psi > 0) || !(psi_ > 0) || psi > search_growth * psi_);
+  const bool search    = shortened && (!(psi > 0) || !(psi_ > 0) || psi > options_.growth * psi_);
   // (Also taking the latest estimate at the base step as the reference saved 5 more
   // evaluations but put a search at step 501 of the Jm = 8 plate, just before the
   // stretch-2 mode took over, and no search after it: the run ended at 1.35 x lambda_rest
   // where lambda_max is 2.0 x.)
   if (search && psi > 0) psi_ = psi;
-  if (shortened && (search || !(psi > 0))) PetscCall(MixSeed(comm));
+  // With the kernel's indicator: a bond within a quarter of its chain limit (Gent factor
+  // near_limit or more) stiffens too fast for a warm-started estimate to follow between
+  // searches (the 1 mm Jm = 3 plate blew up at stretch 1.82 with its estimates at 2.3 x
+  // lambda_rest, the indicator swinging 5 -> 10.8 -> 8.5 as bonds reached the limit), so
+  // every shortened estimate is seeded and rising again, as without the indicator.
+  const bool near = options_.bonds && psi >= near_limit;
+  if (shortened && (search || !(psi > 0) || near)) PetscCall(MixSeed(comm));
   // And while it is shortened and the load moves (or the last estimate shortened it,
   // lambda having risen past the band), at least rising_iterations: a quotient still
   // climbing by less than the tolerance per iteration is not settled then, as the
@@ -258,8 +277,15 @@ PetscErrorCode TimeStepControl::Reestimate(MPI_Comm comm, ForceOperator &force, 
   // (From lambda = 1.5 x lambda_rest only, it saved the fast-route plate 7 of 30
   // evaluations but left the Jm = 8 plate at 1.3 x through its stretch-2 hold, where
   // lambda_max is 2.0 x: its step then sat at 0.99 x the stable one.)
-  const bool     rising    = shortened && (psi > 0 ? search : loading || stiffness_dt_ == StiffnessTarget());
-  const PetscInt fewest = rising ? std::min(std::max(options_.iterations, rising_iterations), options_.max_iterations) : options_.iterations;
+  const bool     rising    = shortened && (psi > 0 && !near ? search : loading || stiffness_dt_ == StiffnessTarget());
+  // With the kernel's indicator a search is rare (the stiffest bond grew by
+  // options_.growth since the last), so it runs every Krylov step it may: on the Jm = 8
+  // plate the mode near the hole shows only in the 6th to 8th step of a search (its
+  // quotient settles at 1.3 x lambda_rest after four, then climbs to 1.9 x), and a search
+  // stopped at four never found it.
+  const PetscInt fewest = options_.bonds && search ? options_.max_iterations
+                          : rising ? std::min(std::max(options_.iterations, rising_iterations), options_.max_iterations)
+                                   : options_.iterations;
   double       lambda = 0, previous = lambda_;
   double       last_change = 0;
   PetscInt     it     = 0;
@@ -281,6 +307,11 @@ PetscErrorCode TimeStepControl::Reestimate(MPI_Comm comm, ForceOperator &force, 
     }
     last_change = change;
     const bool   harmless = at_base && it >= 2 && lambda + 10.0 * change < threshold;
+    // With the kernel's indicator and no search, the warm start is the last Ritz vector
+    // of a state that moved little: a first quotient within half the dead band of the
+    // last estimate cannot move the step, and the second Krylov step (the one the
+    // tolerance asks for as the state moved) adds 0.1 to 1 % (Jm = 8 plate).
+    if (options_.bonds && !search && !near && it == 1 && change <= 0.5 * options_.band * std::fabs(lambda)) settled = true;
     previous              = lambda;
     if (it >= fewest && (settled || harmless)) break;
   }
@@ -332,6 +363,7 @@ PetscErrorCode TimeStepControl::AfterStep(MPI_Comm comm, PetscInt step, double s
     PetscInt       iterations         = 0;
     double psi = 0;
     if (options_.indicator) PetscCall(StiffeningIndicator(comm, layout, families, state, force, &psi));
+    else if (options_.bonds) PetscCall(BondIndicator(comm, force, &psi));
     bool broke = false;
     if (failure_) PetscCallMPI(MPI_Allreduce(&broke_here, &broke, 1, MPI_C_BOOL, MPI_LOR, comm));
     PetscCall(Reestimate(comm, force, stretch_moved > 0, psi, broke, &iterations));
@@ -340,6 +372,11 @@ PetscErrorCode TimeStepControl::AfterStep(MPI_Comm comm, PetscInt step, double s
     // mode for a while when it moves: a Jm = 3 plate at stretch 2 showed lambda_max
     // 17 x, then 0.6 x the value at rest 50 steps later, and blew up at the full step).
     const double target = StiffnessTarget();
+    // With the kernel's indicator, the estimate that first shortens the step (it ran
+    // until settled: the seed is for later ones) is where the indicator's growth is
+    // counted from: the Jm = 8 plate's next estimate, 10 steps on, searched (6 Krylov
+    // steps) only because no search had run yet.
+    if (options_.bonds && psi > 0 && !(psi_ > 0) && stiffness_dt_ >= base_dt_ && target < (1.0 - options_.band) * stiffness_dt_) psi_ = psi;
     if (target < (1.0 - options_.band) * stiffness_dt_) stiffness_dt_ = target;
     else if (target > (1.0 + options_.band) * stiffness_dt_) stiffness_dt_ = std::min(target, (1.0 + 2.0 * options_.band) * stiffness_dt_);
     // Far from mattering: at the base step, lambda stays below the threshold that would
@@ -442,6 +479,16 @@ PetscErrorCode TimeStepControl::Kink(MPI_Comm comm, ForceOperator &force, const 
     PetscCall(PetscPrintf(comm, "re-estimate: lambda_max %.6e 1/s^2 (%.4g x at rest) checked from both sides: %.6e and %.6e 1/s^2: %s\n", lambda,
                           lambda / lambda_rest_, q[0], q[1], *kink ? "a kink of the force (a bond at a switch), not a stiffness: the estimate is dropped" : "smooth"));
   if (*kink) v_ = seed_; // the Ritz vector sits on the switch: start again from the white vector
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode TimeStepControl::BondIndicator(MPI_Comm comm, const ForceOperator &force, double *psi) const
+{
+  PetscFunctionBegin;
+  double trC = force.stats().largest_trC;
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &trC, 1, MPI_DOUBLE, MPI_MAX, comm));
+  trC = std::max(trC, 3.0);
+  *psi = span_ > 0 ? 1.0 / std::max(1.0 - (trC - 3.0) / span_, 1e-3) : trC / 3.0;
   PetscFunctionReturn(0);
 }
 

@@ -247,8 +247,10 @@ PetscErrorCode TimeStepControl::Reference(MPI_Comm comm, ForceOperator &force, P
   PetscCall(RestartedKrylov(comm, force, committed, options_.reference, &reference));
   v_           = v;
   evaluations_ = evaluations;
-  PetscCall(PetscPrintf(comm, "reference after step %" PetscInt_FMT ": lambda_max %.6e 1/s^2 (%.4g x at rest), estimate in use %.6e (ratio %.4f)\n",
-                        step, reference, reference / lambda_rest_, lambda_, lambda_ / reference));
+  double bond = 0;
+  PetscCall(BondIndicator(comm, force, &bond));
+  PetscCall(PetscPrintf(comm, "reference after step %" PetscInt_FMT ": lambda_max %.6e 1/s^2 (%.4g x at rest), estimate in use %.6e (ratio %.4f), stiffest bond's Gent factor %.4g\n",
+                        step, reference, reference / lambda_rest_, lambda_, lambda_ / reference, bond));
   PetscFunctionReturn(0);
 }
 

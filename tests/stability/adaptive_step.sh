@@ -16,6 +16,11 @@
 #           back-off and eigenvector are in the checkpoint); the same checkpoint as
 #           format 3 wrote it (no back-off) is still read.
 #  chase    A stiffening the warm-started estimate must chase (the 2 mm Jm = 3 plate).
+#  bonds    The kernel's stiffest bond as the search trigger (-time_step_reestimate_bonds):
+#           it searches (all 8 Krylov steps) where a bond stiffened by 1.5 x, takes one
+#           Krylov step where none did, costs fewer evaluations than the default over the
+#           same steps (deterministic counts), and is the same on 1 and 3 ranks and after
+#           a restart on 3 ranks from a 2-rank checkpoint (its indicator is in it).
 #  fracture Bonds that break do not read as a stiffness: rank_invariance.fracture_corrected's
 #           sheet, whose estimate read lambda_max 1.2e6 x (Krylov) and 6.4e5 x (power
 #           iteration) at rest when bonds broke between the base point's evaluation and
@@ -23,11 +28,11 @@
 #   adaptive_step.sh PART   (ctest sets BAPD_EXE and BAPD_SOURCE_DIR)
 set -uo pipefail
 src="$BAPD_SOURCE_DIR"
-part="${1:?give the part: diverge, ranks, restart or chase}"
+part="${1:?give the part: diverge, ranks, restart, chase, bonds or fracture}"
 work="stability_adaptive_step_$part"
 rm -rf "$work" && mkdir -p "$work" || exit 1
 fail() { echo "FAILED: $*"; exit 1; }
-case "$part" in diverge | ranks | restart | chase | fracture) ;; *) fail "unknown part $part" ;; esac
+case "$part" in diverge | ranks | restart | chase | bonds | fracture) ;; *) fail "unknown part $part" ;; esac
 run() { # run RANKS DIR OPTIONS...
   local ranks="$1" dir="$2"
   shift 2
@@ -72,6 +77,37 @@ for r in 2 3; do
   cmp <(column "$work/np1" dt_s) <(column "$work/np$r" dt_s) || fail "dt_s differs between 1 and $r ranks"
 done
 echo "the step (down to $shortest s from $base s) is the same on 1, 2 and 3 ranks"
+fi
+
+if [ "$part" = bonds ]; then
+# The evaluations are a deterministic count; the monitor line of each re-estimate names
+# its iterations. (The scene's -output_interval 1 stays: the static holds are checked
+# at the output cadence, and the ramp to 2 comes within the M steps only with it.)
+quiet=(-time_step_monitor)
+bonds=(-time_step_reestimate_bonds)
+run 1 "$work/default" "${scene[@]}" "${quiet[@]}" -ts_max_steps $M || fail "default run failed"
+run 1 "$work/np1" "${scene[@]}" "${quiet[@]}" "${bonds[@]}" -ts_max_steps $M || fail "bonds: 1-rank run failed"
+evals() { grep -o 're-estimated [0-9]* time(s) ([0-9]* force evaluations' "$1" | grep -o '([0-9][0-9]*' | tr -d '('; }
+e_default=$(evals "$work/default.log") e_bonds=$(evals "$work/np1.log")
+[ -n "$e_default" ] && [ -n "$e_bonds" ] || fail "no re-estimate summary in the logs"
+searches=$(grep -c "after step [0-9]* ([a-z]*, 8 iteration(s)" "$work/np1.log")
+single=$(grep "after step [0-9]* ([a-z]*, 1 iteration(s)" "$work/np1.log" | grep -vc "(1 x base)")
+echo "evaluations: default $e_default, bonds $e_bonds; searches (8 Krylov steps) $searches; shortened single-step estimates $single"
+[ "$searches" -ge 1 ] || fail "bonds: no search where the stiffest bond stiffened"
+[ "$single" -ge 1 ] || fail "bonds: no single-step estimate while the step is shortened"
+[ "$e_bonds" -lt "$e_default" ] || fail "bonds: $e_bonds evaluations, not fewer than the default's $e_default"
+base=$(column "$work/np1" dt_s | head -n 1)
+shortest=$(column "$work/np1" dt_s | sort -g | head -n 1)
+awk -v a="$shortest" -v b="$base" 'BEGIN { exit !(a < 0.95 * b) }' || fail "bonds: the step never shrank (shortest $shortest, base $base)"
+run 3 "$work/np3" "${scene[@]}" "${quiet[@]}" "${bonds[@]}" -ts_max_steps $M || fail "bonds: 3-rank run failed"
+N=170
+run 2 "$work/first" "${scene[@]}" "${quiet[@]}" "${bonds[@]}" -ts_max_steps $N -checkpoint_interval $N || fail "bonds: first run failed"
+"${PYTHON:-/usr/bin/python3}" -c "import h5py, sys; v = h5py.File(sys.argv[1])['time_step'].attrs['indicator']; sys.exit(not v > 1)" \
+  "$work/first/checkpoint.h5" || fail "bonds: no search before the checkpoint (its indicator is not > 1)"
+run 3 "$work/second" -restart "$work/first/checkpoint.h5" -ts_max_steps $M || fail "bonds: restart on 3 ranks failed"
+python3 "$src/tests/mpi/compare_runs.py" --tolerance 0 "$work/np1" "$work/np3" "$work/second" ||
+  fail "bonds: 3 ranks or the restart differ from the 1-rank run"
+echo "bonds: the same on 1 and 3 ranks and after a restart at step $N (shortest step $shortest s, base $base s)"
 fi
 
 if [ "$part" = restart ]; then

@@ -128,5 +128,28 @@ TEST(BaForceLanes, KeepWarmStartLeavesC33AndGivesTheSameForces)
   }
 }
 
+// KernelStats::largest_trC from the lanes (model_lanes, a vector at a time) is the scalar
+// path's (stress_pass, one bond at a time), both forms, from converged warm starts (their
+// C33 is part of tr C): the time step's stiffening trigger reads it whichever path ran.
+TEST(BaForceLanes, LargestTraceOfCIsTheScalarKernels)
+{
+  const test::CutPlate  c(16, 0.1, 9);
+  const GentPlaneStress gent = test::hydrogel();
+  const ScalarGent      scalar{gent};
+  std::vector<double>   c33(c.d.families.n_bonds(), 0.0);
+  bond_forces(gent, c.d, c.y, c33); // the converged C33 at y
+  for (ForceForm form : {ForceForm::bond_only, ForceForm::energy_consistent}) {
+    std::vector<double> t(2 * c.d.families.n_bonds());
+    nd::Workspace<2>    ws;
+    ws.keep_warm_start  = true;
+    const KernelStats a = nd::compute_bond_forces<2>(form, gent, c.d.cloud, c.y.data(), c.d.families, c.d.geometry, c.d.state, c33.data(),
+                                                     t.data(), ws);
+    const KernelStats b = nd::compute_bond_forces<2>(form, scalar, c.d.cloud, c.y.data(), c.d.families, c.d.geometry, c.d.state,
+                                                     c33.data(), t.data(), ws);
+    EXPECT_GT(a.largest_trC, 3.1); // stretched by 1.2 and sheared: not the rest state's 3
+    EXPECT_NEAR(a.largest_trC, b.largest_trC, 1e-14 * b.largest_trC); // the lanes may contract a product into an fma
+  }
+}
+
 } // namespace
 } // namespace bapd

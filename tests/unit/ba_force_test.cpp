@@ -611,6 +611,41 @@ TEST(BaForce, ModelFailureIsCountedReportedAndCarriesNoForce)
   }
 }
 
+// KernelStats::largest_trC, the time step's stiffening trigger (time_step_control.hpp):
+// the largest tr(F^T F) + C33 (the warm start read, 1 without one) over the bonds handed
+// to the model, failed ones included, in either force form; checked against every bond's
+// F recomputed on the slow path, bit for bit.
+TEST(BaForce, LargestTraceOfCIsThatOfTheStiffestBond)
+{
+  test::Discretisation d(test::plate(20, 20, kDx));
+  test::LimitedModel   model; // chain_limit once F_xx > 1.5 (those bonds still count)
+  const double         L = 20 * kDx;
+  std::vector<double>  y = d.cloud.x;
+  for (std::size_t i = 0; i < d.size(); ++i) y[2 * i] += d.cloud.x[2 * i] * d.cloud.x[2 * i] / L; // F_xx from 1 to 3
+  double expected = 0;
+  for (std::size_t i = 0; i < d.size(); ++i)
+    for (std::size_t q = 0; q < d.families.size(i); ++q) {
+      const Mat2 F   = nd::bond_deformation_gradient<2>(d.cloud, y.data(), d.families, d.geometry, d.state, i, q);
+      double     trC = 7.0;
+      for (int c = 0; c < 4; ++c) trC += F[c] * F[c];
+      expected = std::max(expected, trC);
+    }
+  for (ForceForm form : {ForceForm::bond_only, ForceForm::energy_consistent}) {
+    std::vector<double> c33(d.families.n_bonds(), 7.0), t(2 * d.families.n_bonds());
+    nd::Workspace<2>    ws;
+    const KernelStats   s = nd::compute_bond_forces<2>(form, model, d.cloud, y.data(), d.families, d.geometry, d.state, c33.data(),
+                                                       t.data(), ws);
+    EXPECT_GT(s.chain_limit, 0u);
+    EXPECT_NEAR(s.largest_trC, expected, 1e-14 * expected); // the lane path may contract a product into an fma
+    EXPECT_GT(s.largest_trC, 7.0 + 9.0 * 0.9); // F_xx near 3 at the right edge
+  }
+  // An affine stretch, no warm starts: every bond's tr C is 1.2^2 + 0.9^2 + 1.
+  const std::vector<double> ya = d.affine(Mat2{1.2, 0.0, 0.0, 0.9}, 0.0, 0.0);
+  std::vector<double>       t, f;
+  const KernelStats         s = d.forces(test::LimitedModel{}, ya, t, f);
+  EXPECT_NEAR(s.largest_trC, 1.2 * 1.2 + 0.9 * 0.9 + 1.0, 1e-12);
+}
+
 TEST(BaForce, RankLocalCloudReproducesOneRankForcesBitForBit)
 {
   const test::SaintVenantKirchhoff2D svk;

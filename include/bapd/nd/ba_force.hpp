@@ -179,7 +179,7 @@ template <int D, class Model>
 // so failures are recorded and form.stress() is called in loop order.
 template <int D, class Model, class Form>
 void model_lanes(const Model &model, Workspace<D> &ws, std::size_t n, std::size_t i, std::size_t o, double *c33,
-                 Form &form, KernelStats &stats)
+                 Form &form, double &largest_trC, KernelStats &stats)
 {
   constexpr int     DD = D * D;
   const std::size_t S = ws.lane_stride, L = lane_count;
@@ -188,10 +188,15 @@ void model_lanes(const Model &model, Workspace<D> &ws, std::size_t n, std::size_
     for (int k = 0; k < DD; ++k) Fc[k * S + l] = k % (D + 1) == 0 ? 1.0 : 0.0;
     cw[l] = 0.0;
   }
+  const Lanes zero = Lanes{} + 0.0, one = Lanes{} + 1.0;
+  Lanes       top  = zero; // tr C of the bonds, lane by lane (stress_pass's scalar tr C; unused lanes hold the rest state, 3)
   for (std::size_t j = 0; j < n; j += L) {
     std::array<Lanes, DD> F, P;
     for (int k = 0; k < DD; ++k) F[k] = load_lanes(Fc + k * S + j);
     Lanes          c    = load_lanes(cw + j);
+    Lanes          trC  = D == 2 ? select(c > zero, c, one) : zero;
+    for (int k = 0; k < DD; ++k) trC = trC + F[k] * F[k];
+    top = select(trC > top, trC, top);
     const LaneMask done = model.stress_lanes(F, c, P);
     for (std::size_t l = 0; l < L && j + l < n; ++l) {
       const std::size_t q = ws.pending_q[j + l];
@@ -215,6 +220,7 @@ void model_lanes(const Model &model, Workspace<D> &ws, std::size_t n, std::size_
       form.stress(j + l, q, Pb);
     }
   }
+  for (std::size_t l = 0; l < L; ++l) largest_trC = std::max(largest_trC, top[l]);
 }
 
 // The first pass of both forms over the bonds of point i: F_iq (eq 9) and P(F_iq)
@@ -227,7 +233,7 @@ void model_lanes(const Model &model, Workspace<D> &ws, std::size_t n, std::size_
 template <int D, std::size_t Words, class Model, class Form>
 inline void stress_pass(const Model &model, const Families &fam, const BondGeometry<D> &geo, const BondState &state,
                         std::size_t i, const PointTotals<D> &totals, double *c33, Workspace<D> &ws, Form &form,
-                        std::size_t &evaluated, std::size_t &unusable, KernelStats &stats)
+                        std::size_t &evaluated, std::size_t &unusable, double &largest_trC, KernelStats &stats)
 {
   const std::size_t    W = fam.mask_words, o = fam.offsets[i], m = fam.size(i);
   const std::uint64_t *intact = state.intact_mask(i), *usable = geo.usable.data() + i * W;
@@ -257,6 +263,12 @@ inline void stress_pass(const Model &model, const Families &fam, const BondGeome
       ws.pending_q[pending++] = q;
       continue;
     }
+    // tr C of the bond (in 2D with the out-of-plane C33 of its warm start, 1 without
+    // one): the time step's stiffening trigger (KernelStats::largest_trC; model_lanes
+    // keeps it for the lane models, a vector at a time).
+    double trC = D == 2 ? (c > 0.0 ? c : 1.0) : 0.0;
+    for (int comp = 0; comp < D * D; ++comp) trC += k.F[comp] * k.F[comp];
+    largest_trC = std::max(largest_trC, trC);
     form.collect(0, q, k);
     Mat<D>             P;
     const StressStatus status = stress_of<D>(model, k.F, c, P, 0);
@@ -268,7 +280,7 @@ inline void stress_pass(const Model &model, const Families &fam, const BondGeome
     if (c33 && !ws.keep_warm_start) c33[o + q] = c;
     form.stress(0, q, P);
   }
-  if constexpr (HasLanes<Model>::value) model_lanes<D>(model, ws, pending, i, o, c33, form, stats);
+  if constexpr (HasLanes<Model>::value) model_lanes<D>(model, ws, pending, i, o, c33, form, largest_trC, stats);
 }
 
 // Bond-only (eq 23): t_iq = P g_iq, g_iq = force_scale C_i K^{-1} xi_iq (+ h_iq with
@@ -359,6 +371,7 @@ void bond_only_range(const Model &model, const PointCloud &ref, const double *y,
   const double     *lambda = ref.patch_correction.empty() ? nullptr : ref.patch_correction.data();
   const std::size_t stride = patch_stride<D>(ref.patch_virial);
   std::size_t       evaluated = 0, unusable = 0; // locals, not stats.*: no reload per bond (pending_q may alias)
+  double            largest_trC = 0.0;
   for (std::size_t i = begin; i < end; ++i) {
     const PointTotals<D>    totals = gather_point<D>(ref, y, fam, i, state.intact_mask(i), ws.point);
     BondOnlyForm<D, Corrected> form{bond_force + D * fam.offsets[i],
@@ -371,10 +384,11 @@ void bond_only_range(const Model &model, const PointCloud &ref, const double *y,
                                     lambda,
                                     fam.neighbour.data() + fam.offsets[i],
                                     ref.patch_virial};
-    stress_pass<D, Words>(model, fam, geo, state, i, totals, c33, ws, form, evaluated, unusable, stats);
+    stress_pass<D, Words>(model, fam, geo, state, i, totals, c33, ws, form, evaluated, unusable, largest_trC, stats);
   }
   stats.evaluated += evaluated;
   stats.unusable += unusable;
+  stats.largest_trC = std::max(stats.largest_trC, largest_trC);
 }
 
 template <int D, std::size_t Words, class Model>
@@ -384,6 +398,7 @@ void energy_consistent_range(const Model &model, const PointCloud &ref, const do
 {
   const std::size_t W = fam.mask_words;
   std::size_t       evaluated = 0, unusable = 0; // as in bond_only_range
+  double            largest_trC = 0.0;
   for (std::size_t i = begin; i < end; ++i) {
     const std::size_t    o = fam.offsets[i], m = fam.size(i);
     const std::uint64_t *intact = state.intact_mask(i), *ba = fam.ba_mask.data() + o * W;
@@ -392,7 +407,7 @@ void energy_consistent_range(const Model &model, const PointCloud &ref, const do
     EnergyConsistentForm<D> form{ws.bond_stress.data(), ws.energetic.data(), ws.pending_data.data(),
                                  ws.point.member.data(), {}, 0.0};
     form.stress_total.zero();
-    stress_pass<D, Words>(model, fam, geo, state, i, totals, c33, ws, form, evaluated, unusable, stats);
+    stress_pass<D, Words>(model, fam, geo, state, i, totals, c33, ws, form, evaluated, unusable, largest_trC, stats);
     // Pass 2: t_ip = omega_i S_ip (x_p - x_i), S_ip = the sum of M_iq over q in B_ip
     // (BA masks are symmetric within a family: see the top of this file).
     double *t = bond_force + D * o;
@@ -418,6 +433,7 @@ void energy_consistent_range(const Model &model, const PointCloud &ref, const do
   }
   stats.evaluated += evaluated;
   stats.unusable += unusable;
+  stats.largest_trC = std::max(stats.largest_trC, largest_trC);
 }
 
 template <int D, std::size_t Words, class Model>
