@@ -21,7 +21,7 @@ BOX=(-body_dimension 3 -body_dx 0.001 -body_shapes block -body_block_type box -b
      -probes p -probe_p_at 0.0085,0.0035,0.0025 -damping 40 -output_interval 20 -progress_interval 100000 -output_final_state)
 compare() { python3 "$BAPD_SOURCE_DIR/tests/mpi/compare_runs.py" --tolerance 0 "$@"; }
 if [ "$case" = rank_invariance ]; then
-  scene=("${BOX[@]}" -load_schedule 0,1,0.05,1.2 -ts_max_steps 300)
+  scene=("${BOX[@]}" -load_schedule 0,1,0.1,1.2 -ts_max_steps 300)
   for n in 1 2 3; do run $n "$work/np$n" "${scene[@]}"; done
   head -1 "$work/np1/history.csv" | grep -q "right_reaction_z_N,right_nominal_stress_Pa,p_ux_m,p_uy_m,p_uz_m," ||
     fail "history.csv has no z columns: $(head -1 "$work/np1/history.csv")"
@@ -30,12 +30,12 @@ if [ "$case" = rank_invariance ]; then
   $PYTHON -c "import sys; sys.exit(0 if float('$ux') > 1e-4 else 1)" || fail "the probe did not move with the grip (ux = $ux m)"
   compare "$work/np1" "$work/np2" "$work/np3"
 elif [ "$case" = failure ]; then
-  scene=("${BOX[@]}" -load_schedule 0,1,0.05,1.5 -failure_critical_stretch 1.15 -ts_max_steps 400)
+  scene=("${BOX[@]}" -load_schedule 0,1,0.1,1.5 -failure_critical_stretch 1.15 -ts_max_steps 200)
   for n in 1 2; do run $n "$work/np$n" "${scene[@]}"; done
   compare --expect-broken "$work/np1" "$work/np2"
-  echo "broken bonds at step 400: $(history_column "$work/np1" 400 broken_bonds)"
+  echo "broken bonds at step 200: $(history_column "$work/np1" 200 broken_bonds)"
 elif [ "$case" = restart ]; then
-  scene=("${BOX[@]}" -load_schedule 0,1,0.05,1.2 -output_fields -output_fields_interval 100)
+  scene=("${BOX[@]}" -load_schedule 0,1,0.1,1.2 -output_fields -output_fields_interval 100)
   N=150
   run 2 "$work/whole" "${scene[@]}" -ts_max_steps $((2 * N))
   run 2 "$work/first" "${scene[@]}" -ts_max_steps $N -checkpoint_interval $N
