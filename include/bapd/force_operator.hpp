@@ -8,8 +8,9 @@
 // run time once, outside the hot loop). The dimension D is chosen there too
 // (Setup<D>): the closures hold the nd::<D> kernel and its workspace, and the rest
 // (the exchange, y = x + u) is D values a point, a run-time D like Loading's. A 3D
-// model has no C33: the warm starts are then never read (the kernel ignores them). The body (layout, families, geometry, bond
-// state) is the caller's: bonds break between evaluations (failure.hpp).
+// model has no C33: a 3D operator holds no warm starts (warm_start() is empty). The
+// body (layout, families, geometry, bond state) is the caller's: bonds break between
+// evaluations (failure.hpp).
 //
 // An evaluation changes nothing a later one reads unless asked: Evaluate(...,
 // WarmStart::keep) leaves C33, the statistics and the failed-bond list as they were,
