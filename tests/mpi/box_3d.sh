@@ -10,7 +10,7 @@
 #                              -restart on 2 and on 3 ranks: the uninterrupted run's
 #                              history, displacements and last field file
 set -euo pipefail
-source "$BAPD_SOURCE_DIR/tests/restart/common.sh" # run, fail, history_column, PYTHON
+source "$BAPD_SOURCE_DIR/tests/restart/common.sh" # run, checkpointed_runs, fail, history_column, PYTHON
 case="$1"
 work="box_3d_$case"
 rm -rf "$work"; mkdir -p "$work"
@@ -37,12 +37,7 @@ elif [ "$case" = failure ]; then
 elif [ "$case" = restart ]; then
   scene=("${BOX[@]}" -load_schedule 0,1,0.1,1.2 -output_fields -output_fields_interval 100)
   N=150
-  run 2 "$work/whole" "${scene[@]}" -ts_max_steps $((2 * N))
-  run 2 "$work/first" "${scene[@]}" -ts_max_steps $N -checkpoint_interval $N
-  [ -f "$work/first/checkpoint.h5" ] || fail "no checkpoint after $N steps"
-  run 2 "$work/second_np2" -restart "$work/first/checkpoint.h5" -ts_max_steps $((2 * N))
-  run 3 "$work/second_np3" -restart "$work/first/checkpoint.h5" -ts_max_steps $((2 * N))
-  grep -q "Restart from $work/first/checkpoint.h5: step $N" "$work/second_np3.log" || fail "no restart line in second_np3.log"
+  checkpointed_runs "$work" $N "${scene[@]}"
   compare "$work/whole" "$work/second_np2"
   compare "$work/whole" "$work/second_np3"
   last=$(printf "fields/step_%08d.h5" $((2 * N)))
