@@ -9,6 +9,7 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <utility>
 
 #include "bapd/errors.hpp"
 #include "bapd/help.hpp"
@@ -18,12 +19,25 @@
 static const char help[] = "bapd: bond-associated NOSB peridynamics for hydrogels (Gent model, plane stress).\n"
                            "Usage: mpiexec -n N bapd -options_file_yaml SCENE.yaml [-option value ...]\n\n";
 
-static PetscErrorCode RunScene()
+template <int D> static PetscErrorCode RunDriver(bapd::Scene scene)
 {
   PetscFunctionBegin;
-  bapd::Simulation simulation(PETSC_COMM_WORLD);
-  PetscCall(simulation.Setup());
+  bapd::SimulationD<D> simulation(PETSC_COMM_WORLD);
+  PetscCall(simulation.Setup(std::move(scene)));
   PetscCall(simulation.Run());
+  PetscFunctionReturn(0);
+}
+
+// The scene is read first; its dimension chooses the driver, once (a plane sheet, or
+// a solid body: -body_dimension 3 or a 3D shape).
+static PetscErrorCode RunScene()
+{
+  bapd::Scene scene;
+
+  PetscFunctionBegin;
+  PetscCall(bapd::ReadScene(PETSC_COMM_WORLD, &scene));
+  if (scene.dimension == 3) PetscCall(RunDriver<3>(std::move(scene)));
+  else PetscCall(RunDriver<2>(std::move(scene)));
   PetscFunctionReturn(0);
 }
 

@@ -29,8 +29,9 @@ public:
   // One breaking pass after a step at positions y (every local point), with the
   // bonds whose model failed in the step's force evaluation (cleared here); updates
   // the bond state and the geometry of the points whose bonds broke. Collective.
-  PetscErrorCode Break(const double *y, std::vector<FailedBond> &failed, BondState &state,
-                       nd::BondGeometry<2> &geometry);
+  // D: the body's (y and the geometry D a point; the masks know no dimension).
+  template <int D>
+  PetscErrorCode Break(const double *y, std::vector<FailedBond> &failed, BondState &state, nd::BondGeometry<D> &geometry);
   // Whether the last Break broke bonds on this rank (owned or ghost copies). Local.
   bool broke() const { return !touched_.empty(); }
 

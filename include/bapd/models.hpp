@@ -16,6 +16,7 @@
 #include "bapd/hyperelastic.hpp"
 #include "bapd/law_registry.hpp"
 #include "bapd/material.hpp"
+#include "bapd/nd/compressible_lanes.hpp"
 #include "bapd/plane_stress.hpp"
 
 namespace bapd {
@@ -37,7 +38,30 @@ decltype(auto) with_law(ModelKind kind, Formulation formulation, const MaterialP
     return fn(PlaneStrain<Law>{p});
   }
 }
+
+// The 3D form of law I (with_model_3d): a law of invariants as Compressible3DLanes; a
+// law of principal stretches (its own 2D formulations: Ogden) has none yet.
+template <std::size_t I, class Fn> void with_law_3d(ModelKind kind, const MaterialParameters &p, Fn &fn)
+{
+  using Law = std::tuple_element_t<I, RegisteredLaws>;
+  if constexpr (I + 1 < registered_law_count)
+    if (kind != static_cast<ModelKind>(I)) return with_law_3d<I + 1>(kind, p, fn);
+  if constexpr (has_own_formulations<Law>)
+    throw std::invalid_argument(std::string("-material_model ") + to_string(kind) +
+                                ": a law of principal stretches has no 3D form in bapd yet (its plane-stress and plane-strain "
+                                "forms are its own); for a 3D body choose a law of invariants, e.g. gent or neo_hookean");
+  else fn(nd::Compressible3DLanes<Law>{p});
+}
 } // namespace detail
+
+// The 3D dispatch (a 3D body, Scene::dimension 3): fn(model) with the law's 3D form,
+// nd::Compressible3DLanes<Law> (stress(F, P), the lane path of nd/ba_force.hpp), for
+// every law of invariants of the registry; throws std::invalid_argument for a law that
+// has no 3D form (CheckMaterial reports it up front). fn returns nothing.
+template <class Fn> void with_model_3d(ModelKind kind, const MaterialParameters &p, Fn &&fn)
+{
+  detail::with_law_3d<0>(kind, p, fn);
+}
 
 template <class Fn>
 decltype(auto) with_model(ModelKind kind, Formulation formulation, const MaterialParameters &p, Fn &&fn)

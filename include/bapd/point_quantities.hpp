@@ -198,5 +198,11 @@ void point_quantities(ModelKind kind, Formulation formulation, const MaterialPar
                       const nd::BondGeometry<2> &geometry,
                       const BondState &state, const double *c33, std::size_t n_points, StressWeights weights,
                       PointQuantities &out);
+// A 3D body: the law's 3D form (with_model_3d, models.hpp); the formulation is not used.
+void point_quantities(ModelKind kind, Formulation formulation, const MaterialParameters &material,
+                      const PointCloud &cloud, const double *y, const Families &families,
+                      const nd::BondGeometry<3> &geometry,
+                      const BondState &state, const double *c33, std::size_t n_points, StressWeights weights,
+                      PointQuantities &out);
 
 } // namespace bapd

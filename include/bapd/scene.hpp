@@ -46,8 +46,8 @@ struct Body3D {
 };
 
 struct Scene {
-  // 2 (the plane sheet `body`) or 3 (`body3d`): the driver's D. The 2D driver runs
-  // D = 2 only; a 3D scene is read and checked, then stopped (StopThreeDimensional).
+  // 2 (the plane sheet `body`) or 3 (`body3d`): the driver's D (SimulationD<D>,
+  // chosen once by main.cpp from the scene).
   int    dimension = 2;
   Body2D body;
   Body3D body3d;
@@ -127,9 +127,5 @@ int64_t ScenePointEstimate(const Scene &scene);
 PetscErrorCode CheckBodyMemory(MPI_Comm comm, const Scene &scene, int64_t points, int64_t bonds);
 
 const char *to_string(PatchCorrection c); // the option's word: off, on, virial
-
-// A 3D scene (scene.dimension 3) stops here, after every check, with one message: the
-// driver is 2D until issue 21 stage 4 makes it generic in D. Collective; 0 in 2D.
-PetscErrorCode StopThreeDimensional(MPI_Comm comm, const Scene &scene);
 
 } // namespace bapd

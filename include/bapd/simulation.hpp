@@ -8,6 +8,11 @@
 // control (time_step_control.hpp); the Simulation holds the body's data, which they
 // share, and the reporting and output that read it. The scene is read once and only
 // read afterwards.
+//
+// One code path for D = 2 (a plane sheet) and D = 3 (a solid body): SimulationD<D>,
+// instantiated twice; main.cpp reads the scene (ReadScene) and builds the one its
+// dimension asks for. u and v hold D values a point; the history has z columns in 3D
+// only, so a 2D run writes what it always did.
 #include <petscsf.h>
 #include <petscts.h>
 
@@ -36,19 +41,27 @@ struct PointQuantities;
 struct ProbePoint {
   PetscInt owner_rank  = -1; // rank that owns the point
   PetscInt local_index = -1; // on the owner
-  double   x = 0, y = 0;     // reference position of the chosen point
+  double   x = 0, y = 0, z = 0; // reference position of the chosen point (z: 3D)
   int64_t  natural_id = -1;
 };
 
-class Simulation {
-public:
-  explicit Simulation(MPI_Comm comm) : comm_(comm) {}
-  ~Simulation();
-  Simulation(const Simulation &)            = delete;
-  Simulation &operator=(const Simulation &) = delete;
+// The scene as the driver reads it: a checkpoint's options merged first (-restart),
+// then SceneFromOptions. main.cpp reads it once to choose D.
+PetscErrorCode ReadScene(MPI_Comm comm, Scene *scene);
 
-  // Reads the scene from the options database and builds everything up to the TS.
+template <int D> class SimulationD {
+  static_assert(D == 2 || D == 3, "SimulationD: a plane sheet (2) or a solid body (3)");
+
+public:
+  explicit SimulationD(MPI_Comm comm) : comm_(comm) {}
+  ~SimulationD();
+  SimulationD(const SimulationD &)            = delete;
+  SimulationD &operator=(const SimulationD &) = delete;
+
+  // Reads the scene from the options database (ReadScene) and builds everything up to the TS.
   PetscErrorCode Setup();
+  // The same with the scene already read (its dimension must be D).
+  PetscErrorCode Setup(Scene scene);
   // Steps to the end time, writing history and progress; prints a summary.
   PetscErrorCode Run();
   // Takes exactly `steps` more time steps (tests, tools); no summary.
@@ -57,10 +70,10 @@ public:
   // Accessors for tests and tools.
   const Scene  &scene() const { return scene_; }
   const Layout &layout() const { return layout_; }
-  Vec           state() const { return X_; } // [u (2 per owned point), v (2 per owned point)]
+  Vec           state() const { return X_; } // [u (D per owned point), v (D per owned point)]
   TS            ts() const { return ts_; }
   double        stable_time_step() const { return step_control_.stable(); }
-  // Force density (2 per owned point) for the owned displacements u_owned.
+  // Force density (D per owned point) for the owned displacements u_owned.
   PetscErrorCode ComputeForceDensity(const double *u_owned, double *force_density);
   // Force density as above and the per-point stress, F, lambda_3 and W of the owned
   // points (point_quantities.hpp), as the field output forms them.
@@ -81,7 +94,7 @@ private:
   PetscErrorCode OpenHistory();
   PetscErrorCode SetupRelaxation(); // -relaxation (relaxation.hpp)
 
-  // The acceleration of the owned points for displacement u (owned, 2 per point).
+  // The acceleration of the owned points for displacement u (owned, D per point).
   PetscErrorCode Acceleration(const double *u_owned, double *a_owned);
   PetscErrorCode CheckHealth(PetscInt step, double t, PetscBool *diverged);
   PetscErrorCode CheckRunaway(PetscInt step, double t, std::string *message);
@@ -123,7 +136,7 @@ private:
   // The body's bonds, shared by the objects below (failure changes the last two).
   Families            families_;
   BondState           bond_state_;
-  nd::BondGeometry<2> geometry_; // the dimension-generic core at D = 2 (nd/bond_geometry.hpp)
+  nd::BondGeometry<D> geometry_; // the dimension-generic core (nd/bond_geometry.hpp)
 
   ForceOperator   force_;        // u -> f (force_operator.hpp)
   Loading         loading_;      // grips, schedule, reactions (loading.hpp)
@@ -137,7 +150,7 @@ private:
   TS  ts_        = nullptr;
 
   // Reporting: scratch sized at set-up, so a history row allocates nothing.
-  std::vector<double> force_density_;   // 2 per owned point
+  std::vector<double> force_density_;   // D per owned point
   std::vector<double> per_point_;       // 2 per owned point: kinetic, internal energy
   std::vector<double> point_energy_;    // 1 per owned point
   Cadence             progress_times_; // -progress_interval 0: a line every end time / 20 of simulated time
@@ -153,10 +166,13 @@ private:
   RunawayEnergyMonitor energy_monitor_; // divergence by runaway energy (divergence.hpp)
   SimulationOutput output_; // fields, checkpoints, restart
   RelaxationKind     relaxation_kind_ = RelaxationKind::none; // -relaxation
-  AdaptiveRelaxation<2> relaxation_;                          // its damping coefficient (relaxation.hpp)
+  AdaptiveRelaxation<D> relaxation_;                          // its damping coefficient (relaxation.hpp)
 
   PetscLogStage stage_setup_ = 0, stage_partition_ = 0, stage_force_ = 0, stage_ghost_ = 0, stage_step_ = 0,
                 stage_output_ = 0;
 };
+
+// The plane-sheet driver (tests and tools that build a 2D scene).
+using Simulation = SimulationD<2>;
 
 } // namespace bapd

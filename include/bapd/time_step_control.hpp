@@ -212,6 +212,7 @@ private:
   double   inv_rho_ = 0, eps_ = 0, floor_ = 0.1;
   double   span_ = 0;          // I1bar_limit - 3 of the law (0: no limit)
   bool     plane_strain_ = false, failure_ = false;
+  int      dimension_    = 2; // D: dofs a point (the loading's)
   double   psi_ = 0;           // the stiffening indicator at the last search (0: none yet)
   PetscInt next_estimate_ = 0, estimates_ = 0, evaluations_ = 0, kinks_ = 0;
   double   estimate_stretch_ = 1; // the applied stretch at the last re-estimate

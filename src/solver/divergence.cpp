@@ -139,6 +139,7 @@ double KineticFloor(const Scene &scene, const Schedule &s, double mass, double d
   for (const LoadSet &set : scene.loads) {
     if (set.x == ComponentLoad::stretch) max_scale = std::max(max_scale, std::fabs(set.x_scale));
     if (set.y == ComponentLoad::stretch) max_scale = std::max(max_scale, std::fabs(set.y_scale));
+    if (set.z == ComponentLoad::stretch) max_scale = std::max(max_scale, std::fabs(set.z_scale)); // (3D)
   }
   const double grip_speed = max_scale * max_rate * scene.reference_length;
   const double guard      = 1e-6 * scene.body.dx / dt;
@@ -170,12 +171,15 @@ PetscErrorCode CheckRunawayEnergy(const RunawayInputs &inputs, RunawayEnergyMoni
   std::vector<double> &per_point = monitor.scratch();
   per_point.resize((std::size_t)n); // sized once: no allocation in later steps
   PetscCall(VecGetArrayRead(inputs.state, &x));
-  const double *v       = x + 2 * n;
+  const int     D       = layout.dimension; // dofs a point
+  const double *v       = x + D * n;
   double        kinetic = 0, fastest = -1;
   PetscInt      fastest_i = -1;
   for (PetscInt i = 0; i < n; ++i) {
-    per_point[i] = std::min(0.5 * scene.density * layout.cloud.volume[i] * (v[2 * i] * v[2 * i] + v[2 * i + 1] * v[2 * i + 1]),
-                            RunawayEnergyMonitor::overflow); // finite, whatever the speed
+    const double *vi = v + D * i;
+    double        vv = vi[0] * vi[0] + vi[1] * vi[1];
+    if (D == 3) vv += vi[2] * vi[2];
+    per_point[i] = std::min(0.5 * scene.density * layout.cloud.volume[i] * vv, RunawayEnergyMonitor::overflow); // finite, whatever the speed
     if (per_point[i] > fastest) fastest = per_point[i], fastest_i = i;
   }
   PetscCall(VecRestoreArrayRead(inputs.state, &x));
@@ -206,7 +210,7 @@ PetscErrorCode CheckRunawayEnergy(const RunawayInputs &inputs, RunawayEnergyMoni
   PetscCallMPI(MPI_Allreduce(&mine, &best, 1, MPI_DOUBLE_INT, MPI_MAXLOC, comm));
   double where[3] = {-1, 0, 0};
   if (best.rank == mine.rank && fastest_i >= 0)
-    where[0] = (double)layout.cloud.natural_id[fastest_i], where[1] = layout.cloud.x[2 * fastest_i], where[2] = layout.cloud.x[2 * fastest_i + 1];
+    where[0] = (double)layout.cloud.natural_id[fastest_i], where[1] = layout.cloud.x[D * fastest_i], where[2] = layout.cloud.x[D * fastest_i + 1];
   PetscCallMPI(MPI_Bcast(where, 3, MPI_DOUBLE, best.rank, comm));
   // The cause and its fix follow (DivergenceAdvice, from the last good state).
   char text[1024];

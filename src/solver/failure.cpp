@@ -66,7 +66,8 @@ PetscErrorCode Failure::SynchroniseGhosts(BondState &state)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode Failure::Break(const double *y, std::vector<FailedBond> &failed, BondState &state, nd::BondGeometry<2> &geometry)
+template <int D>
+PetscErrorCode Failure::Break(const double *y, std::vector<FailedBond> &failed, BondState &state, nd::BondGeometry<D> &geometry)
 {
   PetscFunctionBegin;
   touched_.clear();
@@ -76,11 +77,14 @@ PetscErrorCode Failure::Break(const double *y, std::vector<FailedBond> &failed, 
   // owned point and the stale bit never enters an owned force (see README).
   break_failed_bonds(*families_, state, failed, touched_);
   failed.clear();
-  nd::break_bonds<2>(layout_->cloud, y, *families_, critical_stretch_, state, stretched_);
+  nd::break_bonds<D>(layout_->cloud, y, *families_, critical_stretch_, state, stretched_);
   touched_.insert(touched_.end(), stretched_.begin(), stretched_.end());
   PetscCall(SynchroniseGhosts(state));
-  if (!touched_.empty()) nd::compute_bond_geometry<2>(layout_->cloud, *families_, state, geometry, touched_);
+  if (!touched_.empty()) nd::compute_bond_geometry<D>(layout_->cloud, *families_, state, geometry, touched_);
   PetscFunctionReturn(0);
 }
+
+template PetscErrorCode Failure::Break<2>(const double *, std::vector<FailedBond> &, BondState &, nd::BondGeometry<2> &);
+template PetscErrorCode Failure::Break<3>(const double *, std::vector<FailedBond> &, BondState &, nd::BondGeometry<3> &);
 
 } // namespace bapd

@@ -7,8 +7,9 @@
 
 namespace bapd {
 
+template <int D>
 PetscErrorCode ForceOperator::Setup(MPI_Comm comm, const Scene &scene, const Layout &layout, const Families &families,
-                                    const nd::BondGeometry<2> &geometry, const BondState &state,
+                                    const nd::BondGeometry<D> &geometry, const BondState &state,
                                     PetscLogStage stage_ghost, PetscLogStage stage_force)
 {
   PetscFunctionBegin;
@@ -17,32 +18,48 @@ PetscErrorCode ForceOperator::Setup(MPI_Comm comm, const Scene &scene, const Lay
   families_    = &families;
   stage_ghost_ = stage_ghost;
   stage_force_ = stage_force;
+  dimension_   = D;
+  nd::Workspace<D> &workspace = [this]() -> nd::Workspace<D> & {
+    if constexpr (D == 2) return workspace2_;
+    else return workspace3_;
+  }();
+  failed_          = &workspace.failed;
+  keep_warm_start_ = &workspace.keep_warm_start;
   const std::size_t nbonds = families.neighbour.size();
-  c33_.assign(nbonds, 0.0);
-  bond_force_.assign(2 * nbonds, 0.0);
+  c33_.assign(D == 2 ? nbonds : 0, 0.0); // the 2D models' C33 warm starts; a 3D model has none (c33 nullptr)
+  bond_force_.assign(D * nbonds, 0.0);
   y_.assign(layout.cloud.x.begin(), layout.cloud.x.end());
   // The constitutive model is chosen here, once; inside the closure it is a concrete
   // type and the bond loop is compiled for it.
   const PointCloud          *cloud = &layout.cloud;
   const Families            *f     = &families;
-  const nd::BondGeometry<2> *g     = &geometry;
+  const nd::BondGeometry<D> *g     = &geometry;
   const BondState           *s     = &state;
+  nd::Workspace<D>          *ws    = &workspace;
   // -force_form: both forms write t_ij per bond, and assemble_force_density turns
   // either into f_i (the energy-consistent t_ij make it -(1/V_i) dW/dy_i).
   const ForceForm form = scene.force_form;
-  with_model(scene.model, scene.formulation, scene.material, [&](const auto &model) {
+  auto choose = [&](const auto &model) {
     using Model  = std::decay_t<decltype(model)>;
-    bond_forces_ = [this, form, cloud, f, g, s, m = Model(model)](const double *y, double *c33) {
-      return nd::compute_bond_forces<2>(form, m, *cloud, y, *f, *g, *s, c33, bond_force_.data(), workspace_);
+    bond_forces_ = [this, form, cloud, f, g, s, ws, m = Model(model)](const double *y, double *c33, double *force_density) {
+      const KernelStats stats = nd::compute_bond_forces<D>(form, m, *cloud, y, *f, *g, *s, c33, bond_force_.data(), *ws);
+      nd::assemble_force_density<D>(*f, *cloud, bond_force_.data(), (std::size_t)layout_->n_owned, force_density);
+      return stats;
     };
-    point_energies_ = [this, cloud, f, g, s, m = Model(model)](const double *y, double *energy) {
-      nd::strain_energy<2>(m, *cloud, y, *f, *g, *s, c33_.data(), (std::size_t)layout_->n_owned, workspace_, nullptr,
-                           energy);
+    point_energies_ = [this, cloud, f, g, s, ws, m = Model(model)](const double *y, double *energy) {
+      nd::strain_energy<D>(m, *cloud, y, *f, *g, *s, c33_.data(), (std::size_t)layout_->n_owned, *ws, nullptr, energy);
     };
-  });
-  PetscCall(CreateGhostedVector<2>(comm, layout, &u_ghosted_));
+  };
+  if constexpr (D == 2) with_model(scene.model, scene.formulation, scene.material, choose);
+  else with_model_3d(scene.model, scene.material, choose);
+  PetscCall(CreateGhostedVector<D>(comm, layout, &u_ghosted_));
   PetscFunctionReturn(0);
 }
+
+template PetscErrorCode ForceOperator::Setup<2>(MPI_Comm, const Scene &, const Layout &, const Families &, const nd::BondGeometry<2> &,
+                                                const BondState &, PetscLogStage, PetscLogStage);
+template PetscErrorCode ForceOperator::Setup<3>(MPI_Comm, const Scene &, const Layout &, const Families &, const nd::BondGeometry<3> &,
+                                                const BondState &, PetscLogStage, PetscLogStage);
 
 PetscErrorCode ForceOperator::UpdatePositions(const double *u_owned)
 {
@@ -53,14 +70,14 @@ PetscErrorCode ForceOperator::UpdatePositions(const double *u_owned)
   PetscFunctionBegin;
   PetscCall(PetscLogStagePush(stage_ghost_));
   PetscCall(VecGetArray(u_ghosted_, &ug));
-  std::memcpy(ug, u_owned, sizeof(double) * 2 * layout_->n_owned);
+  std::memcpy(ug, u_owned, sizeof(double) * dimension_ * layout_->n_owned);
   PetscCall(VecRestoreArray(u_ghosted_, &ug));
   PetscCall(VecGhostUpdateBegin(u_ghosted_, INSERT_VALUES, SCATTER_FORWARD));
   PetscCall(VecGhostUpdateEnd(u_ghosted_, INSERT_VALUES, SCATTER_FORWARD));
   PetscCall(PetscLogStagePop());
   PetscCall(VecGhostGetLocalForm(u_ghosted_, &local));
   PetscCall(VecGetArrayRead(local, &u));
-  const std::size_t n = 2 * (std::size_t)layout_->n_local();
+  const std::size_t n = (std::size_t)dimension_ * (std::size_t)layout_->n_local();
   const double     *x = layout_->cloud.x.data();
   for (std::size_t k = 0; k < n; ++k) y_[k] = x[k] + u[k];
   PetscCall(VecRestoreArrayRead(local, &u));
@@ -73,8 +90,7 @@ PetscErrorCode ForceOperator::Kernel(const double *u_owned, double *force_densit
   PetscFunctionBegin;
   PetscCall(UpdatePositions(u_owned));
   PetscCall(PetscLogStagePush(stage_force_));
-  *stats = bond_forces_(y_.data(), c33);
-  nd::assemble_force_density<2>(*families_, layout_->cloud, bond_force_.data(), (std::size_t)layout_->n_owned, force_density);
+  *stats = bond_forces_(y_.data(), c33, force_density);
   PetscCall(PetscLogStagePop());
   PetscFunctionReturn(0);
 }
@@ -110,11 +126,11 @@ PetscErrorCode ForceOperator::EvaluateFrom(const double *u_owned, double *force_
   // The kernel reads c33 and writes nothing back (ws.keep_warm_start: the const_cast is
   // never written through). The failed-bond list is the committed evaluation's, for the
   // breaking pass after the step: it is set aside (a swap of buffers, no allocation).
-  kept_failed_.swap(workspace_.failed);
-  workspace_.keep_warm_start = true;
-  const PetscErrorCode ierr  = Kernel(u_owned, force_density, const_cast<double *>(c33.data()), &probe);
-  workspace_.keep_warm_start = false;
-  kept_failed_.swap(workspace_.failed);
+  kept_failed_.swap(*failed_);
+  *keep_warm_start_         = true;
+  const PetscErrorCode ierr = Kernel(u_owned, force_density, const_cast<double *>(c33.data()), &probe);
+  *keep_warm_start_         = false;
+  kept_failed_.swap(*failed_);
   PetscCall(ierr);
   PetscFunctionReturn(0);
 }

@@ -755,17 +755,4 @@ PetscErrorCode CheckBodyMemory(MPI_Comm comm, const Scene &scene, int64_t points
 
 int64_t ScenePointEstimate(const Scene &scene) { return scene.dimension == 3 ? scene.body3d.points : body_point_count(scene.body); }
 
-PetscErrorCode StopThreeDimensional(MPI_Comm comm, const Scene &scene)
-{
-  PetscFunctionBeginUser;
-  if (scene.dimension != 3) PetscFunctionReturn(0);
-  const Body3D &b = scene.body3d;
-  SETERRQ(comm, PETSC_ERR_USER, "%s",
-          Format("3D bodies are parsed and checked; the 3D driver is issue 21 stage 4, not yet built (this body: %lld points in [%g, "
-                 "%g] x [%g, %g] x [%g, %g] m, %zu solid(s), %zu notch(es)%s%s)",
-                 static_cast<long long>(b.points), b.lo[0], b.hi[0], b.lo[1], b.hi[1], b.lo[2], b.hi[2], b.solid.solids.size(),
-                 b.solid.notches.size(), b.given_points ? ", points of " : "", b.given_points ? b.source.c_str() : "")
-              .c_str());
-}
-
 } // namespace bapd

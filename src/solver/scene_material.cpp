@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "bapd/law_registry.hpp"
+#include "bapd/models.hpp"
 #include "bapd/options_reader.hpp"
 #include "bapd/scene_input.hpp"
 
@@ -49,7 +50,8 @@ PetscErrorCode ReadMaterial(MPI_Comm comm, Scene *scene, SceneInput *in)
   PetscFunctionBeginUser;
   PetscCall(ReadOptionBlock(comm, nullptr, "Material", [&](OptionReader &r) -> PetscErrorCode {
     PetscCall(r.String("-material_model", model_help.c_str(), &in->model));
-    PetscCall(r.String("-material_formulation", "2D reduction: plane_stress | plane_strain", &in->formulation));
+    PetscCall(r.String("-material_formulation", "2D reduction: plane_stress | plane_strain (a 3D body has none: refused there)",
+                       &in->formulation, &in->formulation_set));
     PetscCall(r.String("-force_form",
                        "Bond force: energy_consistent (the default: minus the gradient of the strain energy, "
                        "conserves energy undamped, stress-consistent as it is) | bond_only (the paper's eq 23)",
@@ -104,6 +106,11 @@ PetscErrorCode CheckMaterial(MPI_Comm comm, const SceneInput &in, Scene *scene)
   if (!parse(Lower(in.formulation), scene->formulation))
     SETERRQ(comm, PETSC_ERR_USER, "%s",
             Format("-material_formulation '%s' is not a formulation: choose plane_stress or plane_strain", in.formulation.c_str()).c_str());
+  const bool three = scene->dimension == 3;
+  SceneCheck(!(three && in.formulation_set), comm,
+             "-material_formulation %s is a 2D reduction (plane stress or plane strain of a sheet), and this body is 3D: remove it (a 3D "
+             "body uses the law's full 3D form)",
+             in.formulation.c_str());
   std::string form = Lower(in.force_form);
   std::replace(form.begin(), form.end(), '-', '_');
   if (form == "bond_only") scene->force_form = ForceForm::bond_only;
@@ -126,8 +133,8 @@ PetscErrorCode CheckMaterial(MPI_Comm comm, const SceneInput &in, Scene *scene)
   // bit for bit (patch_correction.hpp).
   const std::string patch = Lower(in.patch_correction);
   if (patch == "auto")
-    scene->patch_correction = scene->force_form == ForceForm::bond_only && scene->body.given_points ? PatchCorrection::virial
-                                                                                                  : PatchCorrection::off;
+    scene->patch_correction = scene->force_form == ForceForm::bond_only && scene->body.given_points && !three ? PatchCorrection::virial
+                                                                                                            : PatchCorrection::off;
   else if (patch == "virial") scene->patch_correction = PatchCorrection::virial;
   else if (patch == "on" || patch == "off") scene->patch_correction = patch == "on" ? PatchCorrection::lambda : PatchCorrection::off;
   else
@@ -137,6 +144,11 @@ PetscErrorCode CheckMaterial(MPI_Comm comm, const SceneInput &in, Scene *scene)
                    in.patch_correction.c_str()).c_str());
   SceneCheck(!(scene->patch_correction != PatchCorrection::off && scene->force_form != ForceForm::bond_only), comm,
              "-force_patch_correction %s corrects the bond-only force only: add -force_form bond_only, or leave the option at auto",
+             to_string(scene->patch_correction));
+  // (patch_correction.hpp solves the 2D point's numbers; auto is off in 3D, so a 3D cloud runs the tensor-corrected force)
+  SceneCheck(!(three && scene->patch_correction != PatchCorrection::off), comm,
+             "-force_patch_correction %s is not ported to 3D bodies (it solves a 2D point's numbers): remove it, or use -force_form "
+             "energy_consistent (the default)",
              to_string(scene->patch_correction));
 
   SceneCheck(!(in.D_set && in.bulk_ratio_set), comm,
@@ -155,8 +167,15 @@ PetscErrorCode CheckMaterial(MPI_Comm comm, const SceneInput &in, Scene *scene)
                m.mu, in.bulk_ratio_set ? in.bulk_ratio : 1000.0, m.D);
   // -material_mu, the law's own (-material_Jm), -material_D; then whether the law runs in
   // the formulation (the plane-stress solve refuses laws it cannot solve)
-  std::string problems = check_model(scene->model, scene->formulation, m);
+  // (3D: the parameters as plane strain checks them, which accepts every law of
+  // invariants; then whether the law has a 3D form: with_model_3d, models.hpp)
+  std::string problems = check_model(scene->model, three ? Formulation::plane_strain : scene->formulation, m);
   if (!problems.empty() && problems.back() == '\n') problems.pop_back();
+  if (three && problems.empty()) try {
+      with_model_3d(scene->model, m, [](const auto &) {});
+    } catch (const std::invalid_argument &e) {
+      problems = e.what();
+    }
   PetscCheck(problems.empty(), comm, PETSC_ERR_USER, "%s", problems.c_str());
   SceneCheck(scene->density > 0, comm, "-material_density %g: the density must be > 0 kg/m^3 (a hydrogel: about 1000)",
              scene->density);

@@ -14,7 +14,7 @@
 
 namespace bapd {
 
-Simulation::~Simulation()
+template <int D> SimulationD<D>::~SimulationD()
 {
   if (history_) std::fclose(history_);
   if (static_states_) std::fclose(static_states_);
@@ -24,7 +24,25 @@ Simulation::~Simulation()
   VecDestroy(&X_);
 }
 
-PetscErrorCode Simulation::Setup()
+PetscErrorCode ReadScene(MPI_Comm comm, Scene *scene)
+{
+  PetscFunctionBegin;
+  PetscCall(CheckpointMergeOptions(comm)); // -restart FILE: the checkpoint's options are the defaults
+  PetscCall(SceneFromOptions(comm, scene));
+  PetscFunctionReturn(0);
+}
+
+template <int D> PetscErrorCode SimulationD<D>::Setup()
+{
+  Scene scene;
+
+  PetscFunctionBegin;
+  PetscCall(ReadScene(comm_, &scene));
+  PetscCall(Setup(std::move(scene)));
+  PetscFunctionReturn(0);
+}
+
+template <int D> PetscErrorCode SimulationD<D>::Setup(Scene scene)
 {
   PetscFunctionBegin;
   PetscCallMPI(MPI_Comm_rank(comm_, &rank_));
@@ -42,8 +60,9 @@ PetscErrorCode Simulation::Setup()
   wall_start_ = MPI_Wtime();
 
   PetscCall(PetscLogStagePush(stage_setup_));
-  PetscCall(CheckpointMergeOptions(comm_)); // -restart FILE: the checkpoint's options are the defaults
-  PetscCall(SceneFromOptions(comm_, &scene_));
+  scene_ = std::move(scene);
+  PetscCheck(scene_.help_only || scene_.dimension == D, comm_, PETSC_ERR_PLIB,
+             "SimulationD<%d> was given a scene of dimension %d: build the driver of the scene's dimension (main.cpp)", D, scene_.dimension);
   PetscCall(ReadOutputOptions()); // -output_fields..., -checkpoint_..., -restart
   PetscCall(RelaxationFromOptions(comm_, &relaxation_kind_)); // -relaxation
   PetscCall(TimeStepOptionsFromOptions(comm_, &time_step_options_)); // -time_step_reestimate ...
@@ -58,13 +77,12 @@ PetscErrorCode Simulation::Setup()
     PetscFunctionReturn(0);
   }
   PetscCall(CheckOptionsEarly());
-  PetscCall(StopThreeDimensional(comm_, scene_)); // a 3D scene, checked whole, stops here until the driver is generic in D
   PetscCall(SceneView(comm_, scene_));
   PetscCall(BuildBody());
   PetscCall(loading_.Setup(comm_, scene_, layout_));
   PetscCall(BuildProbes());
-  last_reaction_.assign(2 * scene_.loads.size(), 0.0);
-  last_probe_u_.assign(2 * scene_.probes.size(), 0.0);
+  last_reaction_.assign(D * scene_.loads.size(), 0.0);
+  last_probe_u_.assign(D * scene_.probes.size(), 0.0);
   PetscCall(step_control_.EstimateStable(comm_, scene_, time_step_options_, layout_, loading_, force_));
   PetscCall(SetupRelaxation());
   PetscCall(SetupTimeStepper());
@@ -82,7 +100,7 @@ PetscErrorCode Simulation::Setup()
 // Every option is checked before any work (docs/options.md): the time stepper's on a
 // throw-away TS (a bad -ts_type or -ts_max_steps value fails here, not after the body
 // and the stable step are built), then an option nothing read (a typo) is refused.
-PetscErrorCode Simulation::CheckOptionsEarly()
+template <int D> PetscErrorCode SimulationD<D>::CheckOptionsEarly()
 {
   TS probe;
 
@@ -129,12 +147,27 @@ void DescribePieces(const PointCloud &cloud, const Families &fam, const std::str
                 cloud.x[2 * smallest + 1]);
 }
 
+// The families of points [0, n) of a cloud: the 2D notches' segments, or the 3D
+// body's planar polygon notches, as the cut.
+template <int D> Families BodyFamilies(const Scene &scene, const PointCloud &cloud, std::size_t n)
+{
+  if constexpr (D == 2) return build_families(cloud, n, scene.horizon(), scene.body.notches);
+  else return nd::build_families<3>(cloud, n, scene.horizon(), nd::polygon_notches(scene.body3d.solid.notches));
+}
+
+// The body's points (rank 0): the geometry stage's in 2D (geometry.hpp); in 3D the
+// scene's clipped cloud or the lattice of its solids (one horizon, delta = factor dx).
+template <int D> PointCloud BodyPoints(const Scene &scene)
+{
+  if constexpr (D == 2) return make_points(scene.body, scene.horizon_factor);
+  else return scene.body3d.given_points ? *scene.body3d.given_points : nd::make_solid_points(scene.body3d.solid);
+}
+
 } // namespace
 
 // Body, partition, layout, families and reference bond geometry.
-PetscErrorCode Simulation::BuildBody()
+template <int D> PetscErrorCode SimulationD<D>::BuildBody()
 {
-  const double       horizon = scene_.horizon();
   PointCloud         global;
   std::vector<int>   offsets, neighbours;
   int                patch_failed = 0;
@@ -146,11 +179,12 @@ PetscErrorCode Simulation::BuildBody()
     // Rank 0 builds the whole bond graph; fine up to a few 10^7 points (README). The
     // geometry stage gives the points: the lattice, or the given points with their
     // own volumes and horizons (geometry.hpp).
-    global               = make_points(scene_.body, scene_.horizon_factor);
-    Families all         = build_families(global, global.size(), horizon, scene_.body.notches);
+    global               = BodyPoints<D>(scene_);
+    Families all         = BodyFamilies<D>(scene_, global, global.size());
     compute_family_volumes(global, all);
-    if (scene_.body.given_points) DescribePieces(global, all, scene_.body.given_points->source, pieces, sizeof pieces);
-    if (scene_.patch_correction != PatchCorrection::off && !pieces[0]) { // per point, shipped with the points (patch_correction.hpp)
+    // (a 3D body in pieces was refused by the scene: scene_body.cpp)
+    if (D == 2 && scene_.body.given_points) DescribePieces(global, all, scene_.body.given_points->source, pieces, sizeof pieces);
+    if (D == 2 && scene_.patch_correction != PatchCorrection::off && !pieces[0]) { // (2D only: the scene refuses it in 3D) // per point, shipped with the points (patch_correction.hpp)
       const bool            virial = scene_.patch_correction == PatchCorrection::virial;
       PatchCorrectionReport report;
       try {
@@ -176,22 +210,22 @@ PetscErrorCode Simulation::BuildBody()
   PetscCheck(!patch_failed, comm_, PETSC_ERR_USER,
              "-force_patch_correction %s: the affine patch correction could not be solved on these points (above); run "
              "with -force_patch_correction off", to_string(scene_.patch_correction));
-  PetscCall(DistributePoints<2>(comm_, global, offsets, neighbours, &layout_));
+  PetscCall(DistributePoints<D>(comm_, global, offsets, neighbours, &layout_));
   PetscCall(PetscLogStagePop());
 
   // Every rank finds the same families for its owned and ring-1 points as rank 0
   // did: their whole neighbourhood lies in the two rings it holds.
-  families_ = build_families(layout_.cloud, (std::size_t)layout_.n_family(), horizon, scene_.body.notches);
+  families_ = BodyFamilies<D>(scene_, layout_.cloud, (std::size_t)layout_.n_family());
   bond_state_ = BondState(families_);
   // -force_stress_correction: C_i per family point, for the bond-only kernel only (the
   // energy-consistent form is stress-consistent as it is: stress_correction.hpp)
   geometry_.stress_correction =
       scene_.force_form == ForceForm::bond_only ? scene_.stress_correction : StressCorrection::none;
-  nd::compute_bond_geometry<2>(layout_.cloud, families_, bond_state_, geometry_);
+  nd::compute_bond_geometry<D>(layout_.cloud, families_, bond_state_, geometry_);
 
-  PetscCall(force_.Setup(comm_, scene_, layout_, families_, geometry_, bond_state_, stage_ghost_, stage_force_));
+  PetscCall(force_.Setup<D>(comm_, scene_, layout_, families_, geometry_, bond_state_, stage_ghost_, stage_force_));
   if (scene_.failure) PetscCall(failure_.Setup(comm_, layout_, families_, scene_.critical_stretch));
-  force_density_.assign(2 * layout_.n_owned, 0.0);
+  force_density_.assign(D * layout_.n_owned, 0.0);
   per_point_.assign(2 * layout_.n_owned, 0.0);
   point_energy_.assign(layout_.n_owned, 0.0);
   PetscInt bonds_local = (PetscInt)families_.offsets[layout_.n_owned], bonds_global = 0;
@@ -220,29 +254,33 @@ PetscErrorCode Simulation::BuildBody()
 
 // Each probe reads the point ProbeLocate picks (scene.hpp: nearest, ties to the
 // lowest natural id, so the same point on any layout).
-PetscErrorCode Simulation::BuildProbes()
+template <int D> PetscErrorCode SimulationD<D>::BuildProbes()
 {
   PetscFunctionBegin;
   probes_.assign(scene_.probes.size(), {});
   for (std::size_t p = 0; p < scene_.probes.size(); ++p) {
     ProbeLocation where;
-    PetscCall(ProbeLocate(comm_, scene_.probes[p], layout_.cloud.x.data(), layout_.cloud.natural_id.data(), layout_.n_owned, &where));
+    PetscCall(ProbeLocate<D>(comm_, scene_.probes[p], layout_.cloud.x.data(), layout_.cloud.natural_id.data(), layout_.n_owned, &where));
     ProbePoint &pp = probes_[p];
     pp.natural_id  = where.natural_id;
     pp.owner_rank  = where.owner;
     pp.local_index = where.local_index;
-    double xy[2]   = {0, 0};
-    if (where.owner == rank_) xy[0] = layout_.cloud.x[2 * where.local_index], xy[1] = layout_.cloud.x[2 * where.local_index + 1];
-    PetscCallMPI(MPI_Bcast(xy, 2, MPI_DOUBLE, where.owner, comm_));
-    pp.x = xy[0];
-    pp.y = xy[1];
-    PetscCall(PetscPrintf(comm_, "Probe %s: point %lld at (%g, %g) m\n", scene_.probes[p].name.c_str(), (long long)pp.natural_id, pp.x, pp.y));
+    double xyz[3]  = {0, 0, 0};
+    if (where.owner == rank_)
+      for (int c = 0; c < D; ++c) xyz[c] = layout_.cloud.x[D * where.local_index + c];
+    PetscCallMPI(MPI_Bcast(xyz, D, MPI_DOUBLE, where.owner, comm_));
+    pp.x = xyz[0], pp.y = xyz[1], pp.z = xyz[2];
+    if (D == 2)
+      PetscCall(PetscPrintf(comm_, "Probe %s: point %lld at (%g, %g) m\n", scene_.probes[p].name.c_str(), (long long)pp.natural_id, pp.x, pp.y));
+    else
+      PetscCall(PetscPrintf(comm_, "Probe %s: point %lld at (%g, %g, %g) m\n", scene_.probes[p].name.c_str(), (long long)pp.natural_id, pp.x, pp.y,
+                            pp.z));
   }
   PetscFunctionReturn(0);
 }
 
 // -relaxation adaptive: the damping coefficient follows the slowest mode (relaxation.hpp).
-PetscErrorCode Simulation::SetupRelaxation()
+template <int D> PetscErrorCode SimulationD<D>::SetupRelaxation()
 {
   PetscFunctionBegin;
   const double stable_dt = step_control_.stable();
@@ -263,9 +301,9 @@ PetscErrorCode Simulation::SetupRelaxation()
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode Simulation::PostStep(TS ts)
+template <int D> PetscErrorCode SimulationD<D>::PostStep(TS ts)
 {
-  Simulation *sim;
+  SimulationD *sim;
   PetscInt    step;
   PetscReal   t;
   Vec         X;
@@ -276,7 +314,7 @@ PetscErrorCode Simulation::PostStep(TS ts)
   PetscCall(TSGetStepNumber(ts, &step));
   PetscCall(TSGetTime(ts, &t));
   PetscCall(TSGetSolution(ts, &X));
-  const PetscInt n = 2 * sim->layout_.n_owned;
+  const PetscInt n = D * sim->layout_.n_owned;
   PetscCall(VecGetArray(X, &x));
   double damping = sim->scene_.damping;
   PetscCall(sim->relaxation_.Damping(sim->comm_, &damping)); // -relaxation adaptive: recomputed every step
@@ -329,7 +367,7 @@ PetscErrorCode Simulation::PostStep(TS ts)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode Simulation::Run()
+template <int D> PetscErrorCode SimulationD<D>::Run()
 {
   PetscFunctionBegin;
   if (scene_.help_only) PetscFunctionReturn(0);
@@ -348,7 +386,7 @@ PetscErrorCode Simulation::Run()
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode Simulation::Advance(PetscInt steps)
+template <int D> PetscErrorCode SimulationD<D>::Advance(PetscInt steps)
 {
   PetscInt step;
 
@@ -362,5 +400,10 @@ PetscErrorCode Simulation::Advance(PetscInt steps)
   PetscCheck(!stopped_on_error_, comm_, PETSC_ERR_NOT_CONVERGED, "%s", stop_reason_.c_str());
   PetscFunctionReturn(0);
 }
+
+// The driver at D = 2 and 3, chosen once from the scene (main.cpp); every file of
+// the driver instantiates the members it defines.
+template class SimulationD<2>;
+template class SimulationD<3>;
 
 } // namespace bapd

@@ -10,7 +10,7 @@ namespace bapd {
 
 // For output and tests: the operator reads the warm start without writing it back,
 // so looking at the state never changes the dynamics.
-PetscErrorCode Simulation::ComputeForceDensity(const double *u_owned, double *force_density)
+template <int D> PetscErrorCode SimulationD<D>::ComputeForceDensity(const double *u_owned, double *force_density)
 {
   PetscFunctionBegin;
   PetscCall(force_.Evaluate(u_owned, force_density, ForceOperator::WarmStart::keep));
@@ -18,28 +18,28 @@ PetscErrorCode Simulation::ComputeForceDensity(const double *u_owned, double *fo
 }
 
 // The dynamics' evaluation: advances the warm starts (force_operator.hpp).
-PetscErrorCode Simulation::Acceleration(const double *u_owned, double *a_owned)
+template <int D> PetscErrorCode SimulationD<D>::Acceleration(const double *u_owned, double *a_owned)
 {
   PetscFunctionBegin;
   PetscCall(force_.Evaluate(u_owned, a_owned, ForceOperator::WarmStart::commit));
   const double inv_rho = 1.0 / scene_.density;
-  for (PetscInt k = 0; k < 2 * layout_.n_owned; ++k) a_owned[k] *= inv_rho;
+  for (PetscInt k = 0; k < D * layout_.n_owned; ++k) a_owned[k] *= inv_rho;
   for (const ConstrainedDof &d : loading_.constrained()) a_owned[d.dof] = 0.0; // the grip moves them
   relaxation_.Record(u_owned, a_owned); // -relaxation adaptive: the last two evaluations
   step_control_.Record(u_owned, a_owned); // the base point of the next re-estimate of the stable step
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode Simulation::RHSPosition(TS, PetscReal, Vec V, Vec Udot, void *)
+template <int D> PetscErrorCode SimulationD<D>::RHSPosition(TS, PetscReal, Vec V, Vec Udot, void *)
 {
   PetscFunctionBegin;
   PetscCall(VecCopy(V, Udot));
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode Simulation::RHSMomentum(TS, PetscReal, Vec U, Vec Vdot, void *ctx)
+template <int D> PetscErrorCode SimulationD<D>::RHSMomentum(TS, PetscReal, Vec U, Vec Vdot, void *ctx)
 {
-  auto         *sim = static_cast<Simulation *>(ctx);
+  auto         *sim = static_cast<SimulationD *>(ctx);
   const double *u;
   double       *a;
 
@@ -53,10 +53,10 @@ PetscErrorCode Simulation::RHSMomentum(TS, PetscReal, Vec U, Vec Vdot, void *ctx
 }
 
 // X = [u, v], Xdot = [v, a(u)]: for the general explicit TS types (-ts_type rk, ...).
-PetscErrorCode Simulation::RHSFull(TS, PetscReal, Vec X, Vec F, void *ctx)
+template <int D> PetscErrorCode SimulationD<D>::RHSFull(TS, PetscReal, Vec X, Vec F, void *ctx)
 {
-  auto         *sim = static_cast<Simulation *>(ctx);
-  const PetscInt n  = 2 * sim->layout_.n_owned;
+  auto         *sim = static_cast<SimulationD *>(ctx);
+  const PetscInt n  = D * sim->layout_.n_owned;
   const double *x;
   double       *f;
 
@@ -70,9 +70,9 @@ PetscErrorCode Simulation::RHSFull(TS, PetscReal, Vec X, Vec F, void *ctx)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode Simulation::SetupTimeStepper()
+template <int D> PetscErrorCode SimulationD<D>::SetupTimeStepper()
 {
-  const PetscInt n = 2 * layout_.n_owned;
+  const PetscInt n = D * layout_.n_owned;
   PetscInt       start;
 
   PetscFunctionBegin;
@@ -123,5 +123,10 @@ PetscErrorCode Simulation::SetupTimeStepper()
   }
   PetscFunctionReturn(0);
 }
+
+// The driver at D = 2 and 3, chosen once from the scene (main.cpp); every file of
+// the driver instantiates the members it defines.
+template class SimulationD<2>;
+template class SimulationD<3>;
 
 } // namespace bapd

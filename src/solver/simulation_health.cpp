@@ -8,17 +8,17 @@
 namespace bapd {
 
 // Stops every rank together on NaN, an inverted bond or the Gent limit without failure.
-PetscErrorCode Simulation::CheckHealth(PetscInt step, double t, PetscBool *diverged)
+template <int D> PetscErrorCode SimulationD<D>::CheckHealth(PetscInt step, double t, PetscBool *diverged)
 {
   const double *x;
-  const PetscInt n = 4 * layout_.n_owned;
+  const PetscInt n = 2 * D * layout_.n_owned; // u and v
 
   PetscFunctionBegin;
   PetscCall(VecGetArrayRead(X_, &x));
   PetscInt worst = -1;
   for (PetscInt k = 0; k < n; ++k)
     if (!std::isfinite(x[k])) {
-      worst = (k % (2 * layout_.n_owned)) / 2;
+      worst = (k % (D * layout_.n_owned)) / D;
       break;
     }
   PetscCall(VecRestoreArrayRead(X_, &x));
@@ -30,17 +30,18 @@ PetscErrorCode Simulation::CheckHealth(PetscInt step, double t, PetscBool *diver
   PetscCallMPI(MPI_Allreduce(flags, global, 3, MPI_INT, MPI_SUM, comm_));
   // Where: the first bad owned point (NaN) or the first failed bond's point, reported
   // by the lowest rank that has one.
-  double where[3] = {-1, 0, 0};
-  if (worst >= 0) where[0] = (double)layout_.cloud.natural_id[worst], where[1] = layout_.cloud.x[2 * worst], where[2] = layout_.cloud.x[2 * worst + 1];
-  else if (stats.first_point != KernelStats::none) {
-    const std::size_t i = stats.first_point;
-    where[0] = (double)layout_.cloud.natural_id[i], where[1] = layout_.cloud.x[2 * i], where[2] = layout_.cloud.x[2 * i + 1];
+  double where[4] = {-1, 0, 0, 0}; // natural id, reference position
+  const std::size_t bad = worst >= 0 ? (std::size_t)worst : stats.first_point;
+  if (worst >= 0 || stats.first_point != KernelStats::none) {
+    where[0] = (double)layout_.cloud.natural_id[bad];
+    for (int c = 0; c < D; ++c) where[1 + c] = layout_.cloud.x[D * bad + c];
   }
   int have = where[0] >= 0 ? rank_ : size_, first = size_;
   PetscCallMPI(MPI_Allreduce(&have, &first, 1, MPI_INT, MPI_MIN, comm_));
-  if (first < size_) PetscCallMPI(MPI_Bcast(where, 3, MPI_DOUBLE, first, comm_));
+  if (first < size_) PetscCallMPI(MPI_Bcast(where, 1 + D, MPI_DOUBLE, first, comm_));
   char at[160] = "";
-  if (first < size_) std::snprintf(at, sizeof at, " First at point %.0f, reference position (%.6g, %.6g) m.", where[0], where[1], where[2]);
+  if (first < size_ && D == 2) std::snprintf(at, sizeof at, " First at point %.0f, reference position (%.6g, %.6g) m.", where[0], where[1], where[2]);
+  else if (first < size_) std::snprintf(at, sizeof at, " First at point %.0f, reference position (%.6g, %.6g, %.6g) m.", where[0], where[1], where[2], where[3]);
   *diverged = PETSC_FALSE;
   if (global[0] || ((global[1] || global[2]) && !scene_.failure)) {
     *diverged = PETSC_TRUE;
@@ -64,11 +65,11 @@ PetscErrorCode Simulation::CheckHealth(PetscInt step, double t, PetscBool *diver
 // (Gent's chain limit, Arruda-Boyce's locking stretch). DivergenceAdvice
 // (divergence.hpp) turns it into the cause and the fix.
 // Once, when the run stops: the slow per-bond path is fine here. Collective.
-PetscErrorCode Simulation::DiagnoseDivergence()
+template <int D> PetscErrorCode SimulationD<D>::DiagnoseDivergence()
 {
   const bool     good = output_.good_step >= 0;
   const double  *x;
-  const PetscInt n = 2 * layout_.n_owned;
+  const PetscInt n = D * layout_.n_owned;
 
   PetscFunctionBegin;
   PetscCall(VecGetArrayRead(good ? output_.good_state : X_, &x));
@@ -116,16 +117,39 @@ PetscErrorCode Simulation::DiagnoseDivergence()
     for (PetscInt i = 0; i < layout_.n_owned; ++i)
       for (std::size_t q = 0; q < families_.size((std::size_t)i); ++q) {
         if (!bond_state_.is_intact((std::size_t)i, q) || !geometry_.is_usable((std::size_t)i, q)) continue;
-        const Mat2   F   = bond_deformation_gradient(layout_.cloud, y, families_, geometry_, bond_state_, (std::size_t)i, q);
-        const double C33 = f.plane_strain ? 1.0 : state_c33[families_.offsets[i] + q];
-        const double J   = det(F) * std::sqrt(C33);
-        if (!(J > 0) || !(C33 > 0)) continue;
-        const double c11 = F[0] * F[0] + F[2] * F[2], c22 = F[1] * F[1] + F[3] * F[3], c12 = F[0] * F[1] + F[2] * F[3];
-        const double I1bar = (c11 + c22 + C33) * std::pow(J, -2.0 / 3.0);
-        const double r     = (I1bar - 3.0) / span;
-        if (r > reach[0]) {
-          const double mean = 0.5 * (c11 + c22), dev = std::sqrt(0.25 * (c11 - c22) * (c11 - c22) + c12 * c12);
-          reach[0] = r, reach[1] = std::sqrt(mean + dev);
+        if constexpr (D == 2) {
+          const Mat2   F   = bond_deformation_gradient(layout_.cloud, y, families_, geometry_, bond_state_, (std::size_t)i, q);
+          const double C33 = f.plane_strain ? 1.0 : state_c33[families_.offsets[i] + q];
+          const double J   = det(F) * std::sqrt(C33);
+          if (!(J > 0) || !(C33 > 0)) continue;
+          const double c11 = F[0] * F[0] + F[2] * F[2], c22 = F[1] * F[1] + F[3] * F[3], c12 = F[0] * F[1] + F[2] * F[3];
+          const double I1bar = (c11 + c22 + C33) * std::pow(J, -2.0 / 3.0);
+          const double r     = (I1bar - 3.0) / span;
+          if (r > reach[0]) {
+            const double mean = 0.5 * (c11 + c22), dev = std::sqrt(0.25 * (c11 - c22) * (c11 - c22) + c12 * c12);
+            reach[0] = r, reach[1] = std::sqrt(mean + dev);
+          }
+        } else { // 3D: I1bar = tr(C) J^{-2/3}; the largest principal stretch by power iteration on C (once, at the stop)
+          const nd::Mat<3> F = nd::bond_deformation_gradient<3>(layout_.cloud, y, families_, geometry_, bond_state_, (std::size_t)i, q);
+          const double     J = nd::det<3>(F);
+          if (!(J > 0)) continue;
+          double C[9], trC = 0;
+          for (int a = 0; a < 3; ++a)
+            for (int b = 0; b < 3; ++b) {
+              C[3 * a + b] = F[a] * F[b] + F[3 + a] * F[3 + b] + F[6 + a] * F[6 + b];
+              if (a == b) trC += C[3 * a + b];
+            }
+          const double r = (trC * std::pow(J, -2.0 / 3.0) - 3.0) / span;
+          if (r > reach[0]) {
+            double e[3] = {1, 1, 1}, largest = 0;
+            for (int it = 0; it < 50; ++it) {
+              double w[3];
+              for (int a = 0; a < 3; ++a) w[a] = C[3 * a] * e[0] + C[3 * a + 1] * e[1] + C[3 * a + 2] * e[2];
+              largest = std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+              for (int a = 0; a < 3; ++a) e[a] = w[a] / largest;
+            }
+            reach[0] = r, reach[1] = std::sqrt(largest);
+          }
         }
       }
     struct {
@@ -187,7 +211,7 @@ PetscErrorCode Simulation::DiagnoseDivergence()
 }
 
 // Runaway energy (divergence.hpp), handed what it reads.
-PetscErrorCode Simulation::CheckRunaway(PetscInt step, double t, std::string *message)
+template <int D> PetscErrorCode SimulationD<D>::CheckRunaway(PetscInt step, double t, std::string *message)
 {
   PetscReal dt;
 
@@ -212,5 +236,10 @@ PetscErrorCode Simulation::CheckRunaway(PetscInt step, double t, std::string *me
   PetscCall(CheckRunawayEnergy(inputs, energy_monitor_, step, t, message));
   PetscFunctionReturn(0);
 }
+
+// The driver at D = 2 and 3, chosen once from the scene (main.cpp); every file of
+// the driver instantiates the members it defines.
+template class SimulationD<2>;
+template class SimulationD<3>;
 
 } // namespace bapd

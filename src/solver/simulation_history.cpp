@@ -79,10 +79,18 @@ PetscErrorCode CheckRows(MPI_Comm comm, int error, const std::string &dir, const
   PetscFunctionReturn(0);
 }
 
+// The area the nominal stress of a load set divides its y reaction by: the sheet's
+// width x thickness (2D), the x-z section of the body's extent (3D).
+double NominalArea(const Scene &scene)
+{
+  const Body3D &b = scene.body3d;
+  return scene.dimension == 3 ? (b.hi[0] - b.lo[0]) * (b.hi[2] - b.lo[2]) : scene.body.width * scene.body.thickness;
+}
+
 } // namespace
 
 
-PetscErrorCode Simulation::OpenHistory()
+template <int D> PetscErrorCode SimulationD<D>::OpenHistory()
 {
   PetscFunctionBegin;
   int         ok = 1;
@@ -100,9 +108,16 @@ PetscErrorCode Simulation::OpenHistory()
              scene_.output_dir.c_str(), scene_.output_dir.c_str(), why.c_str());
   if (rank_ == 0) {
     std::fprintf(history_, "step,time_s,stretch");
-    for (const LoadSet &s : scene_.loads)
-      std::fprintf(history_, ",%s_reaction_x_N,%s_reaction_y_N,%s_nominal_stress_Pa", s.name.c_str(), s.name.c_str(), s.name.c_str());
-    for (const Probe &p : scene_.probes) std::fprintf(history_, ",%s_ux_m,%s_uy_m", p.name.c_str(), p.name.c_str());
+    // (z columns in 3D only: a 2D history keeps its columns)
+    for (const LoadSet &s : scene_.loads) {
+      std::fprintf(history_, ",%s_reaction_x_N,%s_reaction_y_N", s.name.c_str(), s.name.c_str());
+      if (D == 3) std::fprintf(history_, ",%s_reaction_z_N", s.name.c_str());
+      std::fprintf(history_, ",%s_nominal_stress_Pa", s.name.c_str());
+    }
+    for (const Probe &p : scene_.probes) {
+      std::fprintf(history_, ",%s_ux_m,%s_uy_m", p.name.c_str(), p.name.c_str());
+      if (D == 3) std::fprintf(history_, ",%s_uz_m", p.name.c_str());
+    }
     std::fprintf(history_, ",kinetic_energy_J,internal_energy_J,broken_bonds,dt_s\n"); // dt_s: the next step (time_step_control.hpp)
   }
   PetscCall(WriteHistoryRow(0, 0.0));
@@ -110,7 +125,7 @@ PetscErrorCode Simulation::OpenHistory()
 }
 
 // Kinetic and internal energy, reproducible sums; no allocation (scratch sized at set-up).
-PetscErrorCode Simulation::Energies(double *kinetic, double *internal, Vec state)
+template <int D> PetscErrorCode SimulationD<D>::Energies(double *kinetic, double *internal, Vec state)
 {
   const PetscInt n = layout_.n_owned;
   const double  *x;
@@ -119,10 +134,10 @@ PetscErrorCode Simulation::Energies(double *kinetic, double *internal, Vec state
   if (!state) state = X_;
   PetscCall(VecGetArrayRead(state, &x));
   PetscCall(force_.PointEnergies(x, point_energy_.data()));
-  const double *v = x + 2 * n;
+  const double *v = x + D * n;
   for (PetscInt i = 0; i < n; ++i) {
     const double m     = scene_.density * layout_.cloud.volume[i];
-    per_point_[2 * i]     = PointKineticEnergy<2>(m, v + 2 * i); // 1/2 m v.v (relaxation.hpp)
+    per_point_[2 * i]     = PointKineticEnergy<D>(m, v + D * i); // 1/2 m v.v (relaxation.hpp)
     per_point_[2 * i + 1] = point_energy_[i];
   }
   PetscCall(VecRestoreArrayRead(state, &x));
@@ -133,21 +148,19 @@ PetscErrorCode Simulation::Energies(double *kinetic, double *internal, Vec state
   PetscFunctionReturn(0);
 }
 
-// The displacement of every probe's point, on every rank (2 per probe).
-PetscErrorCode Simulation::ReadProbes(const double *u_owned, double *probe_u)
+// The displacement of every probe's point, on every rank (D per probe).
+template <int D> PetscErrorCode SimulationD<D>::ReadProbes(const double *u_owned, double *probe_u)
 {
   PetscFunctionBegin;
   for (std::size_t p = 0; p < probes_.size(); ++p) {
-    if (probes_[p].owner_rank == rank_) {
-      probe_u[2 * p]     = u_owned[2 * probes_[p].local_index];
-      probe_u[2 * p + 1] = u_owned[2 * probes_[p].local_index + 1];
-    }
-    PetscCallMPI(MPI_Bcast(&probe_u[2 * p], 2, MPI_DOUBLE, probes_[p].owner_rank, comm_));
+    if (probes_[p].owner_rank == rank_)
+      for (int c = 0; c < D; ++c) probe_u[D * p + c] = u_owned[D * probes_[p].local_index + c];
+    PetscCallMPI(MPI_Bcast(&probe_u[D * p], D, MPI_DOUBLE, probes_[p].owner_rank, comm_));
   }
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode Simulation::BrokenBondCount(PetscInt *count)
+template <int D> PetscErrorCode SimulationD<D>::BrokenBondCount(PetscInt *count)
 {
   PetscFunctionBegin;
   PetscInt local = (PetscInt)bond_state_.count_broken(families_, (std::size_t)layout_.n_owned);
@@ -157,7 +170,7 @@ PetscErrorCode Simulation::BrokenBondCount(PetscInt *count)
 }
 
 // One row of history.csv; keeps the values for the static-hold test. No allocation.
-PetscErrorCode Simulation::WriteHistoryRow(PetscInt step, double t)
+template <int D> PetscErrorCode SimulationD<D>::WriteHistoryRow(PetscInt step, double t)
 {
   const double *x;
 
@@ -175,11 +188,14 @@ PetscErrorCode Simulation::WriteHistoryRow(PetscInt step, double t)
   int                        error    = 0;
   if (rank_ == 0) {
     const long   row_start = std::ftell(history_);
-    const double area = scene_.body.width * scene_.body.thickness;
+    const double area = NominalArea(scene_);
     std::fprintf(history_, "%" PetscInt_FMT ",%.17g,%.17g", step, t, loading_.stretch_at(t));
-    for (std::size_t s = 0; s < scene_.loads.size(); ++s)
-      std::fprintf(history_, ",%.17g,%.17g,%.17g", reaction[2 * s], reaction[2 * s + 1], reaction[2 * s + 1] / area);
-    for (std::size_t p = 0; p < probes_.size(); ++p) std::fprintf(history_, ",%.17g,%.17g", probe_u[2 * p], probe_u[2 * p + 1]);
+    for (std::size_t s = 0; s < scene_.loads.size(); ++s) {
+      for (int c = 0; c < D; ++c) std::fprintf(history_, ",%.17g", reaction[D * s + c]);
+      std::fprintf(history_, ",%.17g", reaction[D * s + 1] / area);
+    }
+    for (std::size_t p = 0; p < probes_.size(); ++p)
+      for (int c = 0; c < D; ++c) std::fprintf(history_, ",%.17g", probe_u[D * p + c]);
     std::fprintf(history_, ",%.17g,%.17g,%" PetscInt_FMT ",%.17g\n", last_kinetic_, last_internal_, broken, step_control_.current());
     error = FinishRows(history_, row_start);
   }
@@ -194,7 +210,7 @@ PetscErrorCode Simulation::WriteHistoryRow(PetscInt step, double t)
 // state in static_states.csv and moves the rest of the schedule earlier, so that the
 // next ramp starts now. Every input to the test is a reproducible sum, so the same
 // steps end the same holds on any number of ranks.
-PetscErrorCode Simulation::CheckStaticHold(PetscInt step, double t)
+template <int D> PetscErrorCode SimulationD<D>::CheckStaticHold(PetscInt step, double t)
 {
   PetscFunctionBegin;
   if (scene_.static_tolerance <= 0) PetscFunctionReturn(0);
@@ -204,7 +220,7 @@ PetscErrorCode Simulation::CheckStaticHold(PetscInt step, double t)
   PetscCall(PetscPrintf(comm_, "Static at stretch %.5f: t = %.6e s, step %" PetscInt_FMT ", kinetic/internal energy %.3e < %.3e", lambda, t, step,
                         last_kinetic_ / last_internal_, scene_.static_tolerance));
   for (std::size_t p = 0; p < probes_.size(); ++p)
-    PetscCall(PetscPrintf(comm_, "; %s ux = %.6e m", scene_.probes[p].name.c_str(), last_probe_u_[2 * p]));
+    PetscCall(PetscPrintf(comm_, "; %s ux = %.6e m", scene_.probes[p].name.c_str(), last_probe_u_[D * p]));
   if (relaxation_.active()) PetscCall(PetscPrintf(comm_, "; damping %.4g 1/s", relaxation_.last()));
   PetscCall(PetscPrintf(comm_, "\n"));
   int error = 0;
@@ -216,13 +232,17 @@ PetscErrorCode Simulation::CheckStaticHold(PetscInt step, double t)
     const long row_start = std::ftell(static_states_);
     if (row_start == 0) {
       std::fprintf(static_states_, "stretch,time_s,step,kinetic_over_internal");
-      for (const Probe &p : scene_.probes) std::fprintf(static_states_, ",%s_ux_m,%s_uy_m", p.name.c_str(), p.name.c_str());
+      for (const Probe &p : scene_.probes) {
+        std::fprintf(static_states_, ",%s_ux_m,%s_uy_m", p.name.c_str(), p.name.c_str());
+        if (D == 3) std::fprintf(static_states_, ",%s_uz_m", p.name.c_str());
+      }
       for (const LoadSet &l : scene_.loads) std::fprintf(static_states_, ",%s_reaction_y_N", l.name.c_str());
       std::fprintf(static_states_, "\n");
     }
     std::fprintf(static_states_, "%.17g,%.17g,%" PetscInt_FMT ",%.6e", lambda, t, step, last_kinetic_ / last_internal_);
-    for (std::size_t p = 0; p < probes_.size(); ++p) std::fprintf(static_states_, ",%.17g,%.17g", last_probe_u_[2 * p], last_probe_u_[2 * p + 1]);
-    for (std::size_t l = 0; l < scene_.loads.size(); ++l) std::fprintf(static_states_, ",%.17g", last_reaction_[2 * l + 1]);
+    for (std::size_t p = 0; p < probes_.size(); ++p)
+      for (int c = 0; c < D; ++c) std::fprintf(static_states_, ",%.17g", last_probe_u_[D * p + c]);
+    for (std::size_t l = 0; l < scene_.loads.size(); ++l) std::fprintf(static_states_, ",%.17g", last_reaction_[D * l + 1]);
     std::fprintf(static_states_, "\n");
     error = FinishRows(static_states_, row_start);
   }
@@ -236,7 +256,7 @@ PetscErrorCode Simulation::CheckStaticHold(PetscInt step, double t)
 
 // A progress line every -progress_interval steps, or (0) every end time / 20 of
 // simulated time: step, time, step size, stretch, energies, broken bonds, wall time.
-PetscErrorCode Simulation::Progress(PetscInt step, double t, PetscBool force)
+template <int D> PetscErrorCode SimulationD<D>::Progress(PetscInt step, double t, PetscBool force)
 {
   PetscFunctionBegin;
   const bool due = scene_.progress_interval > 0 ? step % scene_.progress_interval == 0 : progress_times_.Due(t);
@@ -259,7 +279,7 @@ PetscErrorCode Simulation::Progress(PetscInt step, double t, PetscBool force)
 
 // How the step went (time_step_control.hpp): how many steps were shortened, and why,
 // and what re-estimating the stable step cost.
-PetscErrorCode Simulation::TimeStepSummary(PetscInt steps)
+template <int D> PetscErrorCode SimulationD<D>::TimeStepSummary(PetscInt steps)
 {
   const TimeStepControl &c = step_control_;
 
@@ -280,7 +300,7 @@ PetscErrorCode Simulation::TimeStepSummary(PetscInt steps)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode Simulation::Summary()
+template <int D> PetscErrorCode SimulationD<D>::Summary()
 {
   PetscInt  step;
   PetscReal t;
@@ -289,7 +309,7 @@ PetscErrorCode Simulation::Summary()
   PetscCall(TSGetStepNumber(ts_, &step));
   PetscCall(TSGetTime(ts_, &t));
   const double *x;
-  std::vector<double> probe_u(2 * probes_.size(), 0.0), reaction(2 * scene_.loads.size(), 0.0);
+  std::vector<double> probe_u(D * probes_.size(), 0.0), reaction(D * scene_.loads.size(), 0.0);
   PetscCall(VecGetArrayRead(X_, &x));
   PetscCall(ReadProbes(x, probe_u.data()));
   PetscCall(ComputeForceDensity(x, force_density_.data()));
@@ -299,10 +319,19 @@ PetscErrorCode Simulation::Summary()
                         stopped_on_error_ ? "Stopped (see the error below)" : "Finished", step, t, loading_.stretch_at(t),
                         MPI_Wtime() - wall_start_));
   for (std::size_t p = 0; p < probes_.size(); ++p)
-    PetscCall(PetscPrintf(comm_, "probe %-16s ux = %+.6e m  uy = %+.6e m\n", scene_.probes[p].name.c_str(), probe_u[2 * p], probe_u[2 * p + 1]));
+    if (D == 2)
+      PetscCall(PetscPrintf(comm_, "probe %-16s ux = %+.6e m  uy = %+.6e m\n", scene_.probes[p].name.c_str(), probe_u[2 * p], probe_u[2 * p + 1]));
+    else
+      PetscCall(PetscPrintf(comm_, "probe %-16s ux = %+.6e m  uy = %+.6e m  uz = %+.6e m\n", scene_.probes[p].name.c_str(), probe_u[D * p],
+                            probe_u[D * p + 1], probe_u[D * p + 2]));
   for (std::size_t s = 0; s < scene_.loads.size(); ++s)
-    PetscCall(PetscPrintf(comm_, "load set %-12s reaction y = %+.6e N  nominal stress = %+.6e Pa\n", scene_.loads[s].name.c_str(),
-                          reaction[2 * s + 1], reaction[2 * s + 1] / (scene_.body.width * scene_.body.thickness)));
+    if (D == 2)
+      PetscCall(PetscPrintf(comm_, "load set %-12s reaction y = %+.6e N  nominal stress = %+.6e Pa\n", scene_.loads[s].name.c_str(),
+                            reaction[D * s + 1], reaction[D * s + 1] / NominalArea(scene_)));
+    else
+      PetscCall(PetscPrintf(comm_, "load set %-12s reaction x, y, z = %+.6e, %+.6e, %+.6e N  nominal stress (y) = %+.6e Pa\n",
+                            scene_.loads[s].name.c_str(), reaction[D * s], reaction[D * s + 1], reaction[D * s + 2],
+                            reaction[D * s + 1] / NominalArea(scene_)));
   PetscInt broken;
   PetscCall(BrokenBondCount(&broken));
   if (scene_.failure) PetscCall(PetscPrintf(comm_, "broken bonds: %" PetscInt_FMT "\n", broken));
@@ -330,7 +359,7 @@ std::string Size(std::uintmax_t bytes)
 
 // The end of the summary: every file this run wrote (or extended, after a restart),
 // with its size, so that nothing written goes unnoticed and nothing missing is named.
-PetscErrorCode Simulation::ListOutputFiles()
+template <int D> PetscErrorCode SimulationD<D>::ListOutputFiles()
 {
   PetscFunctionBegin;
   if (rank_ != 0) PetscFunctionReturn(0);
@@ -373,7 +402,7 @@ PetscErrorCode Simulation::ListOutputFiles()
 // final_state.csv (natural id, reference position, displacement) and
 // broken_bonds.csv (directed pairs of natural ids), in natural order: files that do
 // not depend on the rank layout, for comparisons across runs.
-PetscErrorCode Simulation::WriteFinalState()
+template <int D> PetscErrorCode SimulationD<D>::WriteFinalState()
 {
   std::vector<double>                      u, reference;
   std::vector<std::pair<int64_t, int64_t>> broken;
@@ -395,9 +424,13 @@ PetscErrorCode Simulation::WriteFinalState()
     FILE *f = std::fopen((scene_.output_dir + "/final_state.csv").c_str(), "w");
     if (!f) error[0] = errno;
     else {
-      std::fprintf(f, "natural_id,x_m,y_m,ux_m,uy_m\n");
-      for (std::size_t i = 0; i < (std::size_t)layout_.n_global; ++i)
-        std::fprintf(f, "%zu,%.17g,%.17g,%.17g,%.17g\n", i, reference[2 * i], reference[2 * i + 1], u[2 * i], u[2 * i + 1]);
+      std::fprintf(f, D == 2 ? "natural_id,x_m,y_m,ux_m,uy_m\n" : "natural_id,x_m,y_m,z_m,ux_m,uy_m,uz_m\n");
+      for (std::size_t i = 0; i < (std::size_t)layout_.n_global; ++i) {
+        std::fprintf(f, "%zu", i);
+        for (const std::vector<double> *values : {&reference, &u})
+          for (int c = 0; c < D; ++c) std::fprintf(f, ",%.17g", (*values)[D * i + c]);
+        std::fprintf(f, "\n");
+      }
       error[0] = finish(f);
     }
     if (!error[0]) {
@@ -417,7 +450,7 @@ PetscErrorCode Simulation::WriteFinalState()
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode Simulation::GatherDisplacement(std::vector<double> *u_natural)
+template <int D> PetscErrorCode SimulationD<D>::GatherDisplacement(std::vector<double> *u_natural)
 {
   const double *x;
 
@@ -429,33 +462,31 @@ PetscErrorCode Simulation::GatherDisplacement(std::vector<double> *u_natural)
   PetscFunctionReturn(0);
 }
 
-// Two values per owned point, gathered on rank 0 in natural order (2 per point).
-PetscErrorCode Simulation::GatherNatural(const double *values, std::vector<double> *natural)
+// D values per owned point, gathered on rank 0 in natural order (D per point).
+template <int D> PetscErrorCode SimulationD<D>::GatherNatural(const double *values, std::vector<double> *natural)
 {
   const PetscInt n = layout_.n_owned;
 
   PetscFunctionBegin;
-  std::vector<double> mine(3 * n);
+  std::vector<double> mine((D + 1) * n); // the natural id, then the values
   for (PetscInt i = 0; i < n; ++i) {
-    mine[3 * i]     = (double)layout_.cloud.natural_id[i];
-    mine[3 * i + 1] = values[2 * i];
-    mine[3 * i + 2] = values[2 * i + 1];
+    mine[(D + 1) * i] = (double)layout_.cloud.natural_id[i];
+    for (int c = 0; c < D; ++c) mine[(D + 1) * i + 1 + c] = values[D * i + c];
   }
   std::vector<double> all;
   PetscCall(GatherOnRankZero(comm_, mine, MPI_DOUBLE, &all));
   natural->clear();
   if (rank_ == 0) {
-    natural->assign(2 * layout_.n_global, 0.0);
-    for (std::size_t k = 0; k < all.size(); k += 3) {
+    natural->assign(D * layout_.n_global, 0.0);
+    for (std::size_t k = 0; k < all.size(); k += D + 1) {
       const std::size_t id = (std::size_t)all[k];
-      (*natural)[2 * id]     = all[k + 1];
-      (*natural)[2 * id + 1] = all[k + 2];
+      for (int c = 0; c < D; ++c) (*natural)[D * id + c] = all[k + 1 + c];
     }
   }
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode Simulation::GatherBrokenBonds(std::vector<std::pair<int64_t, int64_t>> *bonds)
+template <int D> PetscErrorCode SimulationD<D>::GatherBrokenBonds(std::vector<std::pair<int64_t, int64_t>> *bonds)
 {
   PetscFunctionBegin;
   std::vector<long long> mine;
@@ -472,5 +503,10 @@ PetscErrorCode Simulation::GatherBrokenBonds(std::vector<std::pair<int64_t, int6
   std::sort(bonds->begin(), bonds->end());
   PetscFunctionReturn(0);
 }
+
+// The driver at D = 2 and 3, chosen once from the scene (main.cpp); every file of
+// the driver instantiates the members it defines.
+template class SimulationD<2>;
+template class SimulationD<3>;
 
 } // namespace bapd

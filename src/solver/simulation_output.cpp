@@ -43,7 +43,7 @@ long long RowStep(const std::string &line) { return std::atoll(line.c_str()); }
 
 } // namespace
 
-PetscErrorCode Simulation::ReadOutputOptions()
+template <int D> PetscErrorCode SimulationD<D>::ReadOutputOptions()
 {
   PetscFunctionBegin;
   PetscCall(FieldOptionsFromOptions(comm_, &output_.fields));
@@ -53,7 +53,7 @@ PetscErrorCode Simulation::ReadOutputOptions()
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode Simulation::SetupOutput()
+template <int D> PetscErrorCode SimulationD<D>::SetupOutput()
 {
   PetscFunctionBegin;
   PetscCall(RegisterEvents());
@@ -82,16 +82,16 @@ PetscErrorCode Simulation::SetupOutput()
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode Simulation::CreateNaturalOrder()
+template <int D> PetscErrorCode SimulationD<D>::CreateNaturalOrder()
 {
   PetscFunctionBegin;
   if (output_.order.created()) PetscFunctionReturn(0);
   PetscCall(NaturalOrderCreate(comm_, layout_, families_, &output_.order));
-  PetscCall(ComputeGeometryFingerprint<2>(comm_, layout_, families_, scene_.body.dx, scene_.horizon(), &output_.geometry));
+  PetscCall(ComputeGeometryFingerprint<D>(comm_, layout_, families_, scene_.body.dx, scene_.horizon(), &output_.geometry));
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode Simulation::SaveGoodState(PetscInt step, double t)
+template <int D> PetscErrorCode SimulationD<D>::SaveGoodState(PetscInt step, double t)
 {
   PetscFunctionBegin;
   PetscCall(VecCopy(X_, output_.good_state));
@@ -107,7 +107,7 @@ PetscErrorCode Simulation::SaveGoodState(PetscInt step, double t)
 }
 
 // After PostStep's loading, health check, bond breaking and history row.
-PetscErrorCode Simulation::OutputAfterStep(PetscInt step, double t)
+template <int D> PetscErrorCode SimulationD<D>::OutputAfterStep(PetscInt step, double t)
 {
   PetscFunctionBegin;
   const bool fields_due = output_.fields.interval > 0 ? step % output_.fields.interval == 0 : output_.field_times.Due(t);
@@ -138,7 +138,7 @@ PetscErrorCode Simulation::OutputAfterStep(PetscInt step, double t)
 
 // CheckHealth stopped the run: put the last good state back, write it as a
 // checkpoint (and a field file), and say so in the stop message.
-PetscErrorCode Simulation::OutputOnDivergence()
+template <int D> PetscErrorCode SimulationD<D>::OutputOnDivergence()
 {
   PetscFunctionBegin;
   if (!output_.checkpoint.on_error || output_.good_step < 0) PetscFunctionReturn(0);
@@ -166,7 +166,7 @@ PetscErrorCode Simulation::OutputOnDivergence()
 
 // Run() after the last step: the last field file and, with periodic checkpoints, a
 // final checkpoint (to extend the run later with a later -end_time).
-PetscErrorCode Simulation::OutputAtEnd(PetscInt step, double t)
+template <int D> PetscErrorCode SimulationD<D>::OutputAtEnd(PetscInt step, double t)
 {
   PetscFunctionBegin;
   if (stopped_on_error_) PetscFunctionReturn(0);
@@ -175,7 +175,7 @@ PetscErrorCode Simulation::OutputAtEnd(PetscInt step, double t)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode Simulation::WriteFields(PetscInt step, double t)
+template <int D> PetscErrorCode SimulationD<D>::WriteFields(PetscInt step, double t)
 {
   const PetscInt n = layout_.n_owned;
   const double  *x;
@@ -188,16 +188,16 @@ PetscErrorCode Simulation::WriteFields(PetscInt step, double t)
   PetscCall(VecGetArrayRead(X_, &x));
   PetscCall(force_.UpdatePositions(x)); // y for the stretch; the next force evaluation sets it again
   point_damage(layout_.cloud, families_, bond_state_, (std::size_t)n, damage.data());
-  largest_bond_stretch<2>(layout_.cloud, force_.positions(), families_, bond_state_, (std::size_t)n, largest.data());
+  largest_bond_stretch<D>(layout_.cloud, force_.positions(), families_, bond_state_, (std::size_t)n, largest.data());
   PointFields fields;
   fields.reference        = layout_.cloud.x.data();
   fields.displacement     = x;
-  fields.velocity         = x + 2 * n;
+  fields.velocity         = x + D * n;
   fields.damage           = damage.data();
   fields.max_bond_stretch = largest.data();
   // Force density, volume, stress, F, lambda_3, W (point_quantities.hpp): read the
   // state (and the C33 warm start) without changing it.
-  std::vector<double> force(2 * n);
+  std::vector<double> force(D * n);
   PointQuantities     quantities;
   PetscCall(ComputePointQuantities(x, force.data(), &quantities)); // leaves the warm starts as they were
   fields.volume                = layout_.cloud.volume.data();
@@ -205,9 +205,9 @@ PetscErrorCode Simulation::WriteFields(PetscInt step, double t)
   fields.nominal_stress        = quantities.nominal_stress.data();
   fields.cauchy_stress         = quantities.cauchy_stress.data();
   fields.deformation_gradient  = quantities.deformation_gradient.data();
-  fields.thickness_stretch     = quantities.thickness_stretch.data();
+  fields.thickness_stretch     = D == 2 ? quantities.thickness_stretch.data() : nullptr; // (3D: none)
   fields.strain_energy_density = quantities.strain_energy_density.data();
-  const PetscErrorCode written = WriteFieldFrame<2>(comm_, output_.order, &output_.series, step, t, loading_.stretch_at(t), fields);
+  const PetscErrorCode written = WriteFieldFrame<D>(comm_, output_.order, &output_.series, step, t, loading_.stretch_at(t), fields);
   PetscCall(VecRestoreArrayRead(X_, &x)); // also when the file could not be written
   PetscCall(written);
   PetscCall(PetscLogEventEnd(event_fields, 0, 0, 0, 0));
@@ -215,7 +215,7 @@ PetscErrorCode Simulation::WriteFields(PetscInt step, double t)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode Simulation::ComputePointQuantities(const double *u_owned, double *force_density, PointQuantities *quantities)
+template <int D> PetscErrorCode SimulationD<D>::ComputePointQuantities(const double *u_owned, double *force_density, PointQuantities *quantities)
 {
   PetscFunctionBegin;
   PetscCall(ComputeForceDensity(u_owned, force_density)); // sets the positions, ghosts included
@@ -226,19 +226,19 @@ PetscErrorCode Simulation::ComputePointQuantities(const double *u_owned, double 
   PetscFunctionReturn(0);
 }
 
-// What a checkpoint holds of the state X = [u, v] (owned, 2 per point each): written
+// What a checkpoint holds of the state X = [u, v] (owned, D per point each): written
 // from it, or read back into it.
-CheckpointState Simulation::CheckpointView(double *x)
+template <int D> CheckpointState SimulationD<D>::CheckpointView(double *x)
 {
   CheckpointState state;
   state.u     = x;
-  state.v     = x + 2 * layout_.n_owned;
+  state.v     = x + D * layout_.n_owned;
   state.bonds = &bond_state_;
-  state.c33   = force_.warm_start().data();
+  state.c33   = force_.warm_start().empty() ? nullptr : force_.warm_start().data(); // (3D: no C33)
   return state;
 }
 
-PetscErrorCode Simulation::WriteCheckpointFile(PetscInt step, double t, const char *reason)
+template <int D> PetscErrorCode SimulationD<D>::WriteCheckpointFile(PetscInt step, double t, const char *reason)
 {
   double        *x;
 
@@ -304,7 +304,7 @@ PetscErrorCode Simulation::WriteCheckpointFile(PetscInt step, double t, const ch
     header.step_indicator     = s.indicator;
     state.step_eigenvector    = step_control_.eigenvector();
   }
-  const PetscErrorCode written = WriteCheckpoint<2>(comm_, path, output_.order, families_, &header, state);
+  const PetscErrorCode written = WriteCheckpoint<D>(comm_, path, output_.order, families_, &header, state);
   PetscCall(VecRestoreArray(X_, &x)); // also when the checkpoint could not be written
   PetscCall(written);
   output_.last_checkpoint_step = step;
@@ -322,7 +322,7 @@ PetscErrorCode Simulation::WriteCheckpointFile(PetscInt step, double t, const ch
 }
 
 // The schedule as the checkpoint left it (Loading::Restore), and the TS's end time.
-PetscErrorCode Simulation::RestoreSchedule(const CheckpointHeader &header)
+template <int D> PetscErrorCode SimulationD<D>::RestoreSchedule(const CheckpointHeader &header)
 {
   PetscFunctionBegin;
   PetscCall(loading_.Restore(header.schedule_original, header.schedule_current, header.end_time_original, header.end_time, header.time,
@@ -336,7 +336,7 @@ PetscErrorCode Simulation::RestoreSchedule(const CheckpointHeader &header)
 
 // -restart FILE: the options were merged before the scene was read
 // (CheckpointMergeOptions); here the state replaces the initial one.
-PetscErrorCode Simulation::RestoreCheckpoint()
+template <int D> PetscErrorCode SimulationD<D>::RestoreCheckpoint()
 {
   const std::string &path = output_.checkpoint.restart;
   double            *x;
@@ -353,11 +353,11 @@ PetscErrorCode Simulation::RestoreCheckpoint()
     state.relaxation_a = relaxation_.latest_a();
   }
   if (step_control_.reestimating()) state.step_eigenvector = step_control_.eigenvector();
-  PetscCall(ReadCheckpointState<2>(comm_, path, output_.order, families_, header, output_.geometry, state));
+  PetscCall(ReadCheckpointState<D>(comm_, path, output_.order, families_, header, output_.geometry, state));
   if (relaxation_.active()) relaxation_.RestoreLatest((int)header.relaxation_records);
   PetscCall(VecRestoreArray(X_, &x));
   // The reference geometry of the families with their broken bonds, as the run had it.
-  nd::compute_bond_geometry<2>(layout_.cloud, families_, bond_state_, geometry_);
+  nd::compute_bond_geometry<D>(layout_.cloud, families_, bond_state_, geometry_);
   force_.ForgetStats();
   PetscCall(TSSetStepNumber(ts_, header.step));
   PetscCall(TSSetTime(ts_, header.time));
@@ -440,7 +440,7 @@ PetscErrorCode Simulation::RestoreCheckpoint()
   output_.series.frames.clear();
   for (std::size_t k = 0; k < present.size(); ++k)
     if (present[k]) output_.series.frames.push_back({(PetscInt)header.field_frames[2 * k], header.field_frames[2 * k + 1]});
-  if (output_.fields.enabled) PetscCall(WriteFieldIndex<2>(comm_, output_.series, layout_.n_global));
+  if (output_.fields.enabled) PetscCall(WriteFieldIndex<D>(comm_, output_.series, layout_.n_global));
 
   PetscCall(PetscPrintf(comm_, "Restart from %s: step %" PetscInt_FMT ", t = %.6e s, stretch %.5f, %" PetscInt_FMT " broken bonds (written by %lld rank(s), %s)\n",
                         path.c_str(), header.step, header.time, loading_.stretch_at(header.time), total_broken_,
@@ -448,5 +448,10 @@ PetscErrorCode Simulation::RestoreCheckpoint()
   PetscCall(PetscLogEventEnd(event_restart, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
+
+// The driver at D = 2 and 3, chosen once from the scene (main.cpp); every file of
+// the driver instantiates the members it defines.
+template class SimulationD<2>;
+template class SimulationD<3>;
 
 } // namespace bapd

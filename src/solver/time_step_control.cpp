@@ -106,9 +106,15 @@ PetscErrorCode TimeStepOptionsFromOptions(MPI_Comm comm, TimeStepOptions *option
 PetscErrorCode TimeStepControl::EstimateStable(MPI_Comm comm, const Scene &scene, const TimeStepOptions &options, const Layout &layout,
                                                const Loading &loading, ForceOperator &force)
 {
-  const PetscInt n = 2 * layout.n_owned;
+  const int      D = loading.dimension(); // dofs a point (2 or 3)
+  const PetscInt n = D * layout.n_owned;
 
   PetscFunctionBegin;
+  // The points' indicator forms F~ and the plane-stress I1bar of a 2D point.
+  PetscCheck(D == 2 || !options.indicator, comm, PETSC_ERR_USER,
+             "-time_step_reestimate_indicator is a 2D measurement (the points' plane-stress I1bar): leave it out for a 3D body, or use "
+             "-time_step_reestimate_bonds");
+  dimension_ = D;
   options_ = options;
   inv_rho_ = 1.0 / scene.density;
   eps_     = 1e-7 * scene.body.dx;
@@ -139,12 +145,12 @@ PetscErrorCode TimeStepControl::EstimateStable(MPI_Comm comm, const Scene &scene
   if (options_.interval > 0 && options_.krylov) PetscCall(KrylovReserve(options_.max_iterations + 1));
   // A deterministic start with energy in every wavelength: a hash of the natural id.
   for (PetscInt i = 0; i < layout.n_owned; ++i)
-    for (int c = 0; c < 2; ++c) {
-      uint64_t h = (uint64_t)layout.cloud.natural_id[i] * 2 + c + 0x9E3779B97F4A7C15ULL;
+    for (int c = 0; c < D; ++c) {
+      uint64_t h = (uint64_t)layout.cloud.natural_id[i] * D + c + 0x9E3779B97F4A7C15ULL;
       h ^= h >> 33;
       h *= 0xff51afd7ed558ccdULL;
       h ^= h >> 33;
-      v_[2 * i + c] = held_[2 * i + c] ? 0.0 : (double)(h >> 11) / 9007199254740992.0 - 0.5;
+      v_[D * i + c] = held_[D * i + c] ? 0.0 : (double)(h >> 11) / 9007199254740992.0 - 0.5;
     }
   seed_ = v_;
   std::vector<double> u0(n, 0.0), a0(n); // set-up only
@@ -424,8 +430,10 @@ PetscErrorCode TimeStepControl::AfterStep(MPI_Comm comm, PetscInt step, double s
       std::uint64_t        any    = 0;
       for (std::size_t w = 0; w < W; ++w) any |= intact[w];
       if (!any) continue;
-      const double vx = v[2 * i], vy = v[2 * i + 1];
-      v2_max = std::max(v2_max, vx * vx + vy * vy);
+      const double *vi = v + dimension_ * i;
+      double        v2 = vi[0] * vi[0] + vi[1] * vi[1];
+      if (dimension_ == 3) v2 += vi[2] * vi[2];
+      v2_max = std::max(v2_max, v2);
     }
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &v2_max, 1, MPI_DOUBLE, MPI_MAX, comm));
     if (v2_max * dt * dt > travel_ * travel_) dt = travel_ / std::sqrt(v2_max), flying = true;

@@ -31,13 +31,7 @@ else
          -static_tolerance 1e-3 -output_interval 10)
   N=200
 fi
-run 2 "$work/whole" "${scene[@]}" -ts_max_steps $((2 * N))
-run 2 "$work/first" "${scene[@]}" -ts_max_steps $N -checkpoint_interval $N
-[ -f "$work/first/checkpoint.h5" ] || fail "no checkpoint after $N steps"
-# The scene comes from the checkpoint: only the run length and the output change.
-run 2 "$work/second_np2" -restart "$work/first/checkpoint.h5" -ts_max_steps $((2 * N))
-run 3 "$work/second_np3" -restart "$work/first/checkpoint.h5" -ts_max_steps $((2 * N))
-grep -q "Restart from $work/first/checkpoint.h5: step $N" "$work/second_np3.log" || fail "no restart line in second_np3.log"
+checkpointed_runs "$work" $N "${scene[@]}"
 
 python3 "$BAPD_SOURCE_DIR/tests/mpi/compare_runs.py" --tolerance 0 $([ "$case" = fracture ] && echo --expect-broken) \
   "$work/whole" "$work/second_np2"

@@ -3,8 +3,8 @@
 // is read and checked (its points counted, its extent found); its load sets, grips and
 // probes pick exactly the points a brute-force count over the lattice indices says; the
 // grips hold D = 3 dofs a point and their reactions sum 3 components; each bad 3D option
-// is refused with its own message; a valid 3D scene stops with the one "not yet built"
-// message; the relaxation's damping and the kinetic energy run over 3 dofs a point.
+// is refused with its own message; the material section in 3D (the law's 3D form, the
+// 2D-only options refused, the bond-only form's default correction); the relaxation's damping and the kinetic energy run over 3 dofs a point.
 #include <gtest/gtest.h>
 #include <petscsys.h>
 
@@ -154,12 +154,10 @@ TEST_F(Scene3D, ReadsTheBodyItsExtentAndItsPointCount)
   EXPECT_EQ(scene.loads[0].region, LoadSet::Region::left);
   EXPECT_EQ(scene.loads[1].region, LoadSet::Region::right);
   EXPECT_EQ(scene.loads[1].z, bapd::ComponentLoad::fixed);
-  // The stop after every check: one message, a user error.
-  EXPECT_EQ(bapd::StopThreeDimensional(PETSC_COMM_WORLD, scene), PETSC_ERR_USER);
-  EXPECT_NE(ErrorText().find("3D bodies are parsed and checked; the 3D driver is issue 21 stage 4, not yet built"), std::string::npos)
-      << ErrorText();
+  // The driver's D (main.cpp builds SimulationD<3> for it); a scene without 3D options is 2D.
+  EXPECT_EQ(scene.dimension, 3);
   Scene flat;
-  EXPECT_EQ(bapd::StopThreeDimensional(PETSC_COMM_WORLD, flat), 0);
+  EXPECT_EQ(flat.dimension, 2);
 }
 
 // Every load set region of a 3D body against a count over the lattice indices.
@@ -320,6 +318,40 @@ TEST_F(Scene3D, EachBadOptionGetsItsMessage)
     {With(Block(), {{"-probe_p_at", "0.001,0.002"}}), "-probe_p_at holds 2 numbers: a probe of a 3D body takes exactly three"},
     {With(Block(), {{"-probe_p_at", "0.005,0.004,0.003"}}), "lies where the body's solids leave no material"},
     {With(Block(), {{"-probe_p_at", "0.005,0.004,0.009"}}), "lies outside the body [0, 0.01] x [0, 0.008] x [0, 0.006] m"},
+  };
+  for (const auto &[options, text] : cases) {
+    const std::string message = Rejection(options);
+    EXPECT_NE(message.find(text), std::string::npos) << "expected '" << text << "' in: " << message;
+  }
+}
+
+// The material section of a 3D body (scene_material.cpp, issue 21 stage 4c): the 2D
+// reductions and the 2D patch correction are refused, a law of principal stretches has
+// no 3D form, and the bond-only form is tensor-corrected by default (uncorrected it is
+// 15 % soft in 3D, docs/architecture.md).
+TEST_F(Scene3D, MaterialOptionsOfASolidBody)
+{
+  Scene scene;
+  ASSERT_EQ(Read(Block(), &scene), 0) << ErrorText();
+  EXPECT_EQ(scene.force_form, bapd::ForceForm::energy_consistent);
+  EXPECT_EQ(scene.stress_correction, bapd::StressCorrection::none);
+  EXPECT_EQ(scene.patch_correction, bapd::PatchCorrection::off);
+  Scene bond_only;
+  ASSERT_EQ(Read(With(Block(), {{"-force_form", "bond_only"}}), &bond_only), 0) << ErrorText();
+  EXPECT_EQ(bond_only.stress_correction, bapd::StressCorrection::tensor);
+  EXPECT_EQ(bond_only.patch_correction, bapd::PatchCorrection::off); // (auto: the 2D solve is not ported)
+  Scene paper;
+  ASSERT_EQ(Read(With(Block(), {{"-force_form", "bond_only"}, {"-force_stress_correction", "none"}}), &paper), 0) << ErrorText();
+  EXPECT_EQ(paper.stress_correction, bapd::StressCorrection::none); // the paper's force stays reachable
+  for (const char *law : {"neo_hookean", "mooney_rivlin", "yeoh", "arruda_boyce"}) {
+    Scene other;
+    EXPECT_EQ(Read(With(Block(), {{"-material_model", law}}), &other), 0) << law << ": " << ErrorText();
+  }
+  const std::vector<std::pair<Options, std::string>> cases = {
+    {With(Block(), {{"-material_formulation", "plane_strain"}}), "-material_formulation plane_strain is a 2D reduction"},
+    {With(Block(), {{"-material_formulation", "plane_stress"}}), "-material_formulation plane_stress is a 2D reduction"},
+    {With(Block(), {{"-material_model", "ogden"}}), "-material_model ogden: a law of principal stretches has no 3D form"},
+    {With(Block(), {{"-force_form", "bond_only"}, {"-force_patch_correction", "virial"}}), "-force_patch_correction virial is not ported to 3D"},
   };
   for (const auto &[options, text] : cases) {
     const std::string message = Rejection(options);

@@ -1,0 +1,50 @@
+#!/usr/bin/env bash
+# The 3D driver (issue 21 stage 4c) on a small box, 10 x 6 x 4 cells of 1 mm (240
+# points, compressible Gent, K = 10 mu so that a few hundred steps pull it visibly),
+# held on x- and pulled on x+, with tolerance 0 throughout:
+#   box_3d.sh rank_invariance  1, 2 and 3 ranks: the same history.csv (with its z
+#                              columns) and final displacements
+#   box_3d.sh failure          a low critical stretch: bonds break, identically on 1
+#                              and 2 ranks (the broken pairs too)
+#   box_3d.sh restart          stopped at step N with a checkpoint and continued with
+#                              -restart on 2 and on 3 ranks: the uninterrupted run's
+#                              history, displacements and last field file
+set -euo pipefail
+source "$BAPD_SOURCE_DIR/tests/restart/common.sh" # run, checkpointed_runs, fail, history_column, PYTHON
+case="$1"
+work="box_3d_$case"
+rm -rf "$work"; mkdir -p "$work"
+BOX=(-body_dimension 3 -body_dx 0.001 -body_shapes block -body_block_type box -body_block_box 0,0,0,0.010,0.006,0.004
+     -horizon_factor 3.015 -material_mu 4.55e3 -material_Jm 162.6 -material_bulk_ratio 10 -material_density 1000
+     -load_sets left,right -load_left_region x- -load_left_x fixed -load_left_y fixed -load_left_z fixed
+     -load_right_region x+ -load_right_x stretch -load_right_y fixed -load_right_z fixed -load_reference_length 0.010
+     -probes p -probe_p_at 0.0085,0.0035,0.0025 -damping 40 -output_interval 20 -progress_interval 100000 -output_final_state)
+compare() { python3 "$BAPD_SOURCE_DIR/tests/mpi/compare_runs.py" --tolerance 0 "$@"; }
+if [ "$case" = rank_invariance ]; then
+  scene=("${BOX[@]}" -load_schedule 0,1,0.1,1.2 -ts_max_steps 300)
+  for n in 1 2 3; do run $n "$work/np$n" "${scene[@]}"; done
+  head -1 "$work/np1/history.csv" | grep -q "right_reaction_z_N,right_nominal_stress_Pa,p_ux_m,p_uy_m,p_uz_m," ||
+    fail "history.csv has no z columns: $(head -1 "$work/np1/history.csv")"
+  head -1 "$work/np1/final_state.csv" | grep -q "^natural_id,x_m,y_m,z_m,ux_m,uy_m,uz_m$" || fail "final_state.csv has no z columns"
+  ux=$(history_column "$work/np1" 300 p_ux_m)
+  $PYTHON -c "import sys; sys.exit(0 if float('$ux') > 1e-4 else 1)" || fail "the probe did not move with the grip (ux = $ux m)"
+  compare "$work/np1" "$work/np2" "$work/np3"
+elif [ "$case" = failure ]; then
+  scene=("${BOX[@]}" -load_schedule 0,1,0.1,1.5 -failure_critical_stretch 1.15 -ts_max_steps 200)
+  for n in 1 2; do run $n "$work/np$n" "${scene[@]}"; done
+  compare --expect-broken "$work/np1" "$work/np2"
+  echo "broken bonds at step 200: $(history_column "$work/np1" 200 broken_bonds)"
+elif [ "$case" = restart ]; then
+  scene=("${BOX[@]}" -load_schedule 0,1,0.1,1.2 -output_fields -output_fields_interval 100)
+  N=150
+  checkpointed_runs "$work" $N "${scene[@]}"
+  compare "$work/whole" "$work/second_np2"
+  compare "$work/whole" "$work/second_np3"
+  last=$(printf "fields/step_%08d.h5" $((2 * N)))
+  for d in second_np2 second_np3; do
+    $PYTHON "$BAPD_SOURCE_DIR/tests/restart/compare_fields.py" --tolerance 0 "$work/whole/$last" "$work/$d/$last"
+  done
+else
+  fail "unknown case '$case'"
+fi
+echo "box_3d $case: identical"
