@@ -378,6 +378,7 @@ PetscErrorCode CheckShape3D(MPI_Comm comm, const ShapeInput &in, bool first_soli
     SceneCheck(problem.empty(), comm, "-body_%s_points (notch '%s'): %s; give the vertices in order around one plane polygon", n, n,
                problem.c_str());
     body->solid.notches.push_back(notch);
+    body->notch_names.push_back(in.name);
     PetscFunctionReturn(0);
   }
   nd::Solid::Op op = first_solid ? nd::Solid::Op::add : nd::Solid::Op::subtract; // the defaults (-body_NAME_op's help)
