@@ -167,6 +167,11 @@ std::string RegionText(const Scene &s, const LoadSet &l)
   case LoadSet::Region::polygon: return Format("polygon of %zu vertices", l.area.vertices.size() / 2);
   case LoadSet::Region::curve: return Format("within %g m of a polyline of %zu segments", l.depth, l.segments.size() / 4);
   case LoadSet::Region::group:
+    if (three)
+      return l.elements.dim == 3 ? Format("physical volume '%s' of %s (%zu tetrahedra)", l.group.c_str(), l.file.c_str(), l.elements.size())
+                                 : Format("within %g m of physical %s '%s' of %s (%zu elements)", l.depth,
+                                          l.elements.dim == 2 ? "surface" : l.elements.dim == 1 ? "curve" : "point", l.group.c_str(),
+                                          l.file.c_str(), l.elements.size());
     return l.segments.empty() ? Format("physical surface '%s' of %s", l.group.c_str(), l.file.c_str())
                               : Format("within %g m of physical group '%s' of %s", l.depth, l.group.c_str(), l.file.c_str());
   case LoadSet::Region::block:
