@@ -506,6 +506,19 @@ PointCloud make_solid_points(const SolidBody &body)
   return c;
 }
 
+PointCloud tetrahedron_centroids(const TetrahedronSet &mesh)
+{
+  PointCloud points;
+  points.x.reserve(3 * mesh.size());
+  for (std::size_t t = 0; t < mesh.size(); ++t) {
+    const double *c = &mesh.corners[12 * t];
+    for (int r = 0; r < 3; ++r) points.x.push_back(0.25 * (c[r] + c[3 + r] + c[6 + r] + c[9 + r]));
+    points.volume.push_back(std::fabs(orient(c, c + 3, c + 6, c + 9)) / 6.0);
+    points.natural_id.push_back(static_cast<int64_t>(t));
+  }
+  return points;
+}
+
 double point_segment_distance2(const double *p, const double *a, const double *b)
 {
   const P3     e = minus(b, a), w = minus(p, a);

@@ -118,10 +118,10 @@ std::string BodyText3D(const Scene &s)
   const std::string extent =
       Format("[%g, %g] x [%g, %g] x [%g, %g] m", b.lo[0], b.hi[0], b.lo[1], b.hi[1], b.lo[2], b.hi[2]);
   if (b.given_points)
-    text += Format("  body      3D: %lld points of %s (spacing cbrt(V), the smallest %g m), cells in %s, %zu solid(s) cutting it, %zu "
+    text += Format("  body      3D: %lld %s of %s (spacing cbrt(V), the smallest %g m), cells in %s, %zu solid(s) cutting them, %zu "
                    "notch(es)\n",
-                   static_cast<long long>(b.points), b.source.c_str(), b.solid.dx, extent.c_str(), b.solid.solids.size(),
-                   b.solid.notches.size());
+                   static_cast<long long>(b.points), b.centroids ? "tetrahedron centroids" : "points", b.source.c_str(), b.solid.dx,
+                   extent.c_str(), b.solid.solids.size() - (b.centroids ? 1 : 0), b.solid.notches.size());
   else
     text += Format("  body      3D, dx %g m: %lld points, cells in %s, %zu solid(s), %zu notch(es)\n", b.solid.dx,
                    static_cast<long long>(b.points), extent.c_str(), b.solid.solids.size(), b.solid.notches.size());

@@ -13,6 +13,7 @@
 
 #include "bapd/gmsh_volume3d.hpp"
 #include "bapd/nd/shape3d.hpp"
+#include "bapd/options_reader.hpp"
 #include "bapd/scene.hpp"
 
 namespace bapd {
@@ -151,6 +152,81 @@ TEST_F(Groups3D, AMissingGroupIsRefusedWithTheGroupsTheFileHas)
                  &scene),
             PETSC_ERR_USER);
   EXPECT_NE(ErrorText().find("-load_g_file is required for load set 'g': the body reads 0 Gmsh files"), std::string::npos) << ErrorText();
+}
+
+// Element centroids of a 3D mesh (-body_S_discretisation centroids, nd::tetrahedron_centroids):
+// one point a tetrahedron at the mean of its corners with its volume; by hand on a cube cut
+// into Kuhn's six tetrahedra, and through the scene on the Gmsh box (the volumes fill it,
+// a grip by group holds the centroids near its face, a solid cuts them).
+TEST(TetrahedronCentroids, OnePointATetrahedronWithItsVolume)
+{
+  const double       v[8][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}, {0, 0, 1}, {1, 0, 1}, {0, 1, 1}, {1, 1, 1}};
+  const int          kuhn[6][4] = {{0, 1, 3, 7}, {0, 1, 5, 7}, {0, 2, 3, 7}, {0, 2, 6, 7}, {0, 4, 5, 7}, {0, 4, 6, 7}};
+  nd::TetrahedronSet cube;
+  for (const auto &t : kuhn)
+    for (int c : t) cube.corners.insert(cube.corners.end(), v[c], v[c] + 3);
+  const PointCloud points = nd::tetrahedron_centroids(cube);
+  ASSERT_EQ(points.size(), 6u);
+  for (std::size_t p = 0; p < 6; ++p) {
+    EXPECT_NEAR(points.volume[p], 1.0 / 6.0, 1e-15);
+    EXPECT_EQ(points.natural_id[p], static_cast<int64_t>(p));
+    for (int r = 0; r < 3; ++r) {
+      double mean = 0;
+      for (int c : kuhn[p]) mean += v[c][r];
+      EXPECT_DOUBLE_EQ(points.x[3 * p + r], mean / 4);
+    }
+  }
+}
+
+TEST_F(Groups3D, TheCentroidsOfTheGmshBoxAreItsPoints)
+{
+  Scene scene;
+  const Options centroids = {{"-body_dimension", "3"},         {"-body_shapes", "part"},          {"-body_part_type", "mesh"},
+                             {"-body_part_file", kGeo},        {"-body_part_discretisation", "centroids"},
+                             {"-load_schedule", "0,1,1,1.1"},  {"-load_sets", "g"},               {"-load_g_region", "group"},
+                             {"-load_g_group", "left"},        {"-load_g_depth", "0.001"},        {"-load_g_x", "fixed"}};
+  ASSERT_EQ(Read(centroids, &scene), 0) << ErrorText();
+  nd::TetrahedronSet mesh;
+  ASSERT_EQ(ReadGmshTetrahedra(kGeo, &mesh), "");
+  ASSERT_TRUE(scene.body3d.given_points);
+  const PointCloud &points = *scene.body3d.given_points;
+  EXPECT_TRUE(scene.body3d.centroids);
+  ASSERT_EQ(points.size(), mesh.size());
+  EXPECT_EQ(scene.body3d.points, static_cast<int64_t>(mesh.size()));
+  double volume = 0;
+  for (double vp : points.volume) volume += vp;
+  EXPECT_NEAR(volume, 72 * kMm * kMm * kMm, 1e-12 * 72 * kMm * kMm * kMm); // the tetrahedra fill the box
+  // The grip holds the centroids closer than 1 mm to the face x = 0, and no other.
+  const auto held = Select(scene, scene.loads[0], points);
+  std::size_t near = 0;
+  for (std::size_t p = 0; p < points.size(); ++p) near += points.x[3 * p] < kMm;
+  EXPECT_GT(held.size(), 0u);
+  EXPECT_EQ(held.size(), near);
+  const std::string text = SceneText(scene);
+  EXPECT_NE(text.find(Format("  body      3D: %zu tetrahedron centroids of %s", mesh.size(), kGeo.c_str())), std::string::npos) << text;
+  EXPECT_NE(text.find("0 solid(s) cutting them"), std::string::npos) << text;
+
+  // A box cuts the centroids as it cuts a cloud; the mistakes.
+  Options cut = centroids;
+  cut.insert(cut.end(), {{"-body_shapes", "part,half"}, {"-body_half_type", "box"}, {"-body_half_box", "0.003,-1,-1,1,1,1"}});
+  ASSERT_EQ(Read(cut, &scene), 0) << ErrorText();
+  std::size_t left = 0;
+  for (std::size_t p = 0; p < points.size(); ++p) left += !(points.x[3 * p] >= 3 * kMm);
+  EXPECT_EQ(scene.body3d.points, static_cast<int64_t>(left));
+  Options dx = centroids;
+  dx.emplace_back("-body_dx", "0.001");
+  EXPECT_EQ(Read(dx, &scene), PETSC_ERR_USER);
+  EXPECT_NE(ErrorText().find("-body_dx is the lattice spacing, but -body_part_discretisation centroids gives the body's points"),
+            std::string::npos)
+      << ErrorText();
+  Options second = cut;
+  second.insert(second.end(), {{"-body_shapes", "half,part"}, {"-body_half_op", "add"}, {"-body_part_op", "intersect"}});
+  EXPECT_EQ(Read(second, &scene), PETSC_ERR_USER);
+  EXPECT_NE(ErrorText().find("must be the first solid of -body_shapes"), std::string::npos) << ErrorText();
+  Options box = centroids;
+  box.insert(box.end(), {{"-body_shapes", "part,b"}, {"-body_b_type", "box"}, {"-body_b_box", "0,0,0,1,1,1"}, {"-body_b_discretisation", "centroids"}});
+  EXPECT_EQ(Read(box, &scene), PETSC_ERR_USER);
+  EXPECT_NE(ErrorText().find("-body_b_discretisation is not a parameter of a 3D box"), std::string::npos) << ErrorText();
 }
 
 } // namespace

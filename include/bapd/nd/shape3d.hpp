@@ -128,6 +128,11 @@ PointCloud make_solid_points(const SolidBody &body);
 
 const char *to_string(Solid::Kind kind);
 
+// The element centroids of a 3D mesh as given points (the 3D form of geometry.hpp's
+// element_centroids): one point a tetrahedron, at the mean of its four corners, volume =
+// its volume |det(b - a, c - a, d - a)| / 6, in the mesh's order (natural id = index).
+PointCloud tetrahedron_centroids(const TetrahedronSet &mesh);
+
 // The elements of a named Gmsh physical group of a 3D body as a region of points (a load
 // set or probe by group, gmsh_volume3d.hpp reads them): a physical volume holds the points
 // inside its tetrahedra (faces inclusive, as a mesh solid); a physical surface, curve or
