@@ -1,12 +1,15 @@
 #pragma once
 // One Gmsh read, shared by the 2D shapes and groups (gmsh_shape.cpp) and the 3D volumes
 // (gmsh_volume3d.cpp): the file checked, a Gmsh session initialised and finalised on
-// every path, the file opened, and any Gmsh failure turned into one sentence.
+// every path, the file opened, and any Gmsh failure turned into one sentence; and what
+// both read of a model: the corners of 2D elements, a physical group by name.
 // Include only from a .cpp that links Gmsh.
 #include <gmsh.h>
 
 #include <cstdio>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace bapd {
 
@@ -41,6 +44,46 @@ template <class Read> std::string WithGmshFile(const std::string &file, Read rea
     }
     return "Gmsh cannot read '" + file + "'" + (last.empty() ? std::string(" (not a .geo or .msh file?)") : ": " + last);
   }
+}
+
+// Gmsh's element types with a 2D cell, and how many of their first nodes are the
+// corners (Gmsh numbers corner nodes first): 3-, 6-, 9-, 10-node triangles and 4-,
+// 8-, 9-node quadrangles; 0 for any other type.
+inline int GmshCornerCount2D(int type)
+{
+  switch (type) {
+  case 2: case 9: case 20: case 21: return 3;
+  case 3: case 10: case 16: return 4;
+  default: return 0;
+  }
+}
+
+// The word for a physical group of dimension dim (messages).
+inline const char *GmshDimensionWord(int dim) { return dim == 2 ? "surface" : dim == 1 ? "curve" : dim == 0 ? "point" : "volume"; }
+
+// Finds the physical group `name` of the open model: "" and its dimension and tag, or
+// what is wrong: two groups of that name, or none (the message lists the groups the file
+// has, with their dimensions; `how_to_name` says how to name one when it has none).
+inline std::string FindPhysicalGroup(const std::string &file, const std::string &name, const std::string &how_to_name, int *dim, int *tag)
+{
+  std::vector<std::pair<int, int>> groups;
+  gmsh::model::getPhysicalGroups(groups);
+  std::string have;
+  *dim = *tag = -1;
+  for (const auto &[d, t] : groups) {
+    std::string group_name;
+    gmsh::model::getPhysicalName(d, t, group_name);
+    if (group_name != name) {
+      have += (have.empty() ? "" : ", ") + (group_name.empty() ? "(unnamed, tag " + std::to_string(t) + ")" : "'" + group_name + "'") + " (" +
+              GmshDimensionWord(d) + ")";
+      continue;
+    }
+    if (*dim >= 0) return "'" + file + "' has two physical groups named '" + name + "': give them different names";
+    *dim = d, *tag = t;
+  }
+  if (*dim < 0)
+    return "'" + file + "' has no physical group named '" + name + "' " + (have.empty() ? "(it names none: " + how_to_name + ")" : "(it has " + have + ")");
+  return "";
 }
 
 } // namespace bapd

@@ -31,14 +31,17 @@ enum class PatchCorrection { off, lambda, virial };
 
 // A 3D body (-body_dimension 3, or implied by a 3D solid; issue 21 stage 4;
 // docs/options.md "3D bodies"): the solids (boxes, cylinders, spheres, Gmsh volumes)
-// and planar polygon notches of nd/shape3d.hpp on a lattice of spacing dx, or the points
-// of a 3D cloud (nd/point_cloud3d.hpp) clipped by the solids. Checked whole by the scene
+// and planar polygon notches of nd/shape3d.hpp on a lattice of spacing dx, or given
+// points clipped by the solids: a 3D cloud (nd/point_cloud3d.hpp) or the tetrahedron
+// centroids of a Gmsh volume (nd::tetrahedron_centroids). Checked whole by the scene
 // (scene_body.cpp): the points are built once there, for their count, their extent (the
 // faces of the load sets) and the one-piece check.
 struct Body3D {
   nd::SolidBody                      solid;        // dx, origin (0, 0, 0), solids in order, notches
   std::vector<std::string>           solid_names;  // -body_shapes name of each solid, for messages
+  std::vector<std::string>           notch_names;  // -body_shapes name of each notch (solid.notches)
   std::shared_ptr<const PointCloud>  given_points; // -body_cloud in 3D (x: 3 a point), clipped; null: the lattice
+  bool                               centroids = false; // given_points are the tetrahedron centroids of the first solid (a mesh)
   std::vector<int64_t>               given_block;  // block id of each given point
   std::string                        source;       // the cloud file, for messages
   int64_t                            points = 0;   // material points of the body
@@ -107,8 +110,13 @@ struct Scene {
 // message is what PetscErrorMessage returns). With -help it lists the options,
 // validates nothing and returns with scene->help_only set.
 PetscErrorCode SceneFromOptions(MPI_Comm comm, Scene *scene);
-// Prints the scene in a few lines (rank 0).
+// Prints the scene in a few lines (rank 0): SceneText.
 PetscErrorCode SceneView(MPI_Comm comm, const Scene &scene);
+// The scene in a few lines: the body (2D: the sheet, lattice, holes, shapes, notches;
+// 3D: the lattice or cloud, point count, the extent of the points' cells, each solid and
+// notch by name), horizon, material, force, failure, load sets (3D: faces by axis, z
+// components), schedule, probes, time stepping and output.
+std::string SceneText(const Scene &scene);
 
 // Warnings issued by the last SceneFromOptions (also printed on rank 0, to stderr).
 const std::vector<std::string> &SceneWarnings();

@@ -80,6 +80,7 @@ PetscErrorCode CheckLoading(MPI_Comm comm, const SceneInput &in, Scene *scene);
 // The Gmsh files the body reads (its mesh shapes): where a physical group's file
 // defaults to (load sets and probes by group).
 std::vector<std::string> BodyGmshFiles(const Body2D &body);
+std::vector<std::string> BodyGmshFiles(const Body3D &body); // (its mesh solids)
 // Probes (scene_probes.cpp): -probes, -probe_NAME_at or -probe_NAME_group.
 PetscErrorCode ReadProbes(MPI_Comm comm, SceneInput *in);
 PetscErrorCode CheckProbes(MPI_Comm comm, const SceneInput &in, Scene *scene);

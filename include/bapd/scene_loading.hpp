@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "bapd/nd/shape3d.hpp"
 #include "bapd/shape.hpp"
 
 namespace bapd {
@@ -41,7 +42,9 @@ enum class GripPlacement { outside, inside };
 // In 3D (Scene::dimension 3, issue 21 stage 4) the edge regions are the faces of the
 // body's extent (Body3D::lo, hi): left x-, right x+, bottom y-, top y+, back z-, front
 // z+ (the words x-, x+, y-, y+, z-, z+ name them too), always inside; a box has six
-// numbers; a block is a block id of a 3D cloud; polygon, curve and group are 2D only.
+// numbers; a group is a physical group of the body's Gmsh volume (a volume: the points
+// inside it; a surface, curve or point: those closer than `depth` to it); a block is a
+// block id of a 3D cloud; polygon and curve are 2D only.
 struct LoadSet {
   enum class Region { top, bottom, left, right, box, polygon, curve, group, block, front, back };
   std::string   name;
@@ -65,6 +68,9 @@ struct LoadSet {
   double              depth = 0.0;          // [m]
   double              reach[4] = {0, 0, 0, 0}; // the segments' bounding box grown by depth
   std::string         group, file;          // group: the physical group and its Gmsh file
+  // group of a 3D body: the physical group's elements (a volume's tetrahedra; a surface's
+  // triangles, a curve's segments or a point's nodes with `depth`), nd/shape3d.hpp.
+  nd::ElementRegion   elements;
   // block: the given points (-body_cloud) of block id `block`, found by position:
   // their (x, y) (3D: (x, y, z)), sorted, compared bit for bit (a point keeps the
   // coordinates read from the cloud, and two points never share a position: the cloud

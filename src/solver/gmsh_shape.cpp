@@ -14,18 +14,6 @@ namespace bapd {
 
 namespace {
 
-// Gmsh's element types with a 2D cell, and how many of their first nodes are the
-// corners (Gmsh numbers corner nodes first): 3-, 6-, 9-, 10-node triangles and 4-,
-// 8-, 9-node quadrangles.
-int CornerCount(int type)
-{
-  switch (type) {
-  case 2: case 9: case 20: case 21: return 3;
-  case 3: case 10: case 16: return 4;
-  default: return 0;
-  }
-}
-
 // Opens `file` (WithGmshFile) and runs `read` on the model, meshed in 2D unless the
 // file holds 2D elements already. Returns what went wrong or "".
 template <class Read> std::string WithMeshedFile(const std::string &file, Read read)
@@ -80,7 +68,7 @@ std::string AppendTriangles(const NodeTable &table, int tag, std::vector<double>
     int                 dim, order, per, primary;
     std::vector<double> local;
     gmsh::model::mesh::getElementProperties(types[t], name, dim, order, per, local, primary);
-    const int n_corners = CornerCount(types[t]);
+    const int n_corners = GmshCornerCount2D(types[t]);
     if (n_corners == 0) return "2D elements of a kind bapd does not read (" + name + "): mesh with triangles or quadrangles";
     for (std::size_t e = 0; e + per <= nodes[t].size(); e += (std::size_t)per) {
       const std::size_t *n     = &nodes[t][e];
@@ -113,8 +101,6 @@ void AppendSegments(const NodeTable &table, int dim, int tag, std::vector<double
   }
 }
 
-const char *DimensionWord(int dim) { return dim == 2 ? "surface" : dim == 1 ? "curve" : dim == 0 ? "point" : "volume"; }
-
 } // namespace
 
 std::string ReadGmshTriangles(const std::string &file, TriangleSet *triangles)
@@ -136,37 +122,26 @@ std::string ReadGmshGroup(const std::string &file, const std::string &name, Gmsh
   *group = GmshGroup{};
   group->name = name;
   return WithMeshedFile(file, [&]() -> std::string {
-    std::vector<std::pair<int, int>> groups;
-    gmsh::model::getPhysicalGroups(groups);
-    std::string have;
-    for (const auto &[dim, tag] : groups) {
-      std::string group_name;
-      gmsh::model::getPhysicalName(dim, tag, group_name);
-      if (group_name != name) {
-        have += (have.empty() ? "" : ", ") + (group_name.empty() ? "(unnamed, tag " + std::to_string(tag) + ")" : "'" + group_name + "'") +
-                " (" + DimensionWord(dim) + ")";
-        continue;
-      }
-      if (group->dim >= 0) return "'" + file + "' has two physical groups named '" + name + "': give them different names";
-      if (dim > 2) return "physical group '" + name + "' of '" + file + "' is a volume: bapd is 2D; name a surface, curve or point";
-      group->dim = dim;
-      const NodeTable  table;
-      std::vector<int> entities;
-      gmsh::model::getEntitiesForPhysicalGroup(dim, tag, entities);
-      for (int entity : entities) {
-        if (dim == 2) {
-          const std::string kind = AppendTriangles(table, entity, group->triangles.corners);
-          if (!kind.empty()) return "physical group '" + name + "' of '" + file + "' has " + kind;
-        } else AppendSegments(table, dim, entity, group->segments);
-      }
-      if (group->triangles.corners.empty() && group->segments.empty())
-        return "physical group '" + name + "' of '" + file + "' holds no mesh element: is it a group of meshed entities?";
+    int               dim, tag;
+    const std::string problem = FindPhysicalGroup(file, name,
+                                                  "add one, e.g. Physical Surface(\"" + name + "\") = {1}; or Physical Curve(\"" + name +
+                                                      "\") = {3};",
+                                                  &dim, &tag);
+    if (!problem.empty()) return problem;
+    if (dim > 2) return "physical group '" + name + "' of '" + file + "' is a volume: bapd is 2D; name a surface, curve or point";
+    group->dim = dim;
+    const NodeTable  table;
+    std::vector<int> entities;
+    gmsh::model::getEntitiesForPhysicalGroup(dim, tag, entities);
+    for (int entity : entities) {
+      if (dim == 2) {
+        const std::string kind = AppendTriangles(table, entity, group->triangles.corners);
+        if (!kind.empty()) return "physical group '" + name + "' of '" + file + "' has " + kind;
+      } else AppendSegments(table, dim, entity, group->segments);
     }
-    if (group->dim < 0)
-      return "'" + file + "' has no physical group named '" + name + "' " +
-             (have.empty() ? "(it names none: add one, e.g. Physical Surface(\"" + name + "\") = {1}; or Physical Curve(\"" + name + "\") = {3};)"
-                           : "(it has " + have + ")");
-    if (group->dim == 2) index_triangles(group->triangles);
+    if (group->triangles.corners.empty() && group->segments.empty())
+      return "physical group '" + name + "' of '" + file + "' holds no mesh element: is it a group of meshed entities?";
+    if (dim == 2) index_triangles(group->triangles);
     return "";
   });
 }

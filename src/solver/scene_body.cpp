@@ -171,6 +171,12 @@ PetscErrorCode CheckMemory(MPI_Comm comm, const Scene &scene, int64_t points, do
   // Given points have no -body_dx (it is refused with them): the fix is fewer points at
   // their source, about needed / available times fewer (a spacing that much coarser).
   const Body2D &b = scene.body;
+  if (scene.body3d.centroids)
+    SETERRQ(comm, PETSC_ERR_USER, "%s",
+            Format("-body_%s_discretisation centroids: the tetrahedra of '%s' give %s: mesh it about %.2g times coarser, use the "
+                   "lattice (-body_dx) instead, or run on more machines",
+                   scene.body3d.solid_names[0].c_str(), scene.body3d.source.c_str(), what.c_str(), 1.05 * std::cbrt(needed / available))
+                .c_str());
   if (scene.body3d.given_points)
     SETERRQ(comm, PETSC_ERR_USER, "%s",
             Format("-body_cloud '%s' gives %s: give a cloud about %.2g times coarser in spacing, a smaller -horizon_factor (bonds go as "
@@ -363,7 +369,7 @@ PetscErrorCode CheckShape3D(MPI_Comm comm, const ShapeInput &in, bool first_soli
                     {in.angle != 0, false, "angle"},
                     {!in.points.empty(), type == "notch", "points"},
                     {!in.file.empty(), type == "mesh", "file"},
-                    {Lower(in.discretisation) != "lattice", false, "discretisation"},
+                    {Lower(in.discretisation) != "lattice", type == "mesh", "discretisation"},
                     {in.op_set, type != "notch", "op"}};
   for (const auto &p : parameters)
     SceneCheck(!p.given || p.wanted, comm, "-body_%s_%s is not a parameter of a 3D %s: remove it, or change -body_%s_type", n, p.option,
@@ -378,6 +384,7 @@ PetscErrorCode CheckShape3D(MPI_Comm comm, const ShapeInput &in, bool first_soli
     SceneCheck(problem.empty(), comm, "-body_%s_points (notch '%s'): %s; give the vertices in order around one plane polygon", n, n,
                problem.c_str());
     body->solid.notches.push_back(notch);
+    body->notch_names.push_back(in.name);
     PetscFunctionReturn(0);
   }
   nd::Solid::Op op = first_solid ? nd::Solid::Op::add : nd::Solid::Op::subtract; // the defaults (-body_NAME_op's help)
@@ -439,24 +446,55 @@ PetscErrorCode CheckBody3D(MPI_Comm comm, const SceneInput &in, Scene *scene)
     SceneCheck(!o.given, comm, "%s is an option of the 2D sheet, and this body is 3D (-body_dimension 3): remove it; %s", o.option, o.fix);
   b = Body3D();
   for (const ShapeInput &si : in.shapes) PetscCall(CheckShape3D(comm, si, b.solid.solids.empty(), &b));
+  // Given points instead of the lattice: a 3D cloud, or the element centroids of one mesh
+  // solid (-body_S_discretisation centroids, the first solid: the body is its tetrahedra).
+  std::size_t centroid_solid = b.solid.solids.size(); // none
+  for (const ShapeInput &si : in.shapes) {
+    const char *n = si.name.c_str();
+    if (Lower(si.discretisation) == "lattice") continue;
+    SceneCheck(Lower(si.discretisation) == "centroids", comm, "-body_%s_discretisation '%s' is not a choice: choose lattice or centroids", n,
+               si.discretisation.c_str());
+    SceneCheck(centroid_solid == b.solid.solids.size(), comm,
+               "-body_%s_discretisation centroids: another mesh already gives the body's points as its centroids: keep one", n);
+    SceneCheck(in.cloud.empty(), comm, "-body_%s_discretisation centroids and -body_cloud both give the body's points: keep one", n);
+    centroid_solid = static_cast<std::size_t>(std::find(b.solid_names.begin(), b.solid_names.end(), si.name) - b.solid_names.begin());
+    SceneCheck(centroid_solid == 0, comm,
+               "-body_%s_discretisation centroids: the mesh whose tetrahedra are the points must be the first solid of -body_shapes (the "
+               "others may cut it): list '%s' first",
+               n, n);
+  }
+  const bool centroids = centroid_solid < b.solid.solids.size();
   PointCloud points;
-  if (!in.cloud.empty()) {
-    SceneCheck(!in.dx_set, comm,
-               "-body_dx is the lattice spacing, but -body_cloud gives the body's points, each with its own volume: remove -body_dx");
+  if (!in.cloud.empty() || centroids) {
+    const std::string source = centroids ? "-body_" + b.solid_names[centroid_solid] + "_discretisation centroids" : "-body_cloud";
+    SceneCheck(!in.dx_set, comm, "-body_dx is the lattice spacing, but %s gives the body's points, each with its own volume: remove -body_dx",
+               source.c_str());
     for (std::size_t k = 0; k < b.solid.solids.size(); ++k)
-      SceneCheck(b.solid.solids[k].op != nd::Solid::Op::add, comm,
-                 "-body_%s: the points of -body_cloud are the body, so a solid can only cut them: set -body_%s_op subtract or intersect",
-                 b.solid_names[k].c_str(), b.solid_names[k].c_str());
+      SceneCheck(k == centroid_solid || b.solid.solids[k].op != nd::Solid::Op::add, comm,
+                 "-body_%s: the points of %s are the body, so a solid can only cut them: set -body_%s_op subtract or intersect",
+                 b.solid_names[k].c_str(), source.c_str(), b.solid_names[k].c_str());
     PointCloud           read;
     std::vector<int64_t> block;
-    const std::string    problem = nd::read_point_cloud_3d(in.cloud, &read, &block);
-    SceneCheck(problem.empty(), comm, "-body_cloud: %s", problem.c_str());
+    if (centroids) {
+      const nd::TetrahedronSet &mesh = *b.solid.solids[centroid_solid].mesh;
+      read                           = nd::tetrahedron_centroids(mesh);
+      block.assign(read.size(), 0);
+      for (std::size_t p = 0; p < read.size(); ++p)
+        SceneCheck(read.volume[p] > 0, comm,
+                   "%s: tetrahedron %zu of '%s' has zero volume, so its centroid point would have no volume: fix the mesh", source.c_str(),
+                   p + 1, mesh.file.c_str());
+    } else {
+      const std::string problem = nd::read_point_cloud_3d(in.cloud, &read, &block);
+      SceneCheck(problem.empty(), comm, "-body_cloud: %s", problem.c_str());
+    }
     auto kept = std::make_shared<PointCloud>();
     for (std::size_t p = 0; p < read.size(); ++p) {
-      bool keep = true; // the cloud, then each solid's cut in order
-      for (const nd::Solid &solid : b.solid.solids) {
-        const bool in_solid = nd::solid_contains(solid, &read.x[3 * p]);
-        keep                = solid.op == nd::Solid::Op::subtract ? keep && !in_solid : keep && in_solid;
+      bool keep = true; // the points, then each solid's cut in order (the centroids' own mesh holds them all)
+      for (std::size_t k = 0; k < b.solid.solids.size(); ++k) {
+        if (k == centroid_solid) continue;
+        const nd::Solid &solid    = b.solid.solids[k];
+        const bool       in_solid = nd::solid_contains(solid, &read.x[3 * p]);
+        keep                      = solid.op == nd::Solid::Op::subtract ? keep && !in_solid : keep && in_solid;
       }
       if (!keep) continue;
       kept->x.insert(kept->x.end(), &read.x[3 * p], &read.x[3 * p + 3]);
@@ -464,12 +502,13 @@ PetscErrorCode CheckBody3D(MPI_Comm comm, const SceneInput &in, Scene *scene)
       kept->natural_id.push_back(static_cast<int64_t>(kept->volume.size()) - 1);
       b.given_block.push_back(block[p]);
     }
-    SceneCheck(kept->size() > 0, comm, "-body_cloud '%s': the solids of -body_shapes cut away all %zu of its points: check each one's -op",
-               in.cloud.c_str(), read.size());
+    SceneCheck(kept->size() > 0, comm, "%s '%s': the solids of -body_shapes cut away all %zu of its points: check each one's -op", source.c_str(),
+               centroids ? b.solid.solids[centroid_solid].mesh->file.c_str() : in.cloud.c_str(), read.size());
     double smallest = std::numeric_limits<double>::max();
     for (double v : kept->volume) smallest = std::min(smallest, std::cbrt(v));
     b.solid.dx     = smallest; // the smallest spacing cbrt(V): the faces' row depth
-    b.source       = in.cloud;
+    b.source       = centroids ? b.solid.solids[centroid_solid].mesh->file : in.cloud;
+    b.centroids    = centroids;
     b.given_points = kept;
     points         = *kept;
   } else {
@@ -556,7 +595,7 @@ PetscErrorCode ReadBody(MPI_Comm comm, Scene *scene, SceneInput *in)
                          &shape.file));
       PetscCall(r.String("-discretisation",
                          "Mesh: lattice (the lattice clipped to the mesh) | centroids (one point per 2D element, volume = area x "
-                         "thickness)",
+                         "thickness; 3D: per tetrahedron, volume = its volume)",
                          &shape.discretisation));
       return 0;
     }));

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "bapd/gmsh_shape.hpp"
+#include "bapd/gmsh_volume3d.hpp"
 #include "bapd/options_reader.hpp"
 #include "bapd/scene_input.hpp"
 
@@ -28,7 +29,8 @@ bool ParseComponent(const std::string &text, ComponentLoad *load)
 }
 
 const char *const kRegionChoices   = "top, bottom, left, right, box, polygon, curve, group or block";
-const char *const kRegionChoices3D = "a face (left or x-, right or x+, bottom or y-, top or y+, back or z-, front or z+), box or block";
+const char *const kRegionChoices3D =
+    "a face (left or x-, right or x+, bottom or y-, top or y+, back or z-, front or z+), box, group (a Gmsh physical group) or block";
 
 bool IsFace(LoadSet::Region r)
 {
@@ -66,6 +68,42 @@ PetscErrorCode ReadGroup(MPI_Comm comm, const LoadInput &li, const Body2D &body,
     set->area.file      = set->file;
     set->area.triangles = std::move(group.triangles);
   } else set->segments = std::move(group.segments);
+  PetscFunctionReturn(0);
+}
+
+// Region group of a 3D body: the physical group -load_S_group of -load_S_file (default:
+// the body's one Gmsh volume) as an nd::ElementRegion: a physical volume holds the points
+// inside its tetrahedra; a physical surface, curve or point the points closer than
+// -load_S_depth (default -load_S_layers x dx, one layer) to its elements.
+PetscErrorCode ReadGroup3D(MPI_Comm comm, const LoadInput &li, const Body3D &body, LoadSet *set)
+{
+  const char *n = li.name.c_str();
+  PetscFunctionBeginUser;
+  SceneCheck(!li.group.empty(), comm,
+             "-load_%s_group is required with -load_%s_region group: give the name of a physical group of the Gmsh file (a Physical "
+             "Surface for a face)%s",
+             n, n, MisspeltHint("-load_" + li.name + "_group").c_str());
+  set->file = li.file;
+  if (set->file.empty()) {
+    const std::vector<std::string> files = BodyGmshFiles(body);
+    SceneCheck(files.size() == 1, comm,
+               "-load_%s_file is required for load set '%s': the body reads %zu Gmsh files (mesh solids), so the file of group '%s' is "
+               "not implied: give the .geo or .msh that names it",
+               n, n, files.size(), li.group.c_str());
+    set->file = files[0];
+  }
+  set->group = li.group;
+  SceneCheck(!(li.layers_set && li.depth_set), comm, "-load_%s_layers and -load_%s_depth both give the set's depth: keep one (rows, or metres)",
+             n, n);
+  SceneCheck(!li.depth_set || li.depth > 0, comm, "-load_%s_depth %g m: a depth must be > 0", n, li.depth);
+  SceneCheck(li.layers >= 1, comm, "-load_%s_layers %" PetscInt_FMT ": take at least one point layer", n, li.layers);
+  set->depth                = li.depth_set ? li.depth : static_cast<double>(li.layers) * body.solid.dx;
+  const std::string problem = ReadGmshGroup3D(set->file, li.group, set->depth, &set->elements);
+  SceneCheck(problem.empty(), comm, "-load_%s_group %s: %s", n, li.group.c_str(), problem.c_str());
+  SceneCheck(set->elements.dim < 3 || !(li.layers_set || li.depth_set), comm,
+             "-load_%s_%s is set but group '%s' is a physical volume: the set holds the points inside its elements; remove it (a depth "
+             "applies to a physical surface, curve or point)",
+             n, li.layers_set ? "layers" : "depth", li.group.c_str());
   PetscFunctionReturn(0);
 }
 
@@ -122,18 +160,18 @@ PetscErrorCode CheckLoadSet3D(MPI_Comm comm, const LoadInput &li, const SceneInp
   const Body3D &b = scene.body3d;
   const double  dx = b.solid.dx;
   PetscFunctionBeginUser;
-  SceneCheck(set->region != LoadSet::Region::polygon && set->region != LoadSet::Region::curve && set->region != LoadSet::Region::group, comm,
+  SceneCheck(set->region != LoadSet::Region::polygon && set->region != LoadSet::Region::curve, comm,
              "-load_%s_region %s is a 2D region (a shape in the sheet's plane), and this body is 3D: choose %s", n, to_string(set->region),
              kRegionChoices3D);
-  const bool face = IsFace(set->region);
+  const bool face = IsFace(set->region), group = set->region == LoadSet::Region::group;
   for (const auto &[given, option, fits, which] :
        {std::tuple{li.box_set, "box", set->region == LoadSet::Region::box, "region box"},
         {li.points_set, "points", false, "the 2D regions polygon and curve"},
-        {!li.group.empty(), "group", false, "the 2D region group"},
-        {!li.file.empty(), "file", false, "the 2D region group"},
+        {!li.group.empty(), "group", group, "region group"},
+        {!li.file.empty(), "file", group, "region group"},
         {li.block_set, "block", set->region == LoadSet::Region::block, "region block"},
-        {li.layers_set, "layers", face, "the faces"},
-        {li.depth_set, "depth", face, "the faces"}})
+        {li.layers_set, "layers", face || group, "the faces and group"},
+        {li.depth_set, "depth", face || group, "the faces and group"}})
     SceneCheck(!given || fits, comm, "-load_%s_%s is set but -load_%s_region is %s: it is used by %s only; remove it or change the region", n,
                option, n, to_string(set->region), which);
   // The faces of a 3D body hold its own points: there are no grip rows outside it.
@@ -164,6 +202,8 @@ PetscErrorCode CheckLoadSet3D(MPI_Comm comm, const LoadInput &li, const SceneInp
                b.hi[2]);
   } else if (set->region == LoadSet::Region::block) {
     PetscCall(ReadBlock(comm, li, scene, set));
+  } else if (group) {
+    PetscCall(ReadGroup3D(comm, li, b, set));
   } else {
     SceneCheck(!(li.layers_set && li.depth_set), comm,
                "-load_%s_layers and -load_%s_depth both give the grip's depth: keep one (rows, or metres)", n, n);
@@ -218,19 +258,19 @@ PetscErrorCode ReadLoading(MPI_Comm comm, Scene *scene, SceneInput *in)
       PetscCall(r.RealArray("-box", "Region box xmin,ymin,xmax,ymax [m] (3D: xmin,ymin,zmin,xmax,ymax,zmax)", &set.box, &set.box_set));
       PetscCall(r.RealArray("-points", "Region polygon (closed) or curve (open polyline): vertices x0,y0,x1,y1,... [m]", &set.points,
                             &set.points_set));
-      PetscCall(r.String("-group", "Region group: the name of a physical surface, curve or point of the Gmsh file", &set.group));
-      PetscCall(r.String("-file", "Region group: the Gmsh .geo or .msh file (default: the body's mesh shape's file)", &set.file));
+      PetscCall(r.String("-group", "Region group: the name of a physical surface, curve or point of the Gmsh file (3D: also a volume)", &set.group));
+      PetscCall(r.String("-file", "Region group: the Gmsh .geo or .msh file (default: the body's mesh shape's file; 3D: its mesh solid's)", &set.file));
       PetscCall(r.Int("-block", "Region block: the block id (-body_cloud's block_id column) whose points the set holds", &set.block, &set.block_set));
       PetscCall(r.String("-placement", "outside (beyond the specimen's edge) | inside (the specimen's edge rows) | auto (-load_grip_placement's); edge "
                          "regions (the others are inside)",
                          &set.placement));
       PetscCall(r.Int("-layers",
                       "Point rows the grip holds at its edge [-] (default: 2 horizons deep outside, 1 inside); curve and group "
-                      "curve/point: the points closer than layers x dx",
+                      "curve/point (3D: also surface): the points closer than layers x dx",
                       &set.layers, &set.layers_set));
       PetscCall(r.Real("-depth",
                        "Grip depth instead of -layers: the rows whose centres lie within it [m] (default outside: 2 horizons); curve "
-                       "and group curve/point: the points closer than it (default dx)",
+                       "and group curve/point (3D: also surface): the points closer than it (default dx)",
                        &set.depth, &set.depth_set));
       PetscCall(r.String("-x", "x component: free | fixed (u = 0) | stretch (follows the schedule)", &set.x));
       PetscCall(r.String("-y", "y component: free | fixed (u = 0) | stretch (follows the schedule)", &set.y));
@@ -524,6 +564,14 @@ std::vector<std::string> BodyGmshFiles(const Body2D &body)
   std::vector<std::string> files;
   for (const Shape &s : body.shapes)
     if (s.kind == Shape::Kind::mesh && std::find(files.begin(), files.end(), s.file) == files.end()) files.push_back(s.file);
+  return files;
+}
+
+std::vector<std::string> BodyGmshFiles(const Body3D &body)
+{
+  std::vector<std::string> files;
+  for (const nd::Solid &s : body.solid.solids)
+    if (s.kind == nd::Solid::Kind::mesh && std::find(files.begin(), files.end(), s.mesh->file) == files.end()) files.push_back(s.mesh->file);
   return files;
 }
 

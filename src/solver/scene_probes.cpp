@@ -7,6 +7,7 @@
 #include <string>
 
 #include "bapd/gmsh_shape.hpp"
+#include "bapd/gmsh_volume3d.hpp"
 #include "bapd/lattice.hpp"
 #include "bapd/options_reader.hpp"
 #include "bapd/scene_input.hpp"
@@ -90,14 +91,40 @@ PetscErrorCode ProbeAtBlock(MPI_Comm comm, const ProbeInput &pi, const Body2D &b
 }
 
 // A probe of a 3D body: -probe_NAME_at x,y,z on material (Body3D's solids keep it; for
-// given points, within the points' extent), or -probe_NAME_block of a 3D cloud.
+// given points, within the points' extent), -probe_NAME_group (a Gmsh physical point),
+// or -probe_NAME_block of a 3D cloud.
 PetscErrorCode CheckProbe3D(MPI_Comm comm, const ProbeInput &pi, const Body3D &b, Probe *p)
 {
   const char *n = pi.name.c_str();
   PetscFunctionBeginUser;
-  SceneCheck(pi.group.empty(), comm,
-             "-probe_%s_group: Gmsh physical points place probes on a 2D body; this body is 3D: place the probe by -probe_%s_at x,y,z", n,
-             n);
+  if (!pi.group.empty()) { // a physical point (one node) of the body's Gmsh volume, or of -probe_NAME_file
+    std::string file = pi.file;
+    if (file.empty()) {
+      const std::vector<std::string> files = BodyGmshFiles(b);
+      SceneCheck(files.size() == 1, comm,
+                 "-probe_%s_file is required for probe '%s': the body reads %zu Gmsh files (mesh solids), so the file of group '%s' is "
+                 "not implied: give the .geo or .msh that names it",
+                 n, n, files.size(), pi.group.c_str());
+      file = files[0];
+    }
+    nd::ElementRegion group;
+    const std::string problem = ReadGmshGroup3D(file, pi.group, 0.0, &group);
+    SceneCheck(problem.empty(), comm, "-probe_%s_group %s: %s", n, pi.group.c_str(), problem.c_str());
+    SceneCheck(group.dim == 0 && group.segments.size() == 6, comm,
+               "-probe_%s_group %s: a probe is one point, but group '%s' of '%s' is %s: name a physical point of one node "
+               "(Physical Point(\"%s\") = {k};), or place the probe by -probe_%s_at x,y,z",
+               n, pi.group.c_str(), pi.group.c_str(), file.c_str(),
+               group.dim == 3   ? "a physical volume"
+               : group.dim == 2 ? "a physical surface"
+               : group.dim == 1 ? "a physical curve"
+                                : "several points",
+               pi.group.c_str(), n);
+    p->x = group.segments[0], p->y = group.segments[1], p->z = group.segments[2];
+    SceneCheck(b.given_points || nd::body_contains(b.solid.solids, &group.segments[0]), comm,
+               "-probe_%s_group %s at (%g, %g, %g) m lies where the body's solids leave no material: name a point on the body", n,
+               pi.group.c_str(), p->x, p->y, p->z);
+    PetscFunctionReturn(0);
+  }
   if (pi.block_set) {
     SceneCheck(b.given_points != nullptr, comm,
                "-probe_%s_block: block ids come with the points of a cloud (-body_cloud, column block_id), and this body is a lattice: "

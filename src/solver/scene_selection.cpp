@@ -132,7 +132,8 @@ template <int D> bool LoadSetContains(const Scene &scene, const LoadSet &set, co
         if (!(p[r] >= set.box[r] && p[r] <= set.box[3 + r])) return false;
       return true;
     case LoadSet::Region::block: return AmongSorted<3>(set.block_points, p);
-    default: return FaceContains(scene, set, p); // (polygon, curve, group: refused in 3D by CheckLoading)
+    case LoadSet::Region::group: return nd::region_contains(set.elements, p);
+    default: return FaceContains(scene, set, p); // (polygon, curve: refused in 3D by CheckLoading)
     }
   }
   const Body2D &b     = scene.body;

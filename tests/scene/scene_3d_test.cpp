@@ -20,6 +20,7 @@
 #include "bapd/layout.hpp"
 #include "bapd/loading.hpp"
 #include "bapd/nd/shape3d.hpp"
+#include "bapd/options_reader.hpp"
 #include "bapd/relaxation.hpp"
 #include "bapd/scene.hpp"
 
@@ -158,6 +159,43 @@ TEST_F(Scene3D, ReadsTheBodyItsExtentAndItsPointCount)
   EXPECT_EQ(scene.dimension, 3);
   Scene flat;
   EXPECT_EQ(flat.dimension, 2);
+}
+
+// The scene's view of a 3D body (SceneText): the lattice, point count and extent, each
+// solid and notch by name and type, the faces by axis with their z components, probes
+// at (x, y, z); of a 3D cloud: its file and spacing, a block and a box of six numbers.
+TEST_F(Scene3D, ViewNamesTheSolidsNotchesFacesAndProbes)
+{
+  Scene scene;
+  ASSERT_EQ(Read(With(Block(), {{"-load_right_x_scale", "0.5"}}), &scene), 0) << ErrorText();
+  const std::string text = bapd::SceneText(scene);
+  const std::string expected[] = {
+    bapd::Format("  body      3D, dx 0.001 m: %lld points, cells in [0, 0.01] x [0, 0.008] x [0, 0.006] m, 2 solid(s), 1 notch(es)\n",
+                 static_cast<long long>(scene.body3d.points)),
+    "            solid block: add a box, [0, 0.01] x [0, 0.008] x [0, 0.006] m\n",
+    "            solid hole: subtract a sphere, centre (0.005, 0.004, 0.003) m, radius 0.0016 m\n",
+    "            notch crack: a planar polygon of 4 vertices, (0.001, 0.004, -0.001) (0.0026, 0.004, -0.001) (0.0026, 0.004, 0.007) "
+    "(0.001, 0.004, 0.007) m\n",
+    "  horizon   delta = 3.015 dx = 0.003015 m\n",
+    "  material  gent, 3D: mu ",
+    "  load set  left: x- face (left), 1 row(s) inside; x fixed, y fixed, z fixed\n",
+    "  load set  right: x+ face (right), 2 row(s) inside; x stretch (scale 0.5), y free, z fixed\n",
+    "; u = scale (lambda - 1) 0.008 m; grip field rigid\n",
+    "  probe     p at (0.0091, 0.0013, 0.0049) m\n",
+  };
+  for (const std::string &line : expected) EXPECT_NE(text.find(line), std::string::npos) << "expected '" << line << "' in:\n" << text;
+  EXPECT_EQ(text.find("plane_stress"), std::string::npos) << text; // (a 2D formulation means nothing in 3D)
+
+  Scene box;
+  ASSERT_EQ(Read(With(Without(Block(), "-body_hole_centre"), {{"-load_left_region", "box"}, {"-load_left_box", "0,0,0,0.002,0.008,0.006"},
+                                                              {"-body_hole_type", "cylinder"}, {"-body_hole_axis", "0.005,0.004,0,0.005,0.004,0.006"}}),
+                 &box),
+            0)
+      << ErrorText();
+  const std::string box_text = bapd::SceneText(box);
+  for (const std::string &line : std::vector<std::string>{"  load set  left: box [0, 0.002] x [0, 0.008] x [0, 0.006] m; x fixed, y fixed, z fixed\n",
+                                 "            solid hole: subtract a cylinder, axis (0.005, 0.004, 0)-(0.005, 0.004, 0.006) m, radius 0.0016 m\n"})
+    EXPECT_NE(box_text.find(line), std::string::npos) << "expected '" << line << "' in:\n" << box_text;
 }
 
 // Every load set region of a 3D body against a count over the lattice indices.
@@ -403,6 +441,15 @@ TEST_F(Scene3D, ACloudIsClippedByItsSolidsAndItsBlocksAreLoadSets)
   EXPECT_EQ(scene.body3d.points, 64 - 4); // the cut took i, j in {2, 3}, k = 0
   EXPECT_EQ(scene.loads[0].block_points.size(), 3u * 16);
   EXPECT_NEAR(scene.probes[0].z, 3.5e-3, 1e-18);
+  const std::string text = bapd::SceneText(scene);
+  // (the cells' extent: x -+ cbrt(1e-9) / 2, to round-off)
+  for (const std::string &line : std::vector<std::string>{
+         "  body      3D: 60 points of " + std::string(name) + " (spacing cbrt(V), the smallest 0.001 m), cells in [",
+         "0.004] m, 1 solid(s) cutting them, 0 notch(es)\n", std::string("            solid cut: subtract a box, [0.002, 0.004] x [0.002, 0.004] x [0, 0.001] m\n"),
+        std::string("  horizon   delta_i = 3.015 h_i, h_i = cbrt(V_i) (at least 0.003015 m)\n"),
+        std::string("  load set  b: block 2 of the cloud (16 points); x fixed, y free, z free\n"),
+        std::string("  probe     corner at (0.0035, 0.0035, 0.0035) m\n")})
+    EXPECT_NE(text.find(line), std::string::npos) << "expected '" << line << "' in:\n" << text;
   EXPECT_NE(Rejection(With(cloud, {{"-body_cut_op", "add"}})).find("can only cut them"), std::string::npos) << ErrorText();
   EXPECT_NE(Rejection(With(cloud, {{"-body_dx", "0.001"}})).find("-body_dx is the lattice spacing, but -body_cloud"), std::string::npos);
   if (rank == 0) std::remove(name);

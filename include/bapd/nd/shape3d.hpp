@@ -128,4 +128,39 @@ PointCloud make_solid_points(const SolidBody &body);
 
 const char *to_string(Solid::Kind kind);
 
+// The element centroids of a 3D mesh as given points (the 3D form of geometry.hpp's
+// element_centroids): one point a tetrahedron, at the mean of its four corners, volume =
+// its volume |det(b - a, c - a, d - a)| / 6, in the mesh's order (natural id = index).
+PointCloud tetrahedron_centroids(const TetrahedronSet &mesh);
+
+// The elements of a named Gmsh physical group of a 3D body as a region of points (a load
+// set or probe by group, gmsh_volume3d.hpp reads them): a physical volume holds the points
+// inside its tetrahedra (faces inclusive, as a mesh solid); a physical surface, curve or
+// point holds the points closer than `depth` to its triangles, line segments or nodes
+// (the 3D distance to the element, boundary included; a node is a segment of length 0).
+// On a face that lies on the lattice's cell faces, points sit (j + 1/2) dx from it, so a
+// depth of n dx holds exactly the n layers of cells next to it, as a face grip of n rows
+// (the rule of the 2D physical curve).
+struct ElementRegion {
+  int                                   dim = -1;   // 3, 2, 1 or 0
+  std::shared_ptr<const TetrahedronSet> tetrahedra; // dim 3 (indexed)
+  std::vector<double>                   triangles;  // dim 2: 9 numbers each [m]
+  std::vector<double>                   segments;   // dim 1 and 0: x0,y0,z0,x1,y1,z1 each [m]
+  double                                depth = 0;  // dim 2, 1, 0 [m]
+  std::array<double, 3>                 lo{}, hi{}; // the elements' bounding box grown by depth (set_reach)
+  std::size_t                           size() const
+  {
+    return dim == 3 ? (tetrahedra ? tetrahedra->size() : 0) : dim == 2 ? triangles.size() / 9 : segments.size() / 6;
+  }
+};
+// Sets region.lo, hi from its elements and depth (call after changing either).
+void set_reach(ElementRegion &region);
+// Whether the point lies in the region (the rule above).
+bool region_contains(const ElementRegion &region, const double *p);
+// Squared distances from p to the triangle (a, b, c) (its closest point: a vertex, an
+// edge or the inside; Ericson, Real-Time Collision Detection, 5.1.5) and to the segment
+// (a, b) (a point when a = b).
+double point_triangle_distance2(const double *p, const double *a, const double *b, const double *c);
+double point_segment_distance2(const double *p, const double *a, const double *b);
+
 } // namespace bapd::nd
