@@ -109,8 +109,9 @@ PetscErrorCode TimeStepControl::KrylovStart(MPI_Comm comm)
   PetscFunctionReturn(0);
 }
 
-// Arnoldi step j: w = A v_j (held dofs zero), h_ij = v_i . w for i <= j, w -= sum h_ij
-// v_i (twice: classical Gram-Schmidt loses orthogonality once, not twice), v_{j+1} =
+// Arnoldi step j: w = A v_j (held dofs zero), then for i <= j in turn h_ij = v_i . w and
+// w -= h_ij v_i (modified Gram-Schmidt: each h from the w already reduced), the whole
+// pass twice (one pass loses orthogonality to round-off growth, two do not), v_{j+1} =
 // w / |w| with h_{j+1,j} = |w|. H (upper Hessenberg) is the projection V^T A V; the
 // Rayleigh quotient x^T A x of x = V y is y^T H y = y^T sym(H) y, so the largest
 // eigenvalue of sym(H) is the largest quotient over the space. For the symmetric
