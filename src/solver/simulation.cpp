@@ -402,7 +402,7 @@ template <int D> PetscErrorCode SimulationD<D>::Advance(PetscInt steps)
 }
 
 // The driver at D = 2 and 3, chosen once from the scene (main.cpp); every file of
-// the driver instantiates the members it defines.
+// the driver instantiates the members it defines (the others one by one).
 template class SimulationD<2>;
 template class SimulationD<3>;
 

@@ -124,9 +124,18 @@ template <int D> PetscErrorCode SimulationD<D>::SetupTimeStepper()
   PetscFunctionReturn(0);
 }
 
-// The driver at D = 2 and 3, chosen once from the scene (main.cpp); every file of
-// the driver instantiates the members it defines.
-template class SimulationD<2>;
-template class SimulationD<3>;
+// The driver at D = 2 and 3 (main.cpp chooses one from the scene): the members defined
+// here, one by one. simulation.cpp instantiates the class, which covers only what it
+// defines; a class may be explicitly instantiated once in a program.
+#define BAPD_SIMULATION_DYNAMICS(D) \
+  template PetscErrorCode SimulationD<D>::ComputeForceDensity(const double *u_owned, double *force_density); \
+  template PetscErrorCode SimulationD<D>::Acceleration(const double *u_owned, double *a_owned); \
+  template PetscErrorCode SimulationD<D>::RHSPosition(TS, PetscReal, Vec V, Vec Udot, void *); \
+  template PetscErrorCode SimulationD<D>::RHSMomentum(TS, PetscReal, Vec U, Vec Vdot, void *ctx); \
+  template PetscErrorCode SimulationD<D>::RHSFull(TS, PetscReal, Vec X, Vec F, void *ctx); \
+  template PetscErrorCode SimulationD<D>::SetupTimeStepper();
+BAPD_SIMULATION_DYNAMICS(2)
+BAPD_SIMULATION_DYNAMICS(3)
+#undef BAPD_SIMULATION_DYNAMICS
 
 } // namespace bapd

@@ -237,9 +237,15 @@ template <int D> PetscErrorCode SimulationD<D>::CheckRunaway(PetscInt step, doub
   PetscFunctionReturn(0);
 }
 
-// The driver at D = 2 and 3, chosen once from the scene (main.cpp); every file of
-// the driver instantiates the members it defines.
-template class SimulationD<2>;
-template class SimulationD<3>;
+// The driver at D = 2 and 3 (main.cpp chooses one from the scene): the members defined
+// here, one by one. simulation.cpp instantiates the class, which covers only what it
+// defines; a class may be explicitly instantiated once in a program.
+#define BAPD_SIMULATION_HEALTH(D) \
+  template PetscErrorCode SimulationD<D>::CheckHealth(PetscInt step, double t, PetscBool *diverged); \
+  template PetscErrorCode SimulationD<D>::DiagnoseDivergence(); \
+  template PetscErrorCode SimulationD<D>::CheckRunaway(PetscInt step, double t, std::string *message);
+BAPD_SIMULATION_HEALTH(2)
+BAPD_SIMULATION_HEALTH(3)
+#undef BAPD_SIMULATION_HEALTH
 
 } // namespace bapd

@@ -504,9 +504,26 @@ template <int D> PetscErrorCode SimulationD<D>::GatherBrokenBonds(std::vector<st
   PetscFunctionReturn(0);
 }
 
-// The driver at D = 2 and 3, chosen once from the scene (main.cpp); every file of
-// the driver instantiates the members it defines.
-template class SimulationD<2>;
-template class SimulationD<3>;
+// The driver at D = 2 and 3 (main.cpp chooses one from the scene): the members defined
+// here, one by one. simulation.cpp instantiates the class, which covers only what it
+// defines; a class may be explicitly instantiated once in a program.
+#define BAPD_SIMULATION_HISTORY(D) \
+  template PetscErrorCode SimulationD<D>::OpenHistory(); \
+  template PetscErrorCode SimulationD<D>::Energies(double *kinetic, double *internal, Vec state); \
+  template PetscErrorCode SimulationD<D>::ReadProbes(const double *u_owned, double *probe_u); \
+  template PetscErrorCode SimulationD<D>::BrokenBondCount(PetscInt *count); \
+  template PetscErrorCode SimulationD<D>::WriteHistoryRow(PetscInt step, double t); \
+  template PetscErrorCode SimulationD<D>::CheckStaticHold(PetscInt step, double t); \
+  template PetscErrorCode SimulationD<D>::Progress(PetscInt step, double t, PetscBool force); \
+  template PetscErrorCode SimulationD<D>::TimeStepSummary(PetscInt steps); \
+  template PetscErrorCode SimulationD<D>::Summary(); \
+  template PetscErrorCode SimulationD<D>::ListOutputFiles(); \
+  template PetscErrorCode SimulationD<D>::WriteFinalState(); \
+  template PetscErrorCode SimulationD<D>::GatherDisplacement(std::vector<double> *u_natural); \
+  template PetscErrorCode SimulationD<D>::GatherNatural(const double *values, std::vector<double> *natural); \
+  template PetscErrorCode SimulationD<D>::GatherBrokenBonds(std::vector<std::pair<int64_t, int64_t>> *bonds);
+BAPD_SIMULATION_HISTORY(2)
+BAPD_SIMULATION_HISTORY(3)
+#undef BAPD_SIMULATION_HISTORY
 
 } // namespace bapd

@@ -449,9 +449,25 @@ template <int D> PetscErrorCode SimulationD<D>::RestoreCheckpoint()
   PetscFunctionReturn(0);
 }
 
-// The driver at D = 2 and 3, chosen once from the scene (main.cpp); every file of
-// the driver instantiates the members it defines.
-template class SimulationD<2>;
-template class SimulationD<3>;
+// The driver at D = 2 and 3 (main.cpp chooses one from the scene): the members defined
+// here, one by one. simulation.cpp instantiates the class, which covers only what it
+// defines; a class may be explicitly instantiated once in a program.
+#define BAPD_SIMULATION_OUTPUT(D) \
+  template PetscErrorCode SimulationD<D>::ReadOutputOptions(); \
+  template PetscErrorCode SimulationD<D>::SetupOutput(); \
+  template PetscErrorCode SimulationD<D>::CreateNaturalOrder(); \
+  template PetscErrorCode SimulationD<D>::SaveGoodState(PetscInt step, double t); \
+  template PetscErrorCode SimulationD<D>::OutputAfterStep(PetscInt step, double t); \
+  template PetscErrorCode SimulationD<D>::OutputOnDivergence(); \
+  template PetscErrorCode SimulationD<D>::OutputAtEnd(PetscInt step, double t); \
+  template PetscErrorCode SimulationD<D>::WriteFields(PetscInt step, double t); \
+  template PetscErrorCode SimulationD<D>::ComputePointQuantities(const double *u_owned, double *force_density, PointQuantities *quantities); \
+  template CheckpointState SimulationD<D>::CheckpointView(double *x); \
+  template PetscErrorCode SimulationD<D>::WriteCheckpointFile(PetscInt step, double t, const char *reason); \
+  template PetscErrorCode SimulationD<D>::RestoreSchedule(const CheckpointHeader &header); \
+  template PetscErrorCode SimulationD<D>::RestoreCheckpoint();
+BAPD_SIMULATION_OUTPUT(2)
+BAPD_SIMULATION_OUTPUT(3)
+#undef BAPD_SIMULATION_OUTPUT
 
 } // namespace bapd
