@@ -68,6 +68,10 @@ struct SceneInput {
 // Body (scene_body.cpp): -body_* and -horizon_factor.
 PetscErrorCode ReadBody(MPI_Comm comm, Scene *scene, SceneInput *in);
 PetscErrorCode CheckBody(MPI_Comm comm, const SceneInput &in, Scene *scene);
+// The parts of the body's check shared with the 3D body (scene_body3d.cpp).
+PetscErrorCode CheckHorizonFactor(MPI_Comm comm, const Scene &scene);
+bool           IsShape3D(const std::string &type); // box, cylinder, sphere, notch
+PetscErrorCode CheckBody3D(MPI_Comm comm, const SceneInput &in, Scene *scene);
 // Refuses a lattice that cannot fit in memory; after CheckLoading, which adds the rows
 // of the grips outside the sheet.
 PetscErrorCode CheckBodyFits(MPI_Comm comm, const Scene &scene);
