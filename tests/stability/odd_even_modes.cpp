@@ -46,7 +46,6 @@ template <int D, class Model> int symbol(const Model &model, double factor, bapd
   // (ranges of one point), then f_c = sum_j (t_cj - t_jc) V_j (eq 1, assemble_force_density's sum).
   const std::size_t b0 = fam.offsets[centre], b1 = fam.offsets[centre + 1];
   auto force_y = [&](const std::vector<double> &y) {
-    ws.reserve(fam);
     nd::compute_bond_forces<D>(form, model, cloud, y.data(), fam, geo, state, nullptr, t.data(), ws, centre, centre + 1);
     for (std::size_t b = b0; b < b1; ++b) {
       const std::size_t j = static_cast<std::size_t>(fam.neighbour[b]);
