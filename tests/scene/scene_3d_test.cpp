@@ -23,6 +23,7 @@
 #include "bapd/options_reader.hpp"
 #include "bapd/relaxation.hpp"
 #include "bapd/scene.hpp"
+#include "scene_reading.hpp"
 
 namespace {
 
@@ -79,47 +80,7 @@ Options Without(Options o, const std::string &name)
   return out;
 }
 
-std::string Join(const Options &options)
-{
-  std::string line;
-  for (const auto &[name, value] : options) line += name + (value.empty() ? "" : " " + value) + " ";
-  return line;
-}
-
-std::string ErrorText()
-{
-  const char *generic  = nullptr;
-  char       *specific = nullptr;
-  PetscErrorMessage(PETSC_ERR_USER, &generic, &specific);
-  return specific ? specific : "";
-}
-
-class Scene3D : public ::testing::Test {
-protected:
-  void SetUp() override
-  {
-    ASSERT_EQ(PetscOptionsClear(nullptr), 0);
-    ASSERT_EQ(PetscPushErrorHandler(PetscReturnErrorHandler, nullptr), 0);
-  }
-  void TearDown() override
-  {
-    PetscPopErrorHandler();
-    PetscOptionsClear(nullptr);
-  }
-  PetscErrorCode Read(const Options &options, Scene *scene)
-  {
-    PetscOptionsClear(nullptr);
-    if (PetscOptionsInsertString(nullptr, Join(options).c_str())) return PETSC_ERR_LIB;
-    return bapd::SceneFromOptions(PETSC_COMM_WORLD, scene);
-  }
-  std::string Rejection(const Options &options)
-  {
-    Scene                scene;
-    const PetscErrorCode ierr = Read(options, &scene);
-    EXPECT_EQ(ierr, PETSC_ERR_USER) << "accepted: " << Join(options);
-    return ErrorText();
-  }
-};
+class Scene3D : public bapd::test::SceneReading<Options> {};
 
 // Whether lattice cell (i, j, k) of the valid scene is material, from the indices alone.
 bool Material(int i, int j, int k)
@@ -133,7 +94,7 @@ bool Material(int i, int j, int k)
 TEST_F(Scene3D, ReadsTheBodyItsExtentAndItsPointCount)
 {
   Scene scene;
-  ASSERT_EQ(Read(Block(), &scene), 0) << ErrorText();
+  ASSERT_EQ(Read(Block(), &scene), 0) << bapd::test::UserErrorText();
   EXPECT_EQ(scene.dimension, 3);
   int64_t count = 0;
   for (int k = 0; k < 6; ++k)
@@ -167,7 +128,7 @@ TEST_F(Scene3D, ReadsTheBodyItsExtentAndItsPointCount)
 TEST_F(Scene3D, ViewNamesTheSolidsNotchesFacesAndProbes)
 {
   Scene scene;
-  ASSERT_EQ(Read(With(Block(), {{"-load_right_x_scale", "0.5"}}), &scene), 0) << ErrorText();
+  ASSERT_EQ(Read(With(Block(), {{"-load_right_x_scale", "0.5"}}), &scene), 0) << bapd::test::UserErrorText();
   const std::string text = bapd::SceneText(scene);
   const std::string expected[] = {
     bapd::Format("  body      3D, dx 0.001 m: %lld points, cells in [0, 0.01] x [0, 0.008] x [0, 0.006] m, 2 solid(s), 1 notch(es)\n",
@@ -191,7 +152,7 @@ TEST_F(Scene3D, ViewNamesTheSolidsNotchesFacesAndProbes)
                                                               {"-body_hole_type", "cylinder"}, {"-body_hole_axis", "0.005,0.004,0,0.005,0.004,0.006"}}),
                  &box),
             0)
-      << ErrorText();
+      << bapd::test::UserErrorText();
   const std::string box_text = bapd::SceneText(box);
   for (const std::string &line : std::vector<std::string>{"  load set  left: box [0, 0.002] x [0, 0.008] x [0, 0.006] m; x fixed, y fixed, z fixed\n",
                                  "            solid hole: subtract a cylinder, axis (0.005, 0.004, 0)-(0.005, 0.004, 0.006) m, radius 0.0016 m\n"})
@@ -202,7 +163,7 @@ TEST_F(Scene3D, ViewNamesTheSolidsNotchesFacesAndProbes)
 TEST_F(Scene3D, LoadSetsPickExactlyTheBruteForcePoints)
 {
   Scene scene;
-  ASSERT_EQ(Read(Block(), &scene), 0) << ErrorText();
+  ASSERT_EQ(Read(Block(), &scene), 0) << bapd::test::UserErrorText();
   const bapd::PointCloud points = bapd::nd::make_solid_points(scene.body3d.solid);
   ASSERT_EQ(static_cast<int64_t>(points.size()), scene.body3d.points);
   // Index (i, j, k) of each point, from its position.
@@ -247,7 +208,7 @@ TEST_F(Scene3D, LoadSetsPickExactlyTheBruteForcePoints)
 TEST_F(Scene3D, ProbeFindsTheNearestPointInThreeDimensions)
 {
   Scene scene;
-  ASSERT_EQ(Read(Block(), &scene), 0) << ErrorText();
+  ASSERT_EQ(Read(Block(), &scene), 0) << bapd::test::UserErrorText();
   const bapd::PointCloud points = bapd::nd::make_solid_points(scene.body3d.solid);
   PetscMPIInt            rank, size;
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
@@ -280,7 +241,7 @@ TEST_F(Scene3D, ProbeFindsTheNearestPointInThreeDimensions)
 TEST_F(Scene3D, GripsHoldThreeDofsAPointAndReactInThree)
 {
   Scene scene;
-  ASSERT_EQ(Read(Block(), &scene), 0) << ErrorText();
+  ASSERT_EQ(Read(Block(), &scene), 0) << bapd::test::UserErrorText();
   PetscMPIInt size;
   MPI_Comm_size(PETSC_COMM_WORLD, &size);
   if (size > 1) GTEST_SKIP() << "one rank holds the whole body here";
@@ -288,7 +249,7 @@ TEST_F(Scene3D, GripsHoldThreeDofsAPointAndReactInThree)
   layout.cloud   = bapd::nd::make_solid_points(scene.body3d.solid);
   layout.n_owned = (PetscInt)layout.cloud.size();
   bapd::Loading loading;
-  ASSERT_EQ(loading.Setup(PETSC_COMM_WORLD, scene, layout), 0) << ErrorText();
+  ASSERT_EQ(loading.Setup(PETSC_COMM_WORLD, scene, layout), 0) << bapd::test::UserErrorText();
   EXPECT_EQ(loading.dimension(), 3);
   // left: x, y, z of the 6 x 8 = 48 points of i = 0 (no cell of i = 0 is in the sphere);
   // right: x and z of the 2 x 48 points of i = 8, 9.
@@ -370,20 +331,20 @@ TEST_F(Scene3D, EachBadOptionGetsItsMessage)
 TEST_F(Scene3D, MaterialOptionsOfASolidBody)
 {
   Scene scene;
-  ASSERT_EQ(Read(Block(), &scene), 0) << ErrorText();
+  ASSERT_EQ(Read(Block(), &scene), 0) << bapd::test::UserErrorText();
   EXPECT_EQ(scene.force_form, bapd::ForceForm::energy_consistent);
   EXPECT_EQ(scene.stress_correction, bapd::StressCorrection::none);
   EXPECT_EQ(scene.patch_correction, bapd::PatchCorrection::off);
   Scene bond_only;
-  ASSERT_EQ(Read(With(Block(), {{"-force_form", "bond_only"}}), &bond_only), 0) << ErrorText();
+  ASSERT_EQ(Read(With(Block(), {{"-force_form", "bond_only"}}), &bond_only), 0) << bapd::test::UserErrorText();
   EXPECT_EQ(bond_only.stress_correction, bapd::StressCorrection::tensor);
   EXPECT_EQ(bond_only.patch_correction, bapd::PatchCorrection::off); // (auto: the 2D solve is not ported)
   Scene paper;
-  ASSERT_EQ(Read(With(Block(), {{"-force_form", "bond_only"}, {"-force_stress_correction", "none"}}), &paper), 0) << ErrorText();
+  ASSERT_EQ(Read(With(Block(), {{"-force_form", "bond_only"}, {"-force_stress_correction", "none"}}), &paper), 0) << bapd::test::UserErrorText();
   EXPECT_EQ(paper.stress_correction, bapd::StressCorrection::none); // the paper's force stays reachable
   for (const char *law : {"neo_hookean", "mooney_rivlin", "yeoh", "arruda_boyce"}) {
     Scene other;
-    EXPECT_EQ(Read(With(Block(), {{"-material_model", law}}), &other), 0) << law << ": " << ErrorText();
+    EXPECT_EQ(Read(With(Block(), {{"-material_model", law}}), &other), 0) << law << ": " << bapd::test::UserErrorText();
   }
   const std::vector<std::pair<Options, std::string>> cases = {
     {With(Block(), {{"-material_formulation", "plane_strain"}}), "-material_formulation plane_strain is a 2D reduction"},
@@ -403,12 +364,12 @@ TEST_F(Scene3D, TwoDimensionalSheetsRefuseTheThirdComponentAndTheZFaces)
                          {"-load_sets", "top"},   {"-load_top_region", "top"}, {"-load_top_y", "fixed"},
                          {"-end_time", "1"}};
   EXPECT_NE(Rejection(With(sheet, {{"-load_top_z", "fixed"}})).find("-load_top_z is set, but this body is a 2D sheet"), std::string::npos)
-      << ErrorText();
+      << bapd::test::UserErrorText();
   EXPECT_NE(Rejection(With(sheet, {{"-load_top_region", "front"}})).find("is a face of a 3D body (z), and this body is a 2D sheet"),
             std::string::npos)
-      << ErrorText();
+      << bapd::test::UserErrorText();
   Scene scene;
-  ASSERT_EQ(Read(sheet, &scene), 0) << ErrorText();
+  ASSERT_EQ(Read(sheet, &scene), 0) << bapd::test::UserErrorText();
   EXPECT_EQ(scene.dimension, 2);
 }
 
@@ -437,7 +398,7 @@ TEST_F(Scene3D, ACloudIsClippedByItsSolidsAndItsBlocksAreLoadSets)
                          {"-load_b_x", "fixed"},         {"-probes", "corner"},           {"-probe_corner_block", "7"},
                          {"-end_time", "1"}};
   Scene scene;
-  ASSERT_EQ(Read(cloud, &scene), 0) << ErrorText();
+  ASSERT_EQ(Read(cloud, &scene), 0) << bapd::test::UserErrorText();
   EXPECT_EQ(scene.body3d.points, 64 - 4); // the cut took i, j in {2, 3}, k = 0
   EXPECT_EQ(scene.loads[0].block_points.size(), 3u * 16);
   EXPECT_NEAR(scene.probes[0].z, 3.5e-3, 1e-18);
@@ -450,7 +411,7 @@ TEST_F(Scene3D, ACloudIsClippedByItsSolidsAndItsBlocksAreLoadSets)
         std::string("  load set  b: block 2 of the cloud (16 points); x fixed, y free, z free\n"),
         std::string("  probe     corner at (0.0035, 0.0035, 0.0035) m\n")})
     EXPECT_NE(text.find(line), std::string::npos) << "expected '" << line << "' in:\n" << text;
-  EXPECT_NE(Rejection(With(cloud, {{"-body_cut_op", "add"}})).find("can only cut them"), std::string::npos) << ErrorText();
+  EXPECT_NE(Rejection(With(cloud, {{"-body_cut_op", "add"}})).find("can only cut them"), std::string::npos) << bapd::test::UserErrorText();
   EXPECT_NE(Rejection(With(cloud, {{"-body_dx", "0.001"}})).find("-body_dx is the lattice spacing, but -body_cloud"), std::string::npos);
   if (rank == 0) std::remove(name);
 }

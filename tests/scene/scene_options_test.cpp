@@ -14,6 +14,7 @@
 #include <unistd.h>
 
 #include "bapd/scene.hpp"
+#include "scene_reading.hpp"
 
 namespace {
 
@@ -83,52 +84,8 @@ output:
   interval: 200
 )";
 
-std::string Join(const Options &options)
-{
-  std::string line;
-  for (const auto &[name, value] : options) line += name + (value.empty() ? "" : " " + value) + " ";
-  return line;
-}
-
-// The message of the error that started the last failure (PETSc keeps it).
-std::string ErrorText()
-{
-  const char *generic  = nullptr;
-  char       *specific = nullptr;
-  PetscErrorMessage(PETSC_ERR_USER, &generic, &specific);
-  return specific ? specific : "";
-}
-
-class SceneOptions : public ::testing::Test {
+class SceneOptions : public bapd::test::SceneReading<Options> {
 protected:
-  // Errors return to the test instead of printing a stack and aborting.
-  void SetUp() override
-  {
-    ASSERT_EQ(PetscOptionsClear(nullptr), 0);
-    ASSERT_EQ(PetscPushErrorHandler(PetscReturnErrorHandler, nullptr), 0);
-  }
-  void TearDown() override
-  {
-    PetscPopErrorHandler();
-    PetscOptionsClear(nullptr);
-  }
-
-  PetscErrorCode Read(const Options &options, Scene *scene)
-  {
-    PetscOptionsClear(nullptr);
-    if (PetscOptionsInsertString(nullptr, Join(options).c_str())) return PETSC_ERR_LIB;
-    return bapd::SceneFromOptions(PETSC_COMM_WORLD, scene);
-  }
-
-  // Reads the options, expects a user error, returns its message.
-  std::string Rejection(const Options &options)
-  {
-    Scene                scene;
-    const PetscErrorCode ierr = Read(options, &scene);
-    EXPECT_EQ(ierr, PETSC_ERR_USER) << "accepted: " << Join(options);
-    return ErrorText();
-  }
-
   // Writes text to a fresh file (on rank 0, which is where PETSc reads it) and
   // returns the name, the same on every rank.
   std::string TempFile(const std::string &text)
@@ -229,7 +186,7 @@ TEST_F(SceneOptions, HelpListsEveryComponentWithoutAScene)
   const PetscErrorCode ierr = Read({{"-help", ""}, {"-load_sets", "grip"}}, &scene);
   PetscHelpPrintf = saved;
   help_text       = nullptr;
-  ASSERT_EQ(ierr, 0) << ErrorText();
+  ASSERT_EQ(ierr, 0) << bapd::test::UserErrorText();
   EXPECT_TRUE(scene.help_only);
   for (const char *name : {"-body_width", "-body_holes", "-horizon_factor", "-material_mu", "-material_bulk_ratio", "-failure_critical_stretch",
                            "-load_schedule", "-load_grip_region", "-load_grip_y_scale", "-probes", "-output_dir", "-time_step_safety", "-end_time"})
@@ -242,7 +199,7 @@ TEST_F(SceneOptions, HelpListsEveryComponentWithoutAScene)
 TEST_F(SceneOptions, ReadsThePlateWithAHoleWithItsDefaults)
 {
   Scene scene;
-  ASSERT_EQ(Read(PlateWithHole(), &scene), 0) << ErrorText();
+  ASSERT_EQ(Read(PlateWithHole(), &scene), 0) << bapd::test::UserErrorText();
   EXPECT_FALSE(scene.help_only);
   EXPECT_EQ(scene.body.width, 0.08);
   EXPECT_EQ(scene.body.height, 0.16);
@@ -311,7 +268,7 @@ TEST_F(SceneOptions, DefaultsToABulkModulusOfAThousandShearModuli)
   Options o = PlateWithHole();
   o.erase("-material_bulk_ratio");
   Scene scene;
-  ASSERT_EQ(Read(o, &scene), 0) << ErrorText();
+  ASSERT_EQ(Read(o, &scene), 0) << bapd::test::UserErrorText();
   EXPECT_EQ(scene.material.D, 2.0 / (1000.0 * 4.55e3)); // same expression as the default: exact
 }
 
@@ -340,7 +297,7 @@ TEST_F(SceneOptions, ReadsEveryOtherChoice)
   o["-force_stress_correction"]  = "tensor";
   o["-load_grip_field"]          = "affine";
   Scene scene;
-  ASSERT_EQ(Read(o, &scene), 0) << ErrorText();
+  ASSERT_EQ(Read(o, &scene), 0) << bapd::test::UserErrorText();
   EXPECT_EQ(scene.stress_correction, bapd::StressCorrection::tensor);
   EXPECT_EQ(scene.grip_field, bapd::GripField::affine);
   EXPECT_EQ(scene.model, bapd::ModelKind::neo_hookean);
@@ -366,25 +323,25 @@ TEST_F(SceneOptions, ReadsEveryOtherChoice)
   EXPECT_EQ(scene.progress_interval, 50);
   // A stretch grip without a scale moves by (lambda - 1) L.
   o.erase("-load_top_y_scale");
-  ASSERT_EQ(Read(o, &scene), 0) << ErrorText();
+  ASSERT_EQ(Read(o, &scene), 0) << bapd::test::UserErrorText();
   EXPECT_EQ(scene.loads[0].y_scale, 1.0);
   // The underscore spelling of the model name is accepted too.
   o["-material_model"] = "neo_hookean";
-  ASSERT_EQ(Read(o, &scene), 0) << ErrorText();
+  ASSERT_EQ(Read(o, &scene), 0) << bapd::test::UserErrorText();
   EXPECT_EQ(scene.model, bapd::ModelKind::neo_hookean);
 }
 
 TEST_F(SceneOptions, YAMLFileGivesTheSameSceneAsFlatOptions)
 {
   Scene flat, yaml;
-  ASSERT_EQ(Read(PlateWithHole(), &flat), 0) << ErrorText();
+  ASSERT_EQ(Read(PlateWithHole(), &flat), 0) << bapd::test::UserErrorText();
   PetscOptionsClear(nullptr);
   const std::string file = TempFile(kPlateYAML);
   ASSERT_EQ(PetscOptionsInsertFileYAML(PETSC_COMM_WORLD, nullptr, file.c_str(), PETSC_TRUE), 0);
   RemoveFile(file);
-  ASSERT_EQ(bapd::SceneFromOptions(PETSC_COMM_WORLD, &yaml), 0) << ErrorText();
+  ASSERT_EQ(bapd::SceneFromOptions(PETSC_COMM_WORLD, &yaml), 0) << bapd::test::UserErrorText();
   ExpectSameScene(flat, yaml);
-  EXPECT_EQ(bapd::CheckUnusedOptions(PETSC_COMM_WORLD), 0) << ErrorText();
+  EXPECT_EQ(bapd::CheckUnusedOptions(PETSC_COMM_WORLD), 0) << bapd::test::UserErrorText();
 }
 
 TEST_F(SceneOptions, OptionsAfterTheFileOverrideIt)
@@ -397,7 +354,7 @@ TEST_F(SceneOptions, OptionsAfterTheFileOverrideIt)
   RemoveFile(file);
   ASSERT_EQ(PetscOptionsInsertString(nullptr, "-material_mu 5000 -load_top_y_scale 0.25 -load_schedule 0,1,4,2 -body_holes 0.04,0.08,0.02"), 0);
   Scene scene;
-  ASSERT_EQ(bapd::SceneFromOptions(PETSC_COMM_WORLD, &scene), 0) << ErrorText();
+  ASSERT_EQ(bapd::SceneFromOptions(PETSC_COMM_WORLD, &scene), 0) << bapd::test::UserErrorText();
   EXPECT_EQ(scene.material.mu, 5000.0);
   EXPECT_EQ(scene.material.D, 2.0 / (100.0 * 5000.0)); // the file's bulk ratio, the new mu
   EXPECT_EQ(scene.loads[0].y_scale, 0.25);
@@ -417,7 +374,7 @@ TEST_F(SceneOptions, WarnsAboutDoubtfulButUsableValues)
   o["-time_step_safety"] = "1.5";
   o["-horizon_factor"]   = "6";
   Scene scene;
-  ASSERT_EQ(Read(o, &scene), 0) << ErrorText();
+  ASSERT_EQ(Read(o, &scene), 0) << bapd::test::UserErrorText();
   const std::vector<std::string> &w = bapd::SceneWarnings();
   auto any = [&](const char *text) {
     for (const std::string &m : w)
@@ -455,12 +412,12 @@ TEST_F(SceneOptions, PaperGripsAreOneRigidRowInsideTheSpecimen)
   Options o = PlateWithHole();
   o["-force_form"] = "bond_only";
   Scene corrected; // auto: the bond-only form is tensor-corrected unless told otherwise
-  ASSERT_EQ(Read(o, &corrected), 0) << ErrorText();
+  ASSERT_EQ(Read(o, &corrected), 0) << bapd::test::UserErrorText();
   EXPECT_EQ(corrected.stress_correction, bapd::StressCorrection::tensor);
   o["-load_grip_placement"] = "inside";
   o["-force_stress_correction"] = "none";
   Scene scene;
-  ASSERT_EQ(Read(o, &scene), 0) << ErrorText();
+  ASSERT_EQ(Read(o, &scene), 0) << bapd::test::UserErrorText();
   EXPECT_EQ(scene.force_form, bapd::ForceForm::bond_only);
   for (const LoadSet &l : scene.loads) {
     EXPECT_EQ(l.placement, bapd::GripPlacement::inside);
@@ -480,7 +437,7 @@ TEST_F(SceneOptions, GripDepthInRowsOrMetresAndPerSetPlacement)
   o["-load_bottom_layers"] = "2";
   o["-horizon_factor"] = "2.515";
   Scene scene;
-  ASSERT_EQ(Read(o, &scene), 0) << ErrorText();
+  ASSERT_EQ(Read(o, &scene), 0) << bapd::test::UserErrorText();
   EXPECT_EQ(scene.loads[0].placement, bapd::GripPlacement::outside);
   EXPECT_EQ(scene.loads[0].layers, 4);
   EXPECT_EQ(scene.loads[1].placement, bapd::GripPlacement::inside);
@@ -492,7 +449,7 @@ TEST_F(SceneOptions, GripDepthInRowsOrMetresAndPerSetPlacement)
   for (const auto &[factor, rows] : {std::pair{"2.515", 5}, {"3.015", 6}, {"3.515", 7}}) {
     Options d = PlateWithHole();
     d["-horizon_factor"] = factor;
-    ASSERT_EQ(Read(d, &scene), 0) << ErrorText();
+    ASSERT_EQ(Read(d, &scene), 0) << bapd::test::UserErrorText();
     EXPECT_EQ(scene.loads[0].layers, rows) << factor;
     EXPECT_EQ(scene.body.grip_rows.bottom, rows) << factor;
   }
@@ -615,10 +572,10 @@ TEST_F(SceneOptions, UnusedOptionIsAnsweredWithTheNearestName)
   Options o          = PlateWithHole();
   o["-material_muu"] = "5000";
   Scene scene;
-  ASSERT_EQ(Read(o, &scene), 0) << ErrorText();
+  ASSERT_EQ(Read(o, &scene), 0) << bapd::test::UserErrorText();
   const PetscErrorCode ierr = bapd::CheckUnusedOptions(PETSC_COMM_WORLD);
   EXPECT_EQ(ierr, PETSC_ERR_USER);
-  EXPECT_EQ(ErrorText(), "-material_muu is not a bapd option. Did you mean -material_mu? (run with -help to list every option)");
+  EXPECT_EQ(bapd::test::UserErrorText(), "-material_muu is not a bapd option. Did you mean -material_mu? (run with -help to list every option)");
 }
 
 TEST_F(SceneOptions, UnusedOptionsOfAnUndeclaredSetNameTheSetList)
@@ -628,10 +585,10 @@ TEST_F(SceneOptions, UnusedOptionsOfAnUndeclaredSetNameTheSetList)
   o["-probe_tipp_at"]     = "0,0";
   o["-load_top_regoin"]   = "top";
   Scene scene;
-  ASSERT_EQ(Read(o, &scene), 0) << ErrorText();
+  ASSERT_EQ(Read(o, &scene), 0) << bapd::test::UserErrorText();
   const PetscErrorCode ierr = bapd::CheckUnusedOptions(PETSC_COMM_WORLD);
   EXPECT_EQ(ierr, PETSC_ERR_USER);
-  const std::string message = ErrorText();
+  const std::string message = bapd::test::UserErrorText();
   EXPECT_NE(message.find("-load_grip_region is not a bapd option. 'grip' is not one of -load_sets"), std::string::npos) << message;
   EXPECT_NE(message.find("-probe_tipp_at is not a bapd option. 'tipp' is not one of -probes"), std::string::npos) << message;
   EXPECT_NE(message.find("-load_top_regoin is not a bapd option. Did you mean -load_top_region?"), std::string::npos) << message;
@@ -644,8 +601,8 @@ TEST_F(SceneOptions, PetscRuntimeOptionsAreNotTypos)
                            "-viewer_binary_skip_info", "-vec_type", "-snes_monitor", "-ksp_type", "-pc_type", "-mat_type"})
     o[name] = "";
   Scene scene;
-  ASSERT_EQ(Read(o, &scene), 0) << ErrorText();
-  EXPECT_EQ(bapd::CheckUnusedOptions(PETSC_COMM_WORLD), 0) << ErrorText();
+  ASSERT_EQ(Read(o, &scene), 0) << bapd::test::UserErrorText();
+  EXPECT_EQ(bapd::CheckUnusedOptions(PETSC_COMM_WORLD), 0) << bapd::test::UserErrorText();
 }
 
 } // namespace
