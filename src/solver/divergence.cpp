@@ -208,14 +208,19 @@ PetscErrorCode CheckRunawayEnergy(const RunawayInputs &inputs, RunawayEnergyMoni
   } mine = {fastest, 0}, best;
   PetscCallMPI(MPI_Comm_rank(comm, &mine.rank));
   PetscCallMPI(MPI_Allreduce(&mine, &best, 1, MPI_DOUBLE_INT, MPI_MAXLOC, comm));
-  double where[3] = {-1, 0, 0};
-  if (best.rank == mine.rank && fastest_i >= 0)
-    where[0] = (double)layout.cloud.natural_id[fastest_i], where[1] = layout.cloud.x[D * fastest_i], where[2] = layout.cloud.x[D * fastest_i + 1];
-  PetscCallMPI(MPI_Bcast(where, 3, MPI_DOUBLE, best.rank, comm));
+  double where[4] = {-1, 0, 0, 0}; // natural id, then the D coordinates
+  if (best.rank == mine.rank && fastest_i >= 0) {
+    where[0] = (double)layout.cloud.natural_id[fastest_i];
+    for (int c = 0; c < D; ++c) where[1 + c] = layout.cloud.x[D * fastest_i + c];
+  }
+  PetscCallMPI(MPI_Bcast(where, 4, MPI_DOUBLE, best.rank, comm));
   // The cause and its fix follow (DivergenceAdvice, from the last good state).
+  char position[96];
+  if (D == 3) std::snprintf(position, sizeof position, "(%.6g, %.6g, %.6g)", where[1], where[2], where[3]);
+  else std::snprintf(position, sizeof position, "(%.6g, %.6g)", where[1], where[2]);
   char text[1024];
-  std::snprintf(text, sizeof text, "the run diverged at step %" PetscInt_FMT " (t = %.6e s): %s. Fastest point: %.0f, reference position (%.6g, %.6g) m.",
-                step, t, monitor.Describe().c_str(), where[0], where[1], where[2]);
+  std::snprintf(text, sizeof text, "the run diverged at step %" PetscInt_FMT " (t = %.6e s): %s. Fastest point: %.0f, reference position %s m.",
+                step, t, monitor.Describe().c_str(), where[0], position);
   *message = text;
   PetscFunctionReturn(0);
 }

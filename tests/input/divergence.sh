@@ -55,6 +55,13 @@ expect_divergence unstable_fracture_bond_only 20 "the run diverged at step" -tim
 expect_divergence unstable_fracture_slow 40 "the run diverged at step" -time_step_safety 1.1 -failure_critical_stretch 7.2
 # An explicit -time_step above the stable one (2.6e-4 s here).
 expect_divergence unstable_time_step 20 "the run diverged at step" -time_step 4e-4 -failure_critical_stretch 1.5
+# A 3D body (issue 21): the same clean stop, and the fastest point's position with its z.
+scene="$source_dir/tests/input/block_3d.yaml"
+expect_divergence unstable_fracture_3d 20 "the run diverged at step" -time_step_safety 1.5 -failure_critical_stretch 1.5
+if ! grep -qE 'Fastest point: [0-9]+, reference position \([^,()]+, [^,()]+, [^,()]+\) m' unstable_fracture_3d.log; then
+  fail "unstable_fracture_3d: the fastest point's position is not given with three coordinates" unstable_fracture_3d.log
+fi
+scene="$source_dir/tests/input/tiny.yaml"
 
 # No false alarm: below the stable step, a notch that opens and bonds that break (the
 # kinetic energy jumps as they go), undamped, and a fast ramp from rest after a hold.
