@@ -12,7 +12,7 @@
 # the probes' uz = 0; the side and ligament are printed, not asserted: the 3D and 2D
 # bond families (sphere and disk lenses) weigh the non-affine field next to the free
 # side and the hole differently, by a difference that falls with dx (+5.2 / +7.0 % at
-# dx = 1 mm, +0.87 / +1.47 % at 0.25 mm) and not with the slab's thickness (section
+# dx = 1 mm, +0.83 / +1.40 % at 0.25 mm) and not with the slab's thickness (section
 # 7.1's table).
 #   slab_3d_short.sh          (ctest sets BAPD_EXE and BAPD_SOURCE_DIR): dx = 0.5 mm, passes
 #   slab_3d_short.sh coarse   the same pair at dx = 1 mm (t = 4 mm, four layers): the crown
