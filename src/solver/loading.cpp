@@ -121,25 +121,29 @@ void Loading::Apply(double t, double *u, double *v) const
 // -load_grip_field affine: the y dofs of the top and bottom grips get
 // lever = (L / L_free) (y - y_inner), y_inner the grip line: the specimen's edge, H
 // (top) or 0 (bottom), for a grip outside it; H - layers dx or layers dx for one
-// inside. L_free = y_inner,top - y_inner,bottom (CheckLoading made sure both exist).
+// inside (a 3D body's faces y = hi and lo of its extent, its grips always inside).
+// L_free = y_inner,top - y_inner,bottom (CheckLoading made sure both exist).
 // The x dofs keep what the set says: a clamp holds x (the free region's lateral
 // contraction vanishes at the grip line, so u_x = 0 continues it).
 // Two region grips (box, polygon, curve, group, block: no edge set holds y) are the
 // same for any shape: the grip line of each is where its points end towards the
 // other, half a point spacing (sqrt(V/t)) beyond its innermost point; the upper set
 // is the top grip, and the two must not overlap in y. That is the outside treatment's
-// equivalent for grips on the body's own points (docs/options.md "Grips outside").
+// equivalent for grips on the body's own points (docs/options.md "Grips outside");
+// in 3D the half spacing is cbrt(V) / 2.
 PetscErrorCode Loading::SetAffineLevers(const Scene &scene, const Layout &layout)
 {
-  const double H = scene.body.height, dx = scene.body.dx;
+  const bool   three = dimension_ == 3;
+  const double lo = three ? scene.body3d.lo[1] : 0.0, hi = three ? scene.body3d.hi[1] : scene.body.height;
+  const double dx = three ? scene.body3d.solid.dx : scene.body.dx;
   double       y_top = 0, y_bottom = 0;
   bool         edge  = false;
   PetscFunctionBegin;
   for (const LoadSet &l : scene.loads) {
     if (l.y == ComponentLoad::free) continue;
     const bool inside = l.placement == GripPlacement::inside;
-    if (l.region == LoadSet::Region::top) y_top = inside ? H - l.layers * dx : H, edge = true;
-    if (l.region == LoadSet::Region::bottom) y_bottom = inside ? l.layers * dx : 0.0, edge = true;
+    if (l.region == LoadSet::Region::top) y_top = inside ? hi - l.layers * dx : hi, edge = true;
+    if (l.region == LoadSet::Region::bottom) y_bottom = inside ? lo + l.layers * dx : lo, edge = true;
   }
   if (!edge) { // two region grips (CheckLoading): their extent in y, the same on any rank count (min/max)
     double      lo[2], hi[2]; // per set: lowest y - h/2, -(highest y + h/2)
@@ -149,7 +153,8 @@ PetscErrorCode Loading::SetAffineLevers(const Scene &scene, const Layout &layout
       if (scene.loads[s].y == ComponentLoad::free) continue;
       lo[k] = hi[k] = std::numeric_limits<double>::max();
       for (PetscInt p : load_points_[s].points) {
-        const double y = layout.cloud.x[2 * p + 1], h = std::sqrt(layout.cloud.volume[p] / scene.body.thickness);
+        const double V = layout.cloud.volume[p];
+        const double y = layout.cloud.x[dimension_ * p + 1], h = three ? std::cbrt(V) : std::sqrt(V / scene.body.thickness);
         lo[k]          = std::min(lo[k], y - 0.5 * h);
         hi[k]          = std::min(hi[k], -(y + 0.5 * h));
       }

@@ -484,8 +484,7 @@ PetscErrorCode CheckLoading(MPI_Comm comm, const SceneInput &in, Scene *scene)
   int top = 0, bottom = 0, outside = 0, edges = 0, regions = 0; // the sets holding y at the top and bottom edges, and elsewhere
   for (const LoadSet &l : scene->loads) {
     if (l.y == ComponentLoad::free) continue;
-    const bool is_edge = l.region == LoadSet::Region::top || l.region == LoadSet::Region::bottom ||
-                         l.region == LoadSet::Region::left || l.region == LoadSet::Region::right;
+    const bool is_edge = IsFace(l.region); // (an edge of a sheet, a face of a 3D body)
     edges += is_edge;
     regions += !is_edge;
     top += l.region == LoadSet::Region::top;
@@ -493,15 +492,9 @@ PetscErrorCode CheckLoading(MPI_Comm comm, const SceneInput &in, Scene *scene)
     outside += (l.region == LoadSet::Region::top || l.region == LoadSet::Region::bottom) && l.placement == GripPlacement::outside;
   }
   const std::string field = Lower(in.grip_field);
-  if (scene->dimension == 3) { // (the affine grip field continues a 2D sheet's stretch between its top and bottom grips)
-    SceneCheck(field == "auto" || field == "rigid", comm,
-               "-load_grip_field %s: a 3D body's grips are rigid (the affine grip field is 2D only, for grips outside a sheet): remove "
-               "it, or set it to rigid",
-               in.grip_field.c_str());
-    scene->grip_field = GripField::rigid;
-    PetscFunctionReturn(0);
-  }
-  if (field == "auto") // the default: affine where it applies, to a top and a bottom grip outside
+  // The default: affine where it applies, to a top and a bottom grip outside (a 3D
+  // body's grips are its own points: rigid unless asked, as region grips in 2D).
+  if (field == "auto")
     scene->grip_field = top == 1 && bottom == 1 && outside == 2 ? GripField::affine : GripField::rigid;
   else if (field == "rigid") scene->grip_field = GripField::rigid;
   else if (field == "affine") scene->grip_field = GripField::affine;

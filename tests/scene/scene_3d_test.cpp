@@ -282,6 +282,70 @@ TEST_F(Scene3D, GripsHoldThreeDofsAPointAndReactInThree)
   }
 }
 
+// -load_grip_field affine on a 3D body (Loading::SetAffineLevers): the y dofs of the
+// grips on the faces y- and y+ (`layers` rows inside) move on the affine continuation
+// of the free region's mean stretch, u_y = u_rigid + (lambda - 1) (L / L_free)
+// (y - y_inner) with y_inner = lo + layers dx and hi - layers dx; x and z keep what the
+// sets say. Two box grips get their grip lines half a spacing (cbrt V / 2) beyond their
+// innermost points. `auto` leaves a 3D body's grips rigid (they are its own points).
+TEST_F(Scene3D, AffineGripFieldContinuesTheStretchIntoFaceAndBoxGrips)
+{
+  Options pulled_in_y;
+  for (const auto &e : Block())
+    if (e.first.rfind("-load_left", 0) != 0 && e.first.rfind("-load_right", 0) != 0) pulled_in_y.push_back(e);
+  pulled_in_y = With(pulled_in_y, {{"-load_sets", "bottom,top"},
+                                   {"-load_bottom_region", "y-"},
+                                   {"-load_bottom_layers", "2"},
+                                   {"-load_bottom_x", "fixed"},
+                                   {"-load_bottom_y", "fixed"},
+                                   {"-load_bottom_z", "fixed"},
+                                   {"-load_top_region", "y+"},
+                                   {"-load_top_layers", "3"},
+                                   {"-load_top_x", "fixed"},
+                                   {"-load_top_y", "stretch"},
+                                   {"-load_top_z", "fixed"}});
+  const Options boxes = With(pulled_in_y, {{"-load_bottom_region", "box"},
+                                           {"-load_bottom_box", "0,0,0,0.01,0.002,0.006"},
+                                           {"-load_top_region", "box"},
+                                           {"-load_top_box", "0,0.005,0,0.01,0.008,0.006"}});
+  const double L = 8e-3, y_bottom = 2e-3, y_top = 5e-3, gradient = L / (y_top - y_bottom); // (the same lines for both)
+  const Options box_grips = Without(Without(boxes, "-load_bottom_layers"), "-load_top_layers"); // (a box has no layers)
+  for (const auto &[options, field] : {std::pair{pulled_in_y, "affine"}, {pulled_in_y, "auto"}, {box_grips, "affine"}}) {
+    Scene scene;
+    ASSERT_EQ(Read(With(options, {{"-load_grip_field", field}}), &scene), 0) << bapd::test::UserErrorText();
+    const bool affine = std::string(field) == "affine";
+    EXPECT_EQ(scene.grip_field, affine ? bapd::GripField::affine : bapd::GripField::rigid) << field;
+    bapd::Layout layout;
+    layout.cloud   = bapd::nd::make_solid_points(scene.body3d.solid);
+    layout.n_owned = (PetscInt)layout.cloud.size();
+    bapd::Loading loading;
+    ASSERT_EQ(loading.Setup(PETSC_COMM_SELF, scene, layout), 0) << bapd::test::UserErrorText();
+    std::vector<double> u(3 * layout.cloud.size(), -1.0);
+    loading.Apply(1.0, u.data(), nullptr); // stretch 1.1
+    std::size_t top = 0, bottom = 0;
+    for (const bapd::ConstrainedDof &d : loading.constrained()) {
+      const double y = layout.cloud.x[3 * (d.dof / 3) + 1];
+      double       expected = 0.0;
+      if (d.dof % 3 == 1) {
+        const bool is_top = y > y_top;
+        top += is_top, bottom += !is_top;
+        expected = (is_top ? 0.1 * L : 0.0) + (affine ? 0.1 * gradient * (y - (is_top ? y_top : y_bottom)) : 0.0);
+      }
+      EXPECT_NEAR(u[d.dof], expected, 1e-15) << field << ", dof " << d.dof << " at y = " << y;
+    }
+    std::size_t material_top = 0, material_bottom = 0; // the lattice cells j = 5..7 and 0..1 outside the sphere
+    for (int i = 0; i < 10; ++i)
+      for (int j = 0; j < 8; ++j)
+        for (int k = 0; k < 6; ++k) {
+          if (!Material(i, j, k)) continue;
+          material_top += j >= 5;
+          material_bottom += j <= 1;
+        }
+    EXPECT_EQ(top, material_top) << field << ": the top grip's points";
+    EXPECT_EQ(bottom, material_bottom) << field << ": the bottom grip's points";
+  }
+}
+
 // Each mistake in a 3D scene is refused with its own message (option and fix).
 TEST_F(Scene3D, EachBadOptionGetsItsMessage)
 {
@@ -309,7 +373,7 @@ TEST_F(Scene3D, EachBadOptionGetsItsMessage)
     {With(Block(), {{"-load_left_region", "box"}, {"-load_left_box", "0,0,0.001,0.001"}}), "a 3D box takes exactly six"},
     {With(Block(), {{"-load_left_placement", "outside"}}), "grips outside the specimen are 2D only"},
     {With(Block(), {{"-load_grip_placement", "outside"}}), "-load_grip_placement outside: a 3D body's load sets hold its own points"},
-    {With(Block(), {{"-load_grip_field", "affine"}}), "a 3D body's grips are rigid"},
+    {With(Block(), {{"-load_grip_field", "affine"}}), "-load_grip_field affine continues the stretch between a top and a bottom grip"},
     {With(Block(), {{"-load_right_layers", "10"}}), "-load_right_layers 10 is 0.01 m deep, the whole body along x"},
     {With(Block(), {{"-load_left_region", "block"}, {"-load_left_block", "1"}}), "this body is a lattice: choose a face or a box"},
     {With(Block(), {{"-probe_p_at", "0.001,0.002"}}), "-probe_p_at holds 2 numbers: a probe of a 3D body takes exactly three"},

@@ -13,6 +13,12 @@
 # against 0.64: docs/architecture.md).
 # So that the check can fail: the same box 12 rows tall (the middle then 5 rows from a
 # grip, inside the grips' odd-even boundary layer) is 19 % off in stress and must fail.
+# The outside treatment in 3D (-load_grip_field affine): the 24-row box as 12 free rows
+# between two tabs of 6 rows (two horizons) holding y, whose points continue the free
+# region's mean stretch, is the homogeneous uniaxial state: measured lambda 1.2000 (the
+# stretch over the free length), row increments within 0.18 %, stress +0.13 %, lateral
+# contraction +0.00 %; the same tabs rigid leave the odd-even layer (13.6 %, stress -1.96 %)
+# and must fail.
 #   uniaxial_3d.sh        (ctest sets BAPD_EXE and BAPD_SOURCE_DIR)
 set -uo pipefail
 work="validation_uniaxial_3d"
@@ -35,8 +41,13 @@ status=0
 run energy 24
 run bond_only 24 -force_form bond_only
 run short 12
+run tabs_affine 24 -load_top_layers 6 -load_bottom_layers 6 -load_grip_field affine
+run tabs_rigid 24 -load_top_layers 6 -load_bottom_layers 6 -load_grip_field rigid
 echo "== energy-consistent, 24 rows"; check energy 0.06 || status=1
 echo "== bond-only (tensor correction), 24 rows"; check bond_only 0.12 || status=1
 echo "== energy-consistent, 12 rows (must fail)"
 if check short 0.06; then echo "FAIL: the 12-row box passed: the check cannot tell the grips' boundary layer"; status=1; fi
+echo "== energy-consistent, 12 free rows between affine tabs of 6 rows"; check tabs_affine 0.02 || status=1
+echo "== energy-consistent, the same tabs rigid (must fail)"
+if check tabs_rigid 0.06; then echo "FAIL: the rigid tabs passed: the check cannot tell the affine field from the rigid one"; status=1; fi
 exit $status
