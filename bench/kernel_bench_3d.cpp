@@ -9,6 +9,9 @@
 //   --factor f  horizon delta = f dx (default 3.015)
 //   --reps r    timed repetitions per measurement, the minimum is reported (default 5)
 //   --table     also print one machine-readable line, `RESULT key=value ...`
+//   --only NAME time that measurement alone (bond_only corrected energy lanes_bond_only
+//               lanes_corrected lanes_energy identity assemble; the others print 0): for
+//               perf record and for alternating A/B runs
 //
 // What is measured (thread CPU time, minimum over reps; absolute times on a shared
 // machine mean little: compare ratios from one run, bench/kernel_bench_3d.sh):
@@ -75,12 +78,14 @@ int main(int argc, char **argv)
   int    side = 41, reps = 5;
   double factor = 3.015;
   bool   table  = false;
+  std::string only;
   for (int a = 1; a < argc; ++a) {
     const std::string s = argv[a];
     if (s == "--table") table = true;
     else if (a + 1 < argc && s == "--side") side = std::atoi(argv[++a]);
     else if (a + 1 < argc && s == "--factor") factor = std::atof(argv[++a]);
     else if (a + 1 < argc && s == "--reps") reps = std::max(1, std::atoi(argv[++a]));
+    else if (a + 1 < argc && s == "--only") only = argv[++a];
     else {
       std::fprintf(stderr, "kernel_bench_3d: bad argument %s (see the top of bench/kernel_bench_3d.cpp)\n", s.c_str());
       return 2;
@@ -128,15 +133,16 @@ int main(int argc, char **argv)
       nd::compute_bond_forces<3>(form, model, cloud, ys[r % 2], fam, g, state, nullptr, t.data(), ws);
     };
   };
+  auto timed = [&](const char *name, auto &&body) { return only.empty() || only == name ? time_min(reps, body) : 0.0; };
   const IdentityStress identity;
-  const double bond_only = time_min(reps, run(ForceForm::bond_only, gent, geo));
-  const double corr      = time_min(reps, run(ForceForm::bond_only, gent, corrected));
-  const double energy    = time_min(reps, run(ForceForm::energy_consistent, gent, geo));
-  const double lanes_bo  = time_min(reps, run(ForceForm::bond_only, gent_lanes, geo));
-  const double lanes_co  = time_min(reps, run(ForceForm::bond_only, gent_lanes, corrected));
-  const double lanes_ec  = time_min(reps, run(ForceForm::energy_consistent, gent_lanes, geo));
-  const double ident     = time_min(reps, run(ForceForm::bond_only, identity, geo));
-  const double assemble  = time_min(reps, [&](int) {
+  const double bond_only = timed("bond_only", run(ForceForm::bond_only, gent, geo));
+  const double corr      = timed("corrected", run(ForceForm::bond_only, gent, corrected));
+  const double energy    = timed("energy", run(ForceForm::energy_consistent, gent, geo));
+  const double lanes_bo  = timed("lanes_bond_only", run(ForceForm::bond_only, gent_lanes, geo));
+  const double lanes_co  = timed("lanes_corrected", run(ForceForm::bond_only, gent_lanes, corrected));
+  const double lanes_ec  = timed("lanes_energy", run(ForceForm::energy_consistent, gent_lanes, geo));
+  const double ident     = timed("identity", run(ForceForm::bond_only, identity, geo));
+  const double assemble  = timed("assemble", [&](int) {
     nd::assemble_force_density<3>(fam, cloud, t.data(), cloud.size(), f.data());
   });
 

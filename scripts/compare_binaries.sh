@@ -8,7 +8,8 @@
 #
 #   scripts/compare_binaries.sh OLD_EXE NEW_EXE [OUT_DIR] [SCENE ...]
 #
-# OUT_DIR defaults to /tmp/bapd-compare; with no SCENE every scene below runs. Runs are
+# OUT_DIR defaults to /tmp/bapd-compare; with no SCENE the ten 2D scenes below run, with
+# SCENE = 3d the four 3D ones. Runs are
 # one at a time (the machine is shared), `nice -n 5`; exits 1 if any scene differs or
 # fails to run with either executable.
 set -uo pipefail
@@ -35,8 +36,18 @@ scene[notched_short]="1|-options_file_yaml $ex/notched_pure_shear.yaml -body_dx 
 scene[point_cloud_bond_only]="1|-options_file_yaml $ex/point_cloud.yaml -force_form bond_only -load_schedule 0,1.0,0.2,1.2 -output_final_state"
 scene[point_cloud_energy]="1|-options_file_yaml $ex/point_cloud.yaml -load_schedule 0,1.0,0.2,1.2"
 scene[dogbone_gmsh]="1|-options_file_yaml $ex/dogbone.yaml -body_outline_file $ex/geometry/dogbone.geo -load_schedule 0,1,0.05,1.25,0.3,1.25 -relaxation adaptive -static_tolerance 1e-10 -output_interval 20"
+# 3D (issue 21; run with `... OUT 3d` or by name): the block with a hole (tests/input/block_3d.yaml,
+# energy-consistent, 1 and 2 ranks, and bond-only), and the notched block with
+# tests/validation/notched_block_3d_short.sh's options, so that bonds break.
+in3="$here/tests/input"
+scene[block3d_energy]="1|-options_file_yaml $in3/block_3d.yaml -ts_max_steps 60 -output_interval 10 -output_final_state"
+scene[block3d_energy_np2]="2|-options_file_yaml $in3/block_3d.yaml -ts_max_steps 60 -output_interval 10 -output_final_state"
+scene[block3d_bond_only]="1|-options_file_yaml $in3/block_3d.yaml -force_form bond_only -ts_max_steps 60 -output_interval 10 -output_final_state"
+scene[notched_block3d_short]="1|-options_file_yaml $ex/notched_block_3d.yaml -material_bulk_ratio 10 -failure_critical_stretch 1.5 -load_schedule 0,1,0.2,2.5 -ts_max_steps 350 -output_interval 20 -output_final_state"
 order=(plate_fast plate_fast_np2 plate_plane_strain plate_bond_only_paper plate_bond_only_tensor plate_scalar_failure
        point_cloud_bond_only point_cloud_energy dogbone_gmsh notched_short)
+order3d=(block3d_energy block3d_energy_np2 block3d_bond_only notched_block3d_short)
+if (($# == 1)) && [[ $1 == 3d ]]; then set -- "${order3d[@]}"; fi
 (($#)) && order=("$@")
 
 compare_h5() { # dir_a dir_b: every dataset of every fields/*.h5, exactly

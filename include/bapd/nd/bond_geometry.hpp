@@ -123,7 +123,7 @@ template <int D> using StressRecord = Packed<D * D>;
 // Sums of records over the set bits p of bits[0 .. words), in increasing p: two
 // accumulators, alternating: half the add latency chain, and the order is still fixed
 // by the family alone.
-template <class R> inline R sum_selected(const std::uint64_t *bits, std::size_t words, const R *records)
+template <class R> [[gnu::always_inline]] inline R sum_selected(const std::uint64_t *bits, std::size_t words, const R *records)
 {
   R s0, s1;
   s0.zero();
@@ -151,7 +151,7 @@ template <class R> inline R sum_selected(const std::uint64_t *bits, std::size_t 
 // (the kernels dispatch 1, 2 and 3; the masks then stay in registers), else 0 and
 // `words` at run time with in, out as work space.
 template <std::size_t Words, class R>
-inline R masked_sum(const std::uint64_t *ba, const std::uint64_t *members, std::size_t words, const R *records,
+[[gnu::always_inline]] inline R masked_sum(const std::uint64_t *ba, const std::uint64_t *members, std::size_t words, const R *records,
                     const R &total, std::uint64_t *in_space, std::uint64_t *out_space)
 {
   std::uint64_t  in_local[Words ? Words : 1], out_local[Words ? Words : 1];
@@ -253,7 +253,7 @@ inline PointTotals<D> gather_point(const PointCloud &ref, const double *y, const
 
 // F, K^{-1} and V(B) of a bond (ba: its BA mask) from the gathered point.
 template <int D, std::size_t Words = 0>
-inline BondKinematics<D> bond_kinematics(const std::uint64_t *ba, const std::uint64_t *intact, std::size_t W,
+[[gnu::always_inline]] inline BondKinematics<D> bond_kinematics(const std::uint64_t *ba, const std::uint64_t *intact, std::size_t W,
                                          PointScratch<D> &ws, const PointTotals<D> &totals)
 {
   using L                 = Member<D>;

@@ -92,7 +92,7 @@ template <int D> inline Vec<D> multiply(const Mat<D> &A, const Vec<D> &v)
 // upper triangle, and its determinant (det <= 0: not inverted, inv untouched).
 // 2D: the same operations, in the same order, as bond_kinematics of the retired 2D
 // kernel (issue 21 stage 3), so that the D = 2 instantiation rounds as it did.
-template <int D> inline double symmetric_inverse(const double *S, double *inv)
+template <int D> [[gnu::always_inline]] inline double symmetric_inverse(const double *S, double *inv)
 {
   if constexpr (D == 2) {
     const double d = S[0] * S[2] - S[1] * S[1];
