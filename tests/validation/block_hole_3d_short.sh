@@ -14,8 +14,8 @@
 # and uz), which are 5-20 % off at this spacing.
 # Also asserted: each probe reads the lattice point the JSON's value is for.
 # Any further argument goes to bapd (after the scene's options): the check fails with
-# a softer material (-material_mu 4.3e3: s 5 % low) or with the energy-consistent form
-# (-force_form energy_consistent: s 5 % low at this spacing).
+# a softer material (-material_mu 4.3e3: s -5.79 %) or with the energy-consistent form
+# (-force_form energy_consistent: s -5.32 % at this spacing).
 #   block_hole_3d_short.sh [bapd options]    (ctest sets BAPD_EXE and BAPD_SOURCE_DIR)
 set -euo pipefail
 source "$BAPD_SOURCE_DIR/tests/restart/common.sh" # run, fail, PYTHON
