@@ -50,8 +50,8 @@
 // The laws beyond Gent: Mooney-Rivlin (uses_I2bar, modulus_I2bar), Yeoh and
 // Arruda-Boyce (I1bar only, like Gent) use this interface as it is. Ogden works on the
 // principal stretches: it declares LawVariables::principal_stretches and brings its own
-// formulations (PlaneStrainModel, PlaneStressModel: has_own_formulations below), which
-// with_model (models.hpp) picks instead of the invariant ones.
+// formulations (PlaneStrainModel, PlaneStressModel, Model3D: has_own_formulations
+// below), which with_model and with_model_3d (models.hpp) pick instead of the invariant ones.
 #include <array>
 #include <string>
 #include <type_traits>

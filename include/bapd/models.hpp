@@ -40,24 +40,22 @@ decltype(auto) with_law(ModelKind kind, Formulation formulation, const MaterialP
 }
 
 // The 3D form of law I (with_model_3d): a law of invariants as Compressible3DLanes; a
-// law of principal stretches (its own 2D formulations: Ogden) has none yet.
+// law of principal stretches (Ogden) as its own scalar 3D model, Law::Model3D (no lane
+// path: the kernel calls its stress() bond by bond).
 template <std::size_t I, class Fn> void with_law_3d(ModelKind kind, const MaterialParameters &p, Fn &fn)
 {
   using Law = std::tuple_element_t<I, RegisteredLaws>;
   if constexpr (I + 1 < registered_law_count)
     if (kind != static_cast<ModelKind>(I)) return with_law_3d<I + 1>(kind, p, fn);
-  if constexpr (has_own_formulations<Law>)
-    throw std::invalid_argument(std::string("-material_model ") + to_string(kind) +
-                                ": a law of principal stretches has no 3D form in bapd yet (its plane-stress and plane-strain "
-                                "forms are its own); for a 3D body choose a law of invariants, e.g. gent or neo_hookean");
+  if constexpr (has_own_formulations<Law>) fn(typename Law::Model3D{p});
   else fn(nd::Compressible3DLanes<Law>{p});
 }
 } // namespace detail
 
 // The 3D dispatch (a 3D body, Scene::dimension 3): fn(model) with the law's 3D form,
 // nd::Compressible3DLanes<Law> (stress(F, P), the lane path of nd/ba_force.hpp), for
-// every law of invariants of the registry; throws std::invalid_argument for a law that
-// has no 3D form (CheckMaterial reports it up front). fn returns nothing.
+// every law of invariants of the registry, Law::Model3D for a law of principal
+// stretches (Ogden3D). fn returns nothing.
 template <class Fn> void with_model_3d(ModelKind kind, const MaterialParameters &p, Fn &&fn)
 {
   detail::with_law_3d<0>(kind, p, fn);

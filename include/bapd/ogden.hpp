@@ -12,7 +12,7 @@
 // ~ |c_1 - c_2|).
 //
 // The law declares LawVariables::principal_stretches and brings its own formulations
-// (PlaneStrainModel, PlaneStressModel; Ogden3D for the tests): the invariant-based
+// (PlaneStrainModel, PlaneStressModel; Model3D = Ogden3D for a 3D body): the invariant-based
 // Compressible3D / PlaneStrain / PlaneStress do not apply. In plane stress tau_3 = 0 is
 // solved for s = ln lambda_3: d tau_3 / ds = sum_k mu_k a_k ((4/9) lb_3^a_k +
 // (1/9)(lb_1^a_k + lb_2^a_k)) + 2 J^2 / D > 0 when every mu_k a_k > 0 (checked), so the
@@ -35,6 +35,7 @@ namespace bapd {
 
 struct OgdenPlaneStrain;
 struct OgdenPlaneStress;
+struct Ogden3D;
 
 struct Ogden {
   static constexpr const char *name  = "ogden";
@@ -92,6 +93,7 @@ struct Ogden {
   static constexpr bool         has_limit         = false;
   using PlaneStrainModel                          = OgdenPlaneStrain;
   using PlaneStressModel                          = OgdenPlaneStress;
+  using Model3D                                   = Ogden3D; // (a 3D body: with_model_3d)
 
   // Principal Kirchhoff stresses of the isochoric part from the logarithms of the
   // principal stretches (lb_i^a = exp(a (ln lambda_i - ln J / 3)): one exp per term and

@@ -167,15 +167,10 @@ PetscErrorCode CheckMaterial(MPI_Comm comm, const SceneInput &in, Scene *scene)
                m.mu, in.bulk_ratio_set ? in.bulk_ratio : 1000.0, m.D);
   // -material_mu, the law's own (-material_Jm), -material_D; then whether the law runs in
   // the formulation (the plane-stress solve refuses laws it cannot solve)
-  // (3D: the parameters as plane strain checks them, which accepts every law of
-  // invariants; then whether the law has a 3D form: with_model_3d, models.hpp)
+  // (3D: the parameters as plane strain checks them, which accepts every law; each has
+  // a 3D form: with_model_3d, models.hpp)
   std::string problems = check_model(scene->model, three ? Formulation::plane_strain : scene->formulation, m);
   if (!problems.empty() && problems.back() == '\n') problems.pop_back();
-  if (three && problems.empty()) try {
-      with_model_3d(scene->model, m, [](const auto &) {});
-    } catch (const std::invalid_argument &e) {
-      problems = e.what();
-    }
   PetscCheck(problems.empty(), comm, PETSC_ERR_USER, "%s", problems.c_str());
   SceneCheck(scene->density > 0, comm, "-material_density %g: the density must be > 0 kg/m^3 (a hydrogel: about 1000)",
              scene->density);

@@ -92,7 +92,6 @@ part geometry
 # Geometry
 # A 3D body (issue 21 stage 4c): the 2D-only material options refused, each with its message
 expect_error body_3d_formulation "-material_formulation plane_strain is a 2D reduction" "$fixtures/block_3d.yaml" -material_formulation plane_strain
-expect_error body_3d_ogden "-material_model ogden: a law of principal stretches has no 3D form" "$fixtures/block_3d.yaml" -material_model ogden
 expect_error body_3d_patch "-force_patch_correction on is not ported to 3D bodies" "$fixtures/block_3d.yaml" -force_form bond_only -force_patch_correction on
 expect_error body_3d_box "-body_block_box holds 4 numbers: a 3D box takes six" "$fixtures/block_3d.yaml" -body_block_box 0,0,0.01,0.008
 expect_error hole_covers_body "-body_holes: hole 1 (centre (0.005, 0.005) m, radius 0.02 m) covers the whole body" "$scene" -body_holes 0.005,0.005,0.02
