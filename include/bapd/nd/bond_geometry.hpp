@@ -122,7 +122,10 @@ template <int D> using StressRecord = Packed<D * D>;
 
 // Sums of records over the set bits p of bits[0 .. words), in increasing p: two
 // accumulators, alternating: half the add latency chain, and the order is still fixed
-// by the family alone.
+// by the family alone. always_inline (also masked_sum, bond_kinematics and
+// nd::symmetric_inverse): GCC put these out of line in the energy-consistent kernel
+// only, returning the sums through the stack (docs/performance.md 1j: 3D 88 -> 76 ns a
+// bond; the arithmetic, and so every bit, unchanged).
 template <class R> [[gnu::always_inline]] inline R sum_selected(const std::uint64_t *bits, std::size_t words, const R *records)
 {
   R s0, s1;
