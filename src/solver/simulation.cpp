@@ -156,11 +156,18 @@ template <int D> Families BodyFamilies(const Scene &scene, const PointCloud &clo
 }
 
 // The body's points (rank 0): the geometry stage's in 2D (geometry.hpp); in 3D the
-// scene's clipped cloud or the lattice of its solids (one horizon, delta = factor dx).
+// lattice of its solids (one horizon, delta = factor dx), or the scene's clipped cloud
+// (or centroids) with each point's own horizon, delta_i = factor cbrt(V_i), as 2D's
+// given points get theirs (set_point_horizons, geometry.hpp).
 template <int D> PointCloud BodyPoints(const Scene &scene)
 {
   if constexpr (D == 2) return make_points(scene.body, scene.horizon_factor);
-  else return scene.body3d.given_points ? *scene.body3d.given_points : nd::make_solid_points(scene.body3d.solid);
+  else {
+    if (!scene.body3d.given_points) return nd::make_solid_points(scene.body3d.solid);
+    PointCloud points = *scene.body3d.given_points;
+    set_point_horizons(&points, D, scene.horizon_factor, scene.body.thickness);
+    return points;
+  }
 }
 
 } // namespace
