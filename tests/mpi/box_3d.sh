@@ -21,7 +21,9 @@
 #                              3.015 cbrt(V_i), a bond where either reaches: the run's
 #                              bond count must be the rule's, counted here pair by pair
 #                              (13 860; the one horizon 3.015 mm gave 11 864), and
-#                              1 and 2 ranks the same history and displacements
+#                              1 and 2 ranks the same history and displacements; the
+#                              blocks 4 mm apart (bridged by the coarse horizon only)
+#                              run, 10 mm apart are refused as two pieces
 set -euo pipefail
 source "$BAPD_SOURCE_DIR/tests/restart/common.sh" # run, checkpointed_runs, fail, history_column, PYTHON
 case="$1"
@@ -87,10 +89,12 @@ PY
 elif [ "$case" = graded_cloud ]; then
   # x y z volume block: coarse x in [0, 8] mm (block 2: its first column), fine x in
   # [8, 16] mm (block 3: its last column), y in [0, 6], z in [0, 4] mm.
-  $PYTHON - "$work/graded.txt" <<'PY'
+  # graded_cloud FILE GAP: the two blocks with the fine one GAP m further along x.
+  graded_cloud() {
+    $PYTHON - "$1" "$2" <<'PY'
 import sys
-rows = []
-for h, x0, nx, ny, nz in ((2e-3, 0.0, 4, 3, 2), (1e-3, 8e-3, 8, 6, 4)):
+rows, gap = [], float(sys.argv[2])
+for h, x0, nx, ny, nz in ((2e-3, 0.0, 4, 3, 2), (1e-3, 8e-3 + gap, 8, 6, 4)):
     for k in range(nz):
         for j in range(ny):
             for i in range(nx):
@@ -100,6 +104,8 @@ with open(sys.argv[1], "w") as f:
     f.write("x y z volume block_id\n")
     for r in rows: f.write("%.17g %.17g %.17g %.17g %d\n" % r)
 PY
+  }
+  graded_cloud "$work/graded.txt" 0
   # The rule, pair by pair: delta_i = 3.015 cbrt(V_i), bonded iff |x_j - x_i| <= max(delta_i, delta_j)
   # (no squared distance lies within 0.9 % of a squared horizon here: the count is exact).
   read -r expected single < <($PYTHON - "$work/graded.txt" <<'PY'
@@ -128,6 +134,16 @@ PY
   ux=$(history_column "$work/np1" 300 p_ux_m)
   $PYTHON -c "import sys; sys.exit(0 if float('$ux') > 1e-4 else 1)" || fail "the probe did not move with the grip (ux = $ux m)"
   compare "$work/np1" "$work/np2"
+  # Pieces are found on the bond graph, per-point horizons and all: a 4 mm gap is bridged
+  # by the coarse horizon (5.5 mm from the last coarse column to the first fine one), a
+  # 10 mm gap by none: refused, naming the smaller piece (the coarse block's 24 points).
+  graded_cloud "$work/bridged.txt" 4e-3
+  run 1 "$work/bridged" "${scene[@]}" -body_cloud "$work/bridged.txt" -ts_max_steps 2
+  graded_cloud "$work/apart.txt" 10e-3
+  if mpiexec -n 1 "$BAPD_EXE" "${scene[@]}" -body_cloud "$work/apart.txt" -ts_max_steps 2 -output_dir "$work/apart" \
+      > "$work/apart.log" 2>&1; then fail "a 3D cloud in two pieces ran"; fi
+  grep -qF "apart.txt: the given points fall apart into 2 pieces with no bond between them (the smallest: 24 point(s), e.g. point 0 at (0.001, 0.001, 0.001) m)" \
+    "$work/apart.log" || fail "no pieces message: $(grep -i error "$work/apart.log")"
   echo "graded cloud: $expected bonds (one horizon: $single)"
 else
   fail "unknown case '$case'"
