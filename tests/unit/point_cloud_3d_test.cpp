@@ -140,6 +140,7 @@ TEST(PointCloud3D, TwoSpacingsGetTheirOwnHorizonsAndABondWhereEitherReaches)
   ASSERT_EQ(n, coarse + 384);
   set_point_horizons(&c, 3, factor, 0.0);
   ASSERT_EQ(c.horizon.size(), n);
+  // (to round-off: cbrt(8e-9) is 0.0019999999999999996, an ulp below 2 mm)
   EXPECT_NEAR(c.horizon[0], factor * 2 * h, 1e-15);
   EXPECT_NEAR(c.horizon[n - 1], factor * h, 1e-15);
   const Families f = nd::build_families<3>(c, n, factor * h); // (the smallest horizon: not read with per-point ones)
@@ -159,7 +160,7 @@ TEST(PointCloud3D, TwoSpacingsGetTheirOwnHorizonsAndABondWhereEitherReaches)
       const double r = distance(c, i, static_cast<std::size_t>(j));
       if (i < coarse && r > factor * h) ++coarse_beyond_fine; // a coarse family reaches its own 6.03 mm
       if (i >= coarse && static_cast<std::size_t>(j) < coarse && r > factor * h) ++fine_to_coarse_beyond_fine;
-      if (i >= coarse && static_cast<std::size_t>(j) >= coarse) { // fine-fine: the fine horizon
+      if (i >= coarse && static_cast<std::size_t>(j) >= coarse) { // fine-fine: the fine horizon (to round-off)
         EXPECT_LE(r, factor * h * (1 + 1e-15));
       }
     }
