@@ -10,8 +10,10 @@
 //
 // Non-uniform points (METHOD.md sections 1 and 3 with unequal volumes). A given
 // point's spacing is h_i = sqrt(V_i / t), the spacing of the uniform lattice with the
-// same point density (a lattice point gets h = dx), and its horizon is
-// delta_i = horizon_factor h_i. A bond (i, j) exists where EITHER horizon reaches:
+// same point density (a lattice point gets h = dx; in 3D, h_i = cbrt(V_i)), and its
+// horizon is delta_i = horizon_factor h_i (set_point_horizons, for both dimensions:
+// a 3D cloud or a Gmsh volume's centroids get theirs the same way, in
+// SimulationD<3>'s BodyPoints). A bond (i, j) exists where EITHER horizon reaches:
 //   |x_j - x_i| <= delta_ij = max(delta_i, delta_j)                  (family.hpp)
 // symmetric, so j in H_i iff i in H_j (t_ij and t_ji come in pairs: linear momentum),
 // and every point's family holds at least the disc of its own horizon, so a fine
@@ -31,6 +33,18 @@ namespace bapd {
 
 // h = sqrt(V / t): the spacing of a uniform lattice of the same point density [m].
 inline double point_spacing(double volume, double thickness) { return std::sqrt(volume / thickness); }
+
+// The same in `dimension` 2 or 3: sqrt(V / t) (2D), cbrt(V) (3D: the body has no
+// thickness, so `thickness` is not read) [m].
+inline double point_spacing(int dimension, double volume, double thickness)
+{
+  return dimension == 3 ? std::cbrt(volume) : point_spacing(volume, thickness);
+}
+
+// Gives every point of `cloud` its own horizon, delta_i = horizon_factor h_i with h_i
+// = point_spacing(dimension, V_i, thickness): cloud->horizon, one a point, which
+// build_families (2D) and nd::build_families<3> read as "a bond where either reaches".
+void set_point_horizons(PointCloud *cloud, int dimension, double horizon_factor, double thickness);
 
 // The smallest point_spacing of the given points: the body's characteristic spacing
 // (Body2D::dx), which the stable-step bound and the travel limit scale with.

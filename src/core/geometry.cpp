@@ -27,9 +27,16 @@ PointCloud make_points(const Body2D &body, double horizon_factor)
     cloud.x.push_back(x);
     cloud.x.push_back(y);
     cloud.volume.push_back(given.volume[p]);
-    cloud.horizon.push_back(horizon_factor * point_spacing(given.volume[p], body.thickness));
   }
+  set_point_horizons(&cloud, 2, horizon_factor, body.thickness);
   return cloud;
+}
+
+void set_point_horizons(PointCloud *cloud, int dimension, double horizon_factor, double thickness)
+{
+  cloud->horizon.resize(cloud->size());
+  for (std::size_t p = 0; p < cloud->size(); ++p)
+    cloud->horizon[p] = horizon_factor * point_spacing(dimension, cloud->volume[p], thickness);
 }
 
 GivenPoints element_centroids(const TriangleSet &triangles, double thickness)

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <limits>
 
+#include "bapd/geometry.hpp"
 #include "bapd/reproducible_sum.hpp"
 
 namespace bapd {
@@ -154,7 +155,7 @@ PetscErrorCode Loading::SetAffineLevers(const Scene &scene, const Layout &layout
       lo[k] = hi[k] = std::numeric_limits<double>::max();
       for (PetscInt p : load_points_[s].points) {
         const double V = layout.cloud.volume[p];
-        const double y = layout.cloud.x[dimension_ * p + 1], h = three ? std::cbrt(V) : std::sqrt(V / scene.body.thickness);
+        const double y = layout.cloud.x[dimension_ * p + 1], h = point_spacing(dimension_, V, scene.body.thickness);
         lo[k]          = std::min(lo[k], y - 0.5 * h);
         hi[k]          = std::min(hi[k], -(y + 0.5 * h));
       }

@@ -69,6 +69,17 @@ PetscErrorCode SceneFromOptions(MPI_Comm comm, Scene *scene)
 
 namespace {
 
+// The horizon line: the lattice's one horizon, or given points' own (geometry.hpp:
+// delta_i = factor h_i, h_i = `spacing`; s.horizon() is the smallest, of the smallest
+// spacing, Body2D::dx).
+std::string HorizonText(const Scene &s, bool given_points, const char *spacing)
+{
+  if (given_points)
+    return Format("  horizon   delta_i = %g h_i, h_i = %s (at least %g m); a bond where either reaches\n", s.horizon_factor, spacing,
+                  s.horizon());
+  return Format("  horizon   delta = %g dx = %g m\n", s.horizon_factor, s.horizon());
+}
+
 // The body and horizon lines of a 2D sheet: its size, lattice (or given points), holes,
 // shapes and notches.
 std::string BodyText2D(const Scene &s)
@@ -104,9 +115,7 @@ std::string BodyText2D(const Scene &s)
     text += Format("            shape %s: %s %s %s, %s\n", sh.name.c_str(), to_string(sh.op), article, to_string(sh.kind), where.c_str());
   }
   for (const Segment &g : b.notches) text += Format("            notch (%g, %g)-(%g, %g) m\n", g.x0, g.y0, g.x1, g.y1);
-  if (b.given_points) text += Format("  horizon   delta_i = %g h_i, h_i = sqrt(V_i / t) (at least %g m); a bond where either reaches\n", s.horizon_factor, s.horizon());
-  else text += Format("  horizon   delta = %g dx = %g m\n", s.horizon_factor, s.horizon());
-  return text;
+  return text + HorizonText(s, b.given_points != nullptr, "sqrt(V_i / t)");
 }
 
 // The body and horizon lines of a 3D body: the lattice or the cloud, the extent of the
@@ -151,9 +160,7 @@ std::string BodyText3D(const Scene &s)
     for (std::size_t c = 0; c + 3 <= v.size(); c += 3) corners += Format(" (%g, %g, %g)", v[c], v[c + 1], v[c + 2]);
     text += Format("            notch %s: a planar polygon of %zu vertices,%s m\n", name.c_str(), v.size() / 3, corners.c_str());
   }
-  if (b.given_points) text += Format("  horizon   delta_i = %g h_i, h_i = cbrt(V_i) (at least %g m)\n", s.horizon_factor, s.horizon());
-  else text += Format("  horizon   delta = %g dx = %g m\n", s.horizon_factor, s.horizon());
-  return text;
+  return text + HorizonText(s, b.given_points != nullptr, "cbrt(V_i)");
 }
 
 // Where a load set is: its region in words (3D: a face by its axis, a box of six numbers).

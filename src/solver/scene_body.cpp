@@ -388,7 +388,7 @@ PetscErrorCode ReadBody(MPI_Comm comm, Scene *scene, SceneInput *in)
   }
 
   PetscCall(ReadOptionBlock(comm, nullptr, "Horizon", [&](OptionReader &r) -> PetscErrorCode {
-    PetscCall(r.Real("-horizon_factor", "Horizon over lattice spacing, delta/dx [-] (given points: over each one's spacing sqrt(V/t)) (paper: 3.015; 2.515 and 3.515 also studied)",
+    PetscCall(r.Real("-horizon_factor", "Horizon over lattice spacing, delta/dx [-] (given points: over each one's spacing sqrt(V/t), 3D cbrt(V)) (paper: 3.015; 2.515 and 3.515 also studied)",
                      &scene->horizon_factor, nullptr, "3.015"));
     return 0;
   }));

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "bapd/geometry.hpp"
 #include "bapd/gmsh_volume3d.hpp"
 #include "bapd/nd/point_cloud3d.hpp"
 #include "bapd/options_reader.hpp"
@@ -200,8 +201,10 @@ PetscErrorCode CheckBody3D(MPI_Comm comm, const SceneInput &in, Scene *scene)
     SceneCheck(kept->size() > 0, comm, "%s '%s': the solids of -body_shapes cut away all %zu of its points: check each one's -op", source.c_str(),
                centroids ? b.solid.solids[centroid_solid].mesh->file.c_str() : in.cloud.c_str(), read.size());
     double smallest = std::numeric_limits<double>::max();
-    for (double v : kept->volume) smallest = std::min(smallest, std::cbrt(v));
-    b.solid.dx     = smallest; // the smallest spacing cbrt(V): the faces' row depth
+    for (double v : kept->volume) smallest = std::min(smallest, point_spacing(3, v, 0.0));
+    // The smallest spacing cbrt(V) (2D: sqrt(V/t), geometry.hpp): the faces' row depth,
+    // the stable-step and travel scale; each point's horizon is its own (BodyPoints).
+    b.solid.dx     = smallest;
     b.source       = centroids ? b.solid.solids[centroid_solid].mesh->file : in.cloud;
     b.centroids    = centroids;
     b.given_points = kept;
@@ -224,14 +227,14 @@ PetscErrorCode CheckBody3D(MPI_Comm comm, const SceneInput &in, Scene *scene)
   b.lo.fill(std::numeric_limits<double>::max());
   b.hi.fill(-std::numeric_limits<double>::max());
   for (std::size_t p = 0; p < points.size(); ++p) {
-    const double h = b.given_points ? 0.5 * std::cbrt(points.volume[p]) : 0.5 * b.solid.dx;
+    const double h = b.given_points ? 0.5 * point_spacing(3, points.volume[p], 0.0) : 0.5 * b.solid.dx;
     for (int r = 0; r < 3; ++r) {
       b.lo[r] = std::min(b.lo[r], points.x[3 * p + r] - h);
       b.hi[r] = std::max(b.hi[r], points.x[3 * p + r] + h);
     }
   }
   scene->body    = Body2D();
-  scene->body.dx = b.solid.dx; // (the spacing every section reads: the time-step bound, the horizon)
+  scene->body.dx = b.solid.dx; // (the spacing every section reads: the time-step bound, the (smallest) horizon)
   PetscCall(CheckHorizonFactor(comm, *scene));
   PetscFunctionReturn(0);
 }

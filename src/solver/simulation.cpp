@@ -116,11 +116,12 @@ template <int D> PetscErrorCode SimulationD<D>::CheckOptionsEarly()
 
 namespace {
 
-// Given points are not checked for pieces by the scene (FindCut looks at holes and
-// notches on the lattice): here the bond graph itself is. Writes "" if every point is
-// bonded to the rest, else the message: how many pieces, the smallest one's size and a
-// point of it (an isolated point has no stiffness at all; a loose piece moves freely).
-void DescribePieces(const PointCloud &cloud, const Families &fam, const std::string &source, char *message, std::size_t size)
+// Given points (2D or 3D) are not checked for pieces by the scene (FindCut looks at
+// holes and notches on the lattice, body_pieces at the 3D lattice): here the bond graph
+// itself is, per-point horizons and all. Writes "" if every point is bonded to the
+// rest, else the message: how many pieces, the smallest one's size and a point of it
+// (an isolated point has no stiffness at all; a loose piece moves freely).
+template <int D> void DescribePieces(const PointCloud &cloud, const Families &fam, const std::string &source, char *message, std::size_t size)
 {
   const std::size_t        n = fam.n_family;
   std::vector<std::size_t> parent(n);
@@ -139,12 +140,15 @@ void DescribePieces(const PointCloud &cloud, const Families &fam, const std::str
   std::size_t smallest = 0; // the first point of the smallest piece
   for (std::size_t i = 1; i < n; ++i)
     if (count[find(i)] < count[find(smallest)]) smallest = i;
+  const double *x = &cloud.x[D * smallest];
+  char          at[96];
+  if (D == 2) std::snprintf(at, sizeof at, "(%g, %g)", x[0], x[1]);
+  else std::snprintf(at, sizeof at, "(%g, %g, %g)", x[0], x[1], x[2]);
   std::snprintf(message, size,
                 "%s: the given points fall apart into %zu pieces with no bond between them (the smallest: %zu point(s), e.g. "
-                "point %lld at (%g, %g) m): a piece not bonded to the rest has no stiffness against it. Remove the "
+                "point %lld at %s m): a piece not bonded to the rest has no stiffness against it. Remove the "
                 "stray points from the file, close the gap, or raise -horizon_factor",
-                source.c_str(), n_pieces, count[find(smallest)], static_cast<long long>(cloud.natural_id[smallest]), cloud.x[2 * smallest],
-                cloud.x[2 * smallest + 1]);
+                source.c_str(), n_pieces, count[find(smallest)], static_cast<long long>(cloud.natural_id[smallest]), at);
 }
 
 // The families of points [0, n) of a cloud: the 2D notches' segments, or the 3D
@@ -156,11 +160,18 @@ template <int D> Families BodyFamilies(const Scene &scene, const PointCloud &clo
 }
 
 // The body's points (rank 0): the geometry stage's in 2D (geometry.hpp); in 3D the
-// scene's clipped cloud or the lattice of its solids (one horizon, delta = factor dx).
+// lattice of its solids (one horizon, delta = factor dx), or the scene's clipped cloud
+// (or centroids) with each point's own horizon, delta_i = factor cbrt(V_i), as 2D's
+// given points get theirs (set_point_horizons, geometry.hpp).
 template <int D> PointCloud BodyPoints(const Scene &scene)
 {
   if constexpr (D == 2) return make_points(scene.body, scene.horizon_factor);
-  else return scene.body3d.given_points ? *scene.body3d.given_points : nd::make_solid_points(scene.body3d.solid);
+  else {
+    if (!scene.body3d.given_points) return nd::make_solid_points(scene.body3d.solid);
+    PointCloud points = *scene.body3d.given_points;
+    set_point_horizons(&points, D, scene.horizon_factor, scene.body.thickness);
+    return points;
+  }
 }
 
 } // namespace
@@ -182,8 +193,9 @@ template <int D> PetscErrorCode SimulationD<D>::BuildBody()
     global               = BodyPoints<D>(scene_);
     Families all         = BodyFamilies<D>(scene_, global, global.size());
     compute_family_volumes(global, all);
-    // (a 3D body in pieces was refused by the scene: scene_body.cpp)
-    if (D == 2 && scene_.body.given_points) DescribePieces(global, all, scene_.body.given_points->source, pieces, sizeof pieces);
+    // (a 3D lattice body in pieces was refused by the scene: make_solid_points)
+    if (D == 2 && scene_.body.given_points) DescribePieces<D>(global, all, scene_.body.given_points->source, pieces, sizeof pieces);
+    if (D == 3 && scene_.body3d.given_points) DescribePieces<D>(global, all, scene_.body3d.source, pieces, sizeof pieces);
     if (D == 2 && scene_.patch_correction != PatchCorrection::off && !pieces[0]) { // (2D only: the scene refuses it in 3D) // per point, shipped with the points (patch_correction.hpp)
       const bool            virial = scene_.patch_correction == PatchCorrection::virial;
       PatchCorrectionReport report;

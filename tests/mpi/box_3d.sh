@@ -16,6 +16,14 @@
 #                              against 2; measured 2.6e-9: round-off of the eigen-
 #                              decomposition); the default two-term Ogden must differ from
 #                              it (its reaction by 1.6e-3; > 1e-4 asserted)
+#   box_3d.sh graded_cloud     a 3D cloud of two spacings (a coarse block, 2 mm, beside a
+#                              fine one, 1 mm): each point its own horizon, delta_i =
+#                              3.015 cbrt(V_i), a bond where either reaches: the run's
+#                              bond count must be the rule's, counted here pair by pair
+#                              (13 860; the one horizon 3.015 mm gave 11 864), and
+#                              1 and 2 ranks the same history and displacements; the
+#                              blocks 4 mm apart (bridged by the coarse horizon only)
+#                              run, 10 mm apart are refused as two pieces
 set -euo pipefail
 source "$BAPD_SOURCE_DIR/tests/restart/common.sh" # run, checkpointed_runs, fail, history_column, PYTHON
 case="$1"
@@ -78,6 +86,66 @@ print(f"one-term Ogden against neo-Hookean: {same:.2e} (tolerance 1e-8); two-ter
 sys.exit(0 if len(ref) == len(alpha2) == len(default) and same <= 1e-8 and apart > 1e-4 else 1)
 PY
   echo "box_3d ogden: one-term Ogden (alpha 2) = neo-Hookean to 1e-9; the two-term Ogden differs"; exit 0
+elif [ "$case" = graded_cloud ]; then
+  # x y z volume block: coarse x in [0, 8] mm (block 2: its first column), fine x in
+  # [8, 16] mm (block 3: its last column), y in [0, 6], z in [0, 4] mm.
+  # graded_cloud FILE GAP: the two blocks with the fine one GAP m further along x.
+  graded_cloud() {
+    $PYTHON - "$1" "$2" <<'PY'
+import sys
+rows, gap = [], float(sys.argv[2])
+for h, x0, nx, ny, nz in ((2e-3, 0.0, 4, 3, 2), (1e-3, 8e-3 + gap, 8, 6, 4)):
+    for k in range(nz):
+        for j in range(ny):
+            for i in range(nx):
+                block = 2 if h > 1e-3 and i == 0 else 3 if h == 1e-3 and i == nx - 1 else 1
+                rows.append((x0 + (i + 0.5) * h, (j + 0.5) * h, (k + 0.5) * h, h ** 3, block))
+with open(sys.argv[1], "w") as f:
+    f.write("x y z volume block_id\n")
+    for r in rows: f.write("%.17g %.17g %.17g %.17g %d\n" % r)
+PY
+  }
+  graded_cloud "$work/graded.txt" 0
+  # The rule, pair by pair: delta_i = 3.015 cbrt(V_i), bonded iff |x_j - x_i| <= max(delta_i, delta_j)
+  # (no squared distance lies within 0.9 % of a squared horizon here: the count is exact).
+  read -r expected single < <($PYTHON - "$work/graded.txt" <<'PY'
+import math, sys
+p = [tuple(map(float, l.split()[:4])) for l in open(sys.argv[1]).readlines()[1:]]
+d = [3.015 * math.cbrt(v) for *_, v in p]
+def bonds(reach):
+    return sum(1 for i, a in enumerate(p) for j, b in enumerate(p)
+               if i != j and sum((a[r] - b[r]) ** 2 for r in range(3)) <= reach(i, j) ** 2)
+print(bonds(lambda i, j: max(d[i], d[j])), bonds(lambda i, j: min(d)))
+PY
+)
+  scene=(-body_dimension 3 -body_cloud "$work/graded.txt" -horizon_factor 3.015 -material_mu 4.55e3 -material_Jm 162.6
+         -material_bulk_ratio 10 -material_density 1000 -load_sets left,right -load_left_region block -load_left_block 2
+         -load_left_x fixed -load_left_y fixed -load_left_z fixed -load_right_region block -load_right_block 3
+         -load_right_x stretch -load_right_y fixed -load_right_z fixed -load_reference_length 0.016 -probes p
+         -probe_p_at 0.0115,0.0035,0.0025 -damping 40 -output_interval 20 -progress_interval 100000 -output_final_state
+         -load_schedule 0,1,0.1,1.2 -ts_max_steps 200)
+  for n in 1 2; do run $n "$work/np$n" "${scene[@]}"; done
+  grep -qF "horizon   delta_i = 3.015 h_i, h_i = cbrt(V_i) (at least 0.003015 m); a bond where either reaches" "$work/np1.log" ||
+    fail "the summary does not state the per-point horizons: $(grep "horizon " "$work/np1.log")"
+  for n in 1 2; do
+    grep -q "^Body: 216 points, $expected bonds, $n rank" "$work/np$n.log" ||
+      fail "np$n: $(grep "^Body:" "$work/np$n.log"), not 216 points and the rule's $expected bonds (one horizon: $single)"
+  done
+  ux=$(history_column "$work/np1" 200 p_ux_m)
+  $PYTHON -c "import sys; sys.exit(0 if float('$ux') > 1e-4 else 1)" || fail "the probe did not move with the grip (ux = $ux m)"
+  compare "$work/np1" "$work/np2"
+  # Pieces are found on the bond graph, per-point horizons and all: a 4 mm gap is bridged
+  # by the coarse horizon (5.5 mm from the last coarse column to the first fine one), a
+  # 10 mm gap by none: refused, naming the smaller piece (the coarse block's 24 points).
+  graded_cloud "$work/bridged.txt" 4e-3
+  run 1 "$work/bridged" "${scene[@]}" -body_cloud "$work/bridged.txt" -ts_max_steps 2
+  graded_cloud "$work/apart.txt" 10e-3
+  # (sigkill timeout 0: mpiexec returns at once after bapd's error exit, tests/input/bad_input.sh)
+  if OMPI_MCA_odls_base_sigkill_timeout=0 mpiexec -n 1 "$BAPD_EXE" "${scene[@]}" -body_cloud "$work/apart.txt" -ts_max_steps 2 -output_dir "$work/apart" \
+      > "$work/apart.log" 2>&1; then fail "a 3D cloud in two pieces ran"; fi
+  grep -qF "apart.txt: the given points fall apart into 2 pieces with no bond between them (the smallest: 24 point(s), e.g. point 0 at (0.001, 0.001, 0.001) m)" \
+    "$work/apart.log" || fail "no pieces message: $(grep -i error "$work/apart.log")"
+  echo "graded cloud: $expected bonds (one horizon: $single)"
 else
   fail "unknown case '$case'"
 fi

@@ -468,7 +468,7 @@ TEST_F(Scene3D, ACloudIsClippedByItsSolidsAndItsBlocksAreLoadSets)
   for (const std::string &line : std::vector<std::string>{
          "  body      3D: 60 points of " + std::string(name) + " (spacing cbrt(V), the smallest 0.001 m), cells in [",
          "0.004] m, 1 solid(s) cutting them, 0 notch(es)\n", std::string("            solid cut: subtract a box, [0.002, 0.004] x [0.002, 0.004] x [0, 0.001] m\n"),
-        std::string("  horizon   delta_i = 3.015 h_i, h_i = cbrt(V_i) (at least 0.003015 m)\n"),
+        std::string("  horizon   delta_i = 3.015 h_i, h_i = cbrt(V_i) (at least 0.003015 m); a bond where either reaches\n"),
         std::string("  load set  b: block 2 of the cloud (16 points); x fixed, y free, z free\n"),
         std::string("  probe     corner at (0.0035, 0.0035, 0.0035) m\n")})
     EXPECT_NE(text.find(line), std::string::npos) << "expected '" << line << "' in:\n" << text;
