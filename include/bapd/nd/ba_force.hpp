@@ -32,7 +32,7 @@
 // iff q in B_ip: both are |x_p - x_q| <= delta, computed with the same bits either
 // way; build_families), so the bonds q with p in B_iq are the set bits of bond
 // (i -> p)'s own BA mask, and S_ip is one masked sum of the per-bond M_iq with the
-// code (and the "total minus the others" shortcut) of F_ij's sums. A bond that is
+// code (and the "word total minus the others" shortcut) of F_ij's sums. A bond that is
 // broken, has no usable K or whose model fails has no energy; its end point p still
 // counts in the other bonds' F_iq, so t_ip is generally not 0 unless (i -> p) is broken.
 //
@@ -78,7 +78,8 @@ namespace bapd::nd {
 // stresses, and the failed bonds of the last call. Sized once (reserve).
 template <int D> struct Workspace {
   PointScratch<D>              point;
-  std::vector<StressRecord<D>> bond_stress; // M_iq = V_q P(F_iq) K_iq^{-1} of the point's bonds
+  std::vector<StressRecord<D>> bond_stress;       // M_iq = V_q P(F_iq) K_iq^{-1} of the point's bonds
+  std::vector<StressRecord<D>> bond_stress_total; // their sum by mask word (masked_sum's word_total)
   std::vector<std::uint64_t>   energetic;   // which of them carry energy
   std::vector<FailedBond>      failed;      // every failed bond of the last call
   bool                         keep_warm_start = false; // read c33, do not write it back
@@ -96,6 +97,7 @@ template <int D> struct Workspace {
   {
     point.reserve(f);
     if (bond_stress.size() < f.max_family_size) bond_stress.resize(f.max_family_size);
+    if (bond_stress_total.size() < f.mask_words) bond_stress_total.resize(f.mask_words);
     if (energetic.size() < f.mask_words) energetic.resize(f.mask_words);
     const std::size_t L = lane_count, stride = (std::max<std::size_t>(f.max_family_size, 1) + L - 1) / L * L;
     if (lane_stride < stride) {
@@ -328,15 +330,15 @@ template <int D, bool Corrected> struct BondOnlyForm {
   }
 };
 
-// Energy-consistent, pass 1: M_iq = V_q P(F_iq) K_iq^{-1}, their sum in family order,
-// sum_q V_q and the mask of the bonds that carry energy.
+// Energy-consistent, pass 1: M_iq = V_q P(F_iq) K_iq^{-1}, their sum by mask word in
+// family order, sum_q V_q and the mask of the bonds that carry energy.
 template <int D> struct EnergyConsistentForm {
   static constexpr std::size_t stride = Workspace<D>::data_stride;
   StressRecord<D>             *M;
   std::uint64_t               *energetic;
   double                      *data; // ws.pending_data: K^{-1} (upper triangle) of each slot
   const MemberRecord<D>       *rec;
-  StressRecord<D>              stress_total;
+  StressRecord<D>             *stress_total; // by mask word, zeroed by the caller
   double                       volume = 0.0;
 
   void none(std::size_t) {} // no energy: M_iq is not read (its bit stays clear)
@@ -357,7 +359,7 @@ template <int D> struct EnergyConsistentForm {
       }
     const StressRecord<D> mq = StressRecord<D>::from(m_iq); // in registers (Packed::from)
     M[q]                     = mq;
-    stress_total += mq;
+    stress_total[q / 64] += mq;
     volume += v;
     energetic[q / 64] |= std::uint64_t{1} << (q % 64);
   }
@@ -404,9 +406,9 @@ void energy_consistent_range(const Model &model, const PointCloud &ref, const do
     const std::uint64_t *intact = state.intact_mask(i), *ba = fam.ba_mask.data() + o * W;
     const PointTotals<D> totals = gather_point<D>(ref, y, fam, i, intact, ws.point);
     for (std::size_t w = 0; w < W; ++w) ws.energetic[w] = 0;
+    for (std::size_t w = 0; w < W; ++w) ws.bond_stress_total[w].zero();
     EnergyConsistentForm<D> form{ws.bond_stress.data(), ws.energetic.data(), ws.pending_data.data(),
-                                 ws.point.member.data(), {}, 0.0};
-    form.stress_total.zero();
+                                 ws.point.member.data(), ws.bond_stress_total.data(), 0.0};
     stress_pass<D, Words>(model, fam, geo, state, i, totals, c33, ws, form, evaluated, unusable, largest_trC, stats);
     // Pass 2: t_ip = omega_i S_ip (x_p - x_i), S_ip = the sum of M_iq over q in B_ip
     // (BA masks are symmetric within a family: see the top of this file).
@@ -422,8 +424,8 @@ void energy_consistent_range(const Model &model, const PointCloud &ref, const do
         for (int r = 0; r < D; ++r) t[D * p + r] = 0.0;
         continue;
       }
-      const StressRecord<D> S = masked_sum<Words>(ba + p * W, ws.energetic.data(), W, ws.bond_stress.data(),
-                                           form.stress_total, ws.point.in.data(), ws.point.out.data());
+      const StressRecord<D> S =
+          masked_sum<Words>(ba + p * W, ws.energetic.data(), W, ws.bond_stress.data(), ws.bond_stress_total.data());
       for (int r = 0; r < D; ++r) {
         double s = S[D * r] * off[D * p];
         for (int c = 1; c < D; ++c) s += S[D * r + c] * off[D * p + c];
