@@ -179,6 +179,11 @@ template <std::size_t Words, class R>
 [[gnu::always_inline]] inline R masked_sum(const std::uint64_t *ba, const std::uint64_t *members, std::size_t words,
                                            const R *records, const R *word_total)
 {
+  if constexpr (Words == 1) { // 2D: the same sum with a branch (kernel_bench energy_warm 30.2-30.4 ns a bond; 31.9-32.3 with the blend)
+    const std::uint64_t in = ba[0] & members[0], out = ~ba[0] & members[0];
+    if (__builtin_popcountll(in) <= __builtin_popcountll(out)) return sum_selected(in, records);
+    return word_total[0] - sum_selected(out, records);
+  }
   if constexpr (Words > 0) words = Words;
   R s = word_sum(ba[0], members[0], records, word_total[0]);
   for (std::size_t w = 1; w < words; ++w) s += word_sum(ba[w], members[w], records + 64 * w, word_total[w]);
