@@ -238,6 +238,20 @@ TEST(BaForce3D, EnergyConsistentForceIsMinusTheEnergyGradientByFiniteDifferences
   EXPECT_GT(finite_difference_error(b, test3d::gent(), ForceForm::bond_only, y, 1e-4 * kDx), 1e-3);
 }
 
+// The masked sums decide "total minus the others" per mask word (nd/bond_geometry.hpp
+// masked_sum): the same check with three mask words (3.5 dx, a compile-time count) and
+// five (4.2 dx: the run-time count), bonds broken so that the words' totals matter.
+TEST(BaForce3D, EnergyConsistentForceIsTheEnergyGradientWithThreeAndFiveMaskWords)
+{
+  for (const auto &[factor, words] : {std::pair{3.5, std::size_t{3}}, std::pair{4.2, std::size_t{5}}}) {
+    Body3D b(7, factor);
+    ASSERT_EQ(b.families.mask_words, words) << factor;
+    b.break_some(5);
+    const std::vector<double> y = b.deformed({1.3, 0.15, 0.0, -0.1, 0.92, 0.05, 0.0, 0.1, 1.1}, 0.1, 3);
+    EXPECT_LT(finite_difference_error(b, test3d::gent(), ForceForm::energy_consistent, y, 1e-4 * kDx), 1e-7) << factor;
+  }
+}
+
 // M = sum_j g_j (x) xi_j V_j of an interior point in 3D from the lattice offsets alone
 // (units of dx, dimensionless; phi = 1/2): the uncorrected interior BA stress is P M.
 // An independent implementation of eqs 8, 11, 15, 23 on integer offsets.

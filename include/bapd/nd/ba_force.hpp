@@ -32,7 +32,7 @@
 // iff q in B_ip: both are |x_p - x_q| <= delta, computed with the same bits either
 // way; build_families), so the bonds q with p in B_iq are the set bits of bond
 // (i -> p)'s own BA mask, and S_ip is one masked sum of the per-bond M_iq with the
-// code (and the "total minus the others" shortcut) of F_ij's sums. A bond that is
+// code (and the "word total minus the others" shortcut) of F_ij's sums. A bond that is
 // broken, has no usable K or whose model fails has no energy; its end point p still
 // counts in the other bonds' F_iq, so t_ip is generally not 0 unless (i -> p) is broken.
 //
@@ -78,16 +78,19 @@ namespace bapd::nd {
 // stresses, and the failed bonds of the last call. Sized once (reserve).
 template <int D> struct Workspace {
   PointScratch<D>              point;
-  std::vector<StressRecord<D>> bond_stress; // M_iq = V_q P(F_iq) K_iq^{-1} of the point's bonds
+  std::vector<StressRecord<D>> bond_stress;       // M_iq = V_q P(F_iq) K_iq^{-1} of the point's bonds
+  std::vector<StressRecord<D>> bond_stress_total; // their sum by mask word (masked_sum's word_total)
   std::vector<std::uint64_t>   energetic;   // which of them carry energy
   std::vector<FailedBond>      failed;      // every failed bond of the last call
   bool                         keep_warm_start = false; // read c33, do not write it back
-  // What a form keeps of a bond between its kinematics and its P (data_stride a slot:
-  // g of the bond-only form, K^{-1} of the energy-consistent one). Models with a lane
+  // What a form keeps of a bond between its kinematics and its P, data_components of
+  // them a slot, by component (component c of slot s at pending_data[c lane_stride + s],
+  // so that a form reads lane_count slots' component as one vector): g of the bond-only
+  // form, K^{-1} and V_q of the energy-consistent one. Models with a lane
   // path (has_lanes: PlaneStress in 2D, Compressible3DLanes in 3D) get the point's
   // bonds after the loop, lane_count at a time: F by component (D x D arrays of
   // lane_stride), the c33 warm start and the position q of each.
-  static constexpr std::size_t data_stride = sym_size<D> > D ? sym_size<D> : D;
+  static constexpr std::size_t data_components = sym_size<D> + 1;
   std::size_t                  lane_stride = 0; // max_family_size rounded up to lane_count
   std::vector<double>          pending_F, pending_c33, pending_data;
   std::vector<std::size_t>     pending_q;
@@ -96,13 +99,14 @@ template <int D> struct Workspace {
   {
     point.reserve(f);
     if (bond_stress.size() < f.max_family_size) bond_stress.resize(f.max_family_size);
+    if (bond_stress_total.size() < f.mask_words) bond_stress_total.resize(f.mask_words);
     if (energetic.size() < f.mask_words) energetic.resize(f.mask_words);
     const std::size_t L = lane_count, stride = (std::max<std::size_t>(f.max_family_size, 1) + L - 1) / L * L;
     if (lane_stride < stride) {
       lane_stride = stride;
       pending_F.assign(D * D * stride, 0.0);
       pending_c33.assign(stride, 0.0);
-      pending_data.assign(data_stride * stride, 0.0);
+      pending_data.assign(data_components * stride, 0.0);
       pending_q.assign(stride, 0);
     }
   }
@@ -175,8 +179,11 @@ template <int D, class Model>
 // The model over the n bonds of point i collected in ws.pending_*, lane_count at a
 // time (Model::stress_lanes); a lane it does not finish goes through the scalar
 // stress(), which gives bit for bit what stress_lanes gives where that finishes
-// (plane_stress.hpp), so a bond's result does not depend on its lane. Bonds are taken in family order,
-// so failures are recorded and form.stress() is called in loop order.
+// (plane_stress.hpp), so a bond's result does not depend on its lane. The form's
+// product with P is formed for all lanes at once (form.product, the operations of
+// form.stress lane by lane, so the same bits) and kept by form.store for the lanes the
+// model finished. Bonds are taken in family order, so failures are recorded and the
+// form is told (store, stress) in loop order.
 template <int D, class Model, class Form>
 void model_lanes(const Model &model, Workspace<D> &ws, std::size_t n, std::size_t i, std::size_t o, double *c33,
                  Form &form, double &largest_trC, KernelStats &stats)
@@ -197,24 +204,23 @@ void model_lanes(const Model &model, Workspace<D> &ws, std::size_t n, std::size_
     Lanes          trC  = D == 2 ? select(c > zero, c, one) : zero;
     for (int k = 0; k < DD; ++k) trC = trC + F[k] * F[k];
     top = select(trC > top, trC, top);
-    const LaneMask done = model.stress_lanes(F, c, P);
+    const LaneMask done    = model.stress_lanes(F, c, P);
+    const auto     product = form.product(j, P);
     for (std::size_t l = 0; l < L && j + l < n; ++l) {
       const std::size_t q = ws.pending_q[j + l];
-      double            cb;
-      Mat<D>            Pb;
       if (done[l]) {
-        cb = c[l];
-        for (int k = 0; k < DD; ++k) Pb[k] = P[k][l];
-      } else {
-        cb = cw[j + l];
-        Mat<D> Fb;
-        for (int k = 0; k < DD; ++k) Fb[k] = F[k][l];
-        const StressStatus status = model_lane_fallback<D>(model, Fb, cb, Pb);
-        if (__builtin_expect(status != StressStatus::ok, 0)) {
-          record_failure(stats, ws.failed, i, q, status);
-          form.none(q);
-          continue;
-        }
+        if (c33 && !ws.keep_warm_start) c33[o + q] = c[l];
+        form.store(j + l, q, product, l);
+        continue;
+      }
+      double cb = cw[j + l];
+      Mat<D> Fb, Pb;
+      for (int k = 0; k < DD; ++k) Fb[k] = F[k][l];
+      const StressStatus status = model_lane_fallback<D>(model, Fb, cb, Pb);
+      if (__builtin_expect(status != StressStatus::ok, 0)) {
+        record_failure(stats, ws.failed, i, q, status);
+        form.none(q);
+        continue;
       }
       if (c33 && !ws.keep_warm_start) c33[o + q] = cb;
       form.stress(j + l, q, Pb);
@@ -227,8 +233,10 @@ void model_lanes(const Model &model, Workspace<D> &ws, std::size_t n, std::size_
 // from the model. The form is told, in family order:
 //   form.none(q)               no stress: broken, K not usable, or the model failed;
 //   form.collect(slot, q, k)   the kinematics, before the model (the form keeps what
-//                              it needs in ws.pending_data, data_stride a slot);
-//   form.stress(slot, q, P)    P(F_iq) of the bond collected in slot.
+//                              it needs in ws.pending_data, by component);
+//   form.stress(slot, q, P)    P(F_iq) of the bond collected in slot;
+//   form.product(j, P), form.store(slot, q, product, l)
+//                              the same for P of lane_count slots from j (model_lanes).
 // A model with stress_lanes (has_lanes) gets the bonds after the loop (model_lanes).
 template <int D, std::size_t Words, class Model, class Form>
 inline void stress_pass(const Model &model, const Families &fam, const BondGeometry<D> &geo, const BondState &state,
@@ -286,9 +294,9 @@ inline void stress_pass(const Model &model, const Families &fam, const BondGeome
 // Bond-only (eq 23): t_iq = P g_iq, g_iq = force_scale C_i K^{-1} xi_iq (+ h_iq with
 // the patch correction).
 template <int D, bool Corrected> struct BondOnlyForm {
-  static constexpr std::size_t stride = Workspace<D>::data_stride;
   double                      *t;    // the point's bond forces, D per bond
-  double                      *data; // ws.pending_data: g_iq, D of each slot
+  double                      *data; // ws.pending_data: g_iq, component r of slot s at data[r S + s]
+  std::size_t                  S;    // ws.lane_stride
   const double                *off, *fvk, *C;
   const PointTotals<D>        &totals;
   // -force_patch_correction: lambda of the point and of every local point
@@ -302,9 +310,11 @@ template <int D, bool Corrected> struct BondOnlyForm {
   {
     for (int r = 0; r < D; ++r) t[D * q + r] = 0.0;
   }
-  void collect(std::size_t slot, std::size_t q, const BondKinematics<D> &k)
+  // Out of line: inlined into stress_pass's loop it made that loop slower (3D lanes
+  // bond-only 47.4 ns a bond inlined, 40.4 out of line; docs/performance.md 1k).
+  [[gnu::noinline]] void collect(std::size_t slot, std::size_t q, const BondKinematics<D> &k)
   {
-    double *g = data + stride * slot;
+    double g[D];
     force_vector<D>(k, force_scale<D>(k, totals, fvk[q]), off + D * q, g);
     if constexpr (Corrected) { // g -> C_i g (compiled out without a correction)
       double h[D];
@@ -316,50 +326,86 @@ template <int D, bool Corrected> struct BondOnlyForm {
       for (int r = 0; r < D; ++r) g[r] = h[r];
     }
     if (lambda_i) add_patch_term<D>(lambda_i, lambda + patch_stride<D>(virial) * nb[q], off + D * q, g, virial); // h_iq
+    for (int r = 0; r < D; ++r) data[r * S + slot] = g[r];
+  }
+  // t = P g, in one bond's doubles or in lanes (slot = the first of lane_count).
+  template <class T> std::array<T, D> force(const std::array<T, D * D> &P, std::size_t slot) const
+  {
+    std::array<T, D> g, t;
+    for (int r = 0; r < D; ++r) std::memcpy(&g[r], data + r * S + slot, sizeof(T));
+    for (int r = 0; r < D; ++r) {
+      T s = P[D * r] * g[0];
+      for (int c = 1; c < D; ++c) s += P[D * r + c] * g[c];
+      t[r] = s;
+    }
+    return t;
   }
   void stress(std::size_t slot, std::size_t q, const Mat<D> &P)
   {
-    const double *g = data + stride * slot;
-    for (int r = 0; r < D; ++r) {
-      double s = P[D * r] * g[0];
-      for (int c = 1; c < D; ++c) s += P[D * r + c] * g[c];
-      t[D * q + r] = s;
-    }
+    const std::array<double, D> f = force(P, slot);
+    for (int r = 0; r < D; ++r) t[D * q + r] = f[r];
+  }
+  std::array<Lanes, D> product(std::size_t j, const std::array<Lanes, D * D> &P) const { return force(P, j); }
+  void store(std::size_t, std::size_t q, const std::array<Lanes, D> &f, std::size_t l)
+  {
+    for (int r = 0; r < D; ++r) t[D * q + r] = f[r][l];
   }
 };
 
-// Energy-consistent, pass 1: M_iq = V_q P(F_iq) K_iq^{-1}, their sum in family order,
-// sum_q V_q and the mask of the bonds that carry energy.
+// Energy-consistent, pass 1: M_iq = V_q P(F_iq) K_iq^{-1}, their sum by mask word in
+// family order, sum_q V_q and the mask of the bonds that carry energy.
 template <int D> struct EnergyConsistentForm {
-  static constexpr std::size_t stride = Workspace<D>::data_stride;
+  static constexpr int         volume_component = sym_size<D>;
   StressRecord<D>             *M;
   std::uint64_t               *energetic;
-  double                      *data; // ws.pending_data: K^{-1} (upper triangle) of each slot
+  double                      *data; // ws.pending_data: K^{-1} (upper triangle) and V_q, component c of slot s at data[c S + s]
+  std::size_t                  S;    // ws.lane_stride
   const MemberRecord<D>       *rec;
-  StressRecord<D>              stress_total;
+  StressRecord<D>             *stress_total; // by mask word, zeroed by the caller
   double                       volume = 0.0;
 
   void none(std::size_t) {} // no energy: M_iq is not read (its bit stays clear)
-  void collect(std::size_t slot, std::size_t, const BondKinematics<D> &k)
+  void collect(std::size_t slot, std::size_t q, const BondKinematics<D> &k)
   {
-    for (int c = 0; c < sym_size<D>; ++c) data[stride * slot + c] = k.shape_tensor_inv[c];
+    for (int c = 0; c < sym_size<D>; ++c) data[c * S + slot] = k.shape_tensor_inv[c];
+    data[volume_component * S + slot] = rec[q][Member<D>::volume];
+  }
+  // M = V_q P K^{-1}, in one bond's doubles or in lanes (slot = the first of lane_count).
+  template <class T> std::array<T, D * D> stress_over_shape(const std::array<T, D * D> &P, std::size_t slot) const
+  {
+    T ki[sym_size<D>], v;
+    for (int c = 0; c < sym_size<D>; ++c) std::memcpy(&ki[c], data + c * S + slot, sizeof(T));
+    std::memcpy(&v, data + volume_component * S + slot, sizeof(T));
+    std::array<T, D * D> m;
+    for (int r = 0; r < D; ++r)
+      for (int c = 0; c < D; ++c) {
+        T s = P[D * r] * ki[sym_index<D>(0, c)];
+        for (int k = 1; k < D; ++k) s += P[D * r + k] * ki[sym_index<D>(k, c)];
+        m[D * r + c] = v * s;
+      }
+    return m;
+  }
+  void keep(std::size_t slot, std::size_t q, const double *m_iq)
+  {
+    const StressRecord<D> mq = StressRecord<D>::from(m_iq); // in registers (Packed::from)
+    M[q]                     = mq;
+    stress_total[q / 64] += mq;
+    volume += data[volume_component * S + slot];
+    energetic[q / 64] |= std::uint64_t{1} << (q % 64);
   }
   void stress(std::size_t slot, std::size_t q, const Mat<D> &P)
   {
-    const double   *ki = data + stride * slot;
-    const double    v  = rec[q][Member<D>::volume];
-    double          m_iq[StressRecord<D>::vectors * StressRecord<D>::V] = {};
-    for (int r = 0; r < D; ++r)
-      for (int c = 0; c < D; ++c) {
-        double s = P[D * r] * ki[sym_index<D>(0, c)];
-        for (int m = 1; m < D; ++m) s += P[D * r + m] * ki[sym_index<D>(m, c)];
-        m_iq[D * r + c] = v * s;
-      }
-    const StressRecord<D> mq = StressRecord<D>::from(m_iq); // in registers (Packed::from)
-    M[q]                     = mq;
-    stress_total += mq;
-    volume += v;
-    energetic[q / 64] |= std::uint64_t{1} << (q % 64);
+    const Mat<D> m = stress_over_shape(P, slot);
+    double       m_iq[StressRecord<D>::vectors * StressRecord<D>::V] = {};
+    for (int k = 0; k < D * D; ++k) m_iq[k] = m[k];
+    keep(slot, q, m_iq);
+  }
+  std::array<Lanes, D * D> product(std::size_t j, const std::array<Lanes, D * D> &P) const { return stress_over_shape(P, j); }
+  void store(std::size_t slot, std::size_t q, const std::array<Lanes, D * D> &m, std::size_t l)
+  {
+    double m_iq[StressRecord<D>::vectors * StressRecord<D>::V] = {};
+    for (int k = 0; k < D * D; ++k) m_iq[k] = m[k][l];
+    keep(slot, q, m_iq);
   }
 };
 
@@ -376,6 +422,7 @@ void bond_only_range(const Model &model, const PointCloud &ref, const double *y,
     const PointTotals<D>    totals = gather_point<D>(ref, y, fam, i, state.intact_mask(i), ws.point);
     BondOnlyForm<D, Corrected> form{bond_force + D * fam.offsets[i],
                                     ws.pending_data.data(),
+                                    ws.lane_stride,
                                     ws.point.offset.data(),
                                     ws.point.family_volume.data(),
                                     Corrected ? geo.correction.data() + D * D * i : nullptr,
@@ -404,9 +451,11 @@ void energy_consistent_range(const Model &model, const PointCloud &ref, const do
     const std::uint64_t *intact = state.intact_mask(i), *ba = fam.ba_mask.data() + o * W;
     const PointTotals<D> totals = gather_point<D>(ref, y, fam, i, intact, ws.point);
     for (std::size_t w = 0; w < W; ++w) ws.energetic[w] = 0;
-    EnergyConsistentForm<D> form{ws.bond_stress.data(), ws.energetic.data(), ws.pending_data.data(),
-                                 ws.point.member.data(), {}, 0.0};
-    form.stress_total.zero();
+    for (std::size_t w = 0; w < W; ++w) ws.bond_stress_total[w].zero();
+    EnergyConsistentForm<D> form{ws.bond_stress.data(),      ws.energetic.data(),
+                                 ws.pending_data.data(),     ws.lane_stride,
+                                 ws.point.member.data(),     ws.bond_stress_total.data(),
+                                 0.0};
     stress_pass<D, Words>(model, fam, geo, state, i, totals, c33, ws, form, evaluated, unusable, largest_trC, stats);
     // Pass 2: t_ip = omega_i S_ip (x_p - x_i), S_ip = the sum of M_iq over q in B_ip
     // (BA masks are symmetric within a family: see the top of this file).
@@ -422,8 +471,8 @@ void energy_consistent_range(const Model &model, const PointCloud &ref, const do
         for (int r = 0; r < D; ++r) t[D * p + r] = 0.0;
         continue;
       }
-      const StressRecord<D> S = masked_sum<Words>(ba + p * W, ws.energetic.data(), W, ws.bond_stress.data(),
-                                           form.stress_total, ws.point.in.data(), ws.point.out.data());
+      const StressRecord<D> S =
+          masked_sum<Words>(ba + p * W, ws.energetic.data(), W, ws.bond_stress.data(), ws.bond_stress_total.data());
       for (int r = 0; r < D; ++r) {
         double s = S[D * r] * off[D * p];
         for (int c = 1; c < D; ++c) s += S[D * r + c] * off[D * p + c];

@@ -105,6 +105,15 @@ template <int N> struct alignas(8 * vector_doubles) Packed {
   }
 };
 template <int N> inline Packed<N> operator+(Packed<N> a, const Packed<N> &b) { return a += b; }
+// a where take, else b (bitwise, a blend and no branch).
+template <int N> inline Packed<N> blend(bool take, const Packed<N> &a, const Packed<N> &b)
+{
+  typedef std::int64_t Bits __attribute__((vector_size(8 * vector_doubles)));
+  const Bits keep = Bits{} - static_cast<std::int64_t>(take); // all ones or 0
+  Packed<N>  r;
+  for (int q = 0; q < Packed<N>::vectors; ++q) r.v[q] = (Vector)(((Bits)a.v[q] & keep) | ((Bits)b.v[q] & ~keep));
+  return r;
+}
 template <int N> inline Packed<N> operator-(Packed<N> a, const Packed<N> &b)
 {
   for (int q = 0; q < Packed<N>::vectors; ++q) a.v[q] -= b.v[q];
@@ -120,55 +129,65 @@ template <int D> using MemberRecord = typename Member<D>::Record;
 // V_q P(F_iq) K_iq^{-1} of a bond (the energy-consistent form, nd/ba_force.hpp).
 template <int D> using StressRecord = Packed<D * D>;
 
-// Sums of records over the set bits p of bits[0 .. words), in increasing p: two
+// The sum of records[p] over the set bits p of one mask word, in increasing p: two
 // accumulators, alternating: half the add latency chain, and the order is still fixed
 // by the family alone. always_inline (also masked_sum, bond_kinematics and
 // nd::symmetric_inverse): GCC put these out of line in the energy-consistent kernel
 // only, returning the sums through the stack (docs/performance.md 1j: 3D 88 -> 76 ns a
 // bond; the arithmetic, and so every bit, unchanged).
-template <class R> [[gnu::always_inline]] inline R sum_selected(const std::uint64_t *bits, std::size_t words, const R *records)
+template <class R> [[gnu::always_inline]] inline R sum_selected(std::uint64_t m, const R *records)
 {
   R s0, s1;
   s0.zero();
   s1.zero();
-  for (std::size_t w = 0; w < words; ++w) {
-    std::uint64_t     m    = bits[w];
-    const std::size_t base = 64 * w;
-    while (m) {
-      std::size_t p = base + static_cast<std::size_t>(__builtin_ctzll(m));
-      m &= m - 1;
-      s0 += records[p];
-      if (!m) break;
-      p = base + static_cast<std::size_t>(__builtin_ctzll(m));
-      m &= m - 1;
-      s1 += records[p];
-    }
+  while (m) {
+    std::size_t p = static_cast<std::size_t>(__builtin_ctzll(m));
+    m &= m - 1;
+    s0 += records[p];
+    if (!m) break;
+    p = static_cast<std::size_t>(__builtin_ctzll(m));
+    m &= m - 1;
+    s1 += records[p];
   }
   return s0 + s1;
 }
 
-// The sum of the records of the members in the BA family (ba) and in `members`;
-// total = the sum over all of `members` in order. When the BA family holds more than
-// half of them: total minus the others (which form depends on the masks alone, so
-// the result is the same on any rank). Words: the mask words if known at compile time
-// (the kernels dispatch 1, 2 and 3; the masks then stay in registers), else 0 and
-// `words` at run time with in, out as work space.
-template <std::size_t Words, class R>
-[[gnu::always_inline]] inline R masked_sum(const std::uint64_t *ba, const std::uint64_t *members, std::size_t words, const R *records,
-                    const R &total, std::uint64_t *in_space, std::uint64_t *out_space)
+// masked_sum's sum over one mask word. Without a branch on the choice, which differs
+// from bond to bond: the sum over the chosen set, then total - sum formed always and
+// one of the two kept.
+template <class R>
+[[gnu::always_inline]] inline R word_sum(std::uint64_t ba, std::uint64_t members, const R *records, const R &total)
 {
-  std::uint64_t  in_local[Words ? Words : 1], out_local[Words ? Words : 1];
-  std::uint64_t *in = Words ? in_local : in_space, *out = Words ? out_local : out_space;
-  if constexpr (Words > 0) words = Words;
-  int n_in = 0, n_out = 0;
-  for (std::size_t w = 0; w < words; ++w) {
-    in[w]  = ba[w] & members[w];
-    out[w] = ~ba[w] & members[w];
-    n_in += __builtin_popcountll(in[w]);
-    n_out += __builtin_popcountll(out[w]);
+  const std::uint64_t in = ba & members, out = ~ba & members;
+  const bool          direct = __builtin_popcountll(in) <= __builtin_popcountll(out);
+  const R             sum    = sum_selected(direct ? in : out, records);
+  return blend(direct, sum, total - sum);
+}
+
+// The sum of the records of the members in the BA family (ba) and in `members`, mask
+// word by mask word (64 members each), the words' sums added in order. word_total[w] =
+// the sum over all of `members` in word w, in order. Where the BA family holds more
+// than half of a word's members: that word's total minus the others. Which form a
+// word takes depends on the masks alone, so the result is the same on any rank.
+// Deciding by word and not over the whole mask (as before 2026-12-03; the same for 2D's
+// one word) adds 38 records a sum in place of 47 on an interior 3D family at 3.015 dx:
+// its members are sorted by natural id, z slowest, so a BA family (the lens of two
+// balls) fills most of one word and little of the other (docs/performance.md 1k).
+// Words: the mask words if known at compile time (the kernels dispatch 1, 2 and 3; the
+// masks then stay in registers), else 0 and `words` at run time.
+template <std::size_t Words, class R>
+[[gnu::always_inline]] inline R masked_sum(const std::uint64_t *ba, const std::uint64_t *members, std::size_t words,
+                                           const R *records, const R *word_total)
+{
+  if constexpr (Words == 1) { // 2D: the same sum with a branch (kernel_bench energy_warm 30.2-30.4 ns a bond; 31.9-32.3 with the blend)
+    const std::uint64_t in = ba[0] & members[0], out = ~ba[0] & members[0];
+    if (__builtin_popcountll(in) <= __builtin_popcountll(out)) return sum_selected(in, records);
+    return word_total[0] - sum_selected(out, records);
   }
-  if (n_in <= n_out) return sum_selected(in, words, records);
-  return total - sum_selected(out, words, records);
+  if constexpr (Words > 0) words = Words;
+  R s = word_sum(ba[0], members[0], records, word_total[0]);
+  for (std::size_t w = 1; w < words; ++w) s += word_sum(ba[w], members[w], records + 64 * w, word_total[w]);
+  return s;
 }
 
 // Per-member data of the point being processed, sized once for the largest family
@@ -177,7 +196,7 @@ template <int D> struct PointScratch {
   std::vector<MemberRecord<D>> member;        // records of the point's members
   std::vector<double>          offset;        // x_k - x_i, D per member
   std::vector<double>          family_volume; // V(H_k) per member
-  std::vector<std::uint64_t>   in, out;       // masked_sum's work space, mask_words each
+  std::vector<MemberRecord<D>> word_total;    // the sum of the intact members' records of each mask word
 
   void reserve(const Families &f)
   {
@@ -186,17 +205,15 @@ template <int D> struct PointScratch {
       offset.resize(D * f.max_family_size);
       family_volume.resize(f.max_family_size);
     }
-    if (in.size() < f.mask_words) {
-      in.resize(f.mask_words);
-      out.resize(f.mask_words);
-    }
+    if (word_total.size() < f.mask_words) word_total.resize(f.mask_words);
   }
 };
 
-// What one point's bonds share: the sum of its intact records and V(H_i).
+// What one point's bonds share: the sums of its intact records (by mask word, in
+// PointScratch::word_total) and V(H_i).
 template <int D> struct PointTotals {
-  MemberRecord<D> total;
-  double          family_volume;                      // V(H_i)
+  const MemberRecord<D> *word_total;
+  double                 family_volume;               // V(H_i)
   double          half_inverse_family_volume_squared; // 1 / (2 V(H_i)^2)
 };
 
@@ -219,10 +236,9 @@ inline PointTotals<D> gather_point(const PointCloud &ref, const double *y, const
   const std::size_t   o   = fam.offsets[i], m = fam.offsets[i + 1] - o;
   const double       *x   = ref.x.data(), *vol = ref.volume.data(), *fv = ref.family_volume.data();
   const std::int32_t *nb  = fam.neighbour.data() + o;
-  MemberRecord<D>    *rec = ws.member.data();
+  MemberRecord<D>    *rec = ws.member.data(), *word_total = ws.word_total.data();
   double             *off = ws.offset.data(), *fvk = ws.family_volume.data();
-  MemberRecord<D>     total;
-  total.zero();
+  MemberRecord<D>     total; // of the current mask word
   // x_i and y_i in registers: the stores below could alias x and y for the compiler,
   // which would then load them again for every member.
   double xi[D], yi[D];
@@ -230,7 +246,9 @@ inline PointTotals<D> gather_point(const PointCloud &ref, const double *y, const
     xi[r] = x[D * i + r];
     yi[r] = y[D * i + r];
   }
-  for (std::size_t p = 0; p < m; ++p) {
+  for (std::size_t w = 0; w < fam.mask_words; ++w) {
+  total.zero();
+  for (std::size_t p = 64 * w; p < std::min(m, 64 * w + 64); ++p) {
     const std::size_t k = static_cast<std::size_t>(nb[p]);
     const double      v = vol[k];
     double            d[D], e[D], a[D];
@@ -249,9 +267,11 @@ inline PointTotals<D> gather_point(const PointCloud &ref, const double *y, const
     f[L::volume]             = v;
     const MemberRecord<D> R = MemberRecord<D>::from(f);
     rec[p]                  = R;
-    if ((intact[p / 64] >> (p % 64)) & 1u) total += R;
+    if ((intact[w] >> (p % 64)) & 1u) total += R;
   }
-  return {total, fv[i], 0.5 / (fv[i] * fv[i])};
+  word_total[w] = total;
+  }
+  return {word_total, fv[i], 0.5 / (fv[i] * fv[i])};
 }
 
 // F, K^{-1} and V(B) of a bond (ba: its BA mask) from the gathered point.
@@ -260,7 +280,7 @@ template <int D, std::size_t Words = 0>
                                          PointScratch<D> &ws, const PointTotals<D> &totals)
 {
   using L                 = Member<D>;
-  const MemberRecord<D> S = masked_sum<Words>(ba, intact, W, ws.member.data(), totals.total, ws.in.data(), ws.out.data());
+  const MemberRecord<D> S = masked_sum<Words>(ba, intact, W, ws.member.data(), totals.word_total);
   BondKinematics<D>     k;
   double                K[sym_size<D>];
   for (int s = 0; s < sym_size<D>; ++s) K[s] = S[L::shape + s];
