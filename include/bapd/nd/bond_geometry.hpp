@@ -40,6 +40,7 @@
 // 2200 at delta = 3.515 dx (178 x 12.4), so the ratio is >= 1 / 2200^3 ~ 1e-10, while
 // a degenerate K (coplanar members) has det at round-off, ratio ~ 1e-16. The
 // threshold 1e-12 sits between them with two orders of margin above and four below.
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
@@ -179,7 +180,7 @@ template <std::size_t Words, class R>
 [[gnu::always_inline]] inline R masked_sum(const std::uint64_t *ba, const std::uint64_t *members, std::size_t words,
                                            const R *records, const R *word_total)
 {
-  if constexpr (Words == 1) { // 2D: the same sum with a branch (kernel_bench energy_warm 30.2-30.4 ns a bond; 31.9-32.3 with the blend)
+  if constexpr (Words == 1) { // 2D: the same sum with a branch (kernel_bench energy_warm: 30.2-30.4 ns a bond, 31.9-32.3 with the blend)
     const std::uint64_t in = ba[0] & members[0], out = ~ba[0] & members[0];
     if (__builtin_popcountll(in) <= __builtin_popcountll(out)) return sum_selected(in, records);
     return word_total[0] - sum_selected(out, records);
@@ -213,8 +214,8 @@ template <int D> struct PointScratch {
 // PointScratch::word_total) and V(H_i).
 template <int D> struct PointTotals {
   const MemberRecord<D> *word_total;
-  double                 family_volume;               // V(H_i)
-  double          half_inverse_family_volume_squared; // 1 / (2 V(H_i)^2)
+  double                 family_volume;                      // V(H_i)
+  double                 half_inverse_family_volume_squared; // 1 / (2 V(H_i)^2)
 };
 
 // What one bond needs, from the masked sums.
@@ -247,29 +248,29 @@ inline PointTotals<D> gather_point(const PointCloud &ref, const double *y, const
     yi[r] = y[D * i + r];
   }
   for (std::size_t w = 0; w < fam.mask_words; ++w) {
-  total.zero();
-  for (std::size_t p = 64 * w; p < std::min(m, 64 * w + 64); ++p) {
-    const std::size_t k = static_cast<std::size_t>(nb[p]);
-    const double      v = vol[k];
-    double            d[D], e[D], a[D];
-    for (int r = 0; r < D; ++r) {
-      d[r] = x[D * k + r] - xi[r];
-      e[r] = y[D * k + r] - yi[r];
-      a[r] = d[r] * v;
-      off[D * p + r] = d[r];
+    total.zero();
+    for (std::size_t p = 64 * w; p < std::min(m, 64 * w + 64); ++p) {
+      const std::size_t k = static_cast<std::size_t>(nb[p]);
+      const double      v = vol[k];
+      double            d[D], e[D], a[D];
+      for (int r = 0; r < D; ++r) {
+        d[r] = x[D * k + r] - xi[r];
+        e[r] = y[D * k + r] - yi[r];
+        a[r] = d[r] * v;
+        off[D * p + r] = d[r];
+      }
+      fvk[p] = fv[k];
+      double f[MemberRecord<D>::vectors * MemberRecord<D>::V] = {};
+      for (int r = 0; r < D; ++r)
+        for (int c = 0; c < D; ++c) f[L::deformation + D * r + c] = e[r] * a[c];
+      for (int r = 0; r < D; ++r)
+        for (int c = r; c < D; ++c) f[L::shape + sym_index<D>(r, c)] = d[r] * a[c];
+      f[L::volume]             = v;
+      const MemberRecord<D> R = MemberRecord<D>::from(f);
+      rec[p]                  = R;
+      if ((intact[w] >> (p % 64)) & 1u) total += R;
     }
-    fvk[p] = fv[k];
-    double f[MemberRecord<D>::vectors * MemberRecord<D>::V] = {};
-    for (int r = 0; r < D; ++r)
-      for (int c = 0; c < D; ++c) f[L::deformation + D * r + c] = e[r] * a[c];
-    for (int r = 0; r < D; ++r)
-      for (int c = r; c < D; ++c) f[L::shape + sym_index<D>(r, c)] = d[r] * a[c];
-    f[L::volume]             = v;
-    const MemberRecord<D> R = MemberRecord<D>::from(f);
-    rec[p]                  = R;
-    if ((intact[w] >> (p % 64)) & 1u) total += R;
-  }
-  word_total[w] = total;
+    word_total[w] = total;
   }
   return {word_total, fv[i], 0.5 / (fv[i] * fv[i])};
 }
