@@ -79,13 +79,21 @@ struct PatchCorrectionReport {
 // The report as the run's set-up prints it (two lines; simulation.cpp BuildBody).
 std::string describe_patch_correction(const PatchCorrectionReport &report, bool virial);
 
-// lambda, 2 per point (0 in the boundary layer), for the bond-only force with the
-// stress correction `stress_correction` (as compute_bond_geometry forms C_i). Needs
-// families of every point of the cloud (n_family = cloud.size(), no ghosts) and
-// cloud.family_volume. Throws std::invalid_argument if the families are not the whole
-// cloud's, std::runtime_error if the solve does not reach round-off.
+// lambda, D per point (0 in the boundary layer), for the bond-only force with the
+// stress correction `stress_correction` (as compute_bond_geometry forms C_i) on a cloud
+// of D = 2 or 3 dimensions (D coordinates a point). Needs families of every point of
+// the cloud (n_family = cloud.size(), no ghosts) and cloud.family_volume. Throws
+// std::invalid_argument if the families are not the whole cloud's, std::runtime_error
+// if the solve does not reach round-off. One template for both D (instantiated for 2
+// and 3 in patch_correction.cpp); D = 2 is the 2D solve of before, bit for bit.
+template <int D>
 std::vector<double> compute_patch_correction(const PointCloud &cloud, const Families &families,
                                              StressCorrection stress_correction, PatchCorrectionReport *report = nullptr);
+inline std::vector<double> compute_patch_correction(const PointCloud &cloud, const Families &families,
+                                                    StressCorrection stress_correction, PatchCorrectionReport *report = nullptr)
+{
+  return compute_patch_correction<2>(cloud, families, stress_correction, report);
+}
 
 // ---------------------------------------------------------------------------------
 // The patch test AND the virial (issue 18 item 5; docs/discretisations.md "Keeping the
@@ -121,11 +129,19 @@ inline double virial_patch_coefficient(const double *y_i, const double *y_j, dou
   return (y_i[0] - y_j[0]) * d0 + (y_i[1] - y_j[1]) * d1 + y_i[2] * d0 * d0 + 2.0 * y_i[3] * d0 * d1 + y_i[4] * d1 * d1;
 }
 
-// (mu, S), 5 per point, for the bond-only force with `stress_correction`; the same
-// preconditions and errors as compute_patch_correction. report->after is the largest
-// interior patch defect and report->virial the largest virial change, with c_ij.
+// (mu, S), nd::patch_stride<D>(true) per point (5 in 2D, 9 in 3D: mu, then S's upper
+// triangle by nd::sym_index), for the bond-only force with `stress_correction`; the
+// same preconditions and errors as compute_patch_correction. report->after is the
+// largest interior patch defect and report->virial the largest virial change, with c_ij.
+template <int D>
 std::vector<double> compute_virial_patch_correction(const PointCloud &cloud, const Families &families,
                                                     StressCorrection          stress_correction,
                                                     PatchCorrectionReport    *report = nullptr);
+inline std::vector<double> compute_virial_patch_correction(const PointCloud &cloud, const Families &families,
+                                                           StressCorrection       stress_correction,
+                                                           PatchCorrectionReport *report = nullptr)
+{
+  return compute_virial_patch_correction<2>(cloud, families, stress_correction, report);
+}
 
 } // namespace bapd
