@@ -25,8 +25,9 @@
 
 namespace bapd {
 
-// -force_patch_correction (patch_correction.hpp): off; on = lambda, 2 numbers a point
-// (the patch test); virial = (mu, S), 5 numbers a point (the patch test and the virial).
+// -force_patch_correction (patch_correction.hpp): off; on = lambda, D numbers a point
+// (the patch test); virial = (mu, S), 5 numbers a point in 2D, 9 in 3D (the patch test
+// and the virial).
 enum class PatchCorrection { off, lambda, virial };
 
 // A 3D body (-body_dimension 3, or implied by a 3D solid; issue 21 stage 4;

@@ -64,7 +64,8 @@ PetscErrorCode ReadMaterial(MPI_Comm comm, Scene *scene, SceneInput *in)
     PetscCall(r.String("-force_patch_correction",
                        "Bond-only force made to pass the affine patch test on irregular points (no interior force "
                        "under an affine motion; docs/discretisations.md): virial (the patch test and each point's "
-                       "virial stress, 5 numbers a point) | on (the patch test only, lambda: 2 numbers a point) | off | "
+                       "virial stress, 5 numbers a point in 2D, 9 in 3D) | on (the patch test only, lambda: 2 or 3 numbers a "
+                       "point) | off | "
                        "auto (virial for given points: a cloud or element centroids, with -force_form bond_only, as it "
                        "keeps the stress consistency that on loses and is the closest to the FE of the three on the "
                        "centroid dogbone; off on the lattice, which passes both as it is)",
@@ -130,11 +131,12 @@ PetscErrorCode CheckMaterial(MPI_Comm comm, const SceneInput &in, Scene *scene)
   // auto: virial where the points are irregular (given points): the patch test and the
   // stress consistency both, and the closest to the FE on the centroid dogbone
   // (docs/discretisations.md); the lattice passes both by symmetry and keeps its forces
-  // bit for bit (patch_correction.hpp).
+  // bit for bit (patch_correction.hpp). The same in 3D (a -body_cloud or a mesh's
+  // centroids: body3d.given_points).
   const std::string patch = Lower(in.patch_correction);
+  const bool        given = three ? scene->body3d.given_points != nullptr : scene->body.given_points != nullptr;
   if (patch == "auto")
-    scene->patch_correction = scene->force_form == ForceForm::bond_only && scene->body.given_points && !three ? PatchCorrection::virial
-                                                                                                            : PatchCorrection::off;
+    scene->patch_correction = scene->force_form == ForceForm::bond_only && given ? PatchCorrection::virial : PatchCorrection::off;
   else if (patch == "virial") scene->patch_correction = PatchCorrection::virial;
   else if (patch == "on" || patch == "off") scene->patch_correction = patch == "on" ? PatchCorrection::lambda : PatchCorrection::off;
   else
@@ -144,11 +146,6 @@ PetscErrorCode CheckMaterial(MPI_Comm comm, const SceneInput &in, Scene *scene)
                    in.patch_correction.c_str()).c_str());
   SceneCheck(!(scene->patch_correction != PatchCorrection::off && scene->force_form != ForceForm::bond_only), comm,
              "-force_patch_correction %s corrects the bond-only force only: add -force_form bond_only, or leave the option at auto",
-             to_string(scene->patch_correction));
-  // (patch_correction.hpp solves the 2D point's numbers; auto is off in 3D, so a 3D cloud runs the tensor-corrected force)
-  SceneCheck(!(three && scene->patch_correction != PatchCorrection::off), comm,
-             "-force_patch_correction %s is not ported to 3D bodies (it solves a 2D point's numbers): remove it, or use -force_form "
-             "energy_consistent (the default)",
              to_string(scene->patch_correction));
 
   SceneCheck(!(in.D_set && in.bulk_ratio_set), comm,

@@ -196,12 +196,12 @@ template <int D> PetscErrorCode SimulationD<D>::BuildBody()
     // (a 3D lattice body in pieces was refused by the scene: make_solid_points)
     if (D == 2 && scene_.body.given_points) DescribePieces<D>(global, all, scene_.body.given_points->source, pieces, sizeof pieces);
     if (D == 3 && scene_.body3d.given_points) DescribePieces<D>(global, all, scene_.body3d.source, pieces, sizeof pieces);
-    if (D == 2 && scene_.patch_correction != PatchCorrection::off && !pieces[0]) { // (2D only: the scene refuses it in 3D) // per point, shipped with the points (patch_correction.hpp)
+    if (scene_.patch_correction != PatchCorrection::off && !pieces[0]) { // per point, shipped with the points (patch_correction.hpp, layout.cpp)
       const bool            virial = scene_.patch_correction == PatchCorrection::virial;
       PatchCorrectionReport report;
       try {
-        global.patch_correction = virial ? compute_virial_patch_correction(global, all, scene_.stress_correction, &report)
-                                         : compute_patch_correction(global, all, scene_.stress_correction, &report);
+        global.patch_correction = virial ? compute_virial_patch_correction<D>(global, all, scene_.stress_correction, &report)
+                                         : compute_patch_correction<D>(global, all, scene_.stress_correction, &report);
         global.patch_virial     = virial;
         PetscCall(PetscPrintf(PETSC_COMM_SELF, "%s", describe_patch_correction(report, virial).c_str()));
       } catch (const std::exception &e) {

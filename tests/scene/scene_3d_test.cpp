@@ -387,7 +387,8 @@ TEST_F(Scene3D, EachBadOptionGetsItsMessage)
 }
 
 // The material section of a 3D body (scene_material.cpp, issue 21 stage 4c): the 2D
-// reductions and the 2D patch correction are refused, every law of the registry has a
+// reductions are refused, the patch correction is allowed for the bond-only form only
+// (auto: off on the lattice, as in 2D; a cloud's auto below), every law of the registry has a
 // 3D form (Ogden its own, Ogden3D), and the bond-only form is tensor-corrected by default (uncorrected it is
 // 15 % soft in 3D, docs/architecture.md).
 TEST_F(Scene3D, MaterialOptionsOfASolidBody)
@@ -400,7 +401,13 @@ TEST_F(Scene3D, MaterialOptionsOfASolidBody)
   Scene bond_only;
   ASSERT_EQ(Read(With(Block(), {{"-force_form", "bond_only"}}), &bond_only), 0) << bapd::test::UserErrorText();
   EXPECT_EQ(bond_only.stress_correction, bapd::StressCorrection::tensor);
-  EXPECT_EQ(bond_only.patch_correction, bapd::PatchCorrection::off); // (auto: the 2D solve is not ported)
+  EXPECT_EQ(bond_only.patch_correction, bapd::PatchCorrection::off); // (auto: off on the lattice, which passes as it is)
+  for (const char *patch : {"on", "virial"}) { // given, it runs in 3D (issue 21; patch_correction.hpp at D = 3)
+    Scene corrected;
+    ASSERT_EQ(Read(With(Block(), {{"-force_form", "bond_only"}, {"-force_patch_correction", patch}}), &corrected), 0)
+        << patch << ": " << bapd::test::UserErrorText();
+    EXPECT_EQ(corrected.patch_correction, patch[0] == 'o' ? bapd::PatchCorrection::lambda : bapd::PatchCorrection::virial);
+  }
   Scene paper;
   ASSERT_EQ(Read(With(Block(), {{"-force_form", "bond_only"}, {"-force_stress_correction", "none"}}), &paper), 0) << bapd::test::UserErrorText();
   EXPECT_EQ(paper.stress_correction, bapd::StressCorrection::none); // the paper's force stays reachable
@@ -411,7 +418,7 @@ TEST_F(Scene3D, MaterialOptionsOfASolidBody)
   const std::vector<std::pair<Options, std::string>> cases = {
     {With(Block(), {{"-material_formulation", "plane_strain"}}), "-material_formulation plane_strain is a 2D reduction"},
     {With(Block(), {{"-material_formulation", "plane_stress"}}), "-material_formulation plane_stress is a 2D reduction"},
-    {With(Block(), {{"-force_form", "bond_only"}, {"-force_patch_correction", "virial"}}), "-force_patch_correction virial is not ported to 3D"},
+    {With(Block(), {{"-force_patch_correction", "virial"}}), "-force_patch_correction virial corrects the bond-only force only"},
   };
   for (const auto &[options, text] : cases) {
     const std::string message = Rejection(options);
@@ -463,6 +470,10 @@ TEST_F(Scene3D, ACloudIsClippedByItsSolidsAndItsBlocksAreLoadSets)
   EXPECT_EQ(scene.body3d.points, 64 - 4); // the cut took i, j in {2, 3}, k = 0
   EXPECT_EQ(scene.loads[0].block_points.size(), 3u * 16);
   EXPECT_NEAR(scene.probes[0].z, 3.5e-3, 1e-18);
+  EXPECT_EQ(scene.patch_correction, bapd::PatchCorrection::off); // auto: the energy-consistent form is not corrected
+  Scene bond_only;
+  ASSERT_EQ(Read(With(cloud, {{"-force_form", "bond_only"}}), &bond_only), 0) << bapd::test::UserErrorText();
+  EXPECT_EQ(bond_only.patch_correction, bapd::PatchCorrection::virial); // auto: virial for given points, as in 2D
   const std::string text = bapd::SceneText(scene);
   // (the cells' extent: x -+ cbrt(1e-9) / 2, to round-off)
   for (const std::string &line : std::vector<std::string>{
