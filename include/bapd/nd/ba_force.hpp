@@ -301,7 +301,7 @@ template <int D, bool Corrected> struct BondOnlyForm {
   const PointTotals<D>        &totals;
   // -force_patch_correction: lambda of the point and of every local point
   // (patch_stride<D>(virial) each), the point's neighbours; lambda_i nullptr: off (the
-  // lattice, and 3D for now).
+  // lattice, the energy-consistent form).
   const double                *lambda_i = nullptr, *lambda = nullptr;
   const std::int32_t          *nb       = nullptr;
   bool                         virial   = false;
