@@ -40,6 +40,22 @@ template <int D> void breaks(const Families &fam, BondState &st, unsigned seed, 
       if (u(rng) < frac && st.is_intact(i, q)) break_bond(fam, st, i, q);
 }
 
+// What every case needs beside the points (whose family volumes it sets): the bond state with `frac` of
+// the bonds broken (seeded), and the bond geometry without and with the tensor
+// correction.
+template <int D> struct Case {
+  BondState           state;
+  nd::BondGeometry<D> geo, cor;
+  Case(PointCloud &cloud, const Families &fam, unsigned seed, double frac) : state(fam)
+  {
+    compute_family_volumes(cloud, fam);
+    breaks<D>(fam, state, seed, frac);
+    nd::compute_bond_geometry<D>(cloud, fam, state, geo);
+    cor.stress_correction = StressCorrection::tensor;
+    nd::compute_bond_geometry<D>(cloud, fam, state, cor);
+  }
+};
+
 int main()
 {
   MaterialParameters p;
@@ -53,13 +69,7 @@ int main()
         const double dx = 5e-4;
         PointCloud cloud = nd::box_lattice<3>({side, side - 1, side - 2}, dx);
         const Families fam = nd::build_families<3>(cloud, cloud.size(), factor * dx);
-        compute_family_volumes(cloud, fam);
-        BondState state(fam);
-        breaks<3>(fam, state, 7, brk);
-        nd::BondGeometry<3> geo, cor;
-        nd::compute_bond_geometry<3>(cloud, fam, state, geo);
-        cor.stress_correction = StressCorrection::tensor;
-        nd::compute_bond_geometry<3>(cloud, fam, state, cor);
+        Case<3>        c(cloud, fam, 7, brk);
         std::mt19937 rng(3);
         std::uniform_real_distribution<double> noise(-1.0, 1.0);
         std::vector<double> y(cloud.x.size());
@@ -74,9 +84,9 @@ int main()
         for (int v = 0; v < 6; ++v) {
           std::fill(t.begin(), t.end(), -7.0);
           const ForceForm form = v % 3 == 2 ? ForceForm::energy_consistent : ForceForm::bond_only;
-          const nd::BondGeometry<3> &g = v % 3 == 1 ? cor : geo;
-          KernelStats s = v < 3 ? nd::compute_bond_forces<3>(form, gent, cloud, y.data(), fam, g, state, nullptr, t.data(), ws)
-                                : nd::compute_bond_forces<3>(form, lanes, cloud, y.data(), fam, g, state, nullptr, t.data(), ws);
+          const nd::BondGeometry<3> &g = v % 3 == 1 ? c.cor : c.geo;
+          KernelStats s = v < 3 ? nd::compute_bond_forces<3>(form, gent, cloud, y.data(), fam, g, c.state, nullptr, t.data(), ws)
+                                : nd::compute_bond_forces<3>(form, lanes, cloud, y.data(), fam, g, c.state, nullptr, t.data(), ws);
           nd::assemble_force_density<3>(fam, cloud, t.data(), cloud.size(), f.data());
           failed += s.failed();
           h = hv(t, h);
@@ -84,7 +94,7 @@ int main()
           h = fnv(&s.evaluated, sizeof s.evaluated, h);
           h = fnv(&s.largest_trC, sizeof s.largest_trC, h);
         }
-        const double e = nd::strain_energy<3>(gent, cloud, y.data(), fam, geo, state, nullptr, cloud.size(), ws);
+        const double e = nd::strain_energy<3>(gent, cloud, y.data(), fam, c.geo, c.state, nullptr, cloud.size(), ws);
         h = fnv(&e, sizeof e, h);
         std::printf("3D factor %.3f words %zu break %.2f amp %.2f failed %zu: %016llx\n", factor, fam.mask_words, brk, amp, failed,
                     (unsigned long long)h);
@@ -98,13 +108,7 @@ int main()
       body.width = 40 * dx; body.height = 30 * dx; body.thickness = 1e-3; body.dx = dx;
       PointCloud cloud = make_lattice(body);
       const Families fam = build_families(cloud, cloud.size(), factor * dx, body.notches);
-      compute_family_volumes(cloud, fam);
-      BondState state(fam);
-      breaks<2>(fam, state, 11, brk);
-      nd::BondGeometry<2> geo, cor;
-      nd::compute_bond_geometry<2>(cloud, fam, state, geo);
-      cor.stress_correction = StressCorrection::tensor;
-      nd::compute_bond_geometry<2>(cloud, fam, state, cor);
+      Case<2>        c(cloud, fam, 11, brk);
       std::mt19937 rng(1);
       std::uniform_real_distribution<double> noise(-1.0, 1.0);
       std::vector<double> y(cloud.x.size());
@@ -120,13 +124,13 @@ int main()
       for (int v = 0; v < 3; ++v)
         for (int warm = 0; warm < 2; ++warm) {
           const ForceForm form = v == 2 ? ForceForm::energy_consistent : ForceForm::bond_only;
-          KernelStats s = nd::compute_bond_forces<2>(form, gent, cloud, y.data(), fam, v == 1 ? cor : geo, state, c33.data(), t.data(), ws);
+          KernelStats s = nd::compute_bond_forces<2>(form, gent, cloud, y.data(), fam, v == 1 ? c.cor : c.geo, c.state, c33.data(), t.data(), ws);
           nd::assemble_force_density<2>(fam, cloud, t.data(), cloud.size(), f.data());
           h = hv(t, h); h = hv(f, h); h = hv(c33, h);
           h = fnv(&s.evaluated, sizeof s.evaluated, h);
           h = fnv(&s.largest_trC, sizeof s.largest_trC, h);
         }
-      const double e = nd::strain_energy<2>(gent, cloud, y.data(), fam, geo, state, c33.data(), cloud.size(), ws);
+      const double e = nd::strain_energy<2>(gent, cloud, y.data(), fam, c.geo, c.state, c33.data(), cloud.size(), ws);
       h = fnv(&e, sizeof e, h);
       std::printf("2D factor %.3f words %zu break %.2f: %016llx\n", factor, fam.mask_words, brk, (unsigned long long)h);
       all = fnv(&h, 8, all);
