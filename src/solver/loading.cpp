@@ -135,16 +135,16 @@ void Loading::Apply(double t, double *u, double *v) const
 PetscErrorCode Loading::SetAffineLevers(const Scene &scene, const Layout &layout)
 {
   const bool   three = dimension_ == 3;
-  const double lo = three ? scene.body3d.lo[1] : 0.0, hi = three ? scene.body3d.hi[1] : scene.body.height;
-  const double dx = three ? scene.body3d.solid.dx : scene.body.dx;
+  const double face_lo = three ? scene.body3d.lo[1] : 0.0, face_hi = three ? scene.body3d.hi[1] : scene.body.height;
+  const double dx = scene.body.dx; // (a 3D body's lattice spacing too: scene_body3d.cpp)
   double       y_top = 0, y_bottom = 0;
   bool         edge  = false;
   PetscFunctionBegin;
   for (const LoadSet &l : scene.loads) {
     if (l.y == ComponentLoad::free) continue;
     const bool inside = l.placement == GripPlacement::inside;
-    if (l.region == LoadSet::Region::top) y_top = inside ? hi - l.layers * dx : hi, edge = true;
-    if (l.region == LoadSet::Region::bottom) y_bottom = inside ? lo + l.layers * dx : lo, edge = true;
+    if (l.region == LoadSet::Region::top) y_top = inside ? face_hi - l.layers * dx : face_hi, edge = true;
+    if (l.region == LoadSet::Region::bottom) y_bottom = inside ? face_lo + l.layers * dx : face_lo, edge = true;
   }
   if (!edge) { // two region grips (CheckLoading): their extent in y, the same on any rank count (min/max)
     double      lo[2], hi[2]; // per set: lowest y - h/2, -(highest y + h/2)
