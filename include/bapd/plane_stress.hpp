@@ -241,9 +241,9 @@ template <class Law> struct PlaneStress {
   // their arithmetic is kept finite (no floating-point trap) and they are not done.
   template <class T> MaskOf<T> stress_lanes(const std::array<T, 4> &F, T &c33, std::array<T, 4> &P) const
   {
-    const T one = T{} + 1.0, Jt = F[0] * F[3] - F[1] * F[2];
-    const T a0 = F[0] * F[0] + F[1] * F[1] + F[2] * F[2] + F[3] * F[3], k0 = Jt * Jt;
-    MaskOf<T>    ok = Jt > 0.0;
+    const T   one = T{} + 1.0, Jt = F[0] * F[3] - F[1] * F[2];
+    const T   a0 = F[0] * F[0] + F[1] * F[1] + F[2] * F[2] + F[3] * F[3], k0 = Jt * Jt;
+    MaskOf<T> ok = Jt > 0.0;
     if constexpr (Law::has_limit) {
       const double L = Law::I1bar_limit(p);
       ok &= 27.0 * a0 * a0 < 4.0 * k0 * L * L * L; // as solve(), with NaN on this side
@@ -253,27 +253,27 @@ template <class Law> struct PlaneStress {
     const T inv_k  = inv_Jt * inv_Jt;
     T       lo, hi, c, s;
     start(a, k, inv_k, c33, lo, hi, c, s);
-    const double                       inv_D = 1.0 / p.D;
+    const double                   inv_D = 1.0 / p.D;
     const PlaneStressResidualOf<T> r     = residual_at(a, k, inv_D, c, s);
     const PlaneStressStepOf<T>     st    = step(r, c, lo, hi);
-    MaskOf<T>                           done  = ok & r.admissible & (st.converged | st.accepted);
+    MaskOf<T>                      done  = ok & r.admissible & (st.converged | st.accepted);
     T                              root = st.c33, shear = st.shear, shear_I2 = st.shear_I2;
-    const MaskOf<T>                     more = ok & r.admissible & ~done;
+    const MaskOf<T>                more = ok & r.admissible & ~done;
     if (any(more)) {
       // A second evaluation, where solve() makes it at a Newton point (the larger time
       // steps): the same tests and arithmetic as its loop. Anything else (bisection, a
       // large step) is left to stress().
-      const T x = st.delta / c, next = c + st.delta;
-      MaskOf<T>    newton = more & (next > st.lo) & (next < st.hi) &
-                        (2.0 * lane_abs(r.f[0]) <= lane_abs((hi - lo) * r.f[1])) & (lane_abs(st.delta) <= 0.1 * c);
+      const T   x = st.delta / c, next = c + st.delta;
+      MaskOf<T> newton = more & (next > st.lo) & (next < st.hi) &
+                         (2.0 * lane_abs(r.f[0]) <= lane_abs((hi - lo) * r.f[1])) & (lane_abs(st.delta) <= 0.1 * c);
       const T s_next = s * (1.0 + x * ((1.0 / 3.0) + x * ((-1.0 / 9.0) + x * (5.0 / 81.0))));
       const T c_next = s_next * s_next * s_next * inv_k;
       newton &= (c_next > st.lo) & (c_next < st.hi);
       if (any(newton)) {
-        const T                        c2  = select(newton, c_next, c), s2 = select(newton, s_next, s);
-        const PlaneStressResidualOf<T> r2  = residual_at(a, k, inv_D, c2, s2);
-        const PlaneStressStepOf<T>     st2 = step(r2, c2, st.lo, st.hi);
-        const MaskOf<T>                     done2 = newton & r2.admissible & (st2.converged | st2.accepted);
+        const T                        c2    = select(newton, c_next, c), s2 = select(newton, s_next, s);
+        const PlaneStressResidualOf<T> r2    = residual_at(a, k, inv_D, c2, s2);
+        const PlaneStressStepOf<T>     st2   = step(r2, c2, st.lo, st.hi);
+        const MaskOf<T>                done2 = newton & r2.admissible & (st2.converged | st2.accepted);
         root                                     = select(done2, st2.c33, root);
         shear                                    = select(done2, st2.shear, shear);
         if constexpr (Law::uses_I2bar) shear_I2 = select(done2, st2.shear_I2, shear_I2);

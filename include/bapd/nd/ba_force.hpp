@@ -51,8 +51,9 @@
 // and energy(F, psi) or energy(F, c33, psi) likewise. A model with has_lanes and
 //   LaneMask stress_lanes(const std::array<Lanes, D*D> &F, Lanes &c33, std::array<Lanes, D*D> &P) const
 // (PlaneStress in 2D, Compressible3DLanes in 3D: nd/compressible_lanes.hpp) gets the
-// point's bonds after the first loop, lane_count at a time (model_lanes); a lane it
-// does not finish goes through its scalar stress(). Nothing is allocated per call
+// point's bonds after the first loop, lane_count at a time (model_lanes; the last half
+// register or less in HalfLanes where stress_lanes is a template over the register, as
+// PlaneStress's is); a lane it does not finish goes through its scalar stress(). Nothing is allocated per call
 // (Workspace is sized once), except the list of failed bonds in the rare call where a
 // model fails.
 //
@@ -240,7 +241,7 @@ void model_lanes(const Model &model, Workspace<D> &ws, std::size_t n, std::size_
 {
   constexpr int     DD   = D * D;
   constexpr bool    half = HasHalfLanes<Model, DD>::value;
-  const std::size_t S = ws.lane_stride, L = lane_count;
+  const std::size_t S    = ws.lane_stride, L = lane_count;
   double           *Fc = ws.pending_F.data(), *cw = ws.pending_c33.data();
   for (std::size_t l = n; l < (n + L - 1) / L * L; ++l) { // unused lanes: the rest state
     for (int k = 0; k < DD; ++k) Fc[k * S + l] = k % (D + 1) == 0 ? 1.0 : 0.0;
@@ -248,6 +249,7 @@ void model_lanes(const Model &model, Workspace<D> &ws, std::size_t n, std::size_
   }
   Lanes       top = Lanes{}; // tr C of the bonds, lane by lane (stress_pass's scalar tr C; unused lanes hold the rest state, 3)
   std::size_t j   = 0;
+  // whole registers, until what is left fits in half of one (if the model takes that)
   for (; j < n && !(half && n - j <= L / 2); j += L) model_batch<D>(model, ws, j, n, i, o, c33, form, top, stats);
   if constexpr (half) {
     HalfLanes top_half = HalfLanes{};
