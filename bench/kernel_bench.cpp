@@ -13,7 +13,7 @@
 //                 (bench/callgrind_kernel.sh does this and reads the profiles)
 //   --table       also print one machine-readable line, `RESULT key=value ...`
 //   --only NAME   run only the region NAME (gent_warm, energy_warm, gent_dynamics,
-//                 identity, energy_identity, assemble), reps times, and print its time: for a sampling
+//                 identity, energy_identity, model_lanes, assemble), reps times, and print its time: for a sampling
 //                 profiler (`perf record -e cpu-clock kernel_bench --only energy_warm
 //                 --reps 200`; docs/performance.md, section 1c)
 // Per bond against LAMMPS peri/lps in the same run: bench/kernel_bench_lammps.sh.
@@ -376,16 +376,16 @@ int main(int argc, char **argv)
                  o.only.c_str());
     return 2;
   }
-  const Timing gent_t     = time_min(o.reps, gent_run);
-  const Timing cold_t     = time_min(std::max(1, o.reps / 2), cold_run);
-  const Timing dyn_t      = time_min(o.reps, dynamics_run);
-  const Timing energy_t   = time_min(o.reps, energy_run);
-  const Timing identity_t = time_min(o.reps, identity_run);
+  const Timing gent_t            = time_min(o.reps, gent_run);
+  const Timing cold_t            = time_min(std::max(1, o.reps / 2), cold_run);
+  const Timing dyn_t             = time_min(o.reps, dynamics_run);
+  const Timing energy_t          = time_min(o.reps, energy_run);
+  const Timing identity_t        = time_min(o.reps, identity_run);
   const Timing energy_identity_t = time_min(o.reps, energy_identity_run);
-  const Timing model_t    = time_min(o.reps, model_run);
-  const Timing model_lanes_t = time_min(o.reps, model_lanes_run);
-  const Timing assemble_t = time_min(o.reps, assemble_run);
-  const double nm         = static_cast<double>(Fs[0].size());
+  const Timing model_t           = time_min(o.reps, model_run);
+  const Timing model_lanes_t     = time_min(o.reps, model_lanes_run);
+  const Timing assemble_t        = time_min(o.reps, assemble_run);
+  const double nm                = static_cast<double>(Fs[0].size());
 
   auto line = [&](const char *name, const Timing &tm, double count, const char *unit) {
     std::printf("  %-38s %8.2f ns/%s  %7.2f M/s  (wall: %8.2f ns)\n", name, 1e9 * tm.cpu / count, unit,

@@ -156,8 +156,8 @@ template <class Model, class T> void expect_lanes_give_bit_for_bit_the_scalar_st
         for (int comp = 0; comp < 4; ++comp) EXPECT_TRUE(same_bits(PL[comp][l], P[comp])) << PL[comp][l] << " " << P[comp];
       }
     }
-    EXPECT_GT(done_lanes, lanes / 2);         // not vacuous: the close warm starts finish in the lanes
-    EXPECT_LT(done_lanes, lanes);              // and some (garbage, inverted, far) do not
+    EXPECT_GT(done_lanes, lanes / 2); // not vacuous: the close warm starts finish in the lanes
+    EXPECT_LT(done_lanes, lanes);     // and some (garbage, inverted, far) do not
   }
 }
 
