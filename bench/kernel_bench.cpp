@@ -13,7 +13,7 @@
 //                 (bench/callgrind_kernel.sh does this and reads the profiles)
 //   --table       also print one machine-readable line, `RESULT key=value ...`
 //   --only NAME   run only the region NAME (gent_warm, energy_warm, gent_dynamics,
-//                 identity, assemble), reps times, and print its time: for a sampling
+//                 identity, energy_identity, model_lanes, assemble), reps times, and print its time: for a sampling
 //                 profiler (`perf record -e cpu-clock kernel_bench --only energy_warm
 //                 --reps 200`; docs/performance.md, section 1c)
 // Per bond against LAMMPS peri/lps in the same run: bench/kernel_bench_lammps.sh.
@@ -33,8 +33,12 @@
 //               1.00 here and 1.05-1.14 in the solver; --dynamics-motion 1e-3: 1.08)
 //   identity    the kernel with P = F: gather, masked sums, K^{-1}, F, force vector
 //               and stores, no constitutive cost
+//   energy_identity  the energy-consistent form with P = F: what that form costs
+//               whatever the model (docs/performance.md 1l)
 //   model       GentPlaneStress::stress alone on every bond's F (warm c33): the scalar
-//               solve, one bond at a time (the bond kernel runs stress_lanes, four)
+//               solve, one bond at a time (the bond kernel runs stress_lanes)
+//   model_lanes the same on the lanes (stress_lanes, lane_count bonds a call, every
+//               batch full and independent): the model's cost in the kernel at best
 //   assemble    assemble_force_density, f_i = sum_j (t_ij - t_ji) V_j
 //   energy_warm the energy-consistent form (ForceForm::energy_consistent) as gent_warm:
 //               the energy-consistent form, assembled by the same assemble_force_density
@@ -75,12 +79,21 @@ using namespace bapd;
 
 namespace {
 
-// P = F: no constitutive cost, measures the kernel's own work.
+// P = F: no constitutive cost, measures the kernel's own work. On the lanes, as every
+// 2D model runs (model_lanes: collecting the bonds, the form's products in lanes);
+// before 2026-12-03 it ran one bond at a time (12.2-12.6 ns a bond for bond-only at
+// 3.015 dx, docs/performance.md 1i).
 struct IdentityStress {
-  StressStatus stress(const Mat2 &F, double &, Mat2 &P) const
+  static constexpr bool has_lanes = true;
+  StressStatus          stress(const Mat2 &F, double &, Mat2 &P) const
   {
     P = F;
     return StressStatus::ok;
+  }
+  template <class T> MaskOf<T> stress_lanes(const std::array<T, 4> &F, T &, std::array<T, 4> &P) const
+  {
+    P = F;
+    return T{} == T{}; // every lane done
   }
 };
 
@@ -298,12 +311,33 @@ int main(int argc, char **argv)
   auto identity_run = [&](int r) {
     nd::compute_bond_forces<2>(ForceForm::bond_only, IdentityStress{}, cloud, ys[r % 2], fam, geo, state, nullptr, t.data(), ws);
   };
+  auto energy_identity_run = [&](int r) {
+    nd::compute_bond_forces<2>(ForceForm::energy_consistent, IdentityStress{}, cloud, ys[r % 2], fam, geo, state, nullptr, t.data(), ws);
+  };
   auto model_run = [&](int r) {
     const std::vector<Mat2> &F = Fs[r % 2];
     Mat2                     P;
     for (std::size_t k = 0; k < F.size(); ++k) {
       gent.stress(F[k], c_model[k], P);
       sink += P[0];
+    }
+  };
+  // The model alone on the lanes (stress_lanes, lane_count bonds a call), every batch
+  // independent and full: what the model costs the kernel at best.
+  std::vector<std::array<Lanes, 4>> F_lanes[2];
+  std::vector<Lanes>                c_lanes((Fs[0].size() + lane_count - 1) / lane_count, Lanes{});
+  for (int s = 0; s < 2; ++s) {
+    F_lanes[s].assign(c_lanes.size(), {Lanes{} + 1.0, Lanes{}, Lanes{}, Lanes{} + 1.0});
+    for (std::size_t k = 0; k < Fs[s].size(); ++k)
+      for (int comp = 0; comp < 4; ++comp) F_lanes[s][k / lane_count][comp][k % lane_count] = Fs[s][k][comp];
+  }
+  for (std::size_t k = 0; k < Fs[0].size(); ++k) c_lanes[k / lane_count][k % lane_count] = c_model[k];
+  auto model_lanes_run = [&](int r) {
+    const std::vector<std::array<Lanes, 4>> &F = F_lanes[r % 2];
+    std::array<Lanes, 4>                     P;
+    for (std::size_t b = 0; b < F.size(); ++b) {
+      gent.stress_lanes(F[b], c_lanes[b], P);
+      sink += P[0][0];
     }
   };
   auto assemble_run = [&](int) { nd::assemble_force_density<2>(fam, cloud, t.data(), cloud.size(), f.data()); };
@@ -330,25 +364,28 @@ int main(int argc, char **argv)
   if (!o.only.empty()) {
     const std::pair<const char *, std::function<void(int)>> regions[] = {
         {"gent_warm", gent_run}, {"energy_warm", energy_run}, {"gent_dynamics", dynamics_run},
-        {"identity", identity_run}, {"assemble", assemble_run}};
+        {"identity", identity_run}, {"energy_identity", energy_identity_run}, {"model_lanes", model_lanes_run},
+        {"assemble", assemble_run}};
     for (const auto &[name, run] : regions)
       if (o.only == name) {
         const Timing tm = time_min(o.reps, run);
         std::printf("%s: %.2f ns/bond (thread CPU, minimum of %d)\n", name, 1e9 * tm.cpu / evaluated, o.reps);
         return 0;
       }
-    std::fprintf(stderr, "kernel_bench: --only %s: not a region (gent_warm energy_warm gent_dynamics identity assemble)\n",
+    std::fprintf(stderr, "kernel_bench: --only %s: not a region (gent_warm energy_warm gent_dynamics identity energy_identity model_lanes assemble)\n",
                  o.only.c_str());
     return 2;
   }
-  const Timing gent_t     = time_min(o.reps, gent_run);
-  const Timing cold_t     = time_min(std::max(1, o.reps / 2), cold_run);
-  const Timing dyn_t      = time_min(o.reps, dynamics_run);
-  const Timing energy_t   = time_min(o.reps, energy_run);
-  const Timing identity_t = time_min(o.reps, identity_run);
-  const Timing model_t    = time_min(o.reps, model_run);
-  const Timing assemble_t = time_min(o.reps, assemble_run);
-  const double nm         = static_cast<double>(Fs[0].size());
+  const Timing gent_t            = time_min(o.reps, gent_run);
+  const Timing cold_t            = time_min(std::max(1, o.reps / 2), cold_run);
+  const Timing dyn_t             = time_min(o.reps, dynamics_run);
+  const Timing energy_t          = time_min(o.reps, energy_run);
+  const Timing identity_t        = time_min(o.reps, identity_run);
+  const Timing energy_identity_t = time_min(o.reps, energy_identity_run);
+  const Timing model_t           = time_min(o.reps, model_run);
+  const Timing model_lanes_t     = time_min(o.reps, model_lanes_run);
+  const Timing assemble_t        = time_min(o.reps, assemble_run);
+  const double nm                = static_cast<double>(Fs[0].size());
 
   auto line = [&](const char *name, const Timing &tm, double count, const char *unit) {
     std::printf("  %-38s %8.2f ns/%s  %7.2f M/s  (wall: %8.2f ns)\n", name, 1e9 * tm.cpu / count, unit,
@@ -360,7 +397,9 @@ int main(int argc, char **argv)
   line("Gent plane stress, dynamics (kernel)", dyn_t, evaluated, "bond");
   line("  energy-consistent, warm c33", energy_t, evaluated, "bond");
   line("kernel only (P = F)", identity_t, evaluated, "bond");
+  line("  energy-consistent, P = F", energy_identity_t, evaluated, "bond");
   line("GentPlaneStress::stress alone, warm", model_t, nm, "call");
+  line("  stress_lanes alone, warm", model_lanes_t, nm, "bond");
   line("assemble_force_density", assemble_t, nb, "bond");
   std::printf("  residual evaluations per bond: %.3f warm, %.3f dynamics, %.3f cold\n", evals_warm, evals_dyn, evals_cold);
   const double force_cpu = gent_t.cpu + assemble_t.cpu;
@@ -393,10 +432,11 @@ int main(int argc, char **argv)
     std::printf("RESULT side=%d factor=%.3f points=%zu bonds=%zu evaluated=%zu bonds_per_point=%.3f setup_s=%.3f "
                 "gent_warm_ns=%.3f gent_cold_ns=%.3f identity_ns=%.3f model_ns=%.3f assemble_ns=%.3f "
                 "gent_warm_wall_ns=%.3f evals_warm=%.4f evals_cold=%.4f kernel_bytes_per_point=%.1f energy_warm_ns=%.3f "
-                "gent_dynamics_ns=%.3f evals_dynamics=%.4f\n",
+                "gent_dynamics_ns=%.3f evals_dynamics=%.4f energy_identity_ns=%.3f model_lanes_ns=%.3f\n",
                 o.side, o.factor, cloud.size(), fam.n_bonds(), stats.evaluated, nb / np, setup,
                 1e9 * gent_t.cpu / evaluated, 1e9 * cold_t.cpu / evaluated, 1e9 * identity_t.cpu / evaluated,
                 1e9 * model_t.cpu / nm, 1e9 * assemble_t.cpu / nb, 1e9 * gent_t.wall / evaluated, evals_warm,
-                evals_cold, total / np, 1e9 * energy_t.cpu / evaluated, 1e9 * dyn_t.cpu / evaluated, evals_dyn);
+                evals_cold, total / np, 1e9 * energy_t.cpu / evaluated, 1e9 * dyn_t.cpu / evaluated, evals_dyn,
+                1e9 * energy_identity_t.cpu / evaluated, 1e9 * model_lanes_t.cpu / nm);
   return sink == 12345.0;
 }

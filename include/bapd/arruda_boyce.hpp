@@ -17,7 +17,7 @@
 // G(b) = (mu/g0) b / (3 L(b)) from L's Taylor coefficients at b0 (langevin_taylor),
 // then the series of I1bar - I1bar0 is reverted to b - b0 as a series in
 // e = I1bar - I1bar0, and G composed with it. Each bond pays one inverse-Langevin
-// solve (g0 is remembered per lambda_m); lane_count bonds at a time (Lanes) run lane by lane.
+// solve (g0 is remembered per lambda_m); several bonds at a time (Lanes, HalfLanes) run lane by lane.
 // The law interface is described in law.hpp; the registry line is in law_registry.hpp.
 #include <array>
 #include <cmath>
@@ -160,7 +160,7 @@ struct ArrudaBoyce {
       return modulus_one(p, inv.I1bar, G);
     } else {
       MaskOf<T> ok{};
-      for (int lane = 0; lane < lane_count; ++lane) {
+      for (int lane = 0; lane < static_cast<int>(sizeof(T) / sizeof(double)); ++lane) { // Lanes or HalfLanes
         Modulus g;
         ok[lane] = modulus_one(p, inv.I1bar[lane], g) ? -1 : 0;
         for (int n = 0; n < 5; ++n) G[n][lane] = g[n];

@@ -53,6 +53,39 @@ inline Lanes  lane_fma(Lanes a, Lanes b, Lanes c)
   return r;
 #endif
 }
+
+// Half a register (four doubles with AVX-512, two with AVX2): a point's last bonds
+// when they fill half a batch or less (nd/ba_force.hpp model_lanes: 28 bonds a point
+// at the paper's horizon are 3 batches of 8 and 4 over). The same lane-by-lane
+// arithmetic, so the same bits as Lanes and double.
+inline constexpr int half_lane_count = lane_count / 2;
+typedef double        HalfLanes __attribute__((vector_size(BAPD_LANE_BYTES / 2)));
+typedef std::int64_t  HalfLaneMask __attribute__((vector_size(BAPD_LANE_BYTES / 2)));
+typedef std::uint64_t HalfLaneBits __attribute__((vector_size(BAPD_LANE_BYTES / 2)));
+
+inline HalfLanes lane_abs(HalfLanes x) { return (HalfLanes)((HalfLaneBits)x & (HalfLaneBits{} + 0x7fffffffffffffffull)); }
+inline HalfLanes lane_fma(HalfLanes a, HalfLanes b, HalfLanes c)
+{
+#if defined(__AVX512F__)
+  return (HalfLanes)_mm256_fmadd_pd((__m256d)a, (__m256d)b, (__m256d)c); // one vfmadd231pd (ymm)
+#elif defined(__FMA__)
+  return (HalfLanes)_mm_fmadd_pd((__m128d)a, (__m128d)b, (__m128d)c); // one vfmadd231pd (xmm)
+#else
+  HalfLanes r;
+  for (int l = 0; l < half_lane_count; ++l) r[l] = std::fma(a[l], b[l], c[l]);
+  return r;
+#endif
+}
+inline HalfLanes select(HalfLaneMask m, HalfLanes a, HalfLanes b) { return m ? a : b; }
+inline bool      any(HalfLaneMask m)
+{
+  std::int64_t r = 0;
+  for (int l = 0; l < half_lane_count; ++l) r |= m[l];
+  return r != 0;
+}
+inline HalfLaneBits to_bits(HalfLanes x) { return (HalfLaneBits)x; }
+inline HalfLanes    from_bits(HalfLaneBits b) { return (HalfLanes)b; }
+
 inline double select(bool m, double a, double b) { return m ? a : b; }
 inline Lanes  select(LaneMask m, Lanes a, Lanes b) { return m ? a : b; }
 inline bool   any(bool m) { return m; }

@@ -14,7 +14,8 @@
 // `static constexpr bool has_lanes = true`,
 //   LaneMask stress_lanes(const std::array<Lanes, 4> &F, Lanes &c33, std::array<Lanes, 4> &P) const;
 // lane_count bonds at a time (lanes.hpp), giving bit for bit what stress() gives in the lanes
-// it reports done; the bond kernel (nd/ba_force.hpp) then uses it (PlaneStress does).
+// it reports done; the bond kernel (nd/ba_force.hpp) then uses it (PlaneStress does, as a
+// template over the register that also takes HalfLanes: a point's last few bonds).
 //
 // A model is a formulation of a law. Where the files are:
 //   bapd/law.hpp            what a law is (on I1bar, I2bar; the shared U(J)), and

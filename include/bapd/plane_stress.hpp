@@ -230,7 +230,8 @@ template <class Law> struct PlaneStress {
     return StressStatus::ok;
   }
 
-  // lane_count bonds at once (lanes.hpp: 8 with AVX-512, 4 with AVX2): F as lanes per component, c33 the warm starts
+  // lane_count bonds at once (T = Lanes; lanes.hpp: 8 with AVX-512, 4 with AVX2) or half
+  // as many (T = HalfLanes: a point's last few bonds): F as lanes per component, c33 the warm starts
   // (<= 0: none). Runs the first one or two evaluations of solve() in every lane, with
   // the same arithmetic as solve() (so a lane's C33 and P are bit for bit those of
   // stress()), and returns the lanes where they end the solve (converged, or the step
@@ -238,41 +239,41 @@ template <class Law> struct PlaneStress {
   // are written; every other lane (failure, locked point, a solve that needs more
   // evaluations) must go through stress(). Lanes may hold anything finite or not:
   // their arithmetic is kept finite (no floating-point trap) and they are not done.
-  LaneMask stress_lanes(const std::array<Lanes, 4> &F, Lanes &c33, std::array<Lanes, 4> &P) const
+  template <class T> MaskOf<T> stress_lanes(const std::array<T, 4> &F, T &c33, std::array<T, 4> &P) const
   {
-    const Lanes one = Lanes{} + 1.0, Jt = F[0] * F[3] - F[1] * F[2];
-    const Lanes a0 = F[0] * F[0] + F[1] * F[1] + F[2] * F[2] + F[3] * F[3], k0 = Jt * Jt;
-    LaneMask    ok = Jt > 0.0;
+    const T   one = T{} + 1.0, Jt = F[0] * F[3] - F[1] * F[2];
+    const T   a0 = F[0] * F[0] + F[1] * F[1] + F[2] * F[2] + F[3] * F[3], k0 = Jt * Jt;
+    MaskOf<T> ok = Jt > 0.0;
     if constexpr (Law::has_limit) {
       const double L = Law::I1bar_limit(p);
       ok &= 27.0 * a0 * a0 < 4.0 * k0 * L * L * L; // as solve(), with NaN on this side
     }
     // lanes that are not ok compute the rest state instead
-    const Lanes inv_Jt = 1.0 / select(ok, Jt, one), a = select(ok, a0, one + 1.0), k = select(ok, k0, one);
-    const Lanes inv_k  = inv_Jt * inv_Jt;
-    Lanes       lo, hi, c, s;
+    const T inv_Jt = 1.0 / select(ok, Jt, one), a = select(ok, a0, one + 1.0), k = select(ok, k0, one);
+    const T inv_k  = inv_Jt * inv_Jt;
+    T       lo, hi, c, s;
     start(a, k, inv_k, c33, lo, hi, c, s);
-    const double                       inv_D = 1.0 / p.D;
-    const PlaneStressResidualOf<Lanes> r     = residual_at(a, k, inv_D, c, s);
-    const PlaneStressStepOf<Lanes>     st    = step(r, c, lo, hi);
-    LaneMask                           done  = ok & r.admissible & (st.converged | st.accepted);
-    Lanes                              root = st.c33, shear = st.shear, shear_I2 = st.shear_I2;
-    const LaneMask                     more = ok & r.admissible & ~done;
+    const double                   inv_D = 1.0 / p.D;
+    const PlaneStressResidualOf<T> r     = residual_at(a, k, inv_D, c, s);
+    const PlaneStressStepOf<T>     st    = step(r, c, lo, hi);
+    MaskOf<T>                      done  = ok & r.admissible & (st.converged | st.accepted);
+    T                              root = st.c33, shear = st.shear, shear_I2 = st.shear_I2;
+    const MaskOf<T>                more = ok & r.admissible & ~done;
     if (any(more)) {
       // A second evaluation, where solve() makes it at a Newton point (the larger time
       // steps): the same tests and arithmetic as its loop. Anything else (bisection, a
       // large step) is left to stress().
-      const Lanes x = st.delta / c, next = c + st.delta;
-      LaneMask    newton = more & (next > st.lo) & (next < st.hi) &
-                        (2.0 * lane_abs(r.f[0]) <= lane_abs((hi - lo) * r.f[1])) & (lane_abs(st.delta) <= 0.1 * c);
-      const Lanes s_next = s * (1.0 + x * ((1.0 / 3.0) + x * ((-1.0 / 9.0) + x * (5.0 / 81.0))));
-      const Lanes c_next = s_next * s_next * s_next * inv_k;
+      const T   x = st.delta / c, next = c + st.delta;
+      MaskOf<T> newton = more & (next > st.lo) & (next < st.hi) &
+                         (2.0 * lane_abs(r.f[0]) <= lane_abs((hi - lo) * r.f[1])) & (lane_abs(st.delta) <= 0.1 * c);
+      const T s_next = s * (1.0 + x * ((1.0 / 3.0) + x * ((-1.0 / 9.0) + x * (5.0 / 81.0))));
+      const T c_next = s_next * s_next * s_next * inv_k;
       newton &= (c_next > st.lo) & (c_next < st.hi);
       if (any(newton)) {
-        const Lanes                        c2  = select(newton, c_next, c), s2 = select(newton, s_next, s);
-        const PlaneStressResidualOf<Lanes> r2  = residual_at(a, k, inv_D, c2, s2);
-        const PlaneStressStepOf<Lanes>     st2 = step(r2, c2, st.lo, st.hi);
-        const LaneMask                     done2 = newton & r2.admissible & (st2.converged | st2.accepted);
+        const T                        c2    = select(newton, c_next, c), s2 = select(newton, s_next, s);
+        const PlaneStressResidualOf<T> r2    = residual_at(a, k, inv_D, c2, s2);
+        const PlaneStressStepOf<T>     st2   = step(r2, c2, st.lo, st.hi);
+        const MaskOf<T>                done2 = newton & r2.admissible & (st2.converged | st2.accepted);
         root                                     = select(done2, st2.c33, root);
         shear                                    = select(done2, st2.shear, shear);
         if constexpr (Law::uses_I2bar) shear_I2 = select(done2, st2.shear_I2, shear_I2);
@@ -281,11 +282,11 @@ template <class Law> struct PlaneStress {
     }
     c33 = select(done, root, c33);
     if constexpr (Law::uses_I2bar) { // as stress()
-      const Lanes g = shear + root * shear_I2, b = (root * shear + (a * root - k) * shear_I2) * inv_Jt;
+      const T g = shear + root * shear_I2, b = (root * shear + (a * root - k) * shear_I2) * inv_Jt;
       P = {g * F[0] - b * F[3], g * F[1] + b * F[2], g * F[2] + b * F[1], g * F[3] - b * F[0]};
       return done;
     }
-    const Lanes b = shear * root * inv_Jt;
+    const T b = shear * root * inv_Jt;
     P = {shear * F[0] - b * F[3], shear * F[1] + b * F[2], shear * F[2] + b * F[1], shear * F[3] - b * F[0]};
     return done;
   }

@@ -151,5 +151,20 @@ TEST(BaForceLanes, LargestTraceOfCIsTheScalarKernels)
   }
 }
 
+// model_lanes hands a point's last bonds to stress_lanes in HalfLanes when they fill
+// half a register or less (plane_stress_fast_path_test checks that path against
+// stress() model by model): the cut plate of the bit-for-bit tests above has such
+// points, so those tests compare it in the kernel too.
+TEST(BaForceLanes, TheCutPlateHasPointsWhoseLastBatchIsHalfARegister)
+{
+  const test::CutPlate c(20, 0.15, 17);
+  std::size_t          tails = 0;
+  for (std::size_t i = 0; i < c.d.cloud.size(); ++i) {
+    const std::size_t r = c.d.families.size(i) % lane_count;
+    tails += r > 0 && r <= static_cast<std::size_t>(half_lane_count);
+  }
+  EXPECT_GT(tails, c.d.cloud.size() / 10);
+}
+
 } // namespace
 } // namespace bapd

@@ -51,8 +51,9 @@
 // and energy(F, psi) or energy(F, c33, psi) likewise. A model with has_lanes and
 //   LaneMask stress_lanes(const std::array<Lanes, D*D> &F, Lanes &c33, std::array<Lanes, D*D> &P) const
 // (PlaneStress in 2D, Compressible3DLanes in 3D: nd/compressible_lanes.hpp) gets the
-// point's bonds after the first loop, lane_count at a time (model_lanes); a lane it
-// does not finish goes through its scalar stress(). Nothing is allocated per call
+// point's bonds after the first loop, lane_count at a time (model_lanes; the last half
+// register or less in HalfLanes where stress_lanes is a template over the register, as
+// PlaneStress's is); a lane it does not finish goes through its scalar stress(). Nothing is allocated per call
 // (Workspace is sized once), except the list of failed bonds in the rare call where a
 // model fails.
 //
@@ -156,12 +157,21 @@ inline auto energy_of(const M &m, const Mat<D> &F, double &, double &psi, long) 
 template <class M, class = void> struct HasLanes : std::false_type {};
 template <class M> struct HasLanes<M, std::enable_if_t<M::has_lanes>> : std::true_type {};
 
-inline Lanes load_lanes(const double *p)
+template <class T> inline T load_lanes(const double *p)
 {
-  Lanes v;
+  T v;
   std::memcpy(&v, p, sizeof v);
   return v;
 }
+
+// Whether a model's lane path also takes half a register (HalfLanes, lanes.hpp).
+template <class M, int DD, class = void> struct HasHalfLanes : std::false_type {};
+template <class M, int DD>
+struct HasHalfLanes<M, DD,
+                    std::void_t<decltype(std::declval<const M &>().stress_lanes(std::declval<const std::array<HalfLanes, DD> &>(),
+                                                                               std::declval<HalfLanes &>(),
+                                                                               std::declval<std::array<HalfLanes, DD> &>()))>>
+    : std::true_type {};
 
 [[gnu::noinline, gnu::cold]] inline void record_failure(KernelStats &stats, std::vector<FailedBond> &failed,
                                                         std::size_t i, std::size_t q, StressStatus status)
@@ -176,55 +186,75 @@ template <int D, class Model>
   return stress_of<D>(model, F, c33, P, 0);
 }
 
+// One batch of model_lanes: the bonds collected in slots j .. j + width - 1 (T = Lanes,
+// or HalfLanes for a point's last few), those from n on unused. top: tr C lane by lane.
+template <int D, class T, class Model, class Form>
+inline void model_batch(const Model &model, Workspace<D> &ws, std::size_t j, std::size_t n, std::size_t i,
+                        std::size_t o, double *c33, Form &form, T &top, KernelStats &stats)
+{
+  constexpr int         DD = D * D;
+  constexpr std::size_t L  = sizeof(T) / sizeof(double);
+  const std::size_t     S  = ws.lane_stride;
+  const double         *Fc = ws.pending_F.data(), *cw = ws.pending_c33.data();
+  std::array<T, DD>     F, P;
+  for (int k = 0; k < DD; ++k) F[k] = load_lanes<T>(Fc + k * S + j);
+  T c   = load_lanes<T>(cw + j);
+  T trC = D == 2 ? select(c > 0.0, c, T{} + 1.0) : T{};
+  for (int k = 0; k < DD; ++k) trC = trC + F[k] * F[k];
+  top                = select(trC > top, trC, top);
+  const auto done    = model.stress_lanes(F, c, P);
+  const auto product = form.product(j, P);
+  for (std::size_t l = 0; l < L && j + l < n; ++l) {
+    const std::size_t q = ws.pending_q[j + l];
+    if (done[l]) {
+      if (c33 && !ws.keep_warm_start) c33[o + q] = c[l];
+      form.store(j + l, q, product, l);
+      continue;
+    }
+    double cb = cw[j + l];
+    Mat<D> Fb, Pb;
+    for (int k = 0; k < DD; ++k) Fb[k] = F[k][l];
+    const StressStatus status = model_lane_fallback<D>(model, Fb, cb, Pb);
+    if (__builtin_expect(status != StressStatus::ok, 0)) {
+      record_failure(stats, ws.failed, i, q, status);
+      form.none(q);
+      continue;
+    }
+    if (c33 && !ws.keep_warm_start) c33[o + q] = cb;
+    form.stress(j + l, q, Pb);
+  }
+}
+
 // The model over the n bonds of point i collected in ws.pending_*, lane_count at a
-// time (Model::stress_lanes); a lane it does not finish goes through the scalar
-// stress(), which gives bit for bit what stress_lanes gives where that finishes
-// (plane_stress.hpp), so a bond's result does not depend on its lane. The form's
-// product with P is formed for all lanes at once (form.product, the operations of
-// form.stress lane by lane, so the same bits) and kept by form.store for the lanes the
-// model finished. Bonds are taken in family order, so failures are recorded and the
-// form is told (store, stress) in loop order.
+// time (Model::stress_lanes); the last half register or less of them in HalfLanes where
+// the model takes them (the paper's horizon gives 28 bonds a point: 3.5 batches of 8,
+// not 4). A lane it does not finish goes through the scalar stress(), which gives bit
+// for bit what stress_lanes gives where that finishes (plane_stress.hpp), so a bond's
+// result does not depend on its lane or on the width of its batch. The form's product
+// with P is formed for all lanes at once (form.product, the operations of form.stress
+// lane by lane, so the same bits) and kept by form.store for the lanes the model
+// finished. Bonds are taken in family order, so failures are recorded and the form is
+// told (store, stress) in loop order.
 template <int D, class Model, class Form>
 void model_lanes(const Model &model, Workspace<D> &ws, std::size_t n, std::size_t i, std::size_t o, double *c33,
                  Form &form, double &largest_trC, KernelStats &stats)
 {
-  constexpr int     DD = D * D;
-  const std::size_t S = ws.lane_stride, L = lane_count;
+  constexpr int     DD   = D * D;
+  constexpr bool    half = HasHalfLanes<Model, DD>::value;
+  const std::size_t S    = ws.lane_stride, L = lane_count;
   double           *Fc = ws.pending_F.data(), *cw = ws.pending_c33.data();
   for (std::size_t l = n; l < (n + L - 1) / L * L; ++l) { // unused lanes: the rest state
     for (int k = 0; k < DD; ++k) Fc[k * S + l] = k % (D + 1) == 0 ? 1.0 : 0.0;
     cw[l] = 0.0;
   }
-  const Lanes zero = Lanes{} + 0.0, one = Lanes{} + 1.0;
-  Lanes       top  = zero; // tr C of the bonds, lane by lane (stress_pass's scalar tr C; unused lanes hold the rest state, 3)
-  for (std::size_t j = 0; j < n; j += L) {
-    std::array<Lanes, DD> F, P;
-    for (int k = 0; k < DD; ++k) F[k] = load_lanes(Fc + k * S + j);
-    Lanes          c    = load_lanes(cw + j);
-    Lanes          trC  = D == 2 ? select(c > zero, c, one) : zero;
-    for (int k = 0; k < DD; ++k) trC = trC + F[k] * F[k];
-    top = select(trC > top, trC, top);
-    const LaneMask done    = model.stress_lanes(F, c, P);
-    const auto     product = form.product(j, P);
-    for (std::size_t l = 0; l < L && j + l < n; ++l) {
-      const std::size_t q = ws.pending_q[j + l];
-      if (done[l]) {
-        if (c33 && !ws.keep_warm_start) c33[o + q] = c[l];
-        form.store(j + l, q, product, l);
-        continue;
-      }
-      double cb = cw[j + l];
-      Mat<D> Fb, Pb;
-      for (int k = 0; k < DD; ++k) Fb[k] = F[k][l];
-      const StressStatus status = model_lane_fallback<D>(model, Fb, cb, Pb);
-      if (__builtin_expect(status != StressStatus::ok, 0)) {
-        record_failure(stats, ws.failed, i, q, status);
-        form.none(q);
-        continue;
-      }
-      if (c33 && !ws.keep_warm_start) c33[o + q] = cb;
-      form.stress(j + l, q, Pb);
-    }
+  Lanes       top = Lanes{}; // tr C of the bonds, lane by lane (stress_pass's scalar tr C; unused lanes hold the rest state, 3)
+  std::size_t j   = 0;
+  // whole registers, until what is left fits in half of one (if the model takes that)
+  for (; j < n && !(half && n - j <= L / 2); j += L) model_batch<D>(model, ws, j, n, i, o, c33, form, top, stats);
+  if constexpr (half) {
+    HalfLanes top_half = HalfLanes{};
+    if (j < n) model_batch<D>(model, ws, j, n, i, o, c33, form, top_half, stats);
+    for (std::size_t l = 0; l < L / 2; ++l) largest_trC = std::max(largest_trC, top_half[l]);
   }
   for (std::size_t l = 0; l < L; ++l) largest_trC = std::max(largest_trC, top[l]);
 }
@@ -345,8 +375,8 @@ template <int D, bool Corrected> struct BondOnlyForm {
     const std::array<double, D> f = force(P, slot);
     for (int r = 0; r < D; ++r) t[D * q + r] = f[r];
   }
-  std::array<Lanes, D> product(std::size_t j, const std::array<Lanes, D * D> &P) const { return force(P, j); }
-  void store(std::size_t, std::size_t q, const std::array<Lanes, D> &f, std::size_t l)
+  template <class T> std::array<T, D> product(std::size_t j, const std::array<T, D * D> &P) const { return force(P, j); }
+  template <class T> void store(std::size_t, std::size_t q, const std::array<T, D> &f, std::size_t l)
   {
     for (int r = 0; r < D; ++r) t[D * q + r] = f[r][l];
   }
@@ -400,8 +430,11 @@ template <int D> struct EnergyConsistentForm {
     for (int k = 0; k < D * D; ++k) m_iq[k] = m[k];
     keep(slot, q, m_iq);
   }
-  std::array<Lanes, D * D> product(std::size_t j, const std::array<Lanes, D * D> &P) const { return stress_over_shape(P, j); }
-  void store(std::size_t slot, std::size_t q, const std::array<Lanes, D * D> &m, std::size_t l)
+  template <class T> std::array<T, D * D> product(std::size_t j, const std::array<T, D * D> &P) const
+  {
+    return stress_over_shape(P, j);
+  }
+  template <class T> void store(std::size_t slot, std::size_t q, const std::array<T, D * D> &m, std::size_t l)
   {
     double m_iq[StressRecord<D>::vectors * StressRecord<D>::V] = {};
     for (int k = 0; k < D * D; ++k) m_iq[k] = m[k][l];
