@@ -53,9 +53,9 @@
 // (PlaneStress in 2D, Compressible3DLanes in 3D: nd/compressible_lanes.hpp) gets the
 // point's bonds after the first loop, lane_count at a time (model_lanes; the last half
 // register or less in HalfLanes where stress_lanes is a template over the register, as
-// PlaneStress's is); a lane it does not finish goes through its scalar stress(). Nothing is allocated per call
-// (Workspace is sized once), except the list of failed bonds in the rare call where a
-// model fails.
+// PlaneStress's is); a lane it does not finish goes through its scalar stress().
+// Nothing is allocated per call (Workspace is sized once), except the list of failed
+// bonds in the rare call where a model fails.
 //
 // Determinism: every sum runs in family order (families are sorted by natural id) and
 // nothing depends on the local numbering, so a rank's owned points get bit for bit the
