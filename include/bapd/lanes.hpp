@@ -19,6 +19,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <type_traits>
 #if defined(__FMA__) || defined(__AVX512F__)
 #include <immintrin.h>
 #endif
@@ -35,25 +36,6 @@ typedef double        Lanes __attribute__((vector_size(BAPD_LANE_BYTES)));
 typedef std::int64_t  LaneMask __attribute__((vector_size(BAPD_LANE_BYTES))); // comparisons: all ones or 0
 typedef std::uint64_t LaneBits __attribute__((vector_size(BAPD_LANE_BYTES)));
 
-// The mask type of a comparison of two T.
-template <class T> using MaskOf = decltype(T{} < T{});
-
-inline double lane_abs(double x) { return std::abs(x); }
-inline Lanes  lane_abs(Lanes x) { return (Lanes)((LaneBits)x & (LaneBits{} + 0x7fffffffffffffffull)); }
-inline double lane_fma(double a, double b, double c) { return std::fma(a, b, c); }
-inline Lanes  lane_fma(Lanes a, Lanes b, Lanes c)
-{
-#if defined(__AVX512F__)
-  return (Lanes)_mm512_fmadd_pd((__m512d)a, (__m512d)b, (__m512d)c); // one vfmadd231pd (zmm)
-#elif defined(__FMA__)
-  return (Lanes)_mm256_fmadd_pd((__m256d)a, (__m256d)b, (__m256d)c); // one vfmadd231pd (ymm)
-#else
-  Lanes r;
-  for (int l = 0; l < lane_count; ++l) r[l] = std::fma(a[l], b[l], c[l]); // the same (fma rounds once either way)
-  return r;
-#endif
-}
-
 // Half a register (four doubles with AVX-512, two with AVX2): a point's last bonds
 // when they fill half a batch or less (nd/ba_force.hpp model_lanes: 28 bonds a point
 // at the paper's horizon are 3 batches of 8 and 4 over). The same lane-by-lane
@@ -63,36 +45,45 @@ typedef double        HalfLanes __attribute__((vector_size(BAPD_LANE_BYTES / 2))
 typedef std::int64_t  HalfLaneMask __attribute__((vector_size(BAPD_LANE_BYTES / 2)));
 typedef std::uint64_t HalfLaneBits __attribute__((vector_size(BAPD_LANE_BYTES / 2)));
 
-inline HalfLanes lane_abs(HalfLanes x) { return (HalfLanes)((HalfLaneBits)x & (HalfLaneBits{} + 0x7fffffffffffffffull)); }
-inline HalfLanes lane_fma(HalfLanes a, HalfLanes b, HalfLanes c)
+// The mask type of a comparison of two T.
+template <class T> using MaskOf = decltype(T{} < T{});
+
+// The register types (Lanes, HalfLanes) with their bit patterns: the operations below
+// are written once for both.
+template <class V> struct LaneVector;
+template <> struct LaneVector<Lanes> {
+  using Bits = LaneBits;
+};
+template <> struct LaneVector<HalfLanes> {
+  using Bits = HalfLaneBits;
+};
+template <class V> using BitsOf = typename LaneVector<V>::Bits;
+template <class M>
+inline constexpr bool is_lane_mask = std::is_same_v<M, LaneMask> || std::is_same_v<M, HalfLaneMask>;
+
+inline double lane_abs(double x) { return std::abs(x); }
+template <class V, class B = BitsOf<V>> inline V lane_abs(V x) { return (V)((B)x & (B{} + 0x7fffffffffffffffull)); }
+inline double lane_fma(double a, double b, double c) { return std::fma(a, b, c); }
+template <class V, class = BitsOf<V>> inline V lane_fma(V a, V b, V c)
 {
 #if defined(__AVX512F__)
-  return (HalfLanes)_mm256_fmadd_pd((__m256d)a, (__m256d)b, (__m256d)c); // one vfmadd231pd (ymm)
-#elif defined(__FMA__)
-  return (HalfLanes)_mm_fmadd_pd((__m128d)a, (__m128d)b, (__m128d)c); // one vfmadd231pd (xmm)
-#else
-  HalfLanes r;
-  for (int l = 0; l < half_lane_count; ++l) r[l] = std::fma(a[l], b[l], c[l]);
-  return r;
+  if constexpr (sizeof(V) == 64) return (V)_mm512_fmadd_pd((__m512d)a, (__m512d)b, (__m512d)c); // one vfmadd231pd (zmm)
 #endif
+#if defined(__FMA__) || defined(__AVX512F__)
+  if constexpr (sizeof(V) == 32) return (V)_mm256_fmadd_pd((__m256d)a, (__m256d)b, (__m256d)c); // (ymm)
+  if constexpr (sizeof(V) == 16) return (V)_mm_fmadd_pd((__m128d)a, (__m128d)b, (__m128d)c);    // (xmm)
+#endif
+  V r; // without FMA instructions: the same (fma rounds once either way)
+  for (int l = 0; l < static_cast<int>(sizeof(V) / sizeof(double)); ++l) r[l] = std::fma(a[l], b[l], c[l]);
+  return r;
 }
-inline HalfLanes select(HalfLaneMask m, HalfLanes a, HalfLanes b) { return m ? a : b; }
-inline bool      any(HalfLaneMask m)
+inline double                               select(bool m, double a, double b) { return m ? a : b; }
+template <class V, class = BitsOf<V>> inline V select(MaskOf<V> m, V a, V b) { return m ? a : b; }
+inline bool                                 any(bool m) { return m; }
+template <class M, class = std::enable_if_t<is_lane_mask<M>>> inline bool any(M m)
 {
   std::int64_t r = 0;
-  for (int l = 0; l < half_lane_count; ++l) r |= m[l];
-  return r != 0;
-}
-inline HalfLaneBits to_bits(HalfLanes x) { return (HalfLaneBits)x; }
-inline HalfLanes    from_bits(HalfLaneBits b) { return (HalfLanes)b; }
-
-inline double select(bool m, double a, double b) { return m ? a : b; }
-inline Lanes  select(LaneMask m, Lanes a, Lanes b) { return m ? a : b; }
-inline bool   any(bool m) { return m; }
-inline bool   any(LaneMask m)
-{
-  std::int64_t r = 0;
-  for (int l = 0; l < lane_count; ++l) r |= m[l];
+  for (int l = 0; l < static_cast<int>(sizeof(M) / sizeof(std::int64_t)); ++l) r |= m[l];
   return r != 0;
 }
 
@@ -103,13 +94,14 @@ inline std::uint64_t to_bits(double x)
   std::memcpy(&b, &x, sizeof b);
   return b;
 }
-inline LaneBits      to_bits(Lanes x) { return (LaneBits)x; }
-inline double        from_bits(std::uint64_t b)
+template <class V, class B = BitsOf<V>> inline B to_bits(V x) { return (B)x; }
+inline double                                    from_bits(std::uint64_t b)
 {
   double x;
   std::memcpy(&x, &b, sizeof x);
   return x;
 }
-inline Lanes from_bits(LaneBits b) { return (Lanes)b; }
+inline Lanes     from_bits(LaneBits b) { return (Lanes)b; }
+inline HalfLanes from_bits(HalfLaneBits b) { return (HalfLanes)b; }
 
 } // namespace bapd
