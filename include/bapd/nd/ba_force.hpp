@@ -358,8 +358,8 @@ template <int D, bool Corrected> struct BondOnlyForm {
     if (lambda_i) add_patch_term<D>(lambda_i, lambda + patch_stride<D>(virial) * nb[q], off + D * q, g, virial); // h_iq
     for (int r = 0; r < D; ++r) data[r * S + slot] = g[r];
   }
-  // t = P g, in one bond's doubles or in lanes (slot = the first of lane_count).
-  template <class T> std::array<T, D> force(const std::array<T, D * D> &P, std::size_t slot) const
+  // t = P g, in one bond's doubles or in lanes (slot = the first of the register's).
+  template <class T> std::array<T, D> product(std::size_t slot, const std::array<T, D * D> &P) const
   {
     std::array<T, D> g, t;
     for (int r = 0; r < D; ++r) std::memcpy(&g[r], data + r * S + slot, sizeof(T));
@@ -372,10 +372,9 @@ template <int D, bool Corrected> struct BondOnlyForm {
   }
   void stress(std::size_t slot, std::size_t q, const Mat<D> &P)
   {
-    const std::array<double, D> f = force(P, slot);
+    const std::array<double, D> f = product(slot, P);
     for (int r = 0; r < D; ++r) t[D * q + r] = f[r];
   }
-  template <class T> std::array<T, D> product(std::size_t j, const std::array<T, D * D> &P) const { return force(P, j); }
   template <class T> void store(std::size_t, std::size_t q, const std::array<T, D> &f, std::size_t l)
   {
     for (int r = 0; r < D; ++r) t[D * q + r] = f[r][l];
@@ -400,8 +399,8 @@ template <int D> struct EnergyConsistentForm {
     for (int c = 0; c < sym_size<D>; ++c) data[c * S + slot] = k.shape_tensor_inv[c];
     data[volume_component * S + slot] = rec[q][Member<D>::volume];
   }
-  // M = V_q P K^{-1}, in one bond's doubles or in lanes (slot = the first of lane_count).
-  template <class T> std::array<T, D * D> stress_over_shape(const std::array<T, D * D> &P, std::size_t slot) const
+  // M = V_q P K^{-1}, in one bond's doubles or in lanes (slot = the first of the register's).
+  template <class T> std::array<T, D * D> product(std::size_t slot, const std::array<T, D * D> &P) const
   {
     T ki[sym_size<D>], v;
     for (int c = 0; c < sym_size<D>; ++c) std::memcpy(&ki[c], data + c * S + slot, sizeof(T));
@@ -425,14 +424,10 @@ template <int D> struct EnergyConsistentForm {
   }
   void stress(std::size_t slot, std::size_t q, const Mat<D> &P)
   {
-    const Mat<D> m = stress_over_shape(P, slot);
+    const Mat<D> m = product(slot, P);
     double       m_iq[StressRecord<D>::vectors * StressRecord<D>::V] = {};
     for (int k = 0; k < D * D; ++k) m_iq[k] = m[k];
     keep(slot, q, m_iq);
-  }
-  template <class T> std::array<T, D * D> product(std::size_t j, const std::array<T, D * D> &P) const
-  {
-    return stress_over_shape(P, j);
   }
   template <class T> void store(std::size_t slot, std::size_t q, const std::array<T, D * D> &m, std::size_t l)
   {
