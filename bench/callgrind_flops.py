@@ -106,7 +106,7 @@ def part_of(path, fn_name, line, ranges_cache):
                 "bond_kinematics": "K^-1 and F", "force_scale": "force vector"}.get(fn, "geometry: " + fn)
     if base == "ba_force.hpp":
         return "kernel loop, force vector, stores"
-    if base == "nd_ba_force.cpp" or (fn_name and "assemble_force_density" in fn_name):
+    if base == "ba_force.cpp" or (fn_name and "assemble_force_density" in fn_name):
         return "assembly"
     return "other"
 

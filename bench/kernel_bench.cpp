@@ -1,5 +1,5 @@
 // Force-kernel benchmark (issue 7, benchmark 1): bond evaluations per second per core
-// of the BA kernel (nd::compute_bond_forces<2>, nd/ba_force.hpp) with the Gent plane-stress
+// of the BA kernel (nd::compute_bond_forces<2>, ba_force.hpp) with the Gent plane-stress
 // model on a square lattice, and the pieces it is made of.
 //
 //   kernel_bench [--side N] [--factor f] [--reps r] [--callgrind] [--table]
@@ -61,11 +61,11 @@
 #include <string>
 #include <vector>
 
-#include "bapd/family.hpp"
-#include "bapd/nd/ba_force.hpp"
-#include "bapd/gent.hpp"
-#include "bapd/material.hpp"
-#include "bapd/lattice.hpp"
+#include "bapd/core/geometry/family.hpp"
+#include "bapd/core/kernel/ba_force.hpp"
+#include "bapd/core/materials/gent.hpp"
+#include "bapd/core/materials/material.hpp"
+#include "bapd/core/geometry/lattice.hpp"
 
 #if defined(BAPD_BENCH_CALLGRIND) && __has_include(<valgrind/callgrind.h>)
 #include <valgrind/callgrind.h>

@@ -1,5 +1,5 @@
 // 3D force-kernel benchmark (issue 21): bond evaluations per second per core of the
-// dimension-generic BA core (nd/ba_force.hpp) in D = 3 with the compressible Gent law
+// dimension-generic BA core (ba_force.hpp) in D = 3 with the compressible Gent law
 // (Gent3D) on a simple cubic box, and the bytes per point of its arrays.
 //
 //   kernel_bench_3d [--side N] [--factor f] [--reps r] [--table]
@@ -17,9 +17,9 @@
 // machine mean little: compare ratios from one run, bench/kernel_bench_3d.sh):
 //   bond_only      compute_bond_forces, the paper's form (eq 23), no correction
 //   corrected      the same with the tensor stress correction (g -> M_i^{-1} g)
-//   energy         the energy-consistent form (nd/ba_force.hpp's, in 3D)
+//   energy         the energy-consistent form (ba_force.hpp's, in 3D)
 //   lanes_*        the same three with the lane path of the law (Compressible3DLanes,
-//                  nd/compressible_lanes.hpp: lane_count bonds at a time, no libm cbrt)
+//                  compressible_lanes.hpp: lane_count bonds at a time, no libm cbrt)
 //   identity       the bond-only kernel with P = F: gather, masked sums, K^{-1}, F,
 //                  stores, no constitutive cost
 //   assemble       assemble_force_density, f_i = sum_j (t_ij - t_ji) V_j
@@ -35,11 +35,11 @@
 #include <string>
 #include <vector>
 
-#include "bapd/gent.hpp"
-#include "bapd/material.hpp"
-#include "bapd/nd/ba_force.hpp"
-#include "bapd/nd/compressible_lanes.hpp"
-#include "bapd/nd/family.hpp"
+#include "bapd/core/materials/gent.hpp"
+#include "bapd/core/materials/material.hpp"
+#include "bapd/core/kernel/ba_force.hpp"
+#include "bapd/core/materials/compressible_lanes.hpp"
+#include "bapd/core/geometry/family.hpp"
 
 using namespace bapd;
 

@@ -14,14 +14,13 @@
 #include <random>
 #include <string>
 #include <vector>
-#include "bapd/family.hpp"
-#include "bapd/gent.hpp"
-#include "bapd/lattice.hpp"
-#include "bapd/material.hpp"
-#include "bapd/plane_stress.hpp"
-#include "bapd/nd/ba_force.hpp"
-#include "bapd/nd/compressible_lanes.hpp"
-#include "bapd/nd/family.hpp"
+#include "bapd/core/geometry/family.hpp"
+#include "bapd/core/materials/gent.hpp"
+#include "bapd/core/geometry/lattice.hpp"
+#include "bapd/core/materials/material.hpp"
+#include "bapd/core/materials/plane_stress.hpp"
+#include "bapd/core/kernel/ba_force.hpp"
+#include "bapd/core/materials/compressible_lanes.hpp"
 using namespace bapd;
 static std::uint64_t fnv(const void *p, std::size_t n, std::uint64_t h = 1469598103934665603ull)
 {

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Records a masked sum adds per bond on an interior lattice family (docs/performance.md 1k).
 
-A bond's sums (nd/bond_geometry.hpp masked_sum) add the records of the BA family's
+A bond's sums (bond_geometry.hpp masked_sum) add the records of the BA family's
 members, or the total minus the others: whichever set is smaller, decided over the
 whole mask (before 2026-12-03) or per chunk of `chunk` members (a 64-bit mask word:
 chunk 64). Members in natural order (x fastest, then y, then z), as build_families sorts them.

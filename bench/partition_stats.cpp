@@ -15,7 +15,7 @@
 // For every part count: the METIS k-way partition of the bond graph exactly as the
 // solver makes it (PartitionBondGraph, partition.hpp: vertex weight = bond count), the
 // edge cut, and the two rings of ghosts every part would hold (as in
-// src/solver/layout.cpp: ring 1 = family members of owned points, ring 2 = family
+// src/solver/parallel/layout.cpp: ring 1 = family members of owned points, ring 2 = family
 // members of ring 1). A time step exchanges 2 doubles per ghost (VecGhostUpdate), so
 // ghosts x 16 B is the halo traffic per force evaluation. The kernel also runs over
 // the ring-1 points (their bond forces t_ji enter the owned sums): their bonds are
@@ -37,9 +37,9 @@
 #include <string>
 #include <vector>
 
-#include "bapd/family.hpp"
-#include "bapd/lattice.hpp"
-#include "bapd/partition.hpp"
+#include "bapd/core/geometry/family.hpp"
+#include "bapd/core/geometry/lattice.hpp"
+#include "bapd/solver/parallel/partition.hpp"
 
 using namespace bapd;
 
@@ -99,7 +99,7 @@ struct Rings {
   std::size_t owned = 0, ring1 = 0, ring2 = 0, owned_bonds = 0, ring1_bonds = 0;
 };
 
-// Two rings of ghosts per part, as CollectRings in src/solver/layout.cpp.
+// Two rings of ghosts per part, as CollectRings in src/solver/parallel/layout.cpp.
 std::vector<Rings> collect_rings(int nparts, const std::vector<int> &part, const std::vector<int> &offsets,
                                  const std::vector<int> &neighbours)
 {

@@ -11,10 +11,10 @@
 #include <cstdlib>
 #include <utility>
 
-#include "bapd/errors.hpp"
-#include "bapd/help.hpp"
-#include "bapd/scene_file.hpp"
-#include "bapd/simulation.hpp"
+#include "bapd/solver/driver/errors.hpp"
+#include "bapd/solver/input/help.hpp"
+#include "bapd/solver/input/scene_file.hpp"
+#include "bapd/solver/driver/simulation.hpp"
 
 static const char help[] = "bapd: bond-associated NOSB peridynamics for hydrogels (Gent model, plane stress).\n"
                            "Usage: mpiexec -n N bapd -options_file_yaml SCENE.yaml [-option value ...]\n\n";

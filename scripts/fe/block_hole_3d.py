@@ -21,7 +21,7 @@ named probes:
 and, for bapd's lattice spacings (--lattice-dx, default 0.5, 0.25, 0.2 mm: cell centres
 (i + 0.5) dx), the FE displacement at the lattice point a bapd probe at each named point
 reads (the nearest point outside the hole; a tie goes to the lowest natural id, x
-fastest then y then z, as ProbeLocate in src/solver/scene_selection.cpp).
+fastest then y then z, as ProbeLocate in src/solver/input/scene_selection.cpp).
 
 By symmetry about x = 5, y = 10 and z = 2 the default solves the octant
 [0, 5] x [10, 20] x [2, 4] (ux = 0 on x = 5, uy = 0 on y = 10, uz = 0 on z = 2, the top

@@ -8,7 +8,7 @@ homogeneous deformation x = F X (shear, stretch and a volume change in every com
 the exact solution is that affine field, which P1 and P2 represent exactly, so Newton must
 find it and the mean first Piola-Kirchhoff stress (1/V) int P dV must equal
     P = G J^(-2/3) (F - tr C / 3 F^-T) + (1/D) (J^2 - 1) F^-T,  G = mu Jm / (Jm - I1bar + 3)
-(bapd's Compressible3D, include/bapd/hyperelastic.hpp; plane strain: F = diag(F~, 1), the
+(bapd's Compressible3D, include/bapd/core/materials/hyperelastic.hpp; plane strain: F = diag(F~, 1), the
 in-plane block) to round-off, evaluated here in numpy, independently of the UFL energy.
 The interior is checked too: max |u - (F - I) X| at the dofs. Exit 0 on agreement, 1 on a
 mismatch, 77 (ctest SKIP_RETURN_CODE) without dolfinx.

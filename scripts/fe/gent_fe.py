@@ -66,7 +66,7 @@ def gent_isochoric(I1bar, mu, Jm):
 def gent_compressible(trC, J, mu, Jm, D):
     """Psi of METHOD.md section 4 from tr C and J (UFL): the isochoric term at
     I1bar = tr C J^(-2/3) plus (1/D) ((J^2 - 1)/2 - ln J); bapd's Compressible3D
-    (include/bapd/hyperelastic.hpp), PlaneStrain (J = J~, tr C = tr C~ + 1) and
+    (include/bapd/core/materials/hyperelastic.hpp), PlaneStrain (J = J~, tr C = tr C~ + 1) and
     PlaneStress (C33 solved) are this energy."""
     return (gent_isochoric(trC * J**(-2.0 / 3.0), mu, Jm)
             + (1.0 / D) * ((J**2 - 1) / 2 - ufl.ln(J)))

@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "bapd/homogeneous_response.hpp"
+#include "bapd/core/materials/homogeneous_response.hpp"
 
 namespace bapd::fit {
 

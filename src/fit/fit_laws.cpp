@@ -6,8 +6,8 @@
 #include <cstdio>
 #include <sstream>
 
-#include "bapd/law_registry.hpp"
-#include "bapd/material.hpp"
+#include "bapd/core/materials/law_registry.hpp"
+#include "bapd/core/materials/material.hpp"
 #include "fit_error.hpp"
 
 namespace bapd::fit {

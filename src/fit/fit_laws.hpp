@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "bapd/homogeneous_response.hpp"
+#include "bapd/core/materials/homogeneous_response.hpp"
 
 namespace bapd::fit {
 

@@ -22,9 +22,9 @@
 #include <string>
 #include <vector>
 
-#include "bapd/models.hpp"
-#include "bapd/point_quantities.hpp"
-#include "bapd/simulation.hpp"
+#include "bapd/core/materials/models.hpp"
+#include "bapd/core/kernel/point_quantities.hpp"
+#include "bapd/solver/driver/simulation.hpp"
 #include "mpi/test_scenes.hpp"
 
 using namespace bapd;

@@ -11,10 +11,10 @@
 #include <utility>
 #include <vector>
 
-#include "bapd/gmsh_volume3d.hpp"
-#include "bapd/nd/shape3d.hpp"
-#include "bapd/options_reader.hpp"
-#include "bapd/scene.hpp"
+#include "bapd/solver/input/gmsh_volume3d.hpp"
+#include "bapd/core/geometry/shape3d.hpp"
+#include "bapd/solver/input/options_reader.hpp"
+#include "bapd/solver/input/scene.hpp"
 
 namespace bapd {
 namespace {

@@ -1,4 +1,4 @@
-// A Gmsh 3D volume as a mesh solid (gmsh_volume3d.hpp, nd/shape3d.hpp): an extruded L
+// A Gmsh 3D volume as a mesh solid (gmsh_volume3d.hpp, shape3d.hpp): an extruded L
 // meshed by Gmsh clips the lattice to exactly the points of the same L built from two
 // boxes; its tetrahedra fill the L's volume; missing files and surface-only files are
 // errors that say so.
@@ -8,8 +8,8 @@
 #include <memory>
 #include <string>
 
-#include "bapd/gmsh_volume3d.hpp"
-#include "bapd/nd/shape3d.hpp"
+#include "bapd/solver/input/gmsh_volume3d.hpp"
+#include "bapd/core/geometry/shape3d.hpp"
 
 namespace bapd {
 namespace {

@@ -119,7 +119,7 @@ expect_error output_dir_under_file "-output_dir $fixtures/tiny.yaml/out cannot b
 
 # Restart files that do not fit
 expect_error restart_missing "-restart" "$scene" -restart no_such_checkpoint.h5
-if [ -f "$source_dir/include/bapd/checkpoint.hpp" ]; then
+if [ -f "$source_dir/include/bapd/solver/io/checkpoint.hpp" ]; then
   # A good checkpoint of the tiny scene, then a copy cut short and a run of another body.
   if ! in_part; then :
   elif timeout 60 "$run_mpi" -n "$ranks" "$scene" -output_dir good -checkpoint_interval 20 > good.log 2>&1 && [ -f good/checkpoint.h5 ]; then

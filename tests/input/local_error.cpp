@@ -1,5 +1,5 @@
 // A program that fails on purpose, for local_error.sh: how bapd's error handling ends
-// a run (src/solver/errors.cpp) when one rank fails alone while the others wait for it
+// a run (src/solver/driver/errors.cpp) when one rank fails alone while the others wait for it
 // in a collective call (without FinishRun: a hang), and when every rank fails with
 // the same rank-local error (the message must appear once, not once per rank).
 //
@@ -8,7 +8,7 @@
 
 #include <cstring>
 
-#include "bapd/errors.hpp"
+#include "bapd/solver/driver/errors.hpp"
 
 static PetscErrorCode Fail(const char *mode)
 {

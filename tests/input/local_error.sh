@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # An error that only some ranks see must not hang the run, and one that every rank
-# sees alone (PETSC_COMM_SELF) must be printed once (src/solver/errors.cpp, FinishRun).
+# sees alone (PETSC_COMM_SELF) must be printed once (src/solver/driver/errors.cpp, FinishRun).
 #   local_error.sh PATH/TO/input_local_error
 set -uo pipefail
 exe="$1"

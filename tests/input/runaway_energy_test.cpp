@@ -1,4 +1,4 @@
-// The runaway-energy criterion (include/bapd/divergence.hpp) on energy histories of
+// The runaway-energy criterion (include/bapd/solver/operators/divergence.hpp) on energy histories of
 // known shape: a geometric blow-up is caught within a few steps; a vibration, a crack
 // releasing stored energy and a loading ramp, which move energy without creating it,
 // never are.
@@ -6,7 +6,7 @@
 
 #include <cmath>
 
-#include "bapd/divergence.hpp"
+#include "bapd/solver/operators/divergence.hpp"
 
 using namespace bapd;
 using Verdict = RunawayEnergyMonitor::Verdict;

@@ -6,9 +6,9 @@
 #include <cstdint>
 #include <random>
 
-#include "bapd/material.hpp"
-#include "bapd/plane_stress.hpp"
-#include "bapd/tensor.hpp"
+#include "bapd/core/materials/material.hpp"
+#include "bapd/core/materials/plane_stress.hpp"
+#include "bapd/core/kernel/tensor.hpp"
 
 namespace bapd::test {
 

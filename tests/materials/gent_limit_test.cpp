@@ -7,7 +7,7 @@
 
 #include <cstring>
 
-#include "bapd/models.hpp"
+#include "bapd/core/materials/models.hpp"
 #include "materials/deformations.hpp"
 
 namespace bapd {

@@ -14,8 +14,8 @@
 #include <string>
 #include <type_traits>
 
-#include "bapd/homogeneous_response.hpp"
-#include "bapd/models.hpp"
+#include "bapd/core/materials/homogeneous_response.hpp"
+#include "bapd/core/materials/models.hpp"
 #include "materials/deformations.hpp"
 
 namespace bapd {

@@ -10,7 +10,7 @@
 #include <set>
 #include <string>
 
-#include "bapd/models.hpp"
+#include "bapd/core/materials/models.hpp"
 #include "materials/deformations.hpp"
 
 namespace bapd {

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <type_traits>
 
-#include "bapd/models.hpp"
-#include "bapd/numerical_tangent.hpp"
+#include "bapd/core/materials/models.hpp"
+#include "bapd/core/materials/numerical_tangent.hpp"
 #include "materials/deformations.hpp"
 
 namespace bapd {

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "bapd/models.hpp"
+#include "bapd/core/materials/models.hpp"
 #include "materials/deformations.hpp"
 
 namespace bapd {

@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "bapd/models.hpp"
+#include "bapd/core/materials/models.hpp"
 #include "materials/deformations.hpp"
 
 namespace bapd {

@@ -3,7 +3,7 @@
 // must hold").
 #include <gtest/gtest.h>
 
-#include "bapd/models.hpp"
+#include "bapd/core/materials/models.hpp"
 #include "materials/deformations.hpp"
 
 namespace bapd {

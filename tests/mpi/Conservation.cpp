@@ -5,8 +5,8 @@
 #include <cmath>
 #include <string>
 
-#include "bapd/reproducible_sum.hpp"
-#include "bapd/simulation.hpp"
+#include "bapd/solver/parallel/reproducible_sum.hpp"
+#include "bapd/solver/driver/simulation.hpp"
 #include "mpi/test_scenes.hpp"
 
 using namespace bapd;
@@ -79,7 +79,7 @@ TEST(Conservation, FreeBodyKeepsItsLinearMomentum)
 
 // An undamped elastic vibration of the free sheet with the energy-consistent force
 // form, whose force is exactly minus the gradient of the stored energy that
-// Energies() reports (nd/ba_force.hpp). Velocity Verlet then conserves a modified
+// Energies() reports (ba_force.hpp). Velocity Verlet then conserves a modified
 // energy H + O(dt^2): the measured E = kinetic + internal oscillates about E0 and does
 // not drift. Per mode of frequency omega the oscillation of the measured energy is
 // about (omega dt)^2/4 / (1 - (omega dt)^2/4) of the mode's energy: 1.4 for the

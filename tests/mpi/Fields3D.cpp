@@ -11,8 +11,8 @@
 #include <fstream>
 #include <sstream>
 
-#include "bapd/fields.hpp"
-#include "bapd/natural_order.hpp"
+#include "bapd/solver/io/fields.hpp"
+#include "bapd/solver/parallel/natural_order.hpp"
 #include "mpi/box_layout.hpp"
 
 using namespace bapd;

@@ -8,9 +8,9 @@
 #include <iterator>
 #include <set>
 
-#include "bapd/family.hpp"
-#include "bapd/lattice.hpp"
-#include "bapd/simulation.hpp"
+#include "bapd/core/geometry/family.hpp"
+#include "bapd/core/geometry/lattice.hpp"
+#include "bapd/solver/driver/simulation.hpp"
 #include "mpi/test_scenes.hpp"
 
 using namespace bapd;

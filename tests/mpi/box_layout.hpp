@@ -11,9 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "bapd/family.hpp"
-#include "bapd/layout.hpp"
-#include "bapd/nd/family.hpp"
+#include "bapd/core/geometry/family.hpp"
+#include "bapd/solver/parallel/layout.hpp"
 
 namespace bapd_test {
 

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "bapd/simulation.hpp"
+#include "bapd/solver/driver/simulation.hpp"
 #include "mpi/test_scenes.hpp"
 
 namespace {

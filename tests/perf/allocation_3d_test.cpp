@@ -1,5 +1,5 @@
 // No allocation in a 3D force evaluation of the generic core (STYLE.md, "Data";
-// nd/ba_force.hpp): after a warm-up that sizes the workspace, both force forms, the
+// ba_force.hpp): after a warm-up that sizes the workspace, both force forms, the
 // assembly and the strain energy call the C++ allocator zero times. Counted by
 // replacing the global operator new (a binary of its own, so that the count sees
 // nothing but this).
@@ -10,11 +10,11 @@
 #include <new>
 #include <vector>
 
-#include "bapd/gent.hpp"
-#include "bapd/material.hpp"
-#include "bapd/nd/ba_force.hpp"
-#include "bapd/nd/compressible_lanes.hpp"
-#include "bapd/nd/family.hpp"
+#include "bapd/core/materials/gent.hpp"
+#include "bapd/core/materials/material.hpp"
+#include "bapd/core/kernel/ba_force.hpp"
+#include "bapd/core/materials/compressible_lanes.hpp"
+#include "bapd/core/geometry/family.hpp"
 
 namespace {
 

@@ -11,8 +11,8 @@
 #include <cstdio>
 #include <functional>
 
-#include "bapd/checkpoint.hpp"
-#include "bapd/natural_order.hpp"
+#include "bapd/solver/io/checkpoint.hpp"
+#include "bapd/solver/parallel/natural_order.hpp"
 #include "mpi/box_layout.hpp"
 
 using namespace bapd;

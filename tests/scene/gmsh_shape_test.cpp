@@ -8,9 +8,9 @@
 #include <utility>
 #include <vector>
 
-#include "bapd/gmsh_shape.hpp"
-#include "bapd/lattice.hpp"
-#include "bapd/scene.hpp"
+#include "bapd/solver/input/gmsh_shape.hpp"
+#include "bapd/core/geometry/lattice.hpp"
+#include "bapd/solver/input/scene.hpp"
 
 namespace {
 

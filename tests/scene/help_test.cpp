@@ -1,7 +1,7 @@
 // PETSc's -help lines as bapd prints them (help.hpp).
 #include <gtest/gtest.h>
 
-#include "bapd/help.hpp"
+#include "bapd/solver/input/help.hpp"
 
 namespace {
 

@@ -1,7 +1,7 @@
 // Typo suggestions for option names (option_suggest.hpp).
 #include <gtest/gtest.h>
 
-#include "bapd/option_suggest.hpp"
+#include "bapd/solver/input/option_suggest.hpp"
 
 using bapd::EditDistance;
 using bapd::SuggestOption;

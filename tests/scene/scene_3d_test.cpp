@@ -17,12 +17,12 @@
 #include <utility>
 #include <vector>
 
-#include "bapd/layout.hpp"
-#include "bapd/loading.hpp"
-#include "bapd/nd/shape3d.hpp"
-#include "bapd/options_reader.hpp"
-#include "bapd/relaxation.hpp"
-#include "bapd/scene.hpp"
+#include "bapd/solver/parallel/layout.hpp"
+#include "bapd/solver/operators/loading.hpp"
+#include "bapd/core/geometry/shape3d.hpp"
+#include "bapd/solver/input/options_reader.hpp"
+#include "bapd/solver/operators/relaxation.hpp"
+#include "bapd/solver/input/scene.hpp"
 #include "scene_reading.hpp"
 
 namespace {

@@ -9,10 +9,10 @@
 #include <cstdint>
 #include <vector>
 
-#include "bapd/lattice.hpp"
-#include "bapd/layout.hpp"
-#include "bapd/loading.hpp"
-#include "bapd/scene.hpp"
+#include "bapd/core/geometry/lattice.hpp"
+#include "bapd/solver/parallel/layout.hpp"
+#include "bapd/solver/operators/loading.hpp"
+#include "bapd/solver/input/scene.hpp"
 
 namespace {
 

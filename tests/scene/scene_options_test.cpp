@@ -13,7 +13,7 @@
 #include <utility>
 #include <unistd.h>
 
-#include "bapd/scene.hpp"
+#include "bapd/solver/input/scene.hpp"
 #include "scene_reading.hpp"
 
 namespace {

@@ -7,7 +7,7 @@
 
 #include <string>
 
-#include "bapd/scene.hpp"
+#include "bapd/solver/input/scene.hpp"
 
 namespace bapd::test {
 

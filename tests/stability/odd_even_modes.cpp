@@ -15,11 +15,10 @@
 #include <string>
 #include <vector>
 
-#include "bapd/family.hpp"
-#include "bapd/gent.hpp"
-#include "bapd/material.hpp"
-#include "bapd/nd/ba_force.hpp"
-#include "bapd/nd/family.hpp"
+#include "bapd/core/geometry/family.hpp"
+#include "bapd/core/materials/gent.hpp"
+#include "bapd/core/materials/material.hpp"
+#include "bapd/core/kernel/ba_force.hpp"
 
 namespace {
 

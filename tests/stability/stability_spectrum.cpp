@@ -39,15 +39,15 @@
 #include <string>
 #include <vector>
 
-#include "bapd/nd/ba_force.hpp"
-#include "bapd/nd/bond_geometry.hpp"
-#include "bapd/bond_state.hpp"
-#include "bapd/errors.hpp"
-#include "bapd/family.hpp"
-#include "bapd/lattice.hpp"
-#include "bapd/models.hpp"
-#include "bapd/scene.hpp"
-#include "bapd/simulation.hpp"
+#include "bapd/core/kernel/ba_force.hpp"
+#include "bapd/core/kernel/bond_geometry.hpp"
+#include "bapd/core/kernel/bond_state.hpp"
+#include "bapd/solver/driver/errors.hpp"
+#include "bapd/core/geometry/family.hpp"
+#include "bapd/core/geometry/lattice.hpp"
+#include "bapd/core/materials/models.hpp"
+#include "bapd/solver/input/scene.hpp"
+#include "bapd/solver/driver/simulation.hpp"
 
 namespace {
 

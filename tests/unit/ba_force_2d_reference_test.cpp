@@ -1,4 +1,4 @@
-// The kernel at D = 2 (nd/ba_force.hpp, nd/bond_geometry.hpp) against a reference
+// The kernel at D = 2 (ba_force.hpp, bond_geometry.hpp) against a reference
 // written straight from the equations in this file: for every bond, K_ij and N_ij
 // summed member by member over the intact BA family (eqs 8, 9), F = N K^{-1}, P from
 // the model with no warm start, g = 1/2 phi_xi/phi C_i K^{-1} xi (eqs 11, 15, 23) plus
@@ -21,8 +21,8 @@
 #include <cstdio>
 #include <vector>
 
-#include "bapd/gent.hpp"
-#include "bapd/nd/ba_force.hpp"
+#include "bapd/core/materials/gent.hpp"
+#include "bapd/core/kernel/ba_force.hpp"
 #include "unit/kernel_fixtures.hpp"
 #include "unit/test_models.hpp"
 
@@ -59,7 +59,7 @@ ReferenceBond reference_bond(const test::Discretisation &d, const std::vector<do
     r.volume += v;
   }
   const double tr = K[0] + K[3];
-  r.usable        = tr > 0 && det(K) > 1e-8 * tr * tr; // usable K (nd/bond_geometry.hpp)
+  r.usable        = tr > 0 && det(K) > 1e-8 * tr * tr; // usable K (bond_geometry.hpp)
   if (!r.usable) return r;
   r.Kinv = inverse(K);
   r.F    = N * r.Kinv;
@@ -84,7 +84,7 @@ Vec2 reference_force_vector(const test::Discretisation &d, const ReferenceBond &
 }
 
 // C_i from M_i = sum_j g_ij (x) xi_ij V_j over the usable bonds of the reference family
-// (every bond of t = 0 intact: breaking does not change C_i, nd_bond_geometry.cpp).
+// (every bond of t = 0 intact: breaking does not change C_i, bond_geometry.cpp).
 Mat2 reference_correction(const test::Discretisation &d, std::size_t i, StressCorrection kind)
 {
   Mat2 M{};

@@ -1,4 +1,4 @@
-// The 3D BA force of the generic core (nd/ba_force.hpp) with the compressible 3D Gent
+// The 3D BA force of the generic core (ba_force.hpp) with the compressible 3D Gent
 // and neo-Hookean laws: exact F under affine motion, the patch test, objectivity,
 // linear momentum, the energy-consistent force as the energy's gradient (finite
 // differences), and the interior small-strain modulus (METHOD.md sections 2-4).
@@ -9,13 +9,12 @@
 #include <cmath>
 #include <random>
 
-#include "bapd/arruda_boyce.hpp"
-#include "bapd/mooney_rivlin.hpp"
-#include "bapd/damage.hpp"
-#include "bapd/nd/compressible_lanes.hpp"
-#include "bapd/nd/damage.hpp"
-#include "bapd/ogden.hpp"
-#include "bapd/yeoh.hpp"
+#include "bapd/core/materials/arruda_boyce.hpp"
+#include "bapd/core/materials/mooney_rivlin.hpp"
+#include "bapd/core/kernel/damage.hpp"
+#include "bapd/core/materials/compressible_lanes.hpp"
+#include "bapd/core/materials/ogden.hpp"
+#include "bapd/core/materials/yeoh.hpp"
 #include "unit/kernel_fixtures_3d.hpp"
 
 namespace bapd {
@@ -238,7 +237,7 @@ TEST(BaForce3D, EnergyConsistentForceIsMinusTheEnergyGradientByFiniteDifferences
   EXPECT_GT(finite_difference_error(b, test3d::gent(), ForceForm::bond_only, y, 1e-4 * kDx), 1e-3);
 }
 
-// The masked sums decide "total minus the others" per mask word (nd/bond_geometry.hpp
+// The masked sums decide "total minus the others" per mask word (bond_geometry.hpp
 // masked_sum): the same check with three mask words (3.5 dx, a compile-time count) and
 // five (4.2 dx: the run-time count), bonds broken so that the words' totals matter.
 TEST(BaForce3D, EnergyConsistentForceIsTheEnergyGradientWithThreeAndFiveMaskWords)
@@ -350,7 +349,7 @@ TEST(BaForce3D, InteriorSmallStrainModulusIsTheLawsWithTheCorrectionOrTheEnergyC
 
 
 // ---------------------------------------------------------------------------------
-// The lane path of the 3D law (nd/compressible_lanes.hpp).
+// The lane path of the 3D law (compressible_lanes.hpp).
 
 template <class Law> void expect_lanes_match_scalar(unsigned seed)
 {

@@ -1,4 +1,4 @@
-// The energy-consistent BA force (nd/ba_force.hpp): it is minus the gradient of
+// The energy-consistent BA force (ba_force.hpp): it is minus the gradient of
 // nd::strain_energy<2>(), its tangent is symmetric, Verlet conserves its energy, it conserves
 // angular momentum, and it keeps the bond-only form's linear momentum balance,
 // objectivity, patch test, failure reporting and rank-layout independence.
@@ -10,8 +10,8 @@
 #include <random>
 #include <set>
 
-#include "bapd/damage.hpp"
-#include "bapd/gent.hpp"
+#include "bapd/core/kernel/damage.hpp"
+#include "bapd/core/materials/gent.hpp"
 #include "unit/kernel_fixtures.hpp"
 #include "unit/test_models.hpp"
 
@@ -48,7 +48,7 @@ TEST(BaForceEnergy, BaMasksAreSymmetricWithinAFamily)
   }
 }
 
-// f = -(1/V) dW/dy straight from the definition of W (nd/ba_force.hpp): every
+// f = -(1/V) dW/dy straight from the definition of W (ba_force.hpp): every
 // bond's dPsi/dF scattered to the members of its BA family (found by distance, not by
 // the masks) and to its origin. No symmetry of the masks, no complement sums.
 template <class Model>

@@ -1,4 +1,4 @@
-// The bond kernel's four-bond path (nd/ba_force.hpp: model_lanes, PlaneStress::stress_lanes)
+// The bond kernel's four-bond path (ba_force.hpp: model_lanes, PlaneStress::stress_lanes)
 // on a non-affine field with Gent: bit for bit the bond forces and C33 of the same
 // kernel run one bond at a time, for both force forms, with cold and with warm starts;
 // and the workspace's keep_warm_start, which evaluates without writing C33 back.
@@ -10,9 +10,9 @@
 #include <random>
 #include <vector>
 
-#include "bapd/nd/ba_force.hpp"
-#include "bapd/gent.hpp"
-#include "bapd/material.hpp"
+#include "bapd/core/kernel/ba_force.hpp"
+#include "bapd/core/materials/gent.hpp"
+#include "bapd/core/materials/material.hpp"
 #include "unit/kernel_fixtures.hpp"
 #include "unit/test_models.hpp"
 

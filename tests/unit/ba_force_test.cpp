@@ -8,10 +8,10 @@
 #include <random>
 #include <set>
 
-#include "bapd/nd/ba_force.hpp"
-#include "bapd/damage.hpp"
-#include "bapd/gent.hpp"
-#include "bapd/point_quantities.hpp"
+#include "bapd/core/kernel/ba_force.hpp"
+#include "bapd/core/kernel/damage.hpp"
+#include "bapd/core/materials/gent.hpp"
+#include "bapd/core/kernel/point_quantities.hpp"
 #include "unit/kernel_fixtures.hpp"
 #include "unit/test_models.hpp"
 
@@ -392,7 +392,7 @@ TEST(BaForce, StressCorrectionMakesTheInteriorModulusTheContinuumOne)
 TEST(BaForce, EnergyConsistentFormHasTheContinuumModulusWithoutACorrection)
 {
   // sum_p t_ip (x) xi_ip V_p = omega_i sum_q V_q P_iq K_iq^{-1} K_iq = the mean of the
-  // bond stresses (nd/ba_force.hpp): the energy-consistent form is stress-
+  // bond stresses (ba_force.hpp): the energy-consistent form is stress-
   // consistent as it is, which is why -force_stress_correction leaves it alone.
   const double eps = 1e-4;
   for (double h : {2.515, 3.015, 3.515}) {

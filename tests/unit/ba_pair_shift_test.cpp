@@ -20,7 +20,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "bapd/nd/ba_force.hpp"
+#include "bapd/core/kernel/ba_force.hpp"
 #include "unit/kernel_fixtures.hpp"
 
 namespace bapd {

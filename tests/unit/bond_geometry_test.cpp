@@ -3,8 +3,8 @@
 
 #include <cmath>
 
-#include "bapd/nd/ba_force.hpp"
-#include "bapd/nd/bond_geometry.hpp"
+#include "bapd/core/kernel/ba_force.hpp"
+#include "bapd/core/kernel/bond_geometry.hpp"
 #include "unit/test_models.hpp"
 
 namespace bapd {

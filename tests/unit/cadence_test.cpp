@@ -4,7 +4,7 @@
 
 #include <vector>
 
-#include "bapd/cadence.hpp"
+#include "bapd/solver/io/cadence.hpp"
 
 namespace {
 

@@ -4,8 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "bapd/nd/ba_force.hpp"
-#include "bapd/damage.hpp"
+#include "bapd/core/kernel/ba_force.hpp"
+#include "bapd/core/kernel/damage.hpp"
 #include "unit/test_models.hpp"
 
 namespace bapd {

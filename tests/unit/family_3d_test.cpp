@@ -1,4 +1,4 @@
-// 3D families and BA families of the generic core (nd/family.hpp): family sizes and
+// 3D families and BA families of the generic core (family.hpp): family sizes and
 // mask words at the paper's three horizons, the cell search against a direct search,
 // and the BA mask symmetry the energy-consistent form relies on.
 #include <gtest/gtest.h>
@@ -97,7 +97,7 @@ TEST(Family3D, CellSearchFindsWhatADirectSearchFinds)
 
 TEST(Family3D, BaMasksAreSymmetricWithinAFamily)
 {
-  // p in B_iq iff q in B_ip: the premise of the energy-consistent form (nd/ba_force.hpp).
+  // p in B_iq iff q in B_ip: the premise of the energy-consistent form (ba_force.hpp).
   const test3d::Body3D b(8, 3.015);
   std::size_t          checked = 0;
   for (std::size_t i = 0; i < b.size(); i += 7)

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <random>
 
-#include "bapd/family.hpp"
+#include "bapd/core/geometry/family.hpp"
 #include "unit/test_models.hpp"
 
 namespace bapd {

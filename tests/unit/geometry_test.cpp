@@ -11,8 +11,8 @@
 #include <random>
 #include <vector>
 
-#include "bapd/geometry.hpp"
-#include "bapd/patch_correction.hpp"
+#include "bapd/core/geometry/geometry.hpp"
+#include "bapd/core/kernel/patch_correction.hpp"
 #include "unit/kernel_fixtures.hpp"
 #include "unit/test_models.hpp"
 
@@ -201,7 +201,7 @@ TEST_P(NonUniformCloud, PhiAndPhiXiTakeTheUnequalVolumes)
 TEST_P(NonUniformCloud, TensorCorrectionGivesUniformStressAsTheVirialAtEveryPoint)
 {
   // sum_j t_ij (x) xi_ij V_j = P C_i M_i = P at every point (C_i formed from the
-  // reference families, nd/bond_geometry.hpp), boundary points included.
+  // reference families, bond_geometry.hpp), boundary points included.
   test::Discretisation d(make_points(body(), kFactor), StressCorrection::tensor);
   const Mat2           A = {1.2, 0.1, -0.05, 0.9};
   std::vector<double>  t, f;

@@ -11,9 +11,9 @@
 #include <random>
 #include <vector>
 
-#include "bapd/damage.hpp"
-#include "bapd/gent.hpp"
-#include "bapd/material.hpp"
+#include "bapd/core/kernel/damage.hpp"
+#include "bapd/core/materials/gent.hpp"
+#include "bapd/core/materials/material.hpp"
 #include "unit/test_models.hpp"
 
 namespace bapd::test {

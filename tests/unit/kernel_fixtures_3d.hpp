@@ -11,11 +11,11 @@
 #include <random>
 #include <vector>
 
-#include "bapd/gent.hpp"
-#include "bapd/material.hpp"
-#include "bapd/neo_hookean.hpp"
-#include "bapd/nd/ba_force.hpp"
-#include "bapd/nd/family.hpp"
+#include "bapd/core/materials/gent.hpp"
+#include "bapd/core/materials/material.hpp"
+#include "bapd/core/materials/neo_hookean.hpp"
+#include "bapd/core/kernel/ba_force.hpp"
+#include "bapd/core/geometry/family.hpp"
 
 namespace bapd::test3d {
 

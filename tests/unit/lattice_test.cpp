@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "bapd/lattice.hpp"
+#include "bapd/core/geometry/lattice.hpp"
 #include "unit/test_models.hpp"
 
 namespace bapd {

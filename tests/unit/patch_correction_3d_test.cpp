@@ -1,6 +1,6 @@
 // -force_patch_correction on a 3D body (issue 21; patch_correction.hpp): the setup
 // solve compute_patch_correction<3> / compute_virial_patch_correction<3> and the
-// kernel's h_ij (nd::add_patch_term<3>, read by nd/ba_force.hpp) make the bond-only
+// kernel's h_ij (nd::add_patch_term<3>, read by ba_force.hpp) make the bond-only
 // force pass the affine patch test on an irregular 3D cloud; the virial-keeping one
 // keeps each point's virial stress sum_j t_ij (x) xi_ij V_j = P; linear momentum stays
 // exact. Through the kernel, as a run forms the forces.
@@ -12,8 +12,8 @@
 #include <random>
 #include <vector>
 
-#include "bapd/geometry.hpp"
-#include "bapd/patch_correction.hpp"
+#include "bapd/core/geometry/geometry.hpp"
+#include "bapd/core/kernel/patch_correction.hpp"
 #include "unit/kernel_fixtures_3d.hpp"
 
 namespace bapd {

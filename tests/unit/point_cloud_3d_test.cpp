@@ -1,4 +1,4 @@
-// 3D point cloud text files (nd/point_cloud3d.hpp): columns in any order, comments,
+// 3D point cloud text files (point_cloud3d.hpp): columns in any order, comments,
 // blocks, the errors, and a clipped lattice written out and read back giving the same
 // points and families; per-point horizons of a cloud with two spacings (geometry.hpp's
 // set_point_horizons in 3D, delta_i = factor cbrt(V_i), a bond where either reaches).
@@ -11,10 +11,10 @@
 #include <string>
 #include <tuple>
 
-#include "bapd/geometry.hpp"
-#include "bapd/nd/family.hpp"
-#include "bapd/nd/point_cloud3d.hpp"
-#include "bapd/nd/shape3d.hpp"
+#include "bapd/core/geometry/geometry.hpp"
+#include "bapd/core/geometry/family.hpp"
+#include "bapd/core/geometry/point_cloud3d.hpp"
+#include "bapd/core/geometry/shape3d.hpp"
 
 namespace bapd {
 namespace {

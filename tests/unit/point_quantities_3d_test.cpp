@@ -7,7 +7,7 @@
 
 #include <cmath>
 
-#include "bapd/point_quantities.hpp"
+#include "bapd/core/kernel/point_quantities.hpp"
 #include "unit/kernel_fixtures_3d.hpp"
 
 namespace bapd {
@@ -26,7 +26,7 @@ Mat3d at(const std::vector<double> &v, std::size_t i)
   return m;
 }
 
-// F_ij = A to about cond(K) eps (nd/bond_geometry.hpp); the weighted means of ~122
+// F_ij = A to about cond(K) eps (bond_geometry.hpp); the weighted means of ~122
 // equal values add ~122 eps; the law adds a few eps of its own: 1e-11 leaves two
 // orders of margin and catches any wrong weight, transpose or determinant.
 constexpr double kRoundOff = 1e-11;

@@ -5,8 +5,8 @@
 
 #include <cmath>
 
-#include "bapd/gent.hpp"
-#include "bapd/point_quantities.hpp"
+#include "bapd/core/materials/gent.hpp"
+#include "bapd/core/kernel/point_quantities.hpp"
 #include "materials/deformations.hpp"
 #include "unit/test_models.hpp"
 
@@ -26,7 +26,7 @@ Mat2 rotation(double deg)
 
 Mat2 at(const std::vector<double> &v, std::size_t i) { return {v[4 * i], v[4 * i + 1], v[4 * i + 2], v[4 * i + 3]}; }
 
-// Relative round-off bound: F_ij = A to about cond(K) eps ~ 1e-14 (nd/bond_geometry.hpp),
+// Relative round-off bound: F_ij = A to about cond(K) eps ~ 1e-14 (bond_geometry.hpp),
 // the plane-stress C33 solve stops at ~1e-13 of the stress scale, and the weighted
 // mean of ~28 equal values adds ~28 eps.
 constexpr double kRoundOff = 1e-11;

@@ -1,4 +1,4 @@
-// 3D bodies (nd/shape3d.hpp): lattice counts against the analytic volumes (a box
+// 3D bodies (shape3d.hpp): lattice counts against the analytic volumes (a box
 // exactly, a sphere and a cylinder within the bound a cell-centred lattice must meet),
 // the ops in order, planar polygon notches against brute-force counts, bad input, and
 // families built on a clipped body.
@@ -11,8 +11,8 @@
 #include <string>
 #include <utility>
 
-#include "bapd/nd/family.hpp"
-#include "bapd/nd/shape3d.hpp"
+#include "bapd/core/geometry/family.hpp"
+#include "bapd/core/geometry/shape3d.hpp"
 
 namespace bapd {
 namespace {

@@ -4,8 +4,8 @@
 
 #include <cmath>
 
-#include "bapd/lattice.hpp"
-#include "bapd/shape.hpp"
+#include "bapd/core/geometry/lattice.hpp"
+#include "bapd/core/geometry/shape.hpp"
 
 using namespace bapd;
 

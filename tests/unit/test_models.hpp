@@ -7,14 +7,14 @@
 #include <random>
 #include <vector>
 
-#include "bapd/nd/ba_force.hpp"
-#include "bapd/body.hpp"
-#include "bapd/nd/bond_geometry.hpp"
-#include "bapd/bond_state.hpp"
-#include "bapd/family.hpp"
-#include "bapd/lattice.hpp"
-#include "bapd/material.hpp"
-#include "bapd/tensor.hpp"
+#include "bapd/core/kernel/ba_force.hpp"
+#include "bapd/core/geometry/body.hpp"
+#include "bapd/core/kernel/bond_geometry.hpp"
+#include "bapd/core/kernel/bond_state.hpp"
+#include "bapd/core/geometry/family.hpp"
+#include "bapd/core/geometry/lattice.hpp"
+#include "bapd/core/materials/material.hpp"
+#include "bapd/core/kernel/tensor.hpp"
 
 namespace bapd::test {
 
@@ -137,7 +137,7 @@ struct Discretisation {
     return s;
   }
 
-  // The same with the energy-consistent bond forces (nd/ba_force.hpp).
+  // The same with the energy-consistent bond forces (ba_force.hpp).
   template <class Model> KernelStats energy_consistent_forces(const Model &model, const std::vector<double> &y,
                                                               std::vector<double> &bond_force,
                                                               std::vector<double> &f) const

@@ -1,0 +1,22 @@
+#pragma once
+// Which bond force the kernel computes (-force_form; ba_force.hpp computes both):
+// the paper's bond-only form (eq 23), or the energy-consistent one, minus the gradient
+// of the strain energy (METHOD.md section 3), whose undamped motion conserves energy
+// where the bond-only form's grows near free surfaces (flutter). One enum for the
+// scene and the kernel, for every D.
+
+namespace bapd {
+
+enum class ForceForm { bond_only, energy_consistent };
+
+// "bond_only", "energy_consistent" (the -force_form values).
+inline const char *to_string(ForceForm form)
+{
+  switch (form) {
+  case ForceForm::bond_only: return "bond_only";
+  case ForceForm::energy_consistent: return "energy_consistent";
+  }
+  return "unknown";
+}
+
+} // namespace bapd

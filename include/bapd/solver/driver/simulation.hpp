@@ -1,0 +1,178 @@
+#pragma once
+// The program a user runs, as a class whose Run() reads like the method:
+// read the scene, build the body and its families, partition, set up the ghosted
+// state, pick the stable time step, then step with PETSc TS while loading, breaking
+// bonds and writing the history (STYLE.md: the shape of the code). The concerns are
+// objects with their own data (docs/architecture.md): the force operator
+// (force_operator.hpp), loading (loading.hpp), failure (failure.hpp) and time-step
+// control (time_step_control.hpp); the Simulation holds the body's data, which they
+// share, and the reporting and output that read it. The scene is read once and only
+// read afterwards.
+//
+// One code path for D = 2 (a plane sheet) and D = 3 (a solid body): SimulationD<D>,
+// instantiated twice; main.cpp reads the scene (ReadScene) and builds the one its
+// dimension asks for. u and v hold D values a point; the history has z columns in 3D
+// only, so a 2D run writes what it always did.
+#include <petscsf.h>
+#include <petscts.h>
+
+#include <cstdio>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "bapd/core/kernel/bond_state.hpp"
+#include "bapd/solver/io/cadence.hpp"
+#include "bapd/solver/operators/divergence.hpp"
+#include "bapd/solver/operators/failure.hpp"
+#include "bapd/core/geometry/family.hpp"
+#include "bapd/solver/operators/force_operator.hpp"
+#include "bapd/solver/parallel/layout.hpp"
+#include "bapd/solver/operators/loading.hpp"
+#include "bapd/solver/operators/relaxation.hpp"
+#include "bapd/solver/input/scene.hpp"
+#include "bapd/solver/driver/simulation_output.hpp"
+#include "bapd/solver/operators/time_step_control.hpp"
+
+namespace bapd {
+
+struct PointQuantities;
+
+struct ProbePoint {
+  PetscInt owner_rank  = -1; // rank that owns the point
+  PetscInt local_index = -1; // on the owner
+  double   x = 0, y = 0, z = 0; // reference position of the chosen point (z: 3D)
+  int64_t  natural_id = -1;
+};
+
+// The scene as the driver reads it: a checkpoint's options merged first (-restart),
+// then SceneFromOptions. main.cpp reads it once to choose D.
+PetscErrorCode ReadScene(MPI_Comm comm, Scene *scene);
+
+template <int D> class SimulationD {
+  static_assert(D == 2 || D == 3, "SimulationD: a plane sheet (2) or a solid body (3)");
+
+public:
+  explicit SimulationD(MPI_Comm comm) : comm_(comm) {}
+  ~SimulationD();
+  SimulationD(const SimulationD &)            = delete;
+  SimulationD &operator=(const SimulationD &) = delete;
+
+  // Reads the scene from the options database (ReadScene) and builds everything up to the TS.
+  PetscErrorCode Setup();
+  // The same with the scene already read (its dimension must be D).
+  PetscErrorCode Setup(Scene scene);
+  // Steps to the end time, writing history and progress; prints a summary.
+  PetscErrorCode Run();
+  // Takes exactly `steps` more time steps (tests, tools); no summary.
+  PetscErrorCode Advance(PetscInt steps);
+
+  // Accessors for tests and tools.
+  const Scene  &scene() const { return scene_; }
+  const Layout &layout() const { return layout_; }
+  Vec           state() const { return X_; } // [u (D per owned point), v (D per owned point)]
+  TS            ts() const { return ts_; }
+  double        stable_time_step() const { return step_control_.stable(); }
+  // Force density (D per owned point) for the owned displacements u_owned.
+  PetscErrorCode ComputeForceDensity(const double *u_owned, double *force_density);
+  // Force density as above and the per-point stress, F, lambda_3 and W of the owned
+  // points (point_quantities.hpp), as the field output forms them.
+  PetscErrorCode ComputePointQuantities(const double *u_owned, double *force_density, PointQuantities *quantities);
+  // Total energy pieces and broken bonds, reproducible across rank layouts.
+  PetscErrorCode Energies(double *kinetic, double *internal, Vec state = nullptr); // state: X_ if nullptr
+  PetscErrorCode BrokenBondCount(PetscInt *count);
+  // Displacement of every point, gathered on rank 0 in natural order (tests, output).
+  PetscErrorCode GatherDisplacement(std::vector<double> *u_natural);
+  // Directed broken bonds as (natural id i, natural id j) pairs on rank 0, sorted.
+  PetscErrorCode GatherBrokenBonds(std::vector<std::pair<int64_t, int64_t>> *bonds);
+
+private:
+  PetscErrorCode CheckOptionsEarly(); // before the body is built
+  PetscErrorCode BuildBody();
+  PetscErrorCode BuildProbes();
+  PetscErrorCode SetupTimeStepper();
+  PetscErrorCode OpenHistory();
+  PetscErrorCode SetupRelaxation(); // -relaxation (relaxation.hpp)
+
+  // The acceleration of the owned points for displacement u (owned, D per point).
+  PetscErrorCode Acceleration(const double *u_owned, double *a_owned);
+  PetscErrorCode CheckHealth(PetscInt step, double t, PetscBool *diverged);
+  PetscErrorCode CheckRunaway(PetscInt step, double t, std::string *message);
+  PetscErrorCode DiagnoseDivergence(); // the cause and its fix, appended to stop_reason_ (divergence.hpp)
+  PetscErrorCode ReadProbes(const double *u_owned, double *probe_u);
+  PetscErrorCode GatherNatural(const double *values, std::vector<double> *natural);
+  PetscErrorCode WriteHistoryRow(PetscInt step, double t);
+  PetscErrorCode Progress(PetscInt step, double t, PetscBool force);
+  PetscErrorCode Summary();
+  PetscErrorCode ListOutputFiles(); // rank 0: every file written, with its size
+  PetscErrorCode TimeStepSummary(PetscInt steps); // steps shortened and why, re-estimates' cost
+  PetscErrorCode WriteFinalState();
+  PetscErrorCode CheckStaticHold(PetscInt step, double t);
+
+  static PetscErrorCode RHSPosition(TS, PetscReal, Vec, Vec, void *);
+  static PetscErrorCode RHSMomentum(TS, PetscReal, Vec, Vec, void *);
+  static PetscErrorCode RHSFull(TS, PetscReal, Vec, Vec, void *);
+  static PetscErrorCode PostStep(TS);
+
+  // Field output, checkpoints and restart (simulation_output.cpp).
+  PetscErrorCode ReadOutputOptions();
+  PetscErrorCode SetupOutput();
+  PetscErrorCode OutputAfterStep(PetscInt step, double t);
+  PetscErrorCode OutputOnDivergence();
+  PetscErrorCode OutputAtEnd(PetscInt step, double t);
+  PetscErrorCode CreateNaturalOrder();
+  PetscErrorCode SaveGoodState(PetscInt step, double t);
+  PetscErrorCode WriteFields(PetscInt step, double t);
+  PetscErrorCode WriteCheckpointFile(PetscInt step, double t, const char *reason);
+  CheckpointState CheckpointView(double *x); // u, v, bond states and C33 as a checkpoint holds them
+  PetscErrorCode RestoreCheckpoint();
+  PetscErrorCode RestoreSchedule(const CheckpointHeader &header);
+
+  MPI_Comm    comm_;
+  PetscMPIInt rank_ = 0, size_ = 1;
+  Scene       scene_; // read once in Setup, only read afterwards
+  Layout      layout_;
+
+  // The body's bonds, shared by the objects below (failure changes the last two).
+  Families            families_;
+  BondState           bond_state_;
+  nd::BondGeometry<D> geometry_; // the dimension-generic core (bond_geometry.hpp)
+
+  ForceOperator   force_;        // u -> f (force_operator.hpp)
+  Loading         loading_;      // grips, schedule, reactions (loading.hpp)
+  Failure         failure_;      // breaking and its exchange (failure.hpp)
+  TimeStepOptions time_step_options_; // -time_step_reestimate ...
+  TimeStepControl step_control_;      // stable step, its re-estimate, travel limit (time_step_control.hpp)
+  std::vector<ProbePoint> probes_;
+
+  Vec X_         = nullptr; // TS state
+  IS  is_position_ = nullptr, is_momentum_ = nullptr;
+  TS  ts_        = nullptr;
+
+  // Reporting: scratch sized at set-up, so a history row allocates nothing.
+  std::vector<double> force_density_;   // D per owned point
+  std::vector<double> per_point_;       // 2 per owned point: kinetic, internal energy
+  std::vector<double> point_energy_;    // 1 per owned point
+  Cadence             progress_times_; // -progress_interval 0: a line every end time / 20 of simulated time
+  double wall_start_ = 0;
+  FILE  *history_    = nullptr;
+  PetscInt total_broken_ = 0;
+  bool   stopped_on_error_ = false;
+  // The latest history row, for the static-hold test.
+  double              last_kinetic_ = 0, last_internal_ = 0;
+  std::vector<double> last_reaction_, last_probe_u_;
+  FILE               *static_states_    = nullptr;
+  std::string stop_reason_;
+  RunawayEnergyMonitor energy_monitor_; // divergence by runaway energy (divergence.hpp)
+  SimulationOutput output_; // fields, checkpoints, restart
+  RelaxationKind     relaxation_kind_ = RelaxationKind::none; // -relaxation
+  AdaptiveRelaxation<D> relaxation_;                          // its damping coefficient (relaxation.hpp)
+
+  PetscLogStage stage_setup_ = 0, stage_partition_ = 0, stage_force_ = 0, stage_ghost_ = 0, stage_step_ = 0,
+                stage_output_ = 0;
+};
+
+// The plane-sheet driver (tests and tools that build a 2D scene).
+using Simulation = SimulationD<2>;
+
+} // namespace bapd

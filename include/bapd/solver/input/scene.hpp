@@ -1,0 +1,140 @@
+#pragma once
+// A scene: everything a run needs, read from PETSc options (a YAML options file
+// given with -options_file_yaml, every value overridable on the command line).
+// SI units throughout. See docs/options.md for the full list.
+//
+// This header is the whole public interface: the grips, probes, schedule and option
+// registry have their own headers, included here. The definitions: scene.cpp (reading
+// and checking, SceneView) lists the files of each section.
+#include <petscsys.h>
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "bapd/core/geometry/body.hpp"
+#include "bapd/core/geometry/shape3d.hpp"
+#include "bapd/core/materials/material.hpp"
+#include "bapd/solver/input/options.hpp"
+#include "bapd/solver/input/scene_loading.hpp"
+#include "bapd/solver/input/scene_probes.hpp"
+#include "bapd/solver/input/scene_schedule.hpp"
+#include "bapd/core/kernel/force_form.hpp"
+#include "bapd/core/kernel/stress_correction.hpp"
+
+namespace bapd {
+
+// -force_patch_correction (patch_correction.hpp): off; on = lambda, D numbers a point
+// (the patch test); virial = (mu, S), 5 numbers a point in 2D, 9 in 3D (the patch test
+// and the virial).
+enum class PatchCorrection { off, lambda, virial };
+
+// A 3D body (-body_dimension 3, or implied by a 3D solid; issue 21 stage 4;
+// docs/options.md "3D bodies"): the solids (boxes, cylinders, spheres, Gmsh volumes)
+// and planar polygon notches of shape3d.hpp on a lattice of spacing dx, or given
+// points clipped by the solids: a 3D cloud (point_cloud3d.hpp) or the tetrahedron
+// centroids of a Gmsh volume (nd::tetrahedron_centroids). Checked whole by the scene
+// (scene_body.cpp): the points are built once there, for their count, their extent (the
+// faces of the load sets) and the one-piece check.
+struct Body3D {
+  nd::SolidBody                      solid;        // dx, origin (0, 0, 0), solids in order, notches
+  std::vector<std::string>           solid_names;  // -body_shapes name of each solid, for messages
+  std::vector<std::string>           notch_names;  // -body_shapes name of each notch (solid.notches)
+  std::shared_ptr<const PointCloud>  given_points; // -body_cloud in 3D (x: 3 a point), clipped; null: the lattice
+  bool                               centroids = false; // given_points are the tetrahedron centroids of the first solid (a mesh)
+  std::vector<int64_t>               given_block;  // block id of each given point
+  std::string                        source;       // the cloud file, for messages
+  int64_t                            points = 0;   // material points of the body
+  std::array<double, 3>              lo{}, hi{};   // the extent of the points' cells [m]: lattice point +- dx/2
+};
+
+struct Scene {
+  // 2 (the plane sheet `body`) or 3 (`body3d`): the driver's D (SimulationD<D>,
+  // chosen once by main.cpp from the scene).
+  int    dimension = 2;
+  Body2D body;
+  Body3D body3d;
+  double horizon_factor = 3.015; // delta / dx (given points: delta_i / h_i, geometry.hpp)
+
+  ModelKind          model       = ModelKind::gent;
+  Formulation        formulation = Formulation::plane_stress;
+  ForceForm          force_form  = ForceForm::energy_consistent;
+  // -force_stress_correction (stress_correction.hpp): the bond-only force made to give
+  // sum_j t_ij (x) xi_ij V_j = P; the identity for the energy-consistent form.
+  StressCorrection   stress_correction = StressCorrection::none;
+  // -force_patch_correction (patch_correction.hpp): the bond-only force made to pass the
+  // affine patch test on given points (lambda per point, formed at setup), and with
+  // virial to keep each point's virial as well ((mu, S) per point).
+  PatchCorrection    patch_correction = PatchCorrection::off;
+  MaterialParameters material;
+  double             density = 1000.0; // kg/m^3
+
+  bool   failure          = false; // no failure section: no bond-state work at all
+  double critical_stretch = 0.0;
+
+  std::vector<LoadSet> loads;
+  Schedule             schedule;
+  double               reference_length = 0.0; // default: body height
+  GripField            grip_field       = GripField::rigid;
+
+  std::vector<Probe> probes;
+
+  std::string output_dir      = "output";
+  PetscInt    output_interval = 100; // steps between history rows
+  bool        output_final_state = false; // final_state.csv and broken_bonds.csv at the end
+
+  double   time_step        = 0.0;  // 0: use safety * stable step
+  double   time_step_safety = 0.8;  // fraction of the computed stable step
+  double   time_step_travel = -1.0; // a step moves no bonded point more than this x dx (0: off; -1: the solver's choice, 0.1 with failure)
+  double   damping          = 0.0;  // mass-proportional damping coefficient [1/s]
+  double   static_tolerance = 0.0;  // hold ends once kinetic / internal energy < this (0: holds run out)
+  double   end_time         = 0.0;  // default: the schedule's last knot
+  PetscInt progress_interval = 0;   // steps between progress lines (0: about 20 lines a run)
+
+  // -help was given: every option was listed, nothing was validated and the scene
+  // holds defaults only. The driver should list the other components' options and stop.
+  bool help_only = false;
+
+  double horizon() const { return horizon_factor * body.dx; } // (given points: the smallest delta_i)
+  // Prescribed displacement of a stretch component with the given scale at time t,
+  // u = scale * (lambda(t) - 1) * reference_length, and its rate du/dt.
+  double grip_displacement(double scale, double t) const
+  {
+    return scale * (schedule.stretch_at(t) - 1.0) * reference_length;
+  }
+  double grip_velocity(double scale, double t) const { return scale * schedule.rate_at(t) * reference_length; }
+};
+
+// Reads and validates the scene. Every rejected value is reported once, naming the
+// option and what would fix it, before any work is done (error PETSC_ERR_USER; the
+// message is what PetscErrorMessage returns). With -help it lists the options,
+// validates nothing and returns with scene->help_only set.
+PetscErrorCode SceneFromOptions(MPI_Comm comm, Scene *scene);
+// Prints the scene in a few lines (rank 0): SceneText.
+PetscErrorCode SceneView(MPI_Comm comm, const Scene &scene);
+// The scene in a few lines: the body (2D: the sheet, lattice, holes, shapes, notches;
+// 3D: the lattice or cloud, point count, the extent of the points' cells, each solid and
+// notch by name), horizon, material, force, failure, load sets (3D: faces by axis, z
+// components), schedule, probes, time stepping and output.
+std::string SceneText(const Scene &scene);
+
+// Warnings issued by the last SceneFromOptions (also printed on rank 0, to stderr).
+const std::vector<std::string> &SceneWarnings();
+
+// How many material points the body holds, counted by the geometry stage's rule
+// (geometry.hpp: body_point_count) without building them: on the lattice
+// round(width/dx) x round(height/dx) cell centres, less those inside a hole
+// (hole_containing, lattice.hpp); given points, those that are material.
+// 64-bit: a fine -body_dx can ask for more than 2^31 points (refused, see below).
+int64_t ScenePointEstimate(const Scene &scene);
+
+// The memory check of the scene (before anything is built, with the lattice's pi x
+// horizon_factor^2 bonds a point) again with the real point and bond counts (given
+// points with their own horizons have more bonds a point: "either reaches", geometry.hpp).
+// Collective; refuses with the option to change if the body does not fit.
+PetscErrorCode CheckBodyMemory(MPI_Comm comm, const Scene &scene, int64_t points, int64_t bonds);
+
+const char *to_string(PatchCorrection c); // the option's word: off, on, virial
+
+} // namespace bapd

@@ -1,0 +1,97 @@
+#pragma once
+// The scene's sections (internal to src/solver/scene*.cpp): what the options said
+// before the checks, and the read and check pass of each section. SceneFromOptions
+// (scene.cpp) runs every Read* (so that -help lists every block), then every Check*,
+// which turns the raw input into the Scene's values, first problem reported.
+#include <petscsys.h>
+#include <string>
+#include <vector>
+
+#include "bapd/solver/input/scene.hpp"
+
+namespace bapd {
+
+// What the options said, beyond the values that go straight into the Scene: which
+// were given, and the raw text of lists and choices, for the checks.
+struct LoadInput {
+  std::string         name, region, x = "free", y = "free", z = "free", placement = "auto"; // auto: -load_grip_placement's
+  std::string         group, file; // region group: the physical group and its Gmsh file
+  bool                region_set = false, box_set = false, layers_set = false, depth_set = false, x_scale_set = false,
+                      y_scale_set = false, z_scale_set = false, points_set = false, block_set = false;
+  std::vector<double> box, points; // points: region polygon or curve
+  PetscInt            block = 0;   // region block: the block id of the given points
+  PetscInt            layers  = 1;
+  double              depth   = 0.0;
+  double              x_scale = 1.0, y_scale = 1.0, z_scale = 1.0;
+};
+
+struct ShapeInput {
+  std::string         name, type, op = "subtract", file, discretisation = "lattice";
+  bool                type_set = false;
+  std::vector<double> box, centre, radii, points, axis; // axis: a 3D cylinder's end points
+  double              radius = 0, angle = 0; // angle in degrees, as given
+  bool                radius_set = false, op_set = false;
+};
+
+struct ProbeInput {
+  std::string         name;
+  std::vector<double> at;
+  bool                at_set = false;
+  std::string         group, file; // -probe_NAME_group (a Gmsh physical point) and its file
+  PetscInt            block     = 0; // -probe_NAME_block: a block id of the cloud with one point
+  bool                block_set = false;
+};
+
+struct SceneInput {
+  bool                     width_set = false, height_set = false, thickness_set = false, dx_set = false;
+  std::vector<double>      holes, notches;
+  std::vector<std::string> shape_names;
+  std::vector<ShapeInput>  shapes;
+  std::string              cloud; // -body_cloud: a point cloud file instead of the lattice
+  PetscInt                 dimension = 2; // -body_dimension (2 or 3; 3D solids imply 3)
+  bool                     dimension_set = false, grip_placement_set = false, grip_field_set = false;
+  std::string              model = "gent", formulation = "plane_stress", force_form = "energy_consistent",
+                           stress_correction = "auto", patch_correction = "auto", grip_field = "auto", grip_placement = "outside";
+  bool                     formulation_set = false; // -material_formulation given (refused in 3D)
+  bool                     D_set = false, bulk_ratio_set = false;
+  double                   bulk_ratio = 1000.0;
+  bool                     critical_stretch_set = false;
+  std::vector<std::string> load_names;
+  std::vector<LoadInput>   loads;
+  std::vector<double>      schedule;
+  bool                     schedule_set = false, reference_length_set = false;
+  std::vector<std::string> probe_names;
+  std::vector<ProbeInput>  probes;
+  bool                     end_time_set = false;
+};
+
+// Body (scene_body.cpp): -body_* and -horizon_factor.
+PetscErrorCode ReadBody(MPI_Comm comm, Scene *scene, SceneInput *in);
+PetscErrorCode CheckBody(MPI_Comm comm, const SceneInput &in, Scene *scene);
+// The parts of the body's check shared with the 3D body (scene_body3d.cpp).
+PetscErrorCode CheckHorizonFactor(MPI_Comm comm, const Scene &scene);
+bool           IsShape3D(const std::string &type); // box, cylinder, sphere, notch
+PetscErrorCode CheckBody3D(MPI_Comm comm, const SceneInput &in, Scene *scene);
+// Refuses a lattice that cannot fit in memory; after CheckLoading, which adds the rows
+// of the grips outside the sheet.
+PetscErrorCode CheckBodyFits(MPI_Comm comm, const Scene &scene);
+// Material and failure (scene_material.cpp): -material_*, -force_form, -failure_*.
+PetscErrorCode ReadMaterial(MPI_Comm comm, Scene *scene, SceneInput *in);
+PetscErrorCode CheckMaterial(MPI_Comm comm, const SceneInput &in, Scene *scene);
+// Loading (scene_loading.cpp): -load_sets, -load_schedule, -load_NAME_*.
+PetscErrorCode ReadLoading(MPI_Comm comm, Scene *scene, SceneInput *in);
+PetscErrorCode CheckLoading(MPI_Comm comm, const SceneInput &in, Scene *scene);
+// The Gmsh files the body reads (its mesh shapes): where a physical group's file
+// defaults to (load sets and probes by group).
+std::vector<std::string> BodyGmshFiles(const Body2D &body);
+std::vector<std::string> BodyGmshFiles(const Body3D &body); // (its mesh solids)
+// Probes (scene_probes.cpp): -probes, -probe_NAME_at or -probe_NAME_group.
+PetscErrorCode ReadProbes(MPI_Comm comm, SceneInput *in);
+PetscErrorCode CheckProbes(MPI_Comm comm, const SceneInput &in, Scene *scene);
+// Output and time stepping (scene_run.cpp): -output_*, -time_step*, -damping,
+// -static_tolerance, -end_time, -progress_interval. Checked after the loading (the
+// end time defaults to the schedule's).
+PetscErrorCode ReadOutputTime(MPI_Comm comm, Scene *scene, SceneInput *in);
+PetscErrorCode CheckOutputTime(MPI_Comm comm, const SceneInput &in, Scene *scene);
+
+} // namespace bapd

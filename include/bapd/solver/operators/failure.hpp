@@ -1,0 +1,50 @@
+#pragma once
+// Failure: bonds break past the critical stretch (paper eq 37) or when their model
+// fails (the Gent chain limit), and the owners' bond states are copied to their
+// ring-1 ghosts so every rank layout holds the same bond state (README, "Parallel
+// design"). Everything a breaking pass uses is allocated at set-up (the geometry's
+// recomputation uses the work space of BondGeometry), so a step in which bonds break
+// allocates nothing, as long as the bonds whose model failed in one step are fewer
+// than 1.5 times the local family points (touched_ is reserved for that).
+#include <petscsf.h>
+
+#include <vector>
+
+#include "bapd/core/kernel/bond_state.hpp"
+#include "bapd/core/geometry/family.hpp"
+#include "bapd/solver/parallel/layout.hpp"
+#include "bapd/core/kernel/ba_force.hpp"
+
+namespace bapd {
+
+class Failure {
+public:
+  Failure() = default;
+  ~Failure();
+  Failure(const Failure &)            = delete;
+  Failure &operator=(const Failure &) = delete;
+
+  // Collective: the exchange of intact masks from owners to ring-1 ghosts.
+  PetscErrorCode Setup(MPI_Comm comm, const Layout &layout, const Families &families, double critical_stretch);
+  // One breaking pass after a step at positions y (every local point), with the
+  // bonds whose model failed in the step's force evaluation (cleared here); updates
+  // the bond state and the geometry of the points whose bonds broke. Collective.
+  // D: the body's (y and the geometry D a point; the masks know no dimension).
+  template <int D>
+  PetscErrorCode Break(const double *y, std::vector<FailedBond> &failed, BondState &state, nd::BondGeometry<D> &geometry);
+  // Whether the last Break broke bonds on this rank (owned or ghost copies). Local.
+  bool broke() const { return !touched_.empty(); }
+
+private:
+  PetscErrorCode SynchroniseGhosts(BondState &state);
+
+  const Layout            *layout_   = nullptr;
+  const Families          *families_ = nullptr;
+  double                   critical_stretch_ = 0;
+  PetscSF                  sf_   = nullptr;      // owners' intact masks -> their ring-1 ghost copies
+  MPI_Datatype             mask_ = MPI_DATATYPE_NULL; // one point's intact mask
+  std::vector<std::uint64_t> ghost_masks_;
+  std::vector<std::size_t> touched_, stretched_; // reserved at set-up
+};
+
+} // namespace bapd

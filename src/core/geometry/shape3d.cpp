@@ -1,0 +1,604 @@
+// 3D bodies: solids, the clipped lattice, planar polygon notches (shape3d.hpp).
+#include "bapd/core/geometry/shape3d.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <stdexcept>
+#include <utility>
+
+namespace bapd::nd {
+
+namespace {
+
+using P3 = std::array<double, 3>;
+
+double dot(const P3 &u, const P3 &v) { return u[0] * v[0] + u[1] * v[1] + u[2] * v[2]; }
+P3     minus(const double *u, const double *v) { return {u[0] - v[0], u[1] - v[1], u[2] - v[2]}; }
+
+std::string format(const char *fmt, double a)
+{
+  char text[200];
+  std::snprintf(text, sizeof text, fmt, a);
+  return text;
+}
+
+// A polygon prepared once for the cut test: its unit normal, the plane's offset, the
+// two axes it is projected on (the normal's largest component dropped: the projection
+// is one to one on the plane) and the projected vertices. The normal is that of the
+// widest triangle of the vertices (v0, the vertex farthest from it, the vertex farthest
+// from their line), not the area vector, which vanishes for a self-intersecting bow
+// tie whose halves cancel (polygon_problem must see its projection to say so).
+struct PreparedPolygon {
+  P3                  normal{};
+  double              offset = 0;     // normal . x on the plane
+  double              scale  = 0;     // the largest vertex-to-vertex extent along an axis
+  int                 u = 0, v = 1;   // the projection's axes
+  std::vector<double> flat;           // 2 per vertex
+};
+
+P3 cross(const P3 &a, const P3 &b) { return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]}; }
+
+PreparedPolygon prepare(const PlanarPolygon &polygon)
+{
+  PreparedPolygon   p;
+  const auto       &w = polygon.vertices;
+  const std::size_t n = w.size() / 3;
+  P3                lo{w[0], w[1], w[2]}, hi = lo;
+  std::size_t       far = 0;
+  double            far2 = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    for (int r = 0; r < 3; ++r) lo[r] = std::min(lo[r], w[3 * i + r]), hi[r] = std::max(hi[r], w[3 * i + r]);
+    const P3 d = minus(&w[3 * i], &w[0]);
+    if (dot(d, d) > far2) far2 = dot(d, d), far = i;
+  }
+  const P3 e = minus(&w[3 * far], &w[0]);
+  double   widest = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const P3 c = cross(e, minus(&w[3 * i], &w[0]));
+    if (dot(c, c) > widest) widest = dot(c, c), p.normal = c;
+  }
+  p.scale            = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
+  const double norm  = std::sqrt(dot(p.normal, p.normal));
+  if (norm > 0)
+    for (double &c : p.normal) c /= norm;
+  // The centroid of the vertices lies on the plane of a planar polygon.
+  P3 centre{0, 0, 0};
+  for (std::size_t i = 0; i < n; ++i)
+    for (int r = 0; r < 3; ++r) centre[r] += w[3 * i + r] / static_cast<double>(n);
+  p.offset     = dot(p.normal, centre);
+  const int dz = std::fabs(p.normal[0]) >= std::fabs(p.normal[1]) && std::fabs(p.normal[0]) >= std::fabs(p.normal[2]) ? 0
+                 : std::fabs(p.normal[1]) >= std::fabs(p.normal[2])                                                ? 1
+                                                                                                                   : 2;
+  p.u = (dz + 1) % 3, p.v = (dz + 2) % 3;
+  p.flat.resize(2 * n);
+  for (std::size_t i = 0; i < n; ++i) p.flat[2 * i] = w[3 * i + p.u], p.flat[2 * i + 1] = w[3 * i + p.v];
+  return p;
+}
+
+// Strictly inside the projected polygon: farther than tol from every edge, and inside by
+// the even-odd rule.
+bool strictly_inside(const std::vector<double> &f, double x, double y, double tol)
+{
+  const std::size_t n      = f.size() / 2;
+  bool              inside = false;
+  for (std::size_t i = 0, j = n - 1; i < n; j = i++) {
+    const double xi = f[2 * i], yi = f[2 * i + 1], xj = f[2 * j], yj = f[2 * j + 1];
+    const double ex = xj - xi, ey = yj - yi, len2 = ex * ex + ey * ey;
+    const double t  = std::clamp(((x - xi) * ex + (y - yi) * ey) / len2, 0.0, 1.0);
+    const double qx = x - xi - t * ex, qy = y - yi - t * ey;
+    if (qx * qx + qy * qy <= tol * tol) return false; // on the boundary: not cut
+    if ((yi > y) != (yj > y) && x < ex * (y - yi) / ey + xi) inside = !inside;
+  }
+  return inside;
+}
+
+bool prepared_cuts(const PreparedPolygon &p, const double *a, const double *b)
+{
+  // One order of the end points (lexicographic), so that (a, b) and (b, a) do the same
+  // arithmetic: the answer is symmetric bit for bit.
+  if (std::lexicographical_compare(b, b + 3, a, a + 3)) std::swap(a, b);
+  const double tol = 1e-12 * p.scale;
+  const double da  = p.normal[0] * a[0] + p.normal[1] * a[1] + p.normal[2] * a[2] - p.offset;
+  const double db  = p.normal[0] * b[0] + p.normal[1] * b[1] + p.normal[2] * b[2] - p.offset;
+  // Strictly on opposite sides (an end point within round-off of the plane is on it).
+  if (!((da > tol && db < -tol) || (da < -tol && db > tol))) return false;
+  const double t = da / (da - db);
+  const double x = a[p.u] + t * (b[p.u] - a[p.u]), y = a[p.v] + t * (b[p.v] - a[p.v]);
+  // The projection shrinks in-plane lengths by at most |n_dropped| >= 1/sqrt(3); the
+  // boundary tolerance is round-off either way.
+  return strictly_inside(p.flat, x, y, tol);
+}
+
+bool solid_adds(const Solid &s) { return s.op == Solid::Op::add; }
+
+// A box around the solid (cylinders: their end points widened by the radius).
+void solid_bounds(const Solid &s, P3 &lo, P3 &hi)
+{
+  for (int r = 0; r < 3; ++r) switch (s.kind) {
+    case Solid::Kind::box: lo[r] = std::min(s.lo[r], s.hi[r]), hi[r] = std::max(s.lo[r], s.hi[r]); break;
+    case Solid::Kind::cylinder:
+      lo[r] = std::min(s.a[r], s.b[r]) - s.radius, hi[r] = std::max(s.a[r], s.b[r]) + s.radius;
+      break;
+    case Solid::Kind::sphere: lo[r] = s.a[r] - s.radius, hi[r] = s.a[r] + s.radius; break;
+    case Solid::Kind::mesh:
+      lo[r] = s.mesh->lo[r], hi[r] = s.mesh->lo[r] + static_cast<double>(s.mesh->count[r]) * s.mesh->cell;
+      break;
+    }
+}
+
+// The grid's cells around the added solids: cell (i, j, k) of the range has its centre at
+// origin + (first + (i, j, k) + 0.5) dx.
+struct Grid {
+  std::array<int64_t, 3> first{}, count{};
+  int64_t                cells() const { return count[0] * count[1] * count[2]; }
+};
+
+Grid body_grid(const SolidBody &body)
+{
+  P3   lo{}, hi{};
+  bool any = false;
+  for (const Solid &s : body.solids) {
+    if (!solid_adds(s)) continue;
+    P3 a{}, b{};
+    solid_bounds(s, a, b);
+    for (int r = 0; r < 3; ++r) lo[r] = any ? std::min(lo[r], a[r]) : a[r], hi[r] = any ? std::max(hi[r], b[r]) : b[r];
+    any = true;
+  }
+  Grid g;
+  for (int r = 0; r < 3; ++r) {
+    // Centres within [lo, hi], one cell of margin for round-off (the solids decide).
+    const double i0 = std::floor((lo[r] - body.origin[r]) / body.dx - 0.5) - 1;
+    const double i1 = std::ceil((hi[r] - body.origin[r]) / body.dx - 0.5) + 1;
+    if (!(i1 - i0 < 2e9)) throw std::invalid_argument("3D body: more than 2^31 cells along one axis; make dx larger");
+    g.first[r] = static_cast<int64_t>(i0), g.count[r] = static_cast<int64_t>(i1 - i0) + 1;
+  }
+  return g;
+}
+
+// Six times the signed volume of (a, b, c, d).
+double orient(const double *a, const double *b, const double *c, const double *d)
+{
+  const P3 u = minus(b, a), v = minus(c, a), w = minus(d, a);
+  return dot(u, cross(v, w));
+}
+
+// Faces inclusive, either orientation: the four sub-volumes' signs agree (zeros allowed).
+bool tetrahedron_contains(const double *t, const double *p)
+{
+  const double d0 = orient(p, t + 3, t + 6, t + 9), d1 = orient(t, p, t + 6, t + 9);
+  const double d2 = orient(t, t + 3, p, t + 9), d3 = orient(t, t + 3, t + 6, p);
+  const double tol = 1e-12 * std::fabs(orient(t, t + 3, t + 6, t + 9));
+  const bool   neg = d0 < -tol || d1 < -tol || d2 < -tol || d3 < -tol, pos = d0 > tol || d1 > tol || d2 > tol || d3 > tol;
+  return !(neg && pos);
+}
+
+void tetrahedron_range(const TetrahedronSet &set, std::size_t t, std::array<int64_t, 3> &first, std::array<int64_t, 3> &last)
+{
+  const double *c = &set.corners[12 * t];
+  for (int r = 0; r < 3; ++r) {
+    const double lo = std::min({c[r], c[3 + r], c[6 + r], c[9 + r]}), hi = std::max({c[r], c[3 + r], c[6 + r], c[9 + r]});
+    first[r] = std::clamp(static_cast<int64_t>(std::floor((lo - set.lo[r]) / set.cell)), int64_t{0}, set.count[r] - 1);
+    last[r]  = std::clamp(static_cast<int64_t>(std::floor((hi - set.lo[r]) / set.cell)), int64_t{0}, set.count[r] - 1);
+  }
+}
+
+} // namespace
+
+void index_tetrahedra(TetrahedronSet &set)
+{
+  const std::size_t n = set.size();
+  if (n == 0) return;
+  P3 lo{set.corners[0], set.corners[1], set.corners[2]}, hi = lo;
+  for (std::size_t k = 0; k < 4 * n; ++k)
+    for (int r = 0; r < 3; ++r) lo[r] = std::min(lo[r], set.corners[3 * k + r]), hi[r] = std::max(hi[r], set.corners[3 * k + r]);
+  P3 side;
+  for (int r = 0; r < 3; ++r) side[r] = std::max(hi[r] - lo[r], 1e-300);
+  set.cell = std::cbrt(side[0] * side[1] * side[2] / static_cast<double>(n));
+  for (int r = 0; r < 3; ++r) set.count[r] = std::max<int64_t>(1, static_cast<int64_t>(std::ceil(side[r] / set.cell)));
+  set.lo = lo;
+  // Two passes over the tetrahedra's bounding boxes: count, then fill.
+  std::vector<int64_t> count(static_cast<std::size_t>(set.count[0] * set.count[1] * set.count[2]) + 1, 0);
+  for (int pass = 0; pass < 2; ++pass) {
+    if (pass == 1) {
+      set.offsets.assign(count.size(), 0);
+      for (std::size_t k = 1; k < count.size(); ++k) set.offsets[k] = set.offsets[k - 1] + count[k - 1];
+      set.members.assign(static_cast<std::size_t>(set.offsets.back()), 0);
+      std::fill(count.begin(), count.end(), 0);
+    }
+    for (std::size_t t = 0; t < n; ++t) {
+      std::array<int64_t, 3> a, b;
+      tetrahedron_range(set, t, a, b);
+      for (int64_t k = a[2]; k <= b[2]; ++k)
+        for (int64_t j = a[1]; j <= b[1]; ++j)
+          for (int64_t i = a[0]; i <= b[0]; ++i) {
+            const std::size_t q = static_cast<std::size_t>((k * set.count[1] + j) * set.count[0] + i);
+            if (pass == 1) set.members[static_cast<std::size_t>(set.offsets[q] + count[q])] = static_cast<int64_t>(t);
+            ++count[q];
+          }
+    }
+  }
+}
+
+bool tetrahedra_contain(const TetrahedronSet &set, const double *p)
+{
+  if (set.offsets.empty()) return false;
+  std::array<int64_t, 3> b;
+  for (int r = 0; r < 3; ++r) {
+    const int64_t i = static_cast<int64_t>(std::floor((p[r] - set.lo[r]) / set.cell));
+    // A point on the grid's far face belongs to the last bucket.
+    b[r] = i == set.count[r] && p[r] <= set.lo[r] + static_cast<double>(set.count[r]) * set.cell ? i - 1 : i;
+    if (b[r] < 0 || b[r] >= set.count[r]) return false;
+  }
+  const std::size_t q = static_cast<std::size_t>((b[2] * set.count[1] + b[1]) * set.count[0] + b[0]);
+  for (int64_t k = set.offsets[q]; k < set.offsets[q + 1]; ++k)
+    if (tetrahedron_contains(&set.corners[12 * static_cast<std::size_t>(set.members[static_cast<std::size_t>(k)])], p))
+      return true;
+  return false;
+}
+
+Solid make_mesh(std::shared_ptr<const TetrahedronSet> mesh, Solid::Op op)
+{
+  Solid s;
+  s.kind = Solid::Kind::mesh, s.op = op, s.mesh = std::move(mesh);
+  return s;
+}
+
+Solid make_box(const P3 &lo, const P3 &hi, Solid::Op op)
+{
+  Solid s;
+  s.kind = Solid::Kind::box, s.op = op, s.lo = lo, s.hi = hi;
+  return s;
+}
+
+Solid make_cylinder(const P3 &a, const P3 &b, double radius, Solid::Op op)
+{
+  Solid s;
+  s.kind = Solid::Kind::cylinder, s.op = op, s.a = a, s.b = b, s.radius = radius;
+  return s;
+}
+
+Solid make_sphere(const P3 &centre, double radius, Solid::Op op)
+{
+  Solid s;
+  s.kind = Solid::Kind::sphere, s.op = op, s.a = centre, s.radius = radius;
+  return s;
+}
+
+bool solid_contains(const Solid &s, const double *p)
+{
+  switch (s.kind) {
+  case Solid::Kind::box:
+    for (int r = 0; r < 3; ++r)
+      if (p[r] < std::min(s.lo[r], s.hi[r]) || p[r] > std::max(s.lo[r], s.hi[r])) return false;
+    return true;
+  case Solid::Kind::cylinder: {
+    const P3     axis = minus(s.b.data(), s.a.data()), q = minus(p, s.a.data());
+    const double len2 = dot(axis, axis), along = dot(q, axis);
+    if (along < 0 || along > len2) return false; // beyond a cap (a point on a cap is inside)
+    const double t    = along / len2;
+    const P3     off  = {q[0] - t * axis[0], q[1] - t * axis[1], q[2] - t * axis[2]};
+    return dot(off, off) < s.radius * s.radius;
+  }
+  case Solid::Kind::sphere: {
+    const P3 q = minus(p, s.a.data());
+    return dot(q, q) < s.radius * s.radius;
+  }
+  case Solid::Kind::mesh: return tetrahedra_contain(*s.mesh, p);
+  }
+  return false;
+}
+
+bool body_contains(const std::vector<Solid> &solids, const double *p)
+{
+  bool inside = false;
+  for (const Solid &s : solids) switch (s.op) {
+    case Solid::Op::add: inside = inside || solid_contains(s, p); break;
+    case Solid::Op::subtract: inside = inside && !solid_contains(s, p); break;
+    case Solid::Op::intersect: inside = inside && solid_contains(s, p); break;
+    }
+  return inside;
+}
+
+double solid_volume(const Solid &s)
+{
+  switch (s.kind) {
+  case Solid::Kind::box: return std::fabs((s.hi[0] - s.lo[0]) * (s.hi[1] - s.lo[1]) * (s.hi[2] - s.lo[2]));
+  case Solid::Kind::cylinder: {
+    const P3 axis = minus(s.b.data(), s.a.data());
+    return M_PI * s.radius * s.radius * std::sqrt(dot(axis, axis));
+  }
+  case Solid::Kind::sphere: return 4.0 / 3.0 * M_PI * s.radius * s.radius * s.radius;
+  case Solid::Kind::mesh: {
+    double v = 0;
+    for (std::size_t t = 0; t < s.mesh->size(); ++t) {
+      const double *c = &s.mesh->corners[12 * t];
+      v += std::fabs(orient(c, c + 3, c + 6, c + 9)) / 6;
+    }
+    return v;
+  }
+  }
+  return 0;
+}
+
+std::string solid_problem(const Solid &s)
+{
+  auto finite = [](const P3 &p) { return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]); };
+  switch (s.kind) {
+  case Solid::Kind::box:
+    if (!finite(s.lo) || !finite(s.hi)) return "its corners must be finite numbers";
+    for (int r = 0; r < 3; ++r)
+      if (!(s.hi[r] > s.lo[r]))
+        return std::string("its side along ") + "xyz"[r] +
+               format(" must be > 0 (got %g; give hi > lo on every axis)", s.hi[r] - s.lo[r]);
+    return "";
+  case Solid::Kind::cylinder: {
+    if (!finite(s.a) || !finite(s.b)) return "its axis's end points must be finite numbers";
+    const P3 axis = minus(s.b.data(), s.a.data());
+    if (!(dot(axis, axis) > 0)) return "its axis's two end points are the same point: give two distinct cap centres";
+    if (!(s.radius > 0) || !std::isfinite(s.radius)) return format("its radius must be > 0 (got %g)", s.radius);
+    return "";
+  }
+  case Solid::Kind::sphere:
+    if (!finite(s.a)) return "its centre must be finite numbers";
+    if (!(s.radius > 0) || !std::isfinite(s.radius)) return format("its radius must be > 0 (got %g)", s.radius);
+    return "";
+  case Solid::Kind::mesh:
+    if (!s.mesh || s.mesh->size() == 0 || s.mesh->offsets.empty())
+      return "it holds no tetrahedron (read a Gmsh 3D volume into it and index it)";
+    return "";
+  }
+  return "unknown kind";
+}
+
+std::string planar_polygon_problem(const PlanarPolygon &polygon)
+{
+  const auto &w = polygon.vertices;
+  if (w.size() % 3 != 0) return "its vertices must be given as x,y,z triples";
+  if (w.size() < 9) return "a polygon needs at least 3 vertices";
+  for (double c : w)
+    if (!std::isfinite(c)) return "its vertices must be finite numbers";
+  const PreparedPolygon p = prepare(polygon);
+  if (!(p.scale > 0)) return "its vertices are all the same point";
+  // No widest triangle with an area: the vertices are collinear, there is no plane.
+  if (!(dot(p.normal, p.normal) > 0.5)) return "its area is zero (the vertices lie on one line)";
+  const std::size_t n = w.size() / 3;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double off = dot(p.normal, {w[3 * i], w[3 * i + 1], w[3 * i + 2]}) - p.offset;
+    if (std::fabs(off) > 1e-9 * p.scale) {
+      char text[200];
+      std::snprintf(text, sizeof text,
+                    "vertex %zu lies %g off the plane of the others: a notch polygon must be planar", i + 1, off);
+      return text;
+    }
+  }
+  return polygon_problem(p.flat); // crossing edges, repeated vertices, zero area
+}
+
+bool polygon_cuts(const PlanarPolygon &polygon, const double *a, const double *b)
+{
+  return prepared_cuts(prepare(polygon), a, b);
+}
+
+BondCut polygon_notches(const std::vector<PlanarPolygon> &polygons)
+{
+  if (polygons.empty()) return {};
+  std::vector<PreparedPolygon> prepared;
+  for (std::size_t k = 0; k < polygons.size(); ++k) {
+    const std::string problem = planar_polygon_problem(polygons[k]);
+    if (!problem.empty())
+      throw std::invalid_argument("3D body: notch " + std::to_string(k + 1) + ": " + problem);
+    prepared.push_back(prepare(polygons[k]));
+  }
+  return [prepared = std::move(prepared)](const double *a, const double *b) {
+    for (const PreparedPolygon &p : prepared)
+      if (prepared_cuts(p, a, b)) return true;
+    return false;
+  };
+}
+
+SolidPieces body_pieces(const SolidBody &body, const PointCloud &points)
+{
+  SolidPieces       pieces;
+  const std::size_t n = points.size();
+  if (n == 0) return pieces;
+  // Integer cell coordinates of every point, and the points sorted by them (z, y, x),
+  // so that a face neighbour is found by binary search: no dense cell array.
+  std::vector<std::array<int64_t, 3>> cell(n);
+  for (std::size_t i = 0; i < n; ++i)
+    for (int r = 0; r < 3; ++r)
+      cell[i][r] = std::llround((points.x[3 * i + r] - body.origin[r]) / body.dx - 0.5);
+  auto key = [](const std::array<int64_t, 3> &c) { return std::array<int64_t, 3>{c[2], c[1], c[0]}; };
+  std::vector<std::size_t> order(n);
+  for (std::size_t i = 0; i < n; ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](std::size_t p, std::size_t q) { return key(cell[p]) < key(cell[q]); });
+  auto find = [&](const std::array<int64_t, 3> &c) -> std::ptrdiff_t {
+    const auto it = std::lower_bound(order.begin(), order.end(), key(c),
+                                     [&](std::size_t p, const std::array<int64_t, 3> &k) { return key(cell[p]) < k; });
+    return it != order.end() && cell[*it] == c ? static_cast<std::ptrdiff_t>(*it) : -1;
+  };
+  const BondCut            cut = polygon_notches(body.notches);
+  std::vector<char>        reached(n, 0);
+  std::vector<std::size_t> stack;
+  pieces.smallest_points = static_cast<int64_t>(n) + 1;
+  for (std::size_t seed = 0; seed < n; ++seed) {
+    if (reached[seed]) continue;
+    int64_t size  = 0;
+    reached[seed] = 1;
+    stack.assign(1, seed);
+    while (!stack.empty()) {
+      const std::size_t i = stack.back();
+      stack.pop_back();
+      ++size;
+      for (int r = 0; r < 3; ++r)
+        for (int step = -1; step <= 1; step += 2) {
+          std::array<int64_t, 3> c = cell[i];
+          c[r] += step;
+          const std::ptrdiff_t j = find(c);
+          if (j < 0 || reached[static_cast<std::size_t>(j)]) continue;
+          if (cut && cut(&points.x[3 * i], &points.x[3 * static_cast<std::size_t>(j)])) continue;
+          reached[static_cast<std::size_t>(j)] = 1;
+          stack.push_back(static_cast<std::size_t>(j));
+        }
+    }
+    ++pieces.count;
+    if (size < pieces.smallest_points)
+      pieces.smallest_points = size,
+      pieces.smallest_at     = {points.x[3 * seed], points.x[3 * seed + 1], points.x[3 * seed + 2]};
+  }
+  return pieces;
+}
+
+PointCloud make_solid_points(const SolidBody &body)
+{
+  if (!(body.dx > 0) || !std::isfinite(body.dx))
+    throw std::invalid_argument(format("3D body: the lattice spacing dx must be > 0 (got %g)", body.dx));
+  for (int r = 0; r < 3; ++r)
+    if (!std::isfinite(body.origin[r])) throw std::invalid_argument("3D body: the lattice origin must be finite numbers");
+  bool adds = false;
+  for (std::size_t k = 0; k < body.solids.size(); ++k) {
+    const std::string problem = solid_problem(body.solids[k]);
+    if (!problem.empty())
+      throw std::invalid_argument("3D body: solid " + std::to_string(k + 1) + " (" + to_string(body.solids[k].kind) +
+                                  "): " + problem);
+    adds = adds || solid_adds(body.solids[k]);
+  }
+  if (!adds)
+    throw std::invalid_argument("3D body: no solid adds material (the body starts empty); list a box, cylinder or "
+                                "sphere with op add first");
+  for (std::size_t k = 0; k < body.notches.size(); ++k) {
+    const std::string problem = planar_polygon_problem(body.notches[k]);
+    if (!problem.empty()) throw std::invalid_argument("3D body: notch " + std::to_string(k + 1) + ": " + problem);
+  }
+  const Grid g = body_grid(body);
+  if (static_cast<double>(g.count[0]) * static_cast<double>(g.count[1]) * static_cast<double>(g.count[2]) > 2147483647.0)
+    throw std::invalid_argument(format("3D body: the lattice around the solids has more than 2^31 cells at dx = %g; "
+                                       "make dx larger",
+                                       body.dx));
+
+  PointCloud c;
+  for (int64_t k = 0; k < g.count[2]; ++k)
+    for (int64_t j = 0; j < g.count[1]; ++j)
+      for (int64_t i = 0; i < g.count[0]; ++i) {
+        const double p[3] = {body.origin[0] + (static_cast<double>(g.first[0] + i) + 0.5) * body.dx,
+                             body.origin[1] + (static_cast<double>(g.first[1] + j) + 0.5) * body.dx,
+                             body.origin[2] + (static_cast<double>(g.first[2] + k) + 0.5) * body.dx};
+        if (!body_contains(body.solids, p)) continue;
+        c.x.insert(c.x.end(), p, p + 3);
+        c.natural_id.push_back(static_cast<int64_t>(c.volume.size()));
+        c.volume.push_back(body.dx * body.dx * body.dx);
+      }
+  if (c.size() == 0)
+    throw std::invalid_argument(format("3D body: the solids keep no lattice point (no cell centre at dx = %g lies in "
+                                       "the body); make dx smaller or the solids larger",
+                                       body.dx));
+  const SolidPieces pieces = body_pieces(body, c);
+  if (pieces.count > 1) {
+    char text[320];
+    std::snprintf(text, sizeof text,
+                  "3D body: the body falls apart into %lld pieces (the smallest, %lld points, holds the point (%g, %g, "
+                  "%g)); join them, remove the stray piece, or end a notch inside the body",
+                  static_cast<long long>(pieces.count), static_cast<long long>(pieces.smallest_points), pieces.smallest_at[0],
+                  pieces.smallest_at[1], pieces.smallest_at[2]);
+    throw std::invalid_argument(text);
+  }
+  return c;
+}
+
+PointCloud tetrahedron_centroids(const TetrahedronSet &mesh)
+{
+  PointCloud points;
+  points.x.reserve(3 * mesh.size());
+  for (std::size_t t = 0; t < mesh.size(); ++t) {
+    const double *c = &mesh.corners[12 * t];
+    for (int r = 0; r < 3; ++r) points.x.push_back(0.25 * (c[r] + c[3 + r] + c[6 + r] + c[9 + r]));
+    points.volume.push_back(std::fabs(orient(c, c + 3, c + 6, c + 9)) / 6.0);
+    points.natural_id.push_back(static_cast<int64_t>(t));
+  }
+  return points;
+}
+
+double point_segment_distance2(const double *p, const double *a, const double *b)
+{
+  const P3     e = minus(b, a), w = minus(p, a);
+  const double len2 = dot(e, e);
+  const double t    = len2 > 0 ? std::clamp(dot(w, e) / len2, 0.0, 1.0) : 0.0;
+  const P3     d    = {w[0] - t * e[0], w[1] - t * e[1], w[2] - t * e[2]};
+  return dot(d, d);
+}
+
+double point_triangle_distance2(const double *p, const double *a, const double *b, const double *c)
+{
+  // The closest point by the Voronoi regions of the vertices, edges and face.
+  const P3     ab = minus(b, a), ac = minus(c, a), ap = minus(p, a);
+  const double d1 = dot(ab, ap), d2 = dot(ac, ap);
+  if (d1 <= 0 && d2 <= 0) return dot(ap, ap); // vertex a
+  const P3     bp = minus(p, b);
+  const double d3 = dot(ab, bp), d4 = dot(ac, bp);
+  if (d3 >= 0 && d4 <= d3) return dot(bp, bp); // vertex b
+  const P3     cp = minus(p, c);
+  const double d5 = dot(ab, cp), d6 = dot(ac, cp);
+  if (d6 >= 0 && d5 <= d6) return dot(cp, cp); // vertex c
+  const double vc = d1 * d4 - d3 * d2, vb = d5 * d2 - d1 * d6, va = d3 * d6 - d5 * d4;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) return point_segment_distance2(p, a, b); // edge ab
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return point_segment_distance2(p, a, c); // edge ac
+  if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) return point_segment_distance2(p, b, c); // edge bc
+  const double sum = va + vb + vc;
+  if (!(sum > 0)) // a degenerate triangle: its nearest edge
+    return std::min({point_segment_distance2(p, a, b), point_segment_distance2(p, a, c), point_segment_distance2(p, b, c)});
+  const double v = vb / sum, w = vc / sum; // the face: a + v ab + w ac
+  const P3     d = {ap[0] - v * ab[0] - w * ac[0], ap[1] - v * ab[1] - w * ac[1], ap[2] - v * ab[2] - w * ac[2]};
+  return dot(d, d);
+}
+
+void set_reach(ElementRegion &region)
+{
+  const std::vector<double> &v = region.dim == 3 ? region.tetrahedra->corners : region.dim == 2 ? region.triangles : region.segments;
+  const double grow = region.dim == 3 ? 0.0 : region.depth;
+  region.lo.fill(std::numeric_limits<double>::max());
+  region.hi.fill(-std::numeric_limits<double>::max());
+  for (std::size_t k = 0; k + 3 <= v.size(); k += 3)
+    for (int r = 0; r < 3; ++r) region.lo[r] = std::min(region.lo[r], v[k + r] - grow), region.hi[r] = std::max(region.hi[r], v[k + r] + grow);
+}
+
+bool region_contains(const ElementRegion &region, const double *p)
+{
+  for (int r = 0; r < 3; ++r)
+    if (p[r] < region.lo[r] || p[r] > region.hi[r]) return false; // most points
+  if (region.dim == 3) return tetrahedra_contain(*region.tetrahedra, p);
+  const double d2 = region.depth * region.depth;
+  const auto   near_box = [&](const double *c, int corners) { // the element's box grown by depth
+    for (int r = 0; r < 3; ++r) {
+      double lo = c[r], hi = c[r];
+      for (int k = 1; k < corners; ++k) lo = std::min(lo, c[3 * k + r]), hi = std::max(hi, c[3 * k + r]);
+      if (p[r] < lo - region.depth || p[r] > hi + region.depth) return false;
+    }
+    return true;
+  };
+  if (region.dim == 2) {
+    for (std::size_t k = 0; k + 9 <= region.triangles.size(); k += 9) {
+      const double *t = &region.triangles[k];
+      if (near_box(t, 3) && point_triangle_distance2(p, t, t + 3, t + 6) < d2) return true;
+    }
+    return false;
+  }
+  for (std::size_t k = 0; k + 6 <= region.segments.size(); k += 6) {
+    const double *s = &region.segments[k];
+    if (near_box(s, 2) && point_segment_distance2(p, s, s + 3) < d2) return true;
+  }
+  return false;
+}
+
+const char *to_string(Solid::Kind kind)
+{
+  switch (kind) {
+  case Solid::Kind::box: return "box";
+  case Solid::Kind::cylinder: return "cylinder";
+  case Solid::Kind::sphere: return "sphere";
+  case Solid::Kind::mesh: return "mesh";
+  }
+  return "unknown";
+}
+
+} // namespace bapd::nd

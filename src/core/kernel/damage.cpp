@@ -1,0 +1,84 @@
+// Bond failure and damage (damage.hpp), for D = 2 and 3.
+#include <algorithm>
+
+#include "bapd/core/kernel/damage.hpp"
+
+namespace bapd {
+
+namespace {
+void sort_unique(std::vector<std::size_t> &v)
+{
+  std::sort(v.begin(), v.end());
+  v.erase(std::unique(v.begin(), v.end()), v.end());
+}
+} // namespace
+
+std::size_t break_failed_bonds(const Families &families, BondState &state, const std::vector<FailedBond> &failed,
+                               std::vector<std::size_t> &touched_points)
+{
+  std::size_t broken = 0;
+  for (const FailedBond &f : failed) broken += break_bond(families, state, f.point, f.position, &touched_points);
+  sort_unique(touched_points);
+  return broken;
+}
+
+void point_damage(const PointCloud &cloud, const Families &families, const BondState &state, std::size_t n_points,
+                  double *damage)
+{
+  for (std::size_t i = 0; i < n_points; ++i) {
+    double            intact = 0.0;
+    const std::size_t o      = families.offsets[i];
+    for (std::size_t q = 0; q < families.size(i); ++q)
+      if (state.is_intact(i, q)) intact += cloud.volume[static_cast<std::size_t>(families.neighbour[o + q])];
+    const double vh = cloud.family_volume[i];
+    damage[i]       = vh > 0 ? 1.0 - intact / vh : 0.0;
+  }
+}
+
+} // namespace bapd
+
+namespace bapd::nd {
+
+template <int D>
+std::size_t break_bonds(const PointCloud &cloud, const double *y, const Families &families, double critical_stretch,
+                        BondState &state, std::vector<std::size_t> &touched_points, std::size_t n_counted)
+{
+  touched_points.clear();
+  const double     *x      = cloud.x.data();
+  const double      sc2    = critical_stretch * critical_stretch;
+  const std::size_t W      = state.mask_words;
+  std::size_t       broken = 0;
+  for (std::size_t i = 0; i < families.n_family; ++i) {
+    const std::size_t o = families.offsets[i], m = families.size(i);
+    bool              any = false;
+    for (std::size_t q = 0; q < m; ++q) {
+      std::uint64_t      &word = state.intact[i * W + q / 64];
+      const std::uint64_t bit  = std::uint64_t{1} << (q % 64);
+      if (!(word & bit)) continue;
+      const std::size_t j = static_cast<std::size_t>(families.neighbour[o + q]);
+      double            reference = 0.0, current = 0.0; // |x_j - x_i|^2, |y_j - y_i|^2, axis by axis
+      for (int r = 0; r < D; ++r) {
+        const double d = x[D * j + r] - x[D * i + r], e = y[D * j + r] - y[D * i + r];
+        reference += d * d;
+        current += e * e;
+      }
+      if (current > sc2 * reference) {
+        word &= ~bit;
+        broken += i < n_counted;
+        any = true;
+      }
+    }
+    if (any) touched_points.push_back(i);
+  }
+  // (j, i) breaks in j's own pass when j has a family here: both are listed already.
+  std::sort(touched_points.begin(), touched_points.end());
+  touched_points.erase(std::unique(touched_points.begin(), touched_points.end()), touched_points.end());
+  return broken;
+}
+
+template std::size_t break_bonds<2>(const PointCloud &, const double *, const Families &, double, BondState &,
+                                    std::vector<std::size_t> &, std::size_t);
+template std::size_t break_bonds<3>(const PointCloud &, const double *, const Families &, double, BondState &,
+                                    std::vector<std::size_t> &, std::size_t);
+
+} // namespace bapd::nd

@@ -1,0 +1,421 @@
+#include "bapd/solver/driver/simulation.hpp"
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <exception>
+#include <filesystem>
+#include <limits>
+
+#include "bapd/solver/input/help.hpp"
+#include "bapd/core/geometry/geometry.hpp"
+#include "bapd/core/kernel/patch_correction.hpp"
+
+namespace bapd {
+
+template <int D> SimulationD<D>::~SimulationD()
+{
+  if (history_) std::fclose(history_);
+  if (static_states_) std::fclose(static_states_);
+  TSDestroy(&ts_);
+  ISDestroy(&is_position_);
+  ISDestroy(&is_momentum_);
+  VecDestroy(&X_);
+}
+
+PetscErrorCode ReadScene(MPI_Comm comm, Scene *scene)
+{
+  PetscFunctionBegin;
+  PetscCall(CheckpointMergeOptions(comm)); // -restart FILE: the checkpoint's options are the defaults
+  PetscCall(SceneFromOptions(comm, scene));
+  PetscFunctionReturn(0);
+}
+
+template <int D> PetscErrorCode SimulationD<D>::Setup()
+{
+  Scene scene;
+
+  PetscFunctionBegin;
+  PetscCall(ReadScene(comm_, &scene));
+  PetscCall(Setup(std::move(scene)));
+  PetscFunctionReturn(0);
+}
+
+template <int D> PetscErrorCode SimulationD<D>::Setup(Scene scene)
+{
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_rank(comm_, &rank_));
+  PetscCallMPI(MPI_Comm_size(comm_, &size_));
+  // -log_view stages, registered once per process (a test may build several runs).
+  static PetscLogStage stages[6];
+  static bool          registered = false;
+  if (!registered) {
+    const char *names[6] = {"Setup", "Partition", "Force", "Ghost exchange", "Time step", "Output"};
+    for (int k = 0; k < 6; ++k) PetscCall(PetscLogStageRegister(names[k], &stages[k]));
+    registered = true;
+  }
+  stage_setup_ = stages[0], stage_partition_ = stages[1], stage_force_ = stages[2];
+  stage_ghost_ = stages[3], stage_step_ = stages[4], stage_output_ = stages[5];
+  wall_start_ = MPI_Wtime();
+
+  PetscCall(PetscLogStagePush(stage_setup_));
+  scene_ = std::move(scene);
+  PetscCheck(scene_.help_only || scene_.dimension == D, comm_, PETSC_ERR_PLIB,
+             "SimulationD<%d> was given a scene of dimension %d: build the driver of the scene's dimension (main.cpp)", D, scene_.dimension);
+  PetscCall(ReadOutputOptions()); // -output_fields..., -checkpoint_..., -restart
+  PetscCall(RelaxationFromOptions(comm_, &relaxation_kind_)); // -relaxation
+  PetscCall(TimeStepOptionsFromOptions(comm_, &time_step_options_)); // -time_step_reestimate ...
+  if (scene_.help_only) {
+    // -help all: list the time stepper's options too (PETSc's), and stop.
+    if (CurrentHelpMode() != HelpMode::bapd) {
+      PetscCall(TSCreate(comm_, &ts_));
+      PetscCall(TSSetType(ts_, TSBASICSYMPLECTIC));
+      PetscCall(TSSetFromOptions(ts_));
+    }
+    PetscCall(PetscLogStagePop());
+    PetscFunctionReturn(0);
+  }
+  PetscCall(CheckOptionsEarly());
+  PetscCall(SceneView(comm_, scene_));
+  PetscCall(BuildBody());
+  PetscCall(loading_.Setup(comm_, scene_, layout_));
+  PetscCall(BuildProbes());
+  last_reaction_.assign(D * scene_.loads.size(), 0.0);
+  last_probe_u_.assign(D * scene_.probes.size(), 0.0);
+  PetscCall(step_control_.EstimateStable(comm_, scene_, time_step_options_, layout_, loading_, force_));
+  PetscCall(SetupRelaxation());
+  PetscCall(SetupTimeStepper());
+  PetscCall(OpenHistory());
+  PetscCall(SetupOutput()); // restores the state with -restart
+  {
+    PetscReal t;
+    PetscCall(TSGetTime(ts_, &t));
+    progress_times_.Start(loading_.end_time() / 20, t);
+  }
+  PetscCall(PetscLogStagePop());
+  PetscFunctionReturn(0);
+}
+
+// Every option is checked before any work (docs/options.md): the time stepper's on a
+// throw-away TS (a bad -ts_type or -ts_max_steps value fails here, not after the body
+// and the stable step are built), then an option nothing read (a typo) is refused.
+template <int D> PetscErrorCode SimulationD<D>::CheckOptionsEarly()
+{
+  TS probe;
+
+  PetscFunctionBegin;
+  PetscCall(TSCreate(comm_, &probe));
+  PetscErrorCode ierr = TSSetType(probe, TSBASICSYMPLECTIC);
+  if (!ierr) ierr = TSSetFromOptions(probe);
+  PetscCall(TSDestroy(&probe));
+  PetscCall(ierr);
+  PetscCall(CheckUnusedOptions(comm_));
+  PetscFunctionReturn(0);
+}
+
+namespace {
+
+// Given points (2D or 3D) are not checked for pieces by the scene (FindCut looks at
+// holes and notches on the lattice, body_pieces at the 3D lattice): here the bond graph
+// itself is, per-point horizons and all. Writes "" if every point is bonded to the
+// rest, else the message: how many pieces, the smallest one's size and a point of it
+// (an isolated point has no stiffness at all; a loose piece moves freely).
+template <int D> void DescribePieces(const PointCloud &cloud, const Families &fam, const std::string &source, char *message, std::size_t size)
+{
+  const std::size_t        n = fam.n_family;
+  std::vector<std::size_t> parent(n);
+  for (std::size_t i = 0; i < n; ++i) parent[i] = i;
+  auto find = [&](std::size_t i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  };
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t b = fam.offsets[i]; b < fam.offsets[i + 1]; ++b) parent[find(i)] = find(static_cast<std::size_t>(fam.neighbour[b]));
+  std::vector<std::size_t> count(n, 0);
+  std::size_t              n_pieces = 0;
+  for (std::size_t i = 0; i < n; ++i) n_pieces += count[find(i)]++ == 0;
+  message[0] = '\0';
+  if (n_pieces <= 1) return;
+  std::size_t smallest = 0; // the first point of the smallest piece
+  for (std::size_t i = 1; i < n; ++i)
+    if (count[find(i)] < count[find(smallest)]) smallest = i;
+  const double *x = &cloud.x[D * smallest];
+  char          at[96];
+  if (D == 2) std::snprintf(at, sizeof at, "(%g, %g)", x[0], x[1]);
+  else std::snprintf(at, sizeof at, "(%g, %g, %g)", x[0], x[1], x[2]);
+  std::snprintf(message, size,
+                "%s: the given points fall apart into %zu pieces with no bond between them (the smallest: %zu point(s), e.g. "
+                "point %lld at %s m): a piece not bonded to the rest has no stiffness against it. Remove the "
+                "stray points from the file, close the gap, or raise -horizon_factor",
+                source.c_str(), n_pieces, count[find(smallest)], static_cast<long long>(cloud.natural_id[smallest]), at);
+}
+
+// The families of points [0, n) of a cloud: the 2D notches' segments, or the 3D
+// body's planar polygon notches, as the cut.
+template <int D> Families BodyFamilies(const Scene &scene, const PointCloud &cloud, std::size_t n)
+{
+  if constexpr (D == 2) return build_families(cloud, n, scene.horizon(), scene.body.notches);
+  else return nd::build_families<3>(cloud, n, scene.horizon(), nd::polygon_notches(scene.body3d.solid.notches));
+}
+
+// The body's points (rank 0): the geometry stage's in 2D (geometry.hpp); in 3D the
+// lattice of its solids (one horizon, delta = factor dx), or the scene's clipped cloud
+// (or centroids) with each point's own horizon, delta_i = factor cbrt(V_i), as 2D's
+// given points get theirs (set_point_horizons, geometry.hpp).
+template <int D> PointCloud BodyPoints(const Scene &scene)
+{
+  if constexpr (D == 2) return make_points(scene.body, scene.horizon_factor);
+  else {
+    if (!scene.body3d.given_points) return nd::make_solid_points(scene.body3d.solid);
+    PointCloud points = *scene.body3d.given_points;
+    set_point_horizons(&points, D, scene.horizon_factor, scene.body.thickness);
+    return points;
+  }
+}
+
+} // namespace
+
+// Body, partition, layout, families and reference bond geometry.
+template <int D> PetscErrorCode SimulationD<D>::BuildBody()
+{
+  PointCloud         global;
+  std::vector<int>   offsets, neighbours;
+  int                patch_failed = 0;
+  char               pieces[512]  = ""; // rank 0: the message if given points fall apart
+
+  PetscFunctionBegin;
+  PetscCall(PetscLogStagePush(stage_partition_));
+  if (rank_ == 0) {
+    // Rank 0 builds the whole bond graph; fine up to a few 10^7 points (README). The
+    // geometry stage gives the points: the lattice, or the given points with their
+    // own volumes and horizons (geometry.hpp).
+    global               = BodyPoints<D>(scene_);
+    Families all         = BodyFamilies<D>(scene_, global, global.size());
+    compute_family_volumes(global, all);
+    // (a 3D lattice body in pieces was refused by the scene: make_solid_points)
+    if (D == 2 && scene_.body.given_points) DescribePieces<D>(global, all, scene_.body.given_points->source, pieces, sizeof pieces);
+    if (D == 3 && scene_.body3d.given_points) DescribePieces<D>(global, all, scene_.body3d.source, pieces, sizeof pieces);
+    if (scene_.patch_correction != PatchCorrection::off && !pieces[0]) { // per point, shipped with the points (patch_correction.hpp, layout.cpp)
+      const bool            virial = scene_.patch_correction == PatchCorrection::virial;
+      PatchCorrectionReport report;
+      try {
+        global.patch_correction = virial ? compute_virial_patch_correction<D>(global, all, scene_.stress_correction, &report)
+                                         : compute_patch_correction<D>(global, all, scene_.stress_correction, &report);
+        global.patch_virial     = virial;
+        PetscCall(PetscPrintf(PETSC_COMM_SELF, "%s", describe_patch_correction(report, virial).c_str()));
+      } catch (const std::exception &e) {
+        patch_failed = 1;
+        PetscCall(PetscFPrintf(PETSC_COMM_SELF, stderr, "%s\n", e.what()));
+      }
+    }
+    offsets.assign(all.offsets.begin(), all.offsets.end());
+    neighbours.assign(all.neighbour.begin(), all.neighbour.end());
+  }
+  PetscCallMPI(MPI_Bcast(pieces, sizeof pieces, MPI_CHAR, 0, comm_));
+  PetscCheck(!pieces[0], comm_, PETSC_ERR_USER, "%s", pieces);
+  // The memory check with the real bond count (the scene's assumed the lattice's).
+  int64_t counts[2] = {static_cast<int64_t>(global.size()), static_cast<int64_t>(offsets.empty() ? 0 : offsets.back())};
+  PetscCallMPI(MPI_Bcast(counts, 2, MPI_INT64_T, 0, comm_));
+  PetscCall(CheckBodyMemory(comm_, scene_, counts[0], counts[1]));
+  PetscCallMPI(MPI_Bcast(&patch_failed, 1, MPI_INT, 0, comm_)); // every rank stops together
+  PetscCheck(!patch_failed, comm_, PETSC_ERR_USER,
+             "-force_patch_correction %s: the affine patch correction could not be solved on these points (above); run "
+             "with -force_patch_correction off", to_string(scene_.patch_correction));
+  PetscCall(DistributePoints<D>(comm_, global, offsets, neighbours, &layout_));
+  PetscCall(PetscLogStagePop());
+
+  // Every rank finds the same families for its owned and ring-1 points as rank 0
+  // did: their whole neighbourhood lies in the two rings it holds.
+  families_ = BodyFamilies<D>(scene_, layout_.cloud, (std::size_t)layout_.n_family());
+  bond_state_ = BondState(families_);
+  // -force_stress_correction: C_i per family point, for the bond-only kernel only (the
+  // energy-consistent form is stress-consistent as it is: stress_correction.hpp)
+  geometry_.stress_correction =
+      scene_.force_form == ForceForm::bond_only ? scene_.stress_correction : StressCorrection::none;
+  nd::compute_bond_geometry<D>(layout_.cloud, families_, bond_state_, geometry_);
+
+  PetscCall(force_.Setup<D>(comm_, scene_, layout_, families_, geometry_, bond_state_, stage_ghost_, stage_force_));
+  if (scene_.failure) PetscCall(failure_.Setup(comm_, layout_, families_, scene_.critical_stretch));
+  force_density_.assign(D * layout_.n_owned, 0.0);
+  per_point_.assign(2 * layout_.n_owned, 0.0);
+  point_energy_.assign(layout_.n_owned, 0.0);
+  PetscInt bonds_local = (PetscInt)families_.offsets[layout_.n_owned], bonds_global = 0;
+  PetscCallMPI(MPI_Allreduce(&bonds_local, &bonds_global, 1, MPIU_INT, MPI_SUM, comm_));
+  PetscInt ghost_max = layout_.n_ghost(), owned_min = layout_.n_owned;
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &ghost_max, 1, MPIU_INT, MPI_MAX, comm_));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &owned_min, 1, MPIU_INT, MPI_MIN, comm_));
+  PetscCall(PetscPrintf(comm_, "Body: %" PetscInt_FMT " points, %" PetscInt_FMT " bonds, %d rank(s); edge cut %" PetscInt_FMT ", fewest owned %" PetscInt_FMT ", most ghosts %" PetscInt_FMT "\n",
+                        layout_.n_global, bonds_global, size_, layout_.edge_cut, owned_min, ghost_max));
+  PetscInt unusable = 0;
+  for (PetscInt i = 0; i < layout_.n_owned; ++i)
+    for (std::size_t q = 0; q < families_.size((std::size_t)i); ++q) unusable += !geometry_.is_usable((std::size_t)i, q);
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &unusable, 1, MPIU_INT, MPI_SUM, comm_));
+  if (unusable) PetscCall(PetscPrintf(comm_, "Bonds with a singular shape tensor (carry no force): %" PetscInt_FMT "\n", unusable));
+  // Below delta = sqrt(2) dx every bond-associated family of a square lattice is
+  // collinear: no bond carries force, and the stable-step estimate would fail with a
+  // misleading message (docs/stability.md, section 6).
+  char factor[32];
+  std::snprintf(factor, sizeof factor, "%g", scene_.horizon_factor); // PETSc's %g would print "1."
+  PetscCheck(bonds_global == 0 || unusable < bonds_global, comm_, PETSC_ERR_USER,
+             "-horizon_factor %s: every bond's shape tensor is singular (its bond-associated family is collinear), so no bond "
+             "carries force: raise -horizon_factor (at least 1.5; the paper uses 3.015)",
+             factor);
+  PetscFunctionReturn(0);
+}
+
+// Each probe reads the point ProbeLocate picks (scene.hpp: nearest, ties to the
+// lowest natural id, so the same point on any layout).
+template <int D> PetscErrorCode SimulationD<D>::BuildProbes()
+{
+  PetscFunctionBegin;
+  probes_.assign(scene_.probes.size(), {});
+  for (std::size_t p = 0; p < scene_.probes.size(); ++p) {
+    ProbeLocation where;
+    PetscCall(ProbeLocate<D>(comm_, scene_.probes[p], layout_.cloud.x.data(), layout_.cloud.natural_id.data(), layout_.n_owned, &where));
+    ProbePoint &pp = probes_[p];
+    pp.natural_id  = where.natural_id;
+    pp.owner_rank  = where.owner;
+    pp.local_index = where.local_index;
+    double xyz[3]  = {0, 0, 0};
+    if (where.owner == rank_)
+      for (int c = 0; c < D; ++c) xyz[c] = layout_.cloud.x[D * where.local_index + c];
+    PetscCallMPI(MPI_Bcast(xyz, D, MPI_DOUBLE, where.owner, comm_));
+    pp.x = xyz[0], pp.y = xyz[1], pp.z = xyz[2];
+    if (D == 2)
+      PetscCall(PetscPrintf(comm_, "Probe %s: point %lld at (%g, %g) m\n", scene_.probes[p].name.c_str(), (long long)pp.natural_id, pp.x, pp.y));
+    else
+      PetscCall(PetscPrintf(comm_, "Probe %s: point %lld at (%g, %g, %g) m\n", scene_.probes[p].name.c_str(), (long long)pp.natural_id, pp.x, pp.y,
+                            pp.z));
+  }
+  PetscFunctionReturn(0);
+}
+
+// -relaxation adaptive: the damping coefficient follows the slowest mode (relaxation.hpp).
+template <int D> PetscErrorCode SimulationD<D>::SetupRelaxation()
+{
+  PetscFunctionBegin;
+  const double stable_dt = step_control_.stable();
+  relaxation_.Setup(relaxation_kind_, (std::size_t)layout_.n_owned, layout_.cloud.volume.data(), loading_.held_dofs(), scene_.damping,
+                    stable_dt);
+  if (relaxation_.active()) {
+    char range[96]; // PETSc's %g would print "50."
+    std::snprintf(range, sizeof range, "between %g (-damping) and %.4g 1/s", scene_.damping, 4.0 / stable_dt);
+    PetscCall(PetscPrintf(comm_, "Relaxation: adaptive, damping c = 2 omega every step (Rayleigh quotient of the latest increment), %s\n", range));
+    // With bonds breaking, the state depends on the loading path and on the dynamics:
+    // a route that shortcuts both answers another question.
+    if (scene_.failure)
+      PetscCall(PetscFPrintf(comm_, PETSC_STDERR,
+                             "bapd: warning: -relaxation adaptive with failure (-failure_critical_stretch): the fast route assumes a "
+                             "static state that does not depend on the loading path, which breaking bonds make false; use it "
+                             "for runs without failure\n"));
+  }
+  PetscFunctionReturn(0);
+}
+
+template <int D> PetscErrorCode SimulationD<D>::PostStep(TS ts)
+{
+  SimulationD *sim;
+  PetscInt    step;
+  PetscReal   t;
+  Vec         X;
+  double     *x;
+
+  PetscFunctionBegin;
+  PetscCall(TSGetApplicationContext(ts, &sim));
+  PetscCall(TSGetStepNumber(ts, &step));
+  PetscCall(TSGetTime(ts, &t));
+  PetscCall(TSGetSolution(ts, &X));
+  const PetscInt n = D * sim->layout_.n_owned;
+  PetscCall(VecGetArray(X, &x));
+  double damping = sim->scene_.damping;
+  PetscCall(sim->relaxation_.Damping(sim->comm_, &damping)); // -relaxation adaptive: recomputed every step
+  if (damping > 0) {
+    // Mass-proportional damping, integrated exactly over the step (operator split):
+    // works with every TS type and never destabilises the step. The grips' speeds
+    // are set again just below.
+    const double decay = std::exp(-damping * sim->step_control_.current());
+    for (PetscInt k = 0; k < n; ++k) x[n + k] *= decay;
+  }
+  sim->loading_.Apply(t, x, x + n);
+  PetscCall(VecRestoreArray(X, &x));
+
+  PetscBool diverged = PETSC_FALSE;
+  PetscCall(sim->CheckHealth(step, t, &diverged));
+  if (!diverged) {
+    // Runaway energy: an unstable time step caught before NaN or shattering (divergence.hpp).
+    std::string runaway;
+    PetscCall(sim->CheckRunaway(step, t, &runaway));
+    if (!runaway.empty()) sim->stop_reason_ = runaway, sim->stopped_on_error_ = true, diverged = PETSC_TRUE;
+  }
+  if (diverged) {
+    PetscCall(sim->DiagnoseDivergence()); // the cause, from the last good state
+    PetscCall(sim->OutputOnDivergence()); // checkpoint of the last good state
+    PetscCall(TSSetConvergedReason(ts, TS_DIVERGED_NONLINEAR_SOLVE));
+    PetscFunctionReturn(0);
+  }
+  if (sim->scene_.failure) {
+    PetscCall(VecGetArray(X, &x));
+    PetscCall(sim->force_.UpdatePositions(x));
+    PetscCall(VecRestoreArray(X, &x));
+    PetscCall(sim->failure_.Break(sim->force_.positions(), sim->force_.failed_bonds(), sim->bond_state_, sim->geometry_));
+  }
+  {
+    // Before any checkpoint: a restart takes the same next step (re-estimated about the
+  // latest evaluation when due, shortened while points fly: time_step_control.hpp).
+    const double *xr;
+    PetscCall(VecGetArrayRead(X, &xr));
+    PetscCall(sim->step_control_.AfterStep(sim->comm_, step, sim->loading_.stretch_at(t), sim->layout_, sim->families_, sim->bond_state_, sim->force_, xr + n,
+                                           sim->scene_.failure && sim->failure_.broke(), ts));
+    PetscCall(VecRestoreArrayRead(X, &xr));
+    sim->relaxation_.FollowStableStep(sim->step_control_.stable_now()); // its cap, 2 omega_max
+  }
+  if (step % sim->scene_.output_interval == 0) {
+    PetscCall(sim->WriteHistoryRow(step, t));
+    PetscCall(sim->CheckStaticHold(step, t));
+  }
+  PetscCall(sim->Progress(step, t, PETSC_FALSE));
+  PetscCall(sim->OutputAfterStep(step, t)); // fields, checkpoints, SIGTERM/SIGINT
+  PetscFunctionReturn(0);
+}
+
+template <int D> PetscErrorCode SimulationD<D>::Run()
+{
+  PetscFunctionBegin;
+  if (scene_.help_only) PetscFunctionReturn(0);
+  PetscCall(PetscLogStagePush(stage_step_));
+  PetscCall(TSSolve(ts_, X_));
+  PetscCall(PetscLogStagePop());
+  PetscInt  step;
+  PetscReal t;
+  PetscCall(TSGetStepNumber(ts_, &step));
+  PetscCall(TSGetTime(ts_, &t));
+  if (step % scene_.output_interval != 0 && !stopped_on_error_) PetscCall(WriteHistoryRow(step, t));
+  PetscCall(OutputAtEnd(step, t)); // the last field file (and checkpoint)
+  if (scene_.output_final_state) PetscCall(WriteFinalState());
+  PetscCall(Summary());
+  PetscCheck(!stopped_on_error_, comm_, PETSC_ERR_NOT_CONVERGED, "%s", stop_reason_.c_str());
+  PetscFunctionReturn(0);
+}
+
+template <int D> PetscErrorCode SimulationD<D>::Advance(PetscInt steps)
+{
+  PetscInt step;
+
+  PetscFunctionBegin;
+  PetscCall(TSGetStepNumber(ts_, &step));
+  PetscCall(TSSetMaxSteps(ts_, step + steps));
+  PetscCall(TSSetMaxTime(ts_, PETSC_MAX_REAL));
+  PetscCall(PetscLogStagePush(stage_step_));
+  PetscCall(TSSolve(ts_, X_));
+  PetscCall(PetscLogStagePop());
+  PetscCheck(!stopped_on_error_, comm_, PETSC_ERR_NOT_CONVERGED, "%s", stop_reason_.c_str());
+  PetscFunctionReturn(0);
+}
+
+// The driver at D = 2 and 3, chosen once from the scene (main.cpp); every file of
+// the driver instantiates the members it defines (the others one by one).
+template class SimulationD<2>;
+template class SimulationD<3>;
+
+} // namespace bapd

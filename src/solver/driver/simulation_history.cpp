@@ -1,0 +1,529 @@
+// What a run reports: history.csv, static states, progress lines, the summary and
+// the layout-independent final state.
+#include "bapd/solver/driver/simulation.hpp"
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <fcntl.h>
+#include <filesystem>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "bapd/core/kernel/damage.hpp"
+#include "bapd/solver/io/fields.hpp"
+#include "bapd/solver/input/options_reader.hpp"
+#include "bapd/solver/parallel/reproducible_sum.hpp"
+
+namespace bapd {
+
+namespace {
+
+// Concatenates every rank's values on rank 0, in rank order (callers sort or index
+// them by natural id, so the order does not matter).
+template <class T> PetscErrorCode GatherOnRankZero(MPI_Comm comm, const std::vector<T> &mine, MPI_Datatype type, std::vector<T> *all)
+{
+  PetscMPIInt rank, size;
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  std::vector<int> counts(size), displs(size, 0);
+  int              m = (int)mine.size();
+  PetscCallMPI(MPI_Gather(&m, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm));
+  all->clear();
+  if (rank == 0) {
+    for (int r = 1; r < size; ++r) displs[r] = displs[r - 1] + counts[r - 1];
+    all->resize(displs[size - 1] + counts[size - 1]);
+  }
+  PetscCallMPI(MPI_Gatherv(mine.data(), m, type, all->data(), counts.data(), displs.data(), type, 0, comm));
+  PetscFunctionReturn(0);
+}
+
+// The outcome of rank 0's writing of rows to a CSV file since `row_start` (its
+// offset before them): 0; the errno of a failed write or flush, after which the file
+// is cut back to its last whole row (the rows before are kept) and what stdio still
+// holds goes to /dev/null; or -1 if the file was deleted (st_nlink 0: the output
+// directory removed during the run). One fstat: cheap at each history row.
+int FinishRows(FILE *f, long row_start)
+{
+  errno = 0;
+  int error = 0;
+  if (std::fflush(f) != 0 || std::ferror(f)) error = errno ? errno : EIO;
+  struct stat st;
+  if (!error && fstat(fileno(f), &st) == 0 && st.st_nlink == 0) return -1;
+  if (error) {
+    // (never longer: a header that did not reach the disk is not padded with zeros)
+    if (row_start >= 0 && fstat(fileno(f), &st) == 0 && st.st_size > row_start && ftruncate(fileno(f), row_start) != 0) {
+    } // best effort: the error is reported either way
+    const int null = ::open("/dev/null", O_WRONLY);
+    if (null >= 0) {
+      dup2(null, fileno(f));
+      ::close(null);
+    }
+  }
+  return error;
+}
+
+// The message for FinishRows' outcome (collective after the broadcast of `error`).
+PetscErrorCode CheckRows(MPI_Comm comm, int error, const std::string &dir, const char *file)
+{
+  PetscFunctionBegin;
+  PetscCheck(error != -1, comm, PETSC_ERR_FILE_WRITE,
+             "%s/%s was deleted during the run (the output directory removed?): the run stops. Keep -output_dir until the run ends",
+             dir.c_str(), file);
+  PetscCheck(error == 0, comm, PETSC_ERR_FILE_WRITE,
+             "Cannot write %s/%s: %s; the rows written before are kept: free some space or choose another -output_dir (continue from "
+             "a checkpoint with -restart if one was written)",
+             dir.c_str(), file, std::strerror(error));
+  PetscFunctionReturn(0);
+}
+
+// The area the nominal stress of a load set divides its y reaction by: the sheet's
+// width x thickness (2D), the x-z section of the body's extent (3D).
+double NominalArea(const Scene &scene)
+{
+  const Body3D &b = scene.body3d;
+  return scene.dimension == 3 ? (b.hi[0] - b.lo[0]) * (b.hi[2] - b.lo[2]) : scene.body.width * scene.body.thickness;
+}
+
+} // namespace
+
+
+template <int D> PetscErrorCode SimulationD<D>::OpenHistory()
+{
+  PetscFunctionBegin;
+  int         ok = 1;
+  std::string why; // rank 0, which prints the message
+  if (rank_ == 0) {
+    std::error_code ec;
+    std::filesystem::create_directories(scene_.output_dir, ec);
+    const std::string path = scene_.output_dir + "/history.csv";
+    history_               = ec ? nullptr : std::fopen(path.c_str(), "w");
+    ok                     = history_ != nullptr;
+    if (!ok) why = ec ? "cannot create the directory: " + ec.message() : std::string(std::strerror(errno));
+  }
+  PetscCallMPI(MPI_Bcast(&ok, 1, MPI_INT, 0, comm_));
+  PetscCheck(ok, comm_, PETSC_ERR_FILE_OPEN, "-output_dir %s: cannot write %s/history.csv (%s): choose a writable directory, e.g. -output_dir output",
+             scene_.output_dir.c_str(), scene_.output_dir.c_str(), why.c_str());
+  if (rank_ == 0) {
+    std::fprintf(history_, "step,time_s,stretch");
+    // (z columns in 3D only: a 2D history keeps its columns)
+    for (const LoadSet &s : scene_.loads) {
+      std::fprintf(history_, ",%s_reaction_x_N,%s_reaction_y_N", s.name.c_str(), s.name.c_str());
+      if (D == 3) std::fprintf(history_, ",%s_reaction_z_N", s.name.c_str());
+      std::fprintf(history_, ",%s_nominal_stress_Pa", s.name.c_str());
+    }
+    for (const Probe &p : scene_.probes) {
+      std::fprintf(history_, ",%s_ux_m,%s_uy_m", p.name.c_str(), p.name.c_str());
+      if (D == 3) std::fprintf(history_, ",%s_uz_m", p.name.c_str());
+    }
+    std::fprintf(history_, ",kinetic_energy_J,internal_energy_J,broken_bonds,dt_s\n"); // dt_s: the next step (time_step_control.hpp)
+  }
+  PetscCall(WriteHistoryRow(0, 0.0));
+  PetscFunctionReturn(0);
+}
+
+// Kinetic and internal energy, reproducible sums; no allocation (scratch sized at set-up).
+template <int D> PetscErrorCode SimulationD<D>::Energies(double *kinetic, double *internal, Vec state)
+{
+  const PetscInt n = layout_.n_owned;
+  const double  *x;
+
+  PetscFunctionBegin;
+  if (!state) state = X_;
+  PetscCall(VecGetArrayRead(state, &x));
+  PetscCall(force_.PointEnergies(x, point_energy_.data()));
+  const double *v = x + D * n;
+  for (PetscInt i = 0; i < n; ++i) {
+    const double m     = scene_.density * layout_.cloud.volume[i];
+    per_point_[2 * i]     = PointKineticEnergy<D>(m, v + D * i); // 1/2 m v.v (relaxation.hpp)
+    per_point_[2 * i + 1] = point_energy_[i];
+  }
+  PetscCall(VecRestoreArrayRead(state, &x));
+  double sums[2];
+  PetscCall(ReproducibleSum(comm_, 2, n, per_point_.data(), sums));
+  *kinetic  = sums[0];
+  *internal = sums[1];
+  PetscFunctionReturn(0);
+}
+
+// The displacement of every probe's point, on every rank (D per probe).
+template <int D> PetscErrorCode SimulationD<D>::ReadProbes(const double *u_owned, double *probe_u)
+{
+  PetscFunctionBegin;
+  for (std::size_t p = 0; p < probes_.size(); ++p) {
+    if (probes_[p].owner_rank == rank_)
+      for (int c = 0; c < D; ++c) probe_u[D * p + c] = u_owned[D * probes_[p].local_index + c];
+    PetscCallMPI(MPI_Bcast(&probe_u[D * p], D, MPI_DOUBLE, probes_[p].owner_rank, comm_));
+  }
+  PetscFunctionReturn(0);
+}
+
+template <int D> PetscErrorCode SimulationD<D>::BrokenBondCount(PetscInt *count)
+{
+  PetscFunctionBegin;
+  PetscInt local = (PetscInt)bond_state_.count_broken(families_, (std::size_t)layout_.n_owned);
+  PetscCallMPI(MPI_Allreduce(&local, count, 1, MPIU_INT, MPI_SUM, comm_));
+  *count /= 2; // each broken bond is seen from both of its end points
+  PetscFunctionReturn(0);
+}
+
+// One row of history.csv; keeps the values for the static-hold test. No allocation.
+template <int D> PetscErrorCode SimulationD<D>::WriteHistoryRow(PetscInt step, double t)
+{
+  const double *x;
+
+  PetscFunctionBegin;
+  PetscCall(PetscLogStagePush(stage_output_));
+  PetscCall(VecGetArrayRead(X_, &x));
+  PetscCall(ComputeForceDensity(x, force_density_.data()));
+  PetscCall(loading_.Reactions(force_density_.data(), last_reaction_.data()));
+  PetscCall(ReadProbes(x, last_probe_u_.data()));
+  PetscCall(VecRestoreArrayRead(X_, &x));
+  PetscCall(Energies(&last_kinetic_, &last_internal_));
+  PetscInt broken;
+  PetscCall(BrokenBondCount(&broken));
+  const std::vector<double> &reaction = last_reaction_, &probe_u = last_probe_u_;
+  int                        error    = 0;
+  if (rank_ == 0) {
+    const long   row_start = std::ftell(history_);
+    const double area = NominalArea(scene_);
+    std::fprintf(history_, "%" PetscInt_FMT ",%.17g,%.17g", step, t, loading_.stretch_at(t));
+    for (std::size_t s = 0; s < scene_.loads.size(); ++s) {
+      for (int c = 0; c < D; ++c) std::fprintf(history_, ",%.17g", reaction[D * s + c]);
+      std::fprintf(history_, ",%.17g", reaction[D * s + 1] / area);
+    }
+    for (std::size_t p = 0; p < probes_.size(); ++p)
+      for (int c = 0; c < D; ++c) std::fprintf(history_, ",%.17g", probe_u[D * p + c]);
+    std::fprintf(history_, ",%.17g,%.17g,%" PetscInt_FMT ",%.17g\n", last_kinetic_, last_internal_, broken, step_control_.current());
+    error = FinishRows(history_, row_start);
+  }
+  PetscCallMPI(MPI_Bcast(&error, 1, MPI_INT, 0, comm_)); // rank 0 wrote: every rank stops alike
+  PetscCall(CheckRows(comm_, error, scene_.output_dir, "history.csv"));
+  PetscCall(PetscLogStagePop());
+  PetscFunctionReturn(0);
+}
+
+// Ends a hold of the load schedule once the body is static (kinetic energy below
+// -static_tolerance times the internal energy, at a history row): records the static
+// state in static_states.csv and moves the rest of the schedule earlier, so that the
+// next ramp starts now. Every input to the test is a reproducible sum, so the same
+// steps end the same holds on any number of ranks.
+template <int D> PetscErrorCode SimulationD<D>::CheckStaticHold(PetscInt step, double t)
+{
+  PetscFunctionBegin;
+  if (scene_.static_tolerance <= 0) PetscFunctionReturn(0);
+  const PetscInt k = loading_.HoldAt(t); // a hold that has not ended yet, or -1
+  if (k < 0 || !(last_kinetic_ < scene_.static_tolerance * last_internal_)) PetscFunctionReturn(0);
+  const double lambda = loading_.stretch_at(t);
+  PetscCall(PetscPrintf(comm_, "Static at stretch %.5f: t = %.6e s, step %" PetscInt_FMT ", kinetic/internal energy %.3e < %.3e", lambda, t, step,
+                        last_kinetic_ / last_internal_, scene_.static_tolerance));
+  for (std::size_t p = 0; p < probes_.size(); ++p)
+    PetscCall(PetscPrintf(comm_, "; %s ux = %.6e m", scene_.probes[p].name.c_str(), last_probe_u_[D * p]));
+  if (relaxation_.active()) PetscCall(PetscPrintf(comm_, "; damping %.4g 1/s", relaxation_.last()));
+  PetscCall(PetscPrintf(comm_, "\n"));
+  int error = 0;
+  if (rank_ == 0 && !static_states_) {
+    static_states_ = std::fopen((scene_.output_dir + "/static_states.csv").c_str(), "w");
+    if (!static_states_) error = errno;
+  }
+  if (rank_ == 0 && static_states_) {
+    const long row_start = std::ftell(static_states_);
+    if (row_start == 0) {
+      std::fprintf(static_states_, "stretch,time_s,step,kinetic_over_internal");
+      for (const Probe &p : scene_.probes) {
+        std::fprintf(static_states_, ",%s_ux_m,%s_uy_m", p.name.c_str(), p.name.c_str());
+        if (D == 3) std::fprintf(static_states_, ",%s_uz_m", p.name.c_str());
+      }
+      for (const LoadSet &l : scene_.loads) std::fprintf(static_states_, ",%s_reaction_y_N", l.name.c_str());
+      std::fprintf(static_states_, "\n");
+    }
+    std::fprintf(static_states_, "%.17g,%.17g,%" PetscInt_FMT ",%.6e", lambda, t, step, last_kinetic_ / last_internal_);
+    for (std::size_t p = 0; p < probes_.size(); ++p)
+      for (int c = 0; c < D; ++c) std::fprintf(static_states_, ",%.17g", last_probe_u_[D * p + c]);
+    for (std::size_t l = 0; l < scene_.loads.size(); ++l) std::fprintf(static_states_, ",%.17g", last_reaction_[D * l + 1]);
+    std::fprintf(static_states_, "\n");
+    error = FinishRows(static_states_, row_start);
+  }
+  PetscCallMPI(MPI_Bcast(&error, 1, MPI_INT, 0, comm_));
+  PetscCall(CheckRows(comm_, error, scene_.output_dir, "static_states.csv"));
+  // Skip what is left of the hold.
+  loading_.EndHold(k, t);
+  PetscCall(TSSetMaxTime(ts_, loading_.end_time()));
+  PetscFunctionReturn(0);
+}
+
+// A progress line every -progress_interval steps, or (0) every end time / 20 of
+// simulated time: step, time, step size, stretch, energies, broken bonds, wall time.
+template <int D> PetscErrorCode SimulationD<D>::Progress(PetscInt step, double t, PetscBool force)
+{
+  PetscFunctionBegin;
+  const bool due = scene_.progress_interval > 0 ? step % scene_.progress_interval == 0 : progress_times_.Due(t);
+  if (!force && !due) PetscFunctionReturn(0);
+  const double end_time = loading_.end_time();
+  const double wall     = MPI_Wtime() - wall_start_;
+  if (scene_.failure) PetscCall(BrokenBondCount(&total_broken_));
+  double kinetic, internal;
+  PetscCall(Energies(&kinetic, &internal));
+  const double left     = t > 0 ? std::max(0.0, wall * (end_time - t) / t) : 0.0;
+  char shortened[64] = "";
+  // Why the step is short: points flying (the travel limit) or a stiffer material.
+  const double dt = step_control_.current(), base = step_control_.base();
+  if (dt < base)
+    PetscCall(PetscSNPrintf(shortened, sizeof shortened, " (%.3g x, %s)", dt / base, dt < step_control_.stiffness_step() ? "fast points" : "stiffer"));
+  PetscCall(PetscPrintf(comm_, "step %8" PetscInt_FMT "  t %.4e s  dt %.3e s%s  stretch %.4f  KE %.3e J  IE %.3e J  broken %" PetscInt_FMT "  wall %.1f s  left ~%.1f s\n",
+                        step, t, dt, shortened, loading_.stretch_at(t), kinetic, internal, total_broken_, wall, left));
+  PetscFunctionReturn(0);
+}
+
+// How the step went (time_step_control.hpp): how many steps were shortened, and why,
+// and what re-estimating the stable step cost.
+template <int D> PetscErrorCode SimulationD<D>::TimeStepSummary(PetscInt steps)
+{
+  const TimeStepControl &c = step_control_;
+
+  PetscFunctionBegin;
+  if (c.reestimating() && c.estimates() > 0)
+    PetscCall(PetscPrintf(comm_, "time step: re-estimated %" PetscInt_FMT " time(s) (%" PetscInt_FMT " force evaluations, %.1f s); lambda_max up to %.3g x its value at rest\n",
+                          c.estimates(), c.estimate_evaluations(), c.estimate_seconds(), c.largest_lambda() / c.lambda_rest()));
+  if (c.kinks() > 0) // TimeStepControl::Kink: a bond at a switch, read from both sides
+    PetscCall(PetscPrintf(comm_, "time step: %" PetscInt_FMT " estimate(s) dropped: a kink of the force (a bond switching its state), not a stiffness\n", c.kinks()));
+  if (c.shortened_steps() > 0) {
+    char travel[96] = "";
+    if (c.shortened_by_travel() > 0)
+      PetscCall(PetscSNPrintf(travel, sizeof travel, ", %" PetscInt_FMT " by the travel limit (%.3g dx%s, fast points)", c.shortened_by_travel(),
+                              c.travel() / scene_.body.dx, c.travel_automatic() ? ", chosen with failure" : ""));
+    PetscCall(PetscPrintf(comm_, "time step: %" PetscInt_FMT " of %" PetscInt_FMT " step(s) shorter than the full %.4e s: %" PetscInt_FMT " by stiffness (the material stiffened)%s; the shortest %.4e s = %.3g x\n",
+                          c.shortened_steps(), steps, c.base(), c.shortened_by_stiffness(), travel, c.shortest(), c.shortest() / c.base()));
+  }
+  PetscFunctionReturn(0);
+}
+
+template <int D> PetscErrorCode SimulationD<D>::Summary()
+{
+  PetscInt  step;
+  PetscReal t;
+
+  PetscFunctionBegin;
+  PetscCall(TSGetStepNumber(ts_, &step));
+  PetscCall(TSGetTime(ts_, &t));
+  const double *x;
+  std::vector<double> probe_u(D * probes_.size(), 0.0), reaction(D * scene_.loads.size(), 0.0);
+  PetscCall(VecGetArrayRead(X_, &x));
+  PetscCall(ReadProbes(x, probe_u.data()));
+  PetscCall(ComputeForceDensity(x, force_density_.data()));
+  PetscCall(loading_.Reactions(force_density_.data(), reaction.data()));
+  PetscCall(VecRestoreArrayRead(X_, &x));
+  PetscCall(PetscPrintf(comm_, "\n%s: %" PetscInt_FMT " steps, t = %.6e s, stretch %.5f, wall %.1f s\n",
+                        stopped_on_error_ ? "Stopped (see the error below)" : "Finished", step, t, loading_.stretch_at(t),
+                        MPI_Wtime() - wall_start_));
+  for (std::size_t p = 0; p < probes_.size(); ++p)
+    if (D == 2)
+      PetscCall(PetscPrintf(comm_, "probe %-16s ux = %+.6e m  uy = %+.6e m\n", scene_.probes[p].name.c_str(), probe_u[2 * p], probe_u[2 * p + 1]));
+    else
+      PetscCall(PetscPrintf(comm_, "probe %-16s ux = %+.6e m  uy = %+.6e m  uz = %+.6e m\n", scene_.probes[p].name.c_str(), probe_u[D * p],
+                            probe_u[D * p + 1], probe_u[D * p + 2]));
+  for (std::size_t s = 0; s < scene_.loads.size(); ++s)
+    if (D == 2)
+      PetscCall(PetscPrintf(comm_, "load set %-12s reaction y = %+.6e N  nominal stress = %+.6e Pa\n", scene_.loads[s].name.c_str(),
+                            reaction[D * s + 1], reaction[D * s + 1] / NominalArea(scene_)));
+    else
+      PetscCall(PetscPrintf(comm_, "load set %-12s reaction x, y, z = %+.6e, %+.6e, %+.6e N  nominal stress (y) = %+.6e Pa\n",
+                            scene_.loads[s].name.c_str(), reaction[D * s], reaction[D * s + 1], reaction[D * s + 2],
+                            reaction[D * s + 1] / NominalArea(scene_)));
+  PetscInt broken;
+  PetscCall(BrokenBondCount(&broken));
+  if (scene_.failure) PetscCall(PetscPrintf(comm_, "broken bonds: %" PetscInt_FMT "\n", broken));
+  PetscCall(TimeStepSummary(step));
+  if (relaxation_.active())
+    PetscCall(PetscPrintf(comm_, "adaptive relaxation: damping %.4g 1/s now, %.4g to %.4g 1/s over the run\n", relaxation_.last(),
+                          relaxation_.smallest(), relaxation_.largest()));
+  PetscCall(ListOutputFiles());
+  PetscFunctionReturn(0);
+}
+
+namespace {
+
+std::string Size(std::uintmax_t bytes)
+{
+  char text[32];
+  if (bytes < 1000) std::snprintf(text, sizeof text, "%ju B", bytes);
+  else if (bytes < 1000000) std::snprintf(text, sizeof text, "%.1f kB", bytes / 1e3);
+  else if (bytes < 1000000000) std::snprintf(text, sizeof text, "%.1f MB", bytes / 1e6);
+  else std::snprintf(text, sizeof text, "%.2f GB", bytes / 1e9);
+  return text;
+}
+
+} // namespace
+
+// The end of the summary: every file this run wrote (or extended, after a restart),
+// with its size, so that nothing written goes unnoticed and nothing missing is named.
+template <int D> PetscErrorCode SimulationD<D>::ListOutputFiles()
+{
+  PetscFunctionBegin;
+  if (rank_ != 0) PetscFunctionReturn(0);
+  const std::string dir = scene_.output_dir + "/";
+  std::string       text;
+  std::uintmax_t    total = 0;
+  auto line = [&](const std::string &name, const std::string &what) {
+    std::error_code      ec;
+    const std::uintmax_t bytes = std::filesystem::file_size(dir + name, ec);
+    if (ec) return; // not written (or gone: the run's own checks say so)
+    total += bytes;
+    text += Format("  %-22s %10s  %s\n", name.c_str(), Size(bytes).c_str(), what.c_str());
+  };
+  line("history.csv", "a row every -output_interval steps (scripts/plot_history.py)");
+  if (static_states_) line("static_states.csv", "one row per static state");
+  if (output_.fields.enabled) {
+    std::uintmax_t bytes = 0;
+    std::size_t    files = 0;
+    for (const FieldFrame &frame : output_.series.frames) {
+      std::error_code      ec;
+      const std::uintmax_t b = std::filesystem::file_size(dir + FieldFileName(frame.step), ec);
+      if (!ec) bytes += b, ++files;
+    }
+    total += bytes;
+    line("fields.xdmf", "open in ParaView");
+    text += Format("  %-22s %10s  %zu field file(s), t = %.4g to %.4g s\n", "fields/", Size(bytes).c_str(), files,
+                   output_.series.frames.empty() ? 0.0 : output_.series.frames.front().time,
+                   output_.series.frames.empty() ? 0.0 : output_.series.frames.back().time);
+  }
+  if (output_.last_checkpoint_step >= 0)
+    line("checkpoint.h5", Format("step %" PetscInt_FMT ": continue with -restart %scheckpoint.h5", output_.last_checkpoint_step, dir.c_str()));
+  if (scene_.output_final_state) {
+    line("final_state.csv", "every point's displacement, natural order");
+    line("broken_bonds.csv", "broken bonds as pairs of natural ids");
+  }
+  PetscCall(PetscPrintf(PETSC_COMM_SELF, "Output in %s (%s):\n%s", dir.c_str(), Size(total).c_str(), text.c_str()));
+  PetscFunctionReturn(0);
+}
+
+// final_state.csv (natural id, reference position, displacement) and
+// broken_bonds.csv (directed pairs of natural ids), in natural order: files that do
+// not depend on the rank layout, for comparisons across runs.
+template <int D> PetscErrorCode SimulationD<D>::WriteFinalState()
+{
+  std::vector<double>                      u, reference;
+  std::vector<std::pair<int64_t, int64_t>> broken;
+
+  PetscFunctionBegin;
+  PetscCall(GatherDisplacement(&u));
+  PetscCall(GatherNatural(layout_.cloud.x.data(), &reference)); // the layout's copies of the lattice positions
+  PetscCall(GatherBrokenBonds(&broken));
+  // [errno, which file failed (0 final_state.csv, 1 broken_bonds.csv)]: rank 0 writes, every rank learns it.
+  int error[2] = {0, 0};
+  if (rank_ == 0) {
+    // Every write checked: a full disk shows at the flush, or earlier as the error flag.
+    auto finish = [](FILE *f) {
+      errno = 0;
+      int e = (std::fflush(f) != 0 || std::ferror(f)) ? (errno ? errno : EIO) : 0;
+      if (std::fclose(f) != 0 && !e) e = errno;
+      return e;
+    };
+    FILE *f = std::fopen((scene_.output_dir + "/final_state.csv").c_str(), "w");
+    if (!f) error[0] = errno;
+    else {
+      std::fprintf(f, D == 2 ? "natural_id,x_m,y_m,ux_m,uy_m\n" : "natural_id,x_m,y_m,z_m,ux_m,uy_m,uz_m\n");
+      for (std::size_t i = 0; i < (std::size_t)layout_.n_global; ++i) {
+        std::fprintf(f, "%zu", i);
+        for (const std::vector<double> *values : {&reference, &u})
+          for (int c = 0; c < D; ++c) std::fprintf(f, ",%.17g", (*values)[D * i + c]);
+        std::fprintf(f, "\n");
+      }
+      error[0] = finish(f);
+    }
+    if (!error[0]) {
+      error[1] = 1;
+      f        = std::fopen((scene_.output_dir + "/broken_bonds.csv").c_str(), "w");
+      if (!f) error[0] = errno;
+      else {
+        std::fprintf(f, "i,j\n");
+        for (const auto &b : broken) std::fprintf(f, "%lld,%lld\n", (long long)b.first, (long long)b.second);
+        error[0] = finish(f);
+      }
+    }
+  }
+  PetscCallMPI(MPI_Bcast(error, 2, MPI_INT, 0, comm_));
+  PetscCheck(!error[0], comm_, PETSC_ERR_FILE_WRITE, "Cannot write %s/%s: %s: free some space or choose another -output_dir", scene_.output_dir.c_str(),
+             error[1] ? "broken_bonds.csv" : "final_state.csv", std::strerror(error[0]));
+  PetscFunctionReturn(0);
+}
+
+template <int D> PetscErrorCode SimulationD<D>::GatherDisplacement(std::vector<double> *u_natural)
+{
+  const double *x;
+
+  PetscFunctionBegin;
+  PetscCall(VecGetArrayRead(X_, &x));
+  const PetscErrorCode ierr = GatherNatural(x, u_natural);
+  PetscCall(VecRestoreArrayRead(X_, &x));
+  PetscCall(ierr);
+  PetscFunctionReturn(0);
+}
+
+// D values per owned point, gathered on rank 0 in natural order (D per point).
+template <int D> PetscErrorCode SimulationD<D>::GatherNatural(const double *values, std::vector<double> *natural)
+{
+  const PetscInt n = layout_.n_owned;
+
+  PetscFunctionBegin;
+  std::vector<double> mine((D + 1) * n); // the natural id, then the values
+  for (PetscInt i = 0; i < n; ++i) {
+    mine[(D + 1) * i] = (double)layout_.cloud.natural_id[i];
+    for (int c = 0; c < D; ++c) mine[(D + 1) * i + 1 + c] = values[D * i + c];
+  }
+  std::vector<double> all;
+  PetscCall(GatherOnRankZero(comm_, mine, MPI_DOUBLE, &all));
+  natural->clear();
+  if (rank_ == 0) {
+    natural->assign(D * layout_.n_global, 0.0);
+    for (std::size_t k = 0; k < all.size(); k += D + 1) {
+      const std::size_t id = (std::size_t)all[k];
+      for (int c = 0; c < D; ++c) (*natural)[D * id + c] = all[k + 1 + c];
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
+template <int D> PetscErrorCode SimulationD<D>::GatherBrokenBonds(std::vector<std::pair<int64_t, int64_t>> *bonds)
+{
+  PetscFunctionBegin;
+  std::vector<long long> mine;
+  for (PetscInt i = 0; i < layout_.n_owned; ++i)
+    for (std::size_t b = families_.offsets[i]; b < families_.offsets[i + 1]; ++b)
+      if (!bond_state_.is_intact((std::size_t)i, (std::size_t)(b - families_.offsets[i]))) {
+        mine.push_back(layout_.cloud.natural_id[i]);
+        mine.push_back(layout_.cloud.natural_id[families_.neighbour[b]]);
+      }
+  std::vector<long long> all;
+  PetscCall(GatherOnRankZero(comm_, mine, MPI_LONG_LONG, &all));
+  bonds->clear();
+  for (std::size_t k = 0; k + 1 < all.size(); k += 2) bonds->push_back({all[k], all[k + 1]});
+  std::sort(bonds->begin(), bonds->end());
+  PetscFunctionReturn(0);
+}
+
+// The driver at D = 2 and 3 (main.cpp chooses one from the scene): the members defined
+// here, one by one. simulation.cpp instantiates the class, which covers only what it
+// defines; a class may be explicitly instantiated once in a program.
+#define BAPD_SIMULATION_HISTORY(D) \
+  template PetscErrorCode SimulationD<D>::OpenHistory(); \
+  template PetscErrorCode SimulationD<D>::Energies(double *kinetic, double *internal, Vec state); \
+  template PetscErrorCode SimulationD<D>::ReadProbes(const double *u_owned, double *probe_u); \
+  template PetscErrorCode SimulationD<D>::BrokenBondCount(PetscInt *count); \
+  template PetscErrorCode SimulationD<D>::WriteHistoryRow(PetscInt step, double t); \
+  template PetscErrorCode SimulationD<D>::CheckStaticHold(PetscInt step, double t); \
+  template PetscErrorCode SimulationD<D>::Progress(PetscInt step, double t, PetscBool force); \
+  template PetscErrorCode SimulationD<D>::TimeStepSummary(PetscInt steps); \
+  template PetscErrorCode SimulationD<D>::Summary(); \
+  template PetscErrorCode SimulationD<D>::ListOutputFiles(); \
+  template PetscErrorCode SimulationD<D>::WriteFinalState(); \
+  template PetscErrorCode SimulationD<D>::GatherDisplacement(std::vector<double> *u_natural); \
+  template PetscErrorCode SimulationD<D>::GatherNatural(const double *values, std::vector<double> *natural); \
+  template PetscErrorCode SimulationD<D>::GatherBrokenBonds(std::vector<std::pair<int64_t, int64_t>> *bonds);
+BAPD_SIMULATION_HISTORY(2)
+BAPD_SIMULATION_HISTORY(3)
+#undef BAPD_SIMULATION_HISTORY
+
+} // namespace bapd

@@ -1,0 +1,251 @@
+// Scene configuration: every option of a run, read in one PetscOptionsBegin block
+// per component (so -help lists them with units and defaults), then checked as a
+// whole before any work is done. Each rejected value gets one message that names
+// the option and the fix. Every name read is remembered, so that an option nobody
+// read (a typo) can be answered with the nearest real one (CheckUnusedOptions).
+//
+// Reading and checking are separate passes: with -help every block is listed even
+// when the scene is incomplete, and the checks, which need the whole scene (a probe
+// must lie in the body, a stretch grip needs a schedule), see it all at once.
+//
+// Where each part lives (scene_input.hpp lists the sections):
+//   options_reader.cpp   reading one option, the registry of names, warnings
+//   options_unused.cpp   options nobody read, typo suggestions
+//   scene_body.cpp       the sheet, holes, notches, horizon; the point estimate
+//   scene_material.cpp   the constitutive model, its parameters, failure
+//   scene_loading.cpp    grips and the stretch schedule
+//   scene_probes.cpp     probes
+//   scene_run.cpp        output and time stepping
+//   scene_schedule.cpp   lambda(t) at run time
+//   scene_selection.cpp  the points a load set or probe picks at run time
+#include "bapd/solver/input/scene.hpp"
+
+#include <cmath>
+#include <string>
+
+#include "bapd/solver/input/options_reader.hpp"
+#include "bapd/solver/input/scene_input.hpp"
+
+namespace bapd {
+
+const char *to_string(PatchCorrection c)
+{
+  switch (c) {
+  case PatchCorrection::off: return "off";
+  case PatchCorrection::lambda: return "on";
+  case PatchCorrection::virial: return "virial";
+  }
+  return "unknown";
+}
+
+PetscErrorCode SceneFromOptions(MPI_Comm comm, Scene *scene)
+{
+  SceneInput in;
+  PetscBool  help = PETSC_FALSE;
+  PetscFunctionBeginUser;
+  *scene = Scene();
+  ClearWarnings();
+  PetscCall(ReadBody(comm, scene, &in));
+  PetscCall(ReadMaterial(comm, scene, &in));
+  PetscCall(ReadLoading(comm, scene, &in));
+  PetscCall(ReadProbes(comm, &in));
+  PetscCall(ReadOutputTime(comm, scene, &in));
+
+  PetscCall(PetscOptionsHasHelp(nullptr, &help));
+  if (help) {
+    scene->help_only = true;
+    PetscCall(PetscPrintf(comm, "  (per-set options -load_NAME_... and per-probe options -probe_NAME_at are listed for the names given "
+                                "in -load_sets and -probes; see docs/options.md)\n"));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(CheckBody(comm, in, scene));
+  PetscCall(CheckMaterial(comm, in, scene));
+  PetscCall(CheckLoading(comm, in, scene));
+  PetscCall(CheckBodyFits(comm, *scene));
+  PetscCall(CheckProbes(comm, in, scene));
+  PetscCall(CheckOutputTime(comm, in, scene));
+  PetscFunctionReturn(0);
+}
+
+namespace {
+
+// The horizon line: the lattice's one horizon, or given points' own (geometry.hpp:
+// delta_i = factor h_i, h_i = `spacing`; s.horizon() is the smallest, of the smallest
+// spacing, Body2D::dx).
+std::string HorizonText(const Scene &s, bool given_points, const char *spacing)
+{
+  if (given_points)
+    return Format("  horizon   delta_i = %g h_i, h_i = %s (at least %g m); a bond where either reaches\n", s.horizon_factor, spacing,
+                  s.horizon());
+  return Format("  horizon   delta = %g dx = %g m\n", s.horizon_factor, s.horizon());
+}
+
+// The body and horizon lines of a 2D sheet: its size, lattice (or given points), holes,
+// shapes and notches.
+std::string BodyText2D(const Scene &s)
+{
+  const Body2D   &b = s.body;
+  const EdgeRows &g = b.grip_rows;
+  std::string     text;
+  if (b.given_points) // (geometry.hpp: points with their own volumes and horizons)
+    text += Format("  body      %g m x %g m, thickness %g m: %ld points of %s (%zu given), spacing sqrt(V/t) from dx = %g m, %zu "
+                   "hole(s), %zu notch(es)\n",
+                   b.width, b.height, b.thickness, (long)ScenePointEstimate(s), b.given_points->source.c_str(), b.given_points->size(), b.dx,
+                   b.holes.size(), b.notches.size());
+  else text += Format("  body      %g m x %g m, thickness %g m, dx %g m: %ld x %ld lattice%s, %ld points, %zu hole(s), %zu notch(es)\n",
+                 b.width, b.height, b.thickness, b.dx, std::lround(b.width / b.dx), std::lround(b.height / b.dx),
+                 g.any() ? Format(" + grip rows outside (%ld top, %ld bottom, %ld left, %ld right)", (long)g.top, (long)g.bottom,
+                                  (long)g.left, (long)g.right)
+                               .c_str()
+                         : "",
+                 (long)ScenePointEstimate(s), b.holes.size(), b.notches.size());
+  for (const Circle &c : b.holes) text += Format("            hole centre (%g, %g) m, radius %g m\n", c.cx, c.cy, c.radius);
+  for (const Shape &sh : b.shapes) {
+    std::string where;
+    switch (sh.kind) {
+    case Shape::Kind::rectangle: where = Format("[%g, %g] x [%g, %g] m", sh.box[0], sh.box[2], sh.box[1], sh.box[3]); break;
+    case Shape::Kind::circle: where = Format("centre (%g, %g) m, radius %g m", sh.cx, sh.cy, sh.a); break;
+    case Shape::Kind::ellipse:
+      where = Format("centre (%g, %g) m, semi-axes %g m, %g m at %g deg", sh.cx, sh.cy, sh.a, sh.b, sh.angle * 180.0 / M_PI);
+      break;
+    case Shape::Kind::polygon: where = Format("%zu vertices, area %g m^2", sh.vertices.size() / 2, shape_area(sh)); break;
+    case Shape::Kind::mesh: where = Format("%s: %zu triangles, area %g m^2", sh.file.c_str(), sh.triangles.size(), shape_area(sh)); break;
+    }
+    const char *article = sh.kind == Shape::Kind::ellipse ? "an" : "a";
+    text += Format("            shape %s: %s %s %s, %s\n", sh.name.c_str(), to_string(sh.op), article, to_string(sh.kind), where.c_str());
+  }
+  for (const Segment &g : b.notches) text += Format("            notch (%g, %g)-(%g, %g) m\n", g.x0, g.y0, g.x1, g.y1);
+  return text + HorizonText(s, b.given_points != nullptr, "sqrt(V_i / t)");
+}
+
+// The body and horizon lines of a 3D body: the lattice or the cloud, the extent of the
+// points' cells (the faces the load sets hold), each solid and notch by name.
+std::string BodyText3D(const Scene &s)
+{
+  const Body3D &b = s.body3d;
+  std::string   text;
+  const std::string extent =
+      Format("[%g, %g] x [%g, %g] x [%g, %g] m", b.lo[0], b.hi[0], b.lo[1], b.hi[1], b.lo[2], b.hi[2]);
+  if (b.given_points)
+    text += Format("  body      3D: %lld %s of %s (spacing cbrt(V), the smallest %g m), cells in %s, %zu solid(s) cutting them, %zu "
+                   "notch(es)\n",
+                   static_cast<long long>(b.points), b.centroids ? "tetrahedron centroids" : "points", b.source.c_str(), b.solid.dx,
+                   extent.c_str(), b.solid.solids.size() - (b.centroids ? 1 : 0), b.solid.notches.size());
+  else
+    text += Format("  body      3D, dx %g m: %lld points, cells in %s, %zu solid(s), %zu notch(es)\n", b.solid.dx,
+                   static_cast<long long>(b.points), extent.c_str(), b.solid.solids.size(), b.solid.notches.size());
+  for (std::size_t k = 0; k < b.solid.solids.size(); ++k) {
+    const nd::Solid &solid = b.solid.solids[k];
+    std::string      where;
+    switch (solid.kind) {
+    case nd::Solid::Kind::box:
+      where = Format("[%g, %g] x [%g, %g] x [%g, %g] m", solid.lo[0], solid.hi[0], solid.lo[1], solid.hi[1], solid.lo[2], solid.hi[2]);
+      break;
+    case nd::Solid::Kind::cylinder:
+      where = Format("axis (%g, %g, %g)-(%g, %g, %g) m, radius %g m", solid.a[0], solid.a[1], solid.a[2], solid.b[0], solid.b[1], solid.b[2],
+                     solid.radius);
+      break;
+    case nd::Solid::Kind::sphere: where = Format("centre (%g, %g, %g) m, radius %g m", solid.a[0], solid.a[1], solid.a[2], solid.radius); break;
+    case nd::Solid::Kind::mesh:
+      where = Format("%s: %zu tetrahedra, volume %g m^3", solid.mesh->file.c_str(), solid.mesh->size(), nd::solid_volume(solid));
+      break;
+    }
+    const std::string name = k < b.solid_names.size() ? b.solid_names[k] : std::to_string(k + 1);
+    text += Format("            solid %s: %s a %s, %s\n", name.c_str(), to_string(solid.op), nd::to_string(solid.kind), where.c_str());
+  }
+  for (std::size_t k = 0; k < b.solid.notches.size(); ++k) {
+    const std::vector<double> &v    = b.solid.notches[k].vertices;
+    const std::string          name = k < b.notch_names.size() ? b.notch_names[k] : std::to_string(k + 1);
+    std::string                corners;
+    for (std::size_t c = 0; c + 3 <= v.size(); c += 3) corners += Format(" (%g, %g, %g)", v[c], v[c + 1], v[c + 2]);
+    text += Format("            notch %s: a planar polygon of %zu vertices,%s m\n", name.c_str(), v.size() / 3, corners.c_str());
+  }
+  return text + HorizonText(s, b.given_points != nullptr, "cbrt(V_i)");
+}
+
+// Where a load set is: its region in words (3D: a face by its axis, a box of six numbers).
+std::string RegionText(const Scene &s, const LoadSet &l)
+{
+  const bool three = s.dimension == 3;
+  switch (l.region) {
+  case LoadSet::Region::box:
+    return three ? Format("box [%g, %g] x [%g, %g] x [%g, %g] m", l.box[0], l.box[3], l.box[1], l.box[4], l.box[2], l.box[5])
+                 : Format("box [%g, %g] x [%g, %g] m", l.box[0], l.box[2], l.box[1], l.box[3]);
+  case LoadSet::Region::polygon: return Format("polygon of %zu vertices", l.area.vertices.size() / 2);
+  case LoadSet::Region::curve: return Format("within %g m of a polyline of %zu segments", l.depth, l.segments.size() / 4);
+  case LoadSet::Region::group:
+    if (three)
+      return l.elements.dim == 3 ? Format("physical volume '%s' of %s (%zu tetrahedra)", l.group.c_str(), l.file.c_str(), l.elements.size())
+                                 : Format("within %g m of physical %s '%s' of %s (%zu elements)", l.depth,
+                                          l.elements.dim == 2 ? "surface" : l.elements.dim == 1 ? "curve" : "point", l.group.c_str(),
+                                          l.file.c_str(), l.elements.size());
+    return l.segments.empty() ? Format("physical surface '%s' of %s", l.group.c_str(), l.file.c_str())
+                              : Format("within %g m of physical group '%s' of %s", l.depth, l.group.c_str(), l.file.c_str());
+  case LoadSet::Region::block:
+    return Format("block %lld of the cloud (%zu points)", static_cast<long long>(l.block), l.block_points.size() / (three ? 3 : 2));
+  default: break;
+  }
+  if (!three) return Format("%s edge, %d row(s) %s", to_string(l.region), l.layers, to_string(l.placement));
+  const char *axis = l.region == LoadSet::Region::left     ? "x-"
+                     : l.region == LoadSet::Region::right  ? "x+"
+                     : l.region == LoadSet::Region::bottom ? "y-"
+                     : l.region == LoadSet::Region::top    ? "y+"
+                     : l.region == LoadSet::Region::back   ? "z-"
+                                                           : "z+";
+  return Format("%s face (%s), %d row(s) inside", axis, to_string(l.region), l.layers);
+}
+
+} // namespace
+
+std::string SceneText(const Scene &s)
+{
+  const bool  three = s.dimension == 3;
+  std::string text  = "Scene\n"; // built with the C library's printf (see SceneCheck), printed once by SceneView
+  text += three ? BodyText3D(s) : BodyText2D(s);
+  const double K = 2.0 / s.material.D;
+  text += Format("  material  %s, %s: mu %g Pa", to_string(s.model), three ? "3D" : to_string(s.formulation), s.material.mu);
+  if (s.model == ModelKind::gent) text += Format(", Jm %g", s.material.Jm);
+  text += Format(", D %g 1/Pa (bulk modulus K = 2/D = %g Pa = %g mu), density %g kg/m^3\n", s.material.D, K, K / s.material.mu, s.density);
+  text += Format("  force     %s", to_string(s.force_form));
+  if (s.stress_correction != StressCorrection::none) // (absent by default: the summary stays as it was)
+    text += Format(", stress correction %s%s", to_string(s.stress_correction),
+                   s.force_form == ForceForm::energy_consistent ? " (the identity for this form)" : "");
+  if (s.patch_correction != PatchCorrection::off) text += Format(", patch correction %s", to_string(s.patch_correction));
+  text += "\n";
+  if (s.failure) text += Format("  failure   bonds break past stretch s_c = %g\n", s.critical_stretch);
+  else text += "  failure   none\n";
+  auto component = [](ComponentLoad c, double scale) {
+    return c == ComponentLoad::stretch ? Format("stretch (scale %g)", scale) : std::string(to_string(c));
+  };
+  for (const LoadSet &l : s.loads)
+    text += Format("  load set  %s: %s; x %s, y %s%s\n", l.name.c_str(), RegionText(s, l).c_str(), component(l.x, l.x_scale).c_str(),
+                   component(l.y, l.y_scale).c_str(), three ? (", z " + component(l.z, l.z_scale)).c_str() : "");
+  if (s.loads.empty()) text += "  load set  none\n";
+  if (!s.schedule.time.empty()) {
+    text += "  schedule  (t, lambda):";
+    for (std::size_t k = 0; k < s.schedule.time.size(); ++k) text += Format(" (%g s, %g)", s.schedule.time[k], s.schedule.stretch[k]);
+    text += Format("; u = scale (lambda - 1) %g m; grip field %s\n", s.reference_length, to_string(s.grip_field));
+  }
+  for (const Probe &p : s.probes)
+    text += three ? Format("  probe     %s at (%g, %g, %g) m\n", p.name.c_str(), p.x, p.y, p.z)
+                  : Format("  probe     %s at (%g, %g) m\n", p.name.c_str(), p.x, p.y);
+  if (s.time_step > 0) text += Format("  time      step %g s", s.time_step);
+  else text += Format("  time      step %g x the stable step", s.time_step_safety);
+  if (s.time_step_travel > 0) text += Format(" (shorter while a point with bonds would move > %g dx a step)", s.time_step_travel);
+  else if (s.time_step_travel < 0 && s.failure) text += " (shorter while a point with bonds would move > 0.1 dx a step)";
+  text += Format(", damping %g 1/s, end %g s\n", s.damping, s.end_time);
+  if (s.static_tolerance > 0)
+    text += Format("  static    a hold ends once kinetic energy < %g x internal energy (checked at every history row)\n", s.static_tolerance);
+  text += Format("  output    %s/, history every %ld steps\n", s.output_dir.c_str(), (long)s.output_interval);
+  return text;
+}
+
+PetscErrorCode SceneView(MPI_Comm comm, const Scene &s)
+{
+  PetscFunctionBeginUser;
+  if (s.help_only) PetscFunctionReturn(0);
+  PetscCall(PetscPrintf(comm, "%s", SceneText(s).c_str()));
+  PetscFunctionReturn(0);
+}
+
+} // namespace bapd

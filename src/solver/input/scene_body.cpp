@@ -1,0 +1,582 @@
+// The body section: the sheet, its holes and notches, and the horizon (-body_*,
+// -horizon_factor). The checks see the body whole: every hole and notch inside it,
+// none cutting it apart (FindCut), at least one material point left by the hole rule
+// of lattice.hpp, the same rule make_lattice applies. A 3D body (-body_dimension 3) is
+// checked by scene_body3d.cpp.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <cstdint>
+#include <cstdio>
+#include <memory>
+#include <numeric>
+#include <string>
+#include <vector>
+
+#include "bapd/core/geometry/geometry.hpp"
+#include "bapd/solver/input/gmsh_shape.hpp"
+#include "bapd/core/geometry/lattice.hpp"
+#include "bapd/solver/input/options_reader.hpp"
+#include "bapd/solver/input/point_cloud_file.hpp"
+#include "bapd/solver/input/scene_input.hpp"
+
+namespace bapd {
+
+namespace {
+
+// ---------------------------------------------------------------------------------
+// Geometry for the body checks
+
+double PointSegmentDistance(double px, double py, const Segment &s)
+{
+  const double ex = s.x1 - s.x0, ey = s.y1 - s.y0, len2 = ex * ex + ey * ey;
+  double       t = len2 > 0 ? ((px - s.x0) * ex + (py - s.y0) * ey) / len2 : 0.0;
+  t              = std::clamp(t, 0.0, 1.0);
+  return std::hypot(px - (s.x0 + t * ex), py - (s.y0 + t * ey));
+}
+
+double Cross(double ax, double ay, double bx, double by) { return ax * by - ay * bx; }
+
+double SegmentDistance(const Segment &a, const Segment &b)
+{
+  // Proper crossing: the end points of each lie strictly on both sides of the other.
+  const double d1 = Cross(b.x1 - b.x0, b.y1 - b.y0, a.x0 - b.x0, a.y0 - b.y0);
+  const double d2 = Cross(b.x1 - b.x0, b.y1 - b.y0, a.x1 - b.x0, a.y1 - b.y0);
+  const double d3 = Cross(a.x1 - a.x0, a.y1 - a.y0, b.x0 - a.x0, b.y0 - a.y0);
+  const double d4 = Cross(a.x1 - a.x0, a.y1 - a.y0, b.x1 - a.x0, b.y1 - a.y0);
+  if (((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0))) return 0.0;
+  return std::min({PointSegmentDistance(a.x0, a.y0, b), PointSegmentDistance(a.x1, a.y1, b), PointSegmentDistance(b.x0, b.y0, a),
+                   PointSegmentDistance(b.x1, b.y1, a)});
+}
+
+struct UnionFind {
+  std::vector<int> parent;
+  explicit UnionFind(int n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
+  int Find(int i) { return parent[i] == i ? i : parent[i] = Find(parent[i]); }
+  void Join(int a, int b) { parent[Find(a)] = Find(b); }
+};
+
+// The notches and holes, with the four edges, as a graph whose links are contacts
+// closer than half a spacing (a gap that narrow holds no column of lattice points, so
+// every bond across it is cut). Two edges in one connected group mean the body falls
+// apart. Returns "" or the message for the first such pair.
+std::string FindCut(const Body2D &b)
+{
+  const int   n_holes = static_cast<int>(b.holes.size()), n_notches = static_cast<int>(b.notches.size());
+  const int   first_hole = 4, first_notch = 4 + n_holes;
+  const double tol       = 0.5 * b.dx;
+  UnionFind    groups(4 + n_holes + n_notches);
+  enum { left = 0, right = 1, bottom = 2, top = 3 };
+  for (int h = 0; h < n_holes; ++h) {
+    const Circle &c = b.holes[h];
+    if (c.cx - c.radius <= tol) groups.Join(first_hole + h, left);
+    if (b.width - (c.cx + c.radius) <= tol) groups.Join(first_hole + h, right);
+    if (c.cy - c.radius <= tol) groups.Join(first_hole + h, bottom);
+    if (b.height - (c.cy + c.radius) <= tol) groups.Join(first_hole + h, top);
+    for (int k = 0; k < h; ++k)
+      if (std::hypot(c.cx - b.holes[k].cx, c.cy - b.holes[k].cy) - c.radius - b.holes[k].radius <= tol) groups.Join(first_hole + h, first_hole + k);
+  }
+  for (int s = 0; s < n_notches; ++s) {
+    const Segment &g = b.notches[s];
+    if (std::min(g.x0, g.x1) <= tol) groups.Join(first_notch + s, left);
+    if (b.width - std::max(g.x0, g.x1) <= tol) groups.Join(first_notch + s, right);
+    if (std::min(g.y0, g.y1) <= tol) groups.Join(first_notch + s, bottom);
+    if (b.height - std::max(g.y0, g.y1) <= tol) groups.Join(first_notch + s, top);
+    for (int h = 0; h < n_holes; ++h)
+      if (PointSegmentDistance(b.holes[h].cx, b.holes[h].cy, g) - b.holes[h].radius <= tol) groups.Join(first_notch + s, first_hole + h);
+    for (int k = 0; k < s; ++k)
+      if (SegmentDistance(g, b.notches[k]) <= tol) groups.Join(first_notch + s, first_notch + k);
+  }
+  struct Pair {
+    int         a, b;
+    const char *edges, *result;
+  };
+  const Pair pairs[] = {
+    {left, right, "the left and right edges", "cutting the body into a top and a bottom piece"},
+    {bottom, top, "the bottom and top edges", "cutting the body into a left and a right piece"},
+    {left, bottom, "the left and bottom edges", "cutting off the bottom-left corner"},
+    {left, top, "the left and top edges", "cutting off the top-left corner"},
+    {right, bottom, "the right and bottom edges", "cutting off the bottom-right corner"},
+    {right, top, "the right and top edges", "cutting off the top-right corner"},
+  };
+  for (const Pair &p : pairs) {
+    if (groups.Find(p.a) != groups.Find(p.b)) continue;
+    std::string culprits;
+    int         count = 0, notches = 0;
+    for (int s = 0; s < n_notches; ++s)
+      if (groups.Find(first_notch + s) == groups.Find(p.a)) {
+        const Segment &g = b.notches[s];
+        culprits += Format("%snotch %d (%g, %g)-(%g, %g)", count++ ? ", " : "", s + 1, g.x0, g.y0, g.x1, g.y1);
+        ++notches;
+      }
+    for (int h = 0; h < n_holes; ++h)
+      if (groups.Find(first_hole + h) == groups.Find(p.a)) culprits += Format("%shole %d", count++ ? ", " : "", h + 1);
+    const char *options = notches == 0 ? "-body_holes" : notches == count ? "-body_notches" : "-body_notches and -body_holes";
+    const char *fix     = notches == 0 ? "shrink or move a hole" : "shorten a notch so that it ends inside the body (an edge crack starts on one edge only)";
+    return Format("%s: %s %s %s, %s (gaps under dx/2 = %g m count as closed): %s", options, culprits.c_str(), count > 1 ? "together join" : "joins",
+                  p.edges, p.result, tol, fix);
+  }
+  return "";
+}
+
+// Bytes the machine can still give, from /proc/meminfo's MemAvailable (Linux); 0 when
+// it cannot be read (then nothing is refused).
+double AvailableMemoryBytes()
+{
+  std::FILE *file = std::fopen("/proc/meminfo", "r");
+  if (!file) return 0;
+  char   line[256];
+  double kib = 0;
+  while (std::fgets(line, sizeof(line), file))
+    if (std::sscanf(line, "MemAvailable: %lf kB", &kib) == 1) break;
+  std::fclose(file);
+  return kib * 1024.0;
+}
+
+// Refuses a body that cannot fit: the points, their bonds (before anything is built:
+// about pi x horizon_factor^2 a point, the lattice's; after rank 0 has built the bond
+// graph: the real count, CheckBodyMemory) and the memory they need, against what
+// the node of rank 0 has available for the ranks it runs. The cost per point is the
+// one measured at delta = 3.015 dx (docs/performance.md section 2: 1.83 KB, 27.9
+// bonds a point), scaled with the bonds a point has.
+PetscErrorCode CheckMemory(MPI_Comm comm, const Scene &scene, int64_t points, double bonds_per_point)
+{
+  const double bytes_per_point_paper = 1.9e3, horizon_factor_paper = 3.015;
+  const double bytes_per_point = bytes_per_point_paper * bonds_per_point / (M_PI * horizon_factor_paper * horizon_factor_paper);
+  PetscMPIInt  size, rank, node_ranks;
+  MPI_Comm     node;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCallMPI(MPI_Comm_split_type(comm, MPI_COMM_TYPE_SHARED, rank, MPI_INFO_NULL, &node));
+  PetscCallMPI(MPI_Comm_size(node, &node_ranks));
+  PetscCallMPI(MPI_Comm_free(&node));
+  double available = rank == 0 ? AvailableMemoryBytes() : 0.0;
+  PetscCallMPI(MPI_Bcast(&available, 1, MPI_DOUBLE, 0, comm));
+  PetscCallMPI(MPI_Bcast(&node_ranks, 1, MPI_INT, 0, comm));
+  const double per_rank = static_cast<double>(points) * bytes_per_point / size;
+  const double needed   = per_rank * node_ranks; // on rank 0's node
+  if (available <= 0 || needed <= available) PetscFunctionReturn(0);
+  const double gb = 1e9;
+  // Points go as 1/dx^2 (3D: 1/dx^3): the spacing at which the estimate just fits.
+  const double      dx_fit = scene.body.dx * (scene.dimension == 3 ? std::cbrt(needed / available) : std::sqrt(needed / available));
+  const std::string what   = Format("%lld material points and %.3g bonds, about %.3g GB (%.3g GB on each of %d rank(s); %.2g KB a point "
+                                    "at delta = %g x spacing), but this machine has %.3g GB available (MemAvailable, /proc/meminfo)",
+                                    static_cast<long long>(points), static_cast<double>(points) * bonds_per_point,
+                                    static_cast<double>(points) * bytes_per_point / gb, per_rank / gb, size, bytes_per_point / 1e3,
+                                    scene.horizon_factor, available / gb);
+  // Given points have no -body_dx (it is refused with them): the fix is fewer points at
+  // their source, about needed / available times fewer (a spacing that much coarser).
+  const Body2D &b = scene.body;
+  if (scene.body3d.centroids)
+    SETERRQ(comm, PETSC_ERR_USER, "%s",
+            Format("-body_%s_discretisation centroids: the tetrahedra of '%s' give %s: mesh it about %.2g times coarser, use the "
+                   "lattice (-body_dx) instead, or run on more machines",
+                   scene.body3d.solid_names[0].c_str(), scene.body3d.source.c_str(), what.c_str(), 1.05 * std::cbrt(needed / available))
+                .c_str());
+  if (scene.body3d.given_points)
+    SETERRQ(comm, PETSC_ERR_USER, "%s",
+            Format("-body_cloud '%s' gives %s: give a cloud about %.2g times coarser in spacing, a smaller -horizon_factor (bonds go as "
+                   "its cube in 3D), or run on more machines",
+                   scene.body3d.source.c_str(), what.c_str(), 1.05 * std::cbrt(needed / available))
+                .c_str());
+  if (b.given_points) {
+    const Shape *mesh = nullptr;
+    for (const Shape &s : b.shapes)
+      if (s.centroids) mesh = &s;
+    const double coarser = 1.05 * std::sqrt(needed / available);
+    if (mesh)
+      SETERRQ(comm, PETSC_ERR_USER, "%s",
+              Format("-body_%s_discretisation centroids: the elements of '%s' give %s: mesh it about %.2g times coarser (e.g. a "
+                     "larger characteristic length in the .geo, or gmsh -clscale %.2g), use -body_%s_discretisation lattice with "
+                     "a -body_dx of your choice, or run on more machines",
+                     mesh->name.c_str(), b.given_points->source.c_str(), what.c_str(), coarser, coarser, mesh->name.c_str())
+                  .c_str());
+    SETERRQ(comm, PETSC_ERR_USER, "%s",
+            Format("-body_cloud '%s' gives %s: give a cloud about %.2g times coarser in spacing (%.2g times fewer points), a smaller "
+                   "-horizon_factor (bonds go as its square), or run on more machines",
+                   b.given_points->source.c_str(), what.c_str(), coarser, coarser * coarser)
+                .c_str());
+  }
+  SETERRQ(comm, PETSC_ERR_USER, "%s",
+          Format("-body_dx %g m asks for about %s: choose -body_dx %.2g or coarser, or run on more machines", b.dx, what.c_str(), 1.05 * dx_fit)
+              .c_str());
+}
+
+// One shape of -body_shapes, checked and converted (angles to radians).
+PetscErrorCode CheckShape(MPI_Comm comm, const ShapeInput &in, const Body2D &b, TriangleSet *read_mesh, std::vector<Shape> *shapes)
+{
+  Shape       s;
+  const char *n = in.name.c_str();
+  PetscFunctionBeginUser;
+  s.name = in.name;
+  static const char *reserved[] = {"width", "height", "thickness", "dx", "holes", "notches", "shapes"};
+  for (const char *word : reserved)
+    SceneCheck(Lower(in.name) != word, comm, "-body_shapes: '%s' is the name of a body option (-body_%s): give the shape another name", n, word);
+  SceneCheck(in.type_set, comm, "-body_%s_type is required for shape '%s': rectangle, circle, ellipse, polygon or mesh%s", n, n,
+             MisspeltHint("-body_" + in.name + "_type").c_str());
+  const std::string type = Lower(in.type), op = Lower(in.op);
+  if (type == "rectangle") s.kind = Shape::Kind::rectangle;
+  else if (type == "circle") s.kind = Shape::Kind::circle;
+  else if (type == "ellipse") s.kind = Shape::Kind::ellipse;
+  else if (type == "polygon") s.kind = Shape::Kind::polygon;
+  else if (type == "mesh") s.kind = Shape::Kind::mesh;
+  else SceneCheck(false, comm, "-body_%s_type '%s' is not a shape: give rectangle, circle, ellipse, polygon or mesh", n, in.type.c_str());
+  if (op == "subtract") s.op = Shape::Op::subtract;
+  else if (op == "add") s.op = Shape::Op::add;
+  else if (op == "intersect") s.op = Shape::Op::intersect;
+  else SceneCheck(false, comm, "-body_%s_op '%s': give subtract, add or intersect", n, in.op.c_str());
+
+  // Each type takes its own parameters and no other's (a stray one is a mistake).
+  const bool has_box = !in.box.empty(), has_centre = !in.centre.empty(), has_radii = !in.radii.empty(), has_points = !in.points.empty();
+  const bool wanted_box = s.kind == Shape::Kind::rectangle, wanted_points = s.kind == Shape::Kind::polygon;
+  const bool wanted_centre = s.kind == Shape::Kind::circle || s.kind == Shape::Kind::ellipse;
+  const struct {
+    bool        given, wanted;
+    const char *option;
+  } parameters[] = {{has_box, wanted_box, "box"},
+                    {has_centre, wanted_centre, "centre"},
+                    {in.radius_set, s.kind == Shape::Kind::circle, "radius"},
+                    {has_radii, s.kind == Shape::Kind::ellipse, "radii"},
+                    {in.angle != 0, s.kind == Shape::Kind::ellipse, "angle"},
+                    {has_points, wanted_points, "points"},
+                    {!in.file.empty(), s.kind == Shape::Kind::mesh, "file"},
+                    {Lower(in.discretisation) != "lattice", s.kind == Shape::Kind::mesh, "discretisation"}};
+  for (const auto &p : parameters)
+    SceneCheck(!p.given || p.wanted, comm, "-body_%s_%s is not a parameter of a %s: remove it, or change -body_%s_type", n, p.option,
+               to_string(s.kind), n);
+  switch (s.kind) {
+  case Shape::Kind::rectangle:
+    SceneCheck(in.box.size() == 4, comm, "-body_%s_box holds %zu numbers: give xmin,ymin,xmax,ymax in m", n, in.box.size());
+    SceneCheck(in.box[2] > in.box[0] && in.box[3] > in.box[1], comm,
+               "-body_%s_box %g,%g,%g,%g: give xmin,ymin,xmax,ymax with xmax > xmin and ymax > ymin", n, in.box[0], in.box[1], in.box[2],
+               in.box[3]);
+    std::copy(in.box.begin(), in.box.end(), s.box);
+    break;
+  case Shape::Kind::circle:
+  case Shape::Kind::ellipse:
+    SceneCheck(in.centre.size() == 2, comm, "-body_%s_centre holds %zu numbers: give x,y in m", n, in.centre.size());
+    s.cx = in.centre[0], s.cy = in.centre[1];
+    if (s.kind == Shape::Kind::circle) {
+      SceneCheck(in.radius_set && in.radius > 0, comm, "-body_%s_radius: give the circle's radius in m, > 0", n);
+      s.a = s.b = in.radius;
+    } else {
+      SceneCheck(in.radii.size() == 2 && in.radii[0] > 0 && in.radii[1] > 0, comm,
+                 "-body_%s_radii: give the ellipse's two semi-axes a,b in m, both > 0", n);
+      s.a = in.radii[0], s.b = in.radii[1], s.angle = in.angle * M_PI / 180.0;
+    }
+    break;
+  case Shape::Kind::polygon: {
+    SceneCheck(in.points.size() % 2 == 0, comm, "-body_%s_points holds %zu numbers: give vertex pairs x0,y0,x1,y1,... in m", n,
+               in.points.size());
+    s.vertices = in.points;
+    const std::string problem = polygon_problem(s.vertices);
+    SceneCheck(problem.empty(), comm, "-body_%s_points: %s", n, problem.c_str());
+    break;
+  }
+  case Shape::Kind::mesh: {
+    SceneCheck(!in.file.empty(), comm, "-body_%s_file: give the Gmsh .geo or .msh file of shape '%s'", n, n);
+    // Every rank reads the (small) outline: the scene checks and probes use it too.
+    s.file      = in.file;
+    s.centroids = Lower(in.discretisation) == "centroids";
+    if (read_mesh) s.triangles = std::move(*read_mesh); // (read by CheckBody for its centroids)
+    else {
+      const std::string problem = ReadGmshTriangles(in.file, &s.triangles);
+      SceneCheck(problem.empty(), comm, "-body_%s_file: %s", n, problem.c_str());
+    }
+    break;
+  }
+  }
+  // A shape that does not touch the sheet does nothing: surely a mistake in a number.
+  // (With given points: none of them; the mesh whose centroids they are holds them all.)
+  bool touches = s.centroids;
+  if (b.given_points) {
+    const GivenPoints &g = *b.given_points;
+    for (std::size_t p = 0; p < g.size() && !touches; ++p) touches = shape_contains(s, g.x[2 * p], g.x[2 * p + 1]);
+  } else {
+    const LatticeCells cells = lattice_cells(b);
+    const int64_t      step  = std::max<int64_t>(1, std::max(cells.nx, cells.ny) / 2000);
+    for (int64_t iy = 0; iy < cells.ny && !touches; iy += step)
+      for (int64_t ix = 0; ix < cells.nx && !touches; ix += step)
+        touches = shape_contains(s, (ix + 0.5) * b.dx, (iy + 0.5) * b.dx);
+  }
+  SceneCheck(touches || s.op == Shape::Op::intersect, comm,
+             "-body_%s: the %s holds no %s point of the sheet [0, %g] x [0, %g] m (spacing %g m), so it changes nothing: check "
+             "its position and size",
+             n, to_string(s.kind), b.given_points ? "given" : "lattice", b.width, b.height, b.dx);
+  shapes->push_back(s);
+  PetscFunctionReturn(0);
+}
+
+
+} // namespace
+
+PetscErrorCode CheckHorizonFactor(MPI_Comm comm, const Scene &scene)
+{
+  PetscFunctionBeginUser;
+  SceneCheck(scene.horizon_factor >= 1, comm,
+             "-horizon_factor %g is below 1: the horizon delta = factor x dx must reach the nearest neighbours; use 3.015 (the paper's "
+             "value), or a value in [2, 5]",
+             scene.horizon_factor);
+  if (scene.horizon_factor < 2 || scene.horizon_factor > 5)
+    PetscCall(Warn(comm, Format("-horizon_factor %g is outside [2, 5]: too few neighbours make the shape tensor fragile, too many "
+                                "smooth the solution and cost time; the paper uses 3.015",
+                                scene.horizon_factor)));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ReadBody(MPI_Comm comm, Scene *scene, SceneInput *in)
+{
+  Body2D     &b = scene->body;
+  PetscFunctionBeginUser;
+  PetscCall(ReadOptionBlock(comm, nullptr, "Body: a plane sheet [0, width] x [0, height] cut by holes, shapes and notches", [&](OptionReader &r) -> PetscErrorCode {
+    PetscCall(r.Real("-body_width", "Sheet width along x [m] (required)", &b.width, &in->width_set));
+    PetscCall(r.Real("-body_height", "Sheet height along y [m] (required)", &b.height, &in->height_set));
+    PetscCall(r.Real("-body_thickness", "Sheet thickness [m] (required)", &b.thickness, &in->thickness_set));
+    PetscCall(r.Real("-body_dx", "Lattice spacing of the material points [m] (required)", &b.dx, &in->dx_set));
+    PetscCall(r.RealArray("-body_holes", "Circular holes cx,cy,r,cx,cy,r,... [m] (default: none)", &in->holes));
+    PetscCall(r.RealArray("-body_notches", "Pre-notch segments x0,y0,x1,y1,... [m]; bonds crossing one are never created (default: none)", &in->notches));
+    PetscCall(r.String("-body_cloud",
+                       "Point cloud file instead of the lattice: x, y, volume [, block_id] a point, .csv or .h5 [m, m^3] (default: "
+                       "the lattice); 3D: x, y, z, volume [, block_id], text",
+                       &in->cloud));
+    PetscCall(r.Int("-body_dimension",
+                    "2 (a plane sheet) or 3 (a solid body: -body_shapes of type box, cylinder, sphere, mesh (a Gmsh volume), notch) "
+                    "(default: 3 if a shape is a 3D solid or notch, else 2)",
+                    &in->dimension, &in->dimension_set));
+    PetscCall(r.StringArray("-body_shapes", "Shapes applied in order to the sheet, name1,name2,... (each shape S is set by -body_S_...)",
+                            &in->shape_names));
+    return 0;
+  }));
+  PetscCall(CheckNames(comm, in->shape_names, "-body_shapes", "shape"));
+  for (const std::string &name : in->shape_names) {
+    ShapeInput        shape;
+    const std::string prefix = "body_" + name + "_", title = "Shape " + name;
+    shape.name               = name;
+    PetscCall(ReadOptionBlock(comm, prefix.c_str(), title.c_str(), [&](OptionReader &r) -> PetscErrorCode {
+      PetscCall(r.String("-type",
+                         "rectangle | circle | ellipse | polygon | mesh (a Gmsh file); 3D: box | cylinder | sphere | mesh (a Gmsh "
+                         "volume) | notch (a planar polygon) (required)",
+                         &shape.type, &shape.type_set));
+      PetscCall(r.String("-op",
+                         "What it does to the body so far: subtract | add (within the sheet) | intersect (default subtract; 3D: add "
+                         "for the first solid, which starts the body, subtract after it)",
+                         &shape.op, &shape.op_set));
+      PetscCall(r.RealArray("-box", "Rectangle xmin,ymin,xmax,ymax [m]; 3D box xmin,ymin,zmin,xmax,ymax,zmax [m]", &shape.box));
+      PetscCall(r.RealArray("-centre", "Circle or ellipse centre x,y [m]; 3D sphere x,y,z [m]", &shape.centre));
+      PetscCall(r.Real("-radius", "Circle, 3D sphere or cylinder radius [m]", &shape.radius, &shape.radius_set));
+      PetscCall(r.RealArray("-axis", "3D cylinder: its axis's end points (the end caps' centres) x0,y0,z0,x1,y1,z1 [m]", &shape.axis));
+      PetscCall(r.RealArray("-radii", "Ellipse semi-axes a,b [m] (a along -angle)", &shape.radii));
+      PetscCall(r.Real("-angle", "Ellipse: angle of the a axis from x [degrees]", &shape.angle));
+      PetscCall(r.RealArray("-points",
+                            "Polygon vertices x0,y0,x1,y1,... [m] (closed: the last joins the first); 3D notch: x0,y0,z0,x1,y1,z1,... in "
+                            "one plane",
+                            &shape.points));
+      PetscCall(r.String("-file",
+                         "Mesh: a Gmsh .geo (meshed in 2D) or .msh file whose 2D elements are the shape [m]; 3D: a .geo with a volume "
+                         "(meshed in 3D) or a .msh of tetrahedra",
+                         &shape.file));
+      PetscCall(r.String("-discretisation",
+                         "Mesh: lattice (the lattice clipped to the mesh) | centroids (one point per 2D element, volume = area x "
+                         "thickness; 3D: per tetrahedron, volume = its volume)",
+                         &shape.discretisation));
+      return 0;
+    }));
+    in->shapes.push_back(shape);
+  }
+
+  PetscCall(ReadOptionBlock(comm, nullptr, "Horizon", [&](OptionReader &r) -> PetscErrorCode {
+    PetscCall(r.Real("-horizon_factor", "Horizon over lattice spacing, delta/dx [-] (given points: over each one's spacing sqrt(V/t), 3D cbrt(V)) (paper: 3.015; 2.515 and 3.515 also studied)",
+                     &scene->horizon_factor, nullptr, "3.015"));
+    return 0;
+  }));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode CheckBody(MPI_Comm comm, const SceneInput &in, Scene *scene)
+{
+  Body2D &b = scene->body;
+  PetscFunctionBeginUser;
+  // The dimension: -body_dimension, else 3 if a shape is a 3D solid or notch.
+  const ShapeInput *solid = nullptr;
+  for (const ShapeInput &si : in.shapes)
+    if (!solid && IsShape3D(si.type)) solid = &si;
+  if (in.dimension_set) {
+    SceneCheck(in.dimension == 2 || in.dimension == 3, comm, "-body_dimension %" PetscInt_FMT ": give 2 (a plane sheet) or 3 (a solid body)",
+               in.dimension);
+    SceneCheck(in.dimension == 3 || !solid, comm,
+               "-body_%s_type %s is a shape of a 3D body, but -body_dimension is 2: use the sheet's shapes (rectangle, circle, ellipse, "
+               "polygon, mesh), or -body_dimension 3",
+               solid ? solid->name.c_str() : "", solid ? solid->type.c_str() : "");
+  }
+  scene->dimension = in.dimension_set ? static_cast<int>(in.dimension) : solid ? 3 : 2;
+  if (scene->dimension == 3) {
+    PetscCall(CheckBody3D(comm, in, scene));
+    PetscFunctionReturn(0);
+  }
+  // Given points (geometry.hpp) instead of the lattice: a cloud file, or the element
+  // centroids of one mesh shape. They fix the spacing (dx: the smallest), and the
+  // sheet's size unless it is given (the points' extent, half a spacing beyond them).
+  const ShapeInput *centroid_shape = nullptr;
+  for (const ShapeInput &si : in.shapes) {
+    const char *n = si.name.c_str();
+    if (Lower(si.discretisation) == "lattice") continue;
+    SceneCheck(Lower(si.discretisation) == "centroids", comm, "-body_%s_discretisation '%s' is not a choice: choose lattice or centroids", n,
+               si.discretisation.c_str());
+    SceneCheck(Lower(si.type) == "mesh", comm,
+               "-body_%s_discretisation centroids: only a mesh shape (-body_%s_type mesh) has elements whose centroids can be the points; "
+               "remove it, or make the shape a Gmsh mesh",
+               n, n);
+    SceneCheck(!centroid_shape, comm,
+               "-body_%s_discretisation and -body_%s_discretisation are both centroids: the body's points come from one mesh; keep one",
+               centroid_shape ? centroid_shape->name.c_str() : "", n);
+    SceneCheck(in.cloud.empty(), comm, "-body_%s_discretisation centroids and -body_cloud both give the body's points: keep one", n);
+    centroid_shape = &si;
+  }
+  b.given_points.reset();
+  TriangleSet centroid_mesh; // the centroid shape's mesh, read once (CheckShape takes it)
+  if (!in.cloud.empty() || centroid_shape) {
+    const std::string source = centroid_shape ? "-body_" + centroid_shape->name + "_discretisation centroids" : "-body_cloud";
+    SceneCheck(in.thickness_set && b.thickness > 0, comm,
+               "-body_thickness is required and must be > 0 m: %s turns volumes into spacings with it (YAML: body: {thickness: 0.001})",
+               source.c_str());
+    auto points = std::make_shared<GivenPoints>();
+    if (centroid_shape) {
+      const char       *n       = centroid_shape->name.c_str();
+      SceneCheck(!centroid_shape->file.empty(), comm, "-body_%s_file: give the Gmsh .geo or .msh file of shape '%s'", n, n);
+      const std::string problem = ReadGmshTriangles(centroid_shape->file, &centroid_mesh);
+      SceneCheck(problem.empty(), comm, "-body_%s_file: %s", n, problem.c_str());
+      *points        = element_centroids(centroid_mesh, b.thickness);
+      points->source = centroid_shape->file;
+      for (std::size_t p = 0; p < points->size(); ++p)
+        SceneCheck(points->volume[p] > 0, comm,
+                   "-body_%s_file: 2D element %zu of '%s' has zero area, so its centroid point would have no volume: fix the mesh", n, p + 1,
+                   centroid_shape->file.c_str());
+    } else {
+      const std::string problem = ReadPointCloud(in.cloud, points.get());
+      SceneCheck(problem.empty(), comm, "-body_cloud: %s", problem.c_str());
+    }
+    double right = 0, top = 0;
+    for (std::size_t p = 0; p < points->size(); ++p) {
+      const double h = point_spacing(points->volume[p], b.thickness);
+      right          = std::max(right, points->x[2 * p] + 0.5 * h);
+      top            = std::max(top, points->x[2 * p + 1] + 0.5 * h);
+    }
+    if (!in.width_set) b.width = right;
+    if (!in.height_set) b.height = top;
+    for (std::size_t p = 0; p < points->size(); ++p) {
+      const double x = points->x[2 * p], y = points->x[2 * p + 1];
+      SceneCheck(x >= 0 && x <= b.width && y >= 0 && y <= b.height, comm,
+                 "%s: point %zu at (%g, %g) m lies outside the sheet [0, %g] x [0, %g] m: shift the points into x >= 0, y >= 0%s", source.c_str(),
+                 p + 1, x, y, b.width, b.height, in.width_set || in.height_set ? ", or enlarge -body_width / -body_height" : "");
+    }
+    SceneCheck(!in.dx_set, comm,
+               "-body_dx is the lattice spacing, but %s gives the body's points, each with its own volume (its spacing is sqrt(volume / "
+               "thickness)): remove -body_dx",
+               source.c_str());
+    b.dx           = smallest_spacing(*points, b.thickness);
+    b.given_points = points;
+  }
+  const bool given = b.given_points != nullptr;
+  const struct {
+    bool        set;
+    double      value;
+    const char *name, *what, *yaml;
+  } sizes[] = {
+    {in.width_set || given, b.width, "-body_width", "the sheet width along x", "width: 0.08"},
+    {in.height_set || given, b.height, "-body_height", "the sheet height along y", "height: 0.16"},
+    {in.thickness_set, b.thickness, "-body_thickness", "the sheet thickness", "thickness: 0.001"},
+    {in.dx_set || given, b.dx, "-body_dx", "the lattice spacing", "dx: 0.001"},
+  };
+  for (const auto &s : sizes) {
+    SceneCheck(s.set, comm, "%s is required: give %s in metres (YAML: body: {%s})%s", s.name, s.what, s.yaml, MisspeltHint(s.name).c_str());
+    SceneCheck(s.value > 0, comm, "%s %g: %s must be > 0 m", s.name, s.value, s.what);
+  }
+  SceneCheck(b.dx <= b.width && b.dx <= b.height, comm,
+             "-body_dx %g m is larger than the body (%g m x %g m): choose a spacing well below the smaller side, e.g. -body_dx %g", b.dx,
+             b.width, b.height, std::min(b.width, b.height) / 20);
+  const double tol = 1e-12 * std::max(b.width, b.height); // round-off in the input numbers
+
+  SceneCheck(in.holes.size() % 3 == 0, comm,
+             "-body_holes holds %zu numbers, not a multiple of 3: give each hole as cx,cy,r (e.g. -body_holes 0.04,0.08,0.01)", in.holes.size());
+  b.holes.clear();
+  for (std::size_t h = 0; 3 * h < in.holes.size(); ++h) {
+    const Circle c = {in.holes[3 * h], in.holes[3 * h + 1], in.holes[3 * h + 2]};
+    SceneCheck(c.radius > 0, comm, "-body_holes: hole %zu has radius %g m: a radius must be > 0", h + 1, c.radius);
+    double far = 0; // distance from the centre to the farthest corner
+    for (double x : {0.0, b.width})
+      for (double y : {0.0, b.height}) far = std::max(far, std::hypot(x - c.cx, y - c.cy));
+    SceneCheck(c.radius < far, comm,
+               "-body_holes: hole %zu (centre (%g, %g) m, radius %g m) covers the whole body and leaves no material: reduce its radius",
+               h + 1, c.cx, c.cy, c.radius);
+    // A hole may reach outside the sheet (a waisted sheet is a sheet less two discs
+    // that cross its sides), but it must cut into it.
+    const double near = std::hypot(c.cx - std::clamp(c.cx, 0.0, b.width), c.cy - std::clamp(c.cy, 0.0, b.height));
+    SceneCheck(near < c.radius, comm,
+               "-body_holes: hole %zu (centre (%g, %g) m, radius %g m) does not reach the body [0, %g] x [0, %g] m: move its centre "
+               "or enlarge its radius",
+               h + 1, c.cx, c.cy, c.radius, b.width, b.height);
+    b.holes.push_back(c);
+  }
+
+  SceneCheck(in.notches.size() % 4 == 0, comm,
+             "-body_notches holds %zu numbers, not a multiple of 4: give each notch as x0,y0,x1,y1 (e.g. -body_notches 0.05,0.005,0.07,0.005)",
+             in.notches.size());
+  b.notches.clear();
+  for (std::size_t s = 0; 4 * s < in.notches.size(); ++s) {
+    const Segment g = {in.notches[4 * s], in.notches[4 * s + 1], in.notches[4 * s + 2], in.notches[4 * s + 3]};
+    for (int end = 0; end < 2; ++end) {
+      const double x = end ? g.x1 : g.x0, y = end ? g.y1 : g.y0;
+      SceneCheck(x >= -tol && x <= b.width + tol && y >= -tol && y <= b.height + tol, comm,
+                 "-body_notches: notch %zu ends at (%g, %g) m, outside the body [0, %g] x [0, %g] m: move that end inside (an edge crack "
+                 "ends on the edge)",
+                 s + 1, x, y, b.width, b.height);
+    }
+    SceneCheck(std::hypot(g.x1 - g.x0, g.y1 - g.y0) > tol, comm,
+               "-body_notches: notch %zu has zero length (both ends at (%g, %g) m): give two different end points", s + 1, g.x0, g.y0);
+    b.notches.push_back(g);
+  }
+  b.shapes.clear();
+  for (const ShapeInput &si : in.shapes) PetscCall(CheckShape(comm, si, b, &si == centroid_shape ? &centroid_mesh : nullptr, &b.shapes));
+  const std::string cut = FindCut(b);
+  PetscCheck(cut.empty(), comm, PETSC_ERR_USER, "%s", cut.c_str());
+  const int64_t points = ScenePointEstimate(*scene);
+  SceneCheck(points > 0, comm, "%s leave no material point %s %g m: %s",
+             b.shapes.empty() ? "-body_holes: the holes" : "-body_holes and -body_shapes: the holes and shapes",
+             given ? "of the given points, smallest spacing" : "on the lattice of spacing -body_dx", b.dx,
+             b.shapes.empty() ? "reduce their radii or dx" : "check each shape's -body_NAME_op (subtract removes what it covers)");
+  if (!b.shapes.empty() && !given) {
+    // The holes and notches are checked above edge by edge (FindCut); shapes can make
+    // any outline, so the lattice itself is looked at.
+    const LatticePieces pieces = lattice_pieces(b);
+    SceneCheck(pieces.count <= 1, comm,
+               "-body_shapes: the body falls apart into %lld pieces on the lattice of spacing %g m (the smallest, %lld point(s), at "
+               "(%g, %g) m): change the shapes so that the body is one piece, or remove the stray one",
+               (long long)pieces.count, b.dx, (long long)pieces.smallest_points, pieces.smallest_x, pieces.smallest_y);
+  }
+
+  PetscCall(CheckHorizonFactor(comm, *scene));
+  PetscFunctionReturn(0);
+}
+
+// After CheckLoading: the grips outside the sheet (Body2D::grip_rows) are points too.
+PetscErrorCode CheckBodyFits(MPI_Comm comm, const Scene &scene)
+{
+  PetscFunctionBeginUser;
+  const double f = scene.horizon_factor; // bonds a point on the lattice: the horizon's area (2D) or volume (3D) in cells
+  PetscCall(CheckMemory(comm, scene, ScenePointEstimate(scene), scene.dimension == 3 ? 4.0 / 3.0 * M_PI * f * f * f : M_PI * f * f));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode CheckBodyMemory(MPI_Comm comm, const Scene &scene, int64_t points, int64_t bonds)
+{
+  PetscFunctionBeginUser;
+  PetscCall(CheckMemory(comm, scene, points, points > 0 ? static_cast<double>(bonds) / static_cast<double>(points) : 0.0));
+  PetscFunctionReturn(0);
+}
+
+int64_t ScenePointEstimate(const Scene &scene) { return scene.dimension == 3 ? scene.body3d.points : body_point_count(scene.body); }
+
+} // namespace bapd

@@ -1,0 +1,89 @@
+// Bond failure across ranks (failure.hpp).
+#include "bapd/solver/operators/failure.hpp"
+
+#include <algorithm>
+
+#include "bapd/core/kernel/damage.hpp"
+
+namespace bapd {
+
+Failure::~Failure()
+{
+  PetscSFDestroy(&sf_);
+  if (mask_ != MPI_DATATYPE_NULL) MPI_Type_free(&mask_);
+}
+
+// The owner of a point evaluates every bond of it and every bond towards it, so its
+// intact mask is the complete one; a rank holding the point as a ring-1 ghost may
+// miss a failure of (j -> i) when j is a ring-2 ghost there (and, across a notch, j
+// can still sit inside B_ik of an owned k). Copying the owners' masks to the ring-1
+// ghosts after every breaking pass keeps every layout on the same bond state.
+PetscErrorCode Failure::Setup(MPI_Comm comm, const Layout &layout, const Families &families, double critical_stretch)
+{
+  PetscMPIInt size;
+
+  PetscFunctionBegin;
+  layout_           = &layout;
+  families_         = &families;
+  critical_stretch_ = critical_stretch;
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  std::vector<PetscInt> starts(size + 1);
+  PetscInt              mine = layout.owned_start;
+  PetscCallMPI(MPI_Allgather(&mine, 1, MPIU_INT, starts.data(), 1, MPIU_INT, comm));
+  starts[size] = layout.n_global;
+  std::vector<PetscSFNode> remote(layout.n_ring1);
+  for (PetscInt g = 0; g < layout.n_ring1; ++g) {
+    const PetscInt p = layout.petsc_index[layout.n_owned + g];
+    const int      r = (int)(std::upper_bound(starts.begin(), starts.end(), p) - starts.begin()) - 1;
+    remote[g].rank   = r;
+    remote[g].index  = p - starts[r];
+  }
+  PetscCall(PetscSFCreate(comm, &sf_));
+  PetscCall(PetscSFSetGraph(sf_, layout.n_owned, layout.n_ring1, nullptr, PETSC_COPY_VALUES, remote.data(), PETSC_COPY_VALUES));
+  PetscCall(PetscSFSetUp(sf_));
+  PetscCallMPI(MPI_Type_contiguous((int)families.mask_words, MPI_UINT64_T, &mask_));
+  PetscCallMPI(MPI_Type_commit(&mask_));
+  ghost_masks_.resize(layout.n_ring1 * families.mask_words);
+  touched_.reserve(3 * (std::size_t)layout.n_family());
+  stretched_.reserve((std::size_t)layout.n_family());
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Failure::SynchroniseGhosts(BondState &state)
+{
+  const std::size_t W = families_->mask_words;
+
+  PetscFunctionBegin;
+  PetscCall(PetscSFBcastBegin(sf_, mask_, state.intact.data(), ghost_masks_.data(), MPI_REPLACE));
+  PetscCall(PetscSFBcastEnd(sf_, mask_, state.intact.data(), ghost_masks_.data(), MPI_REPLACE));
+  std::uint64_t *ghost = state.intact.data() + layout_->n_owned * W;
+  for (PetscInt g = 0; g < layout_->n_ring1; ++g)
+    if (!std::equal(ghost + g * W, ghost + (g + 1) * W, ghost_masks_.data() + g * W)) {
+      std::copy(ghost_masks_.data() + g * W, ghost_masks_.data() + (g + 1) * W, ghost + g * W);
+      touched_.push_back((std::size_t)(layout_->n_owned + g));
+    }
+  PetscFunctionReturn(0);
+}
+
+template <int D>
+PetscErrorCode Failure::Break(const double *y, std::vector<FailedBond> &failed, BondState &state, nd::BondGeometry<D> &geometry)
+{
+  PetscFunctionBegin;
+  touched_.clear();
+  // Bonds whose model hit the Gent chain limit in the last force evaluation break
+  // too (the polymer chains rupture). A rank may miss the failure of a copy (j -> i)
+  // when it holds j only as a ring-2 ghost; then j lies beyond one horizon of every
+  // owned point and the stale bit never enters an owned force (see README).
+  break_failed_bonds(*families_, state, failed, touched_);
+  failed.clear();
+  nd::break_bonds<D>(layout_->cloud, y, *families_, critical_stretch_, state, stretched_);
+  touched_.insert(touched_.end(), stretched_.begin(), stretched_.end());
+  PetscCall(SynchroniseGhosts(state));
+  if (!touched_.empty()) nd::compute_bond_geometry<D>(layout_->cloud, *families_, state, geometry, touched_);
+  PetscFunctionReturn(0);
+}
+
+template PetscErrorCode Failure::Break<2>(const double *, std::vector<FailedBond> &, BondState &, nd::BondGeometry<2> &);
+template PetscErrorCode Failure::Break<3>(const double *, std::vector<FailedBond> &, BondState &, nd::BondGeometry<3> &);
+
+} // namespace bapd

@@ -1,0 +1,180 @@
+#include "bapd/solver/parallel/layout.hpp"
+
+#include <algorithm>
+
+#include "bapd/core/kernel/ba_force.hpp"
+#include "bapd/solver/parallel/partition.hpp"
+
+namespace bapd {
+
+namespace {
+
+// Per-rank lists of natural ids, built on rank 0.
+struct RankPoints {
+  std::vector<int> owned, ring1, ring2;
+};
+
+void CollectRings(int nranks, const std::vector<int> &part, const std::vector<int> &offsets,
+                  const std::vector<int> &neighbours, std::vector<RankPoints> *ranks)
+{
+  const int        n = (int)part.size();
+  std::vector<int> mark(n, -1); // rank that last claimed the point, per pass
+  ranks->assign(nranks, RankPoints{});
+  for (int i = 0; i < n; ++i) (*ranks)[part[i]].owned.push_back(i);
+  for (int r = 0; r < nranks; ++r) {
+    RankPoints &rp = (*ranks)[r];
+    for (int i : rp.owned) mark[i] = 2 * r; // owned
+    for (int i : rp.owned)
+      for (int b = offsets[i]; b < offsets[i + 1]; ++b) {
+        const int j = neighbours[b];
+        if (mark[j] != 2 * r) {
+          mark[j] = 2 * r;
+          rp.ring1.push_back(j);
+        }
+      }
+    for (int i : rp.ring1) mark[i] = 2 * r + 1;
+    for (int i : rp.owned) mark[i] = 2 * r + 1;
+    for (int i : rp.ring1)
+      for (int b = offsets[i]; b < offsets[i + 1]; ++b) {
+        const int j = neighbours[b];
+        if (mark[j] != 2 * r + 1) {
+          mark[j] = 2 * r + 1;
+          rp.ring2.push_back(j);
+        }
+      }
+    std::sort(rp.ring1.begin(), rp.ring1.end());
+    std::sort(rp.ring2.begin(), rp.ring2.end());
+  }
+}
+
+} // namespace
+
+template <int D>
+PetscErrorCode DistributePoints(MPI_Comm comm, const PointCloud &global_cloud, const std::vector<int> &offsets,
+                                const std::vector<int> &neighbours, Layout *layout)
+{
+  PetscMPIInt rank, size;
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  PetscInt n_global = (PetscInt)global_cloud.size(), edge_cut = 0;
+  PetscCallMPI(MPI_Bcast(&n_global, 1, MPIU_INT, 0, comm));
+  // Reals per point: the D coordinates, V, V(H), and delta_i when the points have their
+  // own horizons, then the patch correction's numbers with -force_patch_correction:
+  // lambda_i (D, on) or mu_i, S_i (D + D(D+1)/2, virial: 5 in 2D; patch_correction.hpp,
+  // nd::patch_stride), the ring-1 points' included, which the kernel reads as neighbours.
+  constexpr int kVolume = D, kFamilyVolume = D + 1, kHorizon = D + 2; // their places in a point's reals
+  int R = global_cloud.horizon.empty() ? D + 2 : D + 3,
+      L = global_cloud.patch_correction.empty() ? 0 : (int)nd::patch_stride<D>(global_cloud.patch_virial);
+  PetscCallMPI(MPI_Bcast(&R, 1, MPI_INT, 0, comm));
+  PetscCallMPI(MPI_Bcast(&L, 1, MPI_INT, 0, comm));
+  const int  H           = R; // where the patch correction's numbers start in a point's reals
+  const bool own_horizon = R == D + 3;
+  R += L;
+  PetscCheck(n_global >= size, comm, PETSC_ERR_USER, "The body has %" PetscInt_FMT " points, fewer than the %d ranks: run on fewer ranks or refine -body_dx", n_global, size);
+
+  std::vector<int>      my_ids;
+  std::vector<PetscInt> my_petsc;
+  std::vector<double>   my_real;
+  PetscInt              my_counts[3];
+
+  if (rank == 0) {
+    std::vector<int> part;
+    PetscCall(PartitionBondGraph(offsets, neighbours, size, &part, &edge_cut));
+    std::vector<RankPoints> ranks;
+    CollectRings(size, part, offsets, neighbours, &ranks);
+    // PETSc numbering: rank blocks in rank order, natural order inside a block.
+    std::vector<PetscInt> petsc_index(n_global);
+    PetscInt              next = 0;
+    for (int r = 0; r < size; ++r) {
+      PetscCheck(!ranks[r].owned.empty(), PETSC_COMM_SELF, PETSC_ERR_USER, "The partition left rank %d without points: run on fewer ranks", r);
+      for (int i : ranks[r].owned) petsc_index[i] = next++;
+    }
+    for (int r = size - 1; r >= 0; --r) { // rank 0 last, so its buffers stay
+      const RankPoints &rp = ranks[r];
+      std::vector<int>  ids;
+      ids.reserve(rp.owned.size() + rp.ring1.size() + rp.ring2.size());
+      ids.insert(ids.end(), rp.owned.begin(), rp.owned.end());
+      ids.insert(ids.end(), rp.ring1.begin(), rp.ring1.end());
+      ids.insert(ids.end(), rp.ring2.begin(), rp.ring2.end());
+      std::vector<PetscInt> pidx(ids.size());
+      std::vector<double>   real(R * ids.size());
+      for (std::size_t k = 0; k < ids.size(); ++k) {
+        const int i     = ids[k];
+        pidx[k]         = petsc_index[i];
+        for (int d = 0; d < D; ++d) real[R * k + d] = global_cloud.x[D * i + d];
+        real[R * k + kVolume]       = global_cloud.volume[i];
+        real[R * k + kFamilyVolume] = global_cloud.family_volume[i];
+        if (own_horizon) real[R * k + kHorizon] = global_cloud.horizon[i];
+        for (int l = 0; l < L; ++l) real[R * k + H + l] = global_cloud.patch_correction[L * i + l];
+      }
+      PetscInt c[3] = {(PetscInt)rp.owned.size(), (PetscInt)rp.ring1.size(), (PetscInt)rp.ring2.size()};
+      if (r == 0) {
+        std::copy(c, c + 3, my_counts);
+        my_ids   = std::move(ids);
+        my_petsc = std::move(pidx);
+        my_real  = std::move(real);
+      } else {
+        const int m = (int)ids.size();
+        PetscCallMPI(MPI_Send(c, 3, MPIU_INT, r, 0, comm));
+        PetscCallMPI(MPI_Send(ids.data(), m, MPI_INT, r, 1, comm));
+        PetscCallMPI(MPI_Send(pidx.data(), m, MPIU_INT, r, 2, comm));
+        PetscCallMPI(MPI_Send(real.data(), R * m, MPI_DOUBLE, r, 3, comm));
+      }
+    }
+  } else {
+    PetscCallMPI(MPI_Recv(my_counts, 3, MPIU_INT, 0, 0, comm, MPI_STATUS_IGNORE));
+    const int m = (int)(my_counts[0] + my_counts[1] + my_counts[2]);
+    my_ids.resize(m);
+    my_petsc.resize(m);
+    my_real.resize(R * m);
+    PetscCallMPI(MPI_Recv(my_ids.data(), m, MPI_INT, 0, 1, comm, MPI_STATUS_IGNORE));
+    PetscCallMPI(MPI_Recv(my_petsc.data(), m, MPIU_INT, 0, 2, comm, MPI_STATUS_IGNORE));
+    PetscCallMPI(MPI_Recv(my_real.data(), R * m, MPI_DOUBLE, 0, 3, comm, MPI_STATUS_IGNORE));
+  }
+  PetscCallMPI(MPI_Bcast(&edge_cut, 1, MPIU_INT, 0, comm));
+
+  layout->dimension   = D;
+  layout->n_owned     = my_counts[0];
+  layout->n_ring1     = my_counts[1];
+  layout->n_ring2     = my_counts[2];
+  layout->n_global    = n_global;
+  layout->edge_cut    = edge_cut;
+  layout->owned_start = my_counts[0] > 0 ? my_petsc[0] : 0;
+  layout->petsc_index = std::move(my_petsc);
+  PointCloud &c       = layout->cloud;
+  const std::size_t m = my_ids.size();
+  c.x.resize(D * m);
+  c.volume.resize(m);
+  c.family_volume.resize(m);
+  c.natural_id.assign(my_ids.begin(), my_ids.end());
+  c.horizon.resize(own_horizon ? m : 0);
+  c.patch_correction.resize(L * m);
+  c.patch_virial = L == (int)nd::patch_stride<D>(true);
+  for (std::size_t k = 0; k < m; ++k) {
+    for (int d = 0; d < D; ++d) c.x[D * k + d] = my_real[R * k + d];
+    c.volume[k]        = my_real[R * k + kVolume];
+    c.family_volume[k] = my_real[R * k + kFamilyVolume];
+    if (own_horizon) c.horizon[k] = my_real[R * k + kHorizon];
+    for (int l = 0; l < L; ++l) c.patch_correction[L * k + l] = my_real[R * k + H + l];
+  }
+  PetscFunctionReturn(0);
+}
+
+template <int D>
+PetscErrorCode CreateGhostedVector(MPI_Comm comm, const Layout &layout, Vec *v)
+{
+  PetscFunctionBegin;
+  PetscCheck(layout.dimension == D, comm, PETSC_ERR_PLIB, "CreateGhostedVector<%d> on a layout of dimension %d", D, layout.dimension);
+  const PetscInt *ghosts = layout.petsc_index.data() + layout.n_owned;
+  PetscCall(VecCreateGhostBlock(comm, D, D * layout.n_owned, PETSC_DECIDE, layout.n_ghost(), ghosts, v));
+  PetscFunctionReturn(0);
+}
+
+template PetscErrorCode DistributePoints<2>(MPI_Comm, const PointCloud &, const std::vector<int> &, const std::vector<int> &, Layout *);
+template PetscErrorCode DistributePoints<3>(MPI_Comm, const PointCloud &, const std::vector<int> &, const std::vector<int> &, Layout *);
+template PetscErrorCode CreateGhostedVector<2>(MPI_Comm, const Layout &, Vec *);
+template PetscErrorCode CreateGhostedVector<3>(MPI_Comm, const Layout &, Vec *);
+
+} // namespace bapd
