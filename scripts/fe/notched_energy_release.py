@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """FE reference for the crack-driving force of the notched pure-shear sheet
-(examples/notched_pure_shear.yaml; METHOD.md section 7.3): the energy release rate
+(examples/notched_pure_shear.yaml; docs/validation.md section 3): the energy release rate
 G(lambda) that a fracture-energy failure criterion is to be validated against.
 
 The sheet: 70 mm wide, H0 = 10 mm between the grips, thickness t = 3 mm, an edge notch
