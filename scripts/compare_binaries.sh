@@ -36,10 +36,10 @@ scene[notched_short]="1|-options_file_yaml $ex/notched_pure_shear.yaml -body_dx 
 scene[point_cloud_bond_only]="1|-options_file_yaml $ex/point_cloud.yaml -force_form bond_only -load_schedule 0,1.0,0.2,1.2 -output_final_state"
 scene[point_cloud_energy]="1|-options_file_yaml $ex/point_cloud.yaml -load_schedule 0,1.0,0.2,1.2"
 scene[dogbone_gmsh]="1|-options_file_yaml $ex/dogbone.yaml -body_outline_file $ex/geometry/dogbone.geo -load_schedule 0,1,0.05,1.25,0.3,1.25 -relaxation adaptive -static_tolerance 1e-10 -output_interval 20"
-# 3D (issue 21; run with `... OUT 3d` or by name): the block with a hole (tests/input/block_3d.yaml,
+# 3D (issue 21; run with `... OUT 3d` or by name): the block with a hole (tests/data/scenes/block_3d.yaml,
 # energy-consistent, 1 and 2 ranks, and bond-only), and the notched block with
 # tests/validation/notched_block_3d_short.sh's options, so that bonds break.
-in3="$here/tests/input"
+in3="$here/tests/data/scenes"
 scene[block3d_energy]="1|-options_file_yaml $in3/block_3d.yaml -ts_max_steps 60 -output_interval 10 -output_final_state"
 scene[block3d_energy_np2]="2|-options_file_yaml $in3/block_3d.yaml -ts_max_steps 60 -output_interval 10 -output_final_state"
 scene[block3d_bond_only]="1|-options_file_yaml $in3/block_3d.yaml -force_form bond_only -ts_max_steps 60 -output_interval 10 -output_final_state"

@@ -11,7 +11,7 @@ packages=(
   libyaml-dev                                # scene files are checked before PETSc reads them
   libgmsh-dev                                # body outlines from Gmsh .geo/.msh files (-body_S_type mesh)
   python3 python3-numpy python3-matplotlib python3-h5py python3-yaml  # plots, readers
-  python3-paraview xvfb xauth               # tests/paraview: pvpython opens fields.xdmf under Xvfb (xvfb-run)
+  python3-paraview xvfb xauth               # tests/validation/paraview: pvpython opens fields.xdmf under Xvfb (xvfb-run)
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """Markdown tables of the convergence-study CSVs (docs/fe_reference.md is made from them):
-    /usr/bin/python3 scripts/fe/tables.py docs/fe/plate_hole.csv
+    /usr/bin/python3 scripts/fe/tables.py tests/data/fe/plate_hole.csv
 One row a mesh and an `extrapolated` row per formulation, every quantity column."""
 import csv
 import sys

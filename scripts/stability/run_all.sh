@@ -10,7 +10,7 @@
 #   scripts/stability/run_all.sh output/stability map). Each run
 # is small (hundreds to a few thousand points, one rank) and is skipped when OUTPUT_DIR
 # already holds it (delete OUTPUT_DIR/NAME to redo one). BAPD_EXE and BAPD_BUILD_DIR
-# as in run_mpi.sh; the spectra need the build's tests/stability/stability_spectrum
+# as in run_mpi.sh; the spectra need the build's tests/validation/stability/stability_spectrum
 # (BAPD_SPECTRUM_EXE). BAPD_STABILITY_REPORT=0 skips the tables (e.g. to run sections
 # side by side, then once more for the tables); BAPD_SOURCE_DIR lets a copy of this
 # script run outside the source tree (bash reads a script as it runs: do not edit one
@@ -27,7 +27,7 @@ if [ -z "${BAPD_EXE:-}" ]; then
   "$here/scripts/build.sh"
   export BAPD_EXE="$build/bapd"
 fi
-spectrum_exe="${BAPD_SPECTRUM_EXE:-$(dirname "$BAPD_EXE")/tests/stability/stability_spectrum}"
+spectrum_exe="${BAPD_SPECTRUM_EXE:-$(dirname "$BAPD_EXE")/tests/validation/stability/stability_spectrum}"
 ranks="${BAPD_STABILITY_RANKS:-1}"
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 mkdir -p "$out"
@@ -113,7 +113,7 @@ for section in "${sections[@]}"; do
       -output_fields_interval 0
     ;;
   fracture)
-    # torn_sheet.sh's scene (tests/stability) at several steps, with and without the
+    # torn_sheet.sh's scene (tests/validation/stability) at several steps, with and without the
     # isolated point, and paper scene 3 on a 1 mm grid as the example sets it.
     island=0.0009,0.002,0.0016,0.002,0.0016,0.002,0.0016,0.0027,0.0016,0.0027,0.0009,0.0027,0.0009,0.0027,0.0009,0.002
     torn=(-body_width 0.01 -body_height 0.01 -body_thickness 0.001 -body_dx 0.0005 -failure_critical_stretch 2

@@ -3,8 +3,8 @@
 
 Reads the static states of run_all.sh's runs `waisted_static` and `dogbone_static`
 (examples/waisted_sheet.yaml and examples/dogbone.yaml by the fast static route) and
-the converged FE solutions of the same specimens (docs/fe/waisted_sheet.csv,
-docs/fe/dogbone.csv: the finest P2 mesh, K = 1000 mu as bapd's default), and appends a
+the converged FE solutions of the same specimens (tests/data/fe/waisted_sheet.csv,
+tests/data/fe/dogbone.csv: the finest P2 mesh, K = 1000 mu as bapd's default), and appends a
 section to the report's lines: probe ux, uy and nominal stress s = top reaction /
 (width x thickness), bapd against FE, at every stretch both have.
 Also usable alone: shaped_report.py OUTPUT_ROOT [DOCS_DIR] prints the section.
@@ -48,7 +48,7 @@ def shaped(root, docs, lines):
         if not os.path.exists(path):
             lines += [f"- `{scene}`: not run ({path} missing)", ""]
             continue
-        fe, best = fe_converged(os.path.join(docs, "fe", fe_file))
+        fe, best = fe_converged(os.path.join(docs, "..", "tests", "data", "fe", fe_file))
         lines += [f"`{scene}` ({what}; FE h = {best['h_mm']} mm, {best['dofs']} dofs):", "",
                   "| stretch | ux bapd (mm) | ux FE | diff | uy bapd (mm) | uy FE | diff | s bapd (kPa) | s FE | diff |",
                   "|---|---|---|---|---|---|---|---|---|---|"]

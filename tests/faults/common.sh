@@ -3,7 +3,7 @@
 set -uo pipefail
 SCRIPT_ARGS=("$@") # (the caller's arguments: small_disk may run the test again)
 PYTHON=/usr/bin/python3
-TINY="$BAPD_SOURCE_DIR/tests/input/tiny.yaml" # 400 points, 49 steps
+TINY="$BAPD_SOURCE_DIR/tests/data/scenes/tiny.yaml" # 400 points, 49 steps
 
 fail() {
   echo "FAIL: $*"

@@ -8,7 +8,7 @@ work="faults_killed_rank"
 rm -rf "$work" && mkdir -p "$work" || exit 1
 fail() { echo "FAIL: $*"; sed 's/^/    | /' "$work/run.log"; exit 1; }
 # The tiny sheet for much longer than it takes to kill it: ~10^5 steps.
-timeout 100 "$BAPD_SOURCE_DIR/run_mpi.sh" -n 2 "$BAPD_SOURCE_DIR/tests/input/tiny.yaml" -load_schedule 0,1,100,1.05 \
+timeout 100 "$BAPD_SOURCE_DIR/run_mpi.sh" -n 2 "$BAPD_SOURCE_DIR/tests/data/scenes/tiny.yaml" -load_schedule 0,1,100,1.05 \
   -output_dir "$work/out" -output_interval 10 -progress_interval 100 > "$work/run.log" 2>&1 &
 pid=$!
 for _ in $(seq 600); do grep -q '^step ' "$work/run.log" 2> /dev/null && break; sleep 0.1; done

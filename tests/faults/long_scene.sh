@@ -1,4 +1,4 @@
-# A run that lasts (sourced): the notched sheet of tests/restart/common.sh at dx = 1 mm
+# A run that lasts (sourced): the notched sheet of tests/mpi/restart/common.sh at dx = 1 mm
 # (360 points), damped, pulled slowly: ~10^5 steps, far more than any case waits for.
 LONG=(-body_width 0.03 -body_height 0.012 -body_thickness 0.003 -body_dx 0.001 -body_notches 0.02,0.006,0.03,0.006
       -horizon_factor 3.015 -material_mu 4.55e3 -material_Jm 162.6 -material_bulk_ratio 100 -material_density 1000

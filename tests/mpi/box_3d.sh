@@ -29,7 +29,7 @@
 #                              its interior, iterations and residual, 1 and 2 ranks the same
 #                              history and displacements; auto picks virial; off differs
 set -euo pipefail
-source "$BAPD_SOURCE_DIR/tests/restart/common.sh" # run, checkpointed_runs, fail, history_column, PYTHON
+source "$BAPD_SOURCE_DIR/tests/mpi/restart/common.sh" # run, checkpointed_runs, fail, history_column, PYTHON
 case="$1"
 work="box_3d_$case"
 rm -rf "$work"; mkdir -p "$work"
@@ -61,7 +61,7 @@ elif [ "$case" = restart ]; then
   compare "$work/whole" "$work/second_np3"
   last=$(printf "fields/step_%08d.h5" $((2 * N)))
   for d in second_np2 second_np3; do
-    $PYTHON "$BAPD_SOURCE_DIR/tests/restart/compare_fields.py" --tolerance 0 "$work/whole/$last" "$work/$d/$last"
+    $PYTHON "$BAPD_SOURCE_DIR/tests/mpi/restart/compare_fields.py" --tolerance 0 "$work/whole/$last" "$work/$d/$last"
   done
 elif [ "$case" = ogden ]; then
   # A fixed step for both laws (no re-estimate): the power iteration's estimate, which
@@ -147,7 +147,7 @@ PY
   graded_cloud "$work/bridged.txt" 4e-3
   run 1 "$work/bridged" "${scene[@]}" -body_cloud "$work/bridged.txt" -ts_max_steps 2
   graded_cloud "$work/apart.txt" 10e-3
-  # (sigkill timeout 0: mpiexec returns at once after bapd's error exit, tests/input/bad_input.sh)
+  # (sigkill timeout 0: mpiexec returns at once after bapd's error exit, tests/faults/bad_input.sh)
   if OMPI_MCA_odls_base_sigkill_timeout=0 mpiexec -n 1 "$BAPD_EXE" "${scene[@]}" -body_cloud "$work/apart.txt" -ts_max_steps 2 -output_dir "$work/apart" \
       > "$work/apart.log" 2>&1; then fail "a 3D cloud in two pieces ran"; fi
   grep -qF "apart.txt: the given points fall apart into 2 pieces with no bond between them (the smallest: 24 point(s), e.g. point 0 at (0.001, 0.001, 0.001) m)" \

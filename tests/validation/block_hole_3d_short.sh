@@ -5,7 +5,7 @@
 # route) to its static state at stretch 1.25 (the example's second level, 1.5, would
 # double the time: it is in the table), at K = 10 mu, 2 ranks, against the Taylor-Hood
 # P2-P1 solution of scripts/fe/block_hole_3d.py at the same K, read from
-# docs/fe/block_hole_3d_K10.json (s: the finest mesh; each probe: the FE displacement at
+# tests/data/fe/block_hole_3d_K10.json (s: the finest mesh; each probe: the FE displacement at
 # the lattice point the probe reads, "lattice" -> "0.5"). The convergence table
 # (docs/validation.md section 7.2, dx = 1, 0.5, 0.25 mm, both forms, rigid and affine
 # tabs) says what holds at this spacing:
@@ -19,13 +19,13 @@
 # (-material_mu 4.3e3) or with the bond-only form (-force_form bond_only: s +3.97 %).
 #   block_hole_3d_short.sh [bapd options]    (ctest sets BAPD_EXE and BAPD_SOURCE_DIR)
 set -euo pipefail
-source "$BAPD_SOURCE_DIR/tests/restart/common.sh" # run, fail, PYTHON
+source "$BAPD_SOURCE_DIR/tests/mpi/restart/common.sh" # run, fail, PYTHON
 work="validation_block_hole_3d_short"
 rm -rf "$work"; mkdir -p "$work"
 run 2 "$work/pd" -options_file_yaml "$BAPD_SOURCE_DIR/examples/block_hole_3d.yaml" \
     -material_bulk_ratio 10 -load_schedule 0,1.0,0.025,1.25,1.025,1.25 \
     -progress_interval 1000000 "$@"
-$PYTHON - "$work" "$BAPD_SOURCE_DIR/docs/fe/block_hole_3d_K10.json" <<'PY'
+$PYTHON - "$work" "$BAPD_SOURCE_DIR/tests/data/fe/block_hole_3d_K10.json" <<'PY'
 import csv, json, re, sys
 work, fe_path = sys.argv[1], sys.argv[2]
 fe = json.load(open(fe_path))

@@ -17,7 +17,7 @@
 # docs/validation.md section 7.3 has the full example.
 #   notched_block_3d_short.sh        (ctest sets BAPD_EXE and BAPD_SOURCE_DIR)
 set -euo pipefail
-source "$BAPD_SOURCE_DIR/tests/restart/common.sh" # run, fail, history_column, PYTHON
+source "$BAPD_SOURCE_DIR/tests/mpi/restart/common.sh" # run, fail, history_column, PYTHON
 work="validation_notched_block_3d_short"
 rm -rf "$work"; mkdir -p "$work"
 steps=350

@@ -18,7 +18,7 @@
 #   slab_3d_short.sh coarse   the same pair at dx = 1 mm (t = 4 mm, four layers): the crown
 #                             is +1.23 % there, so this must fail (the check can fail)
 set -euo pipefail
-source "$BAPD_SOURCE_DIR/tests/restart/common.sh" # run, fail, PYTHON
+source "$BAPD_SOURCE_DIR/tests/mpi/restart/common.sh" # run, fail, PYTHON
 case="${1:-fine}"
 work="validation_slab_3d_short"
 [ "$case" = fine ] || work="${work}_$case"

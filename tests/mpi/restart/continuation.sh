@@ -1,0 +1,57 @@
+#!/usr/bin/env bash
+# A run of 2N steps, and the same run stopped at step N with a checkpoint and
+# continued with -restart, give the same history, final displacements, broken bonds
+# and field files: bit for bit on the same number of ranks, and on another one
+# (checkpoint on 2 ranks, restart on 3: the results never depend on the layout, so
+# they agree bit for bit there too, tolerance 0).
+#   continuation.sh fracture      the crack starts before step N and runs after it
+#   continuation.sh static_hold   a hold ends early (-static_tolerance) before step N
+#                                 and another after it: the moved schedule goes on
+#   continuation.sh cloud         the graded point cloud of examples/point_cloud.yaml
+#                                 with the bond-only form and the default patch
+#                                 correction (virial): its per-point numbers are solved
+#                                 again at the restart, not checkpointed
+set -euo pipefail
+source "$BAPD_SOURCE_DIR/tests/mpi/restart/common.sh"
+case="$1"
+work="restart_continuation_$case"
+rm -rf "$work"; mkdir -p "$work"
+if [ "$case" = fracture ]; then
+  scene=("${NOTCHED[@]}" "${FRACTURE[@]}" -output_fields -output_fields_interval 150)
+  N=450
+elif [ "$case" = cloud ]; then
+  scene=(-options_file_yaml "$BAPD_SOURCE_DIR/examples/point_cloud.yaml"
+         -body_cloud "$BAPD_SOURCE_DIR/examples/geometry/graded_sheet.csv" -force_form bond_only
+         -load_schedule 0,1,0.05,1.2 -output_interval 25 -progress_interval 100000 -output_final_state)
+  N=100
+else
+  # 30 x 12 points, no failure: holds at stretch 1.2 and 1.3 that end once static
+  # (steps 140 and 280); the run ends with the schedule, before 2N.
+  scene=("${NOTCHED[@]}" -body_dx 0.001 -load_schedule 0,1,0.05,1.2,1.0,1.2,1.05,1.3,2.0,1.3
+         -static_tolerance 1e-3 -output_interval 10)
+  N=200
+fi
+checkpointed_runs "$work" $N "${scene[@]}"
+
+python3 "$BAPD_SOURCE_DIR/tests/mpi/compare_runs.py" --tolerance 0 $([ "$case" = fracture ] && echo --expect-broken) \
+  "$work/whole" "$work/second_np2"
+python3 "$BAPD_SOURCE_DIR/tests/mpi/compare_runs.py" --tolerance 0 "$work/whole" "$work/second_np3"
+
+if [ "$case" = fracture ]; then
+  at_n=$(history_column "$work/whole" $N broken_bonds)
+  at_end=$(history_column "$work/whole" $((2 * N)) broken_bonds)
+  echo "broken bonds: $at_n at step $N, $at_end at step $((2 * N))"
+  [ "$at_n" -gt 0 ] && [ "$at_end" -gt "$at_n" ] || fail "the crack must grow both before and after the restart"
+  last=$(printf "fields/step_%08d.h5" $((2 * N)))
+  $PYTHON "$BAPD_SOURCE_DIR/tests/mpi/restart/compare_fields.py" --tolerance 0 "$work/whole/$last" "$work/second_np2/$last"
+  $PYTHON "$BAPD_SOURCE_DIR/tests/mpi/restart/compare_fields.py" --tolerance 0 "$work/whole/$last" "$work/second_np3/$last"
+elif [ "$case" = cloud ]; then
+  grep -q "^Patch correction virial" "$work/second_np3.log" || fail "the restart did not solve the virial patch correction"
+else
+  [ "$(grep -c '^Static at' "$work/first.log")" = 1 ] || fail "expected one hold to end before step $N"
+  [ "$(grep -c '^Static at' "$work/second_np3.log")" = 1 ] || fail "expected one hold to end after step $N"
+  for d in second_np2 second_np3; do
+    cmp "$work/whole/static_states.csv" "$work/$d/static_states.csv" || fail "$d/static_states.csv differs"
+  done
+fi
+echo "restart continuation ($case): same results"
