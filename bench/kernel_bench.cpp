@@ -248,7 +248,7 @@ int main(int argc, char **argv)
 
   MaterialParameters p; // the paper's hydrogel (examples/*.yaml)
   p.mu = 4.55e3;
-  p.Jm = 162.6;
+  p["-material_Jm"] = 162.6;
   p.D  = 2.0 / (1000.0 * p.mu);
   const GentPlaneStress gent{p};
 

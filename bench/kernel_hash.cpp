@@ -115,7 +115,7 @@ int main()
         y[2 * i] = 1.5 * cloud.x[2 * i] + 0.05 * dx * noise(rng);
         y[2 * i + 1] = 0.8 * cloud.x[2 * i + 1] + 0.05 * dx * noise(rng);
       }
-      p.mu = 4.55e3; p.Jm = 162.6;
+      p.mu = 4.55e3; p["-material_Jm"] = 162.6;
       const GentPlaneStress gent{p};
       std::vector<double> t(2 * fam.n_bonds()), f(2 * cloud.size()), c33(fam.n_bonds(), 0.0);
       nd::Workspace<2> ws;

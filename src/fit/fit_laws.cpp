@@ -53,7 +53,7 @@ FitLaw registry_law(std::vector<std::string> names, std::vector<std::string> uni
     std::ostringstream y;
     y << "material:\n  model: " << Law::name << "\n  mu: " << number(m.mu) << "\n";
     for (const LawOptionEntry &o : law_entry(kind).options)
-      y << "  " << std::string(o.name).substr(std::string("-material_").size()) << ": " << number(m.*o.value) << "\n";
+      y << "  " << std::string(o.name).substr(std::string("-material_").size()) << ": " << number(m.values[o.index]) << "\n";
     return y.str();
   };
   return f;
@@ -139,7 +139,12 @@ FitLaw ogden(int n)
 
 } // namespace
 
-std::vector<std::string> fit_law_names() { return {"gent", "neo_hookean", "mooney_rivlin", "yeoh", "arruda_boyce", "ogden"}; }
+std::vector<std::string> fit_law_names()
+{
+  std::vector<std::string> names;
+  for (const LawEntry &law : registered_laws()) names.push_back(law.name);
+  return names;
+}
 
 FitLaw fit_law(const std::string &name, int ogden_terms)
 {
@@ -149,7 +154,7 @@ FitLaw fit_law(const std::string &name, int ogden_terms)
                                     [](double mu0, double) { return std::vector<std::vector<double>>{{mu0}}; });
   if (name == "gent")
     return registry_law<Gent>({"mu", "Jm"}, {"Pa", "-"}, {1.0, 1.0},
-                              [](MaterialParameters &m, const std::vector<double> &p) { m.mu = p[0], m.Jm = p[1]; },
+                              [](MaterialParameters &m, const std::vector<double> &p) { m.mu = p[0], m["-material_Jm"] = p[1]; },
                               [](double mu0, double I1max) {
                                 const double x = I1max - 3.0;
                                 return std::vector<std::vector<double>>{{mu0, 1.5 * x + 1.0}, {mu0, 4.0 * x + 1.0}, {mu0, 20.0 * x + 10.0}};
@@ -157,7 +162,7 @@ FitLaw fit_law(const std::string &name, int ogden_terms)
   if (name == "mooney_rivlin")
     return registry_law<MooneyRivlin>({"C10", "C01"}, {"Pa", "Pa"}, {1.0, 1.0},
                                       [](MaterialParameters &m, const std::vector<double> &p) {
-                                        m.C10 = p[0], m.C01 = p[1], m.mu = 2.0 * (p[0] + p[1]);
+                                        m["-material_C10"] = p[0], m["-material_C01"] = p[1], m.mu = 2.0 * (p[0] + p[1]);
                                       },
                                       [](double mu0, double) {
                                         return std::vector<std::vector<double>>{{0.4 * mu0, 0.1 * mu0}, {0.25 * mu0, 0.25 * mu0}};
@@ -165,12 +170,12 @@ FitLaw fit_law(const std::string &name, int ogden_terms)
   if (name == "yeoh")
     return registry_law<Yeoh>({"C1", "C2", "C3"}, {"Pa", "Pa", "Pa"}, {1.0, 1.0, 1.0},
                               [](MaterialParameters &m, const std::vector<double> &p) {
-                                m.C1 = p[0], m.C2 = p[1], m.C3 = p[2], m.mu = 2.0 * p[0];
+                                m["-material_C1"] = p[0], m["-material_C2"] = p[1], m["-material_C3"] = p[2], m.mu = 2.0 * p[0];
                               },
                               [](double mu0, double) { return std::vector<std::vector<double>>{{0.5 * mu0, 0.0, 0.0}}; });
   if (name == "arruda_boyce")
     return registry_law<ArrudaBoyce>({"mu", "lambda_m"}, {"Pa", "-"}, {1.0, 1.0},
-                                     [](MaterialParameters &m, const std::vector<double> &p) { m.mu = p[0], m.lambda_m = p[1]; },
+                                     [](MaterialParameters &m, const std::vector<double> &p) { m.mu = p[0], m["-material_lambda_m"] = p[1]; },
                                      [](double mu0, double I1max) {
                                        const double lc = std::sqrt(I1max / 3.0);
                                        return std::vector<std::vector<double>>{{mu0, 1.5 * lc}, {mu0, 3.0 * lc}, {mu0, 10.0 * lc}};

@@ -337,7 +337,7 @@ struct SmallStrainGent {
   SmallStrainGent()
   {
     p.mu = 4.55e3;
-    p.Jm = 162.6;
+    p["-material_Jm"] = 162.6;
     p.D  = 2.0 / (1000.0 * p.mu);
     const double K = 2.0 / p.D;
     E  = 9.0 * K * p.mu / (3.0 * K + p.mu);

@@ -1,6 +1,8 @@
 // Names, messages and parameter checks for the constitutive models (material.hpp).
 #include "bapd/core/materials/material.hpp"
 
+#include "bapd/core/materials/law_registry.hpp"
+
 #include <cmath>
 #include <sstream>
 
@@ -79,5 +81,7 @@ std::string check_model(ModelKind k, Formulation f, const MaterialParameters &p)
   if (!refusal.empty()) problems += refusal + "\n";
   return problems;
 }
+
+std::string parameter_summary(ModelKind k, const MaterialParameters &p) { return law_entry(k).summary(p); }
 
 } // namespace bapd

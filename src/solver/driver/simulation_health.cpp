@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "bapd/core/materials/law_registry.hpp"
+
 namespace bapd {
 
 // Stops every rank together on NaN, an inverted bond or the Gent limit without failure.
@@ -201,7 +203,7 @@ template <int D> PetscErrorCode SimulationD<D>::DiagnoseDivergence()
     f.limit        = law.limit;
     f.limit_option = law.limit_option;
     for (const LawOptionEntry &o : law.options)
-      if (std::string(o.name) == law.limit_option) f.limit_value = scene_.material.*o.value;
+      if (std::string(o.name) == law.limit_option) f.limit_value = scene_.material.values[o.index];
   }
   if (time_step_options_.monitor)
     PetscCall(PetscPrintf(comm_, "Diagnosis at the last good state: dt %.4e s, stable %.4e s (at rest %.4e s), chain reach %.4g (bond stretch %.4g), applied stretch %.4g; %" PetscInt_FMT " steps before: stable %.4e s, chain reach %.4g\n",

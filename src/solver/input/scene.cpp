@@ -204,7 +204,7 @@ std::string SceneText(const Scene &s)
   text += three ? BodyText3D(s) : BodyText2D(s);
   const double K = 2.0 / s.material.D;
   text += Format("  material  %s, %s: mu %g Pa", to_string(s.model), three ? "3D" : to_string(s.formulation), s.material.mu);
-  if (s.model == ModelKind::gent) text += Format(", Jm %g", s.material.Jm);
+  text += parameter_summary(s.model, s.material);
   text += Format(", D %g 1/Pa (bulk modulus K = 2/D = %g Pa = %g mu), density %g kg/m^3\n", s.material.D, K, K / s.material.mu, s.density);
   text += Format("  force     %s", to_string(s.force_form));
   if (s.stress_correction != StressCorrection::none) // (absent by default: the summary stays as it was)

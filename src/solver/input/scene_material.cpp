@@ -74,7 +74,7 @@ PetscErrorCode ReadMaterial(MPI_Comm comm, Scene *scene, SceneInput *in)
     // every law's own parameters (defaults: the members' initialisers), listed for all
     // laws so that -help shows them and a file may carry them whatever the model
     for (const LawEntry &law : registered_laws())
-      for (const LawOptionEntry &o : law.options) PetscCall(r.Real(o.name, o.help, &(m.*o.value)));
+      for (const LawOptionEntry &o : law.options) PetscCall(r.Real(o.name, o.help, &m.values[o.index]));
     // Default compressibility: bulk modulus K = 2/D = 1000 mu (METHOD.md section 4:
     // the paper gives no D). K = 100 mu already softens the pure-shear curve by 7 %
     // at stretch 5.125 (the sheet thins less); 1000 mu keeps it within 1 %, and in

@@ -23,7 +23,7 @@ inline MaterialParameters parameters(double mu, double Jm, double D)
 {
   MaterialParameters p;
   p.mu = mu;
-  p.Jm = Jm;
+  p["-material_Jm"] = Jm;
   p.D  = D;
   return p;
 }

@@ -17,6 +17,7 @@
 #include "bapd/core/materials/homogeneous_response.hpp"
 #include "bapd/core/materials/models.hpp"
 #include "materials/deformations.hpp"
+#include "materials/law_types.hpp"
 
 namespace bapd {
 namespace {
@@ -77,7 +78,7 @@ TEST(InverseLangevin, TaylorCoefficientsMatchDifferencesOfLangevinOnBothSidesOfT
 TEST(ArrudaBoyceModulus, DerivativesMatchDifferencesOfTheModulus)
 {
   MaterialParameters m;
-  m.lambda_m = 4.0;
+  m["-material_lambda_m"] = 4.0;
   const ParametersOf<ArrudaBoyce> p(m);
   for (double I : {3.0, 3.5, 10.0, 30.0, 45.0, 47.5}) {
     Modulus G, Gp, Gm;
@@ -137,15 +138,15 @@ MaterialParameters law_parameters(double K_over_mu)
 }
 
 template <class Law> class NewLaw : public ::testing::Test {};
-using NewLaws = ::testing::Types<MooneyRivlin, Yeoh, ArrudaBoyce, Gent, NeoHookean>;
+using NewLaws = test::InvariantLawTypes;
 TYPED_TEST_SUITE(NewLaw, NewLaws);
 
 TYPED_TEST(NewLaw, CompressibleLawApproachesTheIncompressibleHomogeneousResponses)
 {
   MaterialParameters m = law_parameters(1e5);
-  m.C01 = 0.4 * m.mu / 2, m.C10 = 0.6 * m.mu / 2; // (Mooney-Rivlin: a large I2bar part)
-  m.C2 = 100.0, m.C3 = 2.0;                        // (Yeoh: visible higher terms)
-  m.lambda_m = 4.0;                                // (Arruda-Boyce: near locking at 3)
+  m["-material_C01"] = 0.4 * m.mu / 2, m["-material_C10"] = 0.6 * m.mu / 2; // (Mooney-Rivlin: a large I2bar part)
+  m["-material_C2"] = 100.0, m["-material_C3"] = 2.0;                        // (Yeoh: visible higher terms)
+  m["-material_lambda_m"] = 4.0;                                // (Arruda-Boyce: near locking at 3)
   const ParametersOf<TypeParam>   p(m);
   const Compressible3D<TypeParam> model{p};
   for (LoadMode mode : {LoadMode::uniaxial, LoadMode::pure_shear, LoadMode::equibiaxial})
@@ -209,8 +210,8 @@ TEST(HomogeneousResponse, OgdenWithOneTermOfAlpha2IsNeoHookean)
 MaterialParameters ogden_parameters(double K_over_mu)
 {
   MaterialParameters m = law_parameters(K_over_mu); // defaults: (4500, 2), (16.667, 6)
-  m.ogden_mu3 = -20.0, m.ogden_alpha3 = -2.0;        // a third term of negative alpha
-  m.ogden_mu1 = 4500.0 - 20.0;                       // keeping sum mu_k alpha_k / 2 = mu
+  m["-material_ogden_mu3"] = -20.0, m["-material_ogden_alpha3"] = -2.0;        // a third term of negative alpha
+  m["-material_ogden_mu1"] = 4500.0 - 20.0;                       // keeping sum mu_k alpha_k / 2 = mu
   return m;
 }
 
@@ -307,16 +308,16 @@ TEST(Ogden, SmallStrainGivesShearModulusMu)
 MaterialParameters sheet_parameters(double K_over_mu)
 {
   MaterialParameters m = ogden_parameters(K_over_mu);
-  m.C01 = 0.4 * m.mu / 2, m.C10 = 0.6 * m.mu / 2; // (Mooney-Rivlin: a large I2bar part)
-  m.C2 = 100.0, m.C3 = 2.0;                        // (Yeoh: visible higher terms)
-  m.lambda_m = 4.0;                                // (Arruda-Boyce: near locking at 3)
+  m["-material_C01"] = 0.4 * m.mu / 2, m["-material_C10"] = 0.6 * m.mu / 2; // (Mooney-Rivlin: a large I2bar part)
+  m["-material_C2"] = 100.0, m["-material_C3"] = 2.0;                        // (Yeoh: visible higher terms)
+  m["-material_lambda_m"] = 4.0;                                // (Arruda-Boyce: near locking at 3)
   return m;
 }
 
 template <class Model> double incompressible_sheet_stress(const MaterialParameters &m, LoadMode mode, double lambda)
 {
   if constexpr (std::is_same_v<Model, OgdenPlaneStress>) {
-    const double mu[3] = {m.ogden_mu1, m.ogden_mu2, m.ogden_mu3}, alpha[3] = {m.ogden_alpha1, m.ogden_alpha2, m.ogden_alpha3};
+    const double mu[3] = {m["-material_ogden_mu1"], m["-material_ogden_mu2"], m["-material_ogden_mu3"]}, alpha[3] = {m["-material_ogden_alpha1"], m["-material_ogden_alpha2"], m["-material_ogden_alpha3"]};
     return ogden_nominal_stress(mu, alpha, 3, mode, lambda);
   } else {
     using Law = typename test::LawOf<Model>::type;
@@ -351,8 +352,7 @@ template <class Model> double sheet_stress(const Model &model, LoadMode mode, do
 }
 
 template <class Model> class PlaneStressSheet : public ::testing::Test {};
-using SheetModels = ::testing::Types<GentPlaneStress, NeoHookeanPlaneStress, MooneyRivlinPlaneStress, YeohPlaneStress,
-                                     ArrudaBoycePlaneStress, OgdenPlaneStress>;
+using SheetModels = test::PlaneStressModels;
 TYPED_TEST_SUITE(PlaneStressSheet, SheetModels);
 
 TYPED_TEST(PlaneStressSheet, MatchesTheIncompressibleUniaxialPureShearAndEquibiaxialResponses)
@@ -413,26 +413,26 @@ TEST(NewLawChecks, EachBadValueGetsOneLineNamingItsOption)
   auto one_line_naming = [](const std::string &s, const std::string &option) {
     return s.find(option) == 0 && s.find('\n') == s.size() - 1;
   };
-  const std::string c01 = problems(ModelKind::mooney_rivlin, [](auto &m) { m.C01 = -455.0, m.C10 = m.mu / 2 + 455.0; });
+  const std::string c01 = problems(ModelKind::mooney_rivlin, [](auto &m) { m["-material_C01"] = -455.0, m["-material_C10"] = m.mu / 2 + 455.0; });
   EXPECT_TRUE(one_line_naming(c01, "-material_C01")) << c01;
   EXPECT_NE(c01.find("Drucker-stable"), std::string::npos) << c01;
   EXPECT_NE(c01.find("sqrt(C10/-C01) = 2.449"), std::string::npos) << c01; // sqrt(2730 / 455) = sqrt(6)
-  const std::string c10 = problems(ModelKind::mooney_rivlin, [](auto &m) { m.C10 = -455.0, m.C01 = m.mu / 2 + 455.0; });
+  const std::string c10 = problems(ModelKind::mooney_rivlin, [](auto &m) { m["-material_C10"] = -455.0, m["-material_C01"] = m.mu / 2 + 455.0; });
   EXPECT_TRUE(one_line_naming(c10, "-material_C10")) << c10;
   EXPECT_NE(c10.find("C01/-C10 = 6"), std::string::npos) << c10; // 2730 / 455
-  EXPECT_TRUE(one_line_naming(problems(ModelKind::mooney_rivlin, [](auto &m) { m.C01 = NAN; }), "-material_C01"));
-  EXPECT_TRUE(one_line_naming(problems(ModelKind::mooney_rivlin, [](auto &m) { m.C10 = m.C01 = 0.0; }), "-material_C10"));
-  const std::string mismatch = problems(ModelKind::mooney_rivlin, [](auto &m) { m.C10 = 3000.0; });
+  EXPECT_TRUE(one_line_naming(problems(ModelKind::mooney_rivlin, [](auto &m) { m["-material_C01"] = NAN; }), "-material_C01"));
+  EXPECT_TRUE(one_line_naming(problems(ModelKind::mooney_rivlin, [](auto &m) { m["-material_C10"] = m["-material_C01"] = 0.0; }), "-material_C10"));
+  const std::string mismatch = problems(ModelKind::mooney_rivlin, [](auto &m) { m["-material_C10"] = 3000.0; });
   EXPECT_TRUE(one_line_naming(mismatch, "-material_C10")) << mismatch;
   EXPECT_NE(mismatch.find("give -material_mu 6910"), std::string::npos) << mismatch;
-  EXPECT_TRUE(one_line_naming(problems(ModelKind::yeoh, [](auto &m) { m.C2 = -1.0; }), "-material_C2"));
-  EXPECT_TRUE(one_line_naming(problems(ModelKind::yeoh, [](auto &m) { m.C3 = -1.0; }), "-material_C3"));
-  EXPECT_TRUE(one_line_naming(problems(ModelKind::yeoh, [](auto &m) { m.C1 = 0.0; }), "-material_C1"));
+  EXPECT_TRUE(one_line_naming(problems(ModelKind::yeoh, [](auto &m) { m["-material_C2"] = -1.0; }), "-material_C2"));
+  EXPECT_TRUE(one_line_naming(problems(ModelKind::yeoh, [](auto &m) { m["-material_C3"] = -1.0; }), "-material_C3"));
+  EXPECT_TRUE(one_line_naming(problems(ModelKind::yeoh, [](auto &m) { m["-material_C1"] = 0.0; }), "-material_C1"));
   EXPECT_TRUE(one_line_naming(problems(ModelKind::yeoh, [](auto &m) { m.mu = 5000.0; }), "-material_C1"));
-  EXPECT_TRUE(one_line_naming(problems(ModelKind::arruda_boyce, [](auto &m) { m.lambda_m = 1.0; }), "-material_lambda_m"));
-  EXPECT_EQ(problems(ModelKind::mooney_rivlin, [](auto &m) { m.C10 = 0.0, m.C01 = m.mu / 2; }), ""); // pure I2bar is fine
-  EXPECT_TRUE(one_line_naming(problems(ModelKind::ogden, [](auto &m) { m.ogden_mu3 = 10.0, m.ogden_alpha3 = -2.0; }), "-material_ogden_alpha3"));
-  EXPECT_TRUE(one_line_naming(problems(ModelKind::ogden, [](auto &m) { m.ogden_mu1 = 4000.0; }), "-material_ogden_mu1"));
+  EXPECT_TRUE(one_line_naming(problems(ModelKind::arruda_boyce, [](auto &m) { m["-material_lambda_m"] = 1.0; }), "-material_lambda_m"));
+  EXPECT_EQ(problems(ModelKind::mooney_rivlin, [](auto &m) { m["-material_C10"] = 0.0, m["-material_C01"] = m.mu / 2; }), ""); // pure I2bar is fine
+  EXPECT_TRUE(one_line_naming(problems(ModelKind::ogden, [](auto &m) { m["-material_ogden_mu3"] = 10.0, m["-material_ogden_alpha3"] = -2.0; }), "-material_ogden_alpha3"));
+  EXPECT_TRUE(one_line_naming(problems(ModelKind::ogden, [](auto &m) { m["-material_ogden_mu1"] = 4000.0; }), "-material_ogden_mu1"));
   EXPECT_EQ(problems(ModelKind::ogden, [](auto &m) { m = ogden_parameters(1000.0); }), "");
 }
 

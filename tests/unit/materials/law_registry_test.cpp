@@ -60,13 +60,13 @@ TEST(LawRegistry, EveryLawAcceptsItsDefaultsAndNamesEachBadValue)
     EXPECT_EQ(check_parameters(law.kind, defaults()), "") << law.name;
     for (const LawOptionEntry &o : law.options) {
       MaterialParameters p = defaults();
-      p.*o.value           = std::numeric_limits<double>::quiet_NaN(); // no law accepts NaN
+      p.values[o.index]           = std::numeric_limits<double>::quiet_NaN(); // no law accepts NaN
       const std::string problems = check_parameters(law.kind, p);
       EXPECT_NE(problems.find(o.name), std::string::npos) << law.name << ": " << problems;
       EXPECT_EQ(law.check(p), problems) << "mu and D are fine, so only the law's own line";
     }
     // every registered law runs in both formulations (and in 3D: Compressible3D, Ogden3D,
-    // stress_energy_test), as issue 19 asks
+    // stress_energy_test)
     EXPECT_EQ(law.refusal(Formulation::plane_strain), "") << law.name;
     EXPECT_EQ(law.refusal(Formulation::plane_stress), "") << law.name;
     EXPECT_EQ(check_model(law.kind, Formulation::plane_stress, defaults()), "") << law.name;
@@ -153,4 +153,22 @@ TEST(LawRegistry, PlaneStressRefusesLawsItCannotSolveWithAMessage)
 }
 
 } // namespace
+// The store: each option has its own place, found by its name, holding the law's default;
+// the summary prints each law's own values (Gent's as the scene summary always has).
+TEST(LawRegistry, EachOptionHasItsOwnPlaceInTheStoreAndTheSummary)
+{
+  const MaterialParameters p;
+  std::set<std::size_t>    places;
+  for (const LawEntry &law : registered_laws())
+    for (const LawOptionEntry &o : law.options) {
+      EXPECT_TRUE(places.insert(o.index).second) << o.name;
+      EXPECT_EQ(&p[o.name], &p.values[o.index]) << o.name;
+      EXPECT_NE(parameter_summary(law.kind, p).find(std::string(o.name).substr(10) + " "), std::string::npos) << o.name;
+    }
+  EXPECT_EQ(places.size(), p.values.size());
+  EXPECT_EQ(parameter_summary(ModelKind::gent, p), ", Jm 162.6");
+  EXPECT_EQ(parameter_summary(ModelKind::neo_hookean, p), "");
+  EXPECT_THROW(p["-material_nonsense"], std::out_of_range);
+}
+
 } // namespace bapd

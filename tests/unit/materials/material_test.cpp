@@ -111,7 +111,7 @@ TEST(Material, NumericalTangentIsSymmetricAndMatchesPlaneStrainAtRest)
   for (int i = 0; i < 4; ++i)
     for (int j = 0; j < 4; ++j) EXPECT_NEAR(A[4 * i + j], A[4 * j + i], tol); // hyperelastic: major symmetry
   // Plane stress at rest, D -> 0: E = 3 mu, nu = 1/2, A_xxxx = E/(1 - nu^2) = 4 mu.
-  ASSERT_EQ(numerical_tangent(NeoHookeanPlaneStress{test::parameters(p.mu, p.Jm, 2.0 / (1e6 * p.mu))}, identity2(), 0.0, A),
+  ASSERT_EQ(numerical_tangent(NeoHookeanPlaneStress{test::parameters(p.mu, p["-material_Jm"], 2.0 / (1e6 * p.mu))}, identity2(), 0.0, A),
             StressStatus::ok);
   EXPECT_NEAR(A[0], 4.0 * p.mu, 1e-5 * 4.0 * p.mu); // + O(mu/K) = 1e-6 compressible correction
   EXPECT_NEAR(A[3], 2.0 * p.mu, 1e-5 * 4.0 * p.mu);

@@ -11,6 +11,7 @@
 
 #include "bapd/core/materials/models.hpp"
 #include "materials/deformations.hpp"
+#include "materials/law_types.hpp"
 
 namespace bapd {
 namespace {
@@ -59,8 +60,7 @@ std::vector<std::pair<std::string, Mat2>> loading_path(double increment)
 }
 
 template <class Model> class PlaneStressFastPath : public ::testing::Test {};
-using Models = ::testing::Types<GentPlaneStress, NeoHookeanPlaneStress, YeohPlaneStress, ArrudaBoycePlaneStress,
-                                MooneyRivlinPlaneStress>;
+using Models = test::InvariantPlaneStressModels;
 TYPED_TEST_SUITE(PlaneStressFastPath, Models);
 
 

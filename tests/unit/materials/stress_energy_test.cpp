@@ -5,6 +5,7 @@
 
 #include "bapd/core/materials/models.hpp"
 #include "materials/deformations.hpp"
+#include "materials/law_types.hpp"
 
 namespace bapd {
 namespace {
@@ -18,10 +19,7 @@ MaterialParameters parameters(double D) { return test::parameters(mu, Jm, D); }
 // ---------------------------------------------------------------------------------
 // The 2D models, as the bond kernel sees them.
 template <class Model> class MaterialStress2D : public ::testing::Test {};
-using Models2D = ::testing::Types<GentPlaneStress, NeoHookeanPlaneStress, GentPlaneStrain, NeoHookeanPlaneStrain, YeohPlaneStress,
-                                  YeohPlaneStrain, ArrudaBoycePlaneStress, ArrudaBoycePlaneStrain, MooneyRivlinPlaneStress,
-                                  MooneyRivlinPlaneStrain,
-                                  OgdenPlaneStress, OgdenPlaneStrain>;
+using Models2D = test::Models2D;
 TYPED_TEST_SUITE(MaterialStress2D, Models2D);
 
 TYPED_TEST(MaterialStress2D, StressIsDerivativeOfEnergyAtRandomLargeStretches)
@@ -98,7 +96,7 @@ TYPED_TEST(MaterialStress2D, InvertedDeformationIsReported)
 // ---------------------------------------------------------------------------------
 // The 3D laws (paper eq 26).
 template <class Model> class Material3D : public ::testing::Test {};
-using Models3D = ::testing::Types<Gent3D, NeoHookean3D, Yeoh3D, ArrudaBoyce3D, MooneyRivlin3D, Ogden3D>;
+using Models3D = test::Models3D;
 TYPED_TEST_SUITE(Material3D, Models3D);
 
 TYPED_TEST(Material3D, StressIsDerivativeOfEnergyAtRandomLargeStretches)
@@ -153,7 +151,7 @@ TYPED_TEST(Material3D, InvertedDeformationIsReported)
 // ---------------------------------------------------------------------------------
 // Plane strain is the 3D law at F33 = 1.
 template <class Law> class MaterialPlaneStrain : public ::testing::Test {};
-using Laws = ::testing::Types<Gent, NeoHookean, Yeoh, ArrudaBoyce, MooneyRivlin>;
+using Laws = test::InvariantLawTypes;
 TYPED_TEST_SUITE(MaterialPlaneStrain, Laws);
 
 TYPED_TEST(MaterialPlaneStrain, EqualsInPlaneBlockOf3DLawWithUnitThicknessStretch)

@@ -18,17 +18,11 @@
 // then the series of I1bar - I1bar0 is reverted to b - b0 as a series in
 // e = I1bar - I1bar0, and G composed with it. Each bond pays one inverse-Langevin
 // solve (g0 is remembered per lambda_m); several bonds at a time (Lanes, HalfLanes) run lane by lane.
-// The law interface is described in law.hpp; the registry line is in law_registry.hpp.
-#include <array>
-#include <cmath>
-#include <sstream>
-#include <string>
+// The law interface is described in law.hpp; the registry line is in law_list.hpp.
 #include <type_traits>
 
-#include "bapd/core/materials/hyperelastic.hpp"
 #include "bapd/core/materials/inverse_langevin.hpp"
-#include "bapd/core/materials/law.hpp"
-#include "bapd/core/materials/plane_stress.hpp"
+#include "bapd/core/materials/invariant_law.hpp"
 
 namespace bapd {
 
@@ -89,8 +83,7 @@ inline double log_b_over_sinh(double b)
 } // namespace arruda_boyce_detail
 
 struct ArrudaBoyce {
-  static constexpr const char *name  = "arruda_boyce";
-  static constexpr const char *title = "Arruda-Boyce eight-chain: locking stretch lambda_m (G = mu at rest)";
+  static constexpr const char *name = "arruda_boyce", *title = "Arruda-Boyce eight-chain: locking stretch lambda_m (G = mu at rest)";
 
   struct Parameters {
     double lambda_m = 7.54; // locking chain stretch [-]: 3 lambda_m^2 - 3 = 167.6, near Gent's Jm 162.6

@@ -4,21 +4,13 @@
 // finite only below the chain-extension limit I1bar - 3 < Jm. Put together with the
 // volumetric term (1/D)((J^2 - 1)/2 - ln J) by hyperelastic.hpp and plane_stress.hpp;
 // Gent3D's stress is paper eq 26 and GentPlaneStress's is eq 34. The law interface is
-// described in law.hpp; the registry line is in law_registry.hpp.
-#include <array>
-#include <cmath>
-#include <sstream>
-#include <string>
-
-#include "bapd/core/materials/hyperelastic.hpp"
-#include "bapd/core/materials/law.hpp"
-#include "bapd/core/materials/plane_stress.hpp"
+// described in law.hpp; the registry line is in law_list.hpp.
+#include "bapd/core/materials/invariant_law.hpp"
 
 namespace bapd {
 
 struct Gent {
-  static constexpr const char *name  = "gent";
-  static constexpr const char *title = "Gent (paper eq 24): chain-extension limit Jm";
+  static constexpr const char *name = "gent", *title = "Gent (paper eq 24): chain-extension limit Jm";
 
   struct Parameters {
     double Jm = 162.6; // chain-extension limit [-] (paper: 162.6)

@@ -13,7 +13,8 @@
 //   static constexpr const char *title;       // one line for logs and -help
 //   struct Parameters { double Jm = 162.6; }; // its own values, with their defaults
 //                                             // (mu and D are shared: ElasticConstants)
-//   static constexpr LawOption<Parameters> options[]; // option name, help with units
+//   static constexpr std::array<LawOption<Parameters>, N> options; // option name,
+//                                             // help with units, member (its default)
 //   static std::string check(const ParametersOf<Law> &); // one line per bad value
 //   static constexpr LawVariables variables = LawVariables::invariants;
 //   static constexpr bool uses_I2bar;         // Psi_iso depends on I2bar
@@ -53,30 +54,30 @@
 // formulations (PlaneStrainModel, PlaneStressModel, Model3D: has_own_formulations
 // below), which with_model and with_model_3d (models.hpp) pick instead of the invariant ones.
 #include <array>
+#include <cstddef>
+#include <cstdio>
+#include <cstring>
 #include <string>
 #include <type_traits>
 
 #include "bapd/core/kernel/lanes.hpp"
+#include "bapd/core/materials/law_list.hpp"
+#include "bapd/core/materials/material_parameters.hpp"
 #include "bapd/core/materials/stress_status.hpp"
 
 namespace bapd {
 
-enum class Formulation { plane_stress, plane_strain };
+// The values a model of one law reads: the shared constants and the law's own, taken
+// from the scene's store (MaterialParameters, material_parameters.hpp) at the law's
+// place in it (law_value_offset, defined by the registry for every registered law).
+template <class Law> std::size_t law_value_offset();
 
-// What every law shares: the shear modulus at rest and the compressibility of U(J).
-struct ElasticConstants {
-  double mu = 4.55e3; // shear modulus at rest [Pa] (paper: 4.55e3)
-  double D  = 0.0;    // compressibility [1/Pa]; bulk modulus at rest K = 2/D
-};
-
-// The values a model of one law reads: the shared constants and the law's own. Made
-// from any holder of both (MaterialParameters, material.hpp, holds every law's).
 template <class Law> struct ParametersOf : ElasticConstants, Law::Parameters {
   ParametersOf() = default;
-  template <class All, class = std::enable_if_t<std::is_base_of_v<ElasticConstants, All> &&
-                                                std::is_base_of_v<typename Law::Parameters, All>>>
-  ParametersOf(const All &all) : ElasticConstants(all), Law::Parameters(all)
+  ParametersOf(const MaterialParameters &all) : ElasticConstants(all)
   {
+    const std::size_t first = law_value_offset<Law>();
+    for (std::size_t i = 0; i < Law::options.size(); ++i) this->*(Law::options[i].value) = all.values[first + i];
   }
 };
 
@@ -87,6 +88,27 @@ template <class Parameters> struct LawOption {
   const char *help;
   double Parameters::*value;
 };
+
+// The law's own parameters for the scene summary, appended to "mu 4.55e3 Pa": by default
+// each option as its name and value, ", Jm 162.6"; a law may print them its own way
+// with `static std::string summary(const ParametersOf<Law> &)`.
+template <class Law, class = void> struct HasSummary : std::false_type {};
+template <class Law>
+struct HasSummary<Law, std::void_t<decltype(Law::summary(std::declval<const ParametersOf<Law> &>()))>> : std::true_type {};
+
+template <class Law> std::string law_summary(const ParametersOf<Law> &p)
+{
+  if constexpr (HasSummary<Law>::value) return Law::summary(p);
+  else {
+    std::string text;
+    for (const auto &o : Law::options) {
+      char value[32];
+      std::snprintf(value, sizeof value, "%g", p.*(o.value));
+      text += std::string(", ") + (o.name + std::strlen("-material_")) + " " + value;
+    }
+    return text;
+  }
+}
 
 // What a law's energy is written in.
 enum class LawVariables { invariants, principal_stretches };

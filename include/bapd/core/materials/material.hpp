@@ -25,7 +25,9 @@
 //   bapd/mooney_rivlin.hpp, yeoh.hpp, arruda_boyce.hpp, ogden.hpp  the other laws
 //                           (docs/laws.md); inverse_langevin.hpp for Arruda-Boyce
 //   bapd/homogeneous_response.hpp  their incompressible test responses (bapd-fit)
-//   bapd/law_registry.hpp   the list of laws: ModelKind, MaterialParameters, entries
+//   bapd/law_list.hpp       the list of laws (ModelKind, Formulation)
+//   bapd/material_parameters.hpp  MaterialParameters: mu, D and every law's values
+//   bapd/law_registry.hpp   the laws' types and run-time entries, from the list
 //   bapd/hyperelastic.hpp   Compressible3D, PlaneStrain
 //   bapd/plane_stress.hpp   PlaneStress (the S33 = 0 solve) and what it requires
 //   bapd/hyperelastic_numerics.hpp, bapd/numerical_tangent.hpp  their helpers
@@ -43,10 +45,9 @@
 // K = 2/D instead (see PlaneStress in plane_stress.hpp).
 #include <string>
 
-#include "bapd/core/materials/law.hpp"
-#include "bapd/core/materials/law_registry.hpp"
+#include "bapd/core/materials/law_list.hpp"
+#include "bapd/core/materials/material_parameters.hpp"
 #include "bapd/core/materials/stress_status.hpp"
-#include "bapd/core/kernel/tensor.hpp"
 
 namespace bapd {
 
@@ -65,5 +66,8 @@ std::string check_parameters(ModelKind k, const MaterialParameters &p);
 // check_parameters, and then whether the law runs in formulation f (law.hpp:
 // formulation_refusal): empty when the model can be built.
 std::string check_model(ModelKind k, Formulation f, const MaterialParameters &p);
+// The law's own parameters for the scene summary (law.hpp: law_summary), ", Jm 162.6";
+// empty for a law with none.
+std::string parameter_summary(ModelKind k, const MaterialParameters &p);
 
 } // namespace bapd

@@ -17,21 +17,13 @@
 // needs Psi_iso convex in both invariants, would lose its one root). C10 >= 0 and
 // C01 >= 0 make each term convex: stable for every deformation. So the check refuses
 // a negative coefficient and says where the law would have failed. Interface: law.hpp;
-// registry line: law_registry.hpp.
-#include <array>
-#include <cmath>
-#include <sstream>
-#include <string>
-
-#include "bapd/core/materials/hyperelastic.hpp"
-#include "bapd/core/materials/law.hpp"
-#include "bapd/core/materials/plane_stress.hpp"
+// registry line: law_list.hpp.
+#include "bapd/core/materials/invariant_law.hpp"
 
 namespace bapd {
 
 struct MooneyRivlin {
-  static constexpr const char *name  = "mooney_rivlin";
-  static constexpr const char *title = "Mooney-Rivlin: C10 (I1bar-3) + C01 (I2bar-3), mu = 2 (C10 + C01)";
+  static constexpr const char *name = "mooney_rivlin", *title = "Mooney-Rivlin: C10 (I1bar-3) + C01 (I2bar-3), mu = 2 (C10 + C01)";
 
   struct Parameters {
     double C10 = 1820.0; // [Pa]; with C01: 2 (C10 + C01) = the default mu 4.55e3

@@ -2,19 +2,13 @@
 // The compressible neo-Hookean law: Psi_iso = (mu/2)(I1bar - 3), G = mu, with the
 // same volumetric term as Gent. It is Gent's Jm -> infinity limit, which makes it the
 // reference for small strains and for checks that must not see the chain limit. The
-// law interface is described in law.hpp; the registry line is in law_registry.hpp.
-#include <array>
-#include <string>
-
-#include "bapd/core/materials/hyperelastic.hpp"
-#include "bapd/core/materials/law.hpp"
-#include "bapd/core/materials/plane_stress.hpp"
+// law interface is described in law.hpp; the registry line is in law_list.hpp.
+#include "bapd/core/materials/invariant_law.hpp"
 
 namespace bapd {
 
 struct NeoHookean {
-  static constexpr const char *name  = "neo_hookean";
-  static constexpr const char *title = "compressible neo-Hookean (Gent with Jm -> infinity)";
+  static constexpr const char *name = "neo_hookean", *title = "compressible neo-Hookean (Gent with Jm -> infinity)";
 
   struct Parameters {}; // mu and D only
   static constexpr std::array<LawOption<Parameters>, 0> options = {};

@@ -19,7 +19,7 @@
 // root is unique; safeguarded Newton (bracketed, bisection on a bad step), from the warm
 // start or the incompressible lambda_3 = 1/J~. Scalar only (no lanes): every bond
 // evaluation pays a 2x2 eigen-decomposition and an exp() per term and stretch.
-// The law interface is described in law.hpp; the registry line is in law_registry.hpp.
+// The law interface is described in law.hpp; the registry line is in law_list.hpp.
 #include <array>
 #include <cmath>
 #include <limits>
@@ -38,8 +38,7 @@ struct OgdenPlaneStress;
 struct Ogden3D;
 
 struct Ogden {
-  static constexpr const char *name  = "ogden";
-  static constexpr const char *title = "Ogden (up to 3 terms): sum (mu_k/alpha_k)(sum lb_i^alpha_k - 3), mu = sum mu_k alpha_k / 2";
+  static constexpr const char *name = "ogden", *title = "Ogden (up to 3 terms): sum (mu_k/alpha_k)(sum lb_i^alpha_k - 3), mu = sum mu_k alpha_k / 2";
   static constexpr int         max_terms = 3;
 
   struct Parameters { // a term with mu_k = 0 is unused

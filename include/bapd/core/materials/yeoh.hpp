@@ -6,20 +6,12 @@
 // G = 2 C1 is the shear modulus, so C1 = mu/2 (checked: mu is what the time step and the
 // default D are sized from). The law interface is described in law.hpp; the registry
 // line is in law_registry.hpp.
-#include <array>
-#include <cmath>
-#include <sstream>
-#include <string>
-
-#include "bapd/core/materials/hyperelastic.hpp"
-#include "bapd/core/materials/law.hpp"
-#include "bapd/core/materials/plane_stress.hpp"
+#include "bapd/core/materials/invariant_law.hpp"
 
 namespace bapd {
 
 struct Yeoh {
-  static constexpr const char *name  = "yeoh";
-  static constexpr const char *title = "Yeoh (three terms): C1 (I1bar-3) + C2 (I1bar-3)^2 + C3 (I1bar-3)^3, C1 = mu/2";
+  static constexpr const char *name = "yeoh", *title = "Yeoh (three terms): C1 (I1bar-3) + C2 (I1bar-3)^2 + C3 (I1bar-3)^3, C1 = mu/2";
 
   struct Parameters {
     double C1 = 2275.0; // [Pa] = mu/2 for the default mu 4.55e3
