@@ -205,112 +205,6 @@ PetscErrorCode CheckMemory(MPI_Comm comm, const Scene &scene, int64_t points, do
               .c_str());
 }
 
-// One shape of -body_shapes, checked and converted (angles to radians).
-PetscErrorCode CheckShape(MPI_Comm comm, const ShapeInput &in, const Body2D &b, TriangleSet *read_mesh, std::vector<Shape> *shapes)
-{
-  Shape       s;
-  const char *n = in.name.c_str();
-  PetscFunctionBeginUser;
-  s.name = in.name;
-  static const char *reserved[] = {"width", "height", "thickness", "dx", "holes", "notches", "shapes"};
-  for (const char *word : reserved)
-    SceneCheck(Lower(in.name) != word, comm, "-body_shapes: '%s' is the name of a body option (-body_%s): give the shape another name", n, word);
-  SceneCheck(in.type_set, comm, "-body_%s_type is required for shape '%s': rectangle, circle, ellipse, polygon or mesh%s", n, n,
-             MisspeltHint("-body_" + in.name + "_type").c_str());
-  const std::string type = Lower(in.type), op = Lower(in.op);
-  if (type == "rectangle") s.kind = Shape::Kind::rectangle;
-  else if (type == "circle") s.kind = Shape::Kind::circle;
-  else if (type == "ellipse") s.kind = Shape::Kind::ellipse;
-  else if (type == "polygon") s.kind = Shape::Kind::polygon;
-  else if (type == "mesh") s.kind = Shape::Kind::mesh;
-  else SceneCheck(false, comm, "-body_%s_type '%s' is not a shape: give rectangle, circle, ellipse, polygon or mesh", n, in.type.c_str());
-  if (op == "subtract") s.op = Shape::Op::subtract;
-  else if (op == "add") s.op = Shape::Op::add;
-  else if (op == "intersect") s.op = Shape::Op::intersect;
-  else SceneCheck(false, comm, "-body_%s_op '%s': give subtract, add or intersect", n, in.op.c_str());
-
-  // Each type takes its own parameters and no other's (a stray one is a mistake).
-  const bool has_box = !in.box.empty(), has_centre = !in.centre.empty(), has_radii = !in.radii.empty(), has_points = !in.points.empty();
-  const bool wanted_box = s.kind == Shape::Kind::rectangle, wanted_points = s.kind == Shape::Kind::polygon;
-  const bool wanted_centre = s.kind == Shape::Kind::circle || s.kind == Shape::Kind::ellipse;
-  const struct {
-    bool        given, wanted;
-    const char *option;
-  } parameters[] = {{has_box, wanted_box, "box"},
-                    {has_centre, wanted_centre, "centre"},
-                    {in.radius_set, s.kind == Shape::Kind::circle, "radius"},
-                    {has_radii, s.kind == Shape::Kind::ellipse, "radii"},
-                    {in.angle != 0, s.kind == Shape::Kind::ellipse, "angle"},
-                    {has_points, wanted_points, "points"},
-                    {!in.file.empty(), s.kind == Shape::Kind::mesh, "file"},
-                    {Lower(in.discretisation) != "lattice", s.kind == Shape::Kind::mesh, "discretisation"}};
-  for (const auto &p : parameters)
-    SceneCheck(!p.given || p.wanted, comm, "-body_%s_%s is not a parameter of a %s: remove it, or change -body_%s_type", n, p.option,
-               to_string(s.kind), n);
-  switch (s.kind) {
-  case Shape::Kind::rectangle:
-    SceneCheck(in.box.size() == 4, comm, "-body_%s_box holds %zu numbers: give xmin,ymin,xmax,ymax in m", n, in.box.size());
-    SceneCheck(in.box[2] > in.box[0] && in.box[3] > in.box[1], comm,
-               "-body_%s_box %g,%g,%g,%g: give xmin,ymin,xmax,ymax with xmax > xmin and ymax > ymin", n, in.box[0], in.box[1], in.box[2],
-               in.box[3]);
-    std::copy(in.box.begin(), in.box.end(), s.box);
-    break;
-  case Shape::Kind::circle:
-  case Shape::Kind::ellipse:
-    SceneCheck(in.centre.size() == 2, comm, "-body_%s_centre holds %zu numbers: give x,y in m", n, in.centre.size());
-    s.cx = in.centre[0], s.cy = in.centre[1];
-    if (s.kind == Shape::Kind::circle) {
-      SceneCheck(in.radius_set && in.radius > 0, comm, "-body_%s_radius: give the circle's radius in m, > 0", n);
-      s.a = s.b = in.radius;
-    } else {
-      SceneCheck(in.radii.size() == 2 && in.radii[0] > 0 && in.radii[1] > 0, comm,
-                 "-body_%s_radii: give the ellipse's two semi-axes a,b in m, both > 0", n);
-      s.a = in.radii[0], s.b = in.radii[1], s.angle = in.angle * M_PI / 180.0;
-    }
-    break;
-  case Shape::Kind::polygon: {
-    SceneCheck(in.points.size() % 2 == 0, comm, "-body_%s_points holds %zu numbers: give vertex pairs x0,y0,x1,y1,... in m", n,
-               in.points.size());
-    s.vertices = in.points;
-    const std::string problem = polygon_problem(s.vertices);
-    SceneCheck(problem.empty(), comm, "-body_%s_points: %s", n, problem.c_str());
-    break;
-  }
-  case Shape::Kind::mesh: {
-    SceneCheck(!in.file.empty(), comm, "-body_%s_file: give the Gmsh .geo or .msh file of shape '%s'", n, n);
-    // Every rank reads the (small) outline: the scene checks and probes use it too.
-    s.file      = in.file;
-    s.centroids = Lower(in.discretisation) == "centroids";
-    if (read_mesh) s.triangles = std::move(*read_mesh); // (read by CheckBody for its centroids)
-    else {
-      const std::string problem = ReadGmshTriangles(in.file, &s.triangles);
-      SceneCheck(problem.empty(), comm, "-body_%s_file: %s", n, problem.c_str());
-    }
-    break;
-  }
-  }
-  // A shape that does not touch the sheet does nothing: surely a mistake in a number.
-  // (With given points: none of them; the mesh whose centroids they are holds them all.)
-  bool touches = s.centroids;
-  if (b.given_points) {
-    const GivenPoints &g = *b.given_points;
-    for (std::size_t p = 0; p < g.size() && !touches; ++p) touches = shape_contains(s, g.x[2 * p], g.x[2 * p + 1]);
-  } else {
-    const LatticeCells cells = lattice_cells(b);
-    const int64_t      step  = std::max<int64_t>(1, std::max(cells.nx, cells.ny) / 2000);
-    for (int64_t iy = 0; iy < cells.ny && !touches; iy += step)
-      for (int64_t ix = 0; ix < cells.nx && !touches; ix += step)
-        touches = shape_contains(s, (ix + 0.5) * b.dx, (iy + 0.5) * b.dx);
-  }
-  SceneCheck(touches || s.op == Shape::Op::intersect, comm,
-             "-body_%s: the %s holds no %s point of the sheet [0, %g] x [0, %g] m (spacing %g m), so it changes nothing: check "
-             "its position and size",
-             n, to_string(s.kind), b.given_points ? "given" : "lattice", b.width, b.height, b.dx);
-  shapes->push_back(s);
-  PetscFunctionReturn(0);
-}
-
-
 } // namespace
 
 PetscErrorCode CheckHorizonFactor(MPI_Comm comm, const Scene &scene)
@@ -395,11 +289,12 @@ PetscErrorCode ReadBody(MPI_Comm comm, Scene *scene, SceneInput *in)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode CheckBody(MPI_Comm comm, const SceneInput &in, Scene *scene)
+namespace {
+
+// The dimension: -body_dimension, else 3 if a shape is a 3D solid or notch.
+PetscErrorCode CheckDimension(MPI_Comm comm, const SceneInput &in, int *dimension)
 {
-  Body2D &b = scene->body;
   PetscFunctionBeginUser;
-  // The dimension: -body_dimension, else 3 if a shape is a 3D solid or notch.
   const ShapeInput *solid = nullptr;
   for (const ShapeInput &si : in.shapes)
     if (!solid && IsShape3D(si.type)) solid = &si;
@@ -411,14 +306,15 @@ PetscErrorCode CheckBody(MPI_Comm comm, const SceneInput &in, Scene *scene)
                "polygon, mesh), or -body_dimension 3",
                solid ? solid->name.c_str() : "", solid ? solid->type.c_str() : "");
   }
-  scene->dimension = in.dimension_set ? static_cast<int>(in.dimension) : solid ? 3 : 2;
-  if (scene->dimension == 3) {
-    PetscCall(CheckBody3D(comm, in, scene));
-    PetscFunctionReturn(0);
-  }
-  // Given points (geometry.hpp) instead of the lattice: a cloud file, or the element
-  // centroids of one mesh shape. They fix the spacing (dx: the smallest), and the
-  // sheet's size unless it is given (the points' extent, half a spacing beyond them).
+  *dimension = in.dimension_set ? static_cast<int>(in.dimension) : solid ? 3 : 2;
+  PetscFunctionReturn(0);
+}
+
+// The mesh shape whose element centroids are the body's points
+// (-body_NAME_discretisation centroids), or null.
+PetscErrorCode FindCentroidShape(MPI_Comm comm, const SceneInput &in, const ShapeInput **found)
+{
+  PetscFunctionBeginUser;
   const ShapeInput *centroid_shape = nullptr;
   for (const ShapeInput &si : in.shapes) {
     const char *n = si.name.c_str();
@@ -435,50 +331,65 @@ PetscErrorCode CheckBody(MPI_Comm comm, const SceneInput &in, Scene *scene)
     SceneCheck(in.cloud.empty(), comm, "-body_%s_discretisation centroids and -body_cloud both give the body's points: keep one", n);
     centroid_shape = &si;
   }
-  b.given_points.reset();
-  TriangleSet centroid_mesh; // the centroid shape's mesh, read once (CheckShape takes it)
-  if (!in.cloud.empty() || centroid_shape) {
-    const std::string source = centroid_shape ? "-body_" + centroid_shape->name + "_discretisation centroids" : "-body_cloud";
-    SceneCheck(in.thickness_set && b.thickness > 0, comm,
-               "-body_thickness is required and must be > 0 m: %s turns volumes into spacings with it (YAML: body: {thickness: 0.001})",
-               source.c_str());
-    auto points = std::make_shared<GivenPoints>();
-    if (centroid_shape) {
-      const char       *n       = centroid_shape->name.c_str();
-      SceneCheck(!centroid_shape->file.empty(), comm, "-body_%s_file: give the Gmsh .geo or .msh file of shape '%s'", n, n);
-      const std::string problem = ReadGmshTriangles(centroid_shape->file, &centroid_mesh);
-      SceneCheck(problem.empty(), comm, "-body_%s_file: %s", n, problem.c_str());
-      *points        = element_centroids(centroid_mesh, b.thickness);
-      points->source = centroid_shape->file;
-      for (std::size_t p = 0; p < points->size(); ++p)
-        SceneCheck(points->volume[p] > 0, comm,
-                   "-body_%s_file: 2D element %zu of '%s' has zero area, so its centroid point would have no volume: fix the mesh", n, p + 1,
-                   centroid_shape->file.c_str());
-    } else {
-      const std::string problem = ReadPointCloud(in.cloud, points.get());
-      SceneCheck(problem.empty(), comm, "-body_cloud: %s", problem.c_str());
-    }
-    double right = 0, top = 0;
-    for (std::size_t p = 0; p < points->size(); ++p) {
-      const double h = point_spacing(points->volume[p], b.thickness);
-      right          = std::max(right, points->x[2 * p] + 0.5 * h);
-      top            = std::max(top, points->x[2 * p + 1] + 0.5 * h);
-    }
-    if (!in.width_set) b.width = right;
-    if (!in.height_set) b.height = top;
-    for (std::size_t p = 0; p < points->size(); ++p) {
-      const double x = points->x[2 * p], y = points->x[2 * p + 1];
-      SceneCheck(x >= 0 && x <= b.width && y >= 0 && y <= b.height, comm,
-                 "%s: point %zu at (%g, %g) m lies outside the sheet [0, %g] x [0, %g] m: shift the points into x >= 0, y >= 0%s", source.c_str(),
-                 p + 1, x, y, b.width, b.height, in.width_set || in.height_set ? ", or enlarge -body_width / -body_height" : "");
-    }
-    SceneCheck(!in.dx_set, comm,
-               "-body_dx is the lattice spacing, but %s gives the body's points, each with its own volume (its spacing is sqrt(volume / "
-               "thickness)): remove -body_dx",
-               source.c_str());
-    b.dx           = smallest_spacing(*points, b.thickness);
-    b.given_points = points;
+  *found = centroid_shape;
+  PetscFunctionReturn(0);
+}
+
+// Given points (geometry.hpp) instead of the lattice: a cloud file, or the element
+// centroids of one mesh shape (its mesh read into *centroid_mesh). They fix the spacing
+// (dx: the smallest), and the sheet's size unless it is given (the points' extent, half
+// a spacing beyond them).
+PetscErrorCode GivenPoints2D(MPI_Comm comm, const SceneInput &in, const ShapeInput *centroid_shape, Body2D *body, TriangleSet *centroid_mesh)
+{
+  Body2D &b = *body;
+  PetscFunctionBeginUser;
+  const std::string source = centroid_shape ? "-body_" + centroid_shape->name + "_discretisation centroids" : "-body_cloud";
+  SceneCheck(in.thickness_set && b.thickness > 0, comm,
+             "-body_thickness is required and must be > 0 m: %s turns volumes into spacings with it (YAML: body: {thickness: 0.001})",
+             source.c_str());
+  auto points = std::make_shared<GivenPoints>();
+  if (centroid_shape) {
+    const char       *n       = centroid_shape->name.c_str();
+    SceneCheck(!centroid_shape->file.empty(), comm, "-body_%s_file: give the Gmsh .geo or .msh file of shape '%s'", n, n);
+    const std::string problem = ReadGmshTriangles(centroid_shape->file, centroid_mesh);
+    SceneCheck(problem.empty(), comm, "-body_%s_file: %s", n, problem.c_str());
+    *points        = element_centroids(*centroid_mesh, b.thickness);
+    points->source = centroid_shape->file;
+    for (std::size_t p = 0; p < points->size(); ++p)
+      SceneCheck(points->volume[p] > 0, comm,
+                 "-body_%s_file: 2D element %zu of '%s' has zero area, so its centroid point would have no volume: fix the mesh", n, p + 1,
+                 centroid_shape->file.c_str());
+  } else {
+    const std::string problem = ReadPointCloud(in.cloud, points.get());
+    SceneCheck(problem.empty(), comm, "-body_cloud: %s", problem.c_str());
   }
+  double right = 0, top = 0;
+  for (std::size_t p = 0; p < points->size(); ++p) {
+    const double h = point_spacing(points->volume[p], b.thickness);
+    right          = std::max(right, points->x[2 * p] + 0.5 * h);
+    top            = std::max(top, points->x[2 * p + 1] + 0.5 * h);
+  }
+  if (!in.width_set) b.width = right;
+  if (!in.height_set) b.height = top;
+  for (std::size_t p = 0; p < points->size(); ++p) {
+    const double x = points->x[2 * p], y = points->x[2 * p + 1];
+    SceneCheck(x >= 0 && x <= b.width && y >= 0 && y <= b.height, comm,
+               "%s: point %zu at (%g, %g) m lies outside the sheet [0, %g] x [0, %g] m: shift the points into x >= 0, y >= 0%s", source.c_str(),
+               p + 1, x, y, b.width, b.height, in.width_set || in.height_set ? ", or enlarge -body_width / -body_height" : "");
+  }
+  SceneCheck(!in.dx_set, comm,
+             "-body_dx is the lattice spacing, but %s gives the body's points, each with its own volume (its spacing is sqrt(volume / "
+             "thickness)): remove -body_dx",
+             source.c_str());
+  b.dx           = smallest_spacing(*points, b.thickness);
+  b.given_points = points;
+  PetscFunctionReturn(0);
+}
+
+// The sheet's size and spacing: each given (or set by given points) and > 0.
+PetscErrorCode CheckSheetSize(MPI_Comm comm, const SceneInput &in, const Body2D &b)
+{
+  PetscFunctionBeginUser;
   const bool given = b.given_points != nullptr;
   const struct {
     bool        set;
@@ -497,8 +408,13 @@ PetscErrorCode CheckBody(MPI_Comm comm, const SceneInput &in, Scene *scene)
   SceneCheck(b.dx <= b.width && b.dx <= b.height, comm,
              "-body_dx %g m is larger than the body (%g m x %g m): choose a spacing well below the smaller side, e.g. -body_dx %g", b.dx,
              b.width, b.height, std::min(b.width, b.height) / 20);
-  const double tol = 1e-12 * std::max(b.width, b.height); // round-off in the input numbers
+  PetscFunctionReturn(0);
+}
 
+PetscErrorCode CheckHoles(MPI_Comm comm, const SceneInput &in, Body2D *body)
+{
+  Body2D &b = *body;
+  PetscFunctionBeginUser;
   SceneCheck(in.holes.size() % 3 == 0, comm,
              "-body_holes holds %zu numbers, not a multiple of 3: give each hole as cx,cy,r (e.g. -body_holes 0.04,0.08,0.01)", in.holes.size());
   b.holes.clear();
@@ -520,7 +436,14 @@ PetscErrorCode CheckBody(MPI_Comm comm, const SceneInput &in, Scene *scene)
                h + 1, c.cx, c.cy, c.radius, b.width, b.height);
     b.holes.push_back(c);
   }
+  PetscFunctionReturn(0);
+}
 
+PetscErrorCode CheckNotches(MPI_Comm comm, const SceneInput &in, Body2D *body)
+{
+  Body2D      &b   = *body;
+  const double tol = 1e-12 * std::max(b.width, b.height); // round-off in the input numbers
+  PetscFunctionBeginUser;
   SceneCheck(in.notches.size() % 4 == 0, comm,
              "-body_notches holds %zu numbers, not a multiple of 4: give each notch as x0,y0,x1,y1 (e.g. -body_notches 0.05,0.005,0.07,0.005)",
              in.notches.size());
@@ -538,6 +461,31 @@ PetscErrorCode CheckBody(MPI_Comm comm, const SceneInput &in, Scene *scene)
                "-body_notches: notch %zu has zero length (both ends at (%g, %g) m): give two different end points", s + 1, g.x0, g.y0);
     b.notches.push_back(g);
   }
+  PetscFunctionReturn(0);
+}
+
+} // namespace
+
+PetscErrorCode CheckBody(MPI_Comm comm, const SceneInput &in, Scene *scene)
+{
+  Body2D &b = scene->body;
+  PetscFunctionBeginUser;
+  PetscCall(CheckDimension(comm, in, &scene->dimension));
+  if (scene->dimension == 3) {
+    PetscCall(CheckBody3D(comm, in, scene));
+    PetscFunctionReturn(0);
+  }
+  // Given points (geometry.hpp) instead of the lattice: a cloud file, or the element
+  // centroids of one mesh shape.
+  const ShapeInput *centroid_shape = nullptr;
+  PetscCall(FindCentroidShape(comm, in, &centroid_shape));
+  b.given_points.reset();
+  TriangleSet centroid_mesh; // the centroid shape's mesh, read once (CheckShape takes it)
+  if (!in.cloud.empty() || centroid_shape) PetscCall(GivenPoints2D(comm, in, centroid_shape, &b, &centroid_mesh));
+  const bool given = b.given_points != nullptr;
+  PetscCall(CheckSheetSize(comm, in, b));
+  PetscCall(CheckHoles(comm, in, &b));
+  PetscCall(CheckNotches(comm, in, &b));
   b.shapes.clear();
   for (const ShapeInput &si : in.shapes) PetscCall(CheckShape(comm, si, b, &si == centroid_shape ? &centroid_mesh : nullptr, &b.shapes));
   const std::string cut = FindCut(b);

@@ -120,14 +120,9 @@ PetscErrorCode CheckShape3D(MPI_Comm comm, const ShapeInput &in, bool first_soli
   PetscFunctionReturn(0);
 }
 
-} // namespace
-
-// The 3D body: its solids and notches on the lattice of spacing -body_dx, or a 3D cloud
-// clipped by its solids; the points are built here (their count, extent and the one-piece
-// check; about 40 bytes a point, against the run's ~6 KB: CheckBodyFits follows).
-PetscErrorCode CheckBody3D(MPI_Comm comm, const SceneInput &in, Scene *scene)
+// -body_width and the other options of the 2D sheet have no place in a 3D body.
+PetscErrorCode CheckNoSheetOptions(MPI_Comm comm, const SceneInput &in)
 {
-  Body3D &b = scene->body3d;
   PetscFunctionBeginUser;
   const struct {
     bool        given;
@@ -140,10 +135,15 @@ PetscErrorCode CheckBody3D(MPI_Comm comm, const SceneInput &in, Scene *scene)
                                                       "x0,y0,z0,x1,y1,z1,..."}};
   for (const auto &o : two_d)
     SceneCheck(!o.given, comm, "%s is an option of the 2D sheet, and this body is 3D (-body_dimension 3): remove it; %s", o.option, o.fix);
-  b = Body3D();
-  for (const ShapeInput &si : in.shapes) PetscCall(CheckShape3D(comm, si, b.solid.solids.empty(), &b));
-  // Given points instead of the lattice: a 3D cloud, or the element centroids of one mesh
-  // solid (-body_S_discretisation centroids, the first solid: the body is its tetrahedra).
+  PetscFunctionReturn(0);
+}
+
+// Given points instead of the lattice: a 3D cloud, or the element centroids of one mesh
+// solid (-body_S_discretisation centroids, the first solid: the body is its tetrahedra).
+// *centroid_solid_out: that solid's index, or the number of solids for none.
+PetscErrorCode FindCentroidSolid(MPI_Comm comm, const SceneInput &in, const Body3D &b, std::size_t *centroid_solid_out)
+{
+  PetscFunctionBeginUser;
   std::size_t centroid_solid = b.solid.solids.size(); // none
   for (const ShapeInput &si : in.shapes) {
     const char *n = si.name.c_str();
@@ -159,70 +159,92 @@ PetscErrorCode CheckBody3D(MPI_Comm comm, const SceneInput &in, Scene *scene)
                "others may cut it): list '%s' first",
                n, n);
   }
+  *centroid_solid_out = centroid_solid;
+  PetscFunctionReturn(0);
+}
+
+// The given points (a 3D cloud, or the centroid solid's tetrahedra) clipped by the
+// other solids: b->given_points, their block ids and smallest spacing; *points a copy.
+PetscErrorCode GivenPoints3D(MPI_Comm comm, const SceneInput &in, std::size_t centroid_solid, Body3D *body, PointCloud *points)
+{
+  Body3D    &b         = *body;
   const bool centroids = centroid_solid < b.solid.solids.size();
-  PointCloud points;
-  if (!in.cloud.empty() || centroids) {
-    const std::string source = centroids ? "-body_" + b.solid_names[centroid_solid] + "_discretisation centroids" : "-body_cloud";
-    SceneCheck(!in.dx_set, comm, "-body_dx is the lattice spacing, but %s gives the body's points, each with its own volume: remove -body_dx",
-               source.c_str());
-    for (std::size_t k = 0; k < b.solid.solids.size(); ++k)
-      SceneCheck(k == centroid_solid || b.solid.solids[k].op != nd::Solid::Op::add, comm,
-                 "-body_%s: the points of %s are the body, so a solid can only cut them: set -body_%s_op subtract or intersect",
-                 b.solid_names[k].c_str(), source.c_str(), b.solid_names[k].c_str());
-    PointCloud           read;
-    std::vector<int64_t> block;
-    if (centroids) {
-      const nd::TetrahedronSet &mesh = *b.solid.solids[centroid_solid].mesh;
-      read                           = nd::tetrahedron_centroids(mesh);
-      block.assign(read.size(), 0);
-      for (std::size_t p = 0; p < read.size(); ++p)
-        SceneCheck(read.volume[p] > 0, comm,
-                   "%s: tetrahedron %zu of '%s' has zero volume, so its centroid point would have no volume: fix the mesh", source.c_str(),
-                   p + 1, mesh.file.c_str());
-    } else {
-      const std::string problem = nd::read_point_cloud_3d(in.cloud, &read, &block);
-      SceneCheck(problem.empty(), comm, "-body_cloud: %s", problem.c_str());
-    }
-    auto kept = std::make_shared<PointCloud>();
-    for (std::size_t p = 0; p < read.size(); ++p) {
-      bool keep = true; // the points, then each solid's cut in order (the centroids' own mesh holds them all)
-      for (std::size_t k = 0; k < b.solid.solids.size(); ++k) {
-        if (k == centroid_solid) continue;
-        const nd::Solid &solid    = b.solid.solids[k];
-        const bool       in_solid = nd::solid_contains(solid, &read.x[3 * p]);
-        keep                      = solid.op == nd::Solid::Op::subtract ? keep && !in_solid : keep && in_solid;
-      }
-      if (!keep) continue;
-      kept->x.insert(kept->x.end(), &read.x[3 * p], &read.x[3 * p + 3]);
-      kept->volume.push_back(read.volume[p]);
-      kept->natural_id.push_back(static_cast<int64_t>(kept->volume.size()) - 1);
-      b.given_block.push_back(block[p]);
-    }
-    SceneCheck(kept->size() > 0, comm, "%s '%s': the solids of -body_shapes cut away all %zu of its points: check each one's -op", source.c_str(),
-               centroids ? b.solid.solids[centroid_solid].mesh->file.c_str() : in.cloud.c_str(), read.size());
-    double smallest = std::numeric_limits<double>::max();
-    for (double v : kept->volume) smallest = std::min(smallest, point_spacing(3, v, 0.0));
-    // The smallest spacing cbrt(V) (2D: sqrt(V/t), geometry.hpp): the faces' row depth,
-    // the stable-step and travel scale; each point's horizon is its own (BodyPoints).
-    b.solid.dx     = smallest;
-    b.source       = centroids ? b.solid.solids[centroid_solid].mesh->file : in.cloud;
-    b.centroids    = centroids;
-    b.given_points = kept;
-    points         = *kept;
+  PetscFunctionBeginUser;
+  const std::string source = centroids ? "-body_" + b.solid_names[centroid_solid] + "_discretisation centroids" : "-body_cloud";
+  SceneCheck(!in.dx_set, comm, "-body_dx is the lattice spacing, but %s gives the body's points, each with its own volume: remove -body_dx",
+             source.c_str());
+  for (std::size_t k = 0; k < b.solid.solids.size(); ++k)
+    SceneCheck(k == centroid_solid || b.solid.solids[k].op != nd::Solid::Op::add, comm,
+               "-body_%s: the points of %s are the body, so a solid can only cut them: set -body_%s_op subtract or intersect",
+               b.solid_names[k].c_str(), source.c_str(), b.solid_names[k].c_str());
+  PointCloud           read;
+  std::vector<int64_t> block;
+  if (centroids) {
+    const nd::TetrahedronSet &mesh = *b.solid.solids[centroid_solid].mesh;
+    read                           = nd::tetrahedron_centroids(mesh);
+    block.assign(read.size(), 0);
+    for (std::size_t p = 0; p < read.size(); ++p)
+      SceneCheck(read.volume[p] > 0, comm,
+                 "%s: tetrahedron %zu of '%s' has zero volume, so its centroid point would have no volume: fix the mesh", source.c_str(),
+                 p + 1, mesh.file.c_str());
   } else {
-    SceneCheck(in.dx_set, comm, "-body_dx is required: give the lattice spacing of the 3D body in metres (YAML: body: {dx: 0.001})%s",
-               MisspeltHint("-body_dx").c_str());
-    SceneCheck(scene->body.dx > 0, comm, "-body_dx %g: the lattice spacing must be > 0 m", scene->body.dx);
-    SceneCheck(!b.solid.solids.empty(), comm,
-               "-body_dimension 3: a 3D body is made of solids: give -body_shapes with a shape of -body_NAME_type box, cylinder, sphere "
-               "or mesh (a Gmsh volume), or a 3D point cloud by -body_cloud");
-    b.solid.dx = scene->body.dx;
-    try {
-      points = nd::make_solid_points(b.solid);
-    } catch (const std::invalid_argument &e) {
-      SceneCheck(false, comm, "-body_shapes: %s", e.what());
-    }
+    const std::string problem = nd::read_point_cloud_3d(in.cloud, &read, &block);
+    SceneCheck(problem.empty(), comm, "-body_cloud: %s", problem.c_str());
   }
+  auto kept = std::make_shared<PointCloud>();
+  for (std::size_t p = 0; p < read.size(); ++p) {
+    bool keep = true; // the points, then each solid's cut in order (the centroids' own mesh holds them all)
+    for (std::size_t k = 0; k < b.solid.solids.size(); ++k) {
+      if (k == centroid_solid) continue;
+      const nd::Solid &solid    = b.solid.solids[k];
+      const bool       in_solid = nd::solid_contains(solid, &read.x[3 * p]);
+      keep                      = solid.op == nd::Solid::Op::subtract ? keep && !in_solid : keep && in_solid;
+    }
+    if (!keep) continue;
+    kept->x.insert(kept->x.end(), &read.x[3 * p], &read.x[3 * p + 3]);
+    kept->volume.push_back(read.volume[p]);
+    kept->natural_id.push_back(static_cast<int64_t>(kept->volume.size()) - 1);
+    b.given_block.push_back(block[p]);
+  }
+  SceneCheck(kept->size() > 0, comm, "%s '%s': the solids of -body_shapes cut away all %zu of its points: check each one's -op", source.c_str(),
+             centroids ? b.solid.solids[centroid_solid].mesh->file.c_str() : in.cloud.c_str(), read.size());
+  double smallest = std::numeric_limits<double>::max();
+  for (double v : kept->volume) smallest = std::min(smallest, point_spacing(3, v, 0.0));
+  // The smallest spacing cbrt(V) (2D: sqrt(V/t), geometry.hpp): the faces' row depth,
+  // the stable-step and travel scale; each point's horizon is its own (BodyPoints).
+  b.solid.dx     = smallest;
+  b.source       = centroids ? b.solid.solids[centroid_solid].mesh->file : in.cloud;
+  b.centroids    = centroids;
+  b.given_points = kept;
+  *points        = *kept;
+  PetscFunctionReturn(0);
+}
+
+// The solids' points on the lattice of spacing -body_dx (given as scene->body.dx).
+PetscErrorCode LatticePoints3D(MPI_Comm comm, const SceneInput &in, double dx, Body3D *body, PointCloud *points)
+{
+  Body3D &b = *body;
+  PetscFunctionBeginUser;
+  SceneCheck(in.dx_set, comm, "-body_dx is required: give the lattice spacing of the 3D body in metres (YAML: body: {dx: 0.001})%s",
+             MisspeltHint("-body_dx").c_str());
+  SceneCheck(dx > 0, comm, "-body_dx %g: the lattice spacing must be > 0 m", dx);
+  SceneCheck(!b.solid.solids.empty(), comm,
+             "-body_dimension 3: a 3D body is made of solids: give -body_shapes with a shape of -body_NAME_type box, cylinder, sphere "
+             "or mesh (a Gmsh volume), or a 3D point cloud by -body_cloud");
+  b.solid.dx = dx;
+  try {
+    *points = nd::make_solid_points(b.solid);
+  } catch (const std::invalid_argument &e) {
+    SceneCheck(false, comm, "-body_shapes: %s", e.what());
+  }
+  PetscFunctionReturn(0);
+}
+
+// The count of the points and the extent of their cells (lattice point +- dx/2, given
+// point +- its spacing / 2).
+void SetExtent(const PointCloud &points, Body3D *body)
+{
+  Body3D &b = *body;
   b.points = static_cast<int64_t>(points.size());
   b.lo.fill(std::numeric_limits<double>::max());
   b.hi.fill(-std::numeric_limits<double>::max());
@@ -233,6 +255,27 @@ PetscErrorCode CheckBody3D(MPI_Comm comm, const SceneInput &in, Scene *scene)
       b.hi[r] = std::max(b.hi[r], points.x[3 * p + r] + h);
     }
   }
+}
+
+} // namespace
+
+// The 3D body: its solids and notches on the lattice of spacing -body_dx, or a 3D cloud
+// clipped by its solids; the points are built here (their count, extent and the one-piece
+// check; about 40 bytes a point, against the run's ~6 KB: CheckBodyFits follows).
+PetscErrorCode CheckBody3D(MPI_Comm comm, const SceneInput &in, Scene *scene)
+{
+  Body3D &b = scene->body3d;
+  PetscFunctionBeginUser;
+  PetscCall(CheckNoSheetOptions(comm, in));
+  b = Body3D();
+  for (const ShapeInput &si : in.shapes) PetscCall(CheckShape3D(comm, si, b.solid.solids.empty(), &b));
+  std::size_t centroid_solid = 0;
+  PetscCall(FindCentroidSolid(comm, in, b, &centroid_solid));
+  const bool centroids = centroid_solid < b.solid.solids.size();
+  PointCloud points;
+  if (!in.cloud.empty() || centroids) PetscCall(GivenPoints3D(comm, in, centroid_solid, &b, &points));
+  else PetscCall(LatticePoints3D(comm, in, scene->body.dx, &b, &points));
+  SetExtent(points, &b);
   scene->body    = Body2D();
   scene->body.dx = b.solid.dx; // (the spacing every section reads: the time-step bound, the (smallest) horizon)
   PetscCall(CheckHorizonFactor(comm, *scene));

@@ -71,6 +71,9 @@ PetscErrorCode CheckBody(MPI_Comm comm, const SceneInput &in, Scene *scene);
 // The parts of the body's check shared with the 3D body (scene_body3d.cpp).
 PetscErrorCode CheckHorizonFactor(MPI_Comm comm, const Scene &scene);
 bool           IsShape3D(const std::string &type); // box, cylinder, sphere, notch
+// One shape of -body_shapes of the 2D sheet, checked and appended to *shapes
+// (scene_shape.cpp); `read_mesh`: its Gmsh mesh if already read (else null).
+PetscErrorCode CheckShape(MPI_Comm comm, const ShapeInput &in, const Body2D &b, TriangleSet *read_mesh, std::vector<Shape> *shapes);
 PetscErrorCode CheckBody3D(MPI_Comm comm, const SceneInput &in, Scene *scene);
 // Refuses a lattice that cannot fit in memory; after CheckLoading, which adds the rows
 // of the grips outside the sheet.
