@@ -101,6 +101,98 @@ template <int D> void check_cloud(const PointCloud &cloud, std::size_t n_family,
                                 " exceeds the number of points " + std::to_string(n));
 }
 
+// Cell list over all points, cells one reach wide (widened while the box is sparse,
+// so that the cell array stays within ~8 cells a point): the points of cell k are
+// points[start[k] .. start[k + 1]).
+template <int D> struct CellList {
+  const double              *x;
+  std::array<double, D>      lo, hi;
+  double                     cell;
+  std::array<std::size_t, D> nc;
+  std::vector<std::size_t>   start, points;
+
+  CellList(const double *x_, std::size_t n, double reach) : x(x_), cell(reach)
+  {
+    for (int r = 0; r < D; ++r) lo[r] = hi[r] = x[r];
+    for (std::size_t i = 0; i < n; ++i)
+      for (int r = 0; r < D; ++r) lo[r] = std::min(lo[r], x[D * i + r]), hi[r] = std::max(hi[r], x[D * i + r]);
+    auto count_cells = [&]() {
+      double total = 1.0;
+      for (int r = 0; r < D; ++r) {
+        nc[r] = static_cast<std::size_t>((hi[r] - lo[r]) / cell) + 1;
+        total *= static_cast<double>(nc[r]);
+      }
+      return total;
+    };
+    while (count_cells() > 8.0 * static_cast<double>(n) + 64.0) cell *= 2.0;
+    std::size_t n_cells = 1;
+    for (int r = 0; r < D; ++r) n_cells *= nc[r];
+    start.assign(n_cells + 1, 0);
+    points.resize(n);
+    std::vector<std::size_t> cell_of(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      std::array<std::size_t, D> c;
+      for (int r = 0; r < D; ++r) c[r] = coord(i, r);
+      cell_of[i] = index(c);
+      ++start[cell_of[i] + 1];
+    }
+    for (std::size_t c = 0; c < n_cells; ++c) start[c + 1] += start[c];
+    std::vector<std::size_t> fill(start.begin(), start.end() - 1);
+    for (std::size_t i = 0; i < n; ++i) points[fill[cell_of[i]]++] = i;
+  }
+  std::size_t coord(std::size_t i, int r) const
+  {
+    return std::min(nc[r] - 1, static_cast<std::size_t>((x[D * i + r] - lo[r]) / cell));
+  }
+  std::size_t index(const std::array<std::size_t, D> &c) const
+  {
+    std::size_t k = 0;
+    for (int r = D - 1; r >= 0; --r) k = k * nc[r] + c[r];
+    return k;
+  }
+};
+
+// BA masks (paper eq 8: B_ij = H_i and H_j), as many 64-bit words as the largest family needs.
+template <int D> void fill_ba_masks(Families &fam, const double *x, const double *point_horizon, double h2)
+{
+  const std::size_t W = std::max<std::size_t>(1, (fam.max_family_size + 63) / 64);
+  fam.mask_words      = W;
+  fam.ba_mask.assign(fam.n_bonds() * W, 0);
+  for (std::size_t i = 0; i < fam.n_family; ++i) {
+    const std::size_t o = fam.offsets[i], m = fam.size(i);
+    for (std::size_t q = 0; q < m; ++q) {
+      const std::size_t j    = static_cast<std::size_t>(fam.neighbour[o + q]);
+      std::uint64_t    *mask = fam.ba_mask.data() + (o + q) * W;
+      for (std::size_t p = 0; p < m; ++p) {
+        const std::size_t k = static_cast<std::size_t>(fam.neighbour[o + p]);
+        if (distance_squared<D>(x, j, k) <= reach_squared(point_horizon, h2, j, k))
+          mask[p / 64] |= std::uint64_t{1} << (p % 64);
+      }
+    }
+  }
+}
+
+// Reverse index: bond (j -> i), found by natural id in j's sorted family.
+void fill_reverse_index(Families &fam, const PointCloud &cloud)
+{
+  const std::size_t n_family = fam.n_family;
+  fam.reverse.assign(fam.n_bonds(), -1);
+  for (std::size_t i = 0; i < n_family; ++i)
+    for (std::size_t b = fam.offsets[i]; b < fam.offsets[i + 1]; ++b) {
+      const std::size_t j = static_cast<std::size_t>(fam.neighbour[b]);
+      if (j >= n_family) continue;
+      const auto first = fam.neighbour.begin() + static_cast<std::ptrdiff_t>(fam.offsets[j]);
+      const auto last  = fam.neighbour.begin() + static_cast<std::ptrdiff_t>(fam.offsets[j + 1]);
+      const auto it    = std::lower_bound(first, last, cloud.natural_id[i], [&](std::int32_t k, int64_t id) {
+        return cloud.natural_id[static_cast<std::size_t>(k)] < id;
+      });
+      if (it == last || static_cast<std::size_t>(*it) != i)
+        throw std::runtime_error("build_families: point with natural id " + std::to_string(cloud.natural_id[j]) +
+                                 " lacks the reverse bond to natural id " + std::to_string(cloud.natural_id[i]));
+      fam.reverse[b] = static_cast<std::int32_t>(it - fam.neighbour.begin());
+    }
+}
+
 } // namespace
 
 template <int D>
@@ -118,60 +210,22 @@ Families build_families(const PointCloud &cloud, std::size_t n_family, double ho
   fam.offsets.assign(n_family + 1, 0);
   if (n == 0) return fam;
 
-  // Cell list over all points, cells one reach wide (widened while the box is sparse,
-  // so that the cell array stays within ~8 cells a point).
-  std::array<double, D> lo, hi;
-  for (int r = 0; r < D; ++r) lo[r] = hi[r] = x[r];
-  for (std::size_t i = 0; i < n; ++i)
-    for (int r = 0; r < D; ++r) lo[r] = std::min(lo[r], x[D * i + r]), hi[r] = std::max(hi[r], x[D * i + r]);
-  double                     cell = reach;
-  std::array<std::size_t, D> nc;
-  auto                       count_cells = [&]() {
-    double total = 1.0;
-    for (int r = 0; r < D; ++r) {
-      nc[r] = static_cast<std::size_t>((hi[r] - lo[r]) / cell) + 1;
-      total *= static_cast<double>(nc[r]);
-    }
-    return total;
-  };
-  while (count_cells() > 8.0 * static_cast<double>(n) + 64.0) cell *= 2.0;
-  auto cell_coord = [&](std::size_t i, int r) {
-    return std::min(nc[r] - 1, static_cast<std::size_t>((x[D * i + r] - lo[r]) / cell));
-  };
-  auto cell_index = [&](const std::array<std::size_t, D> &c) {
-    std::size_t k = 0;
-    for (int r = D - 1; r >= 0; --r) k = k * nc[r] + c[r];
-    return k;
-  };
-  std::size_t n_cells = 1;
-  for (int r = 0; r < D; ++r) n_cells *= nc[r];
-  std::vector<std::size_t> cell_start(n_cells + 1, 0), cell_points(n), cell_of(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    std::array<std::size_t, D> c;
-    for (int r = 0; r < D; ++r) c[r] = cell_coord(i, r);
-    cell_of[i] = cell_index(c);
-    ++cell_start[cell_of[i] + 1];
-  }
-  for (std::size_t c = 0; c < n_cells; ++c) cell_start[c + 1] += cell_start[c];
-  {
-    std::vector<std::size_t> fill(cell_start.begin(), cell_start.end() - 1);
-    for (std::size_t i = 0; i < n; ++i) cell_points[fill[cell_of[i]]++] = i;
-  }
+  const CellList<D> cells(x, n, reach);
 
   std::vector<std::int32_t> candidates;
   for (std::size_t i = 0; i < n_family; ++i) {
     candidates.clear();
     std::array<std::size_t, D> c, first, last, g;
     for (int r = 0; r < D; ++r) {
-      c[r]     = cell_coord(i, r);
+      c[r]     = cells.coord(i, r);
       first[r] = c[r] > 0 ? c[r] - 1 : 0;
-      last[r]  = std::min(nc[r] - 1, c[r] + 1);
+      last[r]  = std::min(cells.nc[r] - 1, c[r] + 1);
     }
     g = first;
     for (;;) { // the 3^D block of cells around i (clipped to the grid)
-      const std::size_t k = cell_index(g);
-      for (std::size_t s = cell_start[k]; s < cell_start[k + 1]; ++s) {
-        const std::size_t j = cell_points[s];
+      const std::size_t k = cells.index(g);
+      for (std::size_t s = cells.start[k]; s < cells.start[k + 1]; ++s) {
+        const std::size_t j = cells.points[s];
         if (j == i || distance_squared<D>(x, i, j) > reach_squared(point_horizon, h2, i, j)) continue;
         if (cut) {
           const bool        i_first = cloud.natural_id[i] < cloud.natural_id[j];
@@ -201,39 +255,8 @@ Families build_families(const PointCloud &cloud, std::size_t n_family, double ho
     fam.max_family_size = std::max(fam.max_family_size, candidates.size());
   }
 
-  // BA masks (paper eq 8: B_ij = H_i and H_j), as many 64-bit words as the largest family needs.
-  const std::size_t W = std::max<std::size_t>(1, (fam.max_family_size + 63) / 64);
-  fam.mask_words      = W;
-  fam.ba_mask.assign(fam.n_bonds() * W, 0);
-  for (std::size_t i = 0; i < n_family; ++i) {
-    const std::size_t o = fam.offsets[i], m = fam.size(i);
-    for (std::size_t q = 0; q < m; ++q) {
-      const std::size_t j    = static_cast<std::size_t>(fam.neighbour[o + q]);
-      std::uint64_t    *mask = fam.ba_mask.data() + (o + q) * W;
-      for (std::size_t p = 0; p < m; ++p) {
-        const std::size_t k = static_cast<std::size_t>(fam.neighbour[o + p]);
-        if (distance_squared<D>(x, j, k) <= reach_squared(point_horizon, h2, j, k))
-          mask[p / 64] |= std::uint64_t{1} << (p % 64);
-      }
-    }
-  }
-
-  // Reverse index: bond (j -> i), found by natural id in j's sorted family.
-  fam.reverse.assign(fam.n_bonds(), -1);
-  for (std::size_t i = 0; i < n_family; ++i)
-    for (std::size_t b = fam.offsets[i]; b < fam.offsets[i + 1]; ++b) {
-      const std::size_t j = static_cast<std::size_t>(fam.neighbour[b]);
-      if (j >= n_family) continue;
-      const auto first = fam.neighbour.begin() + static_cast<std::ptrdiff_t>(fam.offsets[j]);
-      const auto last  = fam.neighbour.begin() + static_cast<std::ptrdiff_t>(fam.offsets[j + 1]);
-      const auto it    = std::lower_bound(first, last, cloud.natural_id[i], [&](std::int32_t k, int64_t id) {
-        return cloud.natural_id[static_cast<std::size_t>(k)] < id;
-      });
-      if (it == last || static_cast<std::size_t>(*it) != i)
-        throw std::runtime_error("build_families: point with natural id " + std::to_string(cloud.natural_id[j]) +
-                                 " lacks the reverse bond to natural id " + std::to_string(cloud.natural_id[i]));
-      fam.reverse[b] = static_cast<std::int32_t>(it - fam.neighbour.begin());
-    }
+  fill_ba_masks<D>(fam, x, point_horizon, h2);
+  fill_reverse_index(fam, cloud);
   return fam;
 }
 

@@ -10,6 +10,8 @@
 #include <fstream>
 #include <numeric>
 
+#include "bapd/core/geometry/text_table.hpp"
+
 namespace bapd::nd {
 
 namespace {
@@ -22,26 +24,6 @@ std::string format(const char *fmt, ...)
   std::vsnprintf(text, sizeof text, fmt, args);
   va_end(args);
   return text;
-}
-
-std::vector<std::string> split(const std::string &line)
-{
-  std::vector<std::string> out;
-  std::string              token;
-  for (char c : line) {
-    if (c == ',' || std::isspace(static_cast<unsigned char>(c))) {
-      if (!token.empty()) out.push_back(token), token.clear();
-    } else token += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  }
-  if (!token.empty()) out.push_back(token);
-  return out;
-}
-
-bool number(const std::string &token, double *value)
-{
-  char *end = nullptr;
-  *value    = std::strtod(token.c_str(), &end);
-  return end && *end == '\0' && end != token.c_str();
 }
 
 // Two points at one position (to 1e-9 of the cloud's extent): sorted along x, a point
@@ -80,22 +62,17 @@ std::string read_point_cloud_3d(const std::string &file, PointCloud *points, std
   block->clear();
   std::ifstream in(file);
   if (!in) return "cannot open '" + file + "' (check the path; it is read relative to the directory bapd runs in)";
-  std::string              line;
+  std::string              trimmed;
   std::vector<std::string> header;
   std::vector<long>        line_of; // the file line of each point, for messages
   long                     at = 0;
   int                      col[5] = {-1, -1, -1, -1, -1}; // x, y, z, volume, block
   const char              *names[5] = {"x", "y", "z", "volume", "block_id"};
-  while (std::getline(in, line)) {
-    ++at;
-    std::string trimmed = line;
-    trimmed.erase(0, trimmed.find_first_not_of(" \t\r"));
-    if (trimmed.empty()) continue;
+  while (next_table_line(in, header.empty(), &at, &trimmed)) {
     if (header.empty()) {
-      if (trimmed[0] == '#') trimmed.erase(0, 1);
-      header = split(trimmed);
+      header = table_tokens(trimmed, true);
       double v;
-      if (!header.empty() && number(header[0], &v))
+      if (!header.empty() && table_number(header[0], &v))
         return format("'%s', line %ld: the first line must name the columns (x, y, z, volume and optionally block_id, "
                       "e.g. 'x,y,z,volume'), not hold numbers",
                       file.c_str(), at);
@@ -115,14 +92,13 @@ std::string read_point_cloud_3d(const std::string &file, PointCloud *points, std
                         file.c_str(), at, names[k]);
       continue;
     }
-    if (trimmed[0] == '#') continue;
-    const std::vector<std::string> row = split(trimmed);
+    const std::vector<std::string> row = table_tokens(trimmed, true);
     if (row.size() != header.size())
       return format("'%s', line %ld holds %zu values, the header names %zu columns: give one value per column",
                     file.c_str(), at, row.size(), header.size());
     double value[5] = {0, 0, 0, 0, 1};
     for (int k = 0; k < 5; ++k)
-      if (col[k] >= 0 && !number(row[static_cast<std::size_t>(col[k])], &value[k]))
+      if (col[k] >= 0 && !table_number(row[static_cast<std::size_t>(col[k])], &value[k]))
         return format("'%s', line %ld: '%s' (column %s) is not a number", file.c_str(), at,
                       row[static_cast<std::size_t>(col[k])].c_str(), names[k]);
     if (!std::isfinite(value[0]) || !std::isfinite(value[1]) || !std::isfinite(value[2]))

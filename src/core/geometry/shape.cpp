@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <iterator>
 
 namespace bapd {
 
@@ -203,26 +204,24 @@ std::string polygon_problem(const std::vector<double> &v)
   return "";
 }
 
-const char *to_string(Shape::Kind kind)
+namespace {
+
+// The enumerators' names, in their order in shape.hpp.
+constexpr const char *kKindNames[] = {"rectangle", "circle", "ellipse", "polygon", "mesh"};
+constexpr const char *kOpNames[]   = {"subtract", "add", "intersect"};
+static_assert(static_cast<std::size_t>(Shape::Kind::mesh) + 1 == std::size(kKindNames), "a name for every Shape::Kind");
+static_assert(static_cast<std::size_t>(Shape::Op::intersect) + 1 == std::size(kOpNames), "a name for every Shape::Op");
+
+template <class Enum, std::size_t N> const char *name_of(Enum value, const char *const (&names)[N])
 {
-  switch (kind) {
-  case Shape::Kind::rectangle: return "rectangle";
-  case Shape::Kind::circle: return "circle";
-  case Shape::Kind::ellipse: return "ellipse";
-  case Shape::Kind::polygon: return "polygon";
-  case Shape::Kind::mesh: return "mesh";
-  }
-  return "unknown";
+  const auto k = static_cast<std::size_t>(value);
+  return k < N ? names[k] : "unknown";
 }
 
-const char *to_string(Shape::Op op)
-{
-  switch (op) {
-  case Shape::Op::subtract: return "subtract";
-  case Shape::Op::add: return "add";
-  case Shape::Op::intersect: return "intersect";
-  }
-  return "unknown";
-}
+} // namespace
+
+const char *to_string(Shape::Kind kind) { return name_of(kind, kKindNames); }
+
+const char *to_string(Shape::Op op) { return name_of(op, kOpNames); }
 
 } // namespace bapd

@@ -9,14 +9,19 @@
 #include "bapd/core/kernel/bond_state.hpp"
 #include "bapd/core/kernel/ba_force.hpp"
 #include "bapd/core/kernel/bond_geometry.hpp"
+#include "bapd/core/kernel/setup_solve.hpp"
 
 namespace bapd {
 
 namespace {
 
+using setup_solve::conjugate_gradients;
+using setup_solve::invert_block;
+using setup_solve::kLargestBlock;
+
 constexpr double kPi = 3.14159265358979323846;
 
-// The setup solve for D = 2 and 3 (issue 21): one template, instantiated twice. For
+// The setup solve for D = 2 and 3: one template, instantiated twice. For
 // D = 2 every sum and product is the one of the 2D solve it replaced, in its order
 // (-ffp-contract=off: the same bits; scripts/compare_binaries.sh's point-cloud scenes).
 
@@ -214,74 +219,6 @@ void apply(const PointCloud &cloud, const Families &fam, const std::vector<char>
   }
 }
 
-double dot(const std::vector<double> &a, const std::vector<double> &b)
-{
-  double s = 0.0;
-  for (std::size_t k = 0; k < a.size(); ++k) s += a[k] * b[k];
-  return s;
-}
-
-// x (0 on entry) solving A x = b by preconditioned conjugate gradients to round-off,
-// ||r|| <= 1e-14 ||b||, at most `most` iterations; one thread, in index order, so the
-// same bits on every run. apply(p, q): q = A p; precondition(r, z): z = M^-1 r. Returns
-// the iterations taken; *residual: ||r|| / ||b|| at the end (the recurrence's r).
-template <class Apply, class Precondition>
-std::size_t conjugate_gradients(const Apply &apply, const Precondition &precondition, const std::vector<double> &b,
-                                std::vector<double> &x, std::size_t most, double *residual)
-{
-  std::vector<double> r = b, z(b.size()), p(b.size()), q(b.size());
-  precondition(r, z);
-  p                  = z;
-  double       rz    = dot(r, z);
-  const double bnorm = std::sqrt(dot(b, b));
-  std::size_t  it    = 0;
-  for (; it < most && std::sqrt(dot(r, r)) > 1e-14 * bnorm; ++it) {
-    apply(p, q);
-    const double pq = dot(p, q);
-    if (!(pq > 0.0)) break; // (A is positive definite: only at round-off)
-    const double alpha = rz / pq;
-    for (std::size_t k = 0; k < b.size(); ++k) {
-      x[k] += alpha * p[k];
-      r[k] -= alpha * q[k];
-    }
-    precondition(r, z);
-    const double rz_next = dot(r, z), beta = rz_next / rz;
-    rz                   = rz_next;
-    for (std::size_t k = 0; k < b.size(); ++k) p[k] = z[k] + beta * p[k];
-  }
-  *residual = bnorm > 0.0 ? std::sqrt(dot(r, r)) / bnorm : 0.0;
-  return it;
-}
-
-// The largest block inverted below: the virial solve's (D + D(D+1)/2)^2 in 3D.
-constexpr std::size_t kLargestBlock = 9;
-
-// The inverse of the symmetric positive-definite m x m block a (m <= kLargestBlock),
-// in place, by Gauss-Jordan (no pivoting needed: SPD).
-bool invert_block(double *a, std::size_t m)
-{
-  double inv[kLargestBlock * kLargestBlock] = {};
-  for (std::size_t k = 0; k < m; ++k) inv[k * m + k] = 1.0;
-  for (std::size_t k = 0; k < m; ++k) {
-    const double piv = a[k * m + k];
-    if (!(piv > 0.0)) return false;
-    for (std::size_t l = 0; l < m; ++l) {
-      a[k * m + l] /= piv;
-      inv[k * m + l] /= piv;
-    }
-    for (std::size_t r = 0; r < m; ++r) {
-      if (r == k) continue;
-      const double f = a[r * m + k];
-      for (std::size_t l = 0; l < m; ++l) {
-        a[r * m + l] -= f * a[k * m + l];
-        inv[r * m + l] -= f * inv[k * m + l];
-      }
-    }
-  }
-  for (std::size_t k = 0; k < m * m; ++k) a[k] = inv[k];
-  return true;
-}
-
 // What both solves start from: the kernel's force vectors g of every bond (reference
 // state, nothing broken) and the boundary layer. Throws std::invalid_argument (naming
 // `who`) unless the families are the whole cloud's.
@@ -469,6 +406,43 @@ void constraint_rows(const PointCloud &cloud, const Families &fam, const std::ve
   }
 }
 
+// What the kernel would form: the patch defect at interior points and the virial
+// change at every point, with h_ij = c_ij xi_ij on the force-carrying bonds: the
+// report's after, term and virial.
+template <int D>
+void report_kernel_virial_patch(const PointCloud &cloud, const Families &families, const std::vector<double> &g,
+                                const std::vector<double> &c, const std::vector<char> &layer, PatchCorrectionReport &out)
+{
+  constexpr std::size_t T = nd::sym_size<D>; // a point's virial block
+  const std::size_t     n = families.n_family;
+  for (std::size_t i = 0; i < n; ++i) {
+    double d[D] = {}, scale = 0, h[T] = {}, v[D * D] = {};
+    for (std::size_t b = families.offsets[i]; b < families.offsets[i + 1]; ++b) {
+      const std::size_t j = static_cast<std::size_t>(families.neighbour[b]), rb = static_cast<std::size_t>(families.reverse[b]);
+      double            x[D];
+      bond_offset<D>(cloud, families, i, b, x);
+      const double vj = cloud.volume[j];
+      scale += (length<D>(g.data() + D * b) + length<D>(g.data() + D * rb)) * vj;
+      const double gn = length<D>(g.data() + D * b);
+      if (gn > 0) out.term = std::max(out.term, std::abs(c[b]) * length<D>(x) / gn);
+      for (int r = 0; r < D; ++r) d[r] += (g[D * b + r] - g[D * rb + r] + (c[b] + c[rb]) * x[r]) * vj;
+      for (int r = 0; r < D; ++r)
+        for (int k = r; k < D; ++k) h[nd::sym_index<D>(r, k)] += c[b] * x[r] * x[k] * vj;
+      for (int r = 0; r < D; ++r)
+        for (int k = 0; k < D; ++k) v[D * r + k] += g[D * b + r] * x[k] * vj;
+    }
+    const double vn = std::sqrt(sum_squares(v, D * D));
+    double       hn = h[0] * h[0]; // |sum_j h_ij (x) xi V_j|, symmetric: off the diagonal twice
+    for (int r = 0; r < D; ++r)
+      for (int k = r; k < D; ++k) {
+        const int s = nd::sym_index<D>(r, k);
+        if (s > 0) hn = hn + (r == k ? h[s] * h[s] : 2 * h[s] * h[s]);
+      }
+    if (vn > 0) out.virial = std::max(out.virial, std::sqrt(hn) / vn);
+    if (!layer[i]) out.after = std::max(out.after, length<D>(d) / scale);
+  }
+}
+
 } // namespace
 
 template <int D>
@@ -540,35 +514,8 @@ std::vector<double> compute_virial_patch_correction(const PointCloud &cloud, con
   };
   out.iterations = conjugate_gradients(apply_A, precondition, rhs, y, 20 * n + 100, &out.residual);
 
-  // What the kernel would form: the patch defect at interior points and the virial
-  // change at every point, with h_ij = c_ij xi_ij on the force-carrying bonds.
   bond_coefficients<D>(cloud, families, g, y, c);
-  for (std::size_t i = 0; i < n; ++i) {
-    double d[D] = {}, scale = 0, h[T] = {}, v[D * D] = {};
-    for (std::size_t b = families.offsets[i]; b < families.offsets[i + 1]; ++b) {
-      const std::size_t j = static_cast<std::size_t>(families.neighbour[b]), rb = static_cast<std::size_t>(families.reverse[b]);
-      double            x[D];
-      bond_offset<D>(cloud, families, i, b, x);
-      const double vj = cloud.volume[j];
-      scale += (length<D>(g.data() + D * b) + length<D>(g.data() + D * rb)) * vj;
-      const double gn = length<D>(g.data() + D * b);
-      if (gn > 0) out.term = std::max(out.term, std::abs(c[b]) * length<D>(x) / gn);
-      for (int r = 0; r < D; ++r) d[r] += (g[D * b + r] - g[D * rb + r] + (c[b] + c[rb]) * x[r]) * vj;
-      for (int r = 0; r < D; ++r)
-        for (int k = r; k < D; ++k) h[nd::sym_index<D>(r, k)] += c[b] * x[r] * x[k] * vj;
-      for (int r = 0; r < D; ++r)
-        for (int k = 0; k < D; ++k) v[D * r + k] += g[D * b + r] * x[k] * vj;
-    }
-    const double vn = std::sqrt(sum_squares(v, D * D));
-    double       hn = h[0] * h[0]; // |sum_j h_ij (x) xi V_j|, symmetric: off the diagonal twice
-    for (int r = 0; r < D; ++r)
-      for (int k = r; k < D; ++k) {
-        const int s = nd::sym_index<D>(r, k);
-        if (s > 0) hn = hn + (r == k ? h[s] * h[s] : 2 * h[s] * h[s]);
-      }
-    if (vn > 0) out.virial = std::max(out.virial, std::sqrt(hn) / vn);
-    if (!layer[i]) out.after = std::max(out.after, length<D>(d) / scale);
-  }
+  report_kernel_virial_patch<D>(cloud, families, g, c, layer, out);
   if (report) *report = out;
   if (!(out.after < 1e-10 && out.virial < 1e-10))
     throw std::runtime_error("compute_virial_patch_correction: the interior force under an affine motion stays at " +

@@ -1,5 +1,6 @@
 // A Gmsh file as the triangles of a shape, and its physical groups (gmsh_shape.hpp).
 #include "bapd/solver/input/gmsh_shape.hpp"
+#include "bapd/solver/input/gmsh_node_table.hpp"
 #include "bapd/solver/input/gmsh_session.hpp"
 
 #include <gmsh.h>
@@ -35,23 +36,15 @@ template <class Read> std::string WithMeshedFile(const std::string &file, Read r
 // The model's node coordinates by tag (x, y; z ignored).
 class NodeTable {
 public:
-  NodeTable()
-  {
-    std::vector<std::size_t> node_tags;
-    std::vector<double>      parametric;
-    gmsh::model::mesh::getNodes(node_tags, xyz_, parametric, -1, -1, false, false);
-    for (std::size_t k = 0; k < node_tags.size(); ++k) where_[node_tags[k]] = k;
-  }
   void Append(std::size_t tag, std::vector<double> &out) const
   {
-    const std::size_t k = where_.at(tag);
-    out.push_back(xyz_[3 * k]);
-    out.push_back(xyz_[3 * k + 1]);
+    const double *x = nodes_.at(tag);
+    out.push_back(x[0]);
+    out.push_back(x[1]);
   }
 
 private:
-  std::vector<double>                          xyz_;
-  std::unordered_map<std::size_t, std::size_t> where_;
+  GmshNodeTable nodes_;
 };
 
 // Appends the 2D elements of entity `tag` (-1: all) to `corners` as triangles, and to

@@ -1,5 +1,6 @@
 // A Gmsh 3D volume as tetrahedra, and its named physical groups (gmsh_volume3d.hpp).
 #include "bapd/solver/input/gmsh_volume3d.hpp"
+#include "bapd/solver/input/gmsh_node_table.hpp"
 #include "bapd/solver/input/gmsh_session.hpp"
 
 #include <gmsh.h>
@@ -34,22 +35,14 @@ std::string MeshIn3D(const std::string &file)
 // The model's node coordinates by tag (x, y, z).
 class NodeTable3D {
 public:
-  NodeTable3D()
-  {
-    std::vector<std::size_t> node_tags;
-    std::vector<double>      parametric;
-    gmsh::model::mesh::getNodes(node_tags, xyz_, parametric, -1, -1, false, false);
-    for (std::size_t k = 0; k < node_tags.size(); ++k) where_[node_tags[k]] = k;
-  }
   void Append(std::size_t tag, std::vector<double> &out) const
   {
-    const double *x = &xyz_[3 * where_.at(tag)];
+    const double *x = nodes_.at(tag);
     out.insert(out.end(), x, x + 3);
   }
 
 private:
-  std::vector<double>                          xyz_;
-  std::unordered_map<std::size_t, std::size_t> where_;
+  GmshNodeTable nodes_;
 };
 
 // Appends the tetrahedra of entity `tag` (-1: every volume) to `corners`, 12 numbers each;

@@ -10,32 +10,13 @@
 #include <numeric>
 #include <vector>
 
+#include "bapd/core/geometry/text_table.hpp"
 #include "bapd/solver/io/hdf5_io.hpp"
 #include "bapd/solver/input/options_reader.hpp"
 
 namespace bapd {
 
 namespace {
-
-std::vector<std::string> Tokens(const std::string &line)
-{
-  std::vector<std::string> out;
-  std::string              token;
-  for (char c : line) {
-    if (c == ',' || std::isspace(static_cast<unsigned char>(c))) {
-      if (!token.empty()) out.push_back(token), token.clear();
-    } else token += c;
-  }
-  if (!token.empty()) out.push_back(token);
-  return out;
-}
-
-bool Number(const std::string &token, double *value)
-{
-  char *end = nullptr;
-  *value    = std::strtod(token.c_str(), &end);
-  return end && *end == '\0' && end != token.c_str();
-}
 
 bool EndsWith(const std::string &s, const char *tail)
 {
@@ -79,21 +60,16 @@ std::string ReadText(const std::string &file, GivenPoints *pts)
 {
   std::ifstream in(file);
   if (!in) return "cannot open '" + file + "' (check the path; it is read relative to the directory bapd runs in)";
-  std::string              line;
+  std::string              trimmed;
   std::vector<std::string> header;
   std::vector<long>        line_of; // file line of each point, for messages
   long                     number = 0;
   int                      col_x = -1, col_y = -1, col_v = -1, col_b = -1;
-  while (std::getline(in, line)) {
-    ++number;
-    std::string trimmed = line;
-    trimmed.erase(0, trimmed.find_first_not_of(" \t\r"));
-    if (trimmed.empty()) continue;
+  while (next_table_line(in, header.empty(), &number, &trimmed)) {
     if (header.empty()) {
-      if (trimmed[0] == '#') trimmed.erase(0, 1);
-      header = Tokens(trimmed);
+      header = table_tokens(trimmed, false);
       double v;
-      if (!header.empty() && Number(header[0], &v))
+      if (!header.empty() && table_number(header[0], &v))
         return Format("'%s', line %ld: the first line must name the columns (x, y, volume and optionally block_id, e.g. 'x,y,volume'), "
                       "not hold numbers",
                       file.c_str(), number);
@@ -111,8 +87,7 @@ std::string ReadText(const std::string &file, GivenPoints *pts)
                       file.c_str(), number, trimmed.c_str(), missing);
       continue;
     }
-    if (trimmed[0] == '#') continue;
-    const std::vector<std::string> row = Tokens(trimmed);
+    const std::vector<std::string> row = table_tokens(trimmed, false);
     if (row.size() != header.size())
       return Format("'%s', line %ld holds %zu values, the header names %zu columns: give one value per column", file.c_str(), number,
                     row.size(), header.size());
@@ -120,7 +95,7 @@ std::string ReadText(const std::string &file, GivenPoints *pts)
     const int cols[4] = {col_x, col_y, col_v, col_b};
     for (int k = 0; k < 4; ++k) {
       if (cols[k] < 0) continue;
-      if (!Number(row[cols[k]], &values[k]))
+      if (!table_number(row[cols[k]], &values[k]))
         return Format("'%s', line %ld, column '%s': '%s' is not a number", file.c_str(), number, header[cols[k]].c_str(), row[cols[k]].c_str());
     }
     if (col_b >= 0 && values[3] != std::floor(values[3]))

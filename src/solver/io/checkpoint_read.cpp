@@ -24,6 +24,95 @@ PetscErrorCode Bcast(MPI_Comm comm, MPI_Datatype type, Container *values)
   PetscFunctionReturn(0);
 }
 
+// The first problem found: a damaged file names what is missing.
+void Damaged(const std::string &path, const std::string &what, std::string &problem)
+{
+  if (problem.empty()) problem = "Checkpoint '" + path + "' is damaged: " + what + " (use an earlier checkpoint)";
+}
+
+// Rank 0: the attributes of the root and of /geometry (the step, time, run state and
+// the geometry the checkpoint was written for).
+void ReadRootAttributes(hid_t file, const std::string &path, CheckpointHeader *h, std::string &problem)
+{
+  auto damaged = [&](const std::string &what) { Damaged(path, what, problem); };
+  std::int64_t step = 0;
+  if (!H5ReadAttribute(file, "/", "step", &step)) damaged("attribute step is missing");
+  h->step = (PetscInt)step;
+  if (!H5ReadAttribute(file, "/", "time_s", &h->time)) damaged("attribute time_s is missing");
+  if (!H5ReadAttribute(file, "/", "time_step_s", &h->time_step)) damaged("attribute time_step_s is missing");
+  if (!H5ReadAttribute(file, "/", "stretch", &h->stretch)) damaged("attribute stretch is missing");
+  if (!H5ReadAttribute(file, "/", "reason", &h->reason)) damaged("attribute reason is missing");
+  if (!H5ReadAttribute(file, "/", "ranks", &h->ranks)) damaged("attribute ranks is missing");
+  if (!H5ReadAttribute(file, "/", "content_hash", &h->content_hash)) damaged("attribute content_hash is missing");
+  if (!H5ReadAttribute(file, "/", "end_time_original_s", &h->end_time_original)) damaged("attribute end_time_original_s is missing");
+  if (!H5ReadAttribute(file, "/", "end_time_s", &h->end_time)) damaged("attribute end_time_s is missing");
+  if (!H5ReadAttribute(file, "/", "static_hold_done", &h->static_hold_done)) damaged("attribute static_hold_done is missing");
+  if (!H5ReadAttribute(file, "/geometry", "points", &h->geometry.points)) damaged("attribute /geometry/points is missing");
+  if (!H5ReadAttribute(file, "/geometry", "bonds", &h->geometry.bonds)) damaged("attribute /geometry/bonds is missing");
+  if (!H5ReadAttribute(file, "/geometry", "dx_m", &h->geometry.dx)) damaged("attribute /geometry/dx_m is missing");
+  if (!H5ReadAttribute(file, "/geometry", "horizon_m", &h->geometry.horizon)) damaged("attribute /geometry/horizon_m is missing");
+  if (!H5ReadAttribute(file, "/geometry", "hash", &h->geometry.hash)) damaged("attribute /geometry/hash is missing");
+}
+
+// Rank 0: the shapes of the arrays, the texts and tables of /run (checked against their
+// checksum) and the optional sections (/relaxation, /time_step).
+void ReadRunSections(hid_t file, const std::string &path, CheckpointHeader *h, std::string &problem)
+{
+  auto damaged = [&](const std::string &what) { Damaged(path, what, problem); };
+  const hsize_t P = (hsize_t)h->geometry.points, B = (hsize_t)h->geometry.bonds, D = (hsize_t)h->dimension;
+  // /bonds/c33 may be absent from a 3D file only (a run without the warm start).
+  h->has_c33 = D == 2 || H5Lexists(file, "/bonds", H5P_DEFAULT) <= 0 || H5Lexists(file, "/bonds/c33", H5P_DEFAULT) > 0;
+  const struct {
+    const char          *name;
+    std::vector<hsize_t> shape;
+  } expected[] = {{"/points/displacement", {P, D}}, {"/points/velocity", {P, D}}, {"/points/family_size", {P}},
+                  {"/bonds/intact", {B}},         {"/bonds/c33", {B}}};
+  for (const auto &e : expected)
+    if ((h->has_c33 || std::strcmp(e.name, "/bonds/c33") != 0) && H5DatasetShape(file, e.name) != e.shape)
+      damaged(std::string("dataset ") + e.name + " is missing or has the wrong shape");
+  const std::vector<hsize_t> frames = H5DatasetShape(file, "/run/field_frames");
+  if (frames.size() != 2 || frames[1] != 2) damaged("dataset /run/field_frames is missing or has the wrong shape");
+  if (problem.empty() && !H5ReadText(file, "/run/options", &h->options)) damaged("dataset /run/options cannot be read");
+  if (problem.empty() && !H5ReadText(file, "/run/history", &h->history)) damaged("dataset /run/history cannot be read");
+  if (problem.empty() && !H5ReadText(file, "/run/static_states", &h->static_states)) damaged("dataset /run/static_states cannot be read");
+  if (problem.empty() && !H5ReadDoubles(file, "/run/schedule_original", &h->schedule_original)) damaged("dataset /run/schedule_original cannot be read");
+  if (problem.empty() && !H5ReadDoubles(file, "/run/schedule_current", &h->schedule_current)) damaged("dataset /run/schedule_current cannot be read");
+  if (problem.empty() && h->schedule_original.size() != h->schedule_current.size()) damaged("the schedule datasets differ in length");
+  if (problem.empty() && frames.size() == 2 && frames[0] > 0 && !H5ReadDoubles(file, "/run/field_frames", &h->field_frames))
+    damaged("dataset /run/field_frames cannot be read");
+  std::uint64_t text_hash = 0; // version 3 on; older files have none
+  if (problem.empty() && h->format_version >= 3 && !H5ReadAttribute(file, "/", "text_hash", &text_hash))
+    damaged("attribute text_hash is missing");
+  if (problem.empty() && h->format_version >= 3 && text_hash != TextHash(*h))
+    problem = "Checkpoint '" + path + "' is corrupt: its stored options, history, static states or field list (/run) do not match "
+              "the checksum written with them (use an earlier checkpoint)";
+  // -relaxation adaptive (version 2): optional.
+  if (problem.empty() && H5Lexists(file, "/relaxation", H5P_DEFAULT) > 0) {
+    if (!H5ReadAttribute(file, "/relaxation", "records", &h->relaxation_records) || h->relaxation_records < 1)
+      damaged("attribute /relaxation/records is missing");
+    for (const char *name : {"/relaxation/displacement", "/relaxation/acceleration"})
+      if (H5DatasetShape(file, name) != std::vector<hsize_t>{P, D}) damaged(std::string("dataset ") + name + " is missing or has the wrong shape");
+  }
+  // The re-estimated step (version 3): optional.
+  if (problem.empty() && H5Lexists(file, "/time_step", H5P_DEFAULT) > 0) {
+    if (!H5ReadAttribute(file, "/time_step", "lambda_per_s2", &h->step_lambda) || !(h->step_lambda > 0) ||
+        !H5ReadAttribute(file, "/time_step", "stiffness_dt_s", &h->step_stiffness_dt) ||
+        !H5ReadAttribute(file, "/time_step", "shortest_dt_s", &h->step_shortest) ||
+        !H5ReadAttribute(file, "/time_step", "next_estimate", &h->step_next_estimate) ||
+        !H5ReadAttribute(file, "/time_step", "by_stiffness", &h->step_by_stiffness) ||
+        !H5ReadAttribute(file, "/time_step", "by_travel", &h->step_by_travel) ||
+        !H5ReadAttribute(file, "/time_step", "stretch", &h->step_stretch))
+      damaged("an attribute of /time_step is missing");
+    if (h->format_version >= 4 && (!H5ReadAttribute(file, "/time_step", "interval_now", &h->step_interval_now) || h->step_interval_now < 1 ||
+                                   !H5ReadAttribute(file, "/time_step", "stretch_increment", &h->step_stretch_increment)))
+      damaged("attribute /time_step/interval_now or stretch_increment is missing");
+    if (h->format_version >= 5 && !H5ReadAttribute(file, "/time_step", "indicator", &h->step_indicator))
+      damaged("attribute /time_step/indicator is missing");
+    if (H5DatasetShape(file, "/time_step/eigenvector") != std::vector<hsize_t>{P, D})
+      damaged("dataset /time_step/eigenvector is missing or has the wrong shape");
+  }
+}
+
 // Rank 0: everything about the file that can be checked without the scene.
 std::string ReadHeaderSerial(const std::string &path, CheckpointHeader *h)
 {
@@ -35,9 +124,7 @@ std::string ReadHeaderSerial(const std::string &path, CheckpointHeader *h)
   if (file < 0)
     return "Checkpoint '" + path + "' cannot be read: it is not an HDF5 file, or it is truncated (a copy cut short?)";
   std::string problem, format;
-  auto        damaged = [&](const std::string &what) {
-    if (problem.empty()) problem = "Checkpoint '" + path + "' is damaged: " + what + " (use an earlier checkpoint)";
-  };
+  auto        damaged = [&](const std::string &what) { Damaged(path, what, problem); };
   if (!H5ReadAttribute(file, "/", "format", &format) || format != "bapd checkpoint")
     problem = "'" + path + "' is not a bapd checkpoint (it has no format attribute \"bapd checkpoint\")";
   else if (!H5ReadAttribute(file, "/", "format_version", &h->format_version))
@@ -52,79 +139,8 @@ std::string ReadHeaderSerial(const std::string &path, CheckpointHeader *h)
   if (problem.empty() && h->format_version >= 6 && !H5ReadAttribute(file, "/", "dimension", &h->dimension)) damaged("attribute dimension is missing");
   if (problem.empty() && h->dimension != 2 && h->dimension != 3)
     damaged("attribute dimension is " + std::to_string(h->dimension) + ", not 2 or 3");
-  if (problem.empty()) {
-    std::int64_t step = 0;
-    if (!H5ReadAttribute(file, "/", "step", &step)) damaged("attribute step is missing");
-    h->step = (PetscInt)step;
-    if (!H5ReadAttribute(file, "/", "time_s", &h->time)) damaged("attribute time_s is missing");
-    if (!H5ReadAttribute(file, "/", "time_step_s", &h->time_step)) damaged("attribute time_step_s is missing");
-    if (!H5ReadAttribute(file, "/", "stretch", &h->stretch)) damaged("attribute stretch is missing");
-    if (!H5ReadAttribute(file, "/", "reason", &h->reason)) damaged("attribute reason is missing");
-    if (!H5ReadAttribute(file, "/", "ranks", &h->ranks)) damaged("attribute ranks is missing");
-    if (!H5ReadAttribute(file, "/", "content_hash", &h->content_hash)) damaged("attribute content_hash is missing");
-    if (!H5ReadAttribute(file, "/", "end_time_original_s", &h->end_time_original)) damaged("attribute end_time_original_s is missing");
-    if (!H5ReadAttribute(file, "/", "end_time_s", &h->end_time)) damaged("attribute end_time_s is missing");
-    if (!H5ReadAttribute(file, "/", "static_hold_done", &h->static_hold_done)) damaged("attribute static_hold_done is missing");
-    if (!H5ReadAttribute(file, "/geometry", "points", &h->geometry.points)) damaged("attribute /geometry/points is missing");
-    if (!H5ReadAttribute(file, "/geometry", "bonds", &h->geometry.bonds)) damaged("attribute /geometry/bonds is missing");
-    if (!H5ReadAttribute(file, "/geometry", "dx_m", &h->geometry.dx)) damaged("attribute /geometry/dx_m is missing");
-    if (!H5ReadAttribute(file, "/geometry", "horizon_m", &h->geometry.horizon)) damaged("attribute /geometry/horizon_m is missing");
-    if (!H5ReadAttribute(file, "/geometry", "hash", &h->geometry.hash)) damaged("attribute /geometry/hash is missing");
-  }
-  if (problem.empty()) {
-    const hsize_t P = (hsize_t)h->geometry.points, B = (hsize_t)h->geometry.bonds, D = (hsize_t)h->dimension;
-    // /bonds/c33 may be absent from a 3D file only (a run without the warm start).
-    h->has_c33 = D == 2 || H5Lexists(file, "/bonds", H5P_DEFAULT) <= 0 || H5Lexists(file, "/bonds/c33", H5P_DEFAULT) > 0;
-    const struct {
-      const char          *name;
-      std::vector<hsize_t> shape;
-    } expected[] = {{"/points/displacement", {P, D}}, {"/points/velocity", {P, D}}, {"/points/family_size", {P}},
-                    {"/bonds/intact", {B}},         {"/bonds/c33", {B}}};
-    for (const auto &e : expected)
-      if ((h->has_c33 || std::strcmp(e.name, "/bonds/c33") != 0) && H5DatasetShape(file, e.name) != e.shape)
-        damaged(std::string("dataset ") + e.name + " is missing or has the wrong shape");
-    const std::vector<hsize_t> frames = H5DatasetShape(file, "/run/field_frames");
-    if (frames.size() != 2 || frames[1] != 2) damaged("dataset /run/field_frames is missing or has the wrong shape");
-    if (problem.empty() && !H5ReadText(file, "/run/options", &h->options)) damaged("dataset /run/options cannot be read");
-    if (problem.empty() && !H5ReadText(file, "/run/history", &h->history)) damaged("dataset /run/history cannot be read");
-    if (problem.empty() && !H5ReadText(file, "/run/static_states", &h->static_states)) damaged("dataset /run/static_states cannot be read");
-    if (problem.empty() && !H5ReadDoubles(file, "/run/schedule_original", &h->schedule_original)) damaged("dataset /run/schedule_original cannot be read");
-    if (problem.empty() && !H5ReadDoubles(file, "/run/schedule_current", &h->schedule_current)) damaged("dataset /run/schedule_current cannot be read");
-    if (problem.empty() && h->schedule_original.size() != h->schedule_current.size()) damaged("the schedule datasets differ in length");
-    if (problem.empty() && frames.size() == 2 && frames[0] > 0 && !H5ReadDoubles(file, "/run/field_frames", &h->field_frames))
-      damaged("dataset /run/field_frames cannot be read");
-    std::uint64_t text_hash = 0; // version 3 on; older files have none
-    if (problem.empty() && h->format_version >= 3 && !H5ReadAttribute(file, "/", "text_hash", &text_hash))
-      damaged("attribute text_hash is missing");
-    if (problem.empty() && h->format_version >= 3 && text_hash != TextHash(*h))
-      problem = "Checkpoint '" + path + "' is corrupt: its stored options, history, static states or field list (/run) do not match "
-                "the checksum written with them (use an earlier checkpoint)";
-    // -relaxation adaptive (version 2): optional.
-    if (problem.empty() && H5Lexists(file, "/relaxation", H5P_DEFAULT) > 0) {
-      if (!H5ReadAttribute(file, "/relaxation", "records", &h->relaxation_records) || h->relaxation_records < 1)
-        damaged("attribute /relaxation/records is missing");
-      for (const char *name : {"/relaxation/displacement", "/relaxation/acceleration"})
-        if (H5DatasetShape(file, name) != std::vector<hsize_t>{P, D}) damaged(std::string("dataset ") + name + " is missing or has the wrong shape");
-    }
-    // The re-estimated step (version 3): optional.
-    if (problem.empty() && H5Lexists(file, "/time_step", H5P_DEFAULT) > 0) {
-      if (!H5ReadAttribute(file, "/time_step", "lambda_per_s2", &h->step_lambda) || !(h->step_lambda > 0) ||
-          !H5ReadAttribute(file, "/time_step", "stiffness_dt_s", &h->step_stiffness_dt) ||
-          !H5ReadAttribute(file, "/time_step", "shortest_dt_s", &h->step_shortest) ||
-          !H5ReadAttribute(file, "/time_step", "next_estimate", &h->step_next_estimate) ||
-          !H5ReadAttribute(file, "/time_step", "by_stiffness", &h->step_by_stiffness) ||
-          !H5ReadAttribute(file, "/time_step", "by_travel", &h->step_by_travel) ||
-          !H5ReadAttribute(file, "/time_step", "stretch", &h->step_stretch))
-        damaged("an attribute of /time_step is missing");
-      if (h->format_version >= 4 && (!H5ReadAttribute(file, "/time_step", "interval_now", &h->step_interval_now) || h->step_interval_now < 1 ||
-                                     !H5ReadAttribute(file, "/time_step", "stretch_increment", &h->step_stretch_increment)))
-        damaged("attribute /time_step/interval_now or stretch_increment is missing");
-      if (h->format_version >= 5 && !H5ReadAttribute(file, "/time_step", "indicator", &h->step_indicator))
-        damaged("attribute /time_step/indicator is missing");
-      if (H5DatasetShape(file, "/time_step/eigenvector") != std::vector<hsize_t>{P, D})
-        damaged("dataset /time_step/eigenvector is missing or has the wrong shape");
-    }
-  }
+  if (problem.empty()) ReadRootAttributes(file, path, h, problem);
+  if (problem.empty()) ReadRunSections(file, path, h, problem);
   H5Fclose(file);
   return problem;
 }

@@ -12,6 +12,88 @@
 
 namespace bapd {
 
+namespace {
+
+// The checkpoint's file at `path` (the temporary name): the header's attributes, texts
+// and tables (rank 0's) and this rank's natural block of the arrays.
+template <int D>
+PetscErrorCode WriteCheckpointFile(MPI_Comm comm, PetscMPIInt rank, const std::string &path, const NaturalOrder &order,
+                                   const CheckpointHeader &header, const CheckpointBlock &block, std::uint64_t text_hash,
+                                   bool has_eigenvector)
+{
+  PetscFunctionBegin;
+  // Its size: the arrays (with the re-estimate's eigenvector), the texts and tables
+  // (rank 0's, which writes them), and about 30 datasets, groups and attributes.
+  const std::uint64_t points = (std::uint64_t)order.n_points, bonds = (std::uint64_t)order.n_bonds, vector = 8 * D;
+  std::uint64_t       data = points * (2 * vector + 4) + bonds * (1 + (header.has_c33 ? 8 : 0)) +
+                       (header.relaxation_records > 0 ? 2 * vector * points : 0) + (has_eigenvector ? vector * points : 0);
+  std::uint64_t       text = header.options.size() + header.history.size() + header.static_states.size() +
+                       8 * (header.field_frames.size() + header.schedule_original.size() + header.schedule_current.size());
+  PetscCallMPI(MPI_Bcast(&text, 1, MPI_UINT64_T, 0, comm));
+  H5ParallelFile f;
+  PetscCall(f.Create(comm, path, H5FileBytes(data + text, 32)));
+  PetscCall(f.WriteAttribute("/", "format", std::string("bapd checkpoint")));
+  PetscCall(f.WriteAttribute("/", "format_version", header.format_version));
+  PetscCall(f.WriteAttribute("/", "dimension", header.dimension));
+  PetscCall(f.WriteAttribute("/", "step", (std::int64_t)header.step));
+  PetscCall(f.WriteAttribute("/", "time_s", header.time));
+  PetscCall(f.WriteAttribute("/", "time_step_s", header.time_step));
+  PetscCall(f.WriteAttribute("/", "stretch", header.stretch));
+  PetscCall(f.WriteAttribute("/", "reason", header.reason));
+  PetscCall(f.WriteAttribute("/", "ranks", header.ranks));
+  PetscCall(f.WriteAttribute("/", "content_hash", header.content_hash));
+  PetscCall(f.WriteAttribute("/", "text_hash", text_hash));
+  PetscCall(f.WriteAttribute("/", "end_time_original_s", header.end_time_original));
+  PetscCall(f.WriteAttribute("/", "end_time_s", header.end_time));
+  PetscCall(f.WriteAttribute("/", "static_hold_done", header.static_hold_done));
+  PetscCall(f.CreateGroup("/geometry"));
+  PetscCall(f.WriteAttribute("/geometry", "points", header.geometry.points));
+  PetscCall(f.WriteAttribute("/geometry", "bonds", header.geometry.bonds));
+  PetscCall(f.WriteAttribute("/geometry", "dx_m", header.geometry.dx));
+  PetscCall(f.WriteAttribute("/geometry", "horizon_m", header.geometry.horizon));
+  PetscCall(f.WriteAttribute("/geometry", "hash", header.geometry.hash));
+  const hsize_t P = (hsize_t)order.n_points, B = (hsize_t)order.n_bonds;
+  PetscCall(f.CreateGroup("/points"));
+  PetscCall(f.WriteBlock("/points/displacement", H5T_NATIVE_DOUBLE, P, D, order.point_start, order.point_count, block.u.data()));
+  PetscCall(f.WriteBlock("/points/velocity", H5T_NATIVE_DOUBLE, P, D, order.point_start, order.point_count, block.v.data()));
+  PetscCall(f.WriteBlock("/points/family_size", H5T_NATIVE_INT32, P, 0, order.point_start, order.point_count, block.family_size.data()));
+  PetscCall(f.CreateGroup("/bonds"));
+  PetscCall(f.WriteBlock("/bonds/intact", H5T_NATIVE_UCHAR, B, 0, order.bond_start, order.bond_count, block.intact.data()));
+  if (header.has_c33) PetscCall(f.WriteBlock("/bonds/c33", H5T_NATIVE_DOUBLE, B, 0, order.bond_start, order.bond_count, block.c33.data()));
+  PetscCall(f.CreateGroup("/run"));
+  PetscCall(f.WriteText("/run/options", header.options));
+  PetscCall(f.WriteText("/run/history", header.history));
+  PetscCall(f.WriteText("/run/static_states", header.static_states));
+  PetscCall(f.WriteRoot("/run/schedule_original", H5T_NATIVE_DOUBLE, header.schedule_original.size(), header.schedule_original.data()));
+  PetscCall(f.WriteRoot("/run/schedule_current", H5T_NATIVE_DOUBLE, header.schedule_current.size(), header.schedule_current.data()));
+  if (header.relaxation_records > 0) {
+    PetscCall(f.CreateGroup("/relaxation"));
+    PetscCall(f.WriteAttribute("/relaxation", "records", header.relaxation_records));
+    PetscCall(f.WriteBlock("/relaxation/displacement", H5T_NATIVE_DOUBLE, P, D, order.point_start, order.point_count, block.relaxation_u.data()));
+    PetscCall(f.WriteBlock("/relaxation/acceleration", H5T_NATIVE_DOUBLE, P, D, order.point_start, order.point_count, block.relaxation_a.data()));
+  }
+  if (header.step_lambda > 0) {
+    PetscCall(f.CreateGroup("/time_step"));
+    PetscCall(f.WriteAttribute("/time_step", "lambda_per_s2", header.step_lambda));
+    PetscCall(f.WriteAttribute("/time_step", "stiffness_dt_s", header.step_stiffness_dt));
+    PetscCall(f.WriteAttribute("/time_step", "shortest_dt_s", header.step_shortest));
+    PetscCall(f.WriteAttribute("/time_step", "next_estimate", header.step_next_estimate));
+    PetscCall(f.WriteAttribute("/time_step", "by_stiffness", header.step_by_stiffness));
+    PetscCall(f.WriteAttribute("/time_step", "by_travel", header.step_by_travel));
+    PetscCall(f.WriteAttribute("/time_step", "stretch", header.step_stretch));
+    PetscCall(f.WriteAttribute("/time_step", "interval_now", header.step_interval_now));
+    PetscCall(f.WriteAttribute("/time_step", "stretch_increment", header.step_stretch_increment));
+    PetscCall(f.WriteAttribute("/time_step", "indicator", header.step_indicator));
+    PetscCall(f.WriteBlock("/time_step/eigenvector", H5T_NATIVE_DOUBLE, P, D, order.point_start, order.point_count, block.eigenvector.data()));
+  }
+  const hsize_t frames = header.field_frames.size() / 2;
+  PetscCall(f.WriteBlock("/run/field_frames", H5T_NATIVE_DOUBLE, frames, 2, 0, rank == 0 ? frames : 0, header.field_frames.data()));
+  PetscCall(f.Close());
+  PetscFunctionReturn(0);
+}
+
+} // namespace
+
 template <int D>
 PetscErrorCode WriteCheckpoint(MPI_Comm comm, const std::string &path, const NaturalOrder &order, const Families &families,
                                CheckpointHeader *header, const CheckpointState &state)
@@ -61,75 +143,7 @@ PetscErrorCode WriteCheckpoint(MPI_Comm comm, const std::string &path, const Nat
   PetscCallMPI(MPI_Bcast(&text_hash, 1, MPI_UINT64_T, 0, comm));
 
   const std::string tmp = path + ".tmp";
-  {
-    // Its size: the arrays (with the re-estimate's eigenvector), the texts and tables
-    // (rank 0's, which writes them), and about 30 datasets, groups and attributes.
-    const std::uint64_t points = (std::uint64_t)order.n_points, bonds = (std::uint64_t)order.n_bonds, vector = 8 * D;
-    std::uint64_t       data = points * (2 * vector + 4) + bonds * (1 + (header->has_c33 ? 8 : 0)) +
-                         (header->relaxation_records > 0 ? 2 * vector * points : 0) + (state.step_eigenvector ? vector * points : 0);
-    std::uint64_t       text = header->options.size() + header->history.size() + header->static_states.size() +
-                         8 * (header->field_frames.size() + header->schedule_original.size() + header->schedule_current.size());
-    PetscCallMPI(MPI_Bcast(&text, 1, MPI_UINT64_T, 0, comm));
-    H5ParallelFile f;
-    PetscCall(f.Create(comm, tmp, H5FileBytes(data + text, 32)));
-    PetscCall(f.WriteAttribute("/", "format", std::string("bapd checkpoint")));
-    PetscCall(f.WriteAttribute("/", "format_version", header->format_version));
-    PetscCall(f.WriteAttribute("/", "dimension", header->dimension));
-    PetscCall(f.WriteAttribute("/", "step", (std::int64_t)header->step));
-    PetscCall(f.WriteAttribute("/", "time_s", header->time));
-    PetscCall(f.WriteAttribute("/", "time_step_s", header->time_step));
-    PetscCall(f.WriteAttribute("/", "stretch", header->stretch));
-    PetscCall(f.WriteAttribute("/", "reason", header->reason));
-    PetscCall(f.WriteAttribute("/", "ranks", header->ranks));
-    PetscCall(f.WriteAttribute("/", "content_hash", header->content_hash));
-    PetscCall(f.WriteAttribute("/", "text_hash", text_hash));
-    PetscCall(f.WriteAttribute("/", "end_time_original_s", header->end_time_original));
-    PetscCall(f.WriteAttribute("/", "end_time_s", header->end_time));
-    PetscCall(f.WriteAttribute("/", "static_hold_done", header->static_hold_done));
-    PetscCall(f.CreateGroup("/geometry"));
-    PetscCall(f.WriteAttribute("/geometry", "points", header->geometry.points));
-    PetscCall(f.WriteAttribute("/geometry", "bonds", header->geometry.bonds));
-    PetscCall(f.WriteAttribute("/geometry", "dx_m", header->geometry.dx));
-    PetscCall(f.WriteAttribute("/geometry", "horizon_m", header->geometry.horizon));
-    PetscCall(f.WriteAttribute("/geometry", "hash", header->geometry.hash));
-    const hsize_t P = (hsize_t)order.n_points, B = (hsize_t)order.n_bonds;
-    PetscCall(f.CreateGroup("/points"));
-    PetscCall(f.WriteBlock("/points/displacement", H5T_NATIVE_DOUBLE, P, D, order.point_start, order.point_count, block.u.data()));
-    PetscCall(f.WriteBlock("/points/velocity", H5T_NATIVE_DOUBLE, P, D, order.point_start, order.point_count, block.v.data()));
-    PetscCall(f.WriteBlock("/points/family_size", H5T_NATIVE_INT32, P, 0, order.point_start, order.point_count, block.family_size.data()));
-    PetscCall(f.CreateGroup("/bonds"));
-    PetscCall(f.WriteBlock("/bonds/intact", H5T_NATIVE_UCHAR, B, 0, order.bond_start, order.bond_count, block.intact.data()));
-    if (header->has_c33) PetscCall(f.WriteBlock("/bonds/c33", H5T_NATIVE_DOUBLE, B, 0, order.bond_start, order.bond_count, block.c33.data()));
-    PetscCall(f.CreateGroup("/run"));
-    PetscCall(f.WriteText("/run/options", header->options));
-    PetscCall(f.WriteText("/run/history", header->history));
-    PetscCall(f.WriteText("/run/static_states", header->static_states));
-    PetscCall(f.WriteRoot("/run/schedule_original", H5T_NATIVE_DOUBLE, header->schedule_original.size(), header->schedule_original.data()));
-    PetscCall(f.WriteRoot("/run/schedule_current", H5T_NATIVE_DOUBLE, header->schedule_current.size(), header->schedule_current.data()));
-    if (header->relaxation_records > 0) {
-      PetscCall(f.CreateGroup("/relaxation"));
-      PetscCall(f.WriteAttribute("/relaxation", "records", header->relaxation_records));
-      PetscCall(f.WriteBlock("/relaxation/displacement", H5T_NATIVE_DOUBLE, P, D, order.point_start, order.point_count, block.relaxation_u.data()));
-      PetscCall(f.WriteBlock("/relaxation/acceleration", H5T_NATIVE_DOUBLE, P, D, order.point_start, order.point_count, block.relaxation_a.data()));
-    }
-    if (header->step_lambda > 0) {
-      PetscCall(f.CreateGroup("/time_step"));
-      PetscCall(f.WriteAttribute("/time_step", "lambda_per_s2", header->step_lambda));
-      PetscCall(f.WriteAttribute("/time_step", "stiffness_dt_s", header->step_stiffness_dt));
-      PetscCall(f.WriteAttribute("/time_step", "shortest_dt_s", header->step_shortest));
-      PetscCall(f.WriteAttribute("/time_step", "next_estimate", header->step_next_estimate));
-      PetscCall(f.WriteAttribute("/time_step", "by_stiffness", header->step_by_stiffness));
-      PetscCall(f.WriteAttribute("/time_step", "by_travel", header->step_by_travel));
-      PetscCall(f.WriteAttribute("/time_step", "stretch", header->step_stretch));
-      PetscCall(f.WriteAttribute("/time_step", "interval_now", header->step_interval_now));
-      PetscCall(f.WriteAttribute("/time_step", "stretch_increment", header->step_stretch_increment));
-      PetscCall(f.WriteAttribute("/time_step", "indicator", header->step_indicator));
-      PetscCall(f.WriteBlock("/time_step/eigenvector", H5T_NATIVE_DOUBLE, P, D, order.point_start, order.point_count, block.eigenvector.data()));
-    }
-    const hsize_t frames = header->field_frames.size() / 2;
-    PetscCall(f.WriteBlock("/run/field_frames", H5T_NATIVE_DOUBLE, frames, 2, 0, rank == 0 ? frames : 0, header->field_frames.data()));
-    PetscCall(f.Close());
-  }
+  PetscCall(WriteCheckpointFile<D>(comm, rank, tmp, order, *header, block, text_hash, state.step_eigenvector != nullptr));
   // Only a complete file takes the name: flushed to the disk, then renamed over the
   // previous checkpoint in one step.
   int error = 0;

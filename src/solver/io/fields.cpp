@@ -16,93 +16,90 @@ namespace bapd {
 
 namespace {
 
-// The quantities of a field file.
-enum class Quantity {
-  natural_id, rank, reference, position, displacement, velocity, volume, force, damage, stretch, nominal, cauchy,
-  deformation, thickness, energy
-};
-
-// One owned point's numbers, sent to the natural block in one exchange: where each is
-// in the row (D-vectors D numbers, tensors D x D).
-template <int D>
-struct Packed {
-  static constexpr int displacement = 0, velocity = D, force = 2 * D, nominal = 3 * D, cauchy = nominal + D * D,
-                       deformation = cauchy + D * D, thickness = deformation + D * D, energy = thickness + 1,
-                       damage = energy + 1, stretch = damage + 1, volume = stretch + 1, rank = volume + 1, size = rank + 1;
-  // The first number of a quantity read from the row (a vector's x, a tensor's xx).
-  static int source(Quantity q)
-  {
-    switch (q) {
-    case Quantity::displacement: return displacement;
-    case Quantity::velocity: return velocity;
-    case Quantity::force: return force;
-    case Quantity::nominal: return nominal;
-    case Quantity::cauchy: return cauchy;
-    case Quantity::deformation: return deformation;
-    case Quantity::thickness: return thickness;
-    case Quantity::energy: return energy;
-    case Quantity::damage: return damage;
-    case Quantity::stretch: return stretch;
-    case Quantity::volume: return volume;
-    default: return rank; // natural_id, reference and position are not read from the row
-    }
-  }
-};
-
 enum class Shape { scalar, vector, tensor }; // 1, 3, 9 components in the file
 int components(Shape s) { return s == Shape::scalar ? 1 : s == Shape::vector ? 3 : 9; }
+// Numbers a point holds in D dimensions: 1, D, D x D.
+template <int D> int width(Shape s) { return s == Shape::scalar ? 1 : s == Shape::vector ? D : D * D; }
 
-// The datasets of a field file, in the order the XDMF lists them.
+// Where a dataset's values come from.
+enum class Source {
+  natural_id, // the point's natural id (int64)
+  rank,       // the rank that owns the point (int32)
+  reference,  // its reference position x (exchanged once a run)
+  position,   // x + u
+  point,      // an array of the owned points' PointFields (FieldArray::array)
+};
+
+// One dataset of a field file. A new output field is one row of kArrays (its name,
+// shape and PointFields array) plus its computation into that array.
 struct FieldArray {
   const char *name;
   Shape       shape;
-  Quantity    quantity;
-  bool        integer() const { return quantity == Quantity::natural_id || quantity == Quantity::rank; }
-  int         precision() const { return quantity == Quantity::rank ? 4 : 8; } // int32 rank, else 8 bytes
+  Source      source;
+  const double *PointFields::*array = nullptr; // Source::point: width<D>(shape) numbers a point
+  bool        integer() const { return source == Source::natural_id || source == Source::rank; }
+  int         precision() const { return source == Source::rank ? 4 : 8; } // int32 rank, else 8 bytes
   // lambda_3 is a 2D quantity (the thickness stretch of a sheet): no dataset in 3D.
-  bool        in_dimension(int D) const { return quantity != Quantity::thickness || D == 2; }
+  bool        in_dimension(int D) const { return array != &PointFields::thickness_stretch || D == 2; }
 };
+// The datasets of a field file, in the order the XDMF lists them.
 constexpr FieldArray kArrays[] = {
-    {"natural_id", Shape::scalar, Quantity::natural_id},
-    {"rank", Shape::scalar, Quantity::rank},
-    {"reference_position", Shape::vector, Quantity::reference},
-    {"position", Shape::vector, Quantity::position},
-    {"displacement", Shape::vector, Quantity::displacement},
-    {"velocity", Shape::vector, Quantity::velocity},
-    {"volume", Shape::scalar, Quantity::volume},
-    {"force_density", Shape::vector, Quantity::force},
-    {"damage", Shape::scalar, Quantity::damage},
-    {"max_bond_stretch", Shape::scalar, Quantity::stretch},
-    {"nominal_stress", Shape::tensor, Quantity::nominal},
-    {"cauchy_stress", Shape::tensor, Quantity::cauchy},
-    {"deformation_gradient", Shape::tensor, Quantity::deformation},
-    {"thickness_stretch", Shape::scalar, Quantity::thickness},
-    {"strain_energy_density", Shape::scalar, Quantity::energy},
+    {"natural_id", Shape::scalar, Source::natural_id},
+    {"rank", Shape::scalar, Source::rank},
+    {"reference_position", Shape::vector, Source::reference},
+    {"position", Shape::vector, Source::position},
+    {"displacement", Shape::vector, Source::point, &PointFields::displacement},
+    {"velocity", Shape::vector, Source::point, &PointFields::velocity},
+    {"volume", Shape::scalar, Source::point, &PointFields::volume},
+    {"force_density", Shape::vector, Source::point, &PointFields::force_density},
+    {"damage", Shape::scalar, Source::point, &PointFields::damage},
+    {"max_bond_stretch", Shape::scalar, Source::point, &PointFields::max_bond_stretch},
+    {"nominal_stress", Shape::tensor, Source::point, &PointFields::nominal_stress},
+    {"cauchy_stress", Shape::tensor, Source::point, &PointFields::cauchy_stress},
+    {"deformation_gradient", Shape::tensor, Source::point, &PointFields::deformation_gradient},
+    {"thickness_stretch", Shape::scalar, Source::point, &PointFields::thickness_stretch},
+    {"strain_energy_density", Shape::scalar, Source::point, &PointFields::strain_energy_density},
+};
+constexpr std::size_t kArrayCount = sizeof kArrays / sizeof kArrays[0];
+
+std::size_t ArrayIndex(const char *name)
+{
+  for (std::size_t k = 0; k < kArrayCount; ++k)
+    if (std::string(kArrays[k].name) == name) return k;
+  return 0; // (every caller names one of the table)
+}
+const FieldArray &Array(const char *name) { return kArrays[ArrayIndex(name)]; }
+
+// One owned point's numbers, sent to the natural block in one exchange: the point
+// arrays of kArrays in its order (width<D> numbers each), then the owner's rank.
+template <int D> struct PackedRow {
+  std::size_t offset[kArrayCount] = {}; // where array k starts in the row (Source::point)
+  std::size_t rank = 0, size = 0;
+  PackedRow()
+  {
+    for (std::size_t k = 0; k < kArrayCount; ++k)
+      if (kArrays[k].source == Source::point) offset[k] = rank, rank += (std::size_t)width<D>(kArrays[k].shape);
+    size = rank + 1;
+  }
+  std::size_t of(const char *name) const { return offset[ArrayIndex(name)]; }
 };
 
-const FieldArray &Array(const char *name)
-{
-  for (const FieldArray &a : kArrays)
-    if (std::string(a.name) == name) return a;
-  return kArrays[0]; // (every caller names one of the table)
-}
-
-// The dataset of a floating-point array from the natural block (Packed<D>::size per
+// The dataset of a floating-point array from the natural block (PackedRow<D>::size per
 // point): D components of a vector, the D x D block of a row-major 3x3 tensor, the rest 0.
 template <int D>
 void FromBlock(const FieldArray &a, const std::vector<double> &block, const std::vector<double> &reference, PetscInt count,
                std::vector<double> &out)
 {
-  using P           = Packed<D>;
-  const int c       = components(a.shape);
-  const int source  = P::source(a.quantity);
-  const bool moving = a.quantity == Quantity::position;
+  const PackedRow<D> P;
+  const int          c      = components(a.shape);
+  const std::size_t  source = P.offset[&a - kArrays], displacement = P.of("displacement");
+  const bool         moving = a.source == Source::position;
   out.assign((std::size_t)(c * count), 0.0);
   for (PetscInt k = 0; k < count; ++k) {
-    const double *row = block.data() + P::size * k;
+    const double *row = block.data() + P.size * k;
     double       *o   = out.data() + c * k;
-    if (a.quantity == Quantity::reference || moving) {
-      for (int d = 0; d < D; ++d) o[d] = reference[D * k + d] + (moving ? row[P::displacement + d] : 0.0);
+    if (a.source == Source::reference || moving) {
+      for (int d = 0; d < D; ++d) o[d] = reference[D * k + d] + (moving ? row[displacement + d] : 0.0);
     } else if (a.shape == Shape::scalar) {
       o[0] = row[source];
     } else if (a.shape == Shape::vector) {
@@ -110,32 +107,22 @@ void FromBlock(const FieldArray &a, const std::vector<double> &block, const std:
     } else {
       for (int r = 0; r < D; ++r)
         for (int q = 0; q < D; ++q) o[3 * r + q] = row[source + D * r + q];
-      if (D == 2 && a.quantity == Quantity::deformation) o[8] = row[P::thickness]; // F_33 = lambda_3
+      if (D == 2 && a.array == &PointFields::deformation_gradient) o[8] = row[P.of("thickness_stretch")]; // F_33 = lambda_3
     }
   }
 }
 
-// One owned point's numbers in the order of Packed<D>.
+// One owned point's numbers in the order of PackedRow<D>.
 template <int D>
-void Pack(const PointFields &fields, int rank, PetscInt i, double *row)
+void Pack(const PackedRow<D> &P, const PointFields &fields, int rank, PetscInt i, double *row)
 {
-  using P = Packed<D>;
-  for (int d = 0; d < D; ++d) {
-    row[P::displacement + d] = fields.displacement[D * i + d];
-    row[P::velocity + d]     = fields.velocity[D * i + d];
-    row[P::force + d]        = fields.force_density[D * i + d];
+  for (std::size_t k = 0; k < kArrayCount; ++k) {
+    if (kArrays[k].source != Source::point) continue;
+    const double *values = fields.*kArrays[k].array;
+    const int     w      = width<D>(kArrays[k].shape);
+    for (int c = 0; c < w; ++c) row[P.offset[k] + c] = values ? values[w * i + c] : 1.0; // 3D: no lambda_3, never written
   }
-  for (int c = 0; c < D * D; ++c) {
-    row[P::nominal + c]     = fields.nominal_stress[D * D * i + c];
-    row[P::cauchy + c]      = fields.cauchy_stress[D * D * i + c];
-    row[P::deformation + c] = fields.deformation_gradient[D * D * i + c];
-  }
-  row[P::damage]    = fields.damage[i];
-  row[P::stretch]   = fields.max_bond_stretch[i];
-  row[P::volume]    = fields.volume[i];
-  row[P::thickness] = fields.thickness_stretch ? fields.thickness_stretch[i] : 1.0; // 3D: none, never written
-  row[P::energy]    = fields.strain_energy_density[i];
-  row[P::rank]      = rank;
+  row[P.rank] = rank;
 }
 
 // The applied stretch of a frame listed again on restart (FieldFrame::stretch < 0):
@@ -214,9 +201,9 @@ template <int D>
 PetscErrorCode WriteFieldFrame(MPI_Comm comm, const NaturalOrder &order, FieldSeries *series, PetscInt step, double time,
                                double stretch, const PointFields &fields)
 {
-  using P = Packed<D>;
-  PetscMPIInt rank;
-  PetscInt    owned;
+  const PackedRow<D> P;
+  PetscMPIInt        rank;
+  PetscInt           owned;
 
   PetscFunctionBegin;
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
@@ -238,12 +225,12 @@ PetscErrorCode WriteFieldFrame(MPI_Comm comm, const NaturalOrder &order, FieldSe
              series->output_dir.c_str());
   PetscCheck(ok, comm, PETSC_ERR_FILE_OPEN, "Cannot create %s/fields: choose a writable -output_dir", series->output_dir.c_str());
 
-  // Owned points -> natural block, Packed<D>::size numbers per point in one exchange
+  // Owned points -> natural block, PackedRow<D>::size numbers per point in one exchange
   // (the reference positions once per run).
   const PetscInt      count = order.point_count;
-  std::vector<double> local(P::size * owned), block(P::size * count);
-  for (PetscInt i = 0; i < owned; ++i) Pack<D>(fields, rank, i, local.data() + P::size * i);
-  PetscCall(DoublesToNaturalOrder(order.owned_points, P::size, local.data(), block.data()));
+  std::vector<double> local(P.size * owned), block(P.size * count);
+  for (PetscInt i = 0; i < owned; ++i) Pack<D>(P, fields, rank, i, local.data() + P.size * i);
+  PetscCall(DoublesToNaturalOrder(order.owned_points, (int)P.size, local.data(), block.data()));
   if (series->reference.size() != (std::size_t)(D * count)) {
     series->reference.assign(D * count, 0.0);
     PetscCall(DoublesToNaturalOrder(order.owned_points, D, fields.reference, series->reference.data()));
@@ -252,10 +239,12 @@ PetscErrorCode WriteFieldFrame(MPI_Comm comm, const NaturalOrder &order, FieldSe
   const std::string path = series->output_dir + "/" + FieldFileName(step);
   const hsize_t     N = (hsize_t)order.n_points, start = (hsize_t)order.point_start, n = (hsize_t)count;
   {
-    // Its size: per point an int64 id, an int32 rank, 5 vectors, 3 tensors and 5
-    // scalars of 8 bytes (kArrays); 20 datasets and attributes.
+    // Its size: per point every array of kArrays (the file's components, precision()
+    // bytes each); 20 datasets and attributes.
+    hsize_t point_bytes = 0;
+    for (const FieldArray &a : kArrays) point_bytes += (hsize_t)(a.precision() * components(a.shape));
     H5ParallelFile f;
-    PetscCall(f.Create(comm, path, H5FileBytes(N * (8 + 4 + 8 * (5 * 3 + 3 * 9 + 5)), 24)));
+    PetscCall(f.Create(comm, path, H5FileBytes(N * point_bytes, 24)));
     PetscCall(f.WriteAttribute("/", "format", std::string("bapd fields")));
     PetscCall(f.WriteAttribute("/", "format_version", (std::int64_t)2));
     PetscCall(f.WriteAttribute("/", "step", (std::int64_t)step));
@@ -266,13 +255,13 @@ PetscErrorCode WriteFieldFrame(MPI_Comm comm, const NaturalOrder &order, FieldSe
     for (const FieldArray &a : kArrays) {
       if (!a.in_dimension(D)) continue;
       const std::string name = std::string("/") + a.name;
-      if (a.quantity == Quantity::natural_id) {
+      if (a.source == Source::natural_id) {
         std::vector<std::int64_t> id(count);
         for (PetscInt k = 0; k < count; ++k) id[k] = (std::int64_t)(order.point_start + k);
         PetscCall(f.WriteBlock(name.c_str(), H5T_NATIVE_INT64, N, 0, start, n, id.data()));
-      } else if (a.quantity == Quantity::rank) {
+      } else if (a.source == Source::rank) {
         std::vector<std::int32_t> owner(count);
-        for (PetscInt k = 0; k < count; ++k) owner[k] = (std::int32_t)block[P::size * k + P::rank];
+        for (PetscInt k = 0; k < count; ++k) owner[k] = (std::int32_t)block[P.size * k + P.rank];
         PetscCall(f.WriteBlock(name.c_str(), H5T_NATIVE_INT32, N, 0, start, n, owner.data()));
       } else {
         FromBlock<D>(a, block, series->reference, count, data);

@@ -225,37 +225,40 @@ PetscErrorCode CheckRunawayEnergy(const RunawayInputs &inputs, RunawayEnergyMoni
   PetscFunctionReturn(0);
 }
 
-std::string DivergenceAdvice(const DivergenceFacts &f)
+namespace {
+
+// A fixed step above this fraction of the stable step of the state 10 to 20 steps
+// before the blow-up: the safety factor's margin is spent (the stable step includes
+// the 10 % pad of the estimate, so this is 0.86 x the linear limit).
+constexpr double      kFixedMargin = 0.9;
+constexpr std::size_t kAdviceSize  = 1024; // the advice's text buffer
+
+// The advice when the step was longer than the stable step `stable`; why: the cause's
+// detail after "the time step".
+void StepTooLong(const DivergenceFacts &f, const char *why, double stable, char *text)
 {
-  // A fixed step above this fraction of the stable step of the state 10 to 20 steps
-  // before the blow-up: the safety factor's margin is spent (the stable step includes
-  // the 10 % pad of the estimate, so this is 0.86 x the linear limit).
-  constexpr double fixed_margin = 0.9;
-  char text[1024];
-  // The chain limit's third fix: bonds that break before they reach it. With failure
-  // on, "enable failure" would send the user to an option already set.
-  char break_first[160];
-  if (f.critical_stretch > 0)
-    std::snprintf(break_first, sizeof break_first, "or lower -failure_critical_stretch (now %g) so that such bonds break first", f.critical_stretch);
-  else std::snprintf(break_first, sizeof break_first, "or enable failure (-failure_critical_stretch) so that such bonds break");
-  auto too_long = [&](const char *why, double stable) {
-    if (f.step_given)
-      std::snprintf(text, sizeof text,
-                    " Cause: the time step%s. dt = %.4e s is %.3g x the stable step %.4e s of the state %s (%.4e s at rest): "
-                    "lower -time_step below %.3e s, or leave it to the solver (-time_step 0, -time_step_safety 0.8).",
-                    why, f.dt, f.dt / stable, stable, stable == f.stable ? "reached" : "before the blow-up", f.stable_rest, 0.8 * std::min(stable, f.stable_rest));
-    else
-      std::snprintf(text, sizeof text,
-                    " Cause: the time step%s. dt = %.4e s is %.3g x the stable step %.4e s of the state %s (%.4e s at rest): "
-                    "lower -time_step_safety (now %g) to %.2g or less%s.",
-                    why, f.dt, f.dt / stable, stable, stable == f.stable ? "reached" : "before the blow-up", f.stable_rest, f.safety,
-                    std::min(0.8, 0.8 * f.safety * std::min(stable, f.stable_rest) / f.dt),
-                    f.reestimating ? "" : ", or let the step follow the material (-time_step_reestimate 50)");
-  };
+  if (f.step_given)
+    std::snprintf(text, kAdviceSize,
+                  " Cause: the time step%s. dt = %.4e s is %.3g x the stable step %.4e s of the state %s (%.4e s at rest): "
+                  "lower -time_step below %.3e s, or leave it to the solver (-time_step 0, -time_step_safety 0.8).",
+                  why, f.dt, f.dt / stable, stable, stable == f.stable ? "reached" : "before the blow-up", f.stable_rest, 0.8 * std::min(stable, f.stable_rest));
+  else
+    std::snprintf(text, kAdviceSize,
+                  " Cause: the time step%s. dt = %.4e s is %.3g x the stable step %.4e s of the state %s (%.4e s at rest): "
+                  "lower -time_step_safety (now %g) to %.2g or less%s.",
+                  why, f.dt, f.dt / stable, stable, stable == f.stable ? "reached" : "before the blow-up", f.stable_rest, f.safety,
+                  std::min(0.8, 0.8 * f.safety * std::min(stable, f.stable_rest) / f.dt),
+                  f.reestimating ? "" : ", or let the step follow the material (-time_step_reestimate 50)");
+}
+
+// The causes named by the step against the stable one before the blow-up, by the
+// chain limit or by the bulk modulus; false if none of them applies.
+bool StepOrMaterialCause(const DivergenceFacts &f, const char *break_first, char *text)
+{
   // A base step above the stable step at rest: the blow-up starts at once (and may
   // shorten the re-estimated step on its way, so the step taken last says less).
   if (std::max(f.dt, f.base) > f.stable_rest)
-    std::snprintf(text, sizeof text,
+    std::snprintf(text, kAdviceSize,
                   " Cause: the time step. The base step %.4e s is %.3g x the stable step at rest, %.4e s, so the explicit "
                   "scheme amplifies its fastest mode every step: %s.",
                   std::max(f.dt, f.base), std::max(f.dt, f.base) / f.stable_rest, f.stable_rest,
@@ -265,12 +268,12 @@ std::string DivergenceAdvice(const DivergenceFacts &f)
   // to 20 steps before the blow-up is a cause that letting the step follow cures, even
   // near the limit (the map's Jm = 3 plate, energy-consistent, slow: chain reach 0.82
   // there, and the re-estimated run goes to the end); where the limit itself is reached,
-  // the re-estimated run then names it. So is a step within fixed_margin of it: the
+  // the re-estimated run then names it. So is a step within kFixedMargin of it: the
   // margin the safety factor left at rest is spent while the material goes on
   // stiffening (the map's plane strain K = 1e5 mu plate, energy-consistent: 0.96 x the
   // stable step 13 steps before the blow-up, which was called "a bulk modulus too stiff
   // ... whatever the step", yet safety 0.5 and the re-estimated step both run it).
-  else if (!f.reestimating && f.stable_earlier > 0 && f.dt > fixed_margin * f.stable_earlier) {
+  else if (!f.reestimating && f.stable_earlier > 0 && f.dt > kFixedMargin * f.stable_earlier) {
     char why[240];
     if (f.dt > f.stable_earlier)
       std::snprintf(why, sizeof why, " (the material stiffened; the step was fixed at rest; measured %" PetscInt_FMT " steps before the failure)",
@@ -280,7 +283,7 @@ std::string DivergenceAdvice(const DivergenceFacts &f)
                     " (the material stiffened; the step was fixed at rest and had spent the margin of the safety factor %" PetscInt_FMT
                     " steps before the failure, the stiffening still going on)",
                     f.earlier_steps);
-    too_long(why, f.stable_earlier);
+    StepTooLong(f, why, f.stable_earlier, text);
   }
   // Wrecked, but near the limit 10 to 20 steps before: there the reach still had that
   // many steps to grow, a few hundredths a step at a fast ramp's rate (the Jm = 3 plate
@@ -288,7 +291,7 @@ std::string DivergenceAdvice(const DivergenceFacts &f)
   // with the estimates sharp, its corner bonds reach the limit itself at 1.99), hence
   // 0.75 here against 0.8 for the state reached.
   else if (f.chain_reach > 1.05 && f.chain_reach_earlier >= 0.75 && f.chain_reach_earlier <= 1.05)
-    std::snprintf(text, sizeof text,
+    std::snprintf(text, kAdviceSize,
                   " Cause: %s. %" PetscInt_FMT " steps before the failure bonds had reached I1bar - 3 = %.3g x its value at the limit "
                   "(largest bond stretch %.3g, applied stretch %.4g), where the material stiffens without bound and no time step "
                   "keeps up: raise %s (now %g), or end the load below stretch %.4g, %s.",
@@ -299,52 +302,60 @@ std::string DivergenceAdvice(const DivergenceFacts &f)
   // of the map reads 0.99 at stretch 1.17 once its last good state's C33 is solved
   // again from a cold start, where no stiffening preceded the blow-up).
   else if (f.chain_reach >= 0.8 && f.chain_reach <= 1.05 && !(f.stable_earlier > 0 && f.chain_reach_earlier < 0.5))
-    std::snprintf(text, sizeof text,
+    std::snprintf(text, kAdviceSize,
                   " Cause: %s. Bonds reached I1bar - 3 = %.3g x its value at the limit (largest bond stretch %.3g, applied stretch %.4g), "
                   "where the material stiffens without bound (its stable step fell to %.3g x the one at rest) and no time step "
                   "keeps up: raise %s (now %g), or end the load below stretch %.4g, %s.",
                   f.limit, f.chain_reach, f.bond_stretch, f.applied_stretch, f.stable / f.stable_rest, f.limit_option,
                   f.limit_value, f.applied_stretch, break_first);
   else if (f.plane_strain && f.bulk_ratio >= 1000)
-    std::snprintf(text, sizeof text,
+    std::snprintf(text, kAdviceSize,
                   " Cause: a bulk modulus too stiff for plane strain. The step (%.3g x the stable one) is not the problem: with "
                   "-material_bulk_ratio %g (K / mu) the %splane-strain body locks volumetrically and is unstable whatever the "
                   "step (docs/stability.md, section 1): lower -material_bulk_ratio to 100%s.",
                   f.dt / f.stable, f.bulk_ratio, f.bond_only ? "bond-only " : "", f.bond_only ? ", or use -force_form energy_consistent" : "");
   else if (f.chain_reach > 1.05 && f.limit_value > 0 && f.stiffening >= 4) // a wrecked state, but the run saw the stiffening
-    std::snprintf(text, sizeof text,
+    std::snprintf(text, kAdviceSize,
                   " Cause: %s. The material stiffened to %.3g x its stiffness at rest as bonds neared the "
                   "limit (applied stretch %.4g), and the state broke down (bond stretch %.3g): raise %s (now %g), "
                   "or end the load below stretch %.4g, %s.",
                   f.limit, f.stiffening, f.applied_stretch, f.bond_stretch, f.limit_option, f.limit_value, f.applied_stretch, break_first);
+  else return false;
+  return true;
+}
+
+// The causes left when the step before the blow-up and the material look sound: the
+// bond-only form, the stiffening outrunning the step, or none found.
+void FormOrStepCause(const DivergenceFacts &f, char *text)
+{
   // The bond-only form below 2.5 dx, with the step sound before the blow-up (the
   // branches above): at 2 dx scene 1's rest state has a real negative eigenvalue
   // (docs/stability.md section 1), at 1.5 dx it flutters; the map's 2 dx plate stops
   // at stretch 1.17 with the step fixed or re-estimated, at safety 0.2, and with
   // damping 200 or 1000 alike (it was called "the time step" and "flutter"), and the
   // energy-consistent form runs it. The wrecked state reached says nothing then.
-  else if (f.bond_only && f.horizon_factor < 2.5)
-    std::snprintf(text, sizeof text,
+  if (f.bond_only && f.horizon_factor < 2.5)
+    std::snprintf(text, kAdviceSize,
                   " Cause: the bond-only force form at -horizon_factor %g (below 2.5). The step was below the stable one "
                   "%s, but with so few bonds per family the bond-only form's rest state can itself be unstable (a real "
                   "negative eigenvalue, docs/stability.md section 1), which no time step and no damping cures: use -force_form "
                   "energy_consistent, or -horizon_factor 2.5 to 4.",
                   f.horizon_factor, f.stable_earlier > 0 ? "10 to 20 steps before the failure" : "at rest");
-  else if (!f.reestimating && f.dt > f.stable) too_long(" (the material stiffened; the step was fixed at rest)", f.stable);
+  else if (!f.reestimating && f.dt > f.stable) StepTooLong(f, " (the material stiffened; the step was fixed at rest)", f.stable, text);
   else if (f.stable_earlier > 0 && f.dt > f.stable_earlier) {
     // The last good state is already a wreck (its sharp estimate finds the wreck's
     // negative eigenvalue, not the stiffening); the state before the blow-up shows it.
     char why[200];
     std::snprintf(why, sizeof why, " (the material stiffened; %s; measured %" PetscInt_FMT " steps before the failure)",
                   f.reestimating ? "faster than the re-estimate followed" : "the step was fixed at rest", f.earlier_steps);
-    too_long(why, f.stable_earlier);
+    StepTooLong(f, why, f.stable_earlier, text);
   }
   // Flutter grows at free edges whatever the material does; a state that was half-way
   // to the chain limit before the blow-up (Gent stiffness over 4 x its value at rest)
   // points at the stiffening instead: the Jm = 3 plate (2 mm, fast route) was called
   // flutter at stretch 1.89 while its estimate lagged the hole's stiffening.
   else if (f.bond_only && f.damping < 100 && f.chain_reach_earlier < 0.5)
-    std::snprintf(text, sizeof text,
+    std::snprintf(text, kAdviceSize,
                   " Cause: flutter of the bond-only force form. The step was below the stable one (dt = %.3g x the stable "
                   "step at rest), but the bond-only form's stiffness is not symmetric at free edges and its motion grows whatever the "
                   "step (docs/stability.md, section 1): raise -damping (now %g 1/s; 200 covers the pure shear sheet) or use "
@@ -357,10 +368,10 @@ std::string DivergenceAdvice(const DivergenceFacts &f)
   // before the inversion at a free corner, the chain reach there 0.26 -> 0.45 within
   // those steps; the sharper Krylov estimate of the state reached read 1.44 x and
   // called it the time step, which the energy-consistent form, not a shorter step, cures).
-  else if (f.dt > f.stable && !(f.reestimating && f.stable_earlier > 0 && f.dt <= fixed_margin * f.stable_earlier))
-    too_long(" (the material stiffened faster than the re-estimate followed)", f.stable);
+  else if (f.dt > f.stable && !(f.reestimating && f.stable_earlier > 0 && f.dt <= kFixedMargin * f.stable_earlier))
+    StepTooLong(f, " (the material stiffened faster than the re-estimate followed)", f.stable, text);
   else if (f.bond_only) // the step, the material and the damping are sound: what is left is the form itself
-    std::snprintf(text, sizeof text,
+    std::snprintf(text, kAdviceSize,
                   " Cause: an instability of the bond-only force form. The step (%.3g x the stable one of the state reached), "
                   "the material (%.3g x its stiffness at rest) and the damping (%g 1/s) look sound, but the bond-only form's "
                   "stiffness is not symmetric, and at corners next to the grips its motion can grow whatever the step and the "
@@ -368,10 +379,24 @@ std::string DivergenceAdvice(const DivergenceFacts &f)
                   "-force_form energy_consistent, which has no such mode.",
                   f.dt / f.stable, f.stiffening, f.damping);
   else
-    std::snprintf(text, sizeof text,
+    std::snprintf(text, kAdviceSize,
                   " Cause: not found. The step (%.3g x the stable one of the state reached) and the material look sound: lower "
                   "-time_step_safety (now %g), and see docs/stability.md.",
                   f.dt / f.stable, f.safety);
+}
+
+} // namespace
+
+std::string DivergenceAdvice(const DivergenceFacts &f)
+{
+  char text[kAdviceSize];
+  // The chain limit's third fix: bonds that break before they reach it. With failure
+  // on, "enable failure" would send the user to an option already set.
+  char break_first[160];
+  if (f.critical_stretch > 0)
+    std::snprintf(break_first, sizeof break_first, "or lower -failure_critical_stretch (now %g) so that such bonds break first", f.critical_stretch);
+  else std::snprintf(break_first, sizeof break_first, "or enable failure (-failure_critical_stretch) so that such bonds break");
+  if (!StepOrMaterialCause(f, break_first, text)) FormOrStepCause(f, text);
   return text;
 }
 

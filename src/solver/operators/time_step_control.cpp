@@ -208,9 +208,9 @@ void TimeStepControl::Record(const double *u, const double *a)
 // the last eigenvector: the Rayleigh quotient follows lambda_max as the state changes.
 // Every probe reads the operator's committed C33 warm starts (converged at that very
 // state, 1e-7 dx from the probe) and writes none back, so the operator is left as it
-// was and a restart (which restores them) repeats the estimate bit for bit. (Until
-// issue 20 the probes advanced a copy of them, 8 B a bond, from probe to probe: the
-// same start for the first probe, one at round-off distance for the later ones.)
+// was and a restart (which restores them) repeats the estimate bit for bit. (Probes
+// that advanced a copy of them, 8 B a bond, from probe to probe had the same start for
+// the first probe, one at round-off distance for the later ones.)
 PetscErrorCode TimeStepControl::Reestimate(MPI_Comm comm, ForceOperator &force, bool loading, double psi, bool broke, PetscInt *iterations)
 {
   PetscFunctionBegin;
@@ -292,36 +292,9 @@ PetscErrorCode TimeStepControl::Reestimate(MPI_Comm comm, ForceOperator &force, 
   const PetscInt fewest = options_.bonds && search ? options_.max_iterations
                           : rising ? std::min(std::max(options_.iterations, rising_iterations), options_.max_iterations)
                                    : options_.iterations;
-  double       lambda = 0, previous = lambda_;
-  double       last_change = 0;
-  PetscInt     it     = 0;
-  bool         exhausted = false;
-  if (options_.krylov) PetscCall(KrylovStart(comm));
-  while (it < options_.max_iterations && !exhausted) {
-    if (options_.krylov) PetscCall(KrylovStep(comm, force, committed, u_rec_.data(), a_rec_.data(), it, &lambda, &exhausted));
-    else PetscCall(PowerStep(comm, force, committed, nullptr, u_rec_.data(), a_rec_.data(), options_.shift * lambda_, &lambda));
-    ++it;
-    if (!std::isfinite(lambda)) break;
-    const double change   = std::fabs(lambda - previous);
-    bool         settled  = change <= options_.tolerance * std::fabs(lambda);
-    // Rising: also the rest of the climb, were it to go on geometrically at the ratio
-    // of the last two increments (from the third iteration: the first increment holds
-    // the state's own change since the last estimate), must be within the tolerance.
-    if (rising && it >= 3 && last_change > 0) {
-      const double r = std::min(change / last_change, 0.95);
-      settled        = settled && change * r / (1.0 - r) <= options_.tolerance * std::fabs(lambda);
-    }
-    last_change = change;
-    const bool   harmless = at_base && it >= 2 && lambda + 10.0 * change < threshold;
-    // With the kernel's indicator and no search, the warm start is the last Ritz vector
-    // of a state that moved little: a first quotient within half the dead band of the
-    // last estimate cannot move the step, and the second Krylov step (the one the
-    // tolerance asks for as the state moved) adds 0.1 to 1 % (Jm = 8 plate).
-    if (options_.bonds && !search && !near && it == 1 && change <= 0.5 * options_.band * std::fabs(lambda)) settled = true;
-    previous              = lambda;
-    if (it >= fewest && (settled || harmless)) break;
-  }
-  if (options_.krylov && std::isfinite(lambda)) KrylovFinish(it);
+  double   lambda = 0;
+  PetscInt it     = 0;
+  PetscCall(Iterate(comm, force, committed, {rising, at_base, search, near, threshold, fewest}, &lambda, &it));
   // A jump is checked from both sides before it is believed (Kink).
   if (std::isfinite(lambda) && lambda > kink_jump * std::max(lambda_, lambda_rest_)) {
     bool kink = false;

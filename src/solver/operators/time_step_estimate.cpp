@@ -11,7 +11,7 @@
 namespace bapd {
 
 // The acceleration of the free dofs, M^{-1} f, with the held ones zero. The C33 warm
-// starts are c33, only read (issue 20: no per-bond copy, 8 B a bond), or, with advance
+// starts are c33, only read (no per-bond copy, 8 B a bond), or, with advance
 // (the set-up's iteration), read from and advanced in *advance.
 PetscErrorCode TimeStepControl::ProbeAcceleration(ForceOperator &force, const std::vector<double> &c33, std::vector<double> *advance, double inv_rho,
                                                   const std::vector<char> &held, const double *u, double *a)
@@ -270,6 +270,51 @@ PetscErrorCode TimeStepControl::MixSeed(MPI_Comm comm)
   if (!(norm2[0] > 0) || !std::isfinite(norm2[0]) || !(norm2[1] > 0)) PetscFunctionReturn(0);
   const double a = 1.0 / std::sqrt(norm2[0]), b = (options_.krylov ? krylov_seed_weight : seed_weight) / std::sqrt(norm2[1]);
   for (PetscInt k = 0; k < n; ++k) v_[k] = a * v_[k] + b * seed_[k];
+  PetscFunctionReturn(0);
+}
+
+// The iterations of one re-estimate (Reestimate decides the plan): the power
+// iteration or the Krylov search, at least plan.fewest steps, then until the quotient
+// settles or, at the base step, cannot move the step.
+PetscErrorCode TimeStepControl::Iterate(MPI_Comm comm, ForceOperator &force, const std::vector<double> &committed,
+                                        const IterationPlan &plan, double *lambda_out, PetscInt *iterations)
+{
+  PetscFunctionBegin;
+  const bool     rising = plan.rising, at_base = plan.at_base, search = plan.search, near = plan.near;
+  const double   threshold = plan.threshold;
+  const PetscInt fewest    = plan.fewest;
+  double       lambda = 0, previous = lambda_;
+  double       last_change = 0;
+  PetscInt     it     = 0;
+  bool         exhausted = false;
+  if (options_.krylov) PetscCall(KrylovStart(comm));
+  while (it < options_.max_iterations && !exhausted) {
+    if (options_.krylov) PetscCall(KrylovStep(comm, force, committed, u_rec_.data(), a_rec_.data(), it, &lambda, &exhausted));
+    else PetscCall(PowerStep(comm, force, committed, nullptr, u_rec_.data(), a_rec_.data(), options_.shift * lambda_, &lambda));
+    ++it;
+    if (!std::isfinite(lambda)) break;
+    const double change   = std::fabs(lambda - previous);
+    bool         settled  = change <= options_.tolerance * std::fabs(lambda);
+    // Rising: also the rest of the climb, were it to go on geometrically at the ratio
+    // of the last two increments (from the third iteration: the first increment holds
+    // the state's own change since the last estimate), must be within the tolerance.
+    if (rising && it >= 3 && last_change > 0) {
+      const double r = std::min(change / last_change, 0.95);
+      settled        = settled && change * r / (1.0 - r) <= options_.tolerance * std::fabs(lambda);
+    }
+    last_change = change;
+    const bool   harmless = at_base && it >= 2 && lambda + 10.0 * change < threshold;
+    // With the kernel's indicator and no search, the warm start is the last Ritz vector
+    // of a state that moved little: a first quotient within half the dead band of the
+    // last estimate cannot move the step, and the second Krylov step (the one the
+    // tolerance asks for as the state moved) adds 0.1 to 1 % (Jm = 8 plate).
+    if (options_.bonds && !search && !near && it == 1 && change <= 0.5 * options_.band * std::fabs(lambda)) settled = true;
+    previous              = lambda;
+    if (it >= fewest && (settled || harmless)) break;
+  }
+  if (options_.krylov && std::isfinite(lambda)) KrylovFinish(it);
+  *lambda_out = lambda;
+  *iterations = it;
   PetscFunctionReturn(0);
 }
 

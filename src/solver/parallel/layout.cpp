@@ -47,6 +47,46 @@ void CollectRings(int nranks, const std::vector<int> &part, const std::vector<in
   }
 }
 
+// A point's reals as rank 0 sends them: the D coordinates, V, V(H), and delta_i when
+// the points have their own horizons, then from H the patch correction's L numbers
+// with -force_patch_correction: lambda_i (D, on) or mu_i, S_i (D + D(D+1)/2, virial: 5
+// in 2D; patch_correction.hpp, nd::patch_stride), the ring-1 points' included, which
+// the kernel reads as neighbours.
+template <int D> struct PointReals {
+  static constexpr int kVolume = D, kFamilyVolume = D + 1, kHorizon = D + 2; // their places in a point's reals
+  int                  R, L, H; // reals a point; the patch correction's numbers and where they start
+  bool                 own_horizon;
+
+  // Point i of the global cloud into its R reals at out.
+  void Pack(const PointCloud &global_cloud, int i, double *out) const
+  {
+    for (int d = 0; d < D; ++d) out[d] = global_cloud.x[D * i + d];
+    out[kVolume]       = global_cloud.volume[i];
+    out[kFamilyVolume] = global_cloud.family_volume[i];
+    if (own_horizon) out[kHorizon] = global_cloud.horizon[i];
+    for (int l = 0; l < L; ++l) out[H + l] = global_cloud.patch_correction[L * i + l];
+  }
+  // The rank's cloud from its points' natural ids and reals.
+  void Unpack(const std::vector<int> &ids, const std::vector<double> &real, PointCloud &c) const
+  {
+    const std::size_t m = ids.size();
+    c.x.resize(D * m);
+    c.volume.resize(m);
+    c.family_volume.resize(m);
+    c.natural_id.assign(ids.begin(), ids.end());
+    c.horizon.resize(own_horizon ? m : 0);
+    c.patch_correction.resize(L * m);
+    c.patch_virial = L == (int)nd::patch_stride<D>(true);
+    for (std::size_t k = 0; k < m; ++k) {
+      for (int d = 0; d < D; ++d) c.x[D * k + d] = real[R * k + d];
+      c.volume[k]        = real[R * k + kVolume];
+      c.family_volume[k] = real[R * k + kFamilyVolume];
+      if (own_horizon) c.horizon[k] = real[R * k + kHorizon];
+      for (int l = 0; l < L; ++l) c.patch_correction[L * k + l] = real[R * k + H + l];
+    }
+  }
+};
+
 } // namespace
 
 template <int D>
@@ -60,17 +100,11 @@ PetscErrorCode DistributePoints(MPI_Comm comm, const PointCloud &global_cloud, c
   PetscCallMPI(MPI_Comm_size(comm, &size));
   PetscInt n_global = (PetscInt)global_cloud.size(), edge_cut = 0;
   PetscCallMPI(MPI_Bcast(&n_global, 1, MPIU_INT, 0, comm));
-  // Reals per point: the D coordinates, V, V(H), and delta_i when the points have their
-  // own horizons, then the patch correction's numbers with -force_patch_correction:
-  // lambda_i (D, on) or mu_i, S_i (D + D(D+1)/2, virial: 5 in 2D; patch_correction.hpp,
-  // nd::patch_stride), the ring-1 points' included, which the kernel reads as neighbours.
-  constexpr int kVolume = D, kFamilyVolume = D + 1, kHorizon = D + 2; // their places in a point's reals
   int R = global_cloud.horizon.empty() ? D + 2 : D + 3,
       L = global_cloud.patch_correction.empty() ? 0 : (int)nd::patch_stride<D>(global_cloud.patch_virial);
   PetscCallMPI(MPI_Bcast(&R, 1, MPI_INT, 0, comm));
   PetscCallMPI(MPI_Bcast(&L, 1, MPI_INT, 0, comm));
-  const int  H           = R; // where the patch correction's numbers start in a point's reals
-  const bool own_horizon = R == D + 3;
+  const PointReals<D> reals{R + L, L, R, R == D + 3};
   R += L;
   PetscCheck(n_global >= size, comm, PETSC_ERR_USER, "The body has %" PetscInt_FMT " points, fewer than the %d ranks: run on fewer ranks or refine -body_dx", n_global, size);
 
@@ -101,13 +135,8 @@ PetscErrorCode DistributePoints(MPI_Comm comm, const PointCloud &global_cloud, c
       std::vector<PetscInt> pidx(ids.size());
       std::vector<double>   real(R * ids.size());
       for (std::size_t k = 0; k < ids.size(); ++k) {
-        const int i     = ids[k];
-        pidx[k]         = petsc_index[i];
-        for (int d = 0; d < D; ++d) real[R * k + d] = global_cloud.x[D * i + d];
-        real[R * k + kVolume]       = global_cloud.volume[i];
-        real[R * k + kFamilyVolume] = global_cloud.family_volume[i];
-        if (own_horizon) real[R * k + kHorizon] = global_cloud.horizon[i];
-        for (int l = 0; l < L; ++l) real[R * k + H + l] = global_cloud.patch_correction[L * i + l];
+        pidx[k] = petsc_index[ids[k]];
+        reals.Pack(global_cloud, ids[k], real.data() + R * k);
       }
       PetscInt c[3] = {(PetscInt)rp.owned.size(), (PetscInt)rp.ring1.size(), (PetscInt)rp.ring2.size()};
       if (r == 0) {
@@ -143,22 +172,7 @@ PetscErrorCode DistributePoints(MPI_Comm comm, const PointCloud &global_cloud, c
   layout->edge_cut    = edge_cut;
   layout->owned_start = my_counts[0] > 0 ? my_petsc[0] : 0;
   layout->petsc_index = std::move(my_petsc);
-  PointCloud &c       = layout->cloud;
-  const std::size_t m = my_ids.size();
-  c.x.resize(D * m);
-  c.volume.resize(m);
-  c.family_volume.resize(m);
-  c.natural_id.assign(my_ids.begin(), my_ids.end());
-  c.horizon.resize(own_horizon ? m : 0);
-  c.patch_correction.resize(L * m);
-  c.patch_virial = L == (int)nd::patch_stride<D>(true);
-  for (std::size_t k = 0; k < m; ++k) {
-    for (int d = 0; d < D; ++d) c.x[D * k + d] = my_real[R * k + d];
-    c.volume[k]        = my_real[R * k + kVolume];
-    c.family_volume[k] = my_real[R * k + kFamilyVolume];
-    if (own_horizon) c.horizon[k] = my_real[R * k + kHorizon];
-    for (int l = 0; l < L; ++l) c.patch_correction[L * k + l] = my_real[R * k + H + l];
-  }
+  reals.Unpack(my_ids, my_real, layout->cloud);
   PetscFunctionReturn(0);
 }
 

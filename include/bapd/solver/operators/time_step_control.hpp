@@ -139,6 +139,14 @@ private:
   // indicator of the state (0: not computed, -time_step_reestimate_indicator 0).
   // broke: bonds broke after the recorded evaluation (its a(u) is evaluated again).
   PetscErrorCode Reestimate(MPI_Comm comm, ForceOperator &force, bool loading, double psi, bool broke, PetscInt *iterations);
+  // What a re-estimate's iterations stop on (Reestimate decides it, Iterate runs it).
+  struct IterationPlan {
+    bool     rising, at_base, search, near;
+    double   threshold;
+    PetscInt fewest;
+  };
+  PetscErrorCode Iterate(MPI_Comm comm, ForceOperator &force, const std::vector<double> &committed, const IterationPlan &plan,
+                         double *lambda, PetscInt *iterations);
   // The lambda_max above which the base step would be shortened (outside the dead band).
   double ShorteningThreshold() const { return lambda_rest_ / ((1.0 - options_.band) * (1.0 - options_.band)); }
   // The back-off and the early stop spend part of the margin the safety factor leaves
