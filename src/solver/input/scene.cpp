@@ -60,7 +60,9 @@ PetscErrorCode SceneFromOptions(MPI_Comm comm, Scene *scene)
   }
   PetscCall(CheckBody(comm, in, scene));
   PetscCall(CheckMaterial(comm, in, scene));
-  PetscCall(CheckLoading(comm, in, scene));
+  EdgeRows grip_rows; // the rows the grips outside the sheet add to the body, which CheckBodyFits counts
+  PetscCall(CheckLoading(comm, in, scene, &grip_rows));
+  scene->body.grip_rows = grip_rows;
   PetscCall(CheckBodyFits(comm, *scene));
   PetscCall(CheckProbes(comm, in, scene));
   PetscCall(CheckOutputTime(comm, in, scene));
@@ -161,38 +163,6 @@ std::string BodyText3D(const Scene &s)
     text += Format("            notch %s: a planar polygon of %zu vertices,%s m\n", name.c_str(), v.size() / 3, corners.c_str());
   }
   return text + HorizonText(s, b.given_points != nullptr, "cbrt(V_i)");
-}
-
-// Where a load set is: its region in words (3D: a face by its axis, a box of six numbers).
-std::string RegionText(const Scene &s, const LoadSet &l)
-{
-  const bool three = s.dimension == 3;
-  switch (l.region) {
-  case LoadSet::Region::box:
-    return three ? Format("box [%g, %g] x [%g, %g] x [%g, %g] m", l.box[0], l.box[3], l.box[1], l.box[4], l.box[2], l.box[5])
-                 : Format("box [%g, %g] x [%g, %g] m", l.box[0], l.box[2], l.box[1], l.box[3]);
-  case LoadSet::Region::polygon: return Format("polygon of %zu vertices", l.area.vertices.size() / 2);
-  case LoadSet::Region::curve: return Format("within %g m of a polyline of %zu segments", l.depth, l.segments.size() / 4);
-  case LoadSet::Region::group:
-    if (three)
-      return l.elements.dim == 3 ? Format("physical volume '%s' of %s (%zu tetrahedra)", l.group.c_str(), l.file.c_str(), l.elements.size())
-                                 : Format("within %g m of physical %s '%s' of %s (%zu elements)", l.depth,
-                                          l.elements.dim == 2 ? "surface" : l.elements.dim == 1 ? "curve" : "point", l.group.c_str(),
-                                          l.file.c_str(), l.elements.size());
-    return l.segments.empty() ? Format("physical surface '%s' of %s", l.group.c_str(), l.file.c_str())
-                              : Format("within %g m of physical group '%s' of %s", l.depth, l.group.c_str(), l.file.c_str());
-  case LoadSet::Region::block:
-    return Format("block %lld of the cloud (%zu points)", static_cast<long long>(l.block), l.block_points.size() / (three ? 3 : 2));
-  default: break;
-  }
-  if (!three) return Format("%s edge, %d row(s) %s", to_string(l.region), l.layers, to_string(l.placement));
-  const char *axis = l.region == LoadSet::Region::left     ? "x-"
-                     : l.region == LoadSet::Region::right  ? "x+"
-                     : l.region == LoadSet::Region::bottom ? "y-"
-                     : l.region == LoadSet::Region::top    ? "y+"
-                     : l.region == LoadSet::Region::back   ? "z-"
-                                                           : "z+";
-  return Format("%s face (%s), %d row(s) inside", axis, to_string(l.region), l.layers);
 }
 
 } // namespace

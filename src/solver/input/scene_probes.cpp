@@ -49,15 +49,8 @@ PetscErrorCode ProbeAtGroup(MPI_Comm comm, const ProbeInput &pi, const Body2D &b
 {
   const char *n = pi.name.c_str();
   PetscFunctionBeginUser;
-  std::string file = pi.file;
-  if (file.empty()) {
-    const std::vector<std::string> files = BodyGmshFiles(body);
-    SceneCheck(files.size() == 1, comm,
-               "-probe_%s_file is required for probe '%s': the body reads %zu Gmsh files (mesh shapes), so the file of group '%s' is not "
-               "implied: give the .geo or .msh that names it",
-               n, n, files.size(), pi.group.c_str());
-    file = files[0];
-  }
+  std::string file;
+  PetscCall(GroupGmshFile(comm, pi.file, BodyGmshFiles(body), "probe", "probe", pi.name, "mesh shapes", pi.group, &file));
   GmshGroup         group;
   const std::string problem = ReadGmshGroup(file, pi.group, &group);
   SceneCheck(problem.empty(), comm, "-probe_%s_group %s: %s", n, pi.group.c_str(), problem.c_str());
@@ -98,15 +91,8 @@ PetscErrorCode CheckProbe3D(MPI_Comm comm, const ProbeInput &pi, const Body3D &b
   const char *n = pi.name.c_str();
   PetscFunctionBeginUser;
   if (!pi.group.empty()) { // a physical point (one node) of the body's Gmsh volume, or of -probe_NAME_file
-    std::string file = pi.file;
-    if (file.empty()) {
-      const std::vector<std::string> files = BodyGmshFiles(b);
-      SceneCheck(files.size() == 1, comm,
-                 "-probe_%s_file is required for probe '%s': the body reads %zu Gmsh files (mesh solids), so the file of group '%s' is "
-                 "not implied: give the .geo or .msh that names it",
-                 n, n, files.size(), pi.group.c_str());
-      file = files[0];
-    }
+    std::string file;
+    PetscCall(GroupGmshFile(comm, pi.file, BodyGmshFiles(b), "probe", "probe", pi.name, "mesh solids", pi.group, &file));
     nd::ElementRegion group;
     const std::string problem = ReadGmshGroup3D(file, pi.group, 0.0, &group);
     SceneCheck(problem.empty(), comm, "-probe_%s_group %s: %s", n, pi.group.c_str(), problem.c_str());

@@ -3,8 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
+#include <string>
 
 #include "bapd/core/geometry/geometry.hpp"
 #include "bapd/solver/parallel/reproducible_sum.hpp"
@@ -32,45 +32,10 @@ PetscErrorCode Loading::Setup(MPI_Comm comm, const Scene &scene, const Layout &l
     PetscInt count = (PetscInt)selected.size();
     PetscCallMPI(MPI_Allreduce(&count, &load_points_[s].global_count, 1, MPIU_INT, MPI_SUM, comm));
     if (load_points_[s].global_count == 0) {
-      // Points sit at cell centres ((i + 1/2) dx, (j + 1/2) dx): a thin box can miss
-      // them all, and a hole can empty an edge layer.
-      const char *n = set.name.c_str();
-      char        msg[768];
-      if (set.region == LoadSet::Region::box && dimension_ == 3)
-        std::snprintf(msg, sizeof msg,
-                      "-load_%s_box %g,%g,%g,%g,%g,%g selects no material point for load set '%s': widen it to hold a lattice point "
-                      "(points sit at ((i + 1/2) dx, (j + 1/2) dx, (k + 1/2) dx), dx = %g m)",
-                      n, set.box[0], set.box[1], set.box[2], set.box[3], set.box[4], set.box[5], n, scene.body3d.solid.dx);
-      else if (set.region == LoadSet::Region::box)
-        std::snprintf(msg, sizeof msg,
-                      "-load_%s_box %g,%g,%g,%g selects no material point for load set '%s': widen it to hold a lattice point "
-                      "(points sit at ((i + 1/2) dx, (j + 1/2) dx), dx = %g m)",
-                      n, set.box[0], set.box[1], set.box[2], set.box[3], n, scene.body.dx);
-      else if (set.region == LoadSet::Region::group)
-        std::snprintf(msg, sizeof msg,
-                      "-load_%s_group %s (of %s) selects no material point for load set '%s': %s",
-                      n, set.group.c_str(), set.file.c_str(), n,
-                      set.segments.empty() ? "no material point lies inside its elements (is it a surface of the body?)"
-                                           : ("no point lies closer to it than -load_" + set.name + "_depth: raise the depth, or check that it lies on the body").c_str());
-      else if (set.region == LoadSet::Region::block)
-        std::snprintf(msg, sizeof msg,
-                      "-load_%s_block %lld selects no material point for load set '%s': the body's shapes or holes cut away "
-                      "all %zu points of that block",
-                      n, static_cast<long long>(set.block), n, set.block_points.size() / dimension_);
-      else if (set.region == LoadSet::Region::polygon || set.region == LoadSet::Region::curve)
-        std::snprintf(msg, sizeof msg,
-                      "-load_%s_points: the %s selects no material point for load set '%s': %s (points sit at ((i + 1/2) dx, (j + "
-                      "1/2) dx), dx = %g m)",
-                      n, to_string(set.region), n,
-                      set.region == LoadSet::Region::polygon ? "enlarge it or move it onto the body"
-                                                             : ("raise -load_" + set.name + "_depth or move it onto the body").c_str(),
-                      scene.body.dx);
-      else
-        std::snprintf(msg, sizeof msg,
-                      "-load_%s_region %s selects no material point for load set '%s' (its %d edge layer(s) hold none, e.g. cut away "
-                      "by a hole): raise -load_%s_layers or move the hole",
-                      n, to_string(set.region), n, set.layers, n);
-      SETERRQ(comm, PETSC_ERR_USER, "%s", msg);
+      // (A thin box can miss every lattice point, a hole can empty an edge layer: the
+      // region type's message says which option to change. At most 767 characters.)
+      const std::string msg = LoadSetEmptyMessage(scene, set).substr(0, 767);
+      SETERRQ(comm, PETSC_ERR_USER, "%s", msg.c_str());
     }
     most                   = std::max(most, selected.size());
     load_points_[s].points = selected;

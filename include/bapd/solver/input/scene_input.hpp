@@ -83,11 +83,18 @@ PetscErrorCode ReadMaterial(MPI_Comm comm, Scene *scene, SceneInput *in);
 PetscErrorCode CheckMaterial(MPI_Comm comm, const SceneInput &in, Scene *scene);
 // Loading (scene_loading.cpp): -load_sets, -load_schedule, -load_NAME_*.
 PetscErrorCode ReadLoading(MPI_Comm comm, Scene *scene, SceneInput *in);
-PetscErrorCode CheckLoading(MPI_Comm comm, const SceneInput &in, Scene *scene);
+// grip_rows: the rows the edge grips placed outside the sheet add beyond it, for the
+// body (Body2D::grip_rows) before CheckBodyFits counts its points.
+PetscErrorCode CheckLoading(MPI_Comm comm, const SceneInput &in, Scene *scene, EdgeRows *grip_rows);
 // The Gmsh files the body reads (its mesh shapes): where a physical group's file
 // defaults to (load sets and probes by group).
 std::vector<std::string> BodyGmshFiles(const Body2D &body);
 std::vector<std::string> BodyGmshFiles(const Body3D &body); // (its mesh solids)
+// The file of physical group `group` of -PREFIX_NAME_group (owner: "load set", "probe"):
+// `given` (-PREFIX_NAME_file), else the body's one Gmsh file (`files`, its `kinds`:
+// "mesh shapes", "mesh solids"); several files and none given is refused.
+PetscErrorCode GroupGmshFile(MPI_Comm comm, const std::string &given, const std::vector<std::string> &files, const char *prefix,
+                             const char *owner, const std::string &name, const char *kinds, const std::string &group, std::string *file);
 // Probes (scene_probes.cpp): -probes, -probe_NAME_at or -probe_NAME_group.
 PetscErrorCode ReadProbes(MPI_Comm comm, SceneInput *in);
 PetscErrorCode CheckProbes(MPI_Comm comm, const SceneInput &in, Scene *scene);

@@ -7,6 +7,7 @@
 
 #include "bapd/core/geometry/shape3d.hpp"
 #include "bapd/core/geometry/shape.hpp"
+#include "bapd/solver/input/regions/region_list.hpp"
 
 namespace bapd {
 
@@ -15,7 +16,7 @@ struct Scene;
 enum class ComponentLoad { free, fixed, stretch };
 
 // How a top or bottom grip moves the y component of its points (-load_grip_field;
-// issue 14 item 2, docs/stress_consistency.md): rigid, every point of the grip by the
+// docs/stress_consistency.md): rigid, every point of the grip by the
 // same u, or affine, the grip's points on the affine continuation of the free
 // region's mean stretch, u = u_rigid + (lambda - 1) (L / L_free) (y - y_inner),
 // y_inner the grip's inner boundary, L_free the distance between the two grips'
@@ -39,14 +40,16 @@ enum class GripPlacement { outside, inside };
 // polyline (curve), or a named physical group of a Gmsh file (group: a physical
 // surface holds the points inside its elements; a physical curve or point, the
 // points closer than `depth` to it).
-// In 3D (Scene::dimension 3, issue 21 stage 4) the edge regions are the faces of the
+// In 3D (Scene::dimension 3) the edge regions are the faces of the
 // body's extent (Body3D::lo, hi): left x-, right x+, bottom y-, top y+, back z-, front
 // z+ (the words x-, x+, y-, y+, z-, z+ name them too), always inside; a box has six
 // numbers; a group is a physical group of the body's Gmsh volume (a volume: the points
 // inside it; a surface, curve or point: those closer than `depth` to it); a block is a
 // block id of a 3D cloud; polygon and curve are 2D only.
 struct LoadSet {
-  enum class Region { top, bottom, left, right, box, polygon, curve, group, block, front, back };
+#define BAPD_REGION_ID(id, alias, type) id,
+  enum class Region { BAPD_REGISTERED_REGIONS(BAPD_REGION_ID) }; // (regions/region_list.hpp)
+#undef BAPD_REGION_ID
   std::string   name;
   Region        region    = Region::top;
   GripPlacement placement = GripPlacement::inside; // edge regions (the others are inside)
@@ -117,6 +120,11 @@ int GripRows(double depth, double dx);
 // x < lo_x + layers dx, ...).
 PetscErrorCode LoadSetSelect(const Scene &scene, const LoadSet &set, const double *x, PetscInt n,
                              std::vector<PetscInt> *selected);
+
+// The summary's words for where a load set is (SceneText), and the message when it
+// holds no material point anywhere (Loading::Setup): its region type's (regions/).
+std::string RegionText(const Scene &scene, const LoadSet &set);
+std::string LoadSetEmptyMessage(const Scene &scene, const LoadSet &set);
 
 const char *to_string(LoadSet::Region region);
 const char *to_string(GripPlacement placement);

@@ -1,0 +1,122 @@
+// Region top, bottom, left, right (a 2D sheet's edges; a 3D body's faces y+, y-, x-,
+// x+) and front, back (3D only: z+, z-): the point rows within `layers` rows of the
+// edge. A 2D edge grip sits inside (the sheet's own edge rows, the paper's grips) or
+// outside (rows added beyond the edge, Body2D::grip_rows: the sheet is then the free
+// region); a 3D face holds the body's own points, within `layers` rows of its extent.
+#include <algorithm>
+
+#include "bapd/solver/input/options_reader.hpp"
+#include "bapd/solver/input/regions/region_registry.hpp"
+#include "bapd/solver/input/scene_input.hpp"
+
+namespace bapd {
+namespace {
+
+// The axis an edge or face is normal to (0: x, 1: y, 2: z), and whether it is the upper one.
+int EdgeAxis(LoadSet::Region r)
+{
+  return r == LoadSet::Region::left || r == LoadSet::Region::right ? 0 : r == LoadSet::Region::bottom || r == LoadSet::Region::top ? 1 : 2;
+}
+bool EdgeUpper(LoadSet::Region r) { return r == LoadSet::Region::right || r == LoadSet::Region::top || r == LoadSet::Region::front; }
+
+PetscErrorCode CheckEdge2D(const RegionInput &r, LoadSet *set, EdgeRows *grip_rows)
+{
+  const LoadInput &li = r.li;
+  const Body2D    &b  = r.scene.body;
+  const char      *n  = li.name.c_str();
+  PetscFunctionBeginUser;
+  const std::string placement = Lower(li.placement) == "auto" ? to_string(r.default_placement) : Lower(li.placement);
+  if (placement == "outside") set->placement = GripPlacement::outside;
+  else if (placement == "inside") set->placement = GripPlacement::inside;
+  else SceneCheck(false, r.comm, "-load_%s_placement '%s' is not a choice: choose outside, inside or auto", n, li.placement.c_str());
+  // A grip outside extrudes the edge row of the lattice; given points have no rows.
+  SceneCheck(set->placement == GripPlacement::inside || !b.given_points, r.comm,
+             "-load_%s_placement %s: a grip outside the specimen extrudes the lattice's edge rows, which given points (-body_cloud, "
+             "-body_S_discretisation centroids) do not have: place it inside (-load_%s_placement inside, or -load_grip_placement "
+             "inside for every grip)",
+             n, Lower(li.placement) == "auto" ? "outside (the default)" : "outside", n);
+  PetscCall(CheckLayersDepth(r, "grip", "row"));
+  const bool outside = set->placement == GripPlacement::outside;
+  if (li.depth_set) set->layers = GripRows(li.depth, b.dx);
+  else if (li.layers_set || !outside) set->layers = static_cast<int>(li.layers);
+  else set->layers = GripRows(2.0 * r.scene.horizon(), b.dx);
+  const bool   vertical = EdgeAxis(set->region) == 1;
+  const double across   = vertical ? b.height : b.width;
+  SceneCheck(outside || set->layers * b.dx < across, r.comm,
+             "-load_%s_layers %d (placement inside) is %g m deep, the whole body %s (%g m): use fewer rows, or place the grip "
+             "outside (-load_%s_placement outside)",
+             n, set->layers, set->layers * b.dx, vertical ? "height" : "width", across, n);
+  if (outside) {
+    int64_t &rows = set->region == LoadSet::Region::top      ? grip_rows->top
+                    : set->region == LoadSet::Region::bottom ? grip_rows->bottom
+                    : set->region == LoadSet::Region::left   ? grip_rows->left
+                                                             : grip_rows->right;
+    rows = std::max<int64_t>(rows, set->layers);
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode CheckFace3D(const RegionInput &r, LoadSet *set)
+{
+  const LoadInput &li = r.li;
+  const Body3D    &b  = r.scene.body3d;
+  const double     dx = b.solid.dx;
+  PetscFunctionBeginUser;
+  PetscCall(CheckLayersDepth(r, "grip", "row"));
+  set->layers         = li.depth_set ? GripRows(li.depth, dx) : static_cast<int>(li.layers);
+  const int    axis   = EdgeAxis(set->region);
+  const double across = b.hi[axis] - b.lo[axis];
+  SceneCheck(set->layers * dx < across, r.comm, "-load_%s_layers %d is %g m deep, the whole body along %c (%g m): use fewer rows",
+             li.name.c_str(), set->layers, set->layers * dx, "xyz"[axis], across);
+  PetscFunctionReturn(0);
+}
+
+// 2D: within `layers` rows of the edge, inside (between the edge and layers dx in; not
+// the rows of other grips placed outside the sheet) or outside (beyond it). Layer
+// boundaries fall half-way between lattice rows.
+bool EdgeContains2D(const Scene &scene, const LoadSet &set, const double *p)
+{
+  const Body2D &b     = scene.body;
+  const double  depth = set.layers * b.dx;
+  const int     axis  = EdgeAxis(set.region);
+  const double q = p[axis], edge = EdgeUpper(set.region) ? (axis == 0 ? b.width : b.height) : 0.0;
+  if (set.placement == GripPlacement::outside) return EdgeUpper(set.region) ? q > edge && q < edge + depth : q < 0 && q > -depth;
+  return EdgeUpper(set.region) ? q > edge - depth && q < edge : q < depth && q > 0;
+}
+
+// 3D: within `layers` rows of the body's extent (Body3D::lo, hi: lattice points sit
+// (i + 1/2) dx inside it), as the 2D edges inside.
+bool FaceContains3D(const Scene &scene, const LoadSet &set, const double *p)
+{
+  const Body3D &b     = scene.body3d;
+  const double  depth = set.layers * b.solid.dx;
+  const int     axis  = EdgeAxis(set.region);
+  return EdgeUpper(set.region) ? p[axis] > b.hi[axis] - depth : p[axis] < b.lo[axis] + depth;
+}
+
+std::string EdgeText(const Scene &s, const LoadSet &l)
+{
+  if (s.dimension != 3) return Format("%s edge, %d row(s) %s", to_string(l.region), l.layers, to_string(l.placement));
+  const RegionType &r = region_type(l.region);
+  return Format("%s face (%s), %d row(s) inside", r.alias, r.word, l.layers);
+}
+
+std::string EdgeEmpty(const Scene &, const LoadSet &set)
+{
+  const char *n = set.name.c_str();
+  return Format("-load_%s_region %s selects no material point for load set '%s' (its %d edge layer(s) hold none, e.g. cut away "
+                "by a hole): raise -load_%s_layers or move the hole",
+                n, to_string(set.region), n, set.layers, n);
+}
+
+} // namespace
+
+RegionType edge_region(LoadSet::Region id, const char *word, const char *alias)
+{
+  const unsigned uses  = uses_layers | uses_depth;
+  const bool     sheet = EdgeAxis(id) < 2; // (front and back, z: 3D only)
+  return {id, word, alias, true, uses, uses, sheet ? CheckEdge2D : nullptr, CheckFace3D, sheet ? EdgeContains2D : nullptr,
+          FaceContains3D, EdgeText, EdgeEmpty};
+}
+
+} // namespace bapd

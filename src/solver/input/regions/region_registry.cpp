@@ -1,0 +1,114 @@
+// The registry of grip regions (region_registry.hpp): the list made into region
+// types, and what the rest of the solver asks of a load set's region, answered by its
+// type: the word, the points it holds, its summary text, its empty-selection message.
+#include "bapd/solver/input/regions/region_registry.hpp"
+
+#include <algorithm>
+
+#include "bapd/solver/input/options_reader.hpp"
+#include "bapd/solver/input/scene_input.hpp"
+
+namespace bapd {
+
+const std::vector<RegionType> &registered_regions()
+{
+#define BAPD_REGION_TYPE(id, alias, type) type##_region(LoadSet::Region::id, #id, alias),
+  static const std::vector<RegionType> regions = {BAPD_REGISTERED_REGIONS(BAPD_REGION_TYPE)};
+#undef BAPD_REGION_TYPE
+  return regions;
+}
+
+const RegionType &region_type(LoadSet::Region id) { return registered_regions()[static_cast<std::size_t>(id)]; }
+
+bool ParseRegion(const std::string &text, LoadSet::Region *region)
+{
+  const std::string t = Lower(text);
+  for (const RegionType &r : registered_regions())
+    if (t == r.word || (r.alias && t == r.alias)) {
+      *region = r.id;
+      return true;
+    }
+  return false;
+}
+
+const char *to_string(LoadSet::Region region) { return region_type(region).word; }
+
+template <int D> bool LoadSetContains(const Scene &scene, const LoadSet &set, const double *p)
+{
+  const RegionType &r        = region_type(set.region);
+  const auto        contains = D == 3 ? r.contains3d : r.contains2d;
+  return contains && contains(scene, set, p); // (none: a region of the other dimension, refused by CheckLoading)
+}
+template bool LoadSetContains<2>(const Scene &, const LoadSet &, const double *);
+template bool LoadSetContains<3>(const Scene &, const LoadSet &, const double *);
+
+std::string RegionText(const Scene &scene, const LoadSet &set) { return region_type(set.region).text(scene, set); }
+
+std::string LoadSetEmptyMessage(const Scene &scene, const LoadSet &set) { return region_type(set.region).empty_message(scene, set); }
+
+PetscErrorCode CheckLayersDepth(const RegionInput &r, const char *whose, const char *unit)
+{
+  const LoadInput &li    = r.li;
+  const char      *n     = li.name.c_str();
+  const bool       grip  = std::string(whose) == "grip";
+  PetscFunctionBeginUser;
+  SceneCheck(!(li.layers_set && li.depth_set), r.comm, "-load_%s_layers and -load_%s_depth both give the %s's depth: keep one (rows, or metres)",
+             n, n, whose);
+  SceneCheck(!li.depth_set || li.depth > 0, r.comm, "-load_%s_depth %g m: %s must be > 0", n, li.depth, grip ? "a grip's depth" : "a depth");
+  SceneCheck(li.layers >= 1, r.comm, "-load_%s_layers %" PetscInt_FMT ": take at least one point %s", n, li.layers, unit);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode CheckOwnPoints2D(const RegionInput &r, LoadSet *set)
+{
+  const LoadInput &li = r.li;
+  const char      *n  = li.name.c_str();
+  PetscFunctionBeginUser;
+  // A box, polygon, curve or group holds the body's own points: there is nothing
+  // beyond an edge to add for it.
+  const std::string placement = Lower(li.placement);
+  SceneCheck(placement == "auto" || placement == "inside", r.comm,
+             "-load_%s_placement %s: load set '%s' is a %s, which holds the body's own points (inside); only the edge regions "
+             "top, bottom, left and right add grip rows outside the body: remove it, or set it to inside",
+             n, li.placement.c_str(), n, to_string(set->region));
+  PetscCall(CheckLayersDepth(r, "set", "row"));
+  set->depth = li.depth_set ? li.depth : static_cast<double>(li.layers) * r.scene.body.dx;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode CheckVertices2D(const RegionInput &r, const LoadSet &set, std::size_t fewest)
+{
+  const LoadInput &li = r.li;
+  const char      *n  = li.name.c_str();
+  PetscFunctionBeginUser;
+  SceneCheck(li.points_set, r.comm, "-load_%s_points is required with -load_%s_region %s: give the vertices x0,y0,x1,y1,... in m%s", n, n,
+             to_string(set.region), MisspeltHint("-load_" + li.name + "_points").c_str());
+  SceneCheck(li.points.size() % 2 == 0 && li.points.size() >= 2 * fewest, r.comm,
+             "-load_%s_points holds %zu numbers: give x,y pairs, at least %zu vertices for a %s", n, li.points.size(), fewest,
+             to_string(set.region));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode CheckVerticesOnBody2D(const RegionInput &r, const LoadSet &set, double grow)
+{
+  const LoadInput &li = r.li;
+  const Body2D    &b  = r.scene.body;
+  const char      *n  = li.name.c_str();
+  PetscFunctionBeginUser;
+  double lo[2] = {li.points[0], li.points[1]}, hi[2] = {li.points[0], li.points[1]};
+  for (std::size_t k = 0; k < li.points.size(); ++k) lo[k % 2] = std::min(lo[k % 2], li.points[k]), hi[k % 2] = std::max(hi[k % 2], li.points[k]);
+  SceneCheck(hi[0] + grow >= 0 && lo[0] - grow <= b.width && hi[1] + grow >= 0 && lo[1] - grow <= b.height, r.comm,
+             "-load_%s_points: the %s of load set '%s' lies outside the body [0, %g] x [0, %g] m: move it onto the body", n,
+             to_string(set.region), n, b.width, b.height);
+  PetscFunctionReturn(0);
+}
+
+std::string VerticesEmpty2D(const Scene &s, const LoadSet &set, const std::string &advice)
+{
+  const char *n = set.name.c_str();
+  return Format("-load_%s_points: the %s selects no material point for load set '%s': %s (points sit at ((i + 1/2) dx, (j + "
+                "1/2) dx), dx = %g m)",
+                n, to_string(set.region), n, advice.c_str(), s.body.dx);
+}
+
+} // namespace bapd
