@@ -15,7 +15,7 @@ import math
 import os
 import re
 
-FEA_MM = {1.5: 8.62, 1.75: 11.10, 2.0: 13.01}  # plate with a hole, u_max (METHOD.md 7.1)
+FEA_MM = {1.5: 8.62, 1.75: 11.10, 2.0: 13.01}  # plate with a hole, u_max (docs/method.md 7.1)
 FLOPS_PER_CYCLE = 16  # 2 FMA pipes x 4 doubles (AVX2, 256 bit) x 2 flops: Zen 2/3/4, Haswell and later
 
 

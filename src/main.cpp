@@ -1,5 +1,5 @@
 // bapd: large deformation and fracture of soft materials by bond-associated
-// non-ordinary state-based peridynamics (Chen, Yang, Liu; METHOD.md).
+// non-ordinary state-based peridynamics (Chen, Yang, Liu; docs/method.md).
 //
 //   mpiexec -n 4 bapd -options_file_yaml examples/plate_hole.yaml [options]
 //

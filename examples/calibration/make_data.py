@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """Writes pure_shear_data.csv: SYNTHETIC pure-shear test data for the calibration
-example. METHOD.md gives no measured points (only eq 36 and three of its values), so
+example. docs/method.md gives no measured points (only eq 36 and three of its values), so
 the data are the paper's Gent response (eq 36, mu = 4.55 kPa, Jm = 162.6) at 25
 stretches from 1.2 to 5.125, times 1 + 1 % Gaussian noise (numpy seed 2026).
 

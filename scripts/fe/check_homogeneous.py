@@ -5,7 +5,7 @@ A unit square (1 mm, t = 1 mm) held in x on every edge, bottom fixed, top moved 
 lambda - 1: the exact solution is homogeneous pure shear F~ = diag(1, lambda), which P1
 and P2 represent exactly, so the consistent top reaction must equal P_yy to round-off:
   incompressible: paper eq 36, s = mu Jm (lambda - lambda^-3) / (Jm - lambda^2 - lambda^-2 + 2);
-  compressible:   P~ = G (F~ - C33 F~^-T) (METHOD.md section 4) with C33 from S33 = 0
+  compressible:   P~ = G (F~ - C33 F~^-T) (docs/method.md section 4) with C33 from S33 = 0
                   found here by bisection, independently of the FE code's Newton.
 Exit 0 on agreement, 1 on a mismatch, 77 (ctest SKIP_RETURN_CODE) without dolfinx.
 """

@@ -7,7 +7,7 @@ Taylor-Hood u-p, free of volumetric locking), all on GentProblem's load stepping
 Units: mm for lengths, kPa for stresses, so forces come out in kPa mm^2 = mN and a
 force over an area in mm^2 is a stress in kPa.
 
-The law is METHOD.md section 4 (paper eqs 24-34):
+The law is docs/method.md section 4 (paper eqs 24-34):
     Psi = -(mu Jm / 2) ln(1 - (I1bar - 3)/Jm) + (1/D) ((J^2 - 1)/2 - ln J),  K = 2/D,
 with C = F^T F, I1bar = tr C J^(-2/3). Plane stress: F = diag(F~, lambda_3),
 C33 = lambda_3^2, tr C = tr C~ + C33, J = sqrt(C33) J~.
@@ -19,7 +19,7 @@ Two formulations, both displacement-only (u in P1 or P2, no pressure field):
 * compressible (bapd's default K = 1000 mu): C33 is a field on the quadrature points
   (a "Quadrature" element), fixed by S33 = 2 dPsi/dC33 = 0 at every quadrature point
   by a local scalar Newton solve before each residual and Jacobian assembly (the same
-  equation bapd solves per bond, METHOD.md section 4):
+  equation bapd solves per bond, docs/method.md section 4):
       h(C33) = G (2/3 C33 - 1/3 tr C~) + (1/D) (C33 J~^2 - 1) = 0.
   The global problem is then the condensed energy W(F~) = Psi(F~, C33(F~)), whose
   stress is dPsi/dF~ at the solved C33 (envelope theorem: dPsi/dC33 = 0) and whose
@@ -64,7 +64,7 @@ def gent_isochoric(I1bar, mu, Jm):
 
 
 def gent_compressible(trC, J, mu, Jm, D):
-    """Psi of METHOD.md section 4 from tr C and J (UFL): the isochoric term at
+    """Psi of docs/method.md section 4 from tr C and J (UFL): the isochoric term at
     I1bar = tr C J^(-2/3) plus (1/D) ((J^2 - 1)/2 - ln J); bapd's Compressible3D
     (include/bapd/core/materials/hyperelastic.hpp), PlaneStrain (J = J~, tr C = tr C~ + 1) and
     PlaneStress (C33 solved) are this energy."""
@@ -327,7 +327,7 @@ class GentPlaneStress(GentProblem):
 
     # -- compressible plane stress: the local S33 = 0 solve ---------------------------
     def s33_residual(self, c, trCt, Jt):
-        """h(C33) = C33 S33 (METHOD.md section 4); written so that complex c works."""
+        """h(C33) = C33 S33 (docs/method.md section 4); written so that complex c works."""
         mu, Jm, D = self.mu, self.Jm, self.D
         Jm23 = (c * Jt**2) ** (-1.0 / 3.0)
         G = mu * Jm * Jm23 / (Jm + 3 - (trCt + c) * Jm23)

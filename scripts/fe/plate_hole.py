@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""FE reference for the paper's plate with a hole (METHOD.md section 7.1; issue 14).
+"""FE reference for the paper's plate with a hole (docs/method.md section 7.1; issue 14).
 
 80 mm x 160 mm, central hole of diameter 20 mm, thickness 1 mm, plane-stress Gent
 (mu = 4.55 kPa, Jm = 162.6). Top and bottom edges displaced symmetrically in y by
@@ -87,7 +87,7 @@ def main():
                                  "plate_hole.csv")
     ap.add_argument("--full", action="store_true", help="whole plate instead of the quarter")
     ap.add_argument("--grips", choices=["clamped", "sliding"], default="clamped",
-                    help="clamped: top and bottom held in x (METHOD.md 7.1's default); "
+                    help="clamped: top and bottom held in x (docs/method.md 7.1's default); "
                          "sliding: x free there (the paper's PD point layers' other reading)")
     args = ap.parse_args()
     print(f"Plate with a hole, 80 x 160 mm, hole d = 20 mm, t = 1 mm, {args.grips} grips, "

@@ -20,7 +20,7 @@ from scipy.optimize import brentq
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 MU, JM = 4.55e3, 162.6
-FEA_1_5 = 8.62  # mm, u_max of scene 1 at stretch 1.5 (METHOD.md section 7.1)
+FEA_1_5 = 8.62  # mm, u_max of scene 1 at stretch 1.5 (docs/method.md section 7.1)
 
 
 # ---------------------------------------------------------------- reading runs

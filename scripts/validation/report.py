@@ -17,7 +17,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from shaped_report import shaped  # noqa: E402
 
-FEA = {1.5: 8.62, 1.75: 11.10, 2.0: 13.01}  # mm, METHOD.md section 7.1
+FEA = {1.5: 8.62, 1.75: 11.10, 2.0: 13.01}  # mm, docs/method.md section 7.1
 PAPER_PD = {1.5: 8.43, 1.75: 10.87, 2.0: 12.75}  # mm, delta = 3.015 dx
 MU, JM = 4.55e3, 162.6
 

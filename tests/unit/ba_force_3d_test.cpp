@@ -1,7 +1,7 @@
 // The 3D BA force of the generic core (ba_force.hpp) with the compressible 3D Gent
 // and neo-Hookean laws: exact F under affine motion, the patch test, objectivity,
 // linear momentum, the energy-consistent force as the energy's gradient (finite
-// differences), and the interior small-strain modulus (METHOD.md sections 2-4).
+// differences), and the interior small-strain modulus (docs/method.md sections 2-4).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -233,7 +233,7 @@ TEST(BaForce3D, EnergyConsistentForceIsMinusTheEnergyGradientByFiniteDifferences
   // 343 points ~ 1e-10 of it (as in 2D, ba_force_energy_test.cpp).
   EXPECT_LT(finite_difference_error(b, test3d::gent(), ForceForm::energy_consistent, y, 1e-4 * kDx), 1e-7);
   EXPECT_LT(finite_difference_error(b, test3d::neo_hookean(), ForceForm::energy_consistent, y, 1e-4 * kDx), 1e-7);
-  // The paper's bond-only force is not the gradient of any energy (METHOD.md 3): the
+  // The paper's bond-only force is not the gradient of any energy (docs/method.md 3): the
   // same check fails for it by far, which shows that the check can fail.
   EXPECT_GT(finite_difference_error(b, test3d::gent(), ForceForm::bond_only, y, 1e-4 * kDx), 1e-3);
 }

@@ -1,5 +1,5 @@
 // The BA bond-force kernel: patch tests, objectivity, momentum, small-strain modulus,
-// zero-energy modes, failure reporting, rank-layout independence (METHOD.md 2-3).
+// zero-energy modes, failure reporting, rank-layout independence (docs/method.md 2-3).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -97,7 +97,7 @@ TEST(BaForce, AffineMotionGivesZeroNetForceTwoHorizonsFromTheBoundary)
   expect_zero_interior_force_under_affine_motion(GentPlaneStress{p});
 }
 
-// t_ij straight from METHOD.md sections 2-3 (eqs 8, 9, 11, 15, 23): loops over the
+// t_ij straight from docs/method.md sections 2-3 (eqs 8, 9, 11, 15, 23): loops over the
 // family, no masks, no reuse, no complement sums.
 template <class Model>
 Vec2 reference_bond_force(const test::Discretisation &d, const Model &model, const std::vector<double> &y,
@@ -167,7 +167,7 @@ TEST(BaForce, BondOnlyStiffnessIsSymmetricInTheInteriorButNotAtAFreeEdge)
   // symmetric where the lattice symmetry makes it so (whole families), but not next to
   // a free surface. There a non-symmetric stiffness has complex eigenvalues, and
   // undamped explicit dynamics grows slowly whatever the time step (flutter): the
-  // solver needs some damping, or the energy-consistent variant (METHOD.md 3).
+  // solver needs some damping, or the energy-consistent variant (docs/method.md 3).
   test::Discretisation         d(test::plate(20, 20, 1.0));
   test::SaintVenantKirchhoff2D svk;
   svk.lambda = svk.mu = 1.0;

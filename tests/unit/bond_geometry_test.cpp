@@ -1,4 +1,4 @@
-// Bond geometry: K_ij^{-1}, phi_xi / phi, usable K (paper eqs 8, 11, 15, 23; METHOD.md 2-3).
+// Bond geometry: K_ij^{-1}, phi_xi / phi, usable K (paper eqs 8, 11, 15, 23; docs/method.md 2-3).
 #include <gtest/gtest.h>
 
 #include <cmath>

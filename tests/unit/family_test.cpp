@@ -1,4 +1,4 @@
-// build_families, BA masks, reverse index, family volumes (METHOD.md sections 1-3).
+// build_families, BA masks, reverse index, family volumes (docs/method.md sections 1-3).
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -1,6 +1,6 @@
 // The geometry stage and non-uniform points (geometry.hpp): the lattice producer, given
 // points with their own volumes and horizons, element centroids, the "either horizon
-// reaches" bond rule, and the kernel's checks of METHOD.md sections 2-3 on a jittered
+// reaches" bond rule, and the kernel's checks of docs/method.md sections 2-3 on a jittered
 // and on a graded cloud: exact F under affine motion, stress consistency of the tensor
 // correction, phi (eq 11) and phi_xi with unequal volumes, linear momentum (both forms),
 // and the affine patch test with -force_patch_correction (patch_correction.hpp).
@@ -284,7 +284,7 @@ double interior_affine_residual(const Body2D &body, StressCorrection correction,
 TEST(NonUniformPatch, AffineMotionLeavesNoInteriorForceOnARegularCloudGivenAsPoints)
 {
   // The lattice handed over as given points (own horizons, the either-reaches rule):
-  // the affine patch test of METHOD.md section 2 holds, both forms, corrected or not.
+  // the affine patch test of docs/method.md section 2 holds, both forms, corrected or not.
   for (StressCorrection c : {StressCorrection::none, StressCorrection::tensor})
     for (bool ec : {false, true})
       EXPECT_LT(interior_affine_residual(jittered_body(30, 0.0, 0.0), c, ec), 1e-12) << (ec ? "energy-consistent" : "bond-only");

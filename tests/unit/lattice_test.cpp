@@ -1,4 +1,4 @@
-// make_lattice: METHOD.md section 1.
+// make_lattice: docs/method.md section 1.
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -40,7 +40,7 @@ std::string OutputDirProblem(const std::string &dir)
 }
 
 // Refuses an end time whose time steps no run can count (PetscInt) or finish. The
-// step is not known before the body is built (power iteration, METHOD.md section 5),
+// step is not known before the body is built (power iteration, docs/method.md section 5),
 // so the count is bounded from below with a generous upper bound on the step: the
 // stable step of the explicit scheme is about dx over the fastest wave speed, and the
 // shear wave speed sqrt(mu / rho) is the slowest (measured: 1.1 dx / sqrt(mu / rho)

@@ -153,7 +153,7 @@ std::uint64_t H5FileBytes(std::uint64_t data_bytes, std::uint64_t objects)
 {
   // HDF5's superblock, root group and free-space slack, plus about 1 KB of object
   // header, heap and B-tree per object: a generous bound (measured on the 21 x 21
-  // sheet of tests/input/tiny.yaml, 2 ranks: checkpoint 119 KB written, 158 KB
+  // sheet of tests/data/scenes/tiny.yaml, 2 ranks: checkpoint 119 KB written, 158 KB
   // reserved; field file 164 KB written, 196 KB reserved).
   return data_bytes + 1024 * objects + 16384;
 }

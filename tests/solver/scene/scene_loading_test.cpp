@@ -91,7 +91,7 @@ TEST(Scene, GripDisplacementFollowsTheSchedule)
   EXPECT_EQ(scene.grip_displacement(1.0, 0.0), 0.0);
 }
 
-// The plate with a hole (METHOD.md section 7.1): 80 x 160 points, dx = 1 mm.
+// The plate with a hole (docs/method.md section 7.1): 80 x 160 points, dx = 1 mm.
 Scene Plate()
 {
   Scene scene;

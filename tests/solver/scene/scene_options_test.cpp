@@ -24,7 +24,7 @@ using bapd::Scene;
 
 using Options = std::map<std::string, std::string>; // name -> value ("" for none)
 
-// The paper's plate with a hole (METHOD.md section 7.1) as flat options.
+// The paper's plate with a hole (docs/method.md section 7.1) as flat options.
 Options PlateWithHole()
 {
   return {

@@ -1,4 +1,4 @@
-// Behaviour at the Gent chain-extension limit I1bar - 3 = Jm (METHOD.md section 4):
+// Behaviour at the Gent chain-extension limit I1bar - 3 = Jm (docs/method.md section 4):
 // beyond it every evaluation returns StressStatus::chain_limit and writes no stress
 // (the bond kernel breaks the bond when failure is on, otherwise the run stops with
 // describe(chain_limit), which names -material_Jm); just below it the stress is

@@ -1,4 +1,4 @@
-// The plane-stress reduction (paper eqs 27-34, METHOD.md section 4): the solved C33
+// The plane-stress reduction (paper eqs 27-34, docs/method.md section 4): the solved C33
 // makes S33 vanish, tends to the incompressible value as D -> 0, reproduces the
 // paper's pure-shear curve (eq 36), and the Newton solve is robust and cheap.
 #include <gtest/gtest.h>

@@ -1,5 +1,5 @@
 // Every model's stress is the derivative of its energy, vanishes at rest, is
-// objective, and reports inverted deformations (METHOD.md section 4, "checks that
+// objective, and reports inverted deformations (docs/method.md section 4, "checks that
 // must hold").
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
 #pragma once
-// The body and its material points (METHOD.md section 1).
+// The body and its material points (docs/method.md section 1).
 #include <cstdint>
 #include <memory>
 #include <string>

@@ -1,5 +1,5 @@
 #pragma once
-// Families and bond-associated (BA) families (METHOD.md section 1, paper eq 8), in
+// Families and bond-associated (BA) families (docs/method.md section 1, paper eq 8), in
 // D = 2 or 3 dimensions.
 //
 // Works on LOCAL data: the point cloud of one rank, [owned, ring-1 ghosts, ring-2
@@ -63,7 +63,7 @@ Families build_families(const PointCloud &cloud, std::size_t n_family, double ho
 bool segments_cross(double ax, double ay, double bx, double by, const Segment &s);
 
 // V(H_i) = sum of the reference volumes of i's family, in family order, for
-// i < n_family (METHOD.md section 3). It never changes: broken bonds do not reduce it.
+// i < n_family (docs/method.md section 3). It never changes: broken bonds do not reduce it.
 // family_volume is resized to cloud.size() if needed; entries it adds for points
 // without a family (ring-2 ghosts) are NaN: the solver ships their values.
 void compute_family_volumes(PointCloud &cloud, const Families &families);

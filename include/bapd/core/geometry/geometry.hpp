@@ -8,7 +8,7 @@
 //     Gmsh mesh's 2D elements), kept where the body is material (holes, shapes);
 //     natural id = their order in the source among the kept points.
 //
-// Non-uniform points (METHOD.md sections 1 and 3 with unequal volumes). A given
+// Non-uniform points (docs/method.md sections 1 and 3 with unequal volumes). A given
 // point's spacing is h_i = sqrt(V_i / t), the spacing of the uniform lattice with the
 // same point density (a lattice point gets h = dx; in 3D, h_i = cbrt(V_i)), and its
 // horizon is delta_i = horizon_factor h_i (set_point_horizons, for both dimensions:
@@ -20,7 +20,7 @@
 // point next to coarse ones keeps a shape tensor as regular as on a lattice of its own
 // spacing (the rule "both reach", min, would leave a fine point beside points more
 // than delta_i away with too few or collinear neighbours toward them). The BA family
-// is B_ij = {k in H_i : k in H_j} (the discrete H_x ∩ H_x', METHOD.md section 1).
+// is B_ij = {k in H_i : k in H_j} (the discrete H_x ∩ H_x', docs/method.md section 1).
 // phi (eq 11) and phi_xi (eq 15) take the volumes as they are (bond_geometry.hpp):
 // V(H_i) is the sum of the family's volumes, V(B_ij) that of B_ij.
 #include <cmath>

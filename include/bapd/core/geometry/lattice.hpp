@@ -1,5 +1,5 @@
 #pragma once
-// The material points of a 2D body (METHOD.md section 1): a uniform grid of spacing
+// The material points of a 2D body (docs/method.md section 1): a uniform grid of spacing
 // dx, one point at the centre of each cell, points inside holes removed.
 #include <cstdint>
 

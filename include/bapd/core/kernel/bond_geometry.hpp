@@ -1,6 +1,6 @@
 #pragma once
 // Bond-associated kinematics in D = 2 or 3 dimensions (paper eqs 8, 9, 11, 15, 23;
-// METHOD.md sections 2-3): the one kernel for 2D and 3D since issue 21 stage 3
+// docs/method.md sections 2-3): the one kernel for 2D and 3D since issue 21 stage 3
 // retired the 2D-only bond_geometry.hpp (D = 2 does its operations in its order).
 //
 // Per intact bond b = (i -> j), with B = the intact members of the BA family B_ij:

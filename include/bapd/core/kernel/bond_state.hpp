@@ -1,6 +1,6 @@
 #pragma once
 // Which bonds are intact (paper eq 7: gamma = 1). A broken bond (i, k) drops k out of
-// every BA family of i (METHOD.md section 2): the kernel ANDs each BA mask with the
+// every BA family of i (docs/method.md section 2): the kernel ANDs each BA mask with the
 // point's intact mask, so breaking a bond is one bit, and the bond geometry of i
 // (and of k) must then be recomputed (compute_bond_geometry on those points).
 #include <cstddef>

@@ -1,7 +1,7 @@
 #pragma once
 // Which bond force the kernel computes (-force_form; ba_force.hpp computes both):
 // the paper's bond-only form (eq 23), or the energy-consistent one, minus the gradient
-// of the strain energy (METHOD.md section 3), whose undamped motion conserves energy
+// of the strain energy (docs/method.md section 3), whose undamped motion conserves energy
 // where the bond-only form's grows near free surfaces (flutter). One enum for the
 // scene and the kernel, for every D.
 

@@ -1,5 +1,5 @@
 #pragma once
-// The affine patch test on irregular points (issue 18 item 5, METHOD.md section 2:
+// The affine patch test on irregular points (issue 18 item 5, docs/method.md section 2:
 // "the net internal force of an interior point is zero under an affine motion"),
 // -force_patch_correction (docs/discretisations.md).
 //
@@ -103,7 +103,7 @@ inline std::vector<double> compute_patch_correction(const PointCloud &cloud, con
 // numbers (nd::add_patch_term with virial, ba_force.hpp; PointCloud::patch_virial),
 // tested outside the kernel (tests/unit/geometry_test.cpp,
 // NonUniformPatch.VirialPatchCorrection*) and through the driver
-// (tests/geometry/PatchCorrectionDriver.cpp).
+// (tests/mpi/patch_correction_driver_test.cpp).
 //
 // Unknown: one central term per usable bond, h_ij = c_ij xi_ij (8 bytes a bond if it
 // were stored), c_ji independent of c_ij. Constraints, under an affine motion (one P):

@@ -1,7 +1,7 @@
 #pragma once
 // Per-point stress, deformation and energy for output (fields.hpp): what Peridigm and
 // PeriLab users look for at a material point, formed from the bond-associated
-// quantities the force uses (METHOD.md sections 2-3; paper eqs 9, 23).
+// quantities the force uses (docs/method.md sections 2-3; paper eqs 9, 23).
 //
 // The bond force is t_ij = w_ij P(F_ij) K_ij^{-1} (x_j - x_i), w_ij = 1/2 phi_xi/phi
 // (eq 23), summed with V_j (eq 1): each bond's stress P(F_ij) enters point i's force

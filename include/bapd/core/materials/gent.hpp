@@ -1,5 +1,5 @@
 #pragma once
-// The Gent law (paper eq 24, METHOD.md section 4): the isochoric energy
+// The Gent law (paper eq 24, docs/method.md section 4): the isochoric energy
 //   Psi_iso = -(mu Jm / 2) ln(1 - (I1bar - 3)/Jm),   G = 2 dPsi_iso/dI1bar = mu Jm / (Jm - I1bar + 3)
 // finite only below the chain-extension limit I1bar - 3 < Jm. Put together with the
 // volumetric term (1/D)((J^2 - 1)/2 - ln J) by hyperelastic.hpp and plane_stress.hpp;

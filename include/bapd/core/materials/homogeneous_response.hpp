@@ -2,7 +2,7 @@
 // The analytic nominal stress of an incompressible hyperelastic sheet in the three
 // homogeneous tests a gel is calibrated with (Treloar; Ogden, Non-linear elastic
 // deformations, section 7.2), for bapd-fit (src/fit/) and for the tests that check the
-// compressible laws against them at a large bulk modulus (tests/materials/).
+// compressible laws against them at a large bulk modulus (tests/unit/materials/).
 //
 // Principal stretches (lambda_3 = 1 / (lambda_1 lambda_2), the load along 1, the
 // faces normal to 2 (uniaxial, equibiaxial: 2 also loaded) and 3 stress-free):

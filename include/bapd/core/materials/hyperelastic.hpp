@@ -1,5 +1,5 @@
 #pragma once
-// Compressible isotropic hyperelasticity from a law (law.hpp, METHOD.md section 4):
+// Compressible isotropic hyperelasticity from a law (law.hpp, docs/method.md section 4):
 //
 //   Psi(F) = Psi_iso(I1bar) + U(J),   I1bar = tr(C) J^{-2/3},  C = F^T F,  J = det F
 //   U(J)   = (1/D) ((J^2 - 1)/2 - ln J)                         (paper eq 24)

@@ -1,5 +1,5 @@
 #pragma once
-// What a hyperelastic law is (METHOD.md section 4), for the formulations that turn it
+// What a hyperelastic law is (docs/method.md section 4), for the formulations that turn it
 // into a stress (hyperelastic.hpp: Compressible3D, PlaneStrain; plane_stress.hpp:
 // PlaneStress) and for the registry that offers it to the user (law_registry.hpp).
 //

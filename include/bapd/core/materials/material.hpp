@@ -1,5 +1,5 @@
 #pragma once
-// Constitutive models behind one small interface (METHOD.md section 4).
+// Constitutive models behind one small interface (docs/method.md section 4).
 //
 // Every model that the 2D bond kernel can use provides
 //   StressStatus stress(const Mat2 &F, double &c33, Mat2 &P) const;
