@@ -90,6 +90,9 @@ expect_error end_time_huge "-end_time 1e+300 s needs at least" "$scene" -end_tim
 expect_error end_time_huge_step "-end_time 1e+06 s needs 1e+15 time steps with -time_step 1e-09 s" "$scene" -end_time 1e6 -time_step 1e-9
 expect_error critical_stretch_one "-failure_critical_stretch 1: a bond breaks once stretched past s_c, so s_c must be > 1" "$scene" -failure_critical_stretch 1
 expect_error critical_stretch_below "-failure_critical_stretch 0.5" "$scene" -failure_critical_stretch 0.5
+expect_error fracture_energy_zero "-failure_fracture_energy 0: the fracture energy Gamma must be > 0 J/m^2" "$scene" -failure_fracture_energy 0
+expect_error two_failure_criteria "-failure_critical_stretch 7.2 and -failure_fracture_energy 165: give one failure criterion" "$scene" -failure_critical_stretch 7.2 -failure_fracture_energy 165
+expect_error tip_concentration_above_one "-failure_tip_concentration 2: kappa is a fraction in (0, 1]" "$scene" -failure_fracture_energy 165 -failure_tip_concentration 2
 expect_error horizon_below_dx "-horizon_factor 0.5 is below 1" "$scene" -horizon_factor 0.5
 expect_error bad_relaxation "-relaxation 'fast' is not a relaxation route: choose none (fixed -damping) or adaptive" "$scene" -relaxation fast
 

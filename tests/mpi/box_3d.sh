@@ -6,7 +6,8 @@
 #                              on a 2-core machine): the same history.csv (with its
 #                              z columns) and final displacements
 #   box_3d.sh failure          a low critical stretch: bonds break, identically on 1
-#                              and 2 ranks (the broken pairs too)
+#                              and 2 ranks (the broken pairs too); then a low fracture
+#                              energy, identically on 1 and 3 ranks
 #   box_3d.sh restart          stopped at step N with a checkpoint and continued with
 #                              -restart on 2 and on 3 ranks: the uninterrupted run's
 #                              history, displacements and last field file
@@ -53,6 +54,11 @@ elif [ "$case" = failure ]; then
   for n in 1 2; do run $n "$work/np$n" "${scene[@]}"; done
   compare --expect-broken "$work/np1" "$work/np2"
   echo "broken bonds at step 200: $(history_column "$work/np1" 200 broken_bonds)"
+  # The fracture-energy criterion in 3D (pair energies, the 3D crossing density), on 1 and 3 ranks.
+  scene=("${BOX[@]}" -load_schedule 0,1,0.1,1.5 -failure_fracture_energy 0.5 -ts_max_steps 200)
+  for n in 1 3; do run $n "$work/energy_np$n" "${scene[@]}"; done
+  compare --expect-broken "$work/energy_np1" "$work/energy_np3"
+  echo "fracture energy: broken bonds at step 200: $(history_column "$work/energy_np1" 200 broken_bonds)"
 elif [ "$case" = restart ]; then
   scene=("${BOX[@]}" -load_schedule 0,1,0.1,1.2 -output_fields -output_fields_interval 100)
   N=150

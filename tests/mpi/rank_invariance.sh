@@ -1,11 +1,13 @@
 #!/usr/bin/env bash
 # The same scene on 1, 2, 3 and 4 ranks: the same history, final displacement field
 # (bit for bit: tolerance 0) and set of broken bonds.
-#   rank_invariance.sh elastic|fracture|fracture_corrected|shapes|waisted_sheet|dogbone|double_edge_notched|cloud
+#   rank_invariance.sh elastic|fracture|fracture_energy|fracture_corrected|shapes|waisted_sheet|dogbone|double_edge_notched|cloud
 # (dogbone, double_edge_notched: the examples from Gmsh files, gripped by physical group,
 # pulled a little; on 1, 2 and 3 ranks)
 # (fracture_corrected: fracture with the bond-only form and -force_stress_correction tensor, whose per-point
 # correction is built once from the unbroken families on every rank, ghosts included)
+# (fracture_energy: fracture by -failure_fracture_energy, whose pair energies need both
+# directed copies of a bond: a ring-1 ghost's from its own family on this rank)
 set -euo pipefail
 case="$1"
 work="rank_invariance_$case"
@@ -56,11 +58,13 @@ elif [ "$case" = fracture ] || [ "$case" = fracture_corrected ]; then
   # half its steps on the fragments' recoil.
   scene+=(-load_schedule 0,1,0.15,1.45 -failure_critical_stretch 2.0)
   [ "$case" = fracture_corrected ] && scene+=(-force_form bond_only -force_stress_correction tensor)
+elif [ "$case" = fracture_energy ]; then
+  scene+=(-load_schedule 0,1,0.15,1.45 -failure_fracture_energy 6)
 else
   scene+=(-load_schedule 0,1,0.1,1.3)
 fi
 ranks=(1 2 3 4)
-case "$case" in dogbone|double_edge_notched|waisted_sheet) ranks=(1 2 3) ;; esac
+case "$case" in dogbone|double_edge_notched|waisted_sheet|fracture_energy) ranks=(1 2 3) ;; esac
 for n in "${ranks[@]}"; do
   mpiexec -n $n --oversubscribe --bind-to none "$BAPD_EXE" "${scene[@]}" -output_dir "$work/np$n" > "$work/np$n.log" 2>&1 ||
     { cat "$work/np$n.log"; exit 1; }

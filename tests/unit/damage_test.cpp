@@ -1,4 +1,4 @@
-// Bond failure, damage and the geometry of broken bonds (paper eqs 7, 38; METHOD.md 2, 5).
+// Bond failure, damage and the geometry of broken bonds (paper eqs 7, 38; docs/method.md 2, 5).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -186,6 +186,97 @@ TEST(Damage, NotchBondsAreNotDamage)
   std::vector<double>  damage(d.size());
   point_damage(d.cloud, d.families, d.state, d.size(), damage.data());
   for (double v : damage) EXPECT_EQ(v, 0.0);
+}
+
+// The crossing density c = 1/2 sum_j |xi . n| V_j is what a straight crack along a
+// lattice row cuts per unit area: counted here pair by pair on a real lattice, across
+// the line between two rows, over the columns far from the plate's sides.
+TEST(FractureEnergy, CrossingDensityIsWhatACrackBetweenTwoRowsCuts)
+{
+  for (const double factor : {2.515, 3.015, 3.515}) {
+    const double         dx = 0.5e-3, t = 3.0e-3;
+    test::Discretisation d(test::plate(30, 12, dx, t), factor);
+    const double         line = 6 * dx; // between rows 5 and 6 (cell centres at (k + 1/2) dx)
+    double               cut  = 0.0;    // sum of V_i V_j over crossing pairs with i below, x_i in the middle 10 columns
+    for (std::size_t i = 0; i < d.size(); ++i) {
+      const double xi = d.cloud.x[2 * i], yi = d.cloud.x[2 * i + 1];
+      if (yi > line || xi < 10 * dx || xi > 20 * dx) continue;
+      for (std::size_t q = 0; q < d.families.size(i); ++q) {
+        const std::size_t j = static_cast<std::size_t>(d.families.neighbour[d.families.offsets[i] + q]);
+        if (d.cloud.x[2 * j + 1] > line) cut += d.cloud.volume[i] * d.cloud.volume[j];
+      }
+    }
+    const double per_area = cut / (10 * dx * t); // sum of V_i V_j a unit crack area: c_i (Gamma = w_c c_i)
+    EXPECT_NEAR(crossing_density(2, dx * dx * t, factor * dx, t) / per_area, 1.0, 1e-12) << factor;
+  }
+}
+
+// Far from the lattice scale the count is the continuum's: 2 t delta^3 / 3 in 2D,
+// pi delta^4 / 4 in 3D (docs/method.md section 5.2).
+TEST(FractureEnergy, CrossingDensityTendsToTheContinuumOne)
+{
+  const double h = 1e-3, t = 2e-3;
+  for (const double m : {20.0, 40.0}) {
+    const double delta = m * h;
+    const double c2 = crossing_density(2, h * h * t, delta, t), c3 = crossing_density(3, h * h * h, delta, 0.0);
+    EXPECT_NEAR(c2 / (2.0 * delta * delta * delta / 3.0 * t), 1.0, 1.5 / m) << m;
+    EXPECT_NEAR(c3 / (M_PI * std::pow(delta, 4) / 4.0), 1.0, 1.5 / m) << m;
+  }
+  // The paper's lattice (delta = 3.015 dx): 0.985 of the continuum in 2D, 1.079 in 3D.
+  EXPECT_NEAR(crossing_density(2, h * h * t, 3.015 * h, t) / (2.0 * std::pow(3.015 * h, 3) / 3.0 * t), 0.9851, 1e-4);
+  EXPECT_NEAR(crossing_density(3, h * h * h, 3.015 * h, 0.0) / (M_PI * std::pow(3.015 * h, 4) / 4.0), 1.0786, 1e-4);
+}
+
+// A bond breaks once Psi_ij / V(H_i) + Psi_ji / V(H_j) reaches 2 Gamma / (c_i + c_j),
+// both copies together; a bond without energy (-1) counts as 0.
+TEST(FractureEnergy, PairEnergyBreaksBothCopiesAtTheCriticalOne)
+{
+  test::Discretisation d(test::plate(9, 9, 1.0));
+  const std::size_t    p = 4 * 9 + 4, n = d.families.neighbour.size();
+  std::vector<double>  crossing(d.size(), 2.0), psi(n, -1.0);
+  // Every bond of p carries q + 1 (its position), every reverse copy 0: the pair
+  // energy of p's bond q is (q + 1) / V(H_p); Gamma at the level of q = 9.5 breaks
+  // the bonds q >= 9 of p, from both ends.
+  for (std::size_t q = 0; q < d.families.size(p); ++q) {
+    psi[d.families.offsets[p] + q]                                                 = double(q + 1);
+    psi[static_cast<std::size_t>(d.families.reverse[d.families.offsets[p] + q])] = 0.0;
+  }
+  const double             gamma = 10.5 / d.cloud.family_volume[p] * 2.0; // e (c_i + c_j) / 2 at q + 1 = 10.5
+  std::vector<std::size_t> touched;
+  const std::size_t        broken = break_bonds_by_energy(d.cloud, d.families, psi.data(), crossing.data(), gamma, d.state, touched);
+  std::size_t              expected = 0;
+  for (std::size_t q = 0; q < d.families.size(p); ++q) {
+    const std::size_t j = static_cast<std::size_t>(d.families.neighbour[d.families.offsets[p] + q]);
+    EXPECT_EQ(d.state.is_intact(p, q), q + 1 < 11) << q;
+    EXPECT_EQ(d.state.is_intact(j, position_of(d.families, j, p)), q + 1 < 11) << q;
+    if (q + 1 >= 11) {
+      ++expected;
+      EXPECT_TRUE(std::binary_search(touched.begin(), touched.end(), j));
+    }
+  }
+  ASSERT_GT(expected, 0u);
+  EXPECT_EQ(broken, 2 * expected);
+  EXPECT_TRUE(std::is_sorted(touched.begin(), touched.end()));
+  EXPECT_EQ(break_bonds_by_energy(d.cloud, d.families, psi.data(), crossing.data(), gamma, d.state, touched), 0u);
+}
+
+// bond_energies: under an affine motion every interior bond carries Psi(A), and the
+// strain energy is their volume average (the two share one loop).
+TEST(FractureEnergy, BondEnergiesOfAnAffineMotionArePsiOfIt)
+{
+  test::Discretisation         d(test::plate(12, 12, 1.0));
+  test::SaintVenantKirchhoff2D svk;
+  const Mat2                   A = {1.2, 0.3, 0.1, 0.9};
+  std::vector<double>          y = d.affine(A), psi(d.families.neighbour.size());
+  nd::Workspace<2>             ws;
+  nd::bond_energies<2>(svk, d.cloud, y.data(), d.families, d.geometry, d.state, nullptr, d.size(), ws, psi.data());
+  double c = 0.0, expected = 0.0;
+  ASSERT_EQ(svk.energy(A, c, expected), StressStatus::ok);
+  ASSERT_GT(expected, 0.0);
+  const std::size_t centre = 6 * 12 + 6;
+  for (std::size_t b = d.families.offsets[centre]; b < d.families.offsets[centre + 1]; ++b)
+    EXPECT_NEAR(psi[b], expected, 1e-12 * expected);
+  for (double v : psi) EXPECT_TRUE(v == -1.0 || v >= 0.0);
 }
 
 } // namespace

@@ -1,5 +1,6 @@
 // Bond failure and damage (damage.hpp), for D = 2 and 3.
 #include <algorithm>
+#include <cmath>
 
 #include "bapd/core/kernel/damage.hpp"
 
@@ -33,6 +34,50 @@ void point_damage(const PointCloud &cloud, const Families &families, const BondS
     const double vh = cloud.family_volume[i];
     damage[i]       = vh > 0 ? 1.0 - intact / vh : 0.0;
   }
+}
+
+double crossing_density(int dimension, double volume, double horizon, double thickness)
+{
+  const double h = dimension == 2 ? std::sqrt(volume / thickness) : std::cbrt(volume);
+  const int    R = static_cast<int>(std::floor(horizon / h)); // |xi_k| <= R h on a lattice axis
+  const double reach2 = horizon * horizon;
+  double       sum    = 0.0; // sum over the lattice vectors xi = h (a, b[, c]) of |xi . e_1|
+  for (int a = -R; a <= R; ++a)
+    for (int b = -R; b <= R; ++b)
+      for (int c = dimension == 3 ? -R : 0; c <= (dimension == 3 ? R : 0); ++c) {
+        const double r2 = h * h * (double(a) * a + double(b) * b + double(c) * c);
+        if (r2 > 0 && r2 <= reach2) sum += h * std::abs(a);
+      }
+  return 0.5 * sum * volume;
+}
+
+std::size_t break_bonds_by_energy(const PointCloud &cloud, const Families &families, const double *psi,
+                                  const double *crossing, double critical_release, BondState &state,
+                                  std::vector<std::size_t> &touched_points, std::size_t n_counted)
+{
+  touched_points.clear();
+  const std::size_t W      = state.mask_words;
+  std::size_t       broken = 0;
+  for (std::size_t i = 0; i < families.n_family; ++i) {
+    const std::size_t o = families.offsets[i], m = families.size(i);
+    bool              any = false;
+    for (std::size_t q = 0; q < m; ++q) {
+      std::uint64_t      &word = state.intact[i * W + q / 64];
+      const std::uint64_t bit  = std::uint64_t{1} << (q % 64);
+      const std::int32_t  back = families.reverse[o + q];
+      if (!(word & bit) || back < 0) continue;
+      const std::size_t j = static_cast<std::size_t>(families.neighbour[o + q]);
+      const double      e = std::max(psi[o + q], 0.0) / cloud.family_volume[i] +
+                            std::max(psi[static_cast<std::size_t>(back)], 0.0) / cloud.family_volume[j];
+      if (e * (crossing[i] + crossing[j]) >= 2.0 * critical_release) {
+        word &= ~bit;
+        broken += i < n_counted;
+        any = true;
+      }
+    }
+    if (any) touched_points.push_back(i);
+  }
+  return broken; // touched_points: ascending, one entry a point
 }
 
 } // namespace bapd

@@ -236,7 +236,9 @@ template <int D> PetscErrorCode SimulationD<D>::BuildBody()
   nd::compute_bond_geometry<D>(layout_.cloud, families_, bond_state_, geometry_);
 
   PetscCall(force_.Setup<D>(comm_, scene_, layout_, families_, geometry_, bond_state_, stage_ghost_, stage_force_));
-  if (scene_.failure) PetscCall(failure_.Setup(comm_, layout_, families_, scene_.critical_stretch));
+  if (scene_.failure)
+    PetscCall(failure_.Setup(comm_, layout_, families_, scene_.critical_stretch,
+                             scene_.tip_concentration * scene_.fracture_energy, D, scene_.horizon(), scene_.body.thickness));
   force_density_.assign(D * layout_.n_owned, 0.0);
   per_point_.assign(2 * layout_.n_owned, 0.0);
   point_energy_.assign(layout_.n_owned, 0.0);
@@ -358,6 +360,7 @@ template <int D> PetscErrorCode SimulationD<D>::PostStep(TS ts)
     PetscCall(VecGetArray(X, &x));
     PetscCall(sim->force_.UpdatePositions(x));
     PetscCall(VecRestoreArray(X, &x));
+    if (sim->failure_.by_energy()) sim->force_.BondEnergies(sim->failure_.bond_energies());
     PetscCall(sim->failure_.Break(sim->force_.positions(), sim->force_.failed_bonds(), sim->bond_state_, sim->geometry_));
   }
   {

@@ -182,7 +182,10 @@ std::string SceneText(const Scene &s)
                    s.force_form == ForceForm::energy_consistent ? " (the identity for this form)" : "");
   if (s.patch_correction != PatchCorrection::off) text += Format(", patch correction %s", to_string(s.patch_correction));
   text += "\n";
-  if (s.failure) text += Format("  failure   bonds break past stretch s_c = %g\n", s.critical_stretch);
+  if (s.failure && s.fracture_energy > 0)
+    text += Format("  failure   bonds break at the critical pair energy of Gamma = %g J/m^2 (tip concentration %g)\n",
+                   s.fracture_energy, s.tip_concentration);
+  else if (s.failure) text += Format("  failure   bonds break past stretch s_c = %g\n", s.critical_stretch);
   else text += "  failure   none\n";
   auto component = [](ComponentLoad c, double scale) {
     return c == ComponentLoad::stretch ? Format("stretch (scale %g)", scale) : std::string(to_string(c));

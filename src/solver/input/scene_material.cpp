@@ -1,6 +1,6 @@
 // The material section: the constitutive model and its parameters, the 2D
 // reduction, the bond force form, the density and the failure criterion
-// (-material_*, -force_form, -force_stress_correction, -failure_critical_stretch). Read in one block, checked
+// (-material_*, -force_form, -force_stress_correction, -failure_*). Read in one block, checked
 // once the model is known (check_model, material.hpp, names the parameters). The
 // laws, their own options, help texts, defaults and checks come from the law registry
 // (law_registry.hpp): a new law needs nothing here.
@@ -75,7 +75,7 @@ PetscErrorCode ReadMaterial(MPI_Comm comm, Scene *scene, SceneInput *in)
     // laws so that -help shows them and a file may carry them whatever the model
     for (const LawEntry &law : registered_laws())
       for (const LawOptionEntry &o : law.options) PetscCall(r.Real(o.name, o.help, &m.values[o.index]));
-    // Default compressibility: bulk modulus K = 2/D = 1000 mu (METHOD.md section 4:
+    // Default compressibility: bulk modulus K = 2/D = 1000 mu (docs/method.md section 4:
     // the paper gives no D). K = 100 mu already softens the pure-shear curve by 7 %
     // at stretch 5.125 (the sheet thins less); 1000 mu keeps it within 1 %, and in
     // plane stress a stiffer K does not shrink the stable step at rest.
@@ -87,9 +87,18 @@ PetscErrorCode ReadMaterial(MPI_Comm comm, Scene *scene, SceneInput *in)
     return 0;
   }));
 
-  PetscCall(ReadOptionBlock(comm, nullptr, "Failure (no option: bonds never break)", [&](OptionReader &r) -> PetscErrorCode {
+  PetscCall(ReadOptionBlock(comm, nullptr, "Failure (no option: bonds never break; give one of the two)", [&](OptionReader &r) -> PetscErrorCode {
     PetscCall(r.Real("-failure_critical_stretch", "Critical bond stretch s_c [-], > 1 (paper: 7.2); absent: no failure",
                      &scene->critical_stretch, &in->critical_stretch_set, "7.2"));
+    PetscCall(r.Real("-failure_fracture_energy",
+                     "Fracture energy Gamma [J/m^2], > 0: a bond breaks once its pair energy reaches the critical one that "
+                     "Gamma and the horizon set, so that a crack starts where G = Gamma on any grid (docs/method.md 5.2)",
+                     &scene->fracture_energy, &in->fracture_energy_set, "165"));
+    PetscCall(r.Real("-failure_tip_concentration",
+                     "With -failure_fracture_energy: kappa [-], the pair energy of the first bond to break at a crack tip over "
+                     "its crossing-bond share of the energy release rate; critical pair energy kappa Gamma / c (1: the "
+                     "crossing-bond count alone; docs/method.md 5.2)",
+                     &scene->tip_concentration));
     return 0;
   }));
   PetscFunctionReturn(0);
@@ -172,13 +181,27 @@ PetscErrorCode CheckMaterial(MPI_Comm comm, const SceneInput &in, Scene *scene)
   SceneCheck(scene->density > 0, comm, "-material_density %g: the density must be > 0 kg/m^3 (a hydrogel: about 1000)",
              scene->density);
 
-  scene->failure = in.critical_stretch_set;
-  if (scene->failure)
+  scene->failure = in.critical_stretch_set || in.fracture_energy_set;
+  SceneCheck(!(in.critical_stretch_set && in.fracture_energy_set), comm,
+             "-failure_critical_stretch %g and -failure_fracture_energy %g: give one failure criterion (the critical stretch is "
+             "the paper's and belongs to one grid; the fracture energy is the gel's and holds on any grid)",
+             scene->critical_stretch, scene->fracture_energy);
+  if (in.critical_stretch_set)
     SceneCheck(scene->critical_stretch > 1, comm,
                "-failure_critical_stretch %g: a bond breaks once stretched past s_c, so s_c must be > 1 (paper: 7.2); leave the option "
                "out for no failure",
                scene->critical_stretch);
   else scene->critical_stretch = 0.0;
+  if (in.fracture_energy_set)
+    SceneCheck(scene->fracture_energy > 0 && std::isfinite(scene->fracture_energy), comm,
+               "-failure_fracture_energy %g: the fracture energy Gamma must be > 0 J/m^2 (hydrogels: 10 to 1000 J/m^2); leave "
+               "the option out for no failure",
+               scene->fracture_energy);
+  else scene->fracture_energy = 0.0;
+  SceneCheck(scene->tip_concentration > 0 && scene->tip_concentration <= 1, comm,
+             "-failure_tip_concentration %g: kappa is a fraction in (0, 1] (default 0.43, measured for the BA force; 1: the "
+             "crossing-bond count alone)",
+             scene->tip_concentration);
   PetscFunctionReturn(0);
 }
 

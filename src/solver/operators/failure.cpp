@@ -18,7 +18,8 @@ Failure::~Failure()
 // miss a failure of (j -> i) when j is a ring-2 ghost there (and, across a notch, j
 // can still sit inside B_ik of an owned k). Copying the owners' masks to the ring-1
 // ghosts after every breaking pass keeps every layout on the same bond state.
-PetscErrorCode Failure::Setup(MPI_Comm comm, const Layout &layout, const Families &families, double critical_stretch)
+PetscErrorCode Failure::Setup(MPI_Comm comm, const Layout &layout, const Families &families, double critical_stretch,
+                              double critical_release, int dimension, double horizon, double thickness)
 {
   PetscMPIInt size;
 
@@ -26,6 +27,19 @@ PetscErrorCode Failure::Setup(MPI_Comm comm, const Layout &layout, const Familie
   layout_           = &layout;
   families_         = &families;
   critical_stretch_ = critical_stretch;
+  critical_release_ = critical_release;
+  if (critical_release > 0) {
+    const PointCloud &cloud = layout.cloud;
+    psi_.assign(families.neighbour.size(), -1.0);
+    crossing_.resize(families.n_family);
+    // Uniform lattices share one (volume, horizon): computed once.
+    double last_volume = -1, last_horizon = -1, last = 0;
+    for (std::size_t i = 0; i < families.n_family; ++i) {
+      const double v = cloud.volume[i], h = cloud.horizon.empty() ? horizon : cloud.horizon[i];
+      if (v != last_volume || h != last_horizon) last = crossing_density(dimension, v, h, thickness), last_volume = v, last_horizon = h;
+      crossing_[i] = last;
+    }
+  }
   PetscCallMPI(MPI_Comm_size(comm, &size));
   std::vector<PetscInt> starts(size + 1);
   PetscInt              mine = layout.owned_start;
@@ -76,7 +90,8 @@ PetscErrorCode Failure::Break(const double *y, std::vector<FailedBond> &failed, 
   // owned point and the stale bit never enters an owned force (see README).
   break_failed_bonds(*families_, state, failed, touched_);
   failed.clear();
-  nd::break_bonds<D>(layout_->cloud, y, *families_, critical_stretch_, state, stretched_);
+  if (by_energy()) break_bonds_by_energy(layout_->cloud, *families_, psi_.data(), crossing_.data(), critical_release_, state, stretched_);
+  else nd::break_bonds<D>(layout_->cloud, y, *families_, critical_stretch_, state, stretched_);
   touched_.insert(touched_.end(), stretched_.begin(), stretched_.end());
   PetscCall(SynchroniseGhosts(state));
   if (!touched_.empty()) nd::compute_bond_geometry<D>(layout_->cloud, *families_, state, geometry, touched_);

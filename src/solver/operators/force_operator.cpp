@@ -49,6 +49,9 @@ PetscErrorCode ForceOperator::Setup(MPI_Comm comm, const Scene &scene, const Lay
     point_energies_ = [this, cloud, f, g, s, ws, m = Model(model)](const double *y, double *energy) {
       nd::strain_energy<D>(m, *cloud, y, *f, *g, *s, c33_.data(), (std::size_t)layout_->n_owned, *ws, nullptr, energy);
     };
+    bond_energies_ = [this, cloud, f, g, s, ws, m = Model(model)](const double *y, double *psi) {
+      nd::bond_energies<D>(m, *cloud, y, *f, *g, *s, c33_.data(), (std::size_t)layout_->n_family(), *ws, psi);
+    };
   };
   if constexpr (D == 2) with_model(scene.model, scene.formulation, scene.material, choose);
   else with_model_3d(scene.model, scene.material, choose);

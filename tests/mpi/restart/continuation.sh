@@ -5,6 +5,8 @@
 # (checkpoint on 2 ranks, restart on 3: the results never depend on the layout, so
 # they agree bit for bit there too, tolerance 0).
 #   continuation.sh fracture      the crack starts before step N and runs after it
+#   continuation.sh fracture_energy  the same by -failure_fracture_energy (its pair
+#                                 energies are recomputed from the state, not checkpointed)
 #   continuation.sh static_hold   a hold ends early (-static_tolerance) before step N
 #                                 and another after it: the moved schedule goes on
 #   continuation.sh cloud         the graded point cloud of examples/point_cloud.yaml
@@ -19,6 +21,10 @@ rm -rf "$work"; mkdir -p "$work"
 if [ "$case" = fracture ]; then
   scene=("${NOTCHED[@]}" "${FRACTURE[@]}" -output_fields -output_fields_interval 150)
   N=450
+elif [ "$case" = fracture_energy ]; then
+  scene=("${NOTCHED[@]}" -load_schedule 0,1,0.2,1.6 -failure_fracture_energy 6 -time_step_travel 0.1
+         -output_fields -output_fields_interval 150)
+  N=600
 elif [ "$case" = cloud ]; then
   scene=(-options_file_yaml "$BAPD_SOURCE_DIR/examples/point_cloud.yaml"
          -body_cloud "$BAPD_SOURCE_DIR/examples/geometry/graded_sheet.csv" -force_form bond_only
@@ -33,11 +39,11 @@ else
 fi
 checkpointed_runs "$work" $N "${scene[@]}"
 
-python3 "$BAPD_SOURCE_DIR/tests/mpi/compare_runs.py" --tolerance 0 $([ "$case" = fracture ] && echo --expect-broken) \
+python3 "$BAPD_SOURCE_DIR/tests/mpi/compare_runs.py" --tolerance 0 $(case "$case" in fracture*) echo --expect-broken ;; esac) \
   "$work/whole" "$work/second_np2"
 python3 "$BAPD_SOURCE_DIR/tests/mpi/compare_runs.py" --tolerance 0 "$work/whole" "$work/second_np3"
 
-if [ "$case" = fracture ]; then
+if [ "$case" = fracture ] || [ "$case" = fracture_energy ]; then
   at_n=$(history_column "$work/whole" $N broken_bonds)
   at_end=$(history_column "$work/whole" $((2 * N)) broken_bonds)
   echo "broken bonds: $at_n at step $N, $at_end at step $((2 * N))"

@@ -1,6 +1,6 @@
 #pragma once
 // Bond-associated NOSB bond forces in D = 2 or 3 dimensions, both force forms
-// (paper eqs 9, 23; METHOD.md sections 2-3): the one kernel for 2D and 3D (D = 2 does
+// (paper eqs 9, 23; docs/method.md sections 2-3): the one kernel for 2D and 3D (D = 2 does
 // the operations of the former 2D-only kernels in their order).
 //
 // The pieces: ba_workspace.hpp (the scratch, sized once), ba_patch_term.hpp (h_ij),
@@ -15,7 +15,7 @@
 // stress_correction.hpp) and, with -force_patch_correction (patch_correction.hpp),
 // h_ij = ((lambda_i - lambda_j) . xi) xi added to g_ij.
 //
-// Energy-consistent (METHOD.md section 3; after Breitzman & Dayal 2018): the force
+// Energy-consistent (docs/method.md section 3; after Breitzman & Dayal 2018): the force
 // density is minus the gradient of the stored energy
 //   W = sum_i V_i omega_i sum_{b = (i -> j)} V_j Psi(F_ij),   omega_i = 1 / sum_b V_j,
 // both sums over the bonds of i that carry energy (intact, usable K, model ok): the
@@ -217,6 +217,38 @@ template <int D>
 void assemble_force_density(const Families &families, const PointCloud &ref, const double *bond_force,
                             std::size_t n_owned, double *force_density);
 
+namespace detail {
+
+// Psi(F_iq) of every bond of point i that carries energy (intact, usable K, model ok),
+// in family order: visit(q, Psi). The one loop of strain_energy and bond_energies.
+template <int D, class Model, class Visit>
+void point_bond_energies(const Model &model, const PointCloud &ref, const double *y, const Families &families,
+                         const BondGeometry<D> &geometry, const BondState &state, const double *c33, std::size_t i,
+                         Workspace<D> &ws, KernelStats &stats, Visit &&visit)
+{
+  const std::size_t    W = families.mask_words, o = families.offsets[i], m = families.size(i);
+  const std::uint64_t *intact = state.intact_mask(i);
+  const PointTotals<D> totals = gather_point<D>(ref, y, families, i, intact, ws.point);
+  for (std::size_t q = 0; q < m; ++q) {
+    if (!state.is_intact(i, q)) continue;
+    const BondKinematics<D> k = bond_kinematics<D>(families.ba(o + q), intact, W, ws.point, totals);
+    if (!geometry.is_usable(i, q) || !k.usable) {
+      ++stats.unusable;
+      continue;
+    }
+    double c = c33 ? c33[o + q] : 0.0, psi = 0.0;
+    ++stats.evaluated;
+    const StressStatus status = energy_of<D>(model, k.F, c, psi, 0);
+    if (status != StressStatus::ok) {
+      stats.record(i, q, status);
+      continue;
+    }
+    visit(q, psi);
+  }
+}
+
+} // namespace detail
+
 // Strain energy W = sum_i V_i sum_j Psi(F_ij) V_j / sum_j V_j over the bonds of i that
 // carry energy: the energy whose gradient the
 // energy-consistent form is, Psi(A) x volume for an affine motion. c33 (may be
@@ -228,38 +260,41 @@ double strain_energy(const Model &model, const PointCloud &ref, const double *y,
                      double *point_energy = nullptr)
 {
   ws.reserve(families);
-  const std::size_t W = families.mask_words;
-  KernelStats       local;
-  double            total = 0.0;
+  KernelStats local;
+  double      total = 0.0;
   for (std::size_t i = 0; i < n_points; ++i) {
-    const std::size_t    o      = families.offsets[i], m = families.size(i);
-    const std::uint64_t *intact = state.intact_mask(i);
-    const PointTotals<D> totals = gather_point<D>(ref, y, families, i, intact, ws.point);
-    double               num = 0.0, den = 0.0;
-    for (std::size_t q = 0; q < m; ++q) {
-      if (!state.is_intact(i, q)) continue;
-      const BondKinematics<D> k = bond_kinematics<D>(families.ba(o + q), intact, W, ws.point, totals);
-      if (!geometry.is_usable(i, q) || !k.usable) {
-        ++local.unusable;
-        continue;
-      }
-      double c = c33 ? c33[o + q] : 0.0, psi = 0.0;
-      ++local.evaluated;
-      const StressStatus status = detail::energy_of<D>(model, k.F, c, psi, 0);
-      if (status != StressStatus::ok) {
-        local.record(i, q, status);
-        continue;
-      }
-      const double vj = ref.volume[static_cast<std::size_t>(families.neighbour[o + q])];
-      num += psi * vj;
-      den += vj;
-    }
+    const std::size_t o   = families.offsets[i];
+    double            num = 0.0, den = 0.0;
+    detail::point_bond_energies<D>(model, ref, y, families, geometry, state, c33, i, ws, local,
+                                   [&](std::size_t q, double psi) {
+                                     const double vj = ref.volume[static_cast<std::size_t>(families.neighbour[o + q])];
+                                     num += psi * vj;
+                                     den += vj;
+                                   });
     const double e = den > 0 ? ref.volume[i] * (num / den) : 0.0;
     if (point_energy) point_energy[i] = e;
     total += e;
   }
   if (stats) *stats = local;
   return total;
+}
+
+// Psi(F_iq) of every bond of the points [0, n_points) into psi (one per bond, family
+// order), -1 for a bond that carries no energy (broken, K not usable, model failed):
+// what the fracture-energy criterion weighs (damage.hpp). c33 (may be nullptr) is read only.
+template <int D, class Model>
+void bond_energies(const Model &model, const PointCloud &ref, const double *y, const Families &families,
+                   const BondGeometry<D> &geometry, const BondState &state, const double *c33, std::size_t n_points,
+                   Workspace<D> &ws, double *psi)
+{
+  ws.reserve(families);
+  KernelStats local;
+  for (std::size_t i = 0; i < n_points; ++i) {
+    const std::size_t o = families.offsets[i];
+    for (std::size_t q = 0; q < families.size(i); ++q) psi[o + q] = -1.0;
+    detail::point_bond_energies<D>(model, ref, y, families, geometry, state, c33, i, ws, local,
+                                   [&](std::size_t q, double value) { psi[o + q] = value; });
+  }
 }
 
 // F_ij of bond q of point i (slow path, tests and output): zero if the bond is broken

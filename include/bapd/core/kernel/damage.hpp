@@ -1,7 +1,8 @@
 #pragma once
-// Bond failure and damage (paper eqs 7 and 38; METHOD.md section 5), one code path
-// for D = 2 and 3: breaking by critical stretch (nd::break_bonds<D>), breaking where a
-// model failed, and the damage field. The last two work on families and masks alone.
+// Bond failure and damage (paper eqs 7 and 38; docs/method.md section 5), one code path
+// for D = 2 and 3: breaking by critical stretch (nd::break_bonds<D>), by the fracture
+// energy (break_bonds_by_energy, with crossing_density), where a model failed, and the
+// damage field. All but the first work on families, masks and given energies alone.
 #include <cstddef>
 #include <vector>
 
@@ -11,9 +12,6 @@
 #include "bapd/core/kernel/kernel_stats.hpp"
 
 namespace bapd {
-
-// Breaking by critical stretch (eq 7) is nd::break_bonds<D> (damage.hpp, included
-// here), one code path for 2D and 3D.
 
 // Breaks the bonds whose model failed in the last kernel call (ws.failed), both
 // directed copies where present; appends their end points to touched_points (then
@@ -29,6 +27,32 @@ std::size_t break_failed_bonds(const Families &families, BondState &state, const
 // never created, so they are not damage).
 void point_damage(const PointCloud &cloud, const Families &families, const BondState &state, std::size_t n_points,
                   double *damage);
+
+// The fracture-energy criterion (-failure_fracture_energy; docs/method.md section 5.2).
+// A straight crack through the bulk cuts, per unit area, the bonds (i, j) with i on one
+// side and j on the other; with a critical pair energy w_c per unit V_i V_j the energy
+// they held is w_c c_i, where c_i = 1/2 sum_j |xi_ij . n| V_j is the crossing density
+// (m^4: bond length times volume). crossing_density gives c_i of a full family on the
+// point's own lattice, of spacing h = (V / thickness)^(1/2) in 2D and V^(1/3) in 3D,
+// for a crack along a lattice plane (n an axis) and |xi| <= horizon: the count the
+// lattice really has (at delta = 3.015 h, 0.985 of the continuum 2 delta^3 / 3 in 2D and
+// 1.079 of pi delta^4 / 4 in 3D), whatever the family lost to a notch or a surface.
+// thickness: the 2D sheet's (ignored in 3D).
+double crossing_density(int dimension, double volume, double horizon, double thickness);
+
+// Breaks every intact bond (i, j) of the family points whose pair energy density
+//   e_ij = Psi(F_ij) / V(H_i) + Psi(F_ji) / V(H_j)        (the pair's share of W / (V_i V_j))
+// reaches the critical w_c = G_c / ((c_i + c_j) / 2), tested as e_ij (c_i + c_j) >= 2 G_c
+// (critical_release G_c = kappa Gamma, docs/method.md (5.2)): both directed copies compute the same two sums (IEEE
+// addition commutes), so they agree on any rank without communication. psi: Psi of
+// every bond (bond_energies, -1: no energy, counts as 0); crossing: c_i per family
+// point. A bond whose reverse copy has no family here (j a ring-2 ghost) is left to
+// j's owner (Failure copies the owners' masks to the ring-1 ghosts). touched_points and
+// the return value as break_bonds.
+std::size_t break_bonds_by_energy(const PointCloud &cloud, const Families &families, const double *psi,
+                                  const double *crossing, double critical_release, BondState &state,
+                                  std::vector<std::size_t> &touched_points,
+                                  std::size_t n_counted = static_cast<std::size_t>(-1));
 
 } // namespace bapd
 

@@ -71,7 +71,9 @@ struct Scene {
   double             density = 1000.0; // kg/m^3
 
   bool   failure          = false; // no failure section: no bond-state work at all
-  double critical_stretch = 0.0;
+  double critical_stretch = 0.0; // -failure_critical_stretch (eq 7), or 0
+  double fracture_energy  = 0.0; // -failure_fracture_energy Gamma [J/m^2] (docs/method.md 5.2), or 0
+  double tip_concentration = 0.43; // -failure_tip_concentration kappa: w_c = kappa Gamma / c (docs/method.md 5.2)
 
   std::vector<LoadSet> loads;
   Schedule             schedule;

@@ -1,6 +1,7 @@
 #pragma once
-// Failure: bonds break past the critical stretch (paper eq 37) or when their model
-// fails (the Gent chain limit), and the owners' bond states are copied to their
+// Failure: bonds break past the critical stretch (paper eq 7), past the critical pair
+// energy set by the fracture energy Gamma (damage.hpp; docs/method.md section 5.2), or
+// when their model fails (the Gent chain limit), and the owners' bond states are copied to their
 // ring-1 ghosts so every rank layout holds the same bond state (README, "Parallel
 // design"). Everything a breaking pass uses is allocated at set-up (the geometry's
 // recomputation uses the work space of BondGeometry), so a step in which bonds break
@@ -24,8 +25,17 @@ public:
   Failure(const Failure &)            = delete;
   Failure &operator=(const Failure &) = delete;
 
-  // Collective: the exchange of intact masks from owners to ring-1 ghosts.
-  PetscErrorCode Setup(MPI_Comm comm, const Layout &layout, const Families &families, double critical_stretch);
+  // Collective: the exchange of intact masks from owners to ring-1 ghosts. One
+  // criterion: critical_stretch > 0 (eq 7), or critical_release = kappa Gamma > 0
+  // [J/m^2] (docs/method.md (5.2); then the crossing densities of the family points,
+  // with the points' horizons, cloud.horizon or horizon for all, and the 2D sheet's
+  // thickness).
+  PetscErrorCode Setup(MPI_Comm comm, const Layout &layout, const Families &families, double critical_stretch,
+                       double critical_release, int dimension, double horizon, double thickness);
+  // The fracture-energy criterion weighs Psi(F_ij): the caller fills bond_energies()
+  // (ForceOperator::BondEnergies) at the positions Break is given, before it.
+  bool    by_energy() const { return critical_release_ > 0; }
+  double *bond_energies() { return psi_.data(); }
   // One breaking pass after a step at positions y (every local point), with the
   // bonds whose model failed in the step's force evaluation (cleared here); updates
   // the bond state and the geometry of the points whose bonds broke. Collective.
@@ -40,7 +50,8 @@ private:
 
   const Layout            *layout_   = nullptr;
   const Families          *families_ = nullptr;
-  double                   critical_stretch_ = 0;
+  double                   critical_stretch_ = 0, critical_release_ = 0;
+  std::vector<double>      psi_, crossing_;   // Psi(F_ij) a bond; c_i a family point (damage.hpp)
   PetscSF                  sf_   = nullptr;      // owners' intact masks -> their ring-1 ghost copies
   MPI_Datatype             mask_ = MPI_DATATYPE_NULL; // one point's intact mask
   std::vector<std::uint64_t> ghost_masks_;

@@ -61,6 +61,10 @@ public:
   PetscErrorCode EvaluateFrom(const double *u_owned, double *force_density, const std::vector<double> &c33);
   // V_i W_i of the owned points at u_owned (strain_energy, ba_force.hpp).
   PetscErrorCode PointEnergies(const double *u_owned, double *energy);
+  // Psi(F_ij) of every bond of the family points (owned and ring-1) at the positions of
+  // the last UpdatePositions or evaluation, -1 where a bond carries no energy
+  // (bond_energies, ba_force.hpp; the fracture-energy criterion, failure.hpp). Local.
+  void BondEnergies(double *psi) const { bond_energies_(y_.data(), psi); }
 
   const double            *positions() const { return y_.data(); } // of the last evaluation
   const KernelStats       &stats() const { return stats_; }        // of the last committed evaluation
@@ -80,6 +84,7 @@ private:
   // The model and D, chosen once: t_ij of every bond, then f_i of the owned points.
   std::function<KernelStats(const double *y, double *c33, double *force_density)> bond_forces_;
   std::function<void(const double *y, double *energy)>     point_energies_;
+  std::function<void(const double *y, double *psi)>        bond_energies_;
   // The kernel's workspace at the chosen D (one of the two is used); failed_ points
   // to its list of failed bonds, and keep_warm_start_ to its flag.
   nd::Workspace<2>         workspace2_;

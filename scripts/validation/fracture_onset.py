@@ -1,0 +1,146 @@
+#!/usr/bin/python3
+"""Crack onset of the notched pure-shear sheet against Rivlin-Thomas (docs/validation.md 3.2).
+
+    fracture_onset.py [--ranks 2] [--dx 5e-4 ...] [--factor 3.015 ...] [--gamma 165 ...]
+                      [--notch 0.020 ...] [--criterion energy|stretch] [--out DIR] [-- bapd options]
+
+Runs examples/notched_pure_shear.yaml once for every combination, with its failure
+section replaced by -failure_fracture_energy GAMMA (or, --criterion stretch, the scene's
+critical stretch, GAMMA ignored) and the notch length, spacing and horizon factor given.
+Onset: the first history row with --broken (20) or more broken bonds (a run stops
+--after past it: the peak is behind, and the rest is the crack running); its stretch is
+compared with lambda_c, the stretch at which the energy release rate of this sheet
+reaches Gamma (Rivlin-Thomas G = W H0, which the finite-element G meets within 0.1 %:
+tests/data/fe/notched_energy_release.csv). Writes DIR/onset.csv and prints the table; the spread is
+(max - min) / mean of the onset stretches of each Gamma.
+"""
+import argparse
+import csv
+import itertools
+import math
+import os
+import re
+import signal
+import subprocess
+import sys
+import tempfile
+import time
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(os.path.dirname(HERE))
+MU, JM, H0 = 4.55e3, 162.6, 0.010
+
+
+def rivlin_thomas(lam):
+    """W(lambda) H0 [J/m^2]: incompressible plane-stress Gent in pure shear."""
+    return -0.5 * MU * JM * math.log(1 - (lam * lam + 1 / (lam * lam) - 2) / JM) * H0
+
+
+def critical_stretch(gamma, table=None):
+    """lambda with W(lambda) H0 = gamma, by bisection: Rivlin-Thomas, which the FE energy
+    release rate of this sheet meets within 1e-4 for a = 20 mm and 1.1e-3 for 15 mm
+    (tests/data/fe/notched_energy_release.csv, docs/fracture_reference.md)."""
+    lo, hi = 1.0, 0.5 * (math.sqrt(JM + 4) + math.sqrt(JM)) * (1 - 1e-12)  # W(hi) finite
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if rivlin_thomas(mid) < gamma else (lo, mid)
+    return 0.5 * (lo + hi)
+
+
+def read_history(path):
+    try:
+        with open(path) as f:
+            return [r for r in csv.DictReader(f) if r.get("broken_bonds") not in (None, "")]
+    except FileNotFoundError:
+        return []
+
+
+def scene_without_failure(path, notch_length):
+    text = open(path).read()
+    text = re.sub(r"(?m)^failure:\n(  .*\n)+", "", text)
+    x0 = 0.070 - notch_length
+    text = re.sub(r"(?m)^  notches: \[[^\]]*\]", f"  notches: [{x0!r}, 0.005, 0.070, 0.005]", text)
+    return text
+
+
+def run(args, dx, factor, gamma, notch, extra):
+    tag = f"dx{dx:.6g}_f{factor}_g{gamma:g}_a{notch * 1e3:g}_{args.criterion}"
+    out = os.path.join(args.out, tag)
+    scene = os.path.join(args.out, tag + ".yaml")
+    source = os.path.join(ROOT, "examples/notched_pure_shear.yaml")
+    with open(scene, "w") as f:
+        f.write(scene_without_failure(source, notch))
+    failure = ["-failure_fracture_energy", repr(gamma)] if args.criterion == "energy" else \
+              ["-failure_critical_stretch", repr(args.critical_stretch)]
+    cmd = [os.path.join(ROOT, "run_mpi.sh"), "-n", str(args.ranks), scene, "-body_dx", repr(dx),
+           "-horizon_factor", repr(factor), "-output_dir", out, "-output_interval", str(args.interval)] + failure + extra
+    if args.end_factor > 0:
+        cmd += ["-end_time", repr((min(args.end_factor * critical_stretch(gamma), 5.0) - 1) / 4)]
+    log = open(os.path.join(args.out, tag + ".log"), "w")
+    run = subprocess.Popen(cmd, stdout=log, stderr=subprocess.STDOUT, start_new_session=True)
+    history = os.path.join(out, "history.csv")
+    stopped = False
+    while run.poll() is None:  # once the crack has run --after past its onset, stop the run (SIGTERM: bapd checkpoints and exits)
+        time.sleep(2)
+        rows = read_history(history)
+        onset = next((r for r in rows if float(r["broken_bonds"]) >= args.broken), None)
+        if onset and float(rows[-1]["stretch"]) > float(onset["stretch"]) + args.after:
+            stopped = True
+            os.killpg(run.pid, signal.SIGTERM)
+            run.wait()
+            break
+    rc = 0 if stopped else run.returncode
+    rows = read_history(history)
+    onset = next((r for r in rows if float(r["broken_bonds"]) >= args.broken), None)
+    peak = max(rows, key=lambda r: float(r["top_nominal_stress_Pa"])) if rows else None
+    return {
+        "dx_mm": dx * 1e3, "factor": factor, "gamma": gamma, "notch_mm": notch * 1e3, "rc": rc,
+        "onset_stretch": float(onset["stretch"]) if onset else float("nan"),
+        "first_broken_stretch": next((float(r["stretch"]) for r in rows if float(r["broken_bonds"]) > 0), float("nan")),
+        "peak_stress_kPa": float(peak["top_nominal_stress_Pa"]) / 1e3 if peak else float("nan"),
+        "peak_stretch": float(peak["stretch"]) if peak else float("nan"),
+        "lambda_c": critical_stretch(gamma),
+    }
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--ranks", type=int, default=2)
+    p.add_argument("--dx", type=float, nargs="+", default=[5e-4])
+    p.add_argument("--factor", type=float, nargs="+", default=[3.015])
+    p.add_argument("--gamma", type=float, nargs="+", default=[165.0])
+    p.add_argument("--notch", type=float, nargs="+", default=[0.020])
+    p.add_argument("--criterion", choices=["energy", "stretch"], default="energy")
+    p.add_argument("--critical-stretch", type=float, default=7.2)
+    p.add_argument("--broken", type=float, default=20)
+    p.add_argument("--interval", type=int, default=50)
+    p.add_argument("--after", type=float, default=0.1,
+                   help="stop a run once its stretch is AFTER past the onset (the crack is through by then)")
+    p.add_argument("--end-factor", type=float, default=1.15,
+                   help="end each run at stretch END_FACTOR x lambda_c (the example loads 1 to 5 in 1 s; 0: its end)")
+    p.add_argument("--out", default=tempfile.mkdtemp(prefix="onset_"))
+    p.add_argument("extra", nargs="*", help="more bapd options (after --)")
+    args = p.parse_args()
+    os.makedirs(args.out, exist_ok=True)
+    results = []
+    print(f"{'dx mm':>7} {'d/dx':>6} {'Gamma':>6} {'a mm':>5} {'peak kPa':>9} {'onset':>7} {'lambda_c':>8} {'error':>7}", flush=True)
+    for dx, factor, gamma, notch in itertools.product(args.dx, args.factor, args.gamma, args.notch):
+        r = run(args, dx, factor, gamma, notch, args.extra)
+        results.append(r)
+        err = r["onset_stretch"] / r["lambda_c"] - 1
+        print(f"{r['dx_mm']:7.4f} {factor:6.3f} {gamma:6g} {r['notch_mm']:5g} {r['peak_stress_kPa']:9.3f} "
+              f"{r['onset_stretch']:7.4f} {r['lambda_c']:8.4f} {100 * err:+6.2f}%" + ("" if r["rc"] == 0 else f"  rc {r['rc']}"),
+              flush=True)
+    with open(os.path.join(args.out, "onset.csv"), "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(results[0]))
+        w.writeheader()
+        w.writerows(results)
+    for gamma in args.gamma:
+        s = [r["onset_stretch"] for r in results if r["gamma"] == gamma]
+        if len(s) > 1:
+            print(f"Gamma {gamma:g}: onset spread {100 * (max(s) - min(s)) / (sum(s) / len(s)):.2f} % over {len(s)} runs")
+    print(f"Output in {args.out}")
+
+
+if __name__ == "__main__":
+    sys.exit(main())
