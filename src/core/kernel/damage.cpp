@@ -14,6 +14,35 @@ void sort_unique(std::vector<std::size_t> &v)
 }
 } // namespace
 
+namespace detail {
+// Breaks, for good, every intact bond (i -> j) of the family points for which
+// breaks(i, bond index, j) holds; touched_points (cleared): the points with a newly
+// broken bond, ascending, one entry each ((j, i) breaks in j's own pass when j has a
+// family here). Returns the directed bonds broken at points [0, n_counted).
+template <class Breaks>
+std::size_t break_intact_bonds(const Families &families, BondState &state, std::vector<std::size_t> &touched_points,
+                               std::size_t n_counted, Breaks &&breaks)
+{
+  touched_points.clear();
+  const std::size_t W      = state.mask_words;
+  std::size_t       broken = 0;
+  for (std::size_t i = 0; i < families.n_family; ++i) {
+    const std::size_t o = families.offsets[i], m = families.size(i);
+    bool              any = false;
+    for (std::size_t q = 0; q < m; ++q) {
+      std::uint64_t      &word = state.intact[i * W + q / 64];
+      const std::uint64_t bit  = std::uint64_t{1} << (q % 64);
+      if (!(word & bit) || !breaks(i, o + q, static_cast<std::size_t>(families.neighbour[o + q]))) continue;
+      word &= ~bit;
+      broken += i < n_counted;
+      any = true;
+    }
+    if (any) touched_points.push_back(i);
+  }
+  return broken;
+}
+} // namespace detail
+
 std::size_t break_failed_bonds(const Families &families, BondState &state, const std::vector<FailedBond> &failed,
                                std::vector<std::size_t> &touched_points)
 {
@@ -55,29 +84,14 @@ std::size_t break_bonds_by_energy(const PointCloud &cloud, const Families &famil
                                   const double *crossing, double critical_release, BondState &state,
                                   std::vector<std::size_t> &touched_points, std::size_t n_counted)
 {
-  touched_points.clear();
-  const std::size_t W      = state.mask_words;
-  std::size_t       broken = 0;
-  for (std::size_t i = 0; i < families.n_family; ++i) {
-    const std::size_t o = families.offsets[i], m = families.size(i);
-    bool              any = false;
-    for (std::size_t q = 0; q < m; ++q) {
-      std::uint64_t      &word = state.intact[i * W + q / 64];
-      const std::uint64_t bit  = std::uint64_t{1} << (q % 64);
-      const std::int32_t  back = families.reverse[o + q];
-      if (!(word & bit) || back < 0) continue;
-      const std::size_t j = static_cast<std::size_t>(families.neighbour[o + q]);
-      const double      e = std::max(psi[o + q], 0.0) / cloud.family_volume[i] +
-                            std::max(psi[static_cast<std::size_t>(back)], 0.0) / cloud.family_volume[j];
-      if (e * (crossing[i] + crossing[j]) >= 2.0 * critical_release) {
-        word &= ~bit;
-        broken += i < n_counted;
-        any = true;
-      }
-    }
-    if (any) touched_points.push_back(i);
-  }
-  return broken; // touched_points: ascending, one entry a point
+  return detail::break_intact_bonds(families, state, touched_points, n_counted,
+                                    [&](std::size_t i, std::size_t b, std::size_t j) {
+                                      const std::int32_t back = families.reverse[b];
+                                      if (back < 0) return false; // j's owner decides (failure.hpp)
+                                      const double e = std::max(psi[b], 0.0) / cloud.family_volume[i] +
+                                                       std::max(psi[static_cast<std::size_t>(back)], 0.0) / cloud.family_volume[j];
+                                      return e * (crossing[i] + crossing[j]) >= 2.0 * critical_release;
+                                    });
 }
 
 } // namespace bapd
@@ -88,37 +102,18 @@ template <int D>
 std::size_t break_bonds(const PointCloud &cloud, const double *y, const Families &families, double critical_stretch,
                         BondState &state, std::vector<std::size_t> &touched_points, std::size_t n_counted)
 {
-  touched_points.clear();
-  const double     *x      = cloud.x.data();
-  const double      sc2    = critical_stretch * critical_stretch;
-  const std::size_t W      = state.mask_words;
-  std::size_t       broken = 0;
-  for (std::size_t i = 0; i < families.n_family; ++i) {
-    const std::size_t o = families.offsets[i], m = families.size(i);
-    bool              any = false;
-    for (std::size_t q = 0; q < m; ++q) {
-      std::uint64_t      &word = state.intact[i * W + q / 64];
-      const std::uint64_t bit  = std::uint64_t{1} << (q % 64);
-      if (!(word & bit)) continue;
-      const std::size_t j = static_cast<std::size_t>(families.neighbour[o + q]);
-      double            reference = 0.0, current = 0.0; // |x_j - x_i|^2, |y_j - y_i|^2, axis by axis
-      for (int r = 0; r < D; ++r) {
-        const double d = x[D * j + r] - x[D * i + r], e = y[D * j + r] - y[D * i + r];
-        reference += d * d;
-        current += e * e;
-      }
-      if (current > sc2 * reference) {
-        word &= ~bit;
-        broken += i < n_counted;
-        any = true;
-      }
-    }
-    if (any) touched_points.push_back(i);
-  }
-  // (j, i) breaks in j's own pass when j has a family here: both are listed already.
-  std::sort(touched_points.begin(), touched_points.end());
-  touched_points.erase(std::unique(touched_points.begin(), touched_points.end()), touched_points.end());
-  return broken;
+  const double *x   = cloud.x.data();
+  const double  sc2 = critical_stretch * critical_stretch;
+  return detail::break_intact_bonds(families, state, touched_points, n_counted,
+                                    [&](std::size_t i, std::size_t, std::size_t j) {
+                                      double reference = 0.0, current = 0.0; // |x_j - x_i|^2, |y_j - y_i|^2, axis by axis
+                                      for (int r = 0; r < D; ++r) {
+                                        const double d = x[D * j + r] - x[D * i + r], e = y[D * j + r] - y[D * i + r];
+                                        reference += d * d;
+                                        current += e * e;
+                                      }
+                                      return current > sc2 * reference;
+                                    });
 }
 
 template std::size_t break_bonds<2>(const PointCloud &, const double *, const Families &, double, BondState &,
