@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""FE reference for the paper's plate with a hole (docs/method.md section 7.1; issue 14).
+"""FE reference for the paper's plate with a hole (docs/method.md section 7.1).
 
 80 mm x 160 mm, central hole of diameter 20 mm, thickness 1 mm, plane-stress Gent
 (mu = 4.55 kPa, Jm = 162.6). Top and bottom edges displaced symmetrically in y by

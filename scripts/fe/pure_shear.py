@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""FE reference for the clamped pure-shear sheet (issue 14; docs/method.md section 7.2).
+"""FE reference for the clamped pure-shear sheet (docs/method.md section 7.2).
 
 A 70 mm x 10 mm free region, thickness 3 mm, plane-stress Gent (mu = 4.55 kPa,
 Jm = 162.6); bottom edge held (ux = uy = 0), top edge moved by (0, (lambda - 1) 10 mm),

@@ -1,7 +1,7 @@
 #pragma once
 // Bond-associated kinematics in D = 2 or 3 dimensions (paper eqs 8, 9, 11, 15, 23;
-// docs/method.md sections 2-3): the one kernel for 2D and 3D since issue 21 stage 3
-// retired the 2D-only bond_geometry.hpp (D = 2 does its operations in its order).
+// docs/method.md sections 2-3): the one kernel for 2D and 3D (D = 2 does the
+// operations of the former 2D-only kernel in their order).
 //
 // Per intact bond b = (i -> j), with B = the intact members of the BA family B_ij:
 //   K_ij          = sum_{k in B} (x_k - x_i) (x) (x_k - x_i) V_k               (eq 8)

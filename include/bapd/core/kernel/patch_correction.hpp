@@ -1,5 +1,5 @@
 #pragma once
-// The affine patch test on irregular points (issue 18 item 5, docs/method.md section 2:
+// The affine patch test on irregular points (docs/method.md section 2:
 // "the net internal force of an interior point is zero under an affine motion"),
 // -force_patch_correction (docs/discretisations.md).
 //
