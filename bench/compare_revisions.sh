@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Time to solution, one git revision against another (issue 20): builds bapd at both
+# Time to solution, one git revision against another: builds bapd at both
 # revisions, runs the paper's three scenes with each, alternating (A B A B ...: a
 # shared machine's load falls on both alike), and prints one table per scene with the
 # figure of merit (CPU and wall time, steps, ghost exchanges = force evaluations plus

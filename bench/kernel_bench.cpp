@@ -1,4 +1,4 @@
-// Force-kernel benchmark (issue 7, benchmark 1): bond evaluations per second per core
+// Force-kernel benchmark: bond evaluations per second per core
 // of the BA kernel (nd::compute_bond_forces<2>, ba_force.hpp) with the Gent plane-stress
 // model on a square lattice, and the pieces it is made of.
 //
@@ -10,7 +10,8 @@
 //   --callgrind   run every measured region once, between CALLGRIND_TOGGLE_COLLECT
 //                 markers, and dump one profile per region (CALLGRIND_DUMP_STATS_AT):
 //                 run under `valgrind --tool=callgrind --collect-atstart=no`
-//                 (bench/callgrind_kernel.sh does this and reads the profiles)
+//                 (`bench/run_all.sh --only callgrind` does this with the kernel_profile
+//                 build and reads the profiles)
 //   --table       also print one machine-readable line, `RESULT key=value ...`
 //   --only NAME   run only the region NAME (gent_warm, energy_warm, gent_dynamics,
 //                 identity, energy_identity, model_lanes, assemble), reps times, and print its time: for a sampling
@@ -81,8 +82,8 @@ namespace {
 
 // P = F: no constitutive cost, measures the kernel's own work. On the lanes, as every
 // 2D model runs (model_lanes: collecting the bonds, the form's products in lanes);
-// before 2026-12-03 it ran one bond at a time (12.2-12.6 ns a bond for bond-only at
-// 3.015 dx, docs/performance.md 1i).
+// one bond at a time it took 12.2-12.6 ns a bond for bond-only at 3.015 dx
+// (docs/performance.md 1i).
 struct IdentityStress {
   static constexpr bool has_lanes = true;
   StressStatus          stress(const Mat2 &F, double &, Mat2 &P) const

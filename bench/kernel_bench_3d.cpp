@@ -1,4 +1,4 @@
-// 3D force-kernel benchmark (issue 21): bond evaluations per second per core of the
+// 3D force-kernel benchmark: bond evaluations per second per core of the
 // dimension-generic BA core (ba_force.hpp) in D = 3 with the compressible Gent law
 // (Gent3D) on a simple cubic box, and the bytes per point of its arrays.
 //

@@ -1,6 +1,6 @@
 #!/bin/bash
 # The 3D BA force rate per bond against LAMMPS peri/lps on the very same lattice
-# (issue 21: at least half of peri/lps's per-bond rate), measured side by side in one
+# (the target: at least half of peri/lps's per-bond rate), measured side by side in one
 # run so that only the ratio is read (a shared machine moves both).
 #
 #   bench/kernel_bench_3d.sh [BUILD_DIR] [N] [FACTOR] [STEPS]

@@ -1,8 +1,7 @@
 #!/bin/bash
-# The 2D BA force evaluation per bond against LAMMPS peri/lps (issue 20's figure),
+# The 2D BA force evaluation per bond against LAMMPS peri/lps,
 # measured side by side in one run so that only the ratio is read (a shared machine
-# moves both). Replaces kernel_bench --versus-nd (issue 21 stage 3: the old 2D kernel
-# that it compared with is gone; nd<2> is the only 2D kernel).
+# moves both). nd<2> is the only 2D kernel.
 #
 #   bench/kernel_bench_lammps.sh [BUILD_DIR] [SIDE] [FACTOR] [REPS]
 #
@@ -11,7 +10,7 @@
 # simple cubic lattice with the bond count closest to the 2D one (bench/lattice_bonds.py
 # --match), its per-bond time = its Pair time over the timed steps (the last `run` of
 # in.peri_lps) scaled by its own "% CPU use" (wall -> CPU). The ratio is of rates, as in
-# docs/performance.md 1e: > 1, bapd evaluates more bonds per second (issue 20's goal: 2).
+# docs/performance.md 1e: > 1, bapd evaluates more bonds per second (the target: 2).
 # Defaults: SIDE 316 (1e5 points), FACTOR 3.015, REPS 5 (docs/performance.md 1e, 1h).
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
@@ -40,7 +39,7 @@ for name, key in (("bond-only", "gent_warm_ns"), ("energy-consistent", "energy_w
     print(f"bapd 2D {name} force evaluation (Gent plane stress, warm c33): {t:.1f} ns/bond = {lammps / t:.2f} x LAMMPS's per-bond rate")
 # The same forms with a free constitutive model (P = F): what the kernel's own work
 # allows whatever the model costs (docs/performance.md 1l: the energy-consistent form's
-# ceiling is below issue 20's 2 x).
+# ceiling is below the 2 x target).
 model = float(r['model_lanes_ns'])  # the model alone on the lanes, every batch full
 for name, key in (("bond-only", "identity_ns"), ("energy-consistent", "energy_identity_ns")):
     t = float(r[key]) + float(r['assemble_ns'])

@@ -3,8 +3,9 @@
 
 A bond's sums (bond_geometry.hpp masked_sum) add the records of the BA family's
 members, or the total minus the others: whichever set is smaller, decided over the
-whole mask (before 2026-12-03) or per chunk of `chunk` members (a 64-bit mask word:
-chunk 64). Members in natural order (x fastest, then y, then z), as build_families sorts them.
+whole mask (an earlier form of the kernel) or per chunk of `chunk` members (a 64-bit
+mask word, as the kernel decides: chunk 64). Members in natural order (x fastest, then y,
+then z), as build_families sorts them.
 
     bench/masked_sum_records.py [FACTOR] [DIM]     (defaults 3.015, 3)
 """

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Memory per point of bapd, one or two executables side by side (issue 20, docs/performance.md
+# Memory per point of bapd, one or two executables side by side (docs/performance.md
 # section 2): the plate with a hole (examples/default.yaml, delta = 3.015 dx, the features
 # on: -checkpoint_on_error is the default) at ~1e5 and ~4e5 points, 10 steps, one rank.
 # Peak RSS (VmHWM, bench/bapd_run.py) per point at each size, and the marginal bytes per

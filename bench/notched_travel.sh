@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Time to solution of the notched scene against the crack-phase step control (issue 20):
+# Time to solution of the notched scene against the crack-phase step control:
 # runs the notched pure-shear scene once per setting of the step control, one after the
 # other, and prints one row per run: steps, steps shortened by the travel limit, the
 # shortest step, CPU and wall time, and the crack result (onset = the stretch with 20

@@ -1,4 +1,4 @@
-// Partition-only benchmark (issue 7, benchmark 4): what a cluster run would exchange.
+// Partition-only benchmark: what a cluster run would exchange.
 //
 //   partition_stats [--points N] [--factor f] [--parts 2,4,...] [--graph families|stencil] [--check]
 //

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Every benchmark of bapd (issue 7) in one command: builds, runs, prints one table.
+# Every benchmark of bapd in one command: builds, runs, prints one table.
 #
 #   bench/run_all.sh                 # everything (about 1.5 h on 2 cores)
 #   bench/run_all.sh --quick         # smaller grids, fewer steps (about 15 min)

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The cost of re-estimating the stable step (issue 15): each scene run side by side
+# The cost of re-estimating the stable step: each scene run side by side
 # with the step fixed at rest (-time_step_reestimate 0) and with the default
 # re-estimate, one rank, the same number of steps. Prints a markdown table: the force
 # evaluations of the dynamics (one a step) and of the re-estimates, a deterministic

@@ -3,8 +3,8 @@
 # tolerance 0: every CSV the run writes (history.csv, static_states.csv, final_state.csv,
 # broken_bonds.csv, ...) byte for byte, and every dataset of every field file
 # (fields/step_*.h5) value for value (NaN = NaN). A refactoring that must not change a
-# bit (issue 21 stage 2: the 2D driver moved onto the dimension-generic core nd:: at
-# D = 2) is proven by "identical" on every scene.
+# bit (e.g. a change to the dimension-generic core nd:: that must leave D = 2 as it
+# is) is proven by "identical" on every scene.
 #
 #   scripts/compare_binaries.sh OLD_EXE NEW_EXE [OUT_DIR] [SCENE ...]
 #
@@ -36,7 +36,7 @@ scene[notched_short]="1|-options_file_yaml $ex/notched_pure_shear.yaml -body_dx 
 scene[point_cloud_bond_only]="1|-options_file_yaml $ex/point_cloud.yaml -force_form bond_only -load_schedule 0,1.0,0.2,1.2 -output_final_state"
 scene[point_cloud_energy]="1|-options_file_yaml $ex/point_cloud.yaml -load_schedule 0,1.0,0.2,1.2"
 scene[dogbone_gmsh]="1|-options_file_yaml $ex/dogbone.yaml -body_outline_file $ex/geometry/dogbone.geo -load_schedule 0,1,0.05,1.25,0.3,1.25 -relaxation adaptive -static_tolerance 1e-10 -output_interval 20"
-# 3D (issue 21; run with `... OUT 3d` or by name): the block with a hole (tests/data/scenes/block_3d.yaml,
+# 3D (run with `... OUT 3d` or by name): the block with a hole (tests/data/scenes/block_3d.yaml,
 # energy-consistent, 1 and 2 ranks, and bond-only), and the notched block with
 # tests/validation/notched_block_3d_short.sh's options, so that bonds break.
 in3="$here/tests/data/scenes"

@@ -16,7 +16,7 @@
 #include "bapd/solver/input/scene_file.hpp"
 #include "bapd/solver/driver/simulation.hpp"
 
-static const char help[] = "bapd: bond-associated NOSB peridynamics for hydrogels (Gent model, plane stress).\n"
+static const char help[] = "bapd: bond-associated NOSB peridynamics for hydrogels (six laws; 2D plane stress or strain, 3D).\n"
                            "Usage: mpiexec -n N bapd -options_file_yaml SCENE.yaml [-option value ...]\n\n";
 
 template <int D> static PetscErrorCode RunDriver(bapd::Scene scene)

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Closes the calibration loop (issue 19, item 3): compares the static states of the
+"""Closes the calibration loop: compares the static states of the
 pure-shear run of a fitted material with the curve bapd-fit fitted (fit/curves.csv,
 the incompressible homogeneous pure-shear response of that law at the fitted values).
 
@@ -10,8 +10,7 @@ the incompressible homogeneous pure-shear response of that law at the fitted val
 
 The nominal stress of a static state is history.csv's top_nominal_stress_Pa (the top
 grip's reaction over the specimen's width x thickness) at the static state's step. Prints the relative difference
-at every static state and exits 1 if any exceeds the tolerance (percent; default 1:
-issue 14's tolerance for the stress against the continuum).
+at every static state and exits 1 if any exceeds the tolerance (percent; default 1).
 """
 import argparse
 import csv

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""FE reference for issue 21's 3D validation: a block with a cylindrical hole in tension.
+"""FE reference for the 3D validation: a block with a cylindrical hole in tension.
 
 The block [0, 10] x [0, 20] x [0, 4] mm (width x, height y: the pulled direction,
 thickness z) with a through-thickness hole of radius 2.5 mm along z, centred at

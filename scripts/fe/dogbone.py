@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""FE reference for examples/dogbone.yaml (issue 18: a specimen from a Gmsh file).
+"""FE reference for examples/dogbone.yaml (a specimen from a Gmsh file).
 
 The outline is read from examples/geometry/dogbone.geo itself (metres, gmsh's built-in
 kernel): its boundary curves (lines and circular arcs) are rebuilt in mm in the OCC

@@ -1,5 +1,5 @@
 """Gent hyperelasticity in dolfinx 0.5 (Debian bookworm): the finite-element references
-that bapd's accuracy figures are measured against (issues 14, 18, 21). Plane stress
+that bapd's accuracy figures are measured against (docs/fe_reference.md). Plane stress
 (GentPlaneStress, below); the compressible 3D and plane-strain law of bapd's
 Compressible3D and PlaneStrain (GentSolid: displacement only; GentSolidMixed: 3D,
 Taylor-Hood u-p, free of volumetric locking), all on GentProblem's load stepping.

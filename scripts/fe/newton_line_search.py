@@ -1,5 +1,5 @@
-"""The nonlinear and linear solvers of gent_fe.py's problems (moved out of it so that
-each file has one job): MUMPS through a KSP, and Newton with a backtracking line search
+"""The nonlinear and linear solvers of gent_fe.py's problems (a file of their own, so
+that each file has one job): MUMPS through a KSP, and Newton with a backtracking line search
 for the load steps where dolfinx's plain NewtonSolver stalls."""
 import numpy as np
 from mpi4py import MPI

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""FE reference for examples/waisted_sheet.yaml (issue 18: a non-rectangular specimen).
+"""FE reference for examples/waisted_sheet.yaml (a non-rectangular specimen).
 
 The scene (mm): the sheet [0, 20] x [0, 60], thickness 2, less two discs of radius 12
 centred at (-8, 30) and (28, 30) (a 12 mm waist), an elliptical pore centred at (10, 30)

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The dogbone of examples/dogbone.yaml on two discretisations of one Gmsh shape, for
-# docs/validation.md "Lattice and element centroids": the uniform lattice (dx 0.5 mm)
+# docs/discretisations.md "Lattice and element centroids": the uniform lattice (dx 0.5 mm)
 # clipped to the mesh, and one point per element of the mesh (-body_outline_
 # discretisation centroids), meshed at 1 mm (the .geo's own size) and at 0.75 mm (about
 # the lattice's point count). Static state at stretch 1.5 by the fast route; grips are

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The runs behind docs/stability.md (issue 6: numerical stability at the extremes),
+# The runs behind docs/stability.md (numerical stability at the extremes),
 # then the tables: report.py rewrites the blocks between the <!-- table:NAME -->
 # markers of docs/stability.md.
 #
@@ -180,7 +180,7 @@ for section in "${sections[@]}"; do
     done
     ;;
   map)
-    # The stability map (section 8, issue 15): the plate on a 4 mm grid, the fast route
+    # The stability map (section 8): the plate on a 4 mm grid, the fast route
     # (ramps of 0.05 s, holds that end once static), one option varied at a time around
     # the default, with the step fixed at rest (the paper's, -time_step_reestimate 0)
     # and re-estimated (the default), for both force forms, each named on its command

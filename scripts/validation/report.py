@@ -161,7 +161,7 @@ def points(root, name):
     return log_field(root, name, "Body:", "?")
 
 
-FE_PURE_SHEAR = {1.5: 5.417, 2.0: 8.591, 3.0: 14.065}  # kPa: P2 FE of the clamped 70 mm x 10 mm free region (issue 14)
+FE_PURE_SHEAR = {1.5: 5.417, 2.0: 8.591, 3.0: 14.065}  # kPa: P2 FE, clamped 70 mm x 10 mm free region (docs/fe_reference.md)
 
 
 def row_gaps(run):
@@ -415,7 +415,7 @@ def main():
     plate(root, docs, lines)
     pure_shear(root, docs, lines)
     notched(root, docs, lines)
-    shaped(root, docs, lines)  # issue 18 (shaped_report.py)
+    shaped(root, docs, lines)  # section 4 (shaped_report.py)
     lines += ["## 5. Discretisations", "",
               "The uniform lattice against one point per Gmsh element on the same shape, and the affine patch test on "
               "irregular point clouds: docs/discretisations.md (measured by hand, not by this script).", ""]

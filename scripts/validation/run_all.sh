@@ -35,7 +35,7 @@ only="${3:-all}"
 want() { [ "$only" = all ] || [[ " $only " == *" $1 "* ]]; }
 
 # In order of what the report needs most, so that a run cut short still has the
-# accuracy marks of issue 14.
+# accuracy figures.
 # Scene 1: plate with a hole, static states at stretch 1.5, 1.75, 2.0 by the fast
 # route (examples/plate_hole_fast.yaml: 0.05 s ramps, adaptive dynamic relaxation,
 # holds end once kinetic energy < 1e-10 x internal energy), three horizons.
@@ -44,7 +44,7 @@ for h in 3.015 2.515 3.515; do
   run "plate_dx1_h$h" "$here/examples/plate_hole.yaml" "${fast[@]}" -horizon_factor "$h" -output_interval 40
 done
 # Pure shear's static states at stretch 1.5, 2, 3 against the FE solution of the
-# clamped 70 mm x 10 mm free region (issue 14: 5.417, 8.591, 14.065 kPa), and with
+# clamped 70 mm x 10 mm free region (docs/fe_reference.md: 5.417, 8.591, 14.065 kPa), and with
 # grips 4, 8 and 12 rows deep instead of the default two horizons (6 rows): the
 # stress must not depend on the depth, nor the rows next to a grip be overstretched.
 static=(-load_schedule 0,1,0.05,1.5,1.05,1.5,1.1,2,2.1,2,2.2,3,3.2,3 -relaxation adaptive -static_tolerance 1e-10 -output_interval 20 -output_final_state)
@@ -75,7 +75,7 @@ run plate_dx2_h3.015_slow "$here/examples/plate_hole.yaml" -body_dx 0.002 -stati
 for h in 3.015 2.515 3.515; do
   run "plate_dx0.5_h$h" "$here/examples/plate_hole.yaml" "${fast[@]}" -body_dx 0.0005 -horizon_factor "$h" -output_interval 80
 done
-# Issue 18: shaped specimens against their FE solutions (docs/fe_reference.md), static
+# Shaped specimens against their FE solutions (docs/fe_reference.md), static
 # states by the fast route at the FE's stretches (scripts/validation/shaped_report.py).
 shaped=(-relaxation adaptive -static_tolerance 1e-10 -output_interval 20)
 run waisted_static "$here/examples/waisted_sheet.yaml" "${shaped[@]}" \

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The shaped specimens (issue 18) against their FE references, for docs/validation.md.
+"""The shaped specimens against their FE references, for docs/validation.md.
 
 Reads the static states of run_all.sh's runs `waisted_static` and `dogbone_static`
 (examples/waisted_sheet.yaml and examples/dogbone.yaml by the fast static route) and
@@ -66,7 +66,7 @@ def shaped(root, docs, lines):
     lines += MEASURED
 
 
-# Measured once (gsets, issue 18; not rerun by run_all.sh): why the differences are what
+# Measured once by hand (not rerun by run_all.sh): why the differences are what
 # they are.
 MEASURED = [
     "Every entry is within 2 % (issue 18's mark); the stress is the largest difference, -1.5 to -1.65 % on the "

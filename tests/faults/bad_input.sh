@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Bad input (issue 6): each mistake, run through run_mpi.sh on RANKS ranks, must stop
+# Bad input: each mistake, run through run_mpi.sh on RANKS ranks, must stop
 # with a non-zero exit code within 60 s, print exactly one error line that contains the
 # expected text (the option and the fix), and print no PETSc error stack, no crash.
 #   bad_input.sh RANKS [PART]   (ctest sets BAPD_EXE and BAPD_SOURCE_DIR)
@@ -98,7 +98,7 @@ expect_error bad_relaxation "-relaxation 'fast' is not a relaxation route: choos
 
 part geometry
 # Geometry
-# A 3D body (issue 21 stage 4c): the 2D-only material options refused, each with its message
+# A 3D body: the 2D-only material options refused, each with its message
 expect_error body_3d_formulation "-material_formulation plane_strain is a 2D reduction" "$fixtures/block_3d.yaml" -material_formulation plane_strain
 # -force_patch_correction runs in 3D (tests/mpi/box_3d.sh patch_cloud); what stays refused there as
 # in 2D: a correction of the energy-consistent form (the default), on and virial alike

@@ -1,5 +1,5 @@
 # Shared by the fault-injection tests (sourced): a small disk, a bounded run, and the
-# checks every case makes (issue 17: exit code, one message, no hang, nothing lost).
+# checks every case makes (exit code, one message, no hang, nothing lost).
 set -uo pipefail
 SCRIPT_ARGS=("$@") # (the caller's arguments: small_disk may run the test again)
 PYTHON=/usr/bin/python3

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# One byte changed in the text a checkpoint stores and a restart restores (issue 17):
+# One byte changed in the text a checkpoint stores and a restart restores:
 # /run/history (the rows history.csv is continued from) or /run/options (the scene):
 # the restart is refused with one message, before any step; the unchanged file is
 # accepted.

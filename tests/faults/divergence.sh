@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Divergence (issue 6): a time step above the stable one must stop every rank together
+# Divergence: a time step above the stable one must stop every rank together
 # within a bounded number of steps, with one message that names -time_step and gives
 # the step, the time and a point, a non-zero exit code, and history.csv rows up to the
 # blow-up. The same scene below the stable step, fracturing, must run to its end (no
@@ -55,7 +55,7 @@ expect_divergence unstable_fracture_bond_only 20 "the run diverged at step" -tim
 expect_divergence unstable_fracture_slow 40 "the run diverged at step" -time_step_safety 1.1 -failure_critical_stretch 7.2
 # An explicit -time_step above the stable one (2.6e-4 s here).
 expect_divergence unstable_time_step 20 "the run diverged at step" -time_step 4e-4 -failure_critical_stretch 1.5
-# A 3D body (issue 21): the same clean stop, and the fastest point's position with its z.
+# A 3D body: the same clean stop, and the fastest point's position with its z.
 scene="$source_dir/tests/data/scenes/block_3d.yaml"
 expect_divergence unstable_fracture_3d 20 "the run diverged at step" -time_step_safety 1.5 -failure_critical_stretch 1.5
 if ! grep -qE 'Fastest point: [0-9]+, reference position \([^,()]+, [^,()]+, [^,()]+\) m' unstable_fracture_3d.log; then

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# A disk that fills during a run (issue 17): every rank stops within seconds with one
+# A disk that fills during a run: every rank stops within seconds with one
 # `bapd: error:` line naming the file and the cause, exits non-zero, and loses
 # nothing already written: history.csv keeps whole rows, the same as an undisturbed
 # run's; the last good checkpoint still restarts; fields.xdmf lists only files that

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The output directory deleted during a run (issue 17): the run notices at the next
+# The output directory deleted during a run: the run notices at the next
 # history row (history.csv unlinked: st_nlink 0), stops every rank with one message
 # naming the file and exits non-zero; it does not recreate the directory. A single
 # field file deleted: fields.xdmf is rewritten without it and the run stops, naming it.

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# SIGINT (Ctrl-C) to run_mpi.sh (issue 17): Open MPI's mpiexec would pass it on as
+# SIGINT (Ctrl-C) to run_mpi.sh: Open MPI's mpiexec would pass it on as
 # SIGTERM and kill the ranks 1 s later; run_mpi.sh passes it on as SIGUSR2 (at once)
 # and names it. The run writes a checkpoint, says "interrupted by SIGINT" in one line,
 # exits non-zero (not by a signal), and the checkpoint continues the run.

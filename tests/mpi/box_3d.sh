@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
-# The 3D driver (issue 21 stage 4c) on a small box, 10 x 6 x 4 cells of 1 mm (240
+# The 3D driver on a small box, 10 x 6 x 4 cells of 1 mm (240
 # points, compressible Gent, K = 10 mu so that a few hundred steps pull it visibly),
 # held on x- and pulled on x+, with tolerance 0 throughout:
-#   box_3d.sh rank_invariance  1, 2, 3 and 4 ranks (issue 21 asks 1-4; 4 oversubscribed
-#                              on a 2-core machine): the same history.csv (with its
+#   box_3d.sh rank_invariance  1, 2, 3 and 4 ranks (4 oversubscribed on a 2-core
+#                              machine): the same history.csv (with its
 #                              z columns) and final displacements
 #   box_3d.sh failure          a low critical stretch: bonds break, identically on 1
 #                              and 2 ranks (the broken pairs too); then a low fracture

@@ -1,4 +1,4 @@
-// Field files in 3D (issue 21 stage 4): a 3D state written as a field file on any
+// Field files in 3D: a 3D state written as a field file on any
 // number of ranks holds, in natural order, the three components of every vector and the
 // full 3 x 3 of every tensor, exactly as given, and no thickness stretch (a 2D
 // quantity); fields.xdmf draws it with XYZ geometry. The largest bond stretch of a 3D

@@ -1,4 +1,4 @@
-// The layout in 3D (issue 21 stage 4): a 3D box distributed over the ranks holds every
+// The layout in 3D: a 3D box distributed over the ranks holds every
 // point once, gives each rank the positions of its two rings exactly, and the families
 // built from them are the whole body's; a ghosted Vec of block size 3 carries each
 // owner's three components to every ghost copy unchanged.

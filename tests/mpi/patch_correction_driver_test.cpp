@@ -1,4 +1,4 @@
-// -force_patch_correction through the whole driver (issue 18 item 5; patch_correction.hpp,
+// -force_patch_correction through the whole driver (patch_correction.hpp,
 // docs/discretisations.md): a jittered cloud with unequal volumes read from a file, set
 // up by Simulation (rank 0's setup solve, the per-point numbers shipped with the points
 // to their ranks and ring-1 ghosts, the nd:: kernel), under an affine motion u = A X.

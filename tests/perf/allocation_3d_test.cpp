@@ -1,8 +1,8 @@
-// No allocation in a 3D force evaluation of the generic core (STYLE.md, "Data";
-// ba_force.hpp): after a warm-up that sizes the workspace, both force forms, the
-// assembly and the strain energy call the C++ allocator zero times. Counted by
-// replacing the global operator new (a binary of its own, so that the count sees
-// nothing but this).
+// No allocation in a 3D force evaluation of the generic core (ba_force.hpp;
+// docs/architecture.md, "Design rules that hold everywhere"): after a warm-up that
+// sizes the workspace, both force forms, the assembly and the strain energy call the
+// C++ allocator zero times. Counted by replacing the global operator new (a binary of
+// its own, so that the count sees nothing but this).
 #include <gtest/gtest.h>
 
 #include <atomic>

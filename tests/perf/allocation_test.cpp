@@ -1,4 +1,5 @@
-// No allocation inside a time step (STYLE.md, "Data"): after a warm-up, a force
+// No allocation inside a time step (docs/architecture.md, "Design rules that hold
+// everywhere"): after a warm-up, a force
 // evaluation and whole time steps, with failure on, grips, a probe and a history row
 // every step, call the C++ allocator zero times. Counted by replacing the global
 // operator new (PETSc and MPI allocate with malloc, which this does not see: their

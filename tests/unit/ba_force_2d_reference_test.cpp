@@ -6,12 +6,10 @@
 // energy W_i. No masked sums, no "total minus the others", no lanes, no records: the
 // reference shares only the families, the model and the bond state with the kernel.
 //
-// Until issue 21 stage 3 these tests compared nd<2> with the old 2D kernel bit for bit
-// (GenericCore2D.*); that kernel is gone, and this independent reference keeps what
-// they checked on the same cut plate (hole, notch, broken bonds, a non-affine field):
-// both forms, the tensor and scalar corrections, two mask words, the plane-stress lane
-// path and the patch correction. The families' half of the old comparison is
-// family_test.cpp's (the cell search against a direct search, the BA masks, the notch).
+// The comparison runs on a cut plate (hole, notch, broken bonds, a non-affine field)
+// and covers both forms, the tensor and scalar corrections, two mask words, the
+// plane-stress lane path and the patch correction. The families are checked by
+// family_test.cpp (the cell search against a direct search, the BA masks, the notch).
 // Bit-for-bit reproduction of the solver's results is compare_binaries.sh's job and the
 // rank-invariance and restart tests'.
 #include <gtest/gtest.h>

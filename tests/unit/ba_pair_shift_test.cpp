@@ -1,4 +1,4 @@
-// The pair symmetry of BA families (issue 20, docs/performance.md 1i): what one masked
+// The pair symmetry of BA families (docs/performance.md 1i): what one masked
 // sum per pair would rest on, held to the code's family definition.
 //
 // For a bond (i -> j) the kernel sums over B_ij = the members k of H_i whose BA bit is

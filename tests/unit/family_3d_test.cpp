@@ -28,7 +28,7 @@ int interior_members(double factor)
 TEST(Family3D, InteriorFamilySizeAndMaskWordsAtThePapersHorizons)
 {
   // Lattice points in a ball of radius delta (the origin left out): 80, 122 and 178
-  // members (issue 21's "about 123" counts the origin), hence 2, 2 and 3 words a mask.
+  // members (81, 123 and 179 with the origin), hence 2, 2 and 3 words a mask.
   const double      factors[] = {2.515, 3.015, 3.515};
   const int         members[] = {80, 122, 178};
   const std::size_t words[]   = {2, 2, 3};

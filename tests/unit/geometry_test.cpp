@@ -390,7 +390,7 @@ VirialPatchFigures virial_patch_figures(const Body2D &body, StressCorrection cor
 
 TEST(NonUniformPatch, VirialPatchCorrectionKeepsThePatchTestAndTheVirial)
 {
-  // Issue 18 item 5: the lambda correction passes the patch test but moves the virial
+  // The lambda correction passes the patch test but moves the virial
   // (7-14 % at a point); c_ij = (mu_i - mu_j) . xi + xi . S_i xi passes both, to
   // round-off, on every irregular cloud of the lambda test.
   std::vector<NamedCloud> clouds = irregular_clouds();

@@ -1,4 +1,4 @@
-// -force_patch_correction on a 3D body (issue 21; patch_correction.hpp): the setup
+// -force_patch_correction on a 3D body (patch_correction.hpp): the setup
 // solve compute_patch_correction<3> / compute_virial_patch_correction<3> and the
 // kernel's h_ij (nd::add_patch_term<3>, read by ba_force.hpp) make the bond-only
 // force pass the affine patch test on an irregular 3D cloud; the virial-keeping one

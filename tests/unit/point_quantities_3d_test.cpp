@@ -1,5 +1,5 @@
-// Per-point stress, deformation and energy at D = 3 (point_quantities.hpp, issue 21
-// stage 4): an affine motion of a 3D box lattice gives, at every point, F_i = A, the 3D
+// Per-point stress, deformation and energy at D = 3 (point_quantities.hpp): an affine
+// motion of a 3D box lattice gives, at every point, F_i = A, the 3D
 // law's own P(A), sigma = P(A) A^T / det A and Psi(A), for both weights and with the
 // tensor correction (virial weights); a rigid rotation of a deformed state with broken
 // bonds rotates P and sigma; a point without bonds gets zeros.

@@ -18,12 +18,12 @@ import numpy as np
 DX, DELTA = 0.5e-3, 3.015 * 0.5e-3
 NOTCH_Y, NOTCH_X0 = 0.005, 0.025           # the notch runs from x0 to the right edge
 # Where the crack may start and how high the stress may go. With the defaults (grips
-# outside the 10 mm free sheet, two horizons deep, affine field; issue 14) this grid
+# outside the 10 mm free sheet, two horizons deep, affine field) this grid
 # measures a start (20 broken bonds) at stretch 2.830 and a peak of 9.90 kPa, the same
-# on 1 and 2 ranks (the earlier three rigid rows inside, with the stretch over the 8 mm
-# between them, gave 3.22 and 11.3 kPa). The full scene on the paper's grid was not
-# rerun with the new grips. The bounds are this run's figures +-10 %: a crack that
-# starts early (spurious breaking, e.g. at the grips) or late fails.
+# on 1 and 2 ranks (three rigid rows inside, -load_grip_placement inside, with the
+# stretch over the 8 mm between them, gave 3.22 and 11.3 kPa). The full scene on the
+# paper's grid has not been run with these grips. The bounds are this run's figures
+# +-10 %: a crack that starts early (spurious breaking, e.g. at the grips) or late fails.
 START_STRETCH = (2.55, 3.1)                 # the stretch with 20 broken bonds
 PEAK_STRESS = (8.9e3, 10.9e3)               # Pa
 

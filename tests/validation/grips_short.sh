@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Grips that do not distort the sheet (issue 14): a small pure-shear sheet (30 mm x
+# Grips that do not distort the sheet: a small pure-shear sheet (30 mm x
 # 10 mm free region, dx = 1 mm) clamped by grips outside it, brought to static states
 # at stretch 1.5 and 2 by the fast route, with the defaults (grips two horizons deep,
 # affine field, energy-consistent force), and with the tensor-corrected bond-only
@@ -58,7 +58,7 @@ for lam in (1.5, 2.0):
     d2, d1, db = two[lam] / deep[lam] - 1, one[lam] / deep[lam] - 1, bond[lam] / deep[lam] - 1
     print(f"stretch {lam}: 3 horizons {deep[lam]:.1f} Pa; 2 horizons {100 * d2:+.2f} %, 1 horizon {100 * d1:+.2f} %, "
           f"bond-only (tensor) 2 horizons {100 * db:+.2f} %")
-    if abs(d2) > 0.005:  # the issue's bound for grips of different depths
+    if abs(d2) > 0.005:  # the bound for grips of different depths
         failures.append(f"stretch {lam}: grips 2 and 3 horizons deep differ by {100 * d2:+.2f} % (> 0.5 %)")
     if abs(db) > 0.005:
         failures.append(f"stretch {lam}: the corrected bond-only form is {100 * db:+.2f} % off the energy-consistent one (> 0.5 %)")

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Issue 21's 3D crack, short: examples/notched_block_3d.yaml (30 x 10 x 4 mm at dx = 1 mm, a
+# The 3D crack, short: examples/notched_block_3d.yaml (30 x 10 x 4 mm at dx = 1 mm, a
 # through-thickness notch in the plane y = 5 mm from x = 20 mm to the face x = 30 mm),
 # at K = 10 mu (a shorter stable step) with a low critical stretch (1.5) and a ramp to 2.5
 # over 0.2 s, run 350 steps (far stretch 1.42), so that the crack starts at the notch tip

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The short version of paper scene 3 (issue 4): examples/notched_pure_shear.yaml on a
+# The short version of paper scene 3: examples/notched_pure_shear.yaml on a
 # coarser grid (dx = 0.5 mm), half as wide (35 mm, 10 mm notch: in pure shear the
 # crack's driving force does not depend on the width or the notch length once both
 # are several heights), loaded 1.5 x faster and only to stretch 3.1 (the crack is

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Short versions of paper scenes 1 and 2 (issue 4), a few seconds each, checking the
+# Short versions of paper scenes 1 and 2, a few seconds each, checking the
 # figure each scene is about against a band that the full runs justify
 # (docs/validation.md; the notched scene has its own test, notched_short.sh).
 #   scenes_short.sh        (ctest sets BAPD_EXE and BAPD_SOURCE_DIR)

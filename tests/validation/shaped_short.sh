@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# A shaped specimen against FE (issue 18): examples/dogbone.yaml as shipped (uniform
+# A shaped specimen against FE: examples/dogbone.yaml as shipped (uniform
 # lattice, dx = 0.5 mm, grips by the .geo's physical curves) brought to its static
 # state at stretch 1.25 by the fast route, 1 rank; the probe's ux and the nominal stress
 # must lie within 2 % of the converged FE solution of the same specimen

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Issue 21: a 3D slab held in z reproduces the 2D plane-strain result of its section
+# A 3D slab held in z reproduces the 2D plane-strain result of its section
 # (u at a probe and the nominal stress within 1 %). examples/slab_3d.yaml against
 # examples/slab_plane_strain.yaml at the examples' spacing and thickness (dx = 0.5 mm,
 # 2 mm = four layers), K = 10 mu (a 10x longer stable step than K = 1000 mu; the
@@ -8,7 +8,7 @@
 # grips two horizons deep, stretch 1.25. Every layer is held in z (back and front, two
 # layers each): the slab is then in plane strain point by point.
 # Measured (docs/validation.md section 7.1): s -0.38 %, crown uy +0.28 %, side and
-# ligament ux +2.6 / +4.4 %. Asserted: s and the crown's uy within the issue's 1 %, and
+# ligament ux +2.6 / +4.4 %. Asserted: s and the crown's uy within 1 %, and
 # the probes' uz = 0; the side and ligament are printed, not asserted: the 3D and 2D
 # bond families (sphere and disk lenses) weigh the non-affine field next to the free
 # side and the hole differently, by a difference that falls with dx (+5.2 / +7.0 % at

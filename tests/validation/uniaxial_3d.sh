@@ -1,16 +1,16 @@
 #!/usr/bin/env bash
-# The 3D uniaxial check (issue 21 stage 5): a box of 8 x 24 x 8 cells of 1 mm, pulled
+# The 3D uniaxial check: a box of 8 x 24 x 8 cells of 1 mm, pulled
 # in y to stretch 1.1 by grips of one row inside holding y only, lateral faces free,
 # compressible 3D Gent (the paper's gel, K = 10 mu), brought to a static state
 # (-relaxation adaptive). In the middle rows the nominal stress (the top reaction over
 # the 8 x 8 mm section) and the lateral stretch must follow the law's uniaxial response
 # at the measured axial stretch (check_uniaxial_3d.py solves the lateral stretch by
 # Newton), and the row increments must not alternate.
-# Tolerances from the measurements (docs/architecture.md, stage 4c): energy-consistent
+# Tolerances from the measurements (docs/validation.md section 6): energy-consistent
 # +0.50 % stress, +0.36 % of the lateral contraction, row increments within 3.1 %;
 # tensor-corrected bond-only +0.87 %, +0.76 %, 7.5 %. Marks: 1.5 % and 1.5 %, and the
 # alternation 6 % / 12 % (bond-only's odd-even boundary layer decays as 0.71 a row
-# against 0.64: docs/architecture.md).
+# against 0.64: tests/validation/stability/odd_even.sh).
 # So that the check can fail: the same box 12 rows tall (the middle then 5 rows from a
 # grip, inside the grips' odd-even boundary layer) is 19 % off in stress and must fail.
 # The outside treatment in 3D (-load_grip_field affine): the 24-row box as 12 free rows

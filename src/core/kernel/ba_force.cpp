@@ -15,15 +15,15 @@ void assemble_force_density(const Families &families, const PointCloud &ref, con
                            " exceeds the family points " + std::to_string(families.n_family));
   const std::int32_t *nb = families.neighbour.data(), *rev = families.reverse.data();
   const double       *vol = ref.volume.data();
-  // 128 bonds (~4.6 points at 3.015 dx): 1e5 points, assemble per bond main / this
-  // 1.41 x at 16 places, 1.24 x more at 32, 1.33 x more at 64, 1.25 x more at 128 (1i).
+  // 128 bonds (~4.6 points at 3.015 dx): 1e5 points, assemble per bond without / with
+  // the prefetch: 1.41 x at 16 places, 1.24 x more at 32, 1.33 x more at 64, 1.25 x more at 128 (1i).
   const std::size_t   n_bonds = families.neighbour.size(), ahead = 128;
   for (std::size_t i = 0; i < n_owned; ++i) {
     double f[D] = {};
     for (std::size_t b = families.offsets[i]; b < families.offsets[i + 1]; ++b) {
       // The reads of t_ji (through the reverse index, in j's block) and V_j wait on memory
       // (docs/performance.md 1c, 1i): ask for those of the bond `ahead` places on now. A
-      // prefetch changes no value, so the sums and their order are as before, bit for bit.
+      // prefetch changes no value, so the sums and their order are those without it, bit for bit.
       if (b + ahead < n_bonds) {
         const std::int32_t rp = rev[b + ahead];
         if (rp >= 0) __builtin_prefetch(bond_force + D * static_cast<std::size_t>(rp));

@@ -1,6 +1,6 @@
 // The dimension-generic bond geometry (bond_geometry.hpp): usable K per bond and the
 // stress correction C_i, instantiated for D = 2 and 3 (for D = 2 the operations of the
-// retired bond_geometry.cpp, in its order); to_string / parse of StressCorrection.
+// earlier 2D bond_geometry.cpp, in its order); to_string / parse of StressCorrection.
 #include "bapd/core/kernel/bond_geometry.hpp"
 
 #include <algorithm>

@@ -1,4 +1,4 @@
-// The 3D body of a scene (-body_dimension 3; issue 21 stage 4): the solids and planar
+// The 3D body of a scene (-body_dimension 3): the solids and planar
 // notches of shape3d.hpp applied in order to an empty start, or a 3D point cloud (or
 // a Gmsh volume's element centroids) clipped by them. Checked whole here: the points
 // are built once, for their count, their extent (the faces of the load sets) and the

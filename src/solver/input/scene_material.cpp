@@ -128,7 +128,7 @@ PetscErrorCode CheckMaterial(MPI_Comm comm, const SceneInput &in, Scene *scene)
   else
     SETERRQ(comm, PETSC_ERR_USER, "%s",
             Format("-force_form '%s' is not a force form: choose bond_only (the paper's) or energy_consistent", in.force_form.c_str()).c_str());
-  // auto: the bond-only force corrected (its bulk is 4.2 % soft without, issue 14); the
+  // auto: the bond-only force corrected (its bulk is 4.2 % soft without); the
   // energy-consistent form (the default force form: the bond-only one folds the free
   // corners next to grips outside, docs/stress_consistency.md) is stress-consistent as it is.
   if (Lower(in.stress_correction) == "auto")

@@ -95,8 +95,8 @@ void Loading::Apply(double t, double *u, double *v) const
 // same for any shape: the grip line of each is where its points end towards the
 // other, half a point spacing (sqrt(V/t)) beyond its innermost point; the upper set
 // is the top grip, and the two must not overlap in y. That is the outside treatment's
-// equivalent for grips on the body's own points (docs/options.md "Grips outside");
-// in 3D the half spacing is cbrt(V) / 2.
+// equivalent for grips on the body's own points (docs/options.md, "The outside
+// treatment for region grips"); in 3D the half spacing is cbrt(V) / 2.
 PetscErrorCode Loading::SetAffineLevers(const Scene &scene, const Layout &layout)
 {
   const bool   three = dimension_ == 3;

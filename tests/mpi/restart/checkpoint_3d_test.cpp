@@ -1,8 +1,8 @@
-// Checkpoints in 3D (issue 21 stage 4): a 3D state written on 2 ranks reads back on 1
+// Checkpoints in 3D: a 3D state written on 2 ranks reads back on 1
 // and on 3 ranks exactly (D-vectors, bond states, C33, the relaxation's and the time
 // step's vectors); a file without C33 reads as the cold start; a checkpoint continues
 // only in its own dimension, with one message naming the file and both dimensions;
-// a file of format 5 (main before the dimension was written) reads as 2D; a damaged
+// a file of format 5 (no dimension attribute) reads as 2D; a damaged
 // dimension is refused. Run on 3 ranks (fewer: the same with the ranks there are).
 #include <gtest/gtest.h>
 #include <hdf5.h>

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# What a run tells its user (issue 16): progress lines with dt and energies, about 20
+# What a run tells its user: progress lines with dt and energies, about 20
 # of them and about 20 field files by simulated time, and an end summary that names
 # every file written with its size, and only those.
 #   summary.sh RANKS        (ctest sets BAPD_EXE and BAPD_SOURCE_DIR)

@@ -1,4 +1,4 @@
-// 3D scenes (issue 21 stage 4b; scene_body.cpp, scene_loading.cpp, scene_probes.cpp,
+// 3D scenes (scene_body.cpp, scene_loading.cpp, scene_probes.cpp,
 // scene_selection.cpp, loading.cpp, relaxation.cpp at D = 3): a 3D body given by options
 // is read and checked (its points counted, its extent found); its load sets, grips and
 // probes pick exactly the points a brute-force count over the lattice indices says; the
@@ -386,11 +386,11 @@ TEST_F(Scene3D, EachBadOptionGetsItsMessage)
   }
 }
 
-// The material section of a 3D body (scene_material.cpp, issue 21 stage 4c): the 2D
+// The material section of a 3D body (scene_material.cpp): the 2D
 // reductions are refused, the patch correction is allowed for the bond-only form only
 // (auto: off on the lattice, as in 2D; a cloud's auto below), every law of the registry has a
 // 3D form (Ogden its own, Ogden3D), and the bond-only form is tensor-corrected by default (uncorrected it is
-// 15 % soft in 3D, docs/architecture.md).
+// 15 % soft in 3D, docs/architecture.md "core/kernel").
 TEST_F(Scene3D, MaterialOptionsOfASolidBody)
 {
   Scene scene;
@@ -402,7 +402,7 @@ TEST_F(Scene3D, MaterialOptionsOfASolidBody)
   ASSERT_EQ(Read(With(Block(), {{"-force_form", "bond_only"}}), &bond_only), 0) << bapd::test::UserErrorText();
   EXPECT_EQ(bond_only.stress_correction, bapd::StressCorrection::tensor);
   EXPECT_EQ(bond_only.patch_correction, bapd::PatchCorrection::off); // (auto: off on the lattice, which passes as it is)
-  for (const char *patch : {"on", "virial"}) { // given, it runs in 3D (issue 21; patch_correction.hpp at D = 3)
+  for (const char *patch : {"on", "virial"}) { // given, it runs in 3D (patch_correction.hpp at D = 3)
     Scene corrected;
     ASSERT_EQ(Read(With(Block(), {{"-force_form", "bond_only"}, {"-force_patch_correction", patch}}), &corrected), 0)
         << patch << ": " << bapd::test::UserErrorText();

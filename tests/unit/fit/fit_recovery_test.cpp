@@ -1,6 +1,6 @@
 // bapd-fit recovers known parameters from synthetic data with 1 % noise (fixed seed)
 // within its reported uncertainty (|p - p_true| < 3 sigma, and over 100 draws as often
-// within 1 and 2 sigma as a correct standard error allows), for the cases of issue 19:
+// within 1 and 2 sigma as a correct standard error allows), for these cases:
 // Gent from pure shear, Mooney-Rivlin from uniaxial plus equibiaxial, Ogden (two terms)
 // from all three tests; and the fit reports a law the data cannot determine.
 #include <gtest/gtest.h>

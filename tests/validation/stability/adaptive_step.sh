@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# A time step that follows the material (issue 15 item 1, time_step_control.hpp).
+# A time step that follows the material (time_step_control.hpp).
 # Scene: the plate with a hole on a 4 mm grid with a stiff-limit gel (Jm = 5) pulled
 # to stretch 2, held, and let back to 1.5: near the hole the Gent stiffness grows
 # and the stable step at stretch 2 is about 0.7 x the one at rest.
@@ -47,7 +47,7 @@ scene=(-options_file_yaml "$src/examples/plate_hole.yaml" -options_file_yaml "$s
        -force_form bond_only -load_grip_placement inside -force_stress_correction none)
 # (The paper's grips and force, for which the figures above were measured: with the
 # default grips outside, affine and stretched like the plate, the step at the end is
-# 0.89 x the base step instead of 0.9 or more; issue 14's closing note.)
+# 0.89 x the base step instead of 0.9 or more.)
 
 if [ "$part" = diverge ]; then
 # Fixed step diverges, the adaptive one does not.

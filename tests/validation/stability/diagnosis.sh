@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Divergence messages that name the real cause (issue 15 item 3): four runs that
+# Divergence messages that name the real cause: four runs that
 # diverge, each for another reason, must stop with one error line that names the
 # cause and the option that cures it (DivergenceAdvice, divergence.hpp), and the same
 # run with that option changed as the message says must run to its end. A message
@@ -52,10 +52,9 @@ if in_part limit; then
 # A step above the stable one: the blow-up within steps of the start.
 check too_long_step "the time step" "-time_step_safety" "-time_step_safety 0.8" \
   -options_file_yaml "$src/tests/data/scenes/tiny.yaml" -time_step_safety 1.5
-# Pure shear with Jm = 2 (issue 15), the default grips (outside, affine) and each force
+# Pure shear with Jm = 2, the default grips (outside, affine) and each force
 # form named: the chain limit near stretch 1.68 (bond-only) and 1.76 (energy-consistent);
-# Jm = 5 goes to 2. (Issue 14's closing note saw a bond of the grip's outer rows invert
-# first, diagnosed as the time step: no longer so.)
+# Jm = 5 goes to 2.
 for form in bond_only energy_consistent; do
   check "chain_limit_$form" "the Gent chain limit" "-material_Jm" "-material_Jm 5" \
     "${shear[@]}" -force_form "$form" -material_Jm 2 -load_schedule 0,1,0.3,2

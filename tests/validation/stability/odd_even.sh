@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# The odd-even (period-2) mode of the bond-associated kernel (issue 21, docs/architecture.md
-# stage 4c): for 2D plane strain and 3D, both force forms, horizons 2.515 / 3.015 / 3.515 dx,
+# The odd-even (period-2) mode of the bond-associated kernel (docs/validation.md section 6):
+# for 2D plane strain and 3D, both force forms, horizons 2.515 / 3.015 / 3.515 dx,
 # odd_even_modes measures the interior symbol S(k) (stiffness of u_y = cos(k y / dx)),
 # and this script fits it with a cosine series sum_m a_m (2 - 2 cos m k) and takes the
 # roots z of sum_m a_m (z^m + z^-m - 2) = 0: a static disturbance (a grip's row) decays

@@ -6,7 +6,7 @@
 // nothing of the surface at horizons up to 3.515 dx with either force form; the
 // energy-consistent force reaches two horizons). The continuum's is (K + 4 mu / 3) k^2.
 // odd_even.sh turns S(k) into the decay per row of a static disturbance (the grips'
-// boundary layer, docs/architecture.md stage 4c).
+// boundary layer, docs/validation.md section 6).
 //   odd_even_modes D horizon_factor energy|bond_only    -> lines "k S(k)", k = j pi / 32
 #include <array>
 #include <cmath>

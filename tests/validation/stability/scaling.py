@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Scaling (issue 6): the same scene with every length times s_L and every modulus
+"""Scaling: the same scene with every length times s_L and every modulus
 times s_mu gives the same dimensionless answer. Time scales with L sqrt(rho / mu), so
 the schedule times are multiplied by s_L / sqrt(s_mu) and the damping divided by it.
 Compares, row by row, every column of history.csv made dimensionless (u / L,

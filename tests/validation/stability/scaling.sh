@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Scaling (issue 6): no hidden absolute tolerance. scaling.py runs a small plate at
+# Scaling: no hidden absolute tolerance. scaling.py runs a small plate at
 # lengths x 1000, moduli x 1000 and both x 0.001 and compares the dimensionless
 # histories, steps and static holds with the base scene.
 set -uo pipefail

@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
-# Horizon at the extreme (issue 6): below delta = sqrt(2) dx every bond-associated family
+# Horizon at the extreme: below delta = sqrt(2) dx every bond-associated family
 # of the square lattice is collinear, so every shape tensor is singular and no bond
 # carries force. The run must stop before any step with one message that names
-# -horizon_factor (it used to fail later, in the stable-step estimate, claiming that
-# every degree of freedom was held). At 1.5 dx the same scene, notched, runs.
+# -horizon_factor (not later, in the stable-step estimate, with a message claiming
+# that every degree of freedom was held). At 1.5 dx the same scene, notched, runs.
 set -uo pipefail
 work="stability_small_horizon"
 rm -rf "$work" && mkdir -p "$work" || exit 1

@@ -1,5 +1,5 @@
 // stability_spectrum: the eigenvalues of the linearised equations of motion of a
-// small scene, for docs/stability.md (issue 6). One rank.
+// small scene, for docs/stability.md. One rank.
 //
 //   u'' = a(u),  a = f(u) / rho on the free degrees of freedom (grips held),
 //   A = -da/du, built column by column by central differences of the solver's own

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Fracture at the extreme (issue 6): a notched sheet torn completely in two keeps
+# Fracture at the extreme: a notched sheet torn completely in two keeps
 # running, without NaN, while the grips pull its halves apart, and a point with no
 # bond at all (cut out by a closed notch loop) is carried along harmlessly.
 # check_torn.py proves the two pieces from the bonds themselves (no chain of intact

@@ -1,5 +1,5 @@
 #pragma once
-// The geometry stage (STYLE.md: scene -> body -> families): the one function that
+// The geometry stage (scene -> body -> families, docs/architecture.md): the one function that
 // turns a body into the material points every later stage reads (families, scene
 // checks, load sets, probes, output, checkpoints). Two producers:
 //   - the uniform lattice (lattice.hpp): spacing dx, volume dx^2 t, one horizon

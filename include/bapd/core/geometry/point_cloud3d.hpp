@@ -1,12 +1,12 @@
 #pragma once
-// A 3D body given as a point cloud text file (issue 21; the 3D form of
+// A 3D body given as a point cloud text file (the 3D form of
 // point_cloud_file.hpp's text format, PeriLab's CSV clouds and Peridigm's text
 // discretisations): one point a row, its position x, y, z [m], its volume [m^3] and
 // optionally its block id. The first line that is not blank names the columns (a
 // leading '#' allowed: Peridigm's "# x y z block_id volume"); columns separated by commas
 // and/or blanks, in any order; x, y, z and volume required, block_id (or block)
 // optional, others ignored. Later lines starting with '#' are comments. Text only (the
-// 2D reader's HDF5 form waits for the 3D driver).
+// HDF5 form of point_cloud_file.hpp is 2D only).
 #include <cstdint>
 #include <string>
 #include <vector>

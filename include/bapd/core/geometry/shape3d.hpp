@@ -1,5 +1,5 @@
 #pragma once
-// 3D bodies (issue 21, the body stage of 3D; docs/architecture.md "3D (stage 1)"): solids
+// 3D bodies (docs/architecture.md "core/geometry", docs/options.md "3D bodies"): solids
 // (boxes, cylinders, spheres, Gmsh volumes as tetrahedra) combined in order, the cell-centred lattice clipped to
 // them, and planar polygon notches as a BondCut for nd::build_families<3>.
 //

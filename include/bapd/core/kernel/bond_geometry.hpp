@@ -22,10 +22,10 @@
 // doubles a bond in 2D) would cost 0.9 KB per point at delta = 3.015 dx against a
 // memory target of 2 KB per point, while forming them costs ~6 ns a bond (measured on
 // the 2D kernel, docs/performance.md 1b). It also means that a broken bond changes K
-// at once, with nothing to go stale. For D = 2 every operation is the retired 2D
+// at once, with nothing to go stale. For D = 2 every operation is the earlier 2D
 // kernel's, in its order (the same two alternating accumulators, the same K^{-1}
-// formula), so the switch kept every bit (scripts/compare_binaries.sh, issue 21 stage
-// 2 and 3); ba_force_2d_reference_test.cpp holds D = 2 to the equations.
+// formula), so 2D results are bit for bit that kernel's (scripts/compare_binaries.sh
+// compares two binaries); ba_force_2d_reference_test.cpp holds D = 2 to the equations.
 //
 // Usable K: K is symmetric positive semi-definite; det K / (tr K)^D ~ 1 / cond(K)
 // up to a constant. A bond is usable iff det K > shape_tensor_degeneracy (tr K)^D;
@@ -170,8 +170,8 @@ template <class R>
 // the sum over all of `members` in word w, in order. Where the BA family holds more
 // than half of a word's members: that word's total minus the others. Which form a
 // word takes depends on the masks alone, so the result is the same on any rank.
-// Deciding by word and not over the whole mask (as before 2026-12-03; the same for 2D's
-// one word) adds 38 records a sum in place of 47 on an interior 3D family at 3.015 dx:
+// Deciding by word and not over the whole mask (the two are the same for 2D's one
+// word) adds 38 records a sum in place of 47 on an interior 3D family at 3.015 dx:
 // its members are sorted by natural id, z slowest, so a BA family (the lens of two
 // balls) fills most of one word and little of the other (docs/performance.md 1k).
 // Words: the mask words if known at compile time (the kernels dispatch 1, 2 and 3; the
@@ -331,7 +331,7 @@ template <int D> struct BondGeometry {
   StressCorrection           stress_correction = StressCorrection::none;
   std::vector<double>        correction; // C_i, D x D row-major per family point
   // Work space of compute_bond_geometry, sized with the geometry, so that a time step
-  // in which bonds break allocates nothing (STYLE.md, "Data").
+  // in which bonds break allocates nothing.
   PointScratch<D>            scratch;
   std::vector<std::uint64_t> reference_mask;
   std::vector<std::uint32_t> done_in_pass; // per family point: the last recomputation that did it

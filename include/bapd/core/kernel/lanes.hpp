@@ -12,7 +12,7 @@
 // checks the result), and the code calls std::fma / lane_fma explicitly where it
 // wants one.
 //
-// Why eight where the machine has AVX-512 (issue 20): the plane-stress model is a
+// Why eight where the machine has AVX-512: the plane-stress model is a
 // chain of dependent operations per bond; a wider register runs twice the bonds'
 // chains per instruction (the Zen 5 core of docs/performance.md executes 512-bit
 // operations at full width). Code that walks the lanes one by one uses lane_count.

@@ -97,8 +97,8 @@ inline std::vector<double> compute_patch_correction(const PointCloud &cloud, con
 }
 
 // ---------------------------------------------------------------------------------
-// The patch test AND the virial (issue 18 item 5; docs/discretisations.md "Keeping the
-// virial"): -force_patch_correction virial (the default for given points with the
+// The patch test AND the virial (docs/discretisations.md "Keeping the virial"):
+// -force_patch_correction virial (the default for given points with the
 // bond-only form). The setup solve is here; the kernel forms c_ij from the points'
 // numbers (nd::add_patch_term with virial, ba_force.hpp; PointCloud::patch_virial),
 // tested outside the kernel (tests/unit/geometry_test.cpp,

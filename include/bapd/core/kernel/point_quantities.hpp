@@ -29,7 +29,7 @@
 // D = 2, in-plane components only: the 2D models give P~ (P_33 = sigma_33 = 0 in plane
 // stress; in plane strain sigma_33 is not formed). lambda_3 = sqrt(C33) is the
 // thickness stretch of a plane-stress sheet (1 in plane strain).
-// D = 3 (issue 21 stage 4): the full 3 x 3 tensors of the 3D law (Compressible3D and
+// D = 3: the full 3 x 3 tensors of the 3D law (Compressible3D and
 // every other 3D law of the registry: stress(F, P)), sigma_i = P_i F_i^T / det F_i, and
 // no thickness stretch (thickness_stretch is left empty: there is no C33 to solve).
 // A point none of whose bonds carries force (damage 1, or every K singular) gets zeros

@@ -155,8 +155,8 @@ template <int D> inline Vec<D> multiply(const Mat<D> &A, const Vec<D> &v)
 
 // The inverse of a symmetric matrix given as its upper triangle (sym_index), as an
 // upper triangle, and its determinant (det <= 0: not inverted, inv untouched).
-// 2D: the same operations, in the same order, as bond_kinematics of the retired 2D
-// kernel (issue 21 stage 3), so that the D = 2 instantiation rounds as it did.
+// 2D: the same operations, in the same order, as bond_kinematics of the earlier 2D
+// kernel, so that the D = 2 instantiation rounds as that kernel did.
 template <int D> [[gnu::always_inline]] inline double symmetric_inverse(const double *S, double *inv)
 {
   if constexpr (D == 2) {

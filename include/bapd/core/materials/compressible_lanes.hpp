@@ -2,8 +2,7 @@
 // The compressible 3D law (hyperelastic.hpp, Compressible3D: paper eqs 24, 26) with a
 // lane path for the 3D bond kernel: P(F) of lane_count bonds at a time (lanes.hpp: 8
 // with AVX-512, else 4), as PlaneStress has in 2D. In the scalar Compressible3D, libm's
-// cbrt for J^{-2/3} is the largest single cost of a 3D bond (docs/architecture.md,
-// "3D (stage 1)"); here
+// cbrt for J^{-2/3} is the largest single cost of a 3D bond; here
 //   J^{-2/3} = z = (J^2)^{-1/3}: approximate_cbrt (4e-7) inverted, then two
 //   division-free Newton steps z <- z (4 - J^2 z^3) / 3 (quadratic: 4e-7 -> 3e-13 ->
 //   round-off),

@@ -15,7 +15,8 @@
 // steps on L(b) = x. L is increasing and concave on b > 0, so from below Newton climbs
 // monotonically to the root and from above its first step lands below it; it stops
 // when the step is below 2 eps b (quadratic convergence: about four steps from 1.5 %).
-// inverse_langevin_test.cpp checks L(L^{-1}(x)) = x over [1e-8, 1 - 1e-9].
+// tests/unit/materials/hyperelastic_laws_test.cpp (InverseLangevin) checks L(L^{-1}(x)) = x
+// over [1e-8, 1 - 1e-9].
 #include <array>
 #include <cmath>
 #include <cstddef>

@@ -5,7 +5,7 @@
 // with the volumetric term of paper eq 24 (hyperelastic.hpp, plane_stress.hpp). At rest
 // G = 2 C1 is the shear modulus, so C1 = mu/2 (checked: mu is what the time step and the
 // default D are sized from). The law interface is described in law.hpp; the registry
-// line is in law_registry.hpp.
+// line is in law_list.hpp.
 #include "bapd/core/materials/invariant_law.hpp"
 
 namespace bapd {

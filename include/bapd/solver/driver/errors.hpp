@@ -1,7 +1,6 @@
 #pragma once
 // How bapd reports errors to a user: one clear message, a non-zero exit, no stack
-// trace for mistakes in the input, and no hang when only some ranks fail (STYLE.md,
-// "Errors and output").
+// trace for mistakes in the input, and no hang when only some ranks fail.
 #include <petscsys.h>
 
 namespace bapd {

@@ -2,7 +2,7 @@
 // The program a user runs, as a class whose Run() reads like the method:
 // read the scene, build the body and its families, partition, set up the ghosted
 // state, pick the stable time step, then step with PETSc TS while loading, breaking
-// bonds and writing the history (STYLE.md: the shape of the code). The concerns are
+// bonds and writing the history. The concerns are
 // objects with their own data (docs/architecture.md): the force operator
 // (force_operator.hpp), loading (loading.hpp), failure (failure.hpp) and time-step
 // control (time_step_control.hpp); the Simulation holds the body's data, which they
@@ -12,7 +12,7 @@
 // One code path for D = 2 (a plane sheet) and D = 3 (a solid body): SimulationD<D>,
 // instantiated twice; main.cpp reads the scene (ReadScene) and builds the one its
 // dimension asks for. u and v hold D values a point; the history has z columns in 3D
-// only, so a 2D run writes what it always did.
+// only.
 #include <petscsf.h>
 #include <petscts.h>
 

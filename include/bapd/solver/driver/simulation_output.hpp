@@ -28,15 +28,15 @@ struct SimulationOutput {
   // Failure::Break), so X is enough to write the last good state: its C33 is solved
   // again from a cold start when it is needed (OutputOnDivergence, DiagnoseDivergence),
   // the same values to the solve's tolerance, instead of a per-bond copy every step
-  // (issue 20: 8 B a bond, ~220 B a point at delta = 3.015 dx, and its copy each step).
+  // (8 B a bond, ~220 B a point at delta = 3.015 dx, and its copy each step).
   Vec                 good_state = nullptr;
   PetscInt            good_step = -1;
   double              good_time = 0;
   // Two older states, every 10 steps in turn: for the diagnosis of a blow-up that has
   // already wrecked the last good state (DiagnoseDivergence), one 10 to 20 steps older.
   // Positions and velocities only: the diagnosis solves their C33 again (a function of
-  // F, to the solve's tolerance) instead of keeping two per-bond copies (issue 20:
-  // 2 x 8 B a bond, ~450 B a point at delta = 3.015 dx).
+  // F, to the solve's tolerance) instead of keeping two per-bond copies (2 x 8 B a
+  // bond, ~450 B a point at delta = 3.015 dx).
   static constexpr PetscInt earlier_interval = 10;
   Vec                 earlier_state[2] = {nullptr, nullptr};
   PetscInt            earlier_step[2] = {-1, -1};

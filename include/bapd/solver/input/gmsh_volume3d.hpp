@@ -1,5 +1,5 @@
 #pragma once
-// A 3D body's volume from Gmsh (issue 21, the 3D form of gmsh_shape.hpp): a .msh file's
+// A 3D body's volume from Gmsh (the 3D form of gmsh_shape.hpp): a .msh file's
 // tetrahedra, or a .geo file with a volume meshed in 3D by Gmsh (Gmsh's C++ API), as
 // the TetrahedronSet of a mesh solid (shape3d.hpp). The lattice is then clipped to
 // the meshed volume (nd::make_solid_points), as the 2D lattice is to a meshed surface.

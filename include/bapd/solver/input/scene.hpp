@@ -30,7 +30,7 @@ namespace bapd {
 // and the virial).
 enum class PatchCorrection { off, lambda, virial };
 
-// A 3D body (-body_dimension 3, or implied by a 3D solid; issue 21 stage 4;
+// A 3D body (-body_dimension 3, or implied by a 3D solid;
 // docs/options.md "3D bodies"): the solids (boxes, cylinders, spheres, Gmsh volumes)
 // and planar polygon notches of shape3d.hpp on a lattice of spacing dx, or given
 // points clipped by the solids: a 3D cloud (point_cloud3d.hpp) or the tetrahedron

@@ -1,6 +1,6 @@
 #pragma once
 // Checkpoints: one HDF5 file with everything a run needs to go on, bit for bit, on
-// any number of ranks (STYLE.md: ... -> fields / checkpoint). docs/options.md,
+// any number of ranks. docs/options.md,
 // "Checkpoints and restart", is the user's view.
 //
 // File layout, format version 6, D the dimension of the body (2 or 3; every array in

@@ -1,6 +1,6 @@
 #pragma once
-// Field output: point clouds over time for ParaView and scripts (STYLE.md: ... ->
-// fields). docs/options.md, "Field output", is the user's view.
+// Field output: point clouds over time for ParaView and scripts. docs/options.md,
+// "Output", is the user's view.
 //
 // Every -output_fields_interval steps one HDF5 file <output_dir>/fields/step_NNNNNNNN.h5
 // holds, in natural-id order (natural_order.hpp; the same file on any rank layout

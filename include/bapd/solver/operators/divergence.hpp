@@ -33,7 +33,7 @@
 // time (the bond-only form fluttering at the running tip: KE from 9e-3 to 223 J over
 // 3300 steps of 1e-7 s, with 0.03 J stored) grows by only a few per cent a step and was
 // never suspected: it ran to the end with exit 0 and every bond broken. On full steps
-// a tick is a step, as before. The steps of one tick share one window slot (its
+// a tick is a step. The steps of one tick share one window slot (its
 // smallest KE); while suspected, the total energy is measured once a tick and whenever
 // KE doubled since it was last measured.
 #include <petscvec.h>
@@ -98,8 +98,8 @@ private:
   std::vector<double> scratch_;
 };
 
-// The cause of a divergence, as the solver sees it at the last good state (issue 15
-// item 3; docs/stability.md section 8), and the fix the message names. Plain numbers
+// The cause of a divergence, as the solver sees it at the last good state
+// (docs/stability.md section 8), and the fix the message names. Plain numbers
 // in, the sentence out (no MPI: every rank has the same reduced values).
 struct DivergenceFacts {
   double dt           = 0;     // the step that was taken [s]

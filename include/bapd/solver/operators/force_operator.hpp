@@ -4,8 +4,8 @@
 // an evaluation needs and nothing else: the ghosted displacement (two rings of
 // ghosts, layout.hpp), the current positions y = x + u of every local point, the
 // plane-stress warm starts C33 (one per bond), the bond forces t_ij, the kernel's
-// workspace and the model, chosen once at set-up (STYLE.md: models are chosen at
-// run time once, outside the hot loop). The dimension D is chosen there too
+// workspace and the model, chosen once at set-up (models are chosen at run time
+// once, outside the hot loop). The dimension D is chosen there too
 // (Setup<D>): the closures hold the nd::<D> kernel and its workspace, and the rest
 // (the exchange, y = x + u) is D values a point, a run-time D like Loading's. A 3D
 // model has no C33: a 3D operator holds no warm starts (warm_start() is empty). The

@@ -1,6 +1,6 @@
 #pragma once
 // Loading: which components the grips hold, the stretch schedule they follow, the
-// values they prescribe and the reactions they supply (STYLE.md: loading). The
+// values they prescribe and the reactions they supply. The
 // schedule and the end time start as the scene's and change only here: a static
 // hold that ends early moves the later knots (EndHold), and a restart puts the moved
 // schedule back (Restore). The scene itself is never written.

@@ -23,7 +23,7 @@
 // number of ranks. PETSc's velocity Verlet evaluates the force once a step (at the
 // half-step position), so the pair spans two steps: the latest evaluation is saved in
 // checkpoints (/relaxation, checkpoint.hpp) and a restart continues bit for bit.
-// The dimension D (2 or 3; issue 21 stage 4) is the number of dofs a point: du_i and
+// The dimension D (2 or 3) is the number of dofs a point: du_i and
 // da_i have D components, held dofs are D i + c.
 #include <petscsys.h>
 

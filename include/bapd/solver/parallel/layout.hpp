@@ -1,12 +1,12 @@
 #pragma once
-// Owned + ghost numbering of the points of one rank (STYLE.md: layout).
+// Owned + ghost numbering of the points of one rank.
 //
 // Local point order: owned points, then ring-1 ghosts (family members of owned
 // points: their bond forces t_ji enter the owned force sums), then ring-2 ghosts
 // (family members of ring-1 ghosts: positions only). Each group is sorted by natural
 // id. A point's PETSc index puts rank r's owned points in one contiguous block.
 //
-// The dimension D (2 or 3, issue 21 stage 4) is a template parameter of the functions
+// The dimension D (2 or 3) is a template parameter of the functions
 // that read coordinates or build D-vectors; the Layout itself, like the PointCloud and
 // the Families it holds or serves, is the same type for every D (its cloud holds D
 // coordinates a point), so that the driver's parts that only count points take it as

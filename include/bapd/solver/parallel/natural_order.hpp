@@ -1,6 +1,5 @@
 #pragma once
-// The layout-independent order of output and checkpoints (STYLE.md: layout ->
-// fields / checkpoint).
+// The layout-independent order of output and checkpoints.
 //
 // Files hold every point in natural-id order and every bond in the order
 // (natural id of its point, then its place in that point's family), which is the

@@ -1,5 +1,5 @@
 #pragma once
-// METIS partition of the bond graph (STYLE.md: partition -> layout).
+// METIS partition of the bond graph, from which the layout is built (layout.hpp).
 #include <petscsys.h>
 #include <vector>
 
