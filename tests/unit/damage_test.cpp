@@ -279,5 +279,80 @@ TEST(FractureEnergy, BondEnergiesOfAnAffineMotionArePsiOfIt)
   for (double v : psi) EXPECT_TRUE(v == -1.0 || v >= 0.0);
 }
 
+// crack_extent counts the broken pairs back through the crossing density: a cut of length
+// L along a lattice row, made of exactly the pairs the crossing density counts (i below the
+// line with x_i in L's columns, j above), has area L t to round-off; its tip is the broken
+// midpoint furthest along the axis, here from the right side towards -x (the notch of
+// examples/notched_pure_shear.yaml runs that way).
+TEST(CrackExtent, AStraightCutHasItsLengthTimesTheThicknessAndItsTip)
+{
+  const double         dx = 0.5e-3, t = 3.0e-3, width = 30 * dx;
+  test::Discretisation d(test::plate(30, 12, dx, t));
+  const double         line = 6 * dx;
+  std::vector<std::size_t> touched;
+  double                   nearest = width; // smallest midpoint x of the pairs cut (the tip towards -x)
+  for (std::size_t i = 0; i < d.size(); ++i) {
+    const double xi = d.cloud.x[2 * i], yi = d.cloud.x[2 * i + 1];
+    if (yi > line || xi < 10 * dx || xi > 20 * dx) continue;
+    for (std::size_t q = 0; q < d.families.size(i); ++q) {
+      const std::size_t j = static_cast<std::size_t>(d.families.neighbour[d.families.offsets[i] + q]);
+      if (d.cloud.x[2 * j + 1] < line) continue;
+      ASSERT_TRUE(break_bond(d.families, d.state, i, q, &touched));
+      nearest = std::min(nearest, 0.5 * (xi + d.cloud.x[2 * j]));
+    }
+  }
+  const std::vector<double> crossing(d.size(), crossing_density(2, dx * dx * t, 3.015 * dx, t));
+  std::vector<double>       area(d.size());
+  const double              origin[2] = {width, line}, direction[2] = {-1.0, 0.0};
+  double                    tip[4];
+  crack_extent(2, d.cloud, d.families, d.state, crossing.data(), d.size(), origin, direction, area.data(), tip);
+  double total = 0;
+  for (double a : area) total += a;
+  EXPECT_NEAR(total / (10 * dx * t), 1.0, 1e-12);
+  EXPECT_DOUBLE_EQ(tip[0], width - nearest);
+  EXPECT_DOUBLE_EQ(tip[1], nearest);
+  EXPECT_NEAR(tip[2], line, 3.015 * dx); // a midpoint within a horizon of the line
+  // No broken bond, no tip.
+  BondState intact(d.families);
+  crack_extent(2, d.cloud, d.families, intact, crossing.data(), d.size(), origin, direction, area.data(), tip);
+  EXPECT_TRUE(std::isinf(tip[0]) && tip[0] < 0);
+  EXPECT_EQ(*std::max_element(area.begin(), area.end()), 0.0);
+}
+
+// The energy a breaking pass releases, taken over the points whose bonds it changed only
+// (listed_strain_energies; the fracture dissipation of history.csv), is the change of the
+// whole body's strain energy: W_i depends on the bonds of i alone.
+TEST(CrackExtent, TheReleasedEnergyIsThatOfThePointsWhoseBondsBroke)
+{
+  test::Discretisation         d(test::plate(14, 14, 1.0));
+  test::SaintVenantKirchhoff2D svk;
+  std::vector<double>          y = d.affine({1.3, 0.2, -0.1, 0.8});
+  for (std::size_t i = 0; i < d.size(); ++i) y[2 * i + 1] += 0.05 * std::sin(1.7 * d.cloud.x[2 * i]); // not affine
+  nd::Workspace<2> ws;
+  const double     before = nd::strain_energy<2>(svk, d.cloud, y.data(), d.families, d.geometry, d.state, nullptr, d.size(), ws);
+  // Break three bonds of the centre and one near the edge, as a pass would.
+  std::vector<std::size_t> touched;
+  const std::size_t        centre = 7 * 14 + 7, edge = 1 * 14 + 2;
+  for (std::size_t q : {0, 5, 11}) ASSERT_TRUE(break_bond(d.families, d.state, centre, q, &touched));
+  ASSERT_TRUE(break_bond(d.families, d.state, edge, 3, &touched));
+  std::sort(touched.begin(), touched.end());
+  touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+  std::vector<double> listed_after(touched.size()), listed_before(touched.size());
+  // The listed energies before the pass: the same points with the bonds intact.
+  BondState           intact(d.families);
+  nd::BondGeometry<2> geometry_before;
+  nd::compute_bond_geometry<2>(d.cloud, d.families, intact, geometry_before);
+  nd::listed_strain_energies<2>(svk, d.cloud, y.data(), d.families, geometry_before, intact, nullptr, touched.data(), touched.size(), ws,
+                                listed_before.data());
+  nd::compute_bond_geometry<2>(d.cloud, d.families, d.state, d.geometry, touched);
+  const double after = nd::strain_energy<2>(svk, d.cloud, y.data(), d.families, d.geometry, d.state, nullptr, d.size(), ws);
+  nd::listed_strain_energies<2>(svk, d.cloud, y.data(), d.families, d.geometry, d.state, nullptr, touched.data(), touched.size(), ws,
+                                listed_after.data());
+  double released = 0;
+  for (std::size_t k = 0; k < touched.size(); ++k) released += listed_before[k] - listed_after[k];
+  ASSERT_NE(before, after);
+  EXPECT_NEAR(released, before - after, 1e-12 * before);
+}
+
 } // namespace
 } // namespace bapd

@@ -1,6 +1,7 @@
 // Bond failure and damage (damage.hpp), for D = 2 and 3.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "bapd/core/kernel/damage.hpp"
 
@@ -62,6 +63,28 @@ void point_damage(const PointCloud &cloud, const Families &families, const BondS
       if (state.is_intact(i, q)) intact += cloud.volume[static_cast<std::size_t>(families.neighbour[o + q])];
     const double vh = cloud.family_volume[i];
     damage[i]       = vh > 0 ? 1.0 - intact / vh : 0.0;
+  }
+}
+
+void crack_extent(int dimension, const PointCloud &cloud, const Families &families, const BondState &state,
+                  const double *crossing, std::size_t n_points, const double *origin, const double *direction,
+                  double *point_area, double tip[4])
+{
+  std::fill(tip, tip + 4, -std::numeric_limits<double>::infinity());
+  for (std::size_t i = 0; i < n_points; ++i) {
+    const std::size_t o = families.offsets[i];
+    point_area[i]       = 0.0;
+    for (std::size_t q = 0; q < families.size(i); ++q) {
+      if (state.is_intact(i, q)) continue;
+      const auto j = static_cast<std::size_t>(families.neighbour[o + q]);
+      point_area[i] += cloud.volume[i] * cloud.volume[j] / (crossing[i] + crossing[j]); // 1/2 V_i V_j / ((c_i + c_j) / 2)
+      double m[4] = {0, 0, 0, 0};
+      for (int r = 0; r < dimension; ++r) {
+        m[1 + r] = 0.5 * (cloud.x[dimension * i + r] + cloud.x[dimension * j + r]);
+        m[0] += (m[1 + r] - origin[r]) * direction[r];
+      }
+      if (std::lexicographical_compare(tip, tip + 1 + dimension, m, m + 1 + dimension)) std::copy(m, m + 4, tip);
+    }
   }
 }
 

@@ -86,6 +86,13 @@ template <int D> PetscErrorCode SimulationD<D>::Setup(Scene scene)
   PetscCall(step_control_.EstimateStable(comm_, scene_, time_step_options_, layout_, loading_, force_));
   PetscCall(SetupRelaxation());
   PetscCall(SetupTimeStepper());
+  PetscCall(budget_.Setup(loading_, layout_, scene_.density, scene_.loads.size()));
+  {
+    const double *x;
+    PetscCall(VecGetArrayRead(X_, &x));
+    PetscCall(budget_.Start(comm_, x + D * layout_.n_owned)); // the grips' speeds at t = 0
+    PetscCall(VecRestoreArrayRead(X_, &x));
+  }
   PetscCall(OpenHistory());
   PetscCall(SetupOutput()); // restores the state with -restart
   {
@@ -229,6 +236,12 @@ template <int D> PetscErrorCode SimulationD<D>::BuildBody()
   // did: their whole neighbourhood lies in the two rings it holds.
   families_ = BodyFamilies<D>(scene_, layout_.cloud, (std::size_t)layout_.n_family());
   bond_state_ = BondState(families_);
+  if (scene_.failure) {
+    intact_before_ = bond_state_.intact; // sized once: a breaking pass copies into it
+    released_points_.reserve((std::size_t)layout_.n_owned);
+    released_terms_.assign((std::size_t)layout_.n_owned, 0.0);
+    PetscCall(SetupCrackAxis());
+  }
   // -force_stress_correction: C_i per family point, for the bond-only kernel only (the
   // energy-consistent form is stress-consistent as it is: stress_correction.hpp)
   geometry_.stress_correction =
@@ -332,14 +345,15 @@ template <int D> PetscErrorCode SimulationD<D>::PostStep(TS ts)
   PetscCall(VecGetArray(X, &x));
   double damping = sim->scene_.damping;
   PetscCall(sim->relaxation_.Damping(sim->comm_, &damping)); // -relaxation adaptive: recomputed every step
-  if (damping > 0) {
-    // Mass-proportional damping, integrated exactly over the step (operator split):
-    // works with every TS type and never destabilises the step. The grips' speeds
-    // are set again just below.
-    const double decay = std::exp(-damping * sim->step_control_.current());
+  // Mass-proportional damping, integrated exactly over the step (operator split):
+  // works with every TS type and never destabilises the step. The grips' speeds
+  // are set again just below.
+  const double decay = damping > 0 ? std::exp(-damping * sim->step_control_.current()) : 1.0;
+  sim->budget_.Damp(x + n, decay); // (also without damping: the grips' speeds before they are set)
+  if (damping > 0)
     for (PetscInt k = 0; k < n; ++k) x[n + k] *= decay;
-  }
   sim->loading_.Apply(t, x, x + n);
+  PetscCall(sim->budget_.EndStep(sim->comm_, x, x + n));
   PetscCall(VecRestoreArray(X, &x));
 
   PetscBool diverged = PETSC_FALSE;
@@ -361,7 +375,11 @@ template <int D> PetscErrorCode SimulationD<D>::PostStep(TS ts)
     PetscCall(sim->force_.UpdatePositions(x));
     PetscCall(VecRestoreArray(X, &x));
     if (sim->failure_.by_energy()) sim->force_.BondEnergies(sim->failure_.bond_energies());
+    std::copy(sim->bond_state_.intact.begin(), sim->bond_state_.intact.end(), sim->intact_before_.begin());
     PetscCall(sim->failure_.Break(sim->force_.positions(), sim->force_.failed_bonds(), sim->bond_state_, sim->geometry_));
+    double released;
+    PetscCall(sim->ReleasedEnergy(&released));
+    sim->budget_.Release(released);
   }
   {
     // Before any checkpoint: a restart takes the same next step (re-estimated about the

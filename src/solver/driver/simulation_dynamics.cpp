@@ -22,11 +22,28 @@ template <int D> PetscErrorCode SimulationD<D>::Acceleration(const double *u_own
 {
   PetscFunctionBegin;
   PetscCall(force_.Evaluate(u_owned, a_owned, ForceOperator::WarmStart::commit));
+  budget_.RecordForce(a_owned); // the body's pull on the grips (energy_budget.hpp)
   const double inv_rho = 1.0 / scene_.density;
   for (PetscInt k = 0; k < D * layout_.n_owned; ++k) a_owned[k] *= inv_rho;
   for (const ConstrainedDof &d : loading_.constrained()) a_owned[d.dof] = 0.0; // the grip moves them
   relaxation_.Record(u_owned, a_owned); // -relaxation adaptive: the last two evaluations
   step_control_.Record(u_owned, a_owned); // the base point of the next re-estimate of the stable step
+  PetscFunctionReturn(0);
+}
+
+// The step's start: where the grips stand (the energy budget's work over the step).
+template <int D> PetscErrorCode SimulationD<D>::PreStep(TS ts)
+{
+  SimulationD  *sim;
+  Vec           X;
+  const double *x;
+
+  PetscFunctionBegin;
+  PetscCall(TSGetApplicationContext(ts, &sim));
+  PetscCall(TSGetSolution(ts, &X));
+  PetscCall(VecGetArrayRead(X, &x));
+  sim->budget_.BeginStep(x);
+  PetscCall(VecRestoreArrayRead(X, &x));
   PetscFunctionReturn(0);
 }
 
@@ -101,6 +118,7 @@ template <int D> PetscErrorCode SimulationD<D>::SetupTimeStepper()
   PetscCall(TSSetMaxTime(ts_, end_time));
   PetscCall(TSSetMaxSteps(ts_, PETSC_MAX_INT));
   PetscCall(TSSetExactFinalTime(ts_, TS_EXACTFINALTIME_MATCHSTEP));
+  PetscCall(TSSetPreStep(ts_, PreStep));
   PetscCall(TSSetPostStep(ts_, PostStep));
   PetscCall(TSSetApplicationContext(ts_, this));
   PetscCall(TSSetSolution(ts_, X_));
@@ -130,6 +148,7 @@ template <int D> PetscErrorCode SimulationD<D>::SetupTimeStepper()
 #define BAPD_SIMULATION_DYNAMICS(D) \
   template PetscErrorCode SimulationD<D>::ComputeForceDensity(const double *u_owned, double *force_density); \
   template PetscErrorCode SimulationD<D>::Acceleration(const double *u_owned, double *a_owned); \
+  template PetscErrorCode SimulationD<D>::PreStep(TS ts); \
   template PetscErrorCode SimulationD<D>::RHSPosition(TS, PetscReal, Vec V, Vec Udot, void *); \
   template PetscErrorCode SimulationD<D>::RHSMomentum(TS, PetscReal, Vec U, Vec Vdot, void *ctx); \
   template PetscErrorCode SimulationD<D>::RHSFull(TS, PetscReal, Vec X, Vec F, void *ctx); \

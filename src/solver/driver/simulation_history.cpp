@@ -7,6 +7,7 @@
 #include <cstring>
 #include <fcntl.h>
 #include <filesystem>
+#include <limits>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -118,7 +119,15 @@ template <int D> PetscErrorCode SimulationD<D>::OpenHistory()
       std::fprintf(history_, ",%s_ux_m,%s_uy_m", p.name.c_str(), p.name.c_str());
       if (D == 3) std::fprintf(history_, ",%s_uz_m", p.name.c_str());
     }
-    std::fprintf(history_, ",kinetic_energy_J,internal_energy_J,broken_bonds,dt_s\n"); // dt_s: the next step (time_step_control.hpp)
+    std::fprintf(history_, ",kinetic_energy_J,internal_energy_J,broken_bonds,dt_s"); // dt_s: the next step (time_step_control.hpp)
+    // The energy budget (energy_budget.hpp), the crack's columns only with failure.
+    for (const LoadSet &s : scene_.loads) std::fprintf(history_, ",%s_work_J", s.name.c_str());
+    std::fprintf(history_, ",damping_dissipation_J,fracture_dissipation_J,energy_balance_residual_J");
+    if (scene_.failure) {
+      std::fprintf(history_, ",crack_area_m2,effective_fracture_energy_J_m2,crack_length_m,crack_tip_x_m,crack_tip_y_m");
+      if (D == 3) std::fprintf(history_, ",crack_tip_z_m");
+    }
+    std::fprintf(history_, "\n");
   }
   PetscCall(WriteHistoryRow(0, 0.0));
   PetscFunctionReturn(0);
@@ -184,6 +193,8 @@ template <int D> PetscErrorCode SimulationD<D>::WriteHistoryRow(PetscInt step, d
   PetscCall(Energies(&last_kinetic_, &last_internal_));
   PetscInt broken;
   PetscCall(BrokenBondCount(&broken));
+  double crack_area = 0, crack_tip[4] = {0, 0, 0, 0};
+  if (scene_.failure) PetscCall(CrackExtent(&crack_area, crack_tip));
   const std::vector<double> &reaction = last_reaction_, &probe_u = last_probe_u_;
   int                        error    = 0;
   if (rank_ == 0) {
@@ -196,7 +207,16 @@ template <int D> PetscErrorCode SimulationD<D>::WriteHistoryRow(PetscInt step, d
     }
     for (std::size_t p = 0; p < probes_.size(); ++p)
       for (int c = 0; c < D; ++c) std::fprintf(history_, ",%.17g", probe_u[D * p + c]);
-    std::fprintf(history_, ",%.17g,%.17g,%" PetscInt_FMT ",%.17g\n", last_kinetic_, last_internal_, broken, step_control_.current());
+    std::fprintf(history_, ",%.17g,%.17g,%" PetscInt_FMT ",%.17g", last_kinetic_, last_internal_, broken, step_control_.current());
+    for (std::size_t s = 0; s < budget_.load_sets(); ++s) std::fprintf(history_, ",%.17g", budget_.grip_work(s));
+    const double residual = budget_.grip_work_total() - (last_internal_ + last_kinetic_ + budget_.damped() + budget_.released());
+    std::fprintf(history_, ",%.17g,%.17g,%.17g", budget_.damped(), budget_.released(), residual);
+    if (scene_.failure) {
+      const double nan = std::numeric_limits<double>::quiet_NaN();
+      std::fprintf(history_, ",%.17g,%.17g", crack_area, crack_area > 0 ? budget_.released() / crack_area : nan);
+      for (int c = 0; c <= D; ++c) std::fprintf(history_, ",%.17g", crack_tip[c]);
+    }
+    std::fprintf(history_, "\n");
     error = FinishRows(history_, row_start);
   }
   PetscCallMPI(MPI_Bcast(&error, 1, MPI_INT, 0, comm_)); // rank 0 wrote: every rank stops alike

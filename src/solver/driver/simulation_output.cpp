@@ -97,6 +97,7 @@ template <int D> PetscErrorCode SimulationD<D>::SaveGoodState(PetscInt step, dou
   PetscCall(VecCopy(X_, output_.good_state));
   output_.good_step = step;
   output_.good_time = t;
+  budget_.totals(&output_.good_energy);
   if (step % SimulationOutput::earlier_interval == 0) {
     const int slot = (int)((step / SimulationOutput::earlier_interval) % 2);
     PetscCall(VecCopy(X_, output_.earlier_state[slot]));
@@ -273,6 +274,8 @@ template <int D> PetscErrorCode SimulationD<D>::WriteCheckpointFile(PetscInt ste
   header.end_time_original = loading_.end_time_original();
   header.end_time          = loading_.end_time();
   header.static_hold_done  = loading_.hold_done();
+  if (std::strcmp(reason, "last good state") == 0) header.energy_totals = output_.good_energy;
+  else budget_.totals(&header.energy_totals);
   for (const FieldFrame &frame : output_.series.frames) {
     header.field_frames.push_back((double)frame.step);
     header.field_frames.push_back(frame.time);
@@ -362,6 +365,12 @@ template <int D> PetscErrorCode SimulationD<D>::RestoreCheckpoint()
   PetscCall(TSSetStepNumber(ts_, header.step));
   PetscCall(TSSetTime(ts_, header.time));
   PetscCall(RestoreSchedule(header));
+  // The energy budget goes on from the checkpoint's totals; a checkpoint without them
+  // (format 6 and older) or with other load sets starts it afresh at the restart.
+  if (header.energy_totals.size() == 2 + budget_.load_sets()) budget_.RestoreTotals(header.energy_totals);
+  else
+    PetscCall(PetscPrintf(comm_, "Note: the checkpoint holds no energy budget for these load sets: the work, dissipation and balance "
+                                 "columns of history.csv count from the restart\n"));
   {
     PetscInt max_steps;
     PetscCall(TSGetMaxSteps(ts_, &max_steps));

@@ -66,6 +66,7 @@ std::uint64_t HeaderHash(const CheckpointHeader &h)
                       Entry(6, 3, Bits(h.end_time)) + Entry(6, 4, Bits(h.end_time_original)) + Entry(6, 5, (std::uint64_t)h.static_hold_done);
   for (std::size_t k = 0; k < h.schedule_current.size(); ++k) sum += Entry(7, k, Bits(h.schedule_current[k]));
   for (std::size_t k = 0; k < h.schedule_original.size(); ++k) sum += Entry(8, k, Bits(h.schedule_original[k]));
+  for (std::size_t k = 0; k < h.energy_totals.size(); ++k) sum += Entry(14, k, Bits(h.energy_totals[k])); // absent before version 7
   if (h.relaxation_records > 0) sum += Entry(11, 0, (std::uint64_t)h.relaxation_records); // absent in version 1
   if (h.step_lambda > 0) // absent in versions 1 and 2
     sum += Entry(13, 0, Bits(h.step_lambda)) + Entry(13, 1, Bits(h.step_stiffness_dt)) + Entry(13, 2, Bits(h.step_shortest)) +

@@ -78,6 +78,8 @@ void ReadRunSections(hid_t file, const std::string &path, CheckpointHeader *h, s
   if (problem.empty() && !H5ReadDoubles(file, "/run/schedule_original", &h->schedule_original)) damaged("dataset /run/schedule_original cannot be read");
   if (problem.empty() && !H5ReadDoubles(file, "/run/schedule_current", &h->schedule_current)) damaged("dataset /run/schedule_current cannot be read");
   if (problem.empty() && h->schedule_original.size() != h->schedule_current.size()) damaged("the schedule datasets differ in length");
+  if (problem.empty() && h->format_version >= 7 && !H5ReadDoubles(file, "/run/energy", &h->energy_totals))
+    damaged("dataset /run/energy cannot be read");
   if (problem.empty() && frames.size() == 2 && frames[0] > 0 && !H5ReadDoubles(file, "/run/field_frames", &h->field_frames))
     damaged("dataset /run/field_frames cannot be read");
   std::uint64_t text_hash = 0; // version 3 on; older files have none
@@ -208,6 +210,7 @@ PetscErrorCode ReadCheckpointHeader(MPI_Comm comm, const std::string &path, Chec
   PetscCall(Bcast(comm, MPI_DOUBLE, &header->field_frames));
   PetscCall(Bcast(comm, MPI_DOUBLE, &header->schedule_original));
   PetscCall(Bcast(comm, MPI_DOUBLE, &header->schedule_current));
+  PetscCall(Bcast(comm, MPI_DOUBLE, &header->energy_totals));
   PetscFunctionReturn(0);
 }
 

@@ -28,7 +28,8 @@ PetscErrorCode WriteCheckpointFile(MPI_Comm comm, PetscMPIInt rank, const std::s
   std::uint64_t       data = points * (2 * vector + 4) + bonds * (1 + (header.has_c33 ? 8 : 0)) +
                        (header.relaxation_records > 0 ? 2 * vector * points : 0) + (has_eigenvector ? vector * points : 0);
   std::uint64_t       text = header.options.size() + header.history.size() + header.static_states.size() +
-                       8 * (header.field_frames.size() + header.schedule_original.size() + header.schedule_current.size());
+                       8 * (header.field_frames.size() + header.schedule_original.size() + header.schedule_current.size() +
+                            header.energy_totals.size());
   PetscCallMPI(MPI_Bcast(&text, 1, MPI_UINT64_T, 0, comm));
   H5ParallelFile f;
   PetscCall(f.Create(comm, path, H5FileBytes(data + text, 32)));
@@ -66,6 +67,7 @@ PetscErrorCode WriteCheckpointFile(MPI_Comm comm, PetscMPIInt rank, const std::s
   PetscCall(f.WriteText("/run/static_states", header.static_states));
   PetscCall(f.WriteRoot("/run/schedule_original", H5T_NATIVE_DOUBLE, header.schedule_original.size(), header.schedule_original.data()));
   PetscCall(f.WriteRoot("/run/schedule_current", H5T_NATIVE_DOUBLE, header.schedule_current.size(), header.schedule_current.data()));
+  PetscCall(f.WriteRoot("/run/energy", H5T_NATIVE_DOUBLE, header.energy_totals.size(), header.energy_totals.data()));
   if (header.relaxation_records > 0) {
     PetscCall(f.CreateGroup("/relaxation"));
     PetscCall(f.WriteAttribute("/relaxation", "records", header.relaxation_records));

@@ -28,9 +28,9 @@ PetscErrorCode Failure::Setup(MPI_Comm comm, const Layout &layout, const Familie
   families_         = &families;
   critical_stretch_ = critical_stretch;
   critical_release_ = critical_release;
-  if (critical_release > 0) {
+  {
     const PointCloud &cloud = layout.cloud;
-    psi_.assign(families.neighbour.size(), -1.0);
+    if (critical_release > 0) psi_.assign(families.neighbour.size(), -1.0);
     crossing_.resize(families.n_family);
     // Uniform lattices share one (volume, horizon): computed once.
     double last_volume = -1, last_horizon = -1, last = 0;

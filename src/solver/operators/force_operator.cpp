@@ -52,6 +52,10 @@ PetscErrorCode ForceOperator::Setup(MPI_Comm comm, const Scene &scene, const Lay
     bond_energies_ = [this, cloud, f, g, s, ws, m = Model(model)](const double *y, double *psi) {
       nd::bond_energies<D>(m, *cloud, y, *f, *g, *s, c33_.data(), (std::size_t)layout_->n_family(), *ws, psi);
     };
+    listed_energies_ = [this, cloud, f, g, s, ws, m = Model(model)](const double *y, const std::size_t *points, std::size_t count,
+                                                                    double *energy) {
+      nd::listed_strain_energies<D>(m, *cloud, y, *f, *g, *s, c33_.data(), points, count, *ws, energy);
+    };
   };
   if constexpr (D == 2) with_model(scene.model, scene.formulation, scene.material, choose);
   else with_model_3d(scene.model, scene.material, choose);

@@ -247,6 +247,22 @@ void point_bond_energies(const Model &model, const PointCloud &ref, const double
   }
 }
 
+// V_i W_i of point i: the mean of Psi over the bonds that carry energy, weighted by V_j.
+template <int D, class Model>
+double point_strain_energy(const Model &model, const PointCloud &ref, const double *y, const Families &families,
+                           const BondGeometry<D> &geometry, const BondState &state, const double *c33, std::size_t i,
+                           Workspace<D> &ws, KernelStats &stats)
+{
+  const std::size_t o   = families.offsets[i];
+  double            num = 0.0, den = 0.0;
+  point_bond_energies<D>(model, ref, y, families, geometry, state, c33, i, ws, stats, [&](std::size_t q, double psi) {
+    const double vj = ref.volume[static_cast<std::size_t>(families.neighbour[o + q])];
+    num += psi * vj;
+    den += vj;
+  });
+  return den > 0 ? ref.volume[i] * (num / den) : 0.0;
+}
+
 } // namespace detail
 
 // Strain energy W = sum_i V_i sum_j Psi(F_ij) V_j / sum_j V_j over the bonds of i that
@@ -263,20 +279,26 @@ double strain_energy(const Model &model, const PointCloud &ref, const double *y,
   KernelStats local;
   double      total = 0.0;
   for (std::size_t i = 0; i < n_points; ++i) {
-    const std::size_t o   = families.offsets[i];
-    double            num = 0.0, den = 0.0;
-    detail::point_bond_energies<D>(model, ref, y, families, geometry, state, c33, i, ws, local,
-                                   [&](std::size_t q, double psi) {
-                                     const double vj = ref.volume[static_cast<std::size_t>(families.neighbour[o + q])];
-                                     num += psi * vj;
-                                     den += vj;
-                                   });
-    const double e = den > 0 ? ref.volume[i] * (num / den) : 0.0;
+    const double e = detail::point_strain_energy<D>(model, ref, y, families, geometry, state, c33, i, ws, local);
     if (point_energy) point_energy[i] = e;
     total += e;
   }
   if (stats) *stats = local;
   return total;
+}
+
+// strain_energy's V_i W_i of the listed points only (energy[k] of points[k]): W_i depends
+// on the bonds of i alone (its intact mask and usable bits), so the energy a breaking pass
+// releases is the change of these terms over the points whose bonds it changed.
+template <int D, class Model>
+void listed_strain_energies(const Model &model, const PointCloud &ref, const double *y, const Families &families,
+                            const BondGeometry<D> &geometry, const BondState &state, const double *c33,
+                            const std::size_t *points, std::size_t count, Workspace<D> &ws, double *energy)
+{
+  ws.reserve(families);
+  KernelStats local;
+  for (std::size_t k = 0; k < count; ++k)
+    energy[k] = detail::point_strain_energy<D>(model, ref, y, families, geometry, state, c33, points[k], ws, local);
 }
 
 // Psi(F_iq) of every bond of the points [0, n_points) into psi (one per bond, family

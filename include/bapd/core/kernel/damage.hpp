@@ -54,6 +54,20 @@ std::size_t break_bonds_by_energy(const PointCloud &cloud, const Families &famil
                                   std::vector<std::size_t> &touched_points,
                                   std::size_t n_counted = static_cast<std::size_t>(-1));
 
+// The crack the broken bonds of points [0, n_points) describe (history.csv; docs/method.md
+// section 5.3): its area, the broken pairs counted back through the crossing density,
+// A = sum over broken pairs of V_i V_j / ((c_i + c_j) / 2) (a plane of area A cuts pairs
+// of weight A c, section 5.2; each pair is seen from both ends here, hence the halves),
+// and its tip: of the broken bonds' reference midpoints m, the one furthest along the
+// unit vector `direction` from `origin` (D components each), ties to the larger
+// coordinates: tip = {(m - origin) . direction, m_x, m_y[, m_z]} ({-infinity, ...} if no
+// bond is broken), so that the largest tip over the ranks, compared lexicographically,
+// is the same on any layout. point_area[i]: point i's share of A (summed reproducibly by
+// the caller). crossing: c_i per family point (every neighbour of the points counted has one).
+void crack_extent(int dimension, const PointCloud &cloud, const Families &families, const BondState &state,
+                  const double *crossing, std::size_t n_points, const double *origin, const double *direction,
+                  double *point_area, double tip[4]);
+
 } // namespace bapd
 
 namespace bapd::nd {

@@ -24,6 +24,7 @@
 #include "bapd/core/kernel/bond_state.hpp"
 #include "bapd/solver/io/cadence.hpp"
 #include "bapd/solver/operators/divergence.hpp"
+#include "bapd/solver/operators/energy_budget.hpp"
 #include "bapd/solver/operators/failure.hpp"
 #include "bapd/core/geometry/family.hpp"
 #include "bapd/solver/operators/force_operator.hpp"
@@ -70,6 +71,7 @@ public:
   // Accessors for tests and tools.
   const Scene  &scene() const { return scene_; }
   const Layout &layout() const { return layout_; }
+  const EnergyBudget &energy_budget() const { return budget_; } // where the grips' work went (energy_budget.hpp)
   Vec           state() const { return X_; } // [u (D per owned point), v (D per owned point)]
   TS            ts() const { return ts_; }
   double        stable_time_step() const { return step_control_.stable(); }
@@ -112,7 +114,17 @@ private:
   static PetscErrorCode RHSPosition(TS, PetscReal, Vec, Vec, void *);
   static PetscErrorCode RHSMomentum(TS, PetscReal, Vec, Vec, void *);
   static PetscErrorCode RHSFull(TS, PetscReal, Vec, Vec, void *);
+  static PetscErrorCode PreStep(TS);
   static PetscErrorCode PostStep(TS);
+  // After a breaking pass that broke bonds on some rank: the internal energy it
+  // released, E(bonds before) - E(bonds after) at the same positions. Collective.
+  PetscErrorCode ReleasedEnergy(double *released);
+  // The axis the crack's tip is measured along (crack_axis_): from the mouth of the
+  // scene's first 2D notch towards its inner end; else +x from the body's smallest x.
+  PetscErrorCode SetupCrackAxis();
+  // The crack of the broken bonds (history.csv): its area and its tip, {length along the
+  // axis, x, y[, z]} (NaN while no bond is broken). Collective; reproducible.
+  PetscErrorCode CrackExtent(double *area, double tip[4]);
 
   // Field output, checkpoints and restart (simulation_output.cpp).
   PetscErrorCode ReadOutputOptions();
@@ -141,6 +153,12 @@ private:
   ForceOperator   force_;        // u -> f (force_operator.hpp)
   Loading         loading_;      // grips, schedule, reactions (loading.hpp)
   Failure         failure_;      // breaking and its exchange (failure.hpp)
+  std::vector<std::uint64_t> intact_before_; // the bond state before a breaking pass (ReleasedEnergy)
+  EnergyBudget    budget_;       // where the grips' work goes (energy_budget.hpp)
+  double          crack_axis_[6] = {0, 0, 0, 1, 0, 0}; // origin, unit direction (SetupCrackAxis)
+  std::vector<double> tips_;     // every rank's crack tip (CrackExtent)
+  std::vector<std::size_t> released_points_; // ReleasedEnergy's scratch (capacity n_owned)
+  std::vector<double>      released_terms_;  // n_owned
   TimeStepOptions time_step_options_; // -time_step_reestimate ...
   TimeStepControl step_control_;      // stable step, its re-estimate, travel limit (time_step_control.hpp)
   std::vector<ProbePoint> probes_;

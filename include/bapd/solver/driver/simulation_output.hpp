@@ -32,6 +32,7 @@ struct SimulationOutput {
   Vec                 good_state = nullptr;
   PetscInt            good_step = -1;
   double              good_time = 0;
+  std::vector<double> good_energy; // the energy budget's totals then (EnergyBudget::totals)
   // Two older states, every 10 steps in turn: for the diagnosis of a blow-up that has
   // already wrecked the last good state (DiagnoseDivergence), one 10 to 20 steps older.
   // Positions and velocities only: the diagnosis solves their C33 again (a function of

@@ -3,8 +3,9 @@
 // any number of ranks. docs/options.md,
 // "Checkpoints and restart", is the user's view.
 //
-// File layout, format version 6, D the dimension of the body (2 or 3; every array in
-// natural order, natural_order.hpp). Version 5 is version 6 without the dimension
+// File layout, format version 7, D the dimension of the body (2 or 3; every array in
+// natural order, natural_order.hpp). Version 6 is version 7 without /run/energy (the
+// continuation starts its energy budget from the state it reads), version 5 version 6 without the dimension
 // attribute (always D = 2), version 4 version 5 without /time_step's indicator,
 // version 3 version 4 without the back-off attributes of /time_step, version 2
 // version 3 without text_hash and /time_step, version 1 version 2 without /relaxation;
@@ -26,6 +27,9 @@
 //   /run/schedule_original, /run/schedule_current (knots): the schedule's knot times
 //                          as the run read them and as static holds have moved them;
 //                          attributes end_time_original_s, end_time_s, static_hold_done
+//   /run/energy            (2 + load sets): the energy budget's totals [J]: damping,
+//                          released by broken bonds, the work of each load set
+//                          (energy_budget.hpp)
 //   /relaxation            only with -relaxation adaptive (relaxation.hpp): attribute
 //                          records; /relaxation/displacement, /relaxation/acceleration
 //                          (points, D): the latest force evaluation, which the next
@@ -58,7 +62,7 @@
 
 namespace bapd {
 
-constexpr std::int64_t kCheckpointFormatVersion       = 6;
+constexpr std::int64_t kCheckpointFormatVersion       = 7;
 constexpr std::int64_t kCheckpointOldestFormatVersion = 1; // still read
 
 // -checkpoint_interval, -checkpoint_on_error, -restart.
@@ -102,6 +106,8 @@ struct CheckpointHeader {
   std::vector<double> schedule_original, schedule_current;
   double              end_time_original = 0, end_time = 0;
   std::int64_t        static_hold_done  = -1;
+  // The energy budget's totals (EnergyBudget::totals; version 7, empty in older files).
+  std::vector<double> energy_totals;
   // -relaxation adaptive: force evaluations recorded (0: no /relaxation group).
   std::int64_t        relaxation_records = 0;
   // The re-estimated stable step (TimeStepState, time_step_control.hpp); step_lambda 0:

@@ -44,6 +44,10 @@ public:
   PetscErrorCode Break(const double *y, std::vector<FailedBond> &failed, BondState &state, nd::BondGeometry<D> &geometry);
   // Whether the last Break broke bonds on this rank (owned or ghost copies). Local.
   bool broke() const { return !touched_.empty(); }
+  // The points whose bonds the last Break changed (owned and ghost), its geometry recomputed.
+  const std::vector<std::size_t> &touched() const { return touched_; }
+  // c_i of every family point (damage.hpp), for either criterion: the crack's area.
+  const double *crossing() const { return crossing_.data(); }
 
 private:
   PetscErrorCode SynchroniseGhosts(BondState &state);

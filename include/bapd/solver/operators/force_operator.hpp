@@ -65,6 +65,12 @@ public:
   // the last UpdatePositions or evaluation, -1 where a bond carries no energy
   // (bond_energies, ba_force.hpp; the fracture-energy criterion, failure.hpp). Local.
   void BondEnergies(double *psi) const { bond_energies_(y_.data(), psi); }
+  // V_i W_i of the listed local points (energy[k] of points[k]) at the positions of the
+  // last UpdatePositions or evaluation (listed_strain_energies, ba_force.hpp). Local.
+  void ListedEnergies(const std::size_t *points, std::size_t count, double *energy) const
+  {
+    listed_energies_(y_.data(), points, count, energy);
+  }
 
   const double            *positions() const { return y_.data(); } // of the last evaluation
   const KernelStats       &stats() const { return stats_; }        // of the last committed evaluation
@@ -85,6 +91,7 @@ private:
   std::function<KernelStats(const double *y, double *c33, double *force_density)> bond_forces_;
   std::function<void(const double *y, double *energy)>     point_energies_;
   std::function<void(const double *y, double *psi)>        bond_energies_;
+  std::function<void(const double *y, const std::size_t *points, std::size_t count, double *energy)> listed_energies_;
   // The kernel's workspace at the chosen D (one of the two is used); failed_ points
   // to its list of failed bonds, and keep_warm_start_ to its flag.
   nd::Workspace<2>         workspace2_;
