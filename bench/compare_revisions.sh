@@ -12,7 +12,7 @@
 #
 # Options: --repeats N (default 2), --ranks N (default 1: CPU time of one core, which
 # a shared machine inflates least), --out DIR (default /tmp/bapd-revisions/OLD-NEW),
-# --scenes LIST (plate,pure_shear,notched), --threshold 1.10.
+# --scenes LIST (plate,pure_shear,notched,notched_gamma), --threshold 1.10.
 #
 # The scenes (what is timed is what docs/validation.md checks):
 #   plate       examples/plate_hole.yaml by the fast route (plate_hole_fast.yaml),
@@ -22,6 +22,9 @@
 #               mm, 35 mm wide, to stretch 3.4: the crack starts and runs through).
 #               The paper grid (dx = 1/3 mm, to stretch 5) takes ~10 min per run here,
 #               too heavy for a side-by-side on a shared 2-core machine.
+#   notched_gamma  the same sheet with examples/notched_pure_shear_gamma.yaml's fracture
+#               energy (Gamma = 165 J/m^2), to stretch 3.15: the onset (near 3.0) and the
+#               first millimetres of the crack (not in the default list).
 # Each revision is exported with `git archive` into OUT/src-SHA and built there
 # (Release, the bapd target only; a build already there is reused). Outputs of both
 # revisions are compared too: "identical" means history.csv is the same byte for byte.
@@ -97,7 +100,10 @@ scene_args() { # scene -> bapd arguments (the scene file first)
     notched)
       echo "$ex/notched_pure_shear.yaml -body_dx 0.0005 -body_width 0.035 -body_notches 0.025,0.005,0.035,0.005" \
            "-probe_notch_mouth_top_at 0.035,0.0052 -probe_notch_mouth_bottom_at 0.035,0.0048 -load_schedule 0,1,0.4,3.4" ;;
-    *) echo "compare_revisions.sh: unknown scene $1 (plate, pure_shear, notched)" >&2; exit 2 ;;
+    notched_gamma)
+      echo "$ex/notched_pure_shear_gamma.yaml -body_dx 0.0005 -body_width 0.035 -body_notches 0.025,0.005,0.035,0.005" \
+           "-probe_notch_mouth_top_at 0.035,0.0052 -probe_notch_mouth_bottom_at 0.035,0.0048 -load_schedule 0,1,0.358,3.15" ;;
+    *) echo "compare_revisions.sh: unknown scene $1 (plate, pure_shear, notched, notched_gamma)" >&2; exit 2 ;;
   esac
 }
 

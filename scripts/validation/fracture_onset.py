@@ -11,8 +11,11 @@ Onset: the first history row with --broken (20) or more broken bonds (a run stop
 --after past it: the peak is behind, and the rest is the crack running); its stretch is
 compared with lambda_c, the stretch at which the energy release rate of this sheet
 reaches Gamma (Rivlin-Thomas G = W H0, which the finite-element G meets within 0.1 %:
-tests/data/fe/notched_energy_release.csv). Writes DIR/onset.csv and prints the table; the spread is
-(max - min) / mean of the onset stretches of each Gamma.
+tests/data/fe/notched_energy_release.csv). The energy budget of history.csv at the onset
+and at the last row: the effective toughness (dissipated by breaking / crack area), the
+crack's growth past the notch and the balance residual over the grips' work. Writes
+DIR/onset.csv and prints the table; the spread is (max - min) / mean of the onset
+stretches of each Gamma.
 """
 import argparse
 import csv
@@ -93,6 +96,9 @@ def run(args, dx, factor, gamma, notch, extra):
     rows = read_history(history)
     onset = next((r for r in rows if float(r["broken_bonds"]) >= args.broken), None)
     peak = max(rows, key=lambda r: float(r["top_nominal_stress_Pa"])) if rows else None
+    budget = lambda r, key: float(r[key]) if r and r.get(key) not in (None, "") else float("nan")
+    work = lambda r: sum(float(v) for k, v in r.items() if k.endswith("_work_J")) if r else float("nan")
+    last = rows[-1] if rows else None
     return {
         "dx_mm": dx * 1e3, "factor": factor, "gamma": gamma, "notch_mm": notch * 1e3, "rc": rc,
         "onset_stretch": float(onset["stretch"]) if onset else float("nan"),
@@ -100,6 +106,12 @@ def run(args, dx, factor, gamma, notch, extra):
         "peak_stress_kPa": float(peak["top_nominal_stress_Pa"]) / 1e3 if peak else float("nan"),
         "peak_stretch": float(peak["stretch"]) if peak else float("nan"),
         "lambda_c": critical_stretch(gamma),
+        "gamma_effective_onset": budget(onset, "effective_fracture_energy_J_m2"),
+        "residual_over_work_onset": budget(onset, "energy_balance_residual_J") / work(onset),
+        "last_stretch": budget(last, "stretch"),
+        "crack_growth_last_mm": (budget(last, "crack_length_m") - notch) * 1e3,
+        "gamma_effective_last": budget(last, "effective_fracture_energy_J_m2"),
+        "residual_over_work_last": budget(last, "energy_balance_residual_J") / work(last),
     }
 
 
@@ -123,13 +135,16 @@ def main():
     args = p.parse_args()
     os.makedirs(args.out, exist_ok=True)
     results = []
-    print(f"{'dx mm':>7} {'d/dx':>6} {'Gamma':>6} {'a mm':>5} {'peak kPa':>9} {'onset':>7} {'lambda_c':>8} {'error':>7}", flush=True)
+    print(f"{'dx mm':>7} {'d/dx':>6} {'Gamma':>6} {'a mm':>5} {'peak kPa':>9} {'onset':>7} {'lambda_c':>8} {'error':>7}"
+          f" {'G_eff':>6} {'res %':>7} | {'last':>6} {'da mm':>6} {'G_eff':>6} {'res %':>7}", flush=True)
     for dx, factor, gamma, notch in itertools.product(args.dx, args.factor, args.gamma, args.notch):
         r = run(args, dx, factor, gamma, notch, args.extra)
         results.append(r)
         err = r["onset_stretch"] / r["lambda_c"] - 1
         print(f"{r['dx_mm']:7.4f} {factor:6.3f} {gamma:6g} {r['notch_mm']:5g} {r['peak_stress_kPa']:9.3f} "
-              f"{r['onset_stretch']:7.4f} {r['lambda_c']:8.4f} {100 * err:+6.2f}%" + ("" if r["rc"] == 0 else f"  rc {r['rc']}"),
+              f"{r['onset_stretch']:7.4f} {r['lambda_c']:8.4f} {100 * err:+6.2f}% {r['gamma_effective_onset']:6.1f}"
+              f" {100 * r['residual_over_work_onset']:+7.3f} | {r['last_stretch']:6.3f} {r['crack_growth_last_mm']:6.2f}"
+              f" {r['gamma_effective_last']:6.1f} {100 * r['residual_over_work_last']:+7.3f}" + ("" if r["rc"] == 0 else f"  rc {r['rc']}"),
               flush=True)
     with open(os.path.join(args.out, "onset.csv"), "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=list(results[0]))

@@ -368,9 +368,11 @@ template <int D> PetscErrorCode SimulationD<D>::RestoreCheckpoint()
   // The energy budget goes on from the checkpoint's totals; a checkpoint without them
   // (format 6 and older) or with other load sets starts it afresh at the restart.
   if (header.energy_totals.size() == 2 + budget_.load_sets()) budget_.RestoreTotals(header.energy_totals);
-  else
+  else {
     PetscCall(PetscPrintf(comm_, "Note: the checkpoint holds no energy budget for these load sets: the work, dissipation and balance "
                                  "columns of history.csv count from the restart\n"));
+    warned_balance_ = true; // its residual now starts off by the energy at the restart
+  }
   {
     PetscInt max_steps;
     PetscCall(TSGetMaxSteps(ts_, &max_steps));

@@ -104,6 +104,7 @@ private:
   PetscErrorCode ReadProbes(const double *u_owned, double *probe_u);
   PetscErrorCode GatherNatural(const double *values, std::vector<double> *natural);
   PetscErrorCode WriteHistoryRow(PetscInt step, double t);
+  PetscErrorCode WarnEnergyBalance(PetscInt step, double t, double work, double residual); // once, past 1 % of the work
   PetscErrorCode Progress(PetscInt step, double t, PetscBool force);
   PetscErrorCode Summary();
   PetscErrorCode ListOutputFiles(); // rank 0: every file written, with its size
@@ -176,6 +177,7 @@ private:
   FILE  *history_    = nullptr;
   PetscInt total_broken_ = 0;
   bool   stopped_on_error_ = false;
+  bool   warned_balance_   = false; // WarnEnergyBalance said it
   // The latest history row, for the static-hold test.
   double              last_kinetic_ = 0, last_internal_ = 0;
   std::vector<double> last_reaction_, last_probe_u_;
