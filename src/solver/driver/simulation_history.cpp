@@ -379,6 +379,22 @@ template <int D> PetscErrorCode SimulationD<D>::Summary()
   PetscInt broken;
   PetscCall(BrokenBondCount(&broken));
   if (scene_.failure) PetscCall(PetscPrintf(comm_, "broken bonds: %" PetscInt_FMT "\n", broken));
+  if (!stopped_on_error_) { // (a diverged run's state is the last good one, its budget the step that failed)
+    double kinetic, internal;
+    PetscCall(Energies(&kinetic, &internal));
+    const double work = budget_.grip_work_total(), residual = work - (internal + kinetic + budget_.damped() + budget_.released());
+    PetscCall(PetscPrintf(comm_,
+                          "energy: the grips' work %.4e J = internal %.4e + kinetic %.4e + damping %.4e + fracture %.4e J, residual "
+                          "%.2g %% of the work\n",
+                          work, internal, kinetic, budget_.damped(), budget_.released(), work > 0 ? 100 * residual / work : 0.0));
+    if (scene_.failure) {
+      double area, tip[4];
+      PetscCall(CrackExtent(&area, tip));
+      if (area > 0)
+        PetscCall(PetscPrintf(comm_, "crack: area %.4e m^2, effective toughness %.4g J/m^2 (fracture / area), reach %.4e m\n", area,
+                              budget_.released() / area, tip[0]));
+    }
+  }
   PetscCall(TimeStepSummary(step));
   if (relaxation_.active())
     PetscCall(PetscPrintf(comm_, "adaptive relaxation: damping %.4g 1/s now, %.4g to %.4g 1/s over the run\n", relaxation_.last(),
