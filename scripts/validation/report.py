@@ -195,7 +195,7 @@ def pure_shear_static(root, lines):
         return
     lines += ["Static states (fast route: 0.05 s ramps, `-relaxation adaptive`, `-static_tolerance 1e-10`) against the "
               "finite-element solution of the same clamped sheet (70 mm x 10 mm free region, incompressible plane-stress "
-              "Gent, P2 elements, mesh-converged; issue 14). Method as in section 1 (\"default\": grips outside, two "
+              "Gent, P2 elements, mesh-converged). Method as in section 1 (\"default\": grips outside, two "
               "horizons deep, affine, energy-consistent force; \"grips n rows\": the same with `-load_top_layers n "
               "-load_bottom_layers n`; \"paper\": `-force_form bond_only -load_grip_placement inside "
               "-force_stress_correction none`). Row gaps at stretch 3 in the column next to x = 35 mm: from the bottom "
@@ -406,7 +406,7 @@ def main():
              "against the FEA and the FE solution, bands in the script), `validation.grips_short` (the stress does not "
              "depend on the grips' depth, no row next to a grip overstretched) and `validation.notched_short` (crack "
              "start and peak, straight and symmetric crack, identical on 1 and 2 ranks).", "",
-             "Every table below was regenerated with the defaults (issue 14): grips outside the specimen, two horizons "
+             "Every table below uses the defaults: grips outside the specimen, two horizons "
              "deep, moved on the affine continuation of its stretch, and the energy-consistent force "
              "(docs/stress_consistency.md explains the choice); rows marked \"paper\" are the paper's method, "
              "`-force_form bond_only -load_grip_placement inside -force_stress_correction none`. The runs used the number "

@@ -36,7 +36,7 @@ def fe_converged(path):
 
 
 def shaped(root, docs, lines):
-    lines += ["## 4. Shaped specimens against FE (issue 18)", "",
+    lines += ["## 4. Shaped specimens against FE", "",
               "Non-rectangular specimens at the uniform-lattice default (dx = 0.5 mm, delta = 3.015 dx, the "
               "bond-only force with the tensor stress correction, which the three shaped examples set with "
               "`force_form: bond_only`, Gent, K = 1000 mu), static states by the fast route "
@@ -69,7 +69,7 @@ def shaped(root, docs, lines):
 # Measured once by hand (not rerun by run_all.sh): why the differences are what
 # they are.
 MEASURED = [
-    "Every entry is within 2 % (issue 18's mark); the stress is the largest difference, -1.5 to -1.65 % on the "
+    "Every entry is within 2 % (the mark `validation.shaped_short` holds the dogbone to); the stress is the largest difference, -1.5 to -1.65 % on the "
     "waisted sheet and -0.9 to -1.1 % on the dogbone, bapd softer. It is the lattice's, first order in dx: halving "
     "the spacing (dx = 0.25 mm, the grips kept 1.5 and 2 mm deep: `-load_top_layers 6 -load_bottom_layers 6` for the "
     "waisted sheet; the dogbone's group grips are 2 mm deep at any dx; the probe read as the mean of the four lattice "
@@ -82,7 +82,7 @@ MEASURED = [
     "| dogbone, 1.25 | -1.07 % | -0.47 % | +0.01 % | +0.01 % | -1.07 % | -0.47 % |",
     "| dogbone, 1.5 | -0.94 % | -0.40 % | +0.01 % | +0.01 % | -0.86 % | -0.36 % |",
     "",
-    "With the energy-consistent default form instead (measured once by the lead on the merged build, the same "
+    "With the energy-consistent default form instead (measured once, the same "
     "runs without `force_form: bond_only`), the stress is -3.50 / -3.22 / -3.01 / -2.88 % on the waisted sheet "
     "(stretch 1.25 / 1.5 / 1.75 / 2; ux +2.48 ... -0.10 %, uy -0.53 ... -0.66 %) and -1.76 / -1.56 % on the dogbone: "
     "that form is not corrected at free edges, which the 12 mm waist's horizon-wide edge layers make a large share "
