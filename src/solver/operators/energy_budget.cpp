@@ -3,6 +3,7 @@
 
 #include <algorithm>
 
+#include "bapd/solver/operators/relaxation.hpp"
 #include "bapd/solver/parallel/reproducible_sum.hpp"
 
 namespace bapd {
@@ -66,12 +67,10 @@ void EnergyBudget::RecordForce(const double *force_density)
 void EnergyBudget::Damp(const double *v_owned, double decay)
 {
   const std::size_t columns = 1 + work_.size();
-  const double      lost    = 0.5 * (1.0 - decay * decay);
+  const double      lost    = 1.0 - decay * decay;
   for (PetscInt i = 0; i < n_; ++i) {
-    const double *v  = v_owned + D_ * i;
-    double        vv = v[0] * v[0];
-    for (int c = 1; c < D_; ++c) vv += v[c] * v[c];
-    terms_[columns * i] = lost * density_ * volume_[i] * vv;
+    const double m = density_ * volume_[i], *v = v_owned + D_ * i;
+    terms_[columns * i] = lost * (D_ == 2 ? PointKineticEnergy<2>(m, v) : PointKineticEnergy<3>(m, v));
   }
   for (std::size_t k = 0; k < grips_.size(); ++k) v_damped_[k] = decay * v_owned[grips_[k].dof];
 }
@@ -81,8 +80,8 @@ PetscErrorCode EnergyBudget::EndStep(MPI_Comm comm, const double *u_owned, const
   const std::size_t columns = 1 + work_.size();
 
   PetscFunctionBegin;
-  for (PetscInt i = 0; i < n_; ++i)
-    for (std::size_t s = 1; s < columns; ++s) terms_[columns * i + s] = 0.0;
+  // Only the grips' points hold work terms (Start zeroed the rest for good).
+  for (const GripDof &g : grips_) terms_[columns * g.point + 1 + g.set] = 0.0;
   const double inv_evaluations = evaluations_ > 0 ? 1.0 / evaluations_ : 0.0;
   for (std::size_t k = 0; k < grips_.size(); ++k) {
     const GripDof &g = grips_[k];
