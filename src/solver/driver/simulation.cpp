@@ -387,7 +387,7 @@ template <int D> PetscErrorCode SimulationD<D>::PostStep(TS ts)
     const double *xr;
     PetscCall(VecGetArrayRead(X, &xr));
     PetscCall(sim->step_control_.AfterStep(sim->comm_, step, sim->loading_.stretch_at(t), sim->layout_, sim->families_, sim->bond_state_, sim->force_, xr + n,
-                                           sim->scene_.failure && sim->failure_.broke(), ts));
+                                           sim->scene_.failure ? &sim->failure_.touched() : nullptr, ts));
     PetscCall(VecRestoreArrayRead(X, &xr));
     sim->relaxation_.FollowStableStep(sim->step_control_.stable_now()); // its cap, 2 omega_max
   }

@@ -331,6 +331,9 @@ template <int D> PetscErrorCode SimulationD<D>::TimeStepSummary(PetscInt steps)
   if (c.reestimating() && c.estimates() > 0)
     PetscCall(PetscPrintf(comm_, "time step: re-estimated %" PetscInt_FMT " time(s) (%" PetscInt_FMT " force evaluations, %.1f s); lambda_max up to %.3g x its value at rest\n",
                           c.estimates(), c.estimate_evaluations(), c.estimate_seconds(), c.largest_lambda() / c.lambda_rest()));
+  if (c.tip_searches() > 0) // TimeStepControl::CrackTipSearch: the steps that broke bonds
+    PetscCall(PetscPrintf(comm_, "time step: %" PetscInt_FMT " crack-tip search(es) after steps that broke bonds, %" PetscInt_FMT " of them shortened the step\n",
+                          c.tip_searches(), c.tip_shortenings()));
   if (c.kinks() > 0) // TimeStepControl::Kink: a bond at a switch, read from both sides
     PetscCall(PetscPrintf(comm_, "time step: %" PetscInt_FMT " estimate(s) dropped: a kink of the force (a bond switching its state), not a stiffness\n", c.kinks()));
   if (c.shortened_steps() > 0) {

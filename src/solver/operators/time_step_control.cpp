@@ -66,6 +66,11 @@ PetscErrorCode TimeStepOptionsFromOptions(MPI_Comm comm, TimeStepOptions *option
                      &options->growth));
     PetscCall(r.Bool("-time_step_monitor", "Print a line per re-estimate of the stable step (step, lambda_max, stable step, step in use)",
                      &options->monitor));
+    PetscCall(r.Int("-time_step_crack_tip",
+                    "With failure: after a step that broke bonds, this many Krylov steps search the stiffest mode around the broken "
+                    "bonds (a partly broken family at a crack tip is stiffer than the body), which shortens the step at once when "
+                    "it is stiffer than the estimate in use [-], 0 to 15 (default 4; 0: off, the paper's fixed step)",
+                    &options->tip));
     PetscCall(r.Int("-time_step_monitor_reference",
                     "Measurements: every 25 steps, also print a converged lambda_max of the same state by this many force evaluations "
                     "(restarted Krylov; not counted in the cost, the run's steps unchanged) next to the estimate in use [-] (0: off)",
@@ -91,6 +96,8 @@ PetscErrorCode TimeStepOptionsFromOptions(MPI_Comm comm, TimeStepOptions *option
   PetscCheck(options->backoff >= 1, comm, PETSC_ERR_USER,
              "-time_step_reestimate_backoff %" PetscInt_FMT ": give a factor >= 1 (default 4; 1 keeps the interval and stretch increment fixed)",
              options->backoff);
+  PetscCheck(options->tip >= 0 && options->tip <= 15, comm, PETSC_ERR_USER,
+             "-time_step_crack_tip %" PetscInt_FMT ": give 0 to 15 Krylov steps (default 4; 0 turns the crack-tip search off)", options->tip);
   PetscCheck(options->growth > 1, comm, PETSC_ERR_USER, "-time_step_reestimate_growth %g: give a factor > 1 (default 1.5)", options->growth);
   PetscCheck(!(options->indicator && options->bonds), comm, PETSC_ERR_USER,
              "-time_step_reestimate_indicator and -time_step_reestimate_bonds: give one of the two indicators");
@@ -123,11 +130,12 @@ PetscErrorCode TimeStepControl::EstimateStable(MPI_Comm comm, const Scene &scene
   // 0.1 dx a step is what the torn sheets need (0.3 is not enough). A step that the
   // user set above the stable one is left alone, so that its blow-up is reported
   // instead of hidden by a step shortened while the points fly apart.
-  // The floor of the stiffness step. With failure, a bond about to snap or invert at
-  // a crack tip drives lambda_max to 1e6 x its value at rest (measured on the notched
-  // sheet): following it would stop the run, and such points are the travel limit's
-  // (section 5), so the stiffness step stays above half the base step.
-  floor_        = options_.floor > 0 ? options_.floor : (scene.failure ? 0.5 : 0.1);
+  // The floor of the stiffness step. With failure and no crack-tip search it stays
+  // above half the base step: the search is what tells a stiff mode at the tip
+  // from the forces of bonds that broke after the base point's evaluation (which once
+  // read as 1e6 x lambda_rest on the notched sheet; Reestimate and Kink explain).
+  const bool tip_search = scene.failure && options_.tip > 0 && options_.interval > 0 && options_.krylov;
+  floor_        = options_.floor > 0 ? options_.floor : (scene.failure && !tip_search ? 0.5 : 0.1);
   const LawEntry &law = law_entry(scene.model);
   span_         = law.limit ? law.I1bar_limit(scene.material) - 3.0 : 0.0;
   plane_strain_ = scene.formulation == Formulation::plane_strain;
@@ -142,7 +150,8 @@ PetscErrorCode TimeStepControl::EstimateStable(MPI_Comm comm, const Scene &scene
   u_probe_.assign(n, 0.0);
   a_probe_.assign(n, 0.0);
   sq_.assign(n, 0.0);
-  if (options_.interval > 0 && options_.krylov) PetscCall(KrylovReserve(options_.max_iterations + 1));
+  if (options_.interval > 0 && options_.krylov) PetscCall(KrylovReserve(std::max(options_.max_iterations, options_.tip) + 1));
+  if (tip_search) v_kept_.assign(n, 0.0);
   // A deterministic start with energy in every wavelength: a hash of the natural id.
   for (PetscInt i = 0; i < layout.n_owned; ++i)
     for (int c = 0; c < D; ++c) {
@@ -327,9 +336,15 @@ PetscErrorCode TimeStepControl::Reestimate(MPI_Comm comm, ForceOperator &force, 
 // than the travel limit, and returns once they slow down. The maximum is exact
 // (MPI_MAX of doubles), so the step is the same on any number of ranks.
 PetscErrorCode TimeStepControl::AfterStep(MPI_Comm comm, PetscInt step, double stretch, const Layout &layout, const Families &families,
-                                          const BondState &state, ForceOperator &force, const double *v, bool broke_here, TS ts)
+                                          const BondState &state, ForceOperator &force, const double *v, const std::vector<std::size_t> *touched,
+                                          TS ts)
 {
   PetscFunctionBegin;
+  bool broke = false; // on any rank
+  if (failure_ && options_.interval > 0) {
+    const bool broke_here = touched && !touched->empty();
+    PetscCallMPI(MPI_Allreduce(&broke_here, &broke, 1, MPI_C_BOOL, MPI_LOR, comm));
+  }
   // Due after `interval` steps, or sooner on a fast ramp: a ramp of the fast route
   // (0.05 s, 30 steps) stiffens a Jm = 3 gel past its step between two estimates
   // (docs/stability.md, section 8).
@@ -343,8 +358,6 @@ PetscErrorCode TimeStepControl::AfterStep(MPI_Comm comm, PetscInt step, double s
     double psi = 0;
     if (options_.indicator) PetscCall(StiffeningIndicator(comm, layout, families, state, force, &psi));
     else if (options_.bonds) PetscCall(BondIndicator(comm, force, &psi));
-    bool broke = false;
-    if (failure_) PetscCallMPI(MPI_Allreduce(&broke_here, &broke, 1, MPI_C_BOOL, MPI_LOR, comm));
     PetscCall(Reestimate(comm, force, stretch_moved > 0, psi, broke, &iterations));
     // Shrinks at once; grows back by at most 2 x band per estimate: a quotient that
     // drops is not trusted at once (the warm-started iteration can lose the fastest
@@ -392,6 +405,7 @@ PetscErrorCode TimeStepControl::AfterStep(MPI_Comm comm, PetscInt step, double s
                             estimates_, step, by_step ? "steps" : "stretch", iterations, psi, psi_, lambda_, lambda_ / lambda_rest_, stable_now_, stiffness_dt_,
                             stiffness_dt_ / base_dt_, next_estimate_ - step, stretch_now_, evaluations_, estimate_wall_));
   }
+  if (broke && recorded_ && !v_kept_.empty()) PetscCall(FollowCrackTip(comm, force, *touched, layout.n_owned, step));
   if (options_.reference > 0 && recorded_ && step % 25 == 0) PetscCall(Reference(comm, force, step));
   double dt = stiffness_dt_;
   bool   flying = false;

@@ -20,6 +20,11 @@
 //    step) only when lambda falls by more than it: the band keeps the step from
 //    flapping on the estimate's noise.
 //  - dt_travel: no point with bonds moves more than -time_step_travel dx in one step.
+// With failure, a step that broke bonds is followed by a crack-tip search: a short
+// Krylov search from a start vector on the points whose bonds broke (-time_step_crack_tip),
+// which finds the stiff mode a partly broken family makes at the tip, a mode that the
+// whole-body estimate, warm-started from the body's own mode, does not see
+// (time_step_crack_tip.cpp).
 // Every sum is a reproducible sum and every maximum exact, so the step is the same on
 // any number of ranks; the estimate's state (eigenvector, lambda, the stiffness step)
 // is in checkpoints, so a restart continues bit for bit.
@@ -59,6 +64,7 @@ struct TimeStepOptions {
   // lambda 1.29 -> 1.9 x), so about 18 % in lambda; (1 + band)^2 searched on every ramp
   // estimate (45 evaluations, the mode found 40 steps later).
   double   growth     = 1.5;
+  PetscInt tip        = 4;     // Krylov steps of the crack-tip search after a step that broke bonds (0: off)
 };
 // Reads (and lists under -help) the options. Collective.
 PetscErrorCode TimeStepOptionsFromOptions(MPI_Comm comm, TimeStepOptions *options);
@@ -94,11 +100,12 @@ public:
   // After a step: the re-estimate when due (about the last recorded evaluation, with
   // the operator's committed warm starts copied: side-effect free), then the travel
   // limit over the owned velocities v (2 per point), then the step the TS takes next.
-  // broke: this rank's breaking pass of the step broke bonds (Failure::broke), which
-  // makes the recorded evaluation stale as the re-estimate's base point; combined over
-  // the ranks only when an estimate is due. Collective.
+  // touched: the local points whose bonds the step's breaking pass broke
+  // (Failure::touched; nullptr without failure). Broken bonds make the recorded
+  // evaluation stale as the re-estimate's base point, and call the crack-tip search.
+  // Collective.
   PetscErrorCode AfterStep(MPI_Comm comm, PetscInt step, double stretch, const Layout &layout, const Families &families, const BondState &state,
-                           ForceOperator &force, const double *v, bool broke, TS ts);
+                           ForceOperator &force, const double *v, const std::vector<std::size_t> *touched, TS ts);
   // The stable step of the state (u: owned, 2 per point; c33: its warm starts, 1 per
   // bond) by `iterations` shifted power iterations from the current eigenvector: for
   // the diagnosis of a divergence (divergence.hpp), once. Collective.
@@ -122,6 +129,8 @@ public:
   PetscInt estimates() const { return estimates_; }                 // re-estimates so far (this process's run)
   PetscInt estimate_evaluations() const { return evaluations_; }    // force evaluations they cost
   PetscInt kinks() const { return kinks_; }                         // estimates dropped as a kink of the force (Kink)
+  PetscInt tip_searches() const { return tip_searches_; }           // crack-tip searches (CrackTipSearch)
+  PetscInt tip_shortenings() const { return tip_shortenings_; }     // ...that shortened the step
   double   estimate_seconds() const { return estimate_wall_; }      // wall time they cost (this rank)
   double   shortest() const { return shortest_dt_; }
   double   largest_lambda() const { return lambda_largest_; }
@@ -139,6 +148,16 @@ private:
   // indicator of the state (0: not computed, -time_step_reestimate_indicator 0).
   // broke: bonds broke after the recorded evaluation (its a(u) is evaluated again).
   PetscErrorCode Reestimate(MPI_Comm comm, ForceOperator &force, bool loading, double psi, bool broke, PetscInt *iterations);
+  // The crack-tip search (time_step_crack_tip.cpp): options_.tip Krylov steps about the
+  // recorded state from the start vector's entries on the owned points of `touched`
+  // (zero elsewhere); the base point a(u) is evaluated again first (the bonds just
+  // broke). A quotient above the estimate in use by more than the dead band, and
+  // smooth from both sides (Kink), becomes the estimate, its Ritz vector the warm start of the next
+  // re-estimates; *raised says so. Collective.
+  PetscErrorCode CrackTipSearch(MPI_Comm comm, ForceOperator &force, const std::vector<std::size_t> &touched, PetscInt n_owned, bool *raised);
+  // After a step that broke bonds: the search, and a step shortened at once when it
+  // found the tip stiffer than the dead band allows. Collective.
+  PetscErrorCode FollowCrackTip(MPI_Comm comm, ForceOperator &force, const std::vector<std::size_t> &touched, PetscInt n_owned, PetscInt step);
   // What a re-estimate's iterations stop on (Reestimate decides it, Iterate runs it).
   struct IterationPlan {
     bool     rising, at_base, search, near;
@@ -223,6 +242,7 @@ private:
   int      dimension_    = 2; // D: dofs a point (the loading's)
   double   psi_ = 0;           // the stiffening indicator at the last search (0: none yet)
   PetscInt next_estimate_ = 0, estimates_ = 0, evaluations_ = 0, kinks_ = 0;
+  PetscInt tip_searches_ = 0, tip_shortenings_ = 0;
   double   estimate_stretch_ = 1; // the applied stretch at the last re-estimate
   PetscInt interval_now_ = 0;     // steps between re-estimates now: the option's, or up to backoff x it while quiet
   double   stretch_now_  = 0;     // the stretch increment that triggers one now (likewise)
@@ -232,6 +252,7 @@ private:
   // Scratch sized at set-up: no allocation in a step.
   std::vector<char>   held_;
   std::vector<double> v_, seed_, u_rec_, a_rec_, u_probe_, a_probe_, sq_; // (no C33 copy: the probes read the operator's)
+  std::vector<double> v_kept_; // the warm start, kept through a crack-tip search that finds nothing (failure only)
   // Krylov: max_iterations + 1 basis vectors of the owned dofs, one after another; the
   // projected matrix (row-major, krylov_cap x krylov_cap) and the Ritz vector's
   // coefficients.
