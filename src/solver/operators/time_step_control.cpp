@@ -410,19 +410,8 @@ PetscErrorCode TimeStepControl::AfterStep(MPI_Comm comm, PetscInt step, double s
   double dt = stiffness_dt_;
   bool   flying = false;
   if (travel_ > 0) {
-    const std::size_t W      = families.mask_words;
-    double            v2_max = 0.0;
-    for (PetscInt i = 0; i < layout.n_owned; ++i) {
-      const std::uint64_t *intact = state.intact_mask((std::size_t)i);
-      std::uint64_t        any    = 0;
-      for (std::size_t w = 0; w < W; ++w) any |= intact[w];
-      if (!any) continue;
-      const double *vi = v + dimension_ * i;
-      double        v2 = vi[0] * vi[0] + vi[1] * vi[1];
-      if (dimension_ == 3) v2 += vi[2] * vi[2];
-      v2_max = std::max(v2_max, v2);
-    }
-    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &v2_max, 1, MPI_DOUBLE, MPI_MAX, comm));
+    double v2_max;
+    PetscCall(FastestBondedSpeed2(comm, layout, families, state, v, &v2_max));
     if (v2_max * dt * dt > travel_ * travel_) dt = travel_ / std::sqrt(v2_max), flying = true;
   }
   // While the travel limit holds the step below the stiffness step, the re-estimates
@@ -439,6 +428,29 @@ PetscErrorCode TimeStepControl::AfterStep(MPI_Comm comm, PetscInt step, double s
     else ++by_stiffness_;
     shortest_dt_ = shortest_dt_ > 0 ? std::min(shortest_dt_, dt_) : dt_;
   }
+  PetscFunctionReturn(0);
+}
+
+// The largest |v|^2 over the points that still have a bond (a point with none is
+// carried along and cannot pass a neighbour's bonds): an exact MPI maximum.
+PetscErrorCode TimeStepControl::FastestBondedSpeed2(MPI_Comm comm, const Layout &layout, const Families &families, const BondState &state,
+                                                    const double *v, double *v2_max) const
+{
+  const std::size_t W = families.mask_words;
+
+  PetscFunctionBegin;
+  *v2_max = 0.0;
+  for (PetscInt i = 0; i < layout.n_owned; ++i) {
+    const std::uint64_t *intact = state.intact_mask((std::size_t)i);
+    std::uint64_t        any    = 0;
+    for (std::size_t w = 0; w < W; ++w) any |= intact[w];
+    if (!any) continue;
+    const double *vi = v + dimension_ * i;
+    double        v2 = vi[0] * vi[0] + vi[1] * vi[1];
+    if (dimension_ == 3) v2 += vi[2] * vi[2];
+    *v2_max = std::max(*v2_max, v2);
+  }
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, v2_max, 1, MPI_DOUBLE, MPI_MAX, comm));
   PetscFunctionReturn(0);
 }
 

@@ -155,6 +155,9 @@ private:
   // smooth from both sides (Kink), becomes the estimate, its Ritz vector the warm start of the next
   // re-estimates; *raised says so. Collective.
   PetscErrorCode CrackTipSearch(MPI_Comm comm, ForceOperator &force, const std::vector<std::size_t> &touched, PetscInt n_owned, bool *raised);
+  // The travel limit's speed: the largest |v|^2 over the owned points with a bond. Collective.
+  PetscErrorCode FastestBondedSpeed2(MPI_Comm comm, const Layout &layout, const Families &families, const BondState &state, const double *v,
+                                     double *v2_max) const;
   // After a step that broke bonds: the search, and a step shortened at once when it
   // found the tip stiffer than the dead band allows. Collective.
   PetscErrorCode FollowCrackTip(MPI_Comm comm, ForceOperator &force, const std::vector<std::size_t> &touched, PetscInt n_owned, PetscInt step);
