@@ -29,7 +29,7 @@ unchanged() {
 # The older copy: refused, naming the newer rows, checkpoint and field files.
 bounded "$work/backup.log" "$ranks" -restart "$out/backup_step20.h5" -ts_max_steps 30
 stopped_cleanly "-restart $out/backup_step20.h5 is the state at step 20" "history.csv has 4 row(s) after step 20 (up to step 40)" \
-  "checkpoint.h5 is at step 40" "2 field file(s) after step 20" "-restart $out/checkpoint.h5" "-output_dir" "-restart_discard_newer"
+  "checkpoint.h5 is at step 40" "2 field file(s) after step 20 (up to fields/step_00000040.h5)" "-restart $out/checkpoint.h5" "-output_dir" "-restart_discard_newer"
 grep -q "^step " "$log" && fail "steps were taken"
 unchanged "$out"
 ok "an older checkpoint restarted in place, $ranks rank(s)"

@@ -492,10 +492,11 @@ template <int D> PetscErrorCode SimulationD<D>::RestoreCheckpoint()
 // run's are appended. A last history row at the checkpoint step that is off the
 // -output_interval grid was the end-of-run row of the run that wrote it: the
 // continuation writes its own rows. Columns that differ from the checkpoint's (a probe
-// or load set added or removed, failure switched on) keep the earlier rows: each value
-// goes to its column by name, "nan" where the earlier run had no such column; the
-// values of a column this run no longer writes are kept, with the rows as they were, in
-// history_to_step_N.csv (static_states_to_step_N.csv). Each file is written whole
+// or load set added, failure switched on) keep the earlier rows: each value goes to its
+// column by name, "nan" where the earlier run had no such column. A column this run
+// does not write (a checkpoint of a bapd with other columns: a probe or load set
+// cannot be taken away on a restart, its stored options would be unused) keeps its
+// values with the rows as they were in history_to_step_N.csv (static_states_to_step_N.csv). Each file is written whole
 // (WriteFileWhole), so a full disk leaves the previous one as it was.
 template <int D> PetscErrorCode SimulationD<D>::RestoreRunText(const CheckpointHeader &header)
 {

@@ -101,18 +101,19 @@ std::string FindNewerResults(const std::string &dir, const std::string &checkpoi
   {
     std::error_code ec;
     long long       last = -1;
+    std::string     last_name;
     for (const auto &entry : std::filesystem::directory_iterator(dir + "/fields", ec)) {
       const std::string name = entry.path().filename().string();
       long long         s    = -1;
       char              tail[8];
       if (std::sscanf(name.c_str(), "step_%lld.h%2s", &s, tail) == 2 && std::strcmp(tail, "5") == 0 && s > step) {
         newer_fields->push_back(entry.path().string());
-        last = std::max(last, s);
+        if (s > last) last = s, last_name = name;
       }
     }
     if (!newer_fields->empty())
-      found.push_back(std::to_string(newer_fields->size()) + " field file(s) after step " + std::to_string(step) + " (up to fields/step_" +
-                      std::to_string(last) + ".h5)");
+      found.push_back(std::to_string(newer_fields->size()) + " field file(s) after step " + std::to_string(step) + " (up to fields/" +
+                      last_name + ")");
   }
   std::string text;
   for (std::size_t k = 0; k < found.size(); ++k) text += (k ? ", " : "") + found[k];
