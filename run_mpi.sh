@@ -69,7 +69,6 @@ if ((status > 128)); then
   signal="$(kill -l $((status - 128)) 2> /dev/null || echo $((status - 128)))"
   echo "bapd: error: a bapd process was killed by SIG$signal (exit status $status) before it could report anything" \
        "(SIGKILL is how the out-of-memory killer and batch time limits stop a run): the output directory keeps what" \
-       "was written before; continue from its checkpoint with -restart <output_dir>/checkpoint.h5 if one was written" \
-       "(add -restart_discard_newer to write again, in place, the rows written after it)" >&2
+       "was written before; continue from its checkpoint with -restart <output_dir>/checkpoint.h5 if one was written" >&2
 fi
 exit "$status"

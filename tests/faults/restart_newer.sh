@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
 # A restart whose output directory holds newer results than its checkpoint (an older
-# copy of a checkpoint restarted in place, or history rows written after the checkpoint
-# by a run that was then killed): refused before any step with one `bapd: error:` line
-# naming the checkpoint, the newer results and the fix, and every file left as it was.
-# A restart in place from the newest checkpoint goes on; -restart_discard_newer drops
-# the newer results and continues: the rows up to its end are the uninterrupted run's.
+# copy of a checkpoint restarted in place): refused before any step with one `bapd:
+# error:` line naming the checkpoint, the newer results and the fix, and every file left
+# as it was. A restart in place from the directory's own newest checkpoint goes on, also
+# when a killed run left rows after it (written again, as the uninterrupted run did);
+# -restart_discard_newer drops the newer results and continues: the rows up to its end
+# are the uninterrupted run's.
 #   restart_newer.sh RANKS
 source "$BAPD_SOURCE_DIR/tests/faults/common.sh"
 ranks="$1"
@@ -34,12 +35,15 @@ grep -q "^step " "$log" && fail "steps were taken"
 unchanged "$out"
 ok "an older checkpoint restarted in place, $ranks rank(s)"
 
-# A run killed after its last checkpoint: rows after it, the checkpoint itself the newest.
+# A run killed after its last checkpoint: rows and a field file after it, the checkpoint
+# the directory's own and the newest. The usual restart: it goes on, says so, and writes
+# those rows again as the uninterrupted run did.
 cp -r "$work/before" "$work/killed" && cp "$out/backup_step20.h5" "$work/killed/checkpoint.h5"
-bounded "$work/killed.log" "$ranks" -restart "$work/killed/checkpoint.h5" -output_dir "$work/killed" -ts_max_steps 30
-stopped_cleanly "history.csv has 4 row(s) after step 20" "-output_dir" "-restart_discard_newer"
-cmp -s "$work/before/history.csv" "$work/killed/history.csv" || fail "history.csv was changed by the refused restart"
-ok "history rows after the newest checkpoint, $ranks rank(s)"
+bounded "$work/killed.log" "$ranks" -restart "$work/killed/checkpoint.h5" -output_dir "$work/killed" -ts_max_steps 40
+((STATUS == 0)) || fail "the restart from the directory's own newest checkpoint was refused: $(grep error: "$work/killed.log")"
+grep -q "holds results after its checkpoint's step 20 (history.csv has 4 row(s) after step 20" "$work/killed.log" || fail "no note on the rows written again"
+cmp -s "$work/before/history.csv" "$work/killed/history.csv" || fail "the continuation's history.csv differs from the uninterrupted run's"
+ok "rows after the directory's own newest checkpoint written again, $ranks rank(s)"
 
 # -restart_discard_newer: continues from step 20 to 30, as the uninterrupted run did.
 bounded "$work/discard.log" "$ranks" -restart "$out/backup_step20.h5" -ts_max_steps 30 -restart_discard_newer

@@ -183,7 +183,16 @@ PetscErrorCode CheckNewerResults(MPI_Comm comm, const std::string &dir, const st
   if (rank == 0) newer = FindNewerResults(dir, checkpoint, (long long)step, &newer_checkpoint, &newer_fields);
   PetscCall(BcastText(comm, &newer));
   if (newer.empty()) PetscFunctionReturn(0);
-  if (!discard) {
+  // The directory's own checkpoint.h5 with nothing newer than it but rows and field
+  // files: what a run killed after its last checkpoint left, which this continuation
+  // writes again (bit for bit with the same options): the usual restart, not refused.
+  int own = 0;
+  if (rank == 0) {
+    std::error_code ec;
+    own = newer_checkpoint.empty() && std::filesystem::equivalent(dir + "/checkpoint.h5", checkpoint, ec) ? 1 : 0;
+  }
+  PetscCallMPI(MPI_Bcast(&own, 1, MPI_INT, 0, comm));
+  if (!discard && !own) {
     // The fix: the newest checkpoint if there is one, else another directory or the option.
     std::string fix;
     PetscCall(BcastText(comm, &newer_checkpoint));
@@ -205,7 +214,10 @@ PetscErrorCode CheckNewerResults(MPI_Comm comm, const std::string &dir, const st
   PetscCallMPI(MPI_Bcast(&error, 1, MPI_INT, 0, comm));
   PetscCheck(!error, comm, PETSC_ERR_FILE_WRITE, "-restart_discard_newer: cannot delete the newer results in %s (%s): delete them yourself",
              dir.c_str(), std::strerror(error));
-  PetscCall(PetscPrintf(comm, "-restart_discard_newer: dropped what %s held after step %" PetscInt_FMT ": %s\n", dir.c_str(), step, newer.c_str()));
+  if (discard) PetscCall(PetscPrintf(comm, "-restart_discard_newer: dropped what %s held after step %" PetscInt_FMT ": %s\n", dir.c_str(), step, newer.c_str()));
+  else
+    PetscCall(PetscPrintf(comm, "Note: %s holds results after its checkpoint's step %" PetscInt_FMT " (%s), from the run stopped after it: this run writes them again\n",
+                          dir.c_str(), step, newer.c_str()));
   PetscFunctionReturn(0);
 }
 
