@@ -24,6 +24,7 @@ reference="$PWD/faults_reference/${what%_late}"
 small_disk "$disk" "$kb"
 case "$what" in
   history) head -c $((60 * 1024)) /dev/zero > "$disk/filler" ;; # 4 KB left
+  final_state) head -c $((56 * 1024)) /dev/zero > "$disk/filler" ;; # 8 KB left
   static)
     # Room for history.csv up to the step where the first hold ends (the undisturbed
     # run's, in whole 4 KB tmpfs pages) and not a page more: static_states.csv's
@@ -73,6 +74,13 @@ PY
     fi ;;
   static)
     [ -s "$reference/static_states.csv" ] || fail "the undisturbed run ended no hold (the case tests nothing)" ;;
+  final_state)
+    # Not torn: absent, never a cut last row (it is written to final_state.csv.tmp and
+    # renamed once complete), and no temporary file left on the full disk.
+    [ ! -e "$out/final_state.csv.tmp" ] || fail "a partial final_state.csv.tmp was left on the full disk"
+    [ ! -e "$out/final_state.csv" ] || fail "final_state.csv was left although it could not be written whole"
+    [ -s "$reference/final_state.csv" ] || fail "the undisturbed run wrote no final_state.csv (the case tests nothing)"
+    rows="$rows; no torn final_state.csv" ;;
 esac
 [ ! -e "$out/checkpoint.h5.tmp" ] || fail "a temporary file was left"
 log="$work/run.log" STATUS=$fault_status ok "disk full ($DISK) during $what on $ranks rank(s), stopped in ${seconds%???????} s, $rows"

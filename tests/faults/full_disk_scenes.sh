@@ -16,6 +16,8 @@ case "$what" in
     else # 400 KB: the third field file fails
       kb=400 scene=("${tiny[@]}" -output_fields -output_fields_interval 2 -output_interval 2) file=fields/step_
     fi ;;
+  final_state) # 8 KB free (full_disk.sh): history.csv's rows fit, final_state.csv (about 30 KB) not
+    kb=64 scene=("${tiny[@]}" -output_interval 10 -output_final_state) file=final_state.csv ;;
   history) # 4 KB free: about 20 rows of history.csv
     kb=64 scene=("${tiny[@]}" -output_interval 1) file=history.csv ;;
   static) # the first hold ends at step 140; full_disk.sh leaves room for history.csv
@@ -27,5 +29,5 @@ case "$what" in
            -load_bottom_x fixed -load_bottom_y fixed -probes mouth -probe_mouth_at 0.03,0.0062 -damping 40
            -load_schedule 0,1,0.05,1.2,1.0,1.2 -static_tolerance 1e-3 -output_interval 10 -ts_max_steps 160)
     file=static_states.csv ;;
-  *) echo "usage: full_disk.sh checkpoint|fields|checkpoint_late|fields_late|history|static RANKS"; exit 2 ;;
+  *) echo "usage: full_disk.sh checkpoint|fields|checkpoint_late|fields_late|history|static|final_state RANKS"; exit 2 ;;
 esac

@@ -4,7 +4,7 @@
 # (the results do not depend on the rank count: tests/mpi).
 source "$BAPD_SOURCE_DIR/tests/faults/common.sh"
 rm -rf faults_reference && mkdir -p faults_reference || exit 1
-for what in checkpoint fields history static; do
+for what in checkpoint fields history static final_state; do
   source "$BAPD_SOURCE_DIR/tests/faults/full_disk_scenes.sh"
   bounded "faults_reference/$what.log" 2 "${scene[@]}" -output_dir "faults_reference/$what" -progress_interval 100000
   ((STATUS == 0)) || fail "the undisturbed $what run failed"

@@ -62,7 +62,8 @@ std::string CloudScene(const std::string &cloud, const char *correction, const s
   return "-body_cloud " + cloud + " -body_thickness 0.001 -horizon_factor 3.015 -material_model gent "
          "-material_mu 4.55e3 -material_Jm 162.6 -material_bulk_ratio 100 -material_density 1000 -end_time 1 "
          "-force_form bond_only -force_stress_correction tensor -force_patch_correction " +
-         std::string(correction) + " -output_dir " + output_dir + " -output_interval 1000000 -progress_interval 1000000";
+         std::string(correction) + " -output_dir " + bapd_test::OutputDirPerRankCount(output_dir) +
+         " -output_interval 1000000 -progress_interval 1000000";
 }
 
 // Force density (2) and nominal stress (4) of every owned point under u = A X, with

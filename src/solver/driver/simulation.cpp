@@ -78,6 +78,7 @@ template <int D> PetscErrorCode SimulationD<D>::Setup(Scene scene)
   }
   PetscCall(CheckOptionsEarly());
   PetscCall(SceneView(comm_, scene_));
+  PetscCall(ClaimOutputDirectory()); // before anything is written: locked; a restart's newer results
   PetscCall(BuildBody());
   PetscCall(loading_.Setup(comm_, scene_, layout_));
   PetscCall(BuildProbes());

@@ -14,6 +14,7 @@
 
 #include "bapd/core/kernel/damage.hpp"
 #include "bapd/solver/io/fields.hpp"
+#include "bapd/solver/io/output_directory.hpp"
 #include "bapd/solver/input/options_reader.hpp"
 #include "bapd/solver/parallel/reproducible_sum.hpp"
 
@@ -92,9 +93,50 @@ double NominalArea(const Scene &scene)
 } // namespace
 
 
+// The header of history.csv: its columns for this scene's load sets, probes,
+// dimension and failure (docs/options.md, "Output").
+template <int D> std::string SimulationD<D>::HistoryHeader() const
+{
+  std::string h = "step,time_s,stretch";
+  // (z columns in 3D only: a 2D history keeps its columns)
+  for (const LoadSet &s : scene_.loads) {
+    h += Format(",%s_reaction_x_N,%s_reaction_y_N", s.name.c_str(), s.name.c_str());
+    if (D == 3) h += Format(",%s_reaction_z_N", s.name.c_str());
+    h += Format(",%s_nominal_stress_Pa", s.name.c_str());
+  }
+  for (const Probe &p : scene_.probes) {
+    h += Format(",%s_ux_m,%s_uy_m", p.name.c_str(), p.name.c_str());
+    if (D == 3) h += Format(",%s_uz_m", p.name.c_str());
+  }
+  h += ",kinetic_energy_J,internal_energy_J,broken_bonds,dt_s"; // dt_s: the next step (time_step_control.hpp)
+  // The energy budget (energy_budget.hpp), the crack's columns only with failure.
+  for (const LoadSet &s : scene_.loads) h += Format(",%s_work_J", s.name.c_str());
+  h += ",damping_dissipation_J,fracture_dissipation_J,energy_balance_residual_J";
+  if (scene_.failure) {
+    h += ",crack_area_m2,effective_fracture_energy_J_m2,crack_length_m,crack_tip_x_m,crack_tip_y_m";
+    if (D == 3) h += ",crack_tip_z_m";
+  }
+  return h;
+}
+
+// The header of static_states.csv.
+template <int D> std::string SimulationD<D>::StaticStatesHeader() const
+{
+  std::string h = "stretch,time_s,step,kinetic_over_internal";
+  for (const Probe &p : scene_.probes) {
+    h += Format(",%s_ux_m,%s_uy_m", p.name.c_str(), p.name.c_str());
+    if (D == 3) h += Format(",%s_uz_m", p.name.c_str());
+  }
+  for (const LoadSet &l : scene_.loads) h += Format(",%s_reaction_y_N", l.name.c_str());
+  return h;
+}
+
 template <int D> PetscErrorCode SimulationD<D>::OpenHistory()
 {
   PetscFunctionBegin;
+  // A restart writes history.csv from its checkpoint's rows (RestoreRunText): nothing
+  // here touches the file it continues.
+  if (!output_.checkpoint.restart.empty()) PetscFunctionReturn(0);
   int         ok = 1;
   std::string why; // rank 0, which prints the message
   if (rank_ == 0) {
@@ -108,28 +150,7 @@ template <int D> PetscErrorCode SimulationD<D>::OpenHistory()
   PetscCallMPI(MPI_Bcast(&ok, 1, MPI_INT, 0, comm_));
   PetscCheck(ok, comm_, PETSC_ERR_FILE_OPEN, "-output_dir %s: cannot write %s/history.csv (%s): choose a writable directory, e.g. -output_dir output",
              scene_.output_dir.c_str(), scene_.output_dir.c_str(), why.c_str());
-  if (rank_ == 0) {
-    std::fprintf(history_, "step,time_s,stretch");
-    // (z columns in 3D only: a 2D history keeps its columns)
-    for (const LoadSet &s : scene_.loads) {
-      std::fprintf(history_, ",%s_reaction_x_N,%s_reaction_y_N", s.name.c_str(), s.name.c_str());
-      if (D == 3) std::fprintf(history_, ",%s_reaction_z_N", s.name.c_str());
-      std::fprintf(history_, ",%s_nominal_stress_Pa", s.name.c_str());
-    }
-    for (const Probe &p : scene_.probes) {
-      std::fprintf(history_, ",%s_ux_m,%s_uy_m", p.name.c_str(), p.name.c_str());
-      if (D == 3) std::fprintf(history_, ",%s_uz_m", p.name.c_str());
-    }
-    std::fprintf(history_, ",kinetic_energy_J,internal_energy_J,broken_bonds,dt_s"); // dt_s: the next step (time_step_control.hpp)
-    // The energy budget (energy_budget.hpp), the crack's columns only with failure.
-    for (const LoadSet &s : scene_.loads) std::fprintf(history_, ",%s_work_J", s.name.c_str());
-    std::fprintf(history_, ",damping_dissipation_J,fracture_dissipation_J,energy_balance_residual_J");
-    if (scene_.failure) {
-      std::fprintf(history_, ",crack_area_m2,effective_fracture_energy_J_m2,crack_length_m,crack_tip_x_m,crack_tip_y_m");
-      if (D == 3) std::fprintf(history_, ",crack_tip_z_m");
-    }
-    std::fprintf(history_, "\n");
-  }
+  if (rank_ == 0) std::fprintf(history_, "%s\n", HistoryHeader().c_str());
   PetscCall(WriteHistoryRow(0, 0.0));
   PetscFunctionReturn(0);
 }
@@ -274,15 +295,7 @@ template <int D> PetscErrorCode SimulationD<D>::CheckStaticHold(PetscInt step, d
   }
   if (rank_ == 0 && static_states_) {
     const long row_start = std::ftell(static_states_);
-    if (row_start == 0) {
-      std::fprintf(static_states_, "stretch,time_s,step,kinetic_over_internal");
-      for (const Probe &p : scene_.probes) {
-        std::fprintf(static_states_, ",%s_ux_m,%s_uy_m", p.name.c_str(), p.name.c_str());
-        if (D == 3) std::fprintf(static_states_, ",%s_uz_m", p.name.c_str());
-      }
-      for (const LoadSet &l : scene_.loads) std::fprintf(static_states_, ",%s_reaction_y_N", l.name.c_str());
-      std::fprintf(static_states_, "\n");
-    }
+    if (row_start == 0) std::fprintf(static_states_, "%s\n", StaticStatesHeader().c_str());
     std::fprintf(static_states_, "%.17g,%.17g,%" PetscInt_FMT ",%.6e", lambda, t, step, last_kinetic_ / last_internal_);
     for (std::size_t p = 0; p < probes_.size(); ++p)
       for (int c = 0; c < D; ++c) std::fprintf(static_states_, ",%.17g", last_probe_u_[D * p + c]);
@@ -475,18 +488,11 @@ template <int D> PetscErrorCode SimulationD<D>::WriteFinalState()
   PetscCall(GatherNatural(layout_.cloud.x.data(), &reference)); // the layout's copies of the lattice positions
   PetscCall(GatherBrokenBonds(&broken));
   // [errno, which file failed (0 final_state.csv, 1 broken_bonds.csv)]: rank 0 writes, every rank learns it.
+  // Each file whole or not at all (WriteFileWhole: a temporary name, renamed once
+  // complete): a full disk leaves no torn last row.
   int error[2] = {0, 0};
   if (rank_ == 0) {
-    // Every write checked: a full disk shows at the flush, or earlier as the error flag.
-    auto finish = [](FILE *f) {
-      errno = 0;
-      int e = (std::fflush(f) != 0 || std::ferror(f)) ? (errno ? errno : EIO) : 0;
-      if (std::fclose(f) != 0 && !e) e = errno;
-      return e;
-    };
-    FILE *f = std::fopen((scene_.output_dir + "/final_state.csv").c_str(), "w");
-    if (!f) error[0] = errno;
-    else {
+    error[0] = WriteFileWhole(scene_.output_dir + "/final_state.csv", [&](FILE *f) {
       std::fprintf(f, D == 2 ? "natural_id,x_m,y_m,ux_m,uy_m\n" : "natural_id,x_m,y_m,z_m,ux_m,uy_m,uz_m\n");
       for (std::size_t i = 0; i < (std::size_t)layout_.n_global; ++i) {
         std::fprintf(f, "%zu", i);
@@ -494,22 +500,20 @@ template <int D> PetscErrorCode SimulationD<D>::WriteFinalState()
           for (int c = 0; c < D; ++c) std::fprintf(f, ",%.17g", (*values)[D * i + c]);
         std::fprintf(f, "\n");
       }
-      error[0] = finish(f);
-    }
+    });
     if (!error[0]) {
       error[1] = 1;
-      f        = std::fopen((scene_.output_dir + "/broken_bonds.csv").c_str(), "w");
-      if (!f) error[0] = errno;
-      else {
+      error[0] = WriteFileWhole(scene_.output_dir + "/broken_bonds.csv", [&](FILE *f) {
         std::fprintf(f, "i,j\n");
         for (const auto &b : broken) std::fprintf(f, "%lld,%lld\n", (long long)b.first, (long long)b.second);
-        error[0] = finish(f);
-      }
+      });
     }
   }
   PetscCallMPI(MPI_Bcast(error, 2, MPI_INT, 0, comm_));
-  PetscCheck(!error[0], comm_, PETSC_ERR_FILE_WRITE, "Cannot write %s/%s: %s: free some space or choose another -output_dir", scene_.output_dir.c_str(),
-             error[1] ? "broken_bonds.csv" : "final_state.csv", std::strerror(error[0]));
+  PetscCheck(!error[0], comm_, PETSC_ERR_FILE_WRITE,
+             "Cannot write %s/%s: %s; it is not written (no partial file is left; a previous one stays as it was): free some space or "
+             "choose another -output_dir",
+             scene_.output_dir.c_str(), error[1] ? "broken_bonds.csv" : "final_state.csv", std::strerror(error[0]));
   PetscFunctionReturn(0);
 }
 
@@ -572,6 +576,8 @@ template <int D> PetscErrorCode SimulationD<D>::GatherBrokenBonds(std::vector<st
 // defines; a class may be explicitly instantiated once in a program.
 #define BAPD_SIMULATION_HISTORY(D) \
   template PetscErrorCode SimulationD<D>::OpenHistory(); \
+  template std::string SimulationD<D>::HistoryHeader() const; \
+  template std::string SimulationD<D>::StaticStatesHeader() const; \
   template PetscErrorCode SimulationD<D>::WarnEnergyBalance(PetscInt step, double t, double work, double residual); \
   template PetscErrorCode SimulationD<D>::Energies(double *kinetic, double *internal, Vec state); \
   template PetscErrorCode SimulationD<D>::ReadProbes(const double *u_owned, double *probe_u); \

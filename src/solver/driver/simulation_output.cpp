@@ -16,6 +16,7 @@
 #include "bapd/core/kernel/damage.hpp"
 #include "bapd/core/kernel/point_quantities.hpp"
 #include "bapd/solver/driver/simulation.hpp"
+#include "bapd/solver/input/options_reader.hpp"
 
 namespace bapd {
 
@@ -41,6 +42,51 @@ PetscErrorCode RegisterEvents()
 // The step of a history.csv row ("step,time,...").
 long long RowStep(const std::string &line) { return std::atoll(line.c_str()); }
 
+std::vector<std::string> SplitCells(const std::string &line)
+{
+  std::vector<std::string> cells;
+  std::istringstream       in(line);
+  for (std::string cell; std::getline(in, cell, ',');) cells.push_back(cell);
+  if (!line.empty() && line.back() == ',') cells.emplace_back();
+  return cells;
+}
+
+// The rows of a CSV text (`lines`, the first its header) under another header: each
+// cell moves to the column of the same name, and a column the old header lacks gets
+// "nan" (what a history column holds before it has a value, e.g. the crack's tip).
+// `dropped`: the old columns the new header lacks (their values are not in the result).
+std::vector<std::string> RemapColumns(const std::vector<std::string> &lines, const std::string &header, std::vector<std::string> *added,
+                                      std::vector<std::string> *dropped)
+{
+  const std::vector<std::string> from = SplitCells(lines.front()), to = SplitCells(header);
+  std::vector<int>               source(to.size(), -1);
+  for (std::size_t j = 0; j < to.size(); ++j) {
+    const auto it = std::find(from.begin(), from.end(), to[j]);
+    if (it != from.end()) source[j] = (int)(it - from.begin());
+    else added->push_back(to[j]);
+  }
+  for (const std::string &name : from)
+    if (std::find(to.begin(), to.end(), name) == to.end()) dropped->push_back(name);
+  std::vector<std::string> out{header};
+  for (std::size_t k = 1; k < lines.size(); ++k) {
+    const std::vector<std::string> cells = SplitCells(lines[k]);
+    std::string                    row;
+    for (std::size_t j = 0; j < to.size(); ++j) {
+      if (j) row += ',';
+      row += source[j] >= 0 && (std::size_t)source[j] < cells.size() ? cells[(std::size_t)source[j]] : "nan";
+    }
+    out.push_back(row);
+  }
+  return out;
+}
+
+std::string Joined(const std::vector<std::string> &names)
+{
+  std::string text;
+  for (std::size_t k = 0; k < names.size(); ++k) text += (k ? ", " : "") + names[k];
+  return text;
+}
+
 } // namespace
 
 template <int D> PetscErrorCode SimulationD<D>::ReadOutputOptions()
@@ -50,6 +96,22 @@ template <int D> PetscErrorCode SimulationD<D>::ReadOutputOptions()
   PetscCall(CheckpointOptionsFromOptions(comm_, &output_.checkpoint));
   if (!output_.handlers) InstallInterruptHandlers(); // a signal during the set-up acts at the first step
   output_.handlers = true;
+  PetscFunctionReturn(0);
+}
+
+// Before anything is written into the output directory: it is locked for this run's
+// life (a second run into it stops at once), and a restart that would replace newer
+// results there is refused (output_directory.hpp, docs/faults.md).
+template <int D> PetscErrorCode SimulationD<D>::ClaimOutputDirectory()
+{
+  PetscFunctionBegin;
+  PetscCall(output_.lock.Acquire(comm_, scene_.output_dir));
+  if (!output_.checkpoint.restart.empty()) {
+    CheckpointHeader header; // (read again by RestoreCheckpoint, after the body is built)
+    PetscCall(ReadCheckpointHeader(comm_, output_.checkpoint.restart, &header));
+    PetscCall(CheckNewerResults(comm_, scene_.output_dir, output_.checkpoint.restart, header.step, header.time,
+                                output_.checkpoint.discard_newer));
+  }
   PetscFunctionReturn(0);
 }
 
@@ -403,41 +465,7 @@ template <int D> PetscErrorCode SimulationD<D>::RestoreCheckpoint()
                           step_control_.current()));
   PetscCall(BrokenBondCount(&total_broken_));
 
-  // history.csv: the checkpoint's rows, then this run's. A last row at the checkpoint
-  // step that is off the -output_interval grid was the end-of-run row of the run that
-  // wrote it: the continuation writes its own rows.
-  if (rank_ == 0) {
-    const std::string file = scene_.output_dir + "/history.csv";
-    std::string       current_header;
-    {
-      std::ifstream in(file);
-      std::getline(in, current_header);
-    }
-    std::vector<std::string> lines;
-    std::istringstream       in(header.history);
-    for (std::string line; std::getline(in, line);) lines.push_back(line);
-    if (lines.size() > 1 && RowStep(lines.back()) == header.step && header.step % scene_.output_interval != 0) lines.pop_back();
-    const bool same_columns = !lines.empty() && lines.front() == current_header;
-    std::fclose(history_);
-    history_ = std::fopen(file.c_str(), "w");
-    PetscCheck(history_, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "Cannot write %s: choose a writable -output_dir", file.c_str());
-    if (same_columns)
-      for (const std::string &line : lines) std::fprintf(history_, "%s\n", line.c_str());
-    else {
-      std::fprintf(history_, "%s\n", current_header.c_str());
-      std::fprintf(stderr, "bapd: warning: the history columns differ from the checkpoint's (other load sets or probes): %s starts at the restart step\n",
-                   file.c_str());
-    }
-    std::fflush(history_);
-    if (!header.static_states.empty()) { // static_states.csv goes on too
-      const std::string states = scene_.output_dir + "/static_states.csv";
-      if (static_states_) std::fclose(static_states_);
-      static_states_ = std::fopen(states.c_str(), "w");
-      PetscCheck(static_states_, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "Cannot write %s: choose a writable -output_dir", states.c_str());
-      std::fputs(header.static_states.c_str(), static_states_);
-      std::fflush(static_states_);
-    }
-  }
+  PetscCall(RestoreRunText(header));
 
   // Field files: those of the checkpoint's list that are here, listed again (a run
   // killed after the checkpoint may have written later ones).
@@ -460,11 +488,86 @@ template <int D> PetscErrorCode SimulationD<D>::RestoreCheckpoint()
   PetscFunctionReturn(0);
 }
 
+// history.csv and static_states.csv of a restart: the checkpoint's rows, to which this
+// run's are appended. A last history row at the checkpoint step that is off the
+// -output_interval grid was the end-of-run row of the run that wrote it: the
+// continuation writes its own rows. Columns that differ from the checkpoint's (a probe
+// or load set added, failure switched on) keep the earlier rows: each value goes to its
+// column by name, "nan" where the earlier run had no such column. A column this run
+// does not write (a checkpoint of a bapd with other columns: a probe or load set
+// cannot be taken away on a restart, its stored options would be unused) keeps its
+// values with the rows as they were in history_to_step_N.csv (static_states_to_step_N.csv). Each file is written whole
+// (WriteFileWhole), so a full disk leaves the previous one as it was.
+template <int D> PetscErrorCode SimulationD<D>::RestoreRunText(const CheckpointHeader &header)
+{
+  PetscFunctionBegin;
+  // [errno, which file failed: 0 history.csv, 1 static_states.csv, 2 and 3 their copies of the earlier rows]
+  int         error[2] = {0, 0};
+  std::string notes; // rank 0: what changed, printed after the broadcast
+  if (rank_ == 0) {
+    const std::string dir = scene_.output_dir + "/";
+    struct Text {
+      const char  *name, *copy;
+      std::string  stored, columns;
+      bool         history;
+      FILE       **stream;
+    };
+    const std::string step = std::to_string((long long)header.step);
+    Text texts[2] = {{"history.csv", "history_to_step_", header.history, HistoryHeader(), true, &history_},
+                     {"static_states.csv", "static_states_to_step_", header.static_states, StaticStatesHeader(), false, &static_states_}};
+    for (int k = 0; k < 2 && !error[0]; ++k) {
+      Text &t = texts[k];
+      if (!t.history && t.stored.empty()) continue; // no static state yet: static_states.csv starts with the first one
+      std::vector<std::string> lines;
+      std::istringstream       in(t.stored);
+      for (std::string line; std::getline(in, line);) lines.push_back(line);
+      if (t.history && lines.size() > 1 && RowStep(lines.back()) == header.step && header.step % scene_.output_interval != 0) lines.pop_back();
+      if (lines.empty()) lines.push_back(t.columns);
+      if (lines.front() != t.columns) {
+        std::vector<std::string> added, dropped;
+        const std::vector<std::string> earlier = lines;
+        lines = RemapColumns(earlier, t.columns, &added, &dropped);
+        std::string note = Format("Note: %s has other columns than the checkpoint's: its %zu earlier row(s) are kept", t.name, earlier.size() - 1);
+        if (!added.empty()) note += ", with nan in the new column(s) " + Joined(added);
+        if (!dropped.empty()) {
+          const std::string copy = t.copy + step + ".csv";
+          error[0] = WriteFileWhole(dir + copy, [&](FILE *f) {
+            for (const std::string &line : earlier) std::fprintf(f, "%s\n", line.c_str());
+          });
+          if (error[0]) {
+            error[1] = 2 + k;
+            break;
+          }
+          note += "; the column(s) " + Joined(dropped) + ", which this run does not write, are kept with those rows as they were in " + dir + copy;
+        }
+        notes += note + "\n";
+      }
+      if (*t.stream) std::fclose(*t.stream);
+      *t.stream = nullptr;
+      error[0] = WriteFileWhole(
+        dir + t.name,
+        [&](FILE *f) {
+          for (const std::string &line : lines) std::fprintf(f, "%s\n", line.c_str());
+        },
+        t.stream);
+      error[1] = k;
+    }
+  }
+  PetscCallMPI(MPI_Bcast(error, 2, MPI_INT, 0, comm_));
+  static const char *const names[4] = {"history.csv", "static_states.csv", "history_to_step_N.csv", "static_states_to_step_N.csv"};
+  PetscCheck(!error[0], comm_, PETSC_ERR_FILE_WRITE,
+             "Cannot write %s/%s: %s; the file is as it was before the restart: free some space or choose another -output_dir",
+             scene_.output_dir.c_str(), names[error[1]], std::strerror(error[0]));
+  if (!notes.empty()) PetscCall(PetscPrintf(PETSC_COMM_SELF, "%s", notes.c_str()));
+  PetscFunctionReturn(0);
+}
+
 // The driver at D = 2 and 3 (main.cpp chooses one from the scene): the members defined
 // here, one by one. simulation.cpp instantiates the class, which covers only what it
 // defines; a class may be explicitly instantiated once in a program.
 #define BAPD_SIMULATION_OUTPUT(D) \
   template PetscErrorCode SimulationD<D>::ReadOutputOptions(); \
+  template PetscErrorCode SimulationD<D>::ClaimOutputDirectory(); \
   template PetscErrorCode SimulationD<D>::SetupOutput(); \
   template PetscErrorCode SimulationD<D>::CreateNaturalOrder(); \
   template PetscErrorCode SimulationD<D>::SaveGoodState(PetscInt step, double t); \
@@ -476,7 +579,8 @@ template <int D> PetscErrorCode SimulationD<D>::RestoreCheckpoint()
   template CheckpointState SimulationD<D>::CheckpointView(double *x); \
   template PetscErrorCode SimulationD<D>::WriteCheckpointFile(PetscInt step, double t, const char *reason); \
   template PetscErrorCode SimulationD<D>::RestoreSchedule(const CheckpointHeader &header); \
-  template PetscErrorCode SimulationD<D>::RestoreCheckpoint();
+  template PetscErrorCode SimulationD<D>::RestoreCheckpoint(); \
+  template PetscErrorCode SimulationD<D>::RestoreRunText(const CheckpointHeader &header);
 BAPD_SIMULATION_OUTPUT(2)
 BAPD_SIMULATION_OUTPUT(3)
 #undef BAPD_SIMULATION_OUTPUT

@@ -45,7 +45,7 @@ PetscErrorCode CheckpointOptionsFromOptions(MPI_Comm comm, CheckpointOptions *op
   PetscBool has_interval = PETSC_FALSE, has_restart = PETSC_FALSE;
 
   PetscFunctionBegin;
-  for (const char *name : {"-checkpoint_interval", "-checkpoint_on_error", "-restart"}) RegisterOptionName(name);
+  for (const char *name : {"-checkpoint_interval", "-checkpoint_on_error", "-restart", "-restart_discard_newer"}) RegisterOptionName(name);
   PetscOptionsBegin(comm, nullptr, "Checkpoints and restart", "bapd");
   PetscCall(PetscOptionsString("-checkpoint_interval",
                                "Between checkpoints (<output_dir>/checkpoint.h5, also written at the end): steps (1000) or wall-clock "
@@ -55,6 +55,10 @@ PetscErrorCode CheckpointOptionsFromOptions(MPI_Comm comm, CheckpointOptions *op
                              "docs/options.md", options->on_error, &options->on_error, nullptr));
   PetscCall(PetscOptionsString("-restart", "Continue from this checkpoint file (its options are the defaults)", "docs/options.md", "", restart,
                                sizeof restart, &has_restart));
+  PetscCall(PetscOptionsBool("-restart_discard_newer",
+                             "With -restart: drop what the output directory holds after the checkpoint (history rows, a later "
+                             "checkpoint.h5, field files) instead of refusing to replace it",
+                             "docs/options.md", options->discard_newer, &options->discard_newer, nullptr));
   PetscOptionsEnd();
   const bool ok = ParseInterval(interval, &options->step_interval, &options->wall_interval);
   PetscCheck(ok, comm, PETSC_ERR_USER,
@@ -87,7 +91,7 @@ PetscErrorCode CheckpointMergeOptions(MPI_Comm comm)
   PetscCall(PetscOptionsLeftGet(stored, &n, &names, &values));
   for (PetscInt k = 0; k < n; ++k) {
     const std::string name = std::string("-") + names[k];
-    if (name == "-restart") continue;
+    if (name == "-restart" || name == "-restart_discard_newer") continue; // (this run's own choice, never inherited)
     PetscBool given = PETSC_FALSE;
     PetscCall(PetscOptionsHasName(nullptr, nullptr, name.c_str(), &given));
     if (!given) PetscCall(PetscOptionsSetValue(nullptr, name.c_str(), values[k]));

@@ -94,6 +94,8 @@ private:
   PetscErrorCode BuildProbes();
   PetscErrorCode SetupTimeStepper();
   PetscErrorCode OpenHistory();
+  std::string    HistoryHeader() const;      // history.csv's columns for this scene
+  std::string    StaticStatesHeader() const; // static_states.csv's
   PetscErrorCode SetupRelaxation(); // -relaxation (relaxation.hpp)
 
   // The acceleration of the owned points for displacement u (owned, D per point).
@@ -129,6 +131,7 @@ private:
 
   // Field output, checkpoints and restart (simulation_output.cpp).
   PetscErrorCode ReadOutputOptions();
+  PetscErrorCode ClaimOutputDirectory(); // locked; a restart's newer results refused (output_directory.hpp)
   PetscErrorCode SetupOutput();
   PetscErrorCode OutputAfterStep(PetscInt step, double t);
   PetscErrorCode OutputOnDivergence();
@@ -140,6 +143,7 @@ private:
   CheckpointState CheckpointView(double *x); // u, v, bond states and C33 as a checkpoint holds them
   PetscErrorCode RestoreCheckpoint();
   PetscErrorCode RestoreSchedule(const CheckpointHeader &header);
+  PetscErrorCode RestoreRunText(const CheckpointHeader &header); // history.csv and static_states.csv from the checkpoint
 
   MPI_Comm    comm_;
   PetscMPIInt rank_ = 0, size_ = 1;

@@ -10,11 +10,13 @@
 #include "bapd/solver/io/cadence.hpp"
 #include "bapd/solver/io/checkpoint.hpp"
 #include "bapd/solver/io/fields.hpp"
+#include "bapd/solver/io/output_directory.hpp"
 #include "bapd/solver/parallel/natural_order.hpp"
 
 namespace bapd {
 
 struct SimulationOutput {
+  OutputDirectoryLock lock; // the output directory, this run's alone for its life
   FieldOptions        fields;
   CheckpointOptions   checkpoint;
   NaturalOrder        order;    // created on the first field file or checkpoint

@@ -65,12 +65,13 @@ namespace bapd {
 constexpr std::int64_t kCheckpointFormatVersion       = 7;
 constexpr std::int64_t kCheckpointOldestFormatVersion = 1; // still read
 
-// -checkpoint_interval, -checkpoint_on_error, -restart.
+// -checkpoint_interval, -checkpoint_on_error, -restart, -restart_discard_newer.
 struct CheckpointOptions {
   PetscInt    step_interval = 0;   // steps between checkpoints (0: none)
   double      wall_interval = 0;   // wall-clock seconds between checkpoints (0: none)
   PetscBool   on_error      = PETSC_TRUE;
   std::string restart;             // checkpoint to continue from ("" for a fresh run)
+  PetscBool   discard_newer = PETSC_FALSE; // a restart may drop newer results in its output directory (output_directory.hpp)
   bool periodic() const { return step_interval > 0 || wall_interval > 0; }
 };
 // Reads (and registers) the options. Collective.

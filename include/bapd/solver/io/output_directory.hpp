@@ -1,0 +1,57 @@
+#pragma once
+// The output directory a run writes into, claimed before anything is written in it
+// (docs/faults.md):
+//  - it is locked for the run's life (OutputDirectoryLock): a second run into the same
+//    directory stops at once instead of overwriting the first one's files. Rank 0
+//    holds a POSIX record lock (fcntl) on <dir>/.bapd.lock, an empty file; the kernel
+//    drops the lock when the process ends, however it ends, so a killed run leaves no
+//    stale lock. (An empty file takes no block on the disk: a nearly full disk keeps
+//    its room for the results.)
+//  - a restart does not replace results newer than its checkpoint
+//    (CheckNewerResults): history rows after the checkpoint's step, a later
+//    checkpoint.h5 or later field files are refused, or dropped on request
+//    (-restart_discard_newer).
+// And every end-of-run text file is written whole or not at all (WriteFileWhole).
+#include <petscsys.h>
+
+#include <cstdio>
+#include <functional>
+#include <string>
+
+namespace bapd {
+
+class OutputDirectoryLock {
+public:
+  OutputDirectoryLock() = default;
+  ~OutputDirectoryLock(); // releases the lock (the file stays: it may be another run's by then)
+  OutputDirectoryLock(const OutputDirectoryLock &)            = delete;
+  OutputDirectoryLock &operator=(const OutputDirectoryLock &) = delete;
+
+  // Collective. Rank 0 creates `dir` if needed and locks it; a directory another run
+  // holds is refused on every rank with one message naming that run (its process
+  // and host) and the fix. A file system without locks draws a warning, and the run
+  // goes on unlocked.
+  PetscErrorCode Acquire(MPI_Comm comm, const std::string &dir);
+
+private:
+  int fd_ = -1; // rank 0's open lock file while it holds the lock
+};
+
+// Collective. A restart from `checkpoint` (at `step`, time `time`) that writes into
+// `dir`: refused with one message when `dir` holds results newer than the checkpoint
+// (history.csv rows after `step`, a checkpoint.h5 other than `checkpoint` with a later
+// step, field files after `step`), which continuing there would replace. With
+// `discard` (-restart_discard_newer) they are dropped instead: the newer field files
+// and checkpoint.h5 are deleted here, the history rows when the restart writes
+// history.csv.
+PetscErrorCode CheckNewerResults(MPI_Comm comm, const std::string &dir, const std::string &checkpoint, PetscInt step, double time,
+                                 bool discard);
+
+// Rank 0: writes the file `path` whole or not at all, as checkpoints and fields.xdmf
+// are written: `write` fills `path`.tmp, which is flushed, synced and renamed over
+// `path` only when every write succeeded; otherwise it is removed and a previous
+// `path` stays as it was. Returns 0 or the errno of the first failure. With `keep`, the
+// stream is left open on the renamed file, at its end, for rows that follow.
+int WriteFileWhole(const std::string &path, const std::function<void(FILE *)> &write, FILE **keep = nullptr);
+
+} // namespace bapd
