@@ -9,7 +9,10 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <new>
 #include <utility>
+
+#include <unistd.h>
 
 #include "bapd/solver/driver/errors.hpp"
 #include "bapd/solver/input/help.hpp"
@@ -18,6 +21,19 @@
 
 static const char help[] = "bapd: bond-associated NOSB peridynamics for hydrogels (six laws; 2D plane stress or strain, 3D).\n"
                            "Usage: mpiexec -n N bapd -options_file_yaml SCENE.yaml [-option value ...]\n\n";
+
+// operator new found no memory (a process limit, or a machine that overcommitted less
+// than the set-up's check assumed): one line instead of std::bad_alloc's backtrace and
+// SIGABRT, then the whole job stops. No allocation here: the message is fixed text.
+[[noreturn]] static void OutOfMemory()
+{
+  static const char text[] = "bapd: error: out of memory: this rank could not allocate what the run needs (the machine's memory, or the "
+                             "process limit of ulimit -v / a batch system): use a coarser -body_dx, more machines, or raise the limit\n";
+  const ssize_t written = write(STDERR_FILENO, text, sizeof(text) - 1);
+  (void)written;
+  MPI_Abort(MPI_COMM_WORLD, 1);
+  std::_Exit(1);
+}
 
 template <int D> static PetscErrorCode RunDriver(bapd::Scene scene)
 {
@@ -56,6 +72,7 @@ int main(int argc, char **argv)
   }
   PetscCall(PetscInitialize(&argc, &argv, nullptr, help));
   PetscCall(bapd::PushUserErrorHandler());
+  std::set_new_handler(OutOfMemory);
   PetscCall(bapd::BeginHelp(PETSC_COMM_WORLD));
   const PetscErrorCode ierr = RunScene();
   // Every rank agrees on the outcome before finalising; a rank that failed alone

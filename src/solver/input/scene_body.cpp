@@ -15,6 +15,8 @@
 #include <string>
 #include <vector>
 
+#include <sys/resource.h>
+
 #include "bapd/core/geometry/geometry.hpp"
 #include "bapd/solver/input/gmsh_shape.hpp"
 #include "bapd/core/geometry/lattice.hpp"
@@ -135,6 +137,30 @@ double AvailableMemoryBytes()
   return kib * 1024.0;
 }
 
+// Bytes this process may still map under its own limits (ulimit -v: RLIMIT_AS against
+// VmSize; ulimit -d: RLIMIT_DATA against VmData, /proc/self/status); 0 when neither is
+// set (then only the machine's memory counts).
+double ProcessRoomBytes()
+{
+  double       room = 0;
+  std::FILE   *file = std::fopen("/proc/self/status", "r");
+  double       vm_size = 0, vm_data = 0, kib;
+  char         line[256];
+  while (file && std::fgets(line, sizeof(line), file)) {
+    if (std::sscanf(line, "VmSize: %lf kB", &kib) == 1) vm_size = kib * 1024.0;
+    if (std::sscanf(line, "VmData: %lf kB", &kib) == 1) vm_data = kib * 1024.0;
+  }
+  if (file) std::fclose(file);
+  const std::pair<int, double> limits[] = {{RLIMIT_AS, vm_size}, {RLIMIT_DATA, vm_data}};
+  for (const auto &[resource, used] : limits) {
+    struct rlimit limit;
+    if (getrlimit(resource, &limit) != 0 || limit.rlim_cur == RLIM_INFINITY) continue;
+    const double left = std::max((double)limit.rlim_cur - used, 1.0);
+    room              = room > 0 ? std::min(room, left) : left;
+  }
+  return room;
+}
+
 // Refuses a body that cannot fit: the points, their bonds (before anything is built:
 // about pi x horizon_factor^2 a point, the lattice's; after rank 0 has built the bond
 // graph: the real count, CheckBodyMemory) and the memory they need, against what
@@ -158,8 +184,19 @@ PetscErrorCode CheckMemory(MPI_Comm comm, const Scene &scene, int64_t points, do
   PetscCallMPI(MPI_Bcast(&node_ranks, 1, MPI_INT, 0, comm));
   const double per_rank = static_cast<double>(points) * bytes_per_point / size;
   const double needed   = per_rank * node_ranks; // on rank 0's node
+  const double gb       = 1e9;
+  // The process's own limit (a batch system's or the shell's ulimit), which
+  // MemAvailable does not show: std::bad_alloc half-way through the set-up otherwise.
+  // Each rank holds at least its share; rank 0 builds the bonds of the whole body.
+  double room = ProcessRoomBytes(), worst = 0;
+  if (room > 0 && per_rank > room) worst = per_rank / room;
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &worst, 1, MPI_DOUBLE, MPI_MAX, comm));
+  PetscCheck(!(worst > 0), comm, PETSC_ERR_USER,
+             "%lld material points need about %.3g GB on each of %d rank(s), %.3g times what a rank's process limit leaves it (ulimit -v "
+             "or -d, RLIMIT_AS/RLIMIT_DATA; %.3g GB left on rank 0): raise the limit, run on more ranks, or use a coarser %s",
+             static_cast<long long>(points), per_rank / gb, size, worst, rank == 0 ? room / gb : 0.0,
+             scene.dimension == 3 && (scene.body3d.given_points || scene.body3d.centroids) ? "point set" : "-body_dx");
   if (available <= 0 || needed <= available) PetscFunctionReturn(0);
-  const double gb = 1e9;
   // Points go as 1/dx^2 (3D: 1/dx^3): the spacing at which the estimate just fits.
   const double      dx_fit = scene.body.dx * (scene.dimension == 3 ? std::cbrt(needed / available) : std::sqrt(needed / available));
   const std::string what   = Format("%lld material points and %.3g bonds, about %.3g GB (%.3g GB on each of %d rank(s); %.2g KB a point "
