@@ -359,6 +359,19 @@ template <int D> PetscErrorCode SimulationD<D>::PostStep(TS ts)
   PetscBool diverged = PETSC_FALSE;
   PetscCall(sim->CheckHealth(step, t, &diverged));
   if (!diverged) {
+    // A state outside the law's validity (the chain limit reached in I1): the run is not
+    // unstable, its stress is no longer the material's. The message is whole; the last
+    // good state is saved as for a divergence.
+    std::string invalid;
+    PetscCall(sim->CheckLawValidity(step, t, &invalid));
+    if (!invalid.empty()) {
+      sim->stop_reason_ = invalid, sim->stopped_on_error_ = true;
+      PetscCall(sim->OutputOnDivergence());
+      PetscCall(TSSetConvergedReason(ts, TS_DIVERGED_NONLINEAR_SOLVE));
+      PetscFunctionReturn(0);
+    }
+  }
+  if (!diverged) {
     // Runaway energy: an unstable time step caught before NaN or shattering (divergence.hpp).
     std::string runaway;
     PetscCall(sim->CheckRunaway(step, t, &runaway));

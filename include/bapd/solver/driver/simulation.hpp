@@ -100,6 +100,9 @@ private:
   PetscErrorCode Acceleration(const double *u_owned, double *a_owned);
   PetscErrorCode CheckHealth(PetscInt step, double t, PetscBool *diverged);
   PetscErrorCode CheckRunaway(PetscInt step, double t, std::string *message);
+  // Without failure: a bond past its law's limit in I1 = tr C (the kernel's largest tr C
+  // as the trigger, the bonds counted and located once it fires): *message is the stop.
+  PetscErrorCode CheckLawValidity(PetscInt step, double t, std::string *message);
   PetscErrorCode DiagnoseDivergence(); // the cause and its fix, appended to stop_reason_ (divergence.hpp)
   PetscErrorCode ReadProbes(const double *u_owned, double *probe_u);
   PetscErrorCode GatherNatural(const double *values, std::vector<double> *natural);
