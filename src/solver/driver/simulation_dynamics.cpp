@@ -123,6 +123,13 @@ template <int D> PetscErrorCode SimulationD<D>::SetupTimeStepper()
   PetscCall(TSSetApplicationContext(ts_, this));
   PetscCall(TSSetSolution(ts_, X_));
   PetscCall(TSSetFromOptions(ts_));
+  // -end_step: the run stops after that step on purpose (Run tells it from a stop by
+  // PETSc's -ts_max_steps, which is an error short of the end time).
+  if (scene_.end_step >= 0) {
+    PetscInt max_steps;
+    PetscCall(TSGetMaxSteps(ts_, &max_steps));
+    if (scene_.end_step < max_steps) PetscCall(TSSetMaxSteps(ts_, scene_.end_step));
+  }
   {
     TSType type;
     PetscCall(TSGetType(ts_, &type));

@@ -110,6 +110,9 @@ private:
   PetscErrorCode WarnEnergyBalance(PetscInt step, double t, double work, double residual); // once, past 1 % of the work
   PetscErrorCode Progress(PetscInt step, double t, PetscBool force);
   PetscErrorCode Summary();
+  // After TSSolve: the TS stopped at its step limit before the end time (-end_step: a
+  // note; -ts_max_steps: *message, the error the run ends with).
+  PetscErrorCode StoppedShort(PetscInt step, double t, std::string *message);
   PetscErrorCode ListOutputFiles(); // rank 0: every file written, with its size
   PetscErrorCode TimeStepSummary(PetscInt steps); // steps shortened and why, re-estimates' cost
   PetscErrorCode WriteFinalState();
