@@ -30,7 +30,7 @@ for e in "${!exes[@]}"; do
   for s in "${sizes[@]}"; do
     IFS=: read -r name dx <<<"$s"
     /usr/bin/python3 "$here/bench/bapd_run.py" --exe "${exes[$e]}" --ranks 1 --out "$out" --label "exe${e}_$name" -- \
-      "$here/examples/default.yaml" -body_dx "$dx" -ts_max_steps 10 -output_interval 100000 -progress_interval 100000 \
+      "$here/examples/default.yaml" -body_dx "$dx" -end_step 10 -output_interval 100000 -progress_interval 100000 \
       -output_dir "$out/o_exe${e}_$name" "${extra[@]}" >/dev/null
   done
 done

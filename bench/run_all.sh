@@ -163,7 +163,7 @@ if want callgrind; then
       d="$out/callgrind/solver"; ((steps == 0)) && d="$out/callgrind/solver0"
       mkdir -p "$d"
       valgrind --tool=callgrind --callgrind-out-file="$d/cg.out" \
-        "$bapd" -options_file_yaml "$here/examples/default.yaml" -output_dir "$d/o" -ts_max_steps "$steps" \
+        "$bapd" -options_file_yaml "$here/examples/default.yaml" -output_dir "$d/o" -end_step "$steps" \
         >"$d/run.txt" 2>"$d/valgrind.txt"
       "$PY" "$here/bench/callgrind_calls.py" "$d/cg.out" >"$d/calls.json"
       cat "$d/calls.json"
@@ -184,12 +184,12 @@ if want scaling; then
   for s in "${sizes[@]}"; do
     IFS=: read -r name dx steps <<<"$s"
     for n in 1 "$ranks"; do
-      run_bapd "scaling_${name}_np$n" "$n" "$here/examples/default.yaml" -body_dx "$dx" -ts_max_steps "$steps" \
+      run_bapd "scaling_${name}_np$n" "$n" "$here/examples/default.yaml" -body_dx "$dx" -end_step "$steps" \
         -output_interval 100000 -progress_interval 100000 -output_dir "$out/runs/o_scaling_${name}_np$n" -log_view
     done
   done
   # What the every-step "last good state" copy (-checkpoint_on_error) costs in memory.
-  run_bapd "memory_1e5_np1_no_good_state" 1 "$here/examples/default.yaml" -body_dx 3.5334e-4 -ts_max_steps 10 \
+  run_bapd "memory_1e5_np1_no_good_state" 1 "$here/examples/default.yaml" -body_dx 3.5334e-4 -end_step 10 \
     -checkpoint_on_error false -output_interval 100000 -progress_interval 100000 -output_dir "$out/runs/o_memory_ng"
 fi
 
@@ -199,7 +199,7 @@ if want scenes; then
   for scene in plate_hole pure_shear notched_pure_shear; do
     for n in 1 "$ranks"; do
       for steps in 0 "$nsteps"; do
-        run_bapd "scene_${scene}_np${n}_s$steps" "$n" "$here/examples/$scene.yaml" -ts_max_steps "$steps" \
+        run_bapd "scene_${scene}_np${n}_s$steps" "$n" "$here/examples/$scene.yaml" -end_step "$steps" \
           -output_dir "$out/runs/o_${scene}_np${n}_s$steps" -progress_interval 100000 -log_view
       done
     done

@@ -37,10 +37,10 @@ echo "| scene | steps | force evaluations: dynamics + re-estimates | re-estimate
 echo "|---|---|---|---|---|---|---|---|---|---|---|"
 for name in "${names[@]}"; do
   # shellcheck disable=SC2086 # the scene is a list of words
-  /usr/bin/time -f "cpu %U %S" -o "$out/${name}_fixed.cpu" "$exe" ${scenes[$name]} -ts_max_steps "$steps" -progress_interval 1000000 \
+  /usr/bin/time -f "cpu %U %S" -o "$out/${name}_fixed.cpu" "$exe" ${scenes[$name]} -end_step "$steps" -progress_interval 1000000 \
     -output_dir "$out/${name}_fixed" -time_step_reestimate 0 > "$out/${name}_fixed.log" 2>&1 || true
   # shellcheck disable=SC2086
-  /usr/bin/time -f "cpu %U %S" -o "$out/${name}_adaptive.cpu" "$exe" ${scenes[$name]} -ts_max_steps "$steps" -progress_interval 1000000 \
+  /usr/bin/time -f "cpu %U %S" -o "$out/${name}_adaptive.cpu" "$exe" ${scenes[$name]} -end_step "$steps" -progress_interval 1000000 \
     -output_dir "$out/${name}_adaptive" -time_step_monitor > "$out/${name}_adaptive.log" 2>&1 || true
   /usr/bin/python3 - "$out/${name}_fixed.log" "$out/${name}_adaptive.log" "$name" "$out/${name}_fixed.cpu" "$out/${name}_adaptive.cpu" <<'PY'
 import re, sys

@@ -6,7 +6,7 @@
 source "$BAPD_SOURCE_DIR/tests/faults/common.sh"
 work="faults_corrupt_run_text"
 rm -rf "$work" && mkdir -p "$work" || exit 1
-bounded "$work/good.log" 2 "$TINY" -ts_max_steps 10 -checkpoint_interval 10 -output_interval 2 -output_dir "$work/good"
+bounded "$work/good.log" 2 "$TINY" -end_step 10 -checkpoint_interval 10 -output_interval 2 -output_dir "$work/good"
 ((STATUS == 0)) || fail "the checkpoint could not be written"
 for dataset in history options; do
   cp "$work/good/checkpoint.h5" "$work/$dataset.h5"
@@ -31,6 +31,6 @@ PY
   grep -q "^step " "$log" && fail "steps were taken from a corrupt checkpoint"
   ok "one byte of /run/$dataset changed, $ranks rank(s)"
 done
-bounded "$work/continued.log" 2 -restart "$work/good/checkpoint.h5" -ts_max_steps 20 -output_dir "$work/continued"
+bounded "$work/continued.log" 2 -restart "$work/good/checkpoint.h5" -end_step 20 -output_dir "$work/continued"
 ((STATUS == 0)) || fail "the unchanged checkpoint is refused"
 echo "ok   the unchanged checkpoint continues"

@@ -53,8 +53,9 @@ expect_divergence unstable_elastic 20 "inverted" -time_step_safety 1.5
 expect_divergence unstable_fracture 20 "the run diverged at step" -time_step_safety 1.5 -failure_critical_stretch 1.5
 expect_divergence unstable_fracture_bond_only 20 "the run diverged at step" -time_step_safety 1.5 -failure_critical_stretch 1.5 -force_form bond_only
 expect_divergence unstable_fracture_slow 40 "the run diverged at step" -time_step_safety 1.1 -failure_critical_stretch 7.2
-# An explicit -time_step above the stable one (2.6e-4 s here).
-expect_divergence unstable_time_step 20 "the run diverged at step" -time_step 4e-4 -failure_critical_stretch 1.5
+# An explicit -time_step above the stable one (2.6e-4 s here), which only
+# -time_step_allow_unstable lets run (without it the step is refused: silent_results.sh).
+expect_divergence unstable_time_step 20 "the run diverged at step" -time_step 4e-4 -time_step_allow_unstable -failure_critical_stretch 1.5
 # A 3D body: the same clean stop, and the fastest point's position with its z.
 scene="$source_dir/tests/data/scenes/block_3d.yaml"
 expect_divergence unstable_fracture_3d 20 "the run diverged at step" -time_step_safety 1.5 -failure_critical_stretch 1.5

@@ -27,7 +27,7 @@ case "$what" in
            -horizon_factor 3.015 -material_mu 4.55e3 -material_Jm 162.6 -material_bulk_ratio 100 -material_density 1000
            -load_sets top,bottom -load_top_region top -load_top_x fixed -load_top_y stretch -load_bottom_region bottom
            -load_bottom_x fixed -load_bottom_y fixed -probes mouth -probe_mouth_at 0.03,0.0062 -damping 40
-           -load_schedule 0,1,0.05,1.2,1.0,1.2 -static_tolerance 1e-3 -output_interval 10 -ts_max_steps 160)
+           -load_schedule 0,1,0.05,1.2,1.0,1.2 -static_tolerance 1e-3 -output_interval 10 -end_step 160)
     file=static_states.csv ;;
   *) echo "usage: full_disk.sh checkpoint|fields|checkpoint_late|fields_late|history|static|final_state RANKS"; exit 2 ;;
 esac

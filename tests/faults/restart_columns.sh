@@ -8,10 +8,10 @@ ranks="$1"
 work="faults_restart_columns_np$ranks"
 rm -rf "$work" && mkdir -p "$work" || exit 1
 out="$work/out"
-bounded "$work/first.log" "$ranks" "$TINY" -ts_max_steps 20 -checkpoint_interval 20 -output_interval 5 -output_dir "$out"
+bounded "$work/first.log" "$ranks" "$TINY" -end_step 20 -checkpoint_interval 20 -output_interval 5 -output_dir "$out"
 ((STATUS == 0)) || fail "the first run failed"
 cp "$out/history.csv" "$work/first_history.csv"
-bounded "$work/second.log" "$ranks" -restart "$out/checkpoint.h5" -ts_max_steps 40 -probes centre -probe_centre_at 0.005,0.005
+bounded "$work/second.log" "$ranks" -restart "$out/checkpoint.h5" -end_step 40 -probes centre -probe_centre_at 0.005,0.005
 ((STATUS == 0)) || fail "the restart with a new probe failed"
 whole_rows "$out/history.csv"
 "$PYTHON" - "$work/first_history.csv" "$out/history.csv" << 'PY' || fail "history.csv lost or changed the rows before the restart"

@@ -13,11 +13,11 @@ work="faults_restart_newer_np$ranks"
 rm -rf "$work" && mkdir -p "$work" || exit 1
 out="$work/out"
 # Steps 0 to 20, a checkpoint at 20 (kept as a backup copy), then on to 40 in place.
-bounded "$work/first.log" "$ranks" "$TINY" -ts_max_steps 20 -checkpoint_interval 20 -output_interval 5 -output_fields \
+bounded "$work/first.log" "$ranks" "$TINY" -end_step 20 -checkpoint_interval 20 -output_interval 5 -output_fields \
   -output_fields_interval 10 -output_dir "$out"
 ((STATUS == 0)) || fail "the first run failed"
 cp "$out/checkpoint.h5" "$out/backup_step20.h5"
-bounded "$work/second.log" "$ranks" -restart "$out/checkpoint.h5" -ts_max_steps 40
+bounded "$work/second.log" "$ranks" -restart "$out/checkpoint.h5" -end_step 40
 ((STATUS == 0)) || fail "the restart in place from the newest checkpoint was refused"
 cp -r "$out" "$work/before"
 unchanged() {
@@ -28,7 +28,7 @@ unchanged() {
 }
 
 # The older copy: refused, naming the newer rows, checkpoint and field files.
-bounded "$work/backup.log" "$ranks" -restart "$out/backup_step20.h5" -ts_max_steps 30
+bounded "$work/backup.log" "$ranks" -restart "$out/backup_step20.h5" -end_step 30
 stopped_cleanly "-restart $out/backup_step20.h5 is the state at step 20" "history.csv has 4 row(s) after step 20 (up to step 40)" \
   "checkpoint.h5 is at step 40" "2 field file(s) after step 20 (up to fields/step_00000040.h5)" "-restart $out/checkpoint.h5" "-output_dir" "-restart_discard_newer"
 grep -q "^step " "$log" && fail "steps were taken"
@@ -39,14 +39,14 @@ ok "an older checkpoint restarted in place, $ranks rank(s)"
 # the directory's own and the newest. The usual restart: it goes on, says so, and writes
 # those rows again as the uninterrupted run did.
 cp -r "$work/before" "$work/killed" && cp "$out/backup_step20.h5" "$work/killed/checkpoint.h5"
-bounded "$work/killed.log" "$ranks" -restart "$work/killed/checkpoint.h5" -output_dir "$work/killed" -ts_max_steps 40
+bounded "$work/killed.log" "$ranks" -restart "$work/killed/checkpoint.h5" -output_dir "$work/killed" -end_step 40
 ((STATUS == 0)) || fail "the restart from the directory's own newest checkpoint was refused: $(grep error: "$work/killed.log")"
 grep -q "holds results after its checkpoint's step 20 (history.csv has 4 row(s) after step 20" "$work/killed.log" || fail "no note on the rows written again"
 cmp -s "$work/before/history.csv" "$work/killed/history.csv" || fail "the continuation's history.csv differs from the uninterrupted run's"
 ok "rows after the directory's own newest checkpoint written again, $ranks rank(s)"
 
 # -restart_discard_newer: continues from step 20 to 30, as the uninterrupted run did.
-bounded "$work/discard.log" "$ranks" -restart "$out/backup_step20.h5" -ts_max_steps 30 -restart_discard_newer
+bounded "$work/discard.log" "$ranks" -restart "$out/backup_step20.h5" -end_step 30 -restart_discard_newer
 ((STATUS == 0)) || fail "-restart_discard_newer did not continue"
 whole_rows "$out/history.csv"
 [ "$(tail -1 "$out/history.csv" | cut -d, -f1)" = 30 ] || fail "history.csv does not end at step 30"

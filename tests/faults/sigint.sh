@@ -25,7 +25,7 @@ for sig in INT TERM; do
   ok "SIG$sig on $ranks rank(s), stopped ${SECONDS_LEFT} s later"
 done
 step=$(sed -n 's/^Checkpoint (interrupted): step \([0-9]*\),.*/\1/p' "$work/INT.log")
-bounded "$work/continued.log" "$ranks" -restart "$work/INT/checkpoint.h5" -ts_max_steps $((step + 20)) -output_dir "$work/continued"
+bounded "$work/continued.log" "$ranks" -restart "$work/INT/checkpoint.h5" -end_step $((step + 20)) -output_dir "$work/continued"
 ((STATUS == 0)) || fail "the checkpoint written on SIGINT does not continue"
 grep -q "^Restart from .*step $step," "$work/continued.log" || fail "the continuation did not start at step $step"
 echo "ok   the SIGINT checkpoint (step $step) continues"

@@ -41,7 +41,7 @@ BOX=(-body_dimension 3 -body_dx 0.001 -body_shapes block -body_block_type box -b
      -probes p -probe_p_at 0.0085,0.0035,0.0025 -damping 40 -output_interval 20 -progress_interval 100000 -output_final_state)
 compare() { python3 "$BAPD_SOURCE_DIR/tests/mpi/compare_runs.py" --tolerance 0 "$@"; }
 if [ "$case" = rank_invariance ]; then
-  scene=("${BOX[@]}" -load_schedule 0,1,0.1,1.2 -ts_max_steps 300)
+  scene=("${BOX[@]}" -load_schedule 0,1,0.1,1.2 -end_step 300)
   for n in 1 2 3 4; do run $n "$work/np$n" "${scene[@]}"; done
   head -1 "$work/np1/history.csv" | grep -q "right_reaction_z_N,right_nominal_stress_Pa,p_ux_m,p_uy_m,p_uz_m," ||
     fail "history.csv has no z columns: $(head -1 "$work/np1/history.csv")"
@@ -50,12 +50,12 @@ if [ "$case" = rank_invariance ]; then
   $PYTHON -c "import sys; sys.exit(0 if float('$ux') > 1e-4 else 1)" || fail "the probe did not move with the grip (ux = $ux m)"
   compare "$work/np1" "$work/np2" "$work/np3" "$work/np4"
 elif [ "$case" = failure ]; then
-  scene=("${BOX[@]}" -load_schedule 0,1,0.1,1.5 -failure_critical_stretch 1.15 -ts_max_steps 200)
+  scene=("${BOX[@]}" -load_schedule 0,1,0.1,1.5 -failure_critical_stretch 1.15 -end_step 200)
   for n in 1 2; do run $n "$work/np$n" "${scene[@]}"; done
   compare --expect-broken "$work/np1" "$work/np2"
   echo "broken bonds at step 200: $(history_column "$work/np1" 200 broken_bonds)"
   # The fracture-energy criterion in 3D (pair energies, the 3D crossing density), on 1 and 3 ranks.
-  scene=("${BOX[@]}" -load_schedule 0,1,0.1,1.5 -failure_fracture_energy 0.5 -ts_max_steps 200)
+  scene=("${BOX[@]}" -load_schedule 0,1,0.1,1.5 -failure_fracture_energy 0.5 -end_step 200)
   for n in 1 3; do run $n "$work/energy_np$n" "${scene[@]}"; done
   compare --expect-broken "$work/energy_np1" "$work/energy_np3"
   echo "fracture energy: broken bonds at step 200: $(history_column "$work/energy_np1" 200 broken_bonds)"
@@ -73,7 +73,7 @@ elif [ "$case" = ogden ]; then
   # A fixed step for both laws (no re-estimate): the power iteration's estimate, which
   # stops at a tolerance, moves with the round-off of either law by ~1e-9 and with it
   # every row (measured: dt 7e-10 apart, p_uy 3e-8), which is not what is compared here.
-  scene=("${BOX[@]}" -load_schedule 0,1,0.1,1.2 -ts_max_steps 300 -time_step 1.5e-4 -time_step_reestimate 0)
+  scene=("${BOX[@]}" -load_schedule 0,1,0.1,1.2 -end_step 300 -time_step 1.5e-4 -time_step_reestimate 0)
   run 1 "$work/neo_hookean" "${scene[@]}" -material_model neo_hookean
   run 2 "$work/ogden_alpha2" "${scene[@]}" -material_model ogden -material_ogden_mu1 4.55e3 -material_ogden_alpha1 2 \
     -material_ogden_mu2 0
@@ -136,7 +136,7 @@ PY
          -load_left_x fixed -load_left_y fixed -load_left_z fixed -load_right_region block -load_right_block 3
          -load_right_x stretch -load_right_y fixed -load_right_z fixed -load_reference_length 0.016 -probes p
          -probe_p_at 0.0115,0.0035,0.0025 -damping 40 -output_interval 20 -progress_interval 100000 -output_final_state
-         -load_schedule 0,1,0.1,1.2 -ts_max_steps 200)
+         -load_schedule 0,1,0.1,1.2 -end_step 200)
   for n in 1 2; do run $n "$work/np$n" "${scene[@]}"; done
   grep -qF "horizon   delta_i = 3.015 h_i, h_i = cbrt(V_i) (at least 0.003015 m); a bond where either reaches" "$work/np1.log" ||
     fail "the summary does not state the per-point horizons: $(grep "horizon " "$work/np1.log")"
@@ -151,10 +151,10 @@ PY
   # by the coarse horizon (5.5 mm from the last coarse column to the first fine one), a
   # 10 mm gap by none: refused, naming the smaller piece (the coarse block's 24 points).
   graded_cloud "$work/bridged.txt" 4e-3
-  run 1 "$work/bridged" "${scene[@]}" -body_cloud "$work/bridged.txt" -ts_max_steps 2
+  run 1 "$work/bridged" "${scene[@]}" -body_cloud "$work/bridged.txt" -end_step 2
   graded_cloud "$work/apart.txt" 10e-3
   # (sigkill timeout 0: mpiexec returns at once after bapd's error exit, tests/faults/bad_input.sh)
-  if OMPI_MCA_odls_base_sigkill_timeout=0 mpiexec -n 1 "$BAPD_EXE" "${scene[@]}" -body_cloud "$work/apart.txt" -ts_max_steps 2 -output_dir "$work/apart" \
+  if OMPI_MCA_odls_base_sigkill_timeout=0 mpiexec -n 1 "$BAPD_EXE" "${scene[@]}" -body_cloud "$work/apart.txt" -end_step 2 -output_dir "$work/apart" \
       > "$work/apart.log" 2>&1; then fail "a 3D cloud in two pieces ran"; fi
   grep -qF "apart.txt: the given points fall apart into 2 pieces with no bond between them (the smallest: 24 point(s), e.g. point 0 at (0.001, 0.001, 0.001) m)" \
     "$work/apart.log" || fail "no pieces message: $(grep -i error "$work/apart.log")"
@@ -181,7 +181,7 @@ PY
          -load_left_x fixed -load_left_y fixed -load_left_z fixed -load_right_region block -load_right_block 3
          -load_right_x stretch -load_right_y fixed -load_right_z fixed -load_reference_length 0.012 -probes p
          -probe_p_at 0.0085,0.0055,0.0045 -damping 40 -output_interval 20 -progress_interval 100000 -output_final_state
-         -load_schedule 0,1,0.1,1.2 -ts_max_steps 150 -force_form bond_only)
+         -load_schedule 0,1,0.1,1.2 -end_step 150 -force_form bond_only)
   # -force_patch_correction virial on a 3D cloud (patch_correction.hpp: the setup solve in
   # D = 3, 9 numbers a point shipped with the points): 1 and 2 ranks the same, to the bit.
   for n in 1 2; do run $n "$work/np$n" "${scene[@]}" -force_patch_correction virial; done
@@ -192,7 +192,7 @@ PY
     fail "the setup solve does not print its iterations and residual"
   compare "$work/np1" "$work/np2"
   # auto is virial for given points with the bond-only form, as in 2D; off gives other forces.
-  run 1 "$work/auto" "${scene[@]}" -ts_max_steps 2
+  run 1 "$work/auto" "${scene[@]}" -end_step 2
   grep -q "patch correction virial" "$work/auto.log" || fail "auto is not virial on a 3D cloud: $(grep -i "force" "$work/auto.log")"
   run 1 "$work/off" "${scene[@]}" -force_patch_correction off
   if grep -q "Patch correction" "$work/off.log"; then fail "-force_patch_correction off solved a correction"; fi

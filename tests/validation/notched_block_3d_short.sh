@@ -23,7 +23,7 @@ rm -rf "$work"; mkdir -p "$work"
 steps=350
 scene=(-options_file_yaml "$BAPD_SOURCE_DIR/examples/notched_block_3d.yaml"
        -material_bulk_ratio 10 -failure_critical_stretch 1.5 -load_schedule 0,1,0.2,2.5
-       -ts_max_steps $steps -output_interval 20 -progress_interval 1000000 -output_final_state
+       -end_step $steps -output_interval 20 -progress_interval 1000000 -output_final_state
        -output_fields -output_fields_interval $steps)
 for n in 1 2; do run $n "$work/np$n" "${scene[@]}"; done
 $PYTHON "$BAPD_SOURCE_DIR/tests/mpi/compare_runs.py" --tolerance 0 --expect-broken "$work/np1" "$work/np2"

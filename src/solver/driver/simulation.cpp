@@ -110,14 +110,37 @@ template <int D> PetscErrorCode SimulationD<D>::Setup(Scene scene)
 // and the stable step are built), then an option nothing read (a typo) is refused.
 template <int D> PetscErrorCode SimulationD<D>::CheckOptionsEarly()
 {
-  TS probe;
+  TS     probe;
+  TSType type = nullptr;
 
   PetscFunctionBegin;
   PetscCall(TSCreate(comm_, &probe));
   PetscErrorCode ierr = TSSetType(probe, TSBASICSYMPLECTIC);
   if (!ierr) ierr = TSSetFromOptions(probe);
+  std::string type_name;
+  if (!ierr) ierr = TSGetType(probe, &type);
+  if (!ierr && type) type_name = type;
   PetscCall(TSDestroy(&probe));
   PetscCall(ierr);
+  // The dynamics are explicit: the TS gets right-hand sides only (u' = v, v' = a(u)),
+  // no implicit function and no Jacobian, and the step control (the stable step, the
+  // re-estimates, the travel limit) assumes an explicit scheme. An implicit type would
+  // fail inside its first nonlinear solve, or never end it.
+  static const char *const explicit_types[] = {TSBASICSYMPLECTIC, TSEULER, TSRK, TSSSP};
+  bool supported = false;
+  for (const char *t : explicit_types) supported |= type_name == t;
+  // -ts_max_time would end the run before -end_time (a result far short of the load
+  // asked for, reported as finished) or let it run past it: the run's length is bapd's.
+  PetscBool max_time = PETSC_FALSE;
+  PetscCall(PetscOptionsHasName(nullptr, nullptr, "-ts_max_time", &max_time));
+  PetscCheck(!max_time, comm_, PETSC_ERR_USER,
+             "-ts_max_time is not read: the run's length is -end_time (default: the end of -load_schedule). Remove -ts_max_time and "
+             "give -end_time instead (or -end_step N to stop after step N)");
+  PetscCheck(supported, comm_, PETSC_ERR_USER,
+             "-ts_type %s is not supported: bapd integrates its equations of motion with an explicit time stepper (it gives PETSc "
+             "the right-hand side only, no Jacobian, and its step control assumes an explicit scheme). Use basicsymplectic "
+             "(velocity Verlet, the default: leave -ts_type out), rk, euler or ssp",
+             type_name.c_str());
   PetscCall(CheckUnusedOptions(comm_));
   PetscFunctionReturn(0);
 }
@@ -360,6 +383,19 @@ template <int D> PetscErrorCode SimulationD<D>::PostStep(TS ts)
   PetscBool diverged = PETSC_FALSE;
   PetscCall(sim->CheckHealth(step, t, &diverged));
   if (!diverged) {
+    // A state outside the law's validity (the chain limit reached in I1): the run is not
+    // unstable, its stress is no longer the material's. The message is whole; the last
+    // good state is saved as for a divergence.
+    std::string invalid;
+    PetscCall(sim->CheckLawValidity(step, t, &invalid));
+    if (!invalid.empty()) {
+      sim->stop_reason_ = invalid, sim->stopped_on_error_ = true;
+      PetscCall(sim->OutputOnDivergence());
+      PetscCall(TSSetConvergedReason(ts, TS_DIVERGED_NONLINEAR_SOLVE));
+      PetscFunctionReturn(0);
+    }
+  }
+  if (!diverged) {
     // Runaway energy: an unstable time step caught before NaN or shattering (divergence.hpp).
     std::string runaway;
     PetscCall(sim->CheckRunaway(step, t, &runaway));
@@ -412,11 +448,49 @@ template <int D> PetscErrorCode SimulationD<D>::Run()
   PetscReal t;
   PetscCall(TSGetStepNumber(ts_, &step));
   PetscCall(TSGetTime(ts_, &t));
+  std::string cut_short;
+  if (!stopped_on_error_) PetscCall(StoppedShort(step, t, &cut_short));
   if (step % scene_.output_interval != 0 && !stopped_on_error_) PetscCall(WriteHistoryRow(step, t));
   PetscCall(OutputAtEnd(step, t)); // the last field file (and checkpoint)
   if (scene_.output_final_state) PetscCall(WriteFinalState());
+  // Stopped short of the end time by a PETSc limit: everything a normal end writes is
+  // written (above), and then the run fails (below), so that no script takes it for whole.
+  if (!cut_short.empty()) stop_reason_ = cut_short, stopped_on_error_ = true;
   PetscCall(Summary());
   PetscCheck(!stopped_on_error_, comm_, PETSC_ERR_NOT_CONVERGED, "%s", stop_reason_.c_str());
+  PetscFunctionReturn(0);
+}
+
+// The TS stopped at its step limit before the end time: after -end_step (on purpose:
+// a note, exit 0), or at -ts_max_steps (PETSc's limit, maybe from a checkpoint's
+// options: *message says so, and the run fails). TS_EXACTFINALTIME_MATCHSTEP lands the
+// last step on the end time; a run within 1e-9 of it is whole.
+template <int D> PetscErrorCode SimulationD<D>::StoppedShort(PetscInt step, double t, std::string *message)
+{
+  TSConvergedReason reason;
+  PetscReal         end;
+  PetscInt          max_steps;
+
+  PetscFunctionBegin;
+  message->clear();
+  PetscCall(TSGetConvergedReason(ts_, &reason));
+  PetscCall(TSGetMaxTime(ts_, &end));
+  PetscCall(TSGetMaxSteps(ts_, &max_steps));
+  if (reason != TS_CONVERGED_ITS || !(end - t > 1e-9 * end)) PetscFunctionReturn(0);
+  if (scene_.end_step >= 0 && step >= scene_.end_step) {
+    PetscCall(PetscPrintf(comm_, "\nStopped after step %" PetscInt_FMT " (-end_step), at t = %.6e s of the end time %.6e s%s\n", step, t, end,
+                          output_.checkpoint.periodic() ? ": continue with -restart and a later -end_step (or -end_step -1)" : ""));
+    PetscFunctionReturn(0);
+  }
+  char text[768];
+  std::snprintf(text, sizeof text,
+                "the run stopped at step %" PetscInt_FMT " (t = %.6e s), short of its end time %.6e s (%.3g %% of it), because PETSc's "
+                "-ts_max_steps %" PetscInt_FMT " ended the time stepping%s. Remove -ts_max_steps: the run's length is -end_time (give "
+                "an earlier -end_time to end sooner, or -end_step N to stop after step N on purpose). What was written is kept "
+                "(history.csv up to step %" PetscInt_FMT ")",
+                step, t, end, 100.0 * t / end, max_steps, output_.checkpoint.restart.empty() ? "" : " (a checkpoint's stored options count)",
+                step);
+  *message = text;
   PetscFunctionReturn(0);
 }
 

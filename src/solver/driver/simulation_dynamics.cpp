@@ -123,6 +123,13 @@ template <int D> PetscErrorCode SimulationD<D>::SetupTimeStepper()
   PetscCall(TSSetApplicationContext(ts_, this));
   PetscCall(TSSetSolution(ts_, X_));
   PetscCall(TSSetFromOptions(ts_));
+  // -end_step: the run stops after that step on purpose (Run tells it from a stop by
+  // PETSc's -ts_max_steps, which is an error short of the end time).
+  if (scene_.end_step >= 0) {
+    PetscInt max_steps;
+    PetscCall(TSGetMaxSteps(ts_, &max_steps));
+    if (scene_.end_step < max_steps) PetscCall(TSSetMaxSteps(ts_, scene_.end_step));
+  }
   {
     TSType type;
     PetscCall(TSGetType(ts_, &type));
@@ -132,8 +139,7 @@ template <int D> PetscErrorCode SimulationD<D>::SetupTimeStepper()
     if (dt != step_control_.current()) {
       step_control_.SetBaseStep(dt);
       PetscCall(PetscPrintf(comm_, "Time step set by -ts_dt: %.4e s (%.3g x stable)\n", dt, dt / stable));
-      if (dt > stable)
-        PetscCall(PetscPrintf(comm_, "\n*** WARNING: -ts_dt %.4e s is LARGER than the stable step %.4e s: expect the run to blow up.\n\n", dt, stable));
+      PetscCall(step_control_.CheckFixedStep(comm_, "-ts_dt", dt)); // (refused well above the stable step)
     }
     const PetscInt steps = (PetscInt)std::ceil(end_time / step_control_.current() - 1e-9);
     PetscCall(PetscPrintf(comm_, "Time stepping: %s, dt = %.4e s, end time %.4e s, about %" PetscInt_FMT " steps\n", type, step_control_.current(),

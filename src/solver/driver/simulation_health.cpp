@@ -212,6 +212,113 @@ template <int D> PetscErrorCode SimulationD<D>::DiagnoseDivergence()
   PetscFunctionReturn(0);
 }
 
+// The law's validity: Gent's chain limit is I1 - 3 < Jm (Arruda-Boyce's I1 < 3
+// lambda_m^2). The compressible law puts it on the isochoric I1bar = J^{-2/3} I1, so near
+// it a bond can stay inside the law's domain by a volume change alone: a plane-stress
+// sheet thickens (J > 1) and I1bar stays below the limit at any stretch, the stress
+// rising on the bulk modulus instead (plane_stress.hpp). For a nearly incompressible
+// gel that state is not the material's: at stretch 20 the plate with a hole (Jm 162.6,
+// K = 1000 mu) had J = 2.1 to 5.5 and ran to its end with exit 0. So a bond whose I1
+// itself reaches the limit stops the run (without failure; with it, the failure
+// criterion decides). Far from the limit J stays close to 1 (K = 1000 mu) and
+// I1 and I1bar agree; near it the Gent stiffness carries the stress towards K and J
+// departs from 1 (the plate: J = 1.28 where I1 reached the limit, I1bar - 3 = 0.85 Jm),
+// which is why I1, the incompressible chain limit, is checked. A compressible gel with
+// J > (limit / I1bar)^{3/2} meets it before its I1bar does.
+// The trigger is free: the kernel's largest tr C of the dynamics' latest evaluation
+// (KernelStats::largest_trC, with the bond's C33 warm start); once it fires, one loop
+// over the owned bonds (with the C33 just solved) counts and locates them.
+// A blow-up also swells bonds past the limit in I1 on its way to inverting them (the
+// plate with Jm = 5 on a fixed step, stability.adaptive_step_diverge: 232 bonds at J =
+// 1.6 one step before they inverted): that is the divergence checks' to diagnose (the
+// time step), so the run stops here only once bonds have been past the limit for
+// past_limit_steps consecutive steps; a state that crossed it under a load stays past it.
+template <int D> PetscErrorCode SimulationD<D>::CheckLawValidity(PetscInt step, double t, std::string *message)
+{
+  PetscFunctionBegin;
+  message->clear();
+  const LawEntry &law = law_entry(scene_.model);
+  if (scene_.failure || !law.limit) PetscFunctionReturn(0);
+  const double limit = law.I1bar_limit(scene_.material);
+  double       top   = force_.stats().largest_trC;
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &top, 1, MPI_DOUBLE, MPI_MAX, comm_));
+  if (!(top >= limit)) {
+    past_limit_since_ = -1;
+    PetscFunctionReturn(0);
+  }
+
+  const bool     plane_strain = scene_.formulation == Formulation::plane_strain;
+  const PetscInt n            = D * layout_.n_owned;
+  const double  *x;
+  PetscCall(VecGetArrayRead(X_, &x));
+  std::vector<double> u(x, x + n);
+  PetscCall(VecRestoreArrayRead(X_, &x));
+  PetscCall(force_.UpdatePositions(u.data()));
+  const double *y   = force_.positions();
+  const double *c33 = force_.warm_start().empty() ? nullptr : force_.warm_start().data();
+  long long     count   = 0;
+  std::size_t   worst_i = 0;
+  double        worst[3] = {0, 1, 0}; // I1, J, I1bar of the bond with the largest I1
+  for (PetscInt i = 0; i < layout_.n_owned; ++i)
+    for (std::size_t q = 0; q < families_.size((std::size_t)i); ++q) {
+      if (!bond_state_.is_intact((std::size_t)i, q) || !geometry_.is_usable((std::size_t)i, q)) continue;
+      const nd::Mat<D> F = nd::bond_deformation_gradient<D>(layout_.cloud, y, families_, geometry_, bond_state_, (std::size_t)i, q);
+      double trC = 0.0;
+      for (int k = 0; k < D * D; ++k) trC += F[k] * F[k];
+      double J = nd::det<D>(F);
+      if (D == 2) {
+        const double c = plane_strain || !c33 || !(c33[families_.offsets[i] + q] > 0) ? 1.0 : c33[families_.offsets[i] + q];
+        trC += c;
+        J *= std::sqrt(c);
+      }
+      // Past the limit in I1 and inside it in I1bar (so J > 1): the volume change the
+      // law takes instead of its limit. A bond past it in I1bar too (or inverted) is a
+      // state the model refused or a wreck: CheckHealth's and the divergence checks'.
+      if (!(trC >= limit) || !(J > 0)) continue;
+      const double I1bar = trC * std::pow(J, -2.0 / 3.0);
+      if (!(I1bar < limit)) continue;
+      ++count;
+      if (trC > worst[0]) worst[0] = trC, worst[1] = J, worst[2] = I1bar, worst_i = (std::size_t)i;
+    }
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &count, 1, MPI_LONG_LONG, MPI_SUM, comm_));
+  if (count == 0) { // the trigger's C33 was the step before's: not yet
+    past_limit_since_ = -1;
+    PetscFunctionReturn(0);
+  }
+  if (past_limit_since_ < 0) past_limit_since_ = step, past_limit_stretch_ = loading_.stretch_at(t);
+  if (step - past_limit_since_ + 1 < past_limit_steps) PetscFunctionReturn(0);
+  struct {
+    double value;
+    int    rank;
+  } mine = {worst[0], rank_}, best;
+  PetscCallMPI(MPI_Allreduce(&mine, &best, 1, MPI_DOUBLE_INT, MPI_MAXLOC, comm_));
+  double where[7] = {worst[0], worst[1], worst[2], 0, 0, 0, 0}; // I1, J, I1bar, natural id, position
+  if (best.rank == rank_) {
+    where[3] = (double)layout_.cloud.natural_id[worst_i];
+    for (int c = 0; c < D; ++c) where[4 + c] = layout_.cloud.x[D * worst_i + c];
+  }
+  PetscCallMPI(MPI_Bcast(where, 7, MPI_DOUBLE, best.rank, comm_));
+  double option_value = 0;
+  for (const LawOptionEntry &o : law.options)
+    if (std::string(o.name) == law.limit_option) option_value = scene_.material.values[o.index];
+  char at[128];
+  if (D == 2) std::snprintf(at, sizeof at, "(%.6g, %.6g) m", where[4], where[5]);
+  else std::snprintf(at, sizeof at, "(%.6g, %.6g, %.6g) m", where[4], where[5], where[6]);
+  const double stretch = loading_.stretch_at(t);
+  char         text[1600];
+  std::snprintf(text, sizeof text,
+                "%lld bond(s) past the law's chain limit in I1 = tr C at step %" PetscInt_FMT " (t = %.6e s, applied stretch %.4g; since "
+                "step %" PetscInt_FMT ", stretch %.4g): "
+                "the largest, at point %.0f, reference position %s, has I1 - 3 = %.4g >= %.4g (%s %g), and stays inside the law only "
+                "because its volume ratio J = %.4g keeps I1bar = J^(-2/3) I1 at %.4g, a volume change a nearly incompressible gel "
+                "(-material_bulk_ratio %g) does not make: past this point the stress is not the material's. Cause: %s. Raise %s "
+                "(now %g), or end the load below stretch %.4g, or enable failure (-failure_critical_stretch) so that such bonds break.",
+                count, step, t, stretch, past_limit_since_, past_limit_stretch_, where[3], at, where[0] - 3.0, limit - 3.0, law.limit_option, option_value, where[1], where[2],
+                2.0 / (scene_.material.D * scene_.material.mu), law.limit, law.limit_option, option_value, past_limit_stretch_);
+  *message = text;
+  PetscFunctionReturn(0);
+}
+
 // Runaway energy (divergence.hpp), handed what it reads.
 template <int D> PetscErrorCode SimulationD<D>::CheckRunaway(PetscInt step, double t, std::string *message)
 {
@@ -245,7 +352,8 @@ template <int D> PetscErrorCode SimulationD<D>::CheckRunaway(PetscInt step, doub
 #define BAPD_SIMULATION_HEALTH(D) \
   template PetscErrorCode SimulationD<D>::CheckHealth(PetscInt step, double t, PetscBool *diverged); \
   template PetscErrorCode SimulationD<D>::DiagnoseDivergence(); \
-  template PetscErrorCode SimulationD<D>::CheckRunaway(PetscInt step, double t, std::string *message);
+  template PetscErrorCode SimulationD<D>::CheckRunaway(PetscInt step, double t, std::string *message); \
+  template PetscErrorCode SimulationD<D>::CheckLawValidity(PetscInt step, double t, std::string *message);
 BAPD_SIMULATION_HEALTH(2)
 BAPD_SIMULATION_HEALTH(3)
 #undef BAPD_SIMULATION_HEALTH

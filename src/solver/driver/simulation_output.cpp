@@ -438,10 +438,11 @@ template <int D> PetscErrorCode SimulationD<D>::RestoreCheckpoint()
   {
     PetscInt max_steps;
     PetscCall(TSGetMaxSteps(ts_, &max_steps));
+    const char *limit = scene_.end_step >= 0 && scene_.end_step == max_steps ? "-end_step" : "-ts_max_steps";
     if (max_steps <= header.step)
-      PetscCall(PetscPrintf(comm_, "\n*** WARNING: the checkpoint is at step %" PetscInt_FMT ", already at -ts_max_steps %" PetscInt_FMT
-                                   " (the options stored in the checkpoint count): this run takes no step. Give a larger -ts_max_steps.\n\n",
-                            (PetscInt)header.step, max_steps));
+      PetscCall(PetscPrintf(comm_, "\n*** WARNING: the checkpoint is at step %" PetscInt_FMT ", already at %s %" PetscInt_FMT
+                                   " (the options stored in the checkpoint count): this run takes no step. Give a larger %s.\n\n",
+                            (PetscInt)header.step, limit, max_steps, limit));
   }
   // A step shortened by stiffness or -time_step_travel goes on as it was, and so does
   // the re-estimate: the continuation is then the uninterrupted run. A new, shorter

@@ -206,7 +206,9 @@ std::string SceneText(const Scene &s)
   else text += Format("  time      step %g x the stable step", s.time_step_safety);
   if (s.time_step_travel > 0) text += Format(" (shorter while a point with bonds would move > %g dx a step)", s.time_step_travel);
   else if (s.time_step_travel < 0 && s.failure) text += " (shorter while a point with bonds would move > 0.1 dx a step)";
-  text += Format(", damping %g 1/s, end %g s\n", s.damping, s.end_time);
+  text += Format(", damping %g 1/s, end %g s", s.damping, s.end_time);
+  if (s.end_step >= 0) text += Format(" or after step %ld (-end_step), whichever comes first", (long)s.end_step);
+  text += "\n";
   if (s.static_tolerance > 0)
     text += Format("  static    a hold ends once kinetic energy < %g x internal energy (checked at every history row)\n", s.static_tolerance);
   text += Format("  output    %s/, history every %ld steps\n", s.output_dir.c_str(), (long)s.output_interval);

@@ -85,6 +85,10 @@ PetscErrorCode ReadOutputTime(MPI_Comm comm, Scene *scene, SceneInput *in)
     PetscCall(r.Real("-damping", "Mass-proportional damping coefficient [1/s], >= 0", &scene->damping));
     PetscCall(r.Real("-static_tolerance", "A hold of the load schedule ends once kinetic/internal energy < this [-] (0: holds run their full length)", &scene->static_tolerance));
     PetscCall(r.Real("-end_time", "End of the run [s] (default: the schedule's last time)", &scene->end_time, &in->end_time_set));
+    PetscCall(r.Int("-end_step",
+                    "Stop after this time step [-] (a step number: a restart goes on counting), before -end_time, on purpose: a run in "
+                    "parts, a test, a benchmark (-1: run to -end_time)",
+                    &scene->end_step));
     PetscCall(r.Int("-progress_interval", "Time steps between progress lines [-] (0: every end time / 20 of simulated time)", &scene->progress_interval));
     return 0;
   }));
@@ -131,6 +135,9 @@ PetscErrorCode CheckOutputTime(MPI_Comm comm, const SceneInput &in, Scene *scene
   SceneCheck(scene->progress_interval >= 0, comm,
              "-progress_interval %" PetscInt_FMT ": give N >= 1 time steps between progress lines, or 0 for about 20 lines a run",
              scene->progress_interval);
+  SceneCheck(scene->end_step >= -1, comm,
+             "-end_step %" PetscInt_FMT ": give the step number after which the run stops (>= 0), or -1 to run to -end_time",
+             scene->end_step);
   const double schedule_end = scene->schedule.end_time();
   if (in.end_time_set) {
     SceneCheck(scene->end_time > 0, comm, "-end_time %g: the run must end after t = 0 s", scene->end_time);

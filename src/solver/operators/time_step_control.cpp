@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 
 #include "bapd/core/materials/law_registry.hpp"
@@ -64,6 +65,10 @@ PetscErrorCode TimeStepOptionsFromOptions(MPI_Comm comm, TimeStepOptions *option
                      "With -time_step_reestimate_indicator or _bonds: the indicator's growth since the last search that calls the next "
                      "one [-], > 1 (default 1.5)",
                      &options->growth));
+    PetscCall(r.Bool("-time_step_allow_unstable",
+                     "Run a -time_step (or -ts_dt) more than 5 % above the estimated stable step instead of refusing it: for studies "
+                     "of the blow-up and its diagnosis (the run is expected to diverge)",
+                     &options->allow_unstable));
     PetscCall(r.Bool("-time_step_monitor", "Print a line per re-estimate of the stable step (step, lambda_max, stable step, step in use)",
                      &options->monitor));
     PetscCall(r.Int("-time_step_crack_tip",
@@ -192,10 +197,30 @@ PetscErrorCode TimeStepControl::EstimateStable(MPI_Comm comm, const Scene &scene
                           travel_ > 0 ? "; shorter while points with bonds fly" : ""));
   if (travel_ > 0 && travel_auto_)
     PetscCall(PetscPrintf(comm, "Time step: with failure on, no point with bonds moves more than 0.1 dx in one step (-time_step_travel 0 turns it off)\n"));
-  if (dt_ > stable_dt_)
+  if (scene.time_step > 0) PetscCall(CheckFixedStep(comm, "-time_step", dt_));
+  else if (dt_ > stable_dt_)
     PetscCall(PetscPrintf(comm, "\n*** WARNING: dt = %.4e s is LARGER than the stable step %.4e s: expect the run to blow up.\n"
-                                "*** Lower -time_step (or -time_step_safety below 1).\n\n",
+                                "*** Lower -time_step_safety below 1.\n\n",
                           dt_, stable_dt_));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode TimeStepControl::CheckFixedStep(MPI_Comm comm, const char *option, double dt) const
+{
+  PetscFunctionBegin;
+  if (!(dt > stable_dt_)) PetscFunctionReturn(0);
+  char given[32], fix[32]; // (PETSc's %g would print "1.")
+  std::snprintf(given, sizeof given, "%g", dt);
+  std::snprintf(fix, sizeof fix, "%.3g", 0.8 * stable_dt_);
+  const bool ts_dt = std::strcmp(option, "-ts_dt") == 0;
+  PetscCheck(dt <= fixed_step_margin * stable_dt_ || options_.allow_unstable, comm, PETSC_ERR_USER,
+             "%s %s s is %.3g x the stable time step %.4e s (estimated at rest; more than %g x it is refused): an explicit step that "
+             "long amplifies the body's fastest mode every step, and the results would be meaningless. Give %s %s (0.8 x stable) or "
+             "less, or %s (the solver then takes -time_step_safety x the stable step); -time_step_allow_unstable runs it anyway "
+             "(to study the blow-up)",
+             option, given, dt / stable_dt_, stable_dt_, fixed_step_margin, option, fix, ts_dt ? "remove -ts_dt" : "leave -time_step out");
+  PetscCall(PetscPrintf(comm, "\n*** WARNING: %s %.4e s is LARGER than the stable step %.4e s (%.3g x): expect the run to blow up.\n\n", option,
+                        dt, stable_dt_, dt / stable_dt_));
   PetscFunctionReturn(0);
 }
 

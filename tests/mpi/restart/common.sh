@@ -32,12 +32,12 @@ run() {
 checkpointed_runs() {
   local work="$1" N="$2"
   shift 2
-  run 2 "$work/whole" "$@" -ts_max_steps $((2 * N))
-  run 2 "$work/first" "$@" -ts_max_steps $N -checkpoint_interval $N
+  run 2 "$work/whole" "$@" -end_step $((2 * N))
+  run 2 "$work/first" "$@" -end_step $N -checkpoint_interval $N
   [ -f "$work/first/checkpoint.h5" ] || fail "no checkpoint after $N steps"
   # The scene comes from the checkpoint: only the run length and the output change.
-  run 2 "$work/second_np2" -restart "$work/first/checkpoint.h5" -ts_max_steps $((2 * N))
-  run 3 "$work/second_np3" -restart "$work/first/checkpoint.h5" -ts_max_steps $((2 * N))
+  run 2 "$work/second_np2" -restart "$work/first/checkpoint.h5" -end_step $((2 * N))
+  run 3 "$work/second_np3" -restart "$work/first/checkpoint.h5" -end_step $((2 * N))
   grep -q "Restart from $work/first/checkpoint.h5: step $N" "$work/second_np3.log" || fail "no restart line in second_np3.log"
 }
 

@@ -8,7 +8,7 @@ source "$BAPD_SOURCE_DIR/tests/mpi/restart/common.sh"
 work="restart_fields"
 rm -rf "$work"; mkdir -p "$work"
 # 30 x 12 points and 6 grip rows outside above and below (the default), 400 steps: the crack runs from about step 150.
-scene=("${NOTCHED[@]}" "${FRACTURE[@]}" -body_dx 0.001 -ts_max_steps 390 -output_fields -output_fields_interval 50)
+scene=("${NOTCHED[@]}" "${FRACTURE[@]}" -body_dx 0.001 -end_step 390 -output_fields -output_fields_interval 50)
 run 3 "$work/np3" "${scene[@]}"
 run 1 "$work/np1" "${scene[@]}"
 $PYTHON "$BAPD_SOURCE_DIR/tests/mpi/restart/check_fields.py" --dx 0.001 --nx 30 --ny 12 --grip_rows 6 --interval 50 --last 390 --thickness 0.003 --ranks 3 \

@@ -13,7 +13,7 @@ rm -rf "$work"; mkdir -p "$work"
 # (near step 400): the restarted run breaks the bonds.
 # On a grid twice as fine as the other restart tests: the signals must arrive while it
 # runs, and at dx = 0.5 mm the 900 steps take barely a second.
-scene=("${NOTCHED[@]}" "${FRACTURE[@]}" -body_dx 0.00025 -ts_max_steps 900 -progress_interval 10)
+scene=("${NOTCHED[@]}" "${FRACTURE[@]}" -body_dx 0.00025 -end_step 900 -progress_interval 10)
 run 2 "$work/whole" "${scene[@]}"
 
 # Open MPI's mpiexec passes SIGUSR1 on to the ranks (checkpoint, go on) and SIGTERM

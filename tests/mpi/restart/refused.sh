@@ -8,7 +8,7 @@ source "$BAPD_SOURCE_DIR/tests/mpi/restart/common.sh"
 work="restart_refused"
 rm -rf "$work"; mkdir -p "$work"
 scene=("${NOTCHED[@]}" "${FRACTURE[@]}" -body_dx 0.001)
-run 2 "$work/good" "${scene[@]}" -ts_max_steps 10 -checkpoint_interval 10
+run 2 "$work/good" "${scene[@]}" -end_step 10 -checkpoint_interval 10
 good="$work/good/checkpoint.h5"
 
 size=$(stat -c %s "$good")
@@ -54,5 +54,5 @@ refused missing "no such file" -restart "$work/missing.h5"
 refused other_body "belongs to another body" "${scene[@]}" -body_dx 0.0005 -restart "$good"
 refused other_notch "belongs to another body" "${scene[@]}" -body_notches 0.015,0.006,0.03,0.006 -restart "$good"
 # The good one is accepted.
-run 2 "$work/continued" -restart "$good" -ts_max_steps 20
+run 2 "$work/continued" -restart "$good" -end_step 20
 echo "bad checkpoints refused, the good one continues"

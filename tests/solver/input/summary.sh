@@ -15,8 +15,8 @@ fail() { echo "FAIL $*"; failures=$((failures + 1)); }
 # (restart with -time_step_safety): counts by steps sized at the start would double.
 scene="$src/tests/data/scenes/tiny.yaml"
 common=(-progress_interval 0 -output_fields -output_final_state -checkpoint_interval 40 -output_dir out)
-timeout 120 "$src/run_mpi.sh" -n "$ranks" "$scene" "${common[@]}" -ts_max_steps 25 > first.log 2>&1 || fail "first half: exit $?"
-timeout 120 "$src/run_mpi.sh" -n "$ranks" "$scene" "${common[@]}" -restart out/checkpoint.h5 -ts_max_steps 100000 \
+timeout 120 "$src/run_mpi.sh" -n "$ranks" "$scene" "${common[@]}" -end_step 25 > first.log 2>&1 || fail "first half: exit $?"
+timeout 120 "$src/run_mpi.sh" -n "$ranks" "$scene" "${common[@]}" -restart out/checkpoint.h5 -end_step 100000 \
   -time_step_safety 0.08 > run.log 2>&1 || fail "second half: exit $?"
 
 # Progress lines: dt, kinetic and internal energy; one per 1/20 of the (second) run's

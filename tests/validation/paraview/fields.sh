@@ -15,7 +15,7 @@ work="paraview_fields"
 rm -rf "$work"; mkdir -p "$work"
 # 30 x 12 points and 6 grip rows outside above and below (720 points), 390 steps: the crack runs
 # from about step 150; files at 0, 100, 200, 300, 390.
-scene=("${NOTCHED[@]}" "${FRACTURE[@]}" -body_dx 0.001 -ts_max_steps 390 -output_fields -output_fields_interval 100)
+scene=("${NOTCHED[@]}" "${FRACTURE[@]}" -body_dx 0.001 -end_step 390 -output_fields -output_fields_interval 100)
 run 2 "$work/current" "${scene[@]}"
 run 2 "$work/reference" "${scene[@]}" -output_fields_geometry reference
 

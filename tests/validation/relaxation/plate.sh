@@ -54,9 +54,9 @@ done
 
 # A checkpoint 20 steps after the first ramp, while the damping adapts.
 N=50
-run 2 "$work/first" "${scene[@]}" "${fast[@]}" -ts_max_steps $N -checkpoint_interval $N
+run 2 "$work/first" "${scene[@]}" "${fast[@]}" -end_step $N -checkpoint_interval $N
 [ -f "$work/first/checkpoint.h5" ] || fail "no checkpoint after $N steps"
-run 1 "$work/second" -restart "$work/first/checkpoint.h5" -ts_max_steps 1000000
+run 1 "$work/second" -restart "$work/first/checkpoint.h5" -end_step 1000000
 grep -q "Restart from $work/first/checkpoint.h5: step $N" "$work/second.log" || fail "no restart line in second.log"
 for f in history.csv static_states.csv; do
   cmp "$work/fast/$f" "$work/second/$f" || fail "$f differs after the restart"

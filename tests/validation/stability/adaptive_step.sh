@@ -79,7 +79,7 @@ fi
 M=240
 if [ "$part" = ranks ]; then
 # The same on 1, 2 and 3 ranks, over the first M steps, in which the step shrinks.
-for r in 1 2 3; do run $r "$work/np$r" "${scene[@]}" -ts_max_steps $M || fail "np$r run failed"; done
+for r in 1 2 3; do run $r "$work/np$r" "${scene[@]}" -end_step $M || fail "np$r run failed"; done
 base=$(column "$work/np1" dt_s | head -n 1)
 shortest=$(column "$work/np1" dt_s | sort -g | head -n 1)
 awk -v a="$shortest" -v b="$base" 'BEGIN { exit !(a < 0.95 * b) }' || fail "the step never shrank in $M steps (shortest $shortest, base $base)"
@@ -96,8 +96,8 @@ if [ "$part" = bonds ]; then
 # at the output cadence, and the ramp to 2 comes within the M steps only with it.)
 quiet=(-time_step_monitor)
 bonds=(-time_step_reestimate_bonds)
-run 1 "$work/default" "${scene[@]}" "${quiet[@]}" -ts_max_steps $M || fail "default run failed"
-run 1 "$work/np1" "${scene[@]}" "${quiet[@]}" "${bonds[@]}" -ts_max_steps $M || fail "bonds: 1-rank run failed"
+run 1 "$work/default" "${scene[@]}" "${quiet[@]}" -end_step $M || fail "default run failed"
+run 1 "$work/np1" "${scene[@]}" "${quiet[@]}" "${bonds[@]}" -end_step $M || fail "bonds: 1-rank run failed"
 evals() { grep -o 're-estimated [0-9]* time(s) ([0-9]* force evaluations' "$1" | grep -o '([0-9][0-9]*' | tr -d '('; }
 e_default=$(evals "$work/default.log") e_bonds=$(evals "$work/np1.log")
 [ -n "$e_default" ] && [ -n "$e_bonds" ] || fail "no re-estimate summary in the logs"
@@ -110,12 +110,12 @@ echo "evaluations: default $e_default, bonds $e_bonds; searches (8 Krylov steps)
 base=$(column "$work/np1" dt_s | head -n 1)
 shortest=$(column "$work/np1" dt_s | sort -g | head -n 1)
 awk -v a="$shortest" -v b="$base" 'BEGIN { exit !(a < 0.95 * b) }' || fail "bonds: the step never shrank (shortest $shortest, base $base)"
-run 3 "$work/np3" "${scene[@]}" "${quiet[@]}" "${bonds[@]}" -ts_max_steps $M || fail "bonds: 3-rank run failed"
+run 3 "$work/np3" "${scene[@]}" "${quiet[@]}" "${bonds[@]}" -end_step $M || fail "bonds: 3-rank run failed"
 N=170
-run 2 "$work/first" "${scene[@]}" "${quiet[@]}" "${bonds[@]}" -ts_max_steps $N -checkpoint_interval $N || fail "bonds: first run failed"
+run 2 "$work/first" "${scene[@]}" "${quiet[@]}" "${bonds[@]}" -end_step $N -checkpoint_interval $N || fail "bonds: first run failed"
 "${PYTHON:-/usr/bin/python3}" -c "import h5py, sys; v = h5py.File(sys.argv[1])['time_step'].attrs['indicator']; sys.exit(not v > 1)" \
   "$work/first/checkpoint.h5" || fail "bonds: no search before the checkpoint (its indicator is not > 1)"
-run 3 "$work/second" -restart "$work/first/checkpoint.h5" -ts_max_steps $M || fail "bonds: restart on 3 ranks failed"
+run 3 "$work/second" -restart "$work/first/checkpoint.h5" -end_step $M || fail "bonds: restart on 3 ranks failed"
 python3 "$src/tests/mpi/compare_runs.py" --tolerance 0 "$work/np1" "$work/np3" "$work/second" ||
   fail "bonds: 3 ranks or the restart differ from the 1-rank run"
 echo "bonds: the same on 1 and 3 ranks and after a restart at step $N (shortest step $shortest s, base $base s)"
@@ -124,25 +124,25 @@ fi
 if [ "$part" = restart ]; then
 # Restart mid-adaptation: the checkpoint at step N has a shortened step.
 N=170
-run 2 "$work/whole" "${scene[@]}" -ts_max_steps $M || fail "whole run failed"
-run 2 "$work/first" "${scene[@]}" -ts_max_steps $N -checkpoint_interval $N || fail "first run failed"
+run 2 "$work/whole" "${scene[@]}" -end_step $M || fail "whole run failed"
+run 2 "$work/first" "${scene[@]}" -end_step $N -checkpoint_interval $N || fail "first run failed"
 [ -f "$work/first/checkpoint.h5" ] || fail "no checkpoint after $N steps"
 base=$(column "$work/whole" dt_s | head -n 1)
 at_n=$(awk -F, -v n=$N 'NR == 1 { for (i = 1; i <= NF; ++i) if ($i == "dt_s") c = i; next } $1 == n { print $c }' "$work/whole/history.csv")
 awk -v a="$at_n" -v b="$base" 'BEGIN { exit !(a < b) }' || fail "the step at the checkpoint ($at_n) is not shortened: not mid-adaptation"
-run 2 "$work/second_np2" -restart "$work/first/checkpoint.h5" -ts_max_steps $M || fail "restart on 2 ranks failed"
-run 3 "$work/second_np3" -restart "$work/first/checkpoint.h5" -ts_max_steps $M || fail "restart on 3 ranks failed"
+run 2 "$work/second_np2" -restart "$work/first/checkpoint.h5" -end_step $M || fail "restart on 2 ranks failed"
+run 3 "$work/second_np3" -restart "$work/first/checkpoint.h5" -end_step $M || fail "restart on 3 ranks failed"
 python3 "$src/tests/mpi/compare_runs.py" --tolerance 0 "$work/whole" "$work/second_np2" "$work/second_np3" ||
   fail "the continuation differs from the uninterrupted run"
 echo "restart at step $N (dt $at_n s < base $base s) continues bit for bit on 2 and 3 ranks"
 # The same with the stiffening indicator (-time_step_reestimate_indicator): its value at
 # the last search is in the checkpoint (format 5), and a search has run by step N.
 ind=(-time_step_reestimate_indicator)
-run 2 "$work/ind_whole" "${scene[@]}" "${ind[@]}" -ts_max_steps $M || fail "indicator: whole run failed"
-run 2 "$work/ind_first" "${scene[@]}" "${ind[@]}" -ts_max_steps $N -checkpoint_interval $N || fail "indicator: first run failed"
+run 2 "$work/ind_whole" "${scene[@]}" "${ind[@]}" -end_step $M || fail "indicator: whole run failed"
+run 2 "$work/ind_first" "${scene[@]}" "${ind[@]}" -end_step $N -checkpoint_interval $N || fail "indicator: first run failed"
 "${PYTHON:-/usr/bin/python3}" -c "import h5py, sys; v = h5py.File(sys.argv[1])['time_step'].attrs['indicator']; sys.exit(not v > 1)" \
   "$work/ind_first/checkpoint.h5" || fail "indicator: no search before the checkpoint (its indicator is not > 1)"
-run 3 "$work/ind_second" -restart "$work/ind_first/checkpoint.h5" -ts_max_steps $M || fail "indicator: restart on 3 ranks failed"
+run 3 "$work/ind_second" -restart "$work/ind_first/checkpoint.h5" -end_step $M || fail "indicator: restart on 3 ranks failed"
 python3 "$src/tests/mpi/compare_runs.py" --tolerance 0 "$work/ind_whole" "$work/ind_second" ||
   fail "indicator: the continuation differs from the uninterrupted run"
 echo "with the stiffening indicator too"
@@ -182,7 +182,7 @@ with h5py.File(sys.argv[2], "r+") as f:
     f.attrs.modify("content_hash", h)
     f.attrs.modify("format_version", 3)
 PY
-run 2 "$work/format3" -restart "$work/format3.h5" -ts_max_steps $M || { tail -n 3 "$work/format3.log"; fail "a format-3 checkpoint was not continued"; }
+run 2 "$work/format3" -restart "$work/format3.h5" -end_step $M || { tail -n 3 "$work/format3.log"; fail "a format-3 checkpoint was not continued"; }
 grep -q "^Finished" "$work/format3.log" || fail "the format-3 continuation did not finish"
 echo "a format-3 checkpoint (without the back-off) is read and continued"
 fi
@@ -208,7 +208,7 @@ sheet=(-body_width 0.03 -body_height 0.012 -body_thickness 0.003 -body_dx 0.0005
        -horizon_factor 3.015 -material_mu 4.55e3 -material_Jm 162.6 -material_bulk_ratio 100 -material_density 1000
        -load_sets top,bottom -load_top_region top -load_top_x fixed -load_top_y stretch -load_top_y_scale 1
        -load_bottom_region bottom -load_bottom_x fixed -load_bottom_y fixed -damping 40 -progress_interval 1000000
-       -load_schedule 0,1,0.2,1.6 -failure_critical_stretch 2.0 -force_form bond_only -force_stress_correction tensor -ts_max_steps 1300)
+       -load_schedule 0,1,0.2,1.6 -failure_critical_stretch 2.0 -force_form bond_only -force_stress_correction tensor -end_step 1300)
 for krylov in 1 0; do
   run 1 "$work/krylov$krylov" "${sheet[@]}" -time_step_krylov $krylov -time_step_monitor || { tail -n 3 "$work/krylov$krylov.log"; fail "the sheet did not run (krylov $krylov)"; }
   grep -q "^Finished" "$work/krylov$krylov.log" || fail "the sheet did not finish (krylov $krylov)"

@@ -102,6 +102,10 @@ private:
   PetscErrorCode Acceleration(const double *u_owned, double *a_owned);
   PetscErrorCode CheckHealth(PetscInt step, double t, PetscBool *diverged);
   PetscErrorCode CheckRunaway(PetscInt step, double t, std::string *message);
+  // Without failure: bonds past their law's limit in I1 = tr C for past_limit_steps
+  // consecutive steps (the kernel's largest tr C as the trigger, the bonds counted and
+  // located once it fires): *message is the stop.
+  PetscErrorCode CheckLawValidity(PetscInt step, double t, std::string *message);
   PetscErrorCode DiagnoseDivergence(); // the cause and its fix, appended to stop_reason_ (divergence.hpp)
   PetscErrorCode ReadProbes(const double *u_owned, double *probe_u);
   PetscErrorCode GatherNatural(const double *values, std::vector<double> *natural);
@@ -109,6 +113,9 @@ private:
   PetscErrorCode WarnEnergyBalance(PetscInt step, double t, double work, double residual); // once, past 1 % of the work
   PetscErrorCode Progress(PetscInt step, double t, PetscBool force);
   PetscErrorCode Summary();
+  // After TSSolve: the TS stopped at its step limit before the end time (-end_step: a
+  // note; -ts_max_steps: *message, the error the run ends with).
+  PetscErrorCode StoppedShort(PetscInt step, double t, std::string *message);
   PetscErrorCode ListOutputFiles(); // rank 0: every file written, with its size
   PetscErrorCode TimeStepSummary(PetscInt steps); // steps shortened and why, re-estimates' cost
   PetscErrorCode WriteFinalState();
@@ -182,6 +189,11 @@ private:
   PetscInt total_broken_ = 0;
   bool   stopped_on_error_ = false;
   bool   warned_balance_   = false; // WarnEnergyBalance said it
+  // CheckLawValidity: the first of the consecutive steps past the law's limit in I1 so
+  // far (-1: none), and how many it waits for before it stops the run.
+  PetscInt past_limit_since_ = -1;
+  double   past_limit_stretch_ = 1; // ...and the applied stretch at its first
+  static constexpr PetscInt past_limit_steps = 2;
   // The latest history row, for the static-hold test.
   double              last_kinetic_ = 0, last_internal_ = 0;
   std::vector<double> last_reaction_, last_probe_u_;

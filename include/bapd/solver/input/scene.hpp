@@ -92,6 +92,7 @@ struct Scene {
   double   damping          = 0.0;  // mass-proportional damping coefficient [1/s]
   double   static_tolerance = 0.0;  // hold ends once kinetic / internal energy < this (0: holds run out)
   double   end_time         = 0.0;  // default: the schedule's last knot
+  PetscInt end_step         = -1;   // stop after this step, before end_time, on purpose (split runs, tests; -1: run to end_time)
   PetscInt progress_interval = 0;   // steps between progress lines (0: about 20 lines a run)
 
   // -help was given: every option was listed, nothing was validated and the scene

@@ -56,6 +56,7 @@ struct TimeStepOptions {
   PetscInt backoff    = 4;    // while the estimates find nothing that moves the step, interval and stretch grow up to this x
   bool     krylov     = true; // Rayleigh-Ritz on the Krylov space of the iterations (Arnoldi) instead of the last power iterate
   bool     monitor    = false; // a line per re-estimate (measurements, docs/stability.md section 8)
+  bool     allow_unstable = false; // -time_step_allow_unstable: a -time_step or -ts_dt above the stable step is run (it blows up), not refused
   PetscInt reference  = 0;     // measurements: every 25 steps, also a converged lambda_max of the same state (this many evaluations, not counted)
   bool     indicator  = false; // the search only when the points' stiffening indicator rose (StiffeningIndicator): measured, not the default
   bool     bonds      = false; // ...or when the kernel's stiffest bond stiffened (BondIndicator)
@@ -92,6 +93,18 @@ public:
   // A new base step (and step in use); the TS takes it with the next step.
   // The solver's travel limit is off for a step above the stable one.
   void SetBaseStep(double dt);
+  // A step fixed by `option` (-time_step, -ts_dt) more than fixed_step_margin above the
+  // stable step at rest is refused before the first step (the explicit scheme
+  // amplifies its fastest mode every step, and a short run ends in one or two steps,
+  // before any divergence check sees it), unless -time_step_allow_unstable; a step
+  // above the stable one within the margin, or allowed, draws a loud warning.
+  // Collective (every rank has the same estimate).
+  PetscErrorCode CheckFixedStep(MPI_Comm comm, const char *option, double dt) const;
+  // The stable step is 2 / sqrt(1.1 lambda_max) (the estimate padded by 10 %), i.e.
+  // 0.953 x the explicit scheme's limit 2 / sqrt(lambda_max) of the estimate: a step up
+  // to 1.05 x it is at most that limit (and a value copied from the 4 digits printed
+  // rounds within it).
+  static constexpr double fixed_step_margin = 1.05;
 
   // Every acceleration the dynamics evaluates (owned u and the free acceleration, 2
   // per point): kept (a copy, no allocation) when the next re-estimate will use it as
