@@ -56,6 +56,7 @@ expect_error() {
 part options
 # The scene file and the command line
 expect_error missing_scene "cannot open scene file 'no_such_scene.yaml'" no_such_scene.yaml
+expect_error device_scene "'/dev/zero' (-options_file_yaml) is a device" "$scene" -options_file_yaml /dev/zero
 expect_error missing_second_scene "cannot open scene file 'no_such_scene.yaml'" "$scene" -options_file_yaml no_such_scene.yaml
 expect_error missing_options_file "cannot open options file 'no_such_options.txt'" "$scene" -options_file no_such_options.txt
 expect_error yaml_syntax "is not valid YAML" "$fixtures/bad_syntax.yaml"
@@ -156,6 +157,7 @@ expect_error shape_reserved_name "-body_shapes: 'width' is the name of a body op
 expect_error shape_undeclared "'hole2' is not one of -body_shapes" "$scene" "${sh[@]}" -body_cut_type circle -body_cut_centre 0,0 \
   -body_cut_radius 0.002 -body_hole2_radius 0.001
 expect_error mesh_missing_file "-body_cut_file: cannot open 'no_such.geo'" "$scene" "${sh[@]}" -body_cut_type mesh -body_cut_file no_such.geo
+expect_error mesh_device "-body_cut_file: '/dev/zero' is a device" "$scene" "${sh[@]}" -body_cut_type mesh -body_cut_file /dev/zero
 expect_error mesh_no_surface "-body_cut_file: '$source_dir/tests/data/geometry/lines_only.geo' holds no surface" "$scene" "${sh[@]}" \
   -body_cut_type mesh -body_cut_file "$source_dir/tests/data/geometry/lines_only.geo"
 expect_error mesh_not_gmsh "-body_cut_file: Gmsh cannot read" "$scene" "${sh[@]}" -body_cut_type mesh -body_cut_file "$source_dir/tests/data/geometry/broken.geo"
@@ -211,6 +213,8 @@ echo "x,y,volume" > not_hdf5.h5
 expect_error cloud_missing "-body_cloud: cannot open 'no_such.csv'" "$cloud_scene" -body_cloud no_such.csv
 expect_error cloud_unreadable "-body_cloud: 'not_hdf5.h5' is not an HDF5 file" "$cloud_scene" -body_cloud not_hdf5.h5
 expect_error cloud_directory "-body_cloud: '.' is a directory" "$cloud_scene" -body_cloud .
+# A device or a pipe would be read forever: refused before a byte is read.
+expect_error cloud_device "-body_cloud: '/dev/zero' is a device" "$cloud_scene" -body_cloud /dev/zero
 expect_error cloud_no_volume_column "-body_cloud: 'no_volume.csv', line 1: the header 'x,y,vol,block_id' names no column 'volume'" \
   "$cloud_scene" -body_cloud no_volume.csv
 expect_error cloud_zero_volume "-body_cloud: 'zero_volume.csv', line 3 (point 2 at (0.00075, 0.00025) m): volume 0 m^3" \

@@ -12,6 +12,7 @@
 
 #include "bapd/core/geometry/text_table.hpp"
 #include "bapd/solver/io/hdf5_io.hpp"
+#include "bapd/solver/input/input_file.hpp"
 #include "bapd/solver/input/options_reader.hpp"
 
 namespace bapd {
@@ -152,6 +153,7 @@ std::string ReadPointCloud(const std::string &file, GivenPoints *points)
   std::error_code error;
   if (std::filesystem::is_directory(file, error))
     return "'" + file + "' is a directory, not a point cloud file: give the path of the .csv or .h5 file";
+  if (std::string why = NotARegularFile(file); !why.empty()) return why;
   return EndsWith(file, ".h5") || EndsWith(file, ".hdf5") ? ReadHdf5(file, points) : ReadText(file, points);
 }
 

@@ -10,6 +10,8 @@
 #include <vector>
 #include <yaml.h>
 
+#include "bapd/solver/input/input_file.hpp"
+
 namespace bapd {
 
 namespace {
@@ -81,6 +83,7 @@ std::string CheckSceneFileArgument(int argc, char **argv)
     if (std::strcmp(argv[a], "-options_file") == 0) {
       // A plain PETSc options file: PETSc reads it; only its absence is checked here.
       if (a + 1 >= argc) return "-options_file needs a file name";
+      if (std::string why = NotARegularFile(argv[a + 1], "-options_file"); !why.empty()) return why;
       FILE *fd = std::fopen(argv[a + 1], "rb");
       if (!fd) return std::string("cannot open options file '") + argv[a + 1] + "': " + std::strerror(errno) + " (check the path given to -options_file)";
       std::fclose(fd);
@@ -89,6 +92,7 @@ std::string CheckSceneFileArgument(int argc, char **argv)
     if (std::strcmp(argv[a], "-options_file_yaml") != 0) continue;
     if (a + 1 >= argc) return "-options_file_yaml needs a file name";
     const char *file = argv[a + 1];
+    if (std::string why = NotARegularFile(file, "-options_file_yaml"); !why.empty()) return why;
     FILE       *fd   = std::fopen(file, "rb");
     if (!fd) return std::string("cannot open scene file '") + file + "': " + std::strerror(errno) + " (check the path given to -options_file_yaml)";
     yaml_parser_t   parser;

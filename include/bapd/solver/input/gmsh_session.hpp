@@ -11,6 +11,8 @@
 #include <utility>
 #include <vector>
 
+#include "bapd/solver/input/input_file.hpp"
+
 namespace bapd {
 
 // gmsh::initialize / finalize around one read, on every path.
@@ -30,6 +32,7 @@ struct GmshSession {
 // on the open model; a file that is missing or that Gmsh cannot read is reported.
 template <class Read> std::string WithGmshFile(const std::string &file, Read read)
 {
+  if (std::string why = NotARegularFile(file); !why.empty()) return why;
   if (std::FILE *f = std::fopen(file.c_str(), "rb")) std::fclose(f);
   else return "cannot open '" + file + "' (check the path; it is read relative to the directory bapd runs in)";
   GmshSession session; // finalised on every return below
