@@ -248,12 +248,10 @@ template <int D> PetscErrorCode SimulationD<D>::CheckLawValidity(PetscInt step, 
   }
 
   const bool     plane_strain = scene_.formulation == Formulation::plane_strain;
-  const PetscInt n            = D * layout_.n_owned;
   const double  *x;
-  PetscCall(VecGetArrayRead(X_, &x));
-  std::vector<double> u(x, x + n);
+  PetscCall(VecGetArrayRead(X_, &x)); // (u: the first D n_owned entries)
+  PetscCall(force_.UpdatePositions(x));
   PetscCall(VecRestoreArrayRead(X_, &x));
-  PetscCall(force_.UpdatePositions(u.data()));
   const double *y   = force_.positions();
   const double *c33 = force_.warm_start().empty() ? nullptr : force_.warm_start().data();
   long long     count   = 0;

@@ -39,9 +39,6 @@ PetscErrorCode RegisterEvents()
   PetscFunctionReturn(0);
 }
 
-// The step of a history.csv row ("step,time,...").
-long long RowStep(const std::string &line) { return std::atoll(line.c_str()); }
-
 std::vector<std::string> SplitCells(const std::string &line)
 {
   std::vector<std::string> cells;
@@ -522,7 +519,7 @@ template <int D> PetscErrorCode SimulationD<D>::RestoreRunText(const CheckpointH
       std::vector<std::string> lines;
       std::istringstream       in(t.stored);
       for (std::string line; std::getline(in, line);) lines.push_back(line);
-      if (t.history && lines.size() > 1 && RowStep(lines.back()) == header.step && header.step % scene_.output_interval != 0) lines.pop_back();
+      if (t.history && lines.size() > 1 && HistoryRowStep(lines.back()) == header.step && header.step % scene_.output_interval != 0) lines.pop_back();
       if (lines.empty()) lines.push_back(t.columns);
       if (lines.front() != t.columns) {
         std::vector<std::string> added, dropped;

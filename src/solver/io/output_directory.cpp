@@ -53,12 +53,6 @@ std::string LockHolder(int fd)
   return name + " process " + std::to_string((long)probe.l_pid) + " on host " + HostName();
 }
 
-// The step of a history.csv row ("step,time,..."); -1 for the header or a cut row.
-long long RowStep(const std::string &line)
-{
-  if (line.empty() || line[0] < '0' || line[0] > '9') return -1;
-  return std::atoll(line.c_str());
-}
 
 // Rank 0: the results in `dir` newer than a checkpoint's step, in words ("" if none):
 // history rows, another checkpoint.h5, field files. `newer_checkpoint` and
@@ -71,7 +65,7 @@ std::string FindNewerResults(const std::string &dir, const std::string &checkpoi
     std::ifstream in(dir + "/history.csv");
     long long     rows = 0, last = -1;
     for (std::string line; std::getline(in, line);) {
-      const long long s = RowStep(line);
+      const long long s = HistoryRowStep(line);
       if (s > step) ++rows, last = std::max(last, s);
     }
     if (rows) found.push_back("history.csv has " + std::to_string(rows) + " row(s) after step " + std::to_string(step) + " (up to step " +
@@ -121,6 +115,12 @@ std::string FindNewerResults(const std::string &dir, const std::string &checkpoi
 }
 
 } // namespace
+
+long long HistoryRowStep(const std::string &line)
+{
+  if (line.empty() || line[0] < '0' || line[0] > '9') return -1;
+  return std::atoll(line.c_str());
+}
 
 OutputDirectoryLock::~OutputDirectoryLock()
 {

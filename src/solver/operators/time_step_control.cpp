@@ -365,16 +365,18 @@ PetscErrorCode TimeStepControl::AfterStep(MPI_Comm comm, PetscInt step, double s
                                           TS ts)
 {
   PetscFunctionBegin;
-  bool broke = false; // on any rank
-  if (failure_ && options_.interval > 0) {
-    const bool broke_here = touched && !touched->empty();
-    PetscCallMPI(MPI_Allreduce(&broke_here, &broke, 1, MPI_C_BOOL, MPI_LOR, comm));
-  }
   // Due after `interval` steps, or sooner on a fast ramp: a ramp of the fast route
   // (0.05 s, 30 steps) stiffens a Jm = 3 gel past its step between two estimates
   // (docs/stability.md, section 8).
   const bool by_step = step >= next_estimate_;
   const bool due     = by_step || std::fabs(stretch - estimate_stretch_) > stretch_now_;
+  // Bonds broke on any rank: asked every step for the crack-tip search, else only when
+  // an estimate is due (its base point is then stale).
+  bool broke = false;
+  if (failure_ && options_.interval > 0 && (due || !v_kept_.empty())) {
+    const bool broke_here = touched && !touched->empty();
+    PetscCallMPI(MPI_Allreduce(&broke_here, &broke, 1, MPI_C_BOOL, MPI_LOR, comm));
+  }
   if (options_.interval > 0 && recorded_ && due) {
     const double stretch_moved = std::fabs(stretch - estimate_stretch_);
     estimate_stretch_          = stretch;

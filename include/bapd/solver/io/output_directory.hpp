@@ -43,9 +43,14 @@ private:
 // step, field files after `step`), which continuing there would replace. With
 // `discard` (-restart_discard_newer) they are dropped instead: the newer field files
 // and checkpoint.h5 are deleted here, the history rows when the restart writes
-// history.csv.
+// history.csv. The directory's own checkpoint.h5, with nothing newer than it but rows
+// and field files (a run killed after its last checkpoint), is the usual restart: its
+// newer results are dropped as with `discard`, with a note, and written again.
 PetscErrorCode CheckNewerResults(MPI_Comm comm, const std::string &dir, const std::string &checkpoint, PetscInt step, double time,
                                  bool discard);
+
+// The step of a history.csv row ("step,time,..."); -1 for the header or a cut row.
+long long HistoryRowStep(const std::string &line);
 
 // Rank 0: writes the file `path` whole or not at all, as checkpoints and fields.xdmf
 // are written: `write` fills `path`.tmp, which is flushed, synced and renamed over
