@@ -16,7 +16,7 @@
 //   --only NAME   run only the region NAME (gent_warm, energy_warm, gent_dynamics,
 //                 identity, energy_identity, model_lanes, assemble), reps times, and print its time: for a sampling
 //                 profiler (`perf record -e cpu-clock kernel_bench --only energy_warm
-//                 --reps 200`; docs/performance.md, section 1c)
+//                 --reps 200`; docs/notes/performance-kernel-2.md 1c)
 // Per bond against LAMMPS peri/lps in the same run: bench/kernel_bench_lammps.sh.
 //
 // What is measured (every time is the minimum over reps of the thread CPU time, which
@@ -35,7 +35,7 @@
 //   identity    the kernel with P = F: gather, masked sums, K^{-1}, F, force vector
 //               and stores, no constitutive cost
 //   energy_identity  the energy-consistent form with P = F: what that form costs
-//               whatever the model (docs/performance.md 1l)
+//               whatever the model (docs/notes/performance-kernel-3.md 1l)
 //   model       GentPlaneStress::stress alone on every bond's F (warm c33): the scalar
 //               solve, one bond at a time (the bond kernel runs stress_lanes)
 //   model_lanes the same on the lanes (stress_lanes, lane_count bonds a call, every
@@ -83,7 +83,7 @@ namespace {
 // P = F: no constitutive cost, measures the kernel's own work. On the lanes, as every
 // 2D model runs (model_lanes: collecting the bonds, the form's products in lanes);
 // one bond at a time it took 12.2-12.6 ns a bond for bond-only at 3.015 dx
-// (docs/performance.md 1i).
+// (docs/notes/performance-kernel-3.md 1i).
 struct IdentityStress {
   static constexpr bool has_lanes = true;
   StressStatus          stress(const Mat2 &F, double &, Mat2 &P) const

@@ -10,8 +10,8 @@
 # simple cubic lattice with the bond count closest to the 2D one (bench/lattice_bonds.py
 # --match), its per-bond time = its Pair time over the timed steps (the last `run` of
 # in.peri_lps) scaled by its own "% CPU use" (wall -> CPU). The ratio is of rates, as in
-# docs/performance.md 1e: > 1, bapd evaluates more bonds per second (the target: 2).
-# Defaults: SIDE 316 (1e5 points), FACTOR 3.015, REPS 5 (docs/performance.md 1e, 1h).
+# docs/notes/performance-kernel-2.md 1e: > 1, bapd evaluates more bonds per second (the target: 2).
+# Defaults: SIDE 316 (1e5 points), FACTOR 3.015, REPS 5 (docs/notes/performance-kernel-2.md 1e, 1h).
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
 build=${1:-$here/build}
@@ -35,10 +35,10 @@ assert int(r['bonds']) == bonds2, (r['bonds'], bonds2)
 lammps = 1e9 * pair * cpu / 100 / steps / bonds3
 print(f"LAMMPS peri/lps: {lammps:.1f} ns/bond ({bonds3} bonds, {cpu:.0f} % CPU); bapd 2D: {bonds2} bonds")
 for name, key in (("bond-only", "gent_warm_ns"), ("energy-consistent", "energy_warm_ns")):
-    t = float(r[key]) + float(r['assemble_ns'])  # as docs/performance.md 1e adds them
+    t = float(r[key]) + float(r['assemble_ns'])  # as docs/notes/performance-kernel-2.md 1e adds them
     print(f"bapd 2D {name} force evaluation (Gent plane stress, warm c33): {t:.1f} ns/bond = {lammps / t:.2f} x LAMMPS's per-bond rate")
 # The same forms with a free constitutive model (P = F): what the kernel's own work
-# allows whatever the model costs (docs/performance.md 1l: the energy-consistent form's
+# allows whatever the model costs (docs/notes/performance-kernel-3.md 1l: the energy-consistent form's
 # ceiling is below the 2 x target).
 model = float(r['model_lanes_ns'])  # the model alone on the lanes, every batch full
 for name, key in (("bond-only", "identity_ns"), ("energy-consistent", "energy_identity_ns")):

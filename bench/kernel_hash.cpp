@@ -1,5 +1,5 @@
 // A fingerprint of the nd force kernel's results, to show that a change to the kernel
-// keeps every bit (docs/performance.md 1j): FNV-1a of the bytes of t_ij, f_i, c33, the
+// keeps every bit (docs/notes/performance-kernel-3.md 1j): FNV-1a of the bytes of t_ij, f_i, c33, the
 // evaluated count, largest tr C and the strain energy, over
 //   3D box lattices at 2.0, 3.015, 3.5, 4.2 dx (mask words 1, 2, 3, 5: the compile-time
 //      and the run-time word counts), 0, 5, 30 % of the bonds broken, small and large

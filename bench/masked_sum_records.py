@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Records a masked sum adds per bond on an interior lattice family (docs/performance.md 1k).
+"""Records a masked sum adds per bond on an interior lattice family (docs/notes/performance-kernel-3.md 1k).
 
 A bond's sums (bond_geometry.hpp masked_sum) add the records of the BA family's
 members, or the total minus the others: whichever set is smaller, decided over the

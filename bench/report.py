@@ -257,7 +257,7 @@ def main():
         elif solver_calls:
             t.note = (f"Inside the solver (callgrind on bapd, default scene, 100 time steps minus a 0-step run): "
                       f"{solver_calls['lane_fallback_calls']} bonds left the four-bond lanes for the scalar solve "
-                      f"in {solver_calls['kernel_calls']} force evaluations (docs/performance.md 1a).")
+                      f"in {solver_calls['kernel_calls']} force evaluations (docs/notes/performance-kernel-1.md 1a).")
         tables.append(t)
 
     # 2 + 4a: scaling and memory

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Tables of docs/stability.md from the runs of run_all.sh.
+"""Tables of docs/stability.md and docs/notes/stability-runs.md from the runs of run_all.sh.
 
 Usage: report.py OUTPUT_DIR DOC
 

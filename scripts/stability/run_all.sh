@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The runs behind docs/stability.md (numerical stability at the extremes),
 # then the tables: report.py rewrites the blocks between the <!-- table:NAME -->
-# markers of docs/stability.md.
+# markers of docs/stability.md and docs/notes/stability-runs.md.
 #
 #   scripts/stability/run_all.sh [OUTPUT_DIR] [SECTION ...]
 #
@@ -228,5 +228,7 @@ for section in "${sections[@]}"; do
 done
 # BAPD_STABILITY_REPORT=0: runs only (e.g. sections run side by side), tables later.
 if [ "${BAPD_STABILITY_REPORT:-1}" != 0 ]; then
-  /usr/bin/python3 "$here/scripts/stability/report.py" "$out" "$here/docs/stability.md"
+  for doc in "$here/docs/stability.md" "$here/docs/notes/stability-runs.md"; do
+    /usr/bin/python3 "$here/scripts/stability/report.py" "$out" "$doc"
+  done
 fi

@@ -1,4 +1,4 @@
-// The pair symmetry of BA families (docs/performance.md 1i): what one masked
+// The pair symmetry of BA families (docs/notes/performance-kernel-3.md 1i): what one masked
 // sum per pair would rest on, held to the code's family definition.
 //
 // For a bond (i -> j) the kernel sums over B_ij = the members k of H_i whose BA bit is
@@ -11,7 +11,7 @@
 //   K_ji = M2 - m1 xi^T - xi m1^T + (m0 + V_i) xi xi^T
 //   N_ji = N  - n1 xi^T - eta m1^T + (m0 + V_i) eta xi^T
 // exactly in exact arithmetic, to round-off in floating point (not bit for bit: why the
-// kernel does not use it, docs/performance.md 1i). Where bonds are broken, C != C' for
+// kernel does not use it, docs/notes/performance-kernel-3.md 1i). Where bonds are broken, C != C' for
 // some pairs and the shift is wrong: the test checks that too, so that it shows the
 // condition is needed.
 #include <gtest/gtest.h>

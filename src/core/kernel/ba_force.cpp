@@ -22,8 +22,9 @@ void assemble_force_density(const Families &families, const PointCloud &ref, con
     double f[D] = {};
     for (std::size_t b = families.offsets[i]; b < families.offsets[i + 1]; ++b) {
       // The reads of t_ji (through the reverse index, in j's block) and V_j wait on memory
-      // (docs/performance.md 1c, 1i): ask for those of the bond `ahead` places on now. A
-      // prefetch changes no value, so the sums and their order are those without it, bit for bit.
+      // (docs/notes/performance-kernel-2.md 1c, performance-kernel-3.md 1i): ask for those of
+      // the bond `ahead` places on now. A prefetch changes no value, so the sums and their
+      // order are those without it, bit for bit.
       if (b + ahead < n_bonds) {
         const std::int32_t rp = rev[b + ahead];
         if (rp >= 0) __builtin_prefetch(bond_force + D * static_cast<std::size_t>(rp));

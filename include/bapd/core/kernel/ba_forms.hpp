@@ -32,7 +32,7 @@ template <int D, bool Corrected> struct BondOnlyForm {
     for (int r = 0; r < D; ++r) t[D * q + r] = 0.0;
   }
   // Out of line: inlined into stress_pass's loop it made that loop slower (3D lanes
-  // bond-only 47.4 ns a bond inlined, 40.4 out of line; docs/performance.md 1k).
+  // bond-only 47.4 ns a bond inlined, 40.4 out of line; docs/notes/performance-kernel-3.md 1k).
   [[gnu::noinline]] void collect(std::size_t slot, std::size_t q, const BondKinematics<D> &k)
   {
     double g[D];

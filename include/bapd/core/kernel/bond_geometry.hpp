@@ -21,7 +21,7 @@
 // are therefore formed per bond per evaluation, not stored: storing them (3 + 1
 // doubles a bond in 2D) would cost 0.9 KB per point at delta = 3.015 dx against a
 // memory target of 2 KB per point, while forming them costs ~6 ns a bond (measured on
-// the 2D kernel, docs/performance.md 1b). It also means that a broken bond changes K
+// the 2D kernel, docs/notes/performance-kernel-1.md 1b). It also means that a broken bond changes K
 // at once, with nothing to go stale. For D = 2 every operation is the earlier 2D
 // kernel's, in its order (the same two alternating accumulators, the same K^{-1}
 // formula), so 2D results are bit for bit that kernel's (scripts/compare_binaries.sh
@@ -91,7 +91,7 @@ template <int N> struct alignas(8 * vector_doubles) Packed {
   // From N doubles (a holds whole vectors: the rest is zero): each vector is built
   // from its scalars in registers ({a[0], a[1], ...}), not stored lane by lane and read
   // back as a vector (a store-forwarding stall per record: set() in gather_point cost
-  // the D = 2 kernel 10-20 % against the retired 2D kernel: docs/performance.md 1g).
+  // the D = 2 kernel 10-20 % against the retired 2D kernel: docs/notes/performance-kernel-2.md 1g).
   static Packed from(const double *a) { return from(a, std::make_index_sequence<V>{}); }
   template <std::size_t... I> static Packed from(const double *a, std::index_sequence<I...>)
   {
@@ -134,7 +134,7 @@ template <int D> using StressRecord = Packed<D * D>;
 // accumulators, alternating: half the add latency chain, and the order is still fixed
 // by the family alone. always_inline (also masked_sum, bond_kinematics and
 // nd::symmetric_inverse): GCC put these out of line in the energy-consistent kernel
-// only, returning the sums through the stack (docs/performance.md 1j: 3D 88 -> 76 ns a
+// only, returning the sums through the stack (docs/notes/performance-kernel-3.md 1j: 3D 88 -> 76 ns a
 // bond; the arithmetic, and so every bit, unchanged).
 template <class R> [[gnu::always_inline]] inline R sum_selected(std::uint64_t m, const R *records)
 {
@@ -173,7 +173,7 @@ template <class R>
 // Deciding by word and not over the whole mask (the two are the same for 2D's one
 // word) adds 38 records a sum in place of 47 on an interior 3D family at 3.015 dx:
 // its members are sorted by natural id, z slowest, so a BA family (the lens of two
-// balls) fills most of one word and little of the other (docs/performance.md 1k).
+// balls) fills most of one word and little of the other (docs/notes/performance-kernel-3.md 1k).
 // Words: the mask words if known at compile time (the kernels dispatch 1, 2 and 3; the
 // masks then stay in registers), else 0 and `words` at run time.
 template <std::size_t Words, class R>
