@@ -64,7 +64,7 @@ def plate(root, docs, lines):
         ranks, seconds, cpu = run_times(root, name)
         found.append((name, dx, h, states, ranks, seconds, stress, cpu))
     lines += ["## 1. Plate with a hole (u_max at the mid-point of the left edge)", "",
-              "Static states by the fast route (`examples/plate_hole_fast.yaml`, docs/options.md \"Static states faster\"): "
+              "Static states by the fast route (`examples/plate_hole_fast.yaml`, docs/options_run.md, \"Static states faster\"): "
               "0.05 s ramps, adaptive dynamic relaxation (`-relaxation adaptive`, damping at least 50 1/s), each hold ends "
               "once kinetic energy < 1e-10 x internal energy (`-static_tolerance 1e-10`). Clamped grips (x held), plane stress, "
               "Gent mu = 4.55 kPa, Jm = 162.6, K = 2/D = 1000 mu, density 1000 kg/m^3. Method \"default\": grips outside the "

@@ -94,7 +94,7 @@ double NominalArea(const Scene &scene)
 
 
 // The header of history.csv: its columns for this scene's load sets, probes,
-// dimension and failure (docs/options.md, "Output").
+// dimension and failure (docs/options_run.md, "Output").
 template <int D> std::string SimulationD<D>::HistoryHeader() const
 {
   std::string h = "step,time_s,stretch";

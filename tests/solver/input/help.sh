@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # -help that helps (help.hpp): `bapd -help`, -h and --help list bapd's options alone,
-# with units, values and "required"; every option of docs/options.md's tables is in
-# it; `-help all` adds PETSc's. Through run_mpi.sh on RANKS ranks (printed once).
+# with units, values and "required"; every option of the tables of docs/options.md and
+# docs/options_run.md is in it; `-help all` adds PETSc's. Through run_mpi.sh on RANKS ranks (printed once).
 #   help.sh RANKS        (ctest sets BAPD_EXE and BAPD_SOURCE_DIR)
 set -uo pipefail
 ranks="$1"
@@ -28,9 +28,10 @@ for petsc in -options_monitor -ts_type -snes_monitor -device_enable "PetscOption
   grep -q -- "$petsc" "$h" && fail "-help lists PETSc's $petsc"
 done
 grep -q "error:" "$h" && fail "-help printed an error"
-# Every option documented in docs/options.md (the per-set and per-probe patterns aside).
+# Every option documented in docs/options.md and docs/options_run.md (the per-set and
+# per-probe patterns aside).
 missing=""
-for opt in $(grep -oE '^\| `-[a-z_]+`' "$src/docs/options.md" | grep -oE -- '-[a-z_]+' | grep -v "NAME\|_S_\|_P_" | sort -u); do
+for opt in $(grep -hoE '^\| `-[a-z_]+`' "$src/docs/options.md" "$src/docs/options_run.md" | grep -oE -- '-[a-z_]+' | grep -v "NAME\|_S_\|_P_" | sort -u); do
   grep -q -- "^  $opt <" "$h" || missing+=" $opt"
 done
 [ -z "$missing" ] || fail "documented options missing from -help:$missing"

@@ -390,7 +390,7 @@ TEST_F(Scene3D, EachBadOptionGetsItsMessage)
 // reductions are refused, the patch correction is allowed for the bond-only form only
 // (auto: off on the lattice, as in 2D; a cloud's auto below), every law of the registry has a
 // 3D form (Ogden its own, Ogden3D), and the bond-only form is tensor-corrected by default (uncorrected it is
-// 15 % soft in 3D, docs/architecture.md "core/kernel").
+// 15 % soft in 3D, docs/architecture.md "The source tree").
 TEST_F(Scene3D, MaterialOptionsOfASolidBody)
 {
   Scene scene;

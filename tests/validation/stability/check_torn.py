@@ -56,7 +56,7 @@ def main():
 
     with open(f"{args.run}/history.csv") as f:
         rows = list(csv.DictReader(f))
-    # (the crack's toughness and tip are NaN until the first bond breaks: docs/options.md, "Output")
+    # (the crack's toughness and tip are NaN until the first bond breaks: docs/options_run.md, "Output")
     no_crack_yet = lambda r, k: k.startswith(("effective_fracture_energy", "crack_length", "crack_tip")) and int(r["broken_bonds"]) == 0
     bad = [(r["step"], k) for r in rows for k, v in r.items() if not math.isfinite(float(v)) and not no_crack_yet(r, k)]
     if bad:

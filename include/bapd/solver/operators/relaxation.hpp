@@ -1,6 +1,6 @@
 #pragma once
 // Adaptive dynamic relaxation: a faster route to the static states of a slowly loaded
-// body (docs/method.md section 6; docs/options.md, "Static states faster").
+// body (docs/method.md section 6; docs/options_run.md, "Static states faster").
 //
 // Damped explicit dynamics reaches a static state fastest when its slowest mode is
 // critically damped, c = 2 omega_min (mass-proportional damping: every underdamped
