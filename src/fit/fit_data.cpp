@@ -108,6 +108,8 @@ Curve read_curve(const std::string &path, const std::string &mode_tag, const Spe
   std::vector<Line> lines;
   for (int number = 1; std::getline(in, text); ++number) {
     if (number == 1 && text.rfind("\xef\xbb\xbf", 0) == 0) text.erase(0, 3); // a UTF-8 byte-order mark
+    if (text.find('\0') != std::string::npos)
+      throw FitError(path + ": the file is UTF-16 text (it holds zero bytes); save the export as UTF-8 or ANSI CSV");
     const std::string t = trim(text);
     if (t.empty()) continue;
     if (t[0] == '#') {

@@ -159,7 +159,9 @@ TEST(FitData, AnExportWithoutItsSpecimenOrUnitsGetsAMessageNamingTheColumnAndThe
                         Case{write("text.csv", head + "Time (s);Extension (mm);Load (N)\n0;1,5;0,1\n1;2,5;n/a\n"), {0.02, 1e-5},
                              ":4: column 'Load (N)': 'n/a' is not a number"},
                         Case{write("thousands.csv", head + "Time (s);Extension (mm);Load (N)\n0;1.500,5;0,1\n"), {0.02, 1e-5},
-                             "'1.500,5' is not a number (thousands separators are not read"}}) {
+                             "'1.500,5' is not a number (thousands separators are not read"},
+                        Case{write("utf16.csv", std::string("\xff\xfeT\0i\0m\0e\0\n\0", 12)), {0.02, 1e-5},
+                             "the file is UTF-16 text"}}) {
     const std::string what = error_of(c.path, "", c.specimen);
     EXPECT_NE(what.find(c.expect), std::string::npos) << what;
     EXPECT_EQ(what.find(c.path), 0u) << what;
