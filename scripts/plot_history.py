@@ -41,7 +41,7 @@ def read_columns(path):
     """The CSV at path as {column name: numpy array}."""
     try:
         with open(path, newline="") as f:
-            rows = list(csv.reader(f))
+            rows = [r for r in csv.reader(f) if r and not r[0].lstrip().startswith("#")]  # '# mode: ...' lines of bapd-fit's CSVs
     except OSError as e:
         fail(f"cannot read {path}: {e.strerror}")
     if len(rows) < 2:
@@ -125,8 +125,29 @@ def main():
             series.append((name, y_name, x, column(columns, y_name, path)))
         all_x.append(x)
     x_all = np.concatenate(all_x)
-    x_label, x_factor = axis_label(args.x, x_all)
-    shared = common_label(y_names, [s[3] for s in series])
+    # the references, in the axes' SI units: (x, y, style, label)
+    references = []
+    if args.reference:
+        if args.x != "stretch":
+            fail("--reference is a curve against the stretch: use it with --x stretch")
+        if split_name(y_names[0])[1] != "Pa":
+            fail(f"--reference is a nominal stress in Pa; the y axis is {y_names[0]}")
+        lx, ly, label = reference_curve(args.reference, x_all, args.mu, args.Jm)
+        references.append((lx, ly, dict(color="k", linestyle="--", linewidth=1), label))
+    if args.reference_csv:
+        try:
+            file, cols = args.reference_csv.rsplit(":", 1)
+            xcol, ycol = cols.split(",")
+        except ValueError:
+            fail(f"--reference-csv {args.reference_csv}: expected FILE:XCOL,YCOL")
+        ref = read_columns(file)
+        rx = column(ref, xcol, file) * si_to(split_name(xcol)[1], split_name(args.x)[1], xcol, args.x)
+        ry = column(ref, ycol, file) * si_to(split_name(ycol)[1], split_name(y_names[0])[1], ycol, y_names[0])
+        references.append((rx, ry, dict(color="k", marker="s", linestyle="", markersize=4, fillstyle="none"),
+                           os.path.basename(file)))
+    # one unit and one scale for everything on an axis
+    x_label, x_factor = axis_label(args.x, np.concatenate([x_all] + [r[0] for r in references]))
+    shared = common_label(y_names, [s[3] for s in series] + [r[1] for r in references])
     if shared is None:  # several units on one axis: each series in its own SI unit, named in the legend
         y_label, y_factor = ", ".join(axis_label(n)[0] for n in y_names), 1.0
     else:
@@ -140,23 +161,8 @@ def main():
             words, unit = split_name(y_name)
             label = f"{name}: {words}" + (f" ({unit})" if shared is None and unit else "")
         ax.plot(x * x_factor, y * y_factor, marker="o" if len(x) < 40 else None, markersize=3, label=label)
-    if args.reference:
-        if args.x != "stretch":
-            fail("--reference is a curve against the stretch: use it with --x stretch")
-        if split_name(y_names[0])[1] != "Pa":
-            fail(f"--reference is a nominal stress in Pa; the y axis is {y_names[0]}")
-        lx, ly, label = reference_curve(args.reference, x_all, args.mu, args.Jm)
-        ax.plot(lx, ly * y_factor, "k--", linewidth=1, label=label)
-    if args.reference_csv:
-        try:
-            file, cols = args.reference_csv.rsplit(":", 1)
-            xcol, ycol = cols.split(",")
-        except ValueError:
-            fail(f"--reference-csv {args.reference_csv}: expected FILE:XCOL,YCOL")
-        ref = read_columns(file)
-        rx = column(ref, xcol, file) * si_to(split_name(xcol)[1], split_name(args.x)[1], xcol, args.x) * x_factor
-        ry = column(ref, ycol, file) * si_to(split_name(ycol)[1], split_name(y_names[0])[1], ycol, y_names[0]) * y_factor
-        ax.plot(rx, ry, "ks", markersize=4, fillstyle="none", label=os.path.basename(file))
+    for rx, ry, style, label in references:
+        ax.plot(rx * x_factor, ry * y_factor, label=label, **style)
     if args.logy:
         ax.set_yscale("log")
     ax.set_xlabel(x_label)

@@ -2,7 +2,8 @@
 # The plotting scripts label what they draw and keep the grips apart:
 # - plot_labels.py's examples (doctest): top_nominal_stress_Pa is "top nominal stress
 #   (kPa)" for gel stresses, the stretch dimensionless, a displacement in mm;
-# - plot_history.py names both axes with quantity and unit on a real history.csv;
+# - plot_history.py names both axes with quantity and unit on a real history.csv, the
+#   unit suiting the references drawn with it too;
 # - plot_fields.py on the tiny sheet (20 x 20 points, grips outside at the top and the
 #   bottom): the grip points it draws apart are exactly those whose reference position
 #   is outside the 10 mm x 10 mm specimen (counted here from the file), its colour
@@ -31,6 +32,12 @@ run tiny
 out="$($PYTHON "$scripts/plot_history.py" "$work/tiny" --x time_s --output "$work/history.png")" || fail "plot_history.py: $out"
 echo "$out"
 echo "$out" | grep -Eq ": top nominal stress \((Pa|kPa)\) against time \((s|ms)\), 1 run" || fail "plot_history.py axis labels: $out"
+# a reference in kPa up to 27.5 kPa (bapd-fit's example data, '#' lines first) sets the axis's unit with the run's < 1 kPa
+out="$($PYTHON "$scripts/plot_history.py" "$work/tiny" --reference eq36 --output "$work/reference.png" \
+        --reference-csv "$BAPD_SOURCE_DIR/examples/calibration/pure_shear_data.csv:stretch,nominal_stress_kPa")" ||
+  fail "plot_history.py --reference-csv: $out"
+echo "$out"
+echo "$out" | grep -q ": top nominal stress (kPa) against applied stretch λ (-), 1 run" || fail "plot_history.py with a reference: $out"
 
 # check_grips RUN_DIR EXPECT_RIGHT(yes|no) plot_fields options...: the grip points and the colour scale
 check_grips() {
