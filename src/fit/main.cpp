@@ -80,9 +80,8 @@ double specimen_value(const std::string &option, const std::string &v, bool area
   if (v.empty() || *end != '\0' || !std::isfinite(value) || !(value > 0.0))
     throw FitError(option + " " + v + ": give " + (area ? "the area in m^2, a number > 0 (e.g. 1e-5 for 10 mm^2)" : "the length in m, a number > 0 (e.g. 0.02 for 20 mm)"));
   if (area ? value > 0.01 : value > 1.0)
-    std::cout << "note: " << option << " " << v << (area ? " m^2: areas are in m^2 (" + v + " mm^2 would be " + std::to_string(value * 1e-6) + ")"
-                                                         : " m: lengths are in m (" + v + " mm would be " + std::to_string(value * 1e-3) + ")")
-              << "\n";
+    std::cout << "note: " << option << " " << v << (area ? " m^2: areas are in m^2 (" + v + " mm^2 would be " : " m: lengths are in m (" + v + " mm would be ")
+              << value * (area ? 1e-6 : 1e-3) << ")\n";
   return value;
 }
 
