@@ -3,8 +3,11 @@
 
     scripts/plot_fit.py OUTPUT_DIR        # reads data.csv and curves.csv, writes fit_<mode>.png
 
-bapd-fit calls it after a fit (unless -no_plot). Needs numpy and matplotlib
-(Debian's python3-numpy, python3-matplotlib).
+bapd-fit calls it after a fit (unless -no_plot). The axes are the stretch and the
+nominal stress in the unit that suits its values (Pa, kPa or MPa); the legend names
+each data file and each law with its fitted parameters (parameters_<law>.csv); the
+title names the test. Needs numpy and matplotlib (Debian's python3-numpy,
+python3-matplotlib).
 """
 import csv
 import os
@@ -14,6 +17,11 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from plot_labels import display_unit  # noqa: E402
+
+TESTS = {"uniaxial": "uniaxial tension", "pure_shear": "pure shear", "equibiaxial": "equibiaxial tension"}
 
 
 def fail(message):
@@ -29,6 +37,22 @@ def rows(path):
         fail(f"{path}: {e.strerror}; run bapd-fit first (it writes data.csv and curves.csv)")
 
 
+def law_label(out, law):
+    """'gent: mu = 4.55 kPa, Jm = 162.6' from parameters_<law>.csv (the law's name alone without it)."""
+    path = os.path.join(out, f"parameters_{law}.csv")
+    if not os.path.exists(path):
+        return law
+    parts = []
+    for r in rows(path):
+        value = float(r["value"])
+        if r["unit"] == "Pa":
+            shown, factor = display_unit("Pa", [value])
+            parts.append(f"{r['parameter']} = {value * factor:.4g} {shown}")
+        else:
+            parts.append(f"{r['parameter']} = {value:.4g}" + (f" {r['unit']}" if r["unit"] not in ("", "-") else ""))
+    return f"{law}: " + ", ".join(parts)
+
+
 def main():
     if len(sys.argv) != 2:
         fail("usage: plot_fit.py OUTPUT_DIR (bapd-fit's -output_dir)")
@@ -36,19 +60,22 @@ def main():
     data, curves = rows(os.path.join(out, "data.csv")), rows(os.path.join(out, "curves.csv"))
     modes = sorted({r["mode"] for r in data})
     for mode in modes:
-        fig, ax = plt.subplots(figsize=(6, 4.5))
-        for file in sorted({r["file"] for r in data if r["mode"] == mode}):
-            pts = [r for r in data if r["mode"] == mode and r["file"] == file]
-            ax.plot([float(r["stretch"]) for r in pts], [float(r["nominal_stress_Pa"]) / 1e3 for r in pts],
+        mode_data = [r for r in data if r["mode"] == mode]
+        mode_curves = [r for r in curves if r["mode"] == mode]
+        shown, factor = display_unit("Pa", [float(r["nominal_stress_Pa"]) for r in mode_data + mode_curves])
+        fig, ax = plt.subplots(figsize=(6.5, 4.5))
+        for file in sorted({r["file"] for r in mode_data}):
+            pts = [r for r in mode_data if r["file"] == file]
+            ax.plot([float(r["stretch"]) for r in pts], [float(r["nominal_stress_Pa"]) * factor for r in pts],
                     "o", mfc="none", color="k", label=f"data: {os.path.basename(file)}")
         for law in dict.fromkeys(r["law"] for r in curves):
-            pts = [r for r in curves if r["mode"] == mode and r["law"] == law]
+            pts = [r for r in mode_curves if r["law"] == law]
             if pts:
-                ax.plot([float(r["stretch"]) for r in pts], [float(r["nominal_stress_Pa"]) / 1e3 for r in pts],
-                        "-", label=law)
-        ax.set_xlabel("stretch [-]")
-        ax.set_ylabel("nominal stress [kPa]")
-        ax.set_title(f"bapd-fit: {mode.replace('_', ' ')}")
+                ax.plot([float(r["stretch"]) for r in pts], [float(r["nominal_stress_Pa"]) * factor for r in pts],
+                        "-", label=law_label(out, law))
+        ax.set_xlabel("stretch λ (-)")
+        ax.set_ylabel(f"nominal stress ({shown})")
+        ax.set_title(f"bapd-fit: {TESTS.get(mode, mode.replace('_', ' '))}, data and fitted laws", fontsize=10)
         ax.grid(alpha=0.3)
         ax.legend(fontsize=8)
         fig.tight_layout()

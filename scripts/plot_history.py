@@ -13,6 +13,9 @@ RUN is a run's -output_dir or its history.csv; several runs are drawn on one plo
 P = mu Jm (l - l^-3) / (Jm - l^2 - l^-2 + 2), with --mu and --Jm (defaults: the
 paper's 4.55 kPa and 162.6); --reference neo_hookean_pure_shear the Jm -> inf limit.
 --reference-csv FILE:XCOL,YCOL draws measured or computed data from another CSV.
+The axes are labelled with the quantities and their units, read from the column names
+(top_nominal_stress_Pa: "top nominal stress (kPa)", the values scaled to the unit
+that suits them; scripts/plot_labels.py); the title says what is drawn against what.
 Needs numpy and matplotlib (Debian's python3-numpy, python3-matplotlib).
 """
 import argparse
@@ -26,6 +29,9 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from plot_labels import axis_label, common_label, split_name  # noqa: E402
+
 
 def fail(message):
     sys.exit(f"plot_history.py: error: {message}")
@@ -35,7 +41,7 @@ def read_columns(path):
     """The CSV at path as {column name: numpy array}."""
     try:
         with open(path, newline="") as f:
-            rows = list(csv.reader(f))
+            rows = [r for r in csv.reader(f) if r and not r[0].lstrip().startswith("#")]  # '# mode: ...' lines of bapd-fit's CSVs
     except OSError as e:
         fail(f"cannot read {path}: {e.strerror}")
     if len(rows) < 2:
@@ -77,6 +83,18 @@ def reference_curve(kind, x, mu, Jm):
     return l, mu * (l - l**-3), f"neo-Hookean pure shear (mu = {mu:g} Pa)"
 
 
+def si_to(unit, axis_unit, name, axis_name):
+    """The factor from a reference column's unit to the axis column's (kPa to Pa: 1000)."""
+    if unit == axis_unit:
+        return 1.0
+    if (unit, axis_unit) == ("kPa", "Pa"):
+        return 1e3
+    if (unit, axis_unit) == ("Pa", "kPa"):
+        return 1e-3
+    fail(f"--reference-csv: column {name} is in {unit or 'no unit'}, the axis's {axis_name} in {axis_unit or 'no unit'}; "
+         "name the reference columns with their units (stretch, ..._Pa, ..._kPa)")
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("runs", nargs="+", help="a run's -output_dir or its history.csv (several: one curve each)")
@@ -94,25 +112,28 @@ def main():
     if args.label and len(args.label) != len(args.runs):
         fail(f"--label gives {len(args.label)} labels for {len(args.runs)} runs")
 
-    fig, ax = plt.subplots(figsize=(7, 4.5))
-    all_x, y_names = [], None
+    # every series first, so that one unit and one scale serve the whole axis
+    series, all_x, y_names, names = [], [], None, []
     for k, run in enumerate(args.runs):
         path = history_path(run)
         columns = read_columns(path)
         x = column(columns, args.x, path)
         y_names = args.y or default_y(columns, path)
         name = args.label[k] if args.label else os.path.basename(os.path.dirname(os.path.abspath(path)))
+        names.append(name)
         for y_name in y_names:
-            y = column(columns, y_name, path)
-            label = name if len(y_names) == 1 else f"{name}: {y_name}"
-            ax.plot(x, y, marker="o" if len(x) < 40 else None, markersize=3, label=label)
+            series.append((name, y_name, x, column(columns, y_name, path)))
         all_x.append(x)
     x_all = np.concatenate(all_x)
+    # the references, in the axes' SI units: (x, y, style, label)
+    references = []
     if args.reference:
         if args.x != "stretch":
             fail("--reference is a curve against the stretch: use it with --x stretch")
+        if split_name(y_names[0])[1] != "Pa":
+            fail(f"--reference is a nominal stress in Pa; the y axis is {y_names[0]}")
         lx, ly, label = reference_curve(args.reference, x_all, args.mu, args.Jm)
-        ax.plot(lx, ly, "k--", linewidth=1, label=label)
+        references.append((lx, ly, dict(color="k", linestyle="--", linewidth=1), label))
     if args.reference_csv:
         try:
             file, cols = args.reference_csv.rsplit(":", 1)
@@ -120,18 +141,43 @@ def main():
         except ValueError:
             fail(f"--reference-csv {args.reference_csv}: expected FILE:XCOL,YCOL")
         ref = read_columns(file)
-        ax.plot(column(ref, xcol, file), column(ref, ycol, file), "ks", markersize=4, fillstyle="none", label=os.path.basename(file))
+        rx = column(ref, xcol, file) * si_to(split_name(xcol)[1], split_name(args.x)[1], xcol, args.x)
+        ry = column(ref, ycol, file) * si_to(split_name(ycol)[1], split_name(y_names[0])[1], ycol, y_names[0])
+        references.append((rx, ry, dict(color="k", marker="s", linestyle="", markersize=4, fillstyle="none"),
+                           os.path.basename(file)))
+    # one unit and one scale for everything on an axis
+    x_label, x_factor = axis_label(args.x, np.concatenate([x_all] + [r[0] for r in references]))
+    shared = common_label(y_names, [s[3] for s in series] + [r[1] for r in references])
+    if shared is None:  # several units on one axis: each series in its own SI unit, named in the legend
+        y_label, y_factor = ", ".join(axis_label(n)[0] for n in y_names), 1.0
+    else:
+        y_label, y_factor = shared
+
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    for name, y_name, x, y in series:
+        if len(y_names) == 1:
+            label = name
+        else:
+            words, unit = split_name(y_name)
+            label = f"{name}: {words}" + (f" ({unit})" if shared is None and unit else "")
+        ax.plot(x * x_factor, y * y_factor, marker="o" if len(x) < 40 else None, markersize=3, label=label)
+    for rx, ry, style, label in references:
+        ax.plot(rx * x_factor, ry * y_factor, label=label, **style)
     if args.logy:
         ax.set_yscale("log")
-    ax.set_xlabel(args.x)
-    ax.set_ylabel(y_names[0] if len(y_names) == 1 else ", ".join(y_names))
+    ax.set_xlabel(x_label)
+    ax.set_ylabel(y_label)
+    y_words = shared[0].rsplit(" (", 1)[0] if shared else ", ".join(split_name(n)[0] for n in y_names)
+    x_words = x_label.rsplit(" (", 1)[0]
+    ax.set_title(f"{y_words[:1].upper() + y_words[1:]} against {x_words}" + (f": {names[0]}" if len(names) == 1 else ""),
+                 fontsize=10)
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize=8)
     fig.tight_layout()
     first = history_path(args.runs[0])
     output = args.output or os.path.join(os.path.dirname(os.path.abspath(first)), f"{y_names[0]}_vs_{args.x}.png")
     fig.savefig(output, dpi=args.dpi)
-    print(f"{output}: {', '.join(y_names)} against {args.x}, {len(args.runs)} run(s)")
+    print(f"{output}: {y_label} against {x_label}, {len(args.runs)} run(s)")
 
 
 if __name__ == "__main__":

@@ -4,10 +4,11 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <cstdlib>
+#include <cstdio>
 #include <fstream>
 #include <sstream>
 
+#include "export_table.hpp"
 #include "fit_error.hpp"
 
 namespace bapd::fit {
@@ -23,17 +24,61 @@ std::string lower(std::string s)
   for (char &c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   return s;
 }
-std::vector<std::string> split(const std::string &line)
+std::string g(double v)
 {
-  std::vector<std::string> out;
-  std::stringstream        ss(line);
-  std::string              item;
-  while (std::getline(ss, item, ',')) out.push_back(trim(item));
-  return out;
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
 }
-bool ends_with(const std::string &s, const std::string &tail)
+
+struct Line {
+  int         number;
+  std::string text;
+};
+
+// The first column of the first quantity in `order` that the header has; -1 if none.
+int pick(const std::vector<ColumnName> &columns, std::initializer_list<Quantity> order)
 {
-  return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
+  for (Quantity q : order)
+    for (std::size_t i = 0; i < columns.size(); ++i)
+      if (columns[i].quantity == q) return static_cast<int>(i);
+  return -1;
+}
+
+bool all_numbers(const std::vector<std::string> &cells)
+{
+  double v     = 0.0;
+  bool   any   = false;
+  for (const std::string &c : cells) {
+    if (c.empty()) continue;
+    if (!parse_number(c, v)) return false;
+    any = true;
+  }
+  return any;
+}
+
+// How a column's values become SI: the factor of its unit; throws naming the column.
+double column_factor(const std::string &path, const ColumnName &c)
+{
+  const std::string n = c.name;
+  if ((c.quantity == Quantity::stress || c.quantity == Quantity::strain) &&
+      (n.find("true") != std::string::npos || n.find("cauchy") != std::string::npos || n.find("hencky") != std::string::npos ||
+       n.find("logarithmic") != std::string::npos))
+    throw FitError(path + ": column '" + c.label + "': bapd-fit fits the nominal (engineering) stress against the stretch; "
+                          "export the nominal stress or the force, and the engineering strain or the extension");
+  const double factor = si_factor(c.quantity, c.unit);
+  if (factor > 0.0) return factor;
+  const char *example = c.quantity == Quantity::extension ? "'Extension (mm)'"
+                        : c.quantity == Quantity::force   ? "'Load (N)'"
+                        : c.quantity == Quantity::strain  ? "'Strain (%)'"
+                                                          : "'nominal_stress_kPa' or 'Stress (kPa)'";
+  if (c.quantity == Quantity::stretch)
+    throw FitError(path + ": column '" + c.label + "': a stretch has no unit (" + c.unit + "?); name the column stretch");
+  if (c.unit.empty())
+    throw FitError(path + ": column '" + c.label + "' (" + to_string(c.quantity) + ") needs its unit in the header, e.g. " +
+                   example + " (" + known_units(c.quantity) + ")");
+  throw FitError(path + ": column '" + c.label + "': '" + c.unit + "' is not a unit of " + to_string(c.quantity) +
+                 " bapd-fit reads (" + known_units(c.quantity) + ")");
 }
 
 } // namespace
@@ -51,70 +96,160 @@ bool parse_mode(const std::string &text, LoadMode &mode)
   return false;
 }
 
-Curve read_curve(const std::string &path, const std::string &mode_tag)
+Curve read_curve(const std::string &path, const std::string &mode_tag, const Specimen &specimen)
 {
   std::ifstream in(path);
-  if (!in) throw FitError(path + ": cannot open the data file; give CSV files of stretch and nominal stress");
-  Curve       c;
+  if (!in) throw FitError(path + ": cannot open the data file; give CSV files of stretch and nominal stress, or exports of extension and force");
+  Curve c;
   c.file = path;
-  std::string file_mode, line;
-  int         stretch_col = -1, stress_col = -1, line_no = 0;
-  double      unit = 0.0;
-  while (std::getline(in, line)) {
-    ++line_no;
-    const std::string t = trim(line);
+
+  // The lines that are not blank or comments (the mode line read on the way).
+  std::string       file_mode, text;
+  std::vector<Line> lines;
+  for (int number = 1; std::getline(in, text); ++number) {
+    if (number == 1 && text.rfind("\xef\xbb\xbf", 0) == 0) text.erase(0, 3); // a UTF-8 byte-order mark
+    if (text.find('\0') != std::string::npos)
+      throw FitError(path + ": the file is UTF-16 text (it holds zero bytes); save the export as UTF-8 or ANSI CSV");
+    const std::string t = trim(text);
     if (t.empty()) continue;
     if (t[0] == '#') {
       const std::string body = lower(trim(t.substr(1)));
       if (body.rfind("mode:", 0) == 0) file_mode = trim(t.substr(t.find(':') + 1));
       continue;
     }
-    const std::vector<std::string> cells = split(t);
-    if (stretch_col < 0) { // the header
-      for (int i = 0; i < static_cast<int>(cells.size()); ++i) {
-        const std::string name = lower(cells[i]);
-        if (name.find("stretch") != std::string::npos && stretch_col < 0) stretch_col = i;
-        if (ends_with(name, "stress_kpa")) stress_col = i, unit = 1e3;
-        else if (ends_with(name, "stress_pa")) stress_col = i, unit = 1.0;
-      }
-      if (stretch_col < 0 || stress_col < 0)
-        throw FitError(path + ":" + std::to_string(line_no) + ": the header '" + t +
-                       "' needs a stretch column and a stress column named with its unit, e.g. stretch,nominal_stress_kPa "
-                       "(or ..._stress_Pa)");
-      continue;
-    }
-    const int need = std::max(stretch_col, stress_col);
-    if (static_cast<int>(cells.size()) <= need)
-      throw FitError(path + ":" + std::to_string(line_no) + ": '" + t + "' has too few columns for the header");
-    double v[2];
-    int    cols[2] = {stretch_col, stress_col};
-    for (int k = 0; k < 2; ++k) {
-      char *end = nullptr;
-      v[k]      = std::strtod(cells[cols[k]].c_str(), &end);
-      if (cells[cols[k]].empty() || *end != '\0' || !std::isfinite(v[k]))
-        throw FitError(path + ":" + std::to_string(line_no) + ": '" + cells[cols[k]] + "' is not a number");
-    }
-    c.stretch.push_back(v[0]);
-    c.stress_Pa.push_back(v[1] * unit);
+    lines.push_back({number, t});
   }
+
+  // The header: the first line with a deformation and a load column.
+  std::size_t             at = 0;
+  char                    separator = ',';
+  std::vector<ColumnName> columns;
+  int                     deformation = -1, load = -1;
+  const std::string no_header =
+      path + ": no header line names a deformation column (stretch, strain or extension, e.g. 'Extension (mm)') and a load "
+             "column (a stress named with its unit, e.g. nominal_stress_kPa, or a force, e.g. 'Load (N)')";
+  for (; at < lines.size(); ++at) {
+    separator                             = detect_separator(lines[at].text);
+    const std::vector<std::string> cells = split_cells(lines[at].text, separator);
+    if (all_numbers(cells) && at > 0) throw FitError(no_header + "; its first line is '" + lines[0].text + "'");
+    if (all_numbers(cells))
+      throw FitError(path + ":" + std::to_string(lines[at].number) + ": '" + lines[at].text +
+                     "' is data before any header; the first line must name the columns, e.g. stretch,nominal_stress_kPa "
+                     "or Time (s),Extension (mm),Load (N)");
+    columns.clear();
+    for (const std::string &cell : cells) columns.push_back(parse_column(cell));
+    deformation = pick(columns, {Quantity::stretch, Quantity::strain, Quantity::extension});
+    load        = pick(columns, {Quantity::stress, Quantity::force});
+    if (deformation >= 0 && load >= 0) break;
+  }
+  if (at == lines.size())
+    throw FitError(no_header + (lines.empty() ? std::string("; the file holds no line") : "; its first line is '" + lines[0].text + "'"));
+  if (at > 0)
+    c.notes.push_back("skipped " + std::to_string(at) + " line(s) before the header (line " + std::to_string(lines[at].number) + ")");
+  ++at;
+  // A row of units under the header: "(s),(mm),(N)".
+  if (at < lines.size()) {
+    const std::vector<std::string> cells = split_cells(lines[at].text, separator);
+    bool                           units = !all_numbers(cells), any = false;
+    for (const std::string &cell : cells) {
+      if (cell.empty()) continue;
+      any = true;
+      if (unit_cell(cell).empty()) units = false;
+    }
+    if (units && any) {
+      for (std::size_t i = 0; i < columns.size() && i < cells.size(); ++i)
+        if (columns[i].unit.empty() && !cells[i].empty()) {
+          columns[i].unit  = unit_cell(cells[i]);
+          columns[i].label = columns[i].label + " (" + columns[i].unit + ")";
+        }
+      ++at;
+    }
+  }
+
+  const ColumnName &dcol = columns[deformation], &lcol = columns[load];
+  const double      dfactor = column_factor(path, dcol), lfactor = column_factor(path, lcol);
+  const std::string option_place = " (before the file on the command line)";
+  if (dcol.quantity == Quantity::extension && !(specimen.gauge_length_m > 0.0))
+    throw FitError(path + ": column '" + dcol.label + "' is the extension: give the specimen's gauge length at rest (the "
+                          "clamps' separation) with -fit_gauge_length L in m, e.g. -fit_gauge_length 0.02 for 20 mm" + option_place);
+  if (lcol.quantity == Quantity::force && !(specimen.cross_section_m2 > 0.0))
+    throw FitError(path + ": column '" + lcol.label + "' is the force: give the specimen's cross-section at rest with "
+                          "-fit_cross_section A in m^2 (e.g. 1e-5 for 10 mm^2) or -fit_width W -fit_thickness T in m" + option_place);
+
+  std::vector<int> line_of;
+  const int        need          = std::max(deformation, load);
+  bool             decimal_comma = false;
+  for (; at < lines.size(); ++at) {
+    const std::vector<std::string> cells = split_cells(lines[at].text, separator);
+    const std::string              where = path + ":" + std::to_string(lines[at].number);
+    if (static_cast<int>(cells.size()) <= need)
+      throw FitError(where + ": '" + lines[at].text + "' has too few columns for the header");
+    double v[2];
+    int    cols[2] = {deformation, load};
+    for (int k = 0; k < 2; ++k)
+      if (!parse_number(cells[cols[k]], v[k]))
+        throw FitError(where + ": column '" + columns[cols[k]].label + "': '" + cells[cols[k]] + "' is not a number" +
+                       (cells[cols[k]].find(',') != std::string::npos && cells[cols[k]].find('.') != std::string::npos
+                            ? " (thousands separators are not read: export without them)"
+                            : ""));
+    decimal_comma = decimal_comma || cells[deformation].find(',') != std::string::npos || cells[load].find(',') != std::string::npos;
+    double lambda = v[0] * dfactor; // a stretch, or a strain
+    if (dcol.quantity == Quantity::strain) lambda = 1.0 + lambda;
+    else if (dcol.quantity == Quantity::extension) lambda = 1.0 + lambda / specimen.gauge_length_m;
+    double P = v[1] * lfactor;
+    if (lcol.quantity == Quantity::force) P /= specimen.cross_section_m2;
+    c.stretch.push_back(lambda);
+    c.stress_Pa.push_back(P);
+    line_of.push_back(lines[at].number);
+  }
+  if (dcol.quantity != Quantity::stretch || lcol.quantity != Quantity::stress) {
+    std::string how = "stretch = ";
+    how += dcol.quantity == Quantity::stretch  ? "'" + dcol.label + "'"
+           : dcol.quantity == Quantity::strain ? "1 + '" + dcol.label + "'"
+                                               : "1 + '" + dcol.label + "' / gauge length " + g(specimen.gauge_length_m) + " m";
+    how += ", nominal stress = ";
+    how += lcol.quantity == Quantity::stress ? "'" + lcol.label + "'"
+                                             : "'" + lcol.label + "' / cross-section " + g(specimen.cross_section_m2) + " m^2";
+    if (separator != ',' || decimal_comma)
+      how += std::string(" (") + (separator == ';' ? "';'-separated" : separator == '\t' ? "tab-separated" : "comma-separated") +
+             (decimal_comma ? ", decimal commas)" : ")");
+    c.notes.push_back(how);
+  }
+
   const std::string mode_text = mode_tag.empty() ? file_mode : mode_tag;
   if (mode_text.empty())
     throw FitError(path + ": which test is it? add a line '# mode: uniaxial' (or pure_shear, equibiaxial) or tag the "
                           "file on the command line, e.g. pure_shear:" + path);
   if (!parse_mode(mode_text, c.mode))
     throw FitError(path + ": mode '" + mode_text + "' is not a test: choose uniaxial, pure_shear or equibiaxial");
-  if (c.stretch.size() < 2) throw FitError(path + ": " + std::to_string(c.stretch.size()) + " data point(s); a curve needs at least 2");
+
+  // Loading starts at the first row in tension that carries stress; the rows before it
+  // (the rest point, a slack or a preload) are not part of the curve.
+  std::size_t start = 0;
+  while (start < c.stretch.size() && !(c.stretch[start] > 1.0 && c.stress_Pa[start] > 0.0)) ++start;
+  if (start > 0) {
+    c.notes.push_back("dropped " + std::to_string(start) + " row(s) before loading starts (line" +
+                      (start > 1 ? "s " + std::to_string(line_of[0]) + "-" : " ") + std::to_string(line_of[start - 1]) +
+                      ": stretch <= 1 or stress <= 0, as at rest)");
+    c.stretch.erase(c.stretch.begin(), c.stretch.begin() + start);
+    c.stress_Pa.erase(c.stress_Pa.begin(), c.stress_Pa.begin() + start);
+    line_of.erase(line_of.begin(), line_of.begin() + start);
+  }
+  if (c.stretch.size() < 2)
+    throw FitError(path + ": " + std::to_string(c.stretch.size()) + " data point(s)" +
+                   (start > 0 ? " once the " + std::to_string(start) + " row(s) before loading starts are dropped" : "") +
+                   "; a curve needs at least 2");
   for (std::size_t i = 0; i < c.stretch.size(); ++i) {
-    std::ostringstream at;
-    at << path << ": point " << i + 1 << " (stretch " << c.stretch[i] << ")";
+    std::ostringstream at_line;
+    at_line << path << ":" << line_of[i] << ": stretch " << c.stretch[i];
     if (!(c.stretch[i] > 1.0))
-      throw FitError(at.str() + ": a " + to_string(c.mode) +
-                     " test in tension has stretches > 1; drop the point at rest and any compression");
+      throw FitError(at_line.str() + ": a " + to_string(c.mode) +
+                     " test in tension has stretches > 1 once loading starts; drop the compression or unloading rows");
     if (i > 0 && !(c.stretch[i] > c.stretch[i - 1]))
-      throw FitError(at.str() + ": the stretch must increase strictly down the file (loading branch only; sort it, "
-                                "drop repeated or unloading points)");
+      throw FitError(at_line.str() + ": the stretch must increase strictly down the file (loading branch only; sort it, "
+                                     "drop repeated or unloading points)");
     if (c.stress_Pa[i] < 0.0)
-      throw FitError(at.str() + ": negative nominal stress " + std::to_string(c.stress_Pa[i]) +
+      throw FitError(at_line.str() + ": negative nominal stress " + g(c.stress_Pa[i]) +
                      " Pa in tension; check the sign and the offset of the load cell");
   }
   return c;

@@ -1,15 +1,31 @@
 #pragma once
-// Test data for bapd-fit: one curve of nominal stress against stretch per CSV file,
-// tagged with its homogeneous test (uniaxial | pure_shear | equibiaxial).
+// Test data for bapd-fit: one curve of nominal stress against stretch per file, tagged
+// with its homogeneous test (uniaxial | pure_shear | equibiaxial). A file is either
+// bapd-fit's own format or a test machine's export (export_table.hpp reads the cells):
 //
 //   # mode: pure_shear            (or the command-line tag MODE:FILE, which wins)
-//   stretch,nominal_stress_kPa    (a column whose name contains "stretch", and one
-//   1.1,1.83                       ending in stress_Pa or stress_kPa: the unit)
+//   stretch,nominal_stress_kPa    a stretch column and a nominal stress with its unit
+//   1.1,1.83
 //
-// Lines starting with '#' are comments. read_curve refuses, with one FitError naming the
-// file (and the line): no mode, an unknown mode, no such columns, a value that is not a
-// number, a stretch that does not increase strictly, a stretch <= 1, a negative stress,
-// fewer than two points.
+//   Time (s),Extension (mm),Load (N)      an export: the extension over the gauge
+//   0,0,0                                 length and the force over the section at
+//   1.5,2.5,0.061                         rest (Specimen) give the curve
+//
+// The header is the first line naming a deformation column (stretch; else strain,
+// engineering, "Strain (%)"; else extension, "Extension (mm)") and a load column
+// (nominal stress with its unit; else force, "Load (N)"); lines before it (an
+// export's preamble) are skipped, and a row of units may follow it. Then
+//   stretch = the stretch, 1 + strain, or 1 + extension / gauge length;
+//   nominal stress = the stress, or force / cross-section at rest.
+// Lines starting with '#' are comments. The rows before loading starts (up to the
+// first with stretch > 1 and stress > 0: the rest point (1, 0), a slack or a preload
+// at zero extension) are dropped with a note. read_curve refuses, with one FitError
+// naming the file (the line, the column or the missing option): no mode, an unknown
+// mode, no such columns, a column without a unit it knows, a true (Cauchy,
+// logarithmic) stress or strain, an extension without the gauge length or a force
+// without the section, a value that is not a number, a stretch that does not
+// increase strictly or is <= 1 after loading starts, a negative stress, fewer than
+// two points.
 #include <string>
 #include <vector>
 
@@ -18,15 +34,22 @@
 namespace bapd::fit {
 
 struct Curve {
-  std::string         file;
-  LoadMode            mode = LoadMode::uniaxial;
-  std::vector<double> stretch;   // [-]
-  std::vector<double> stress_Pa; // nominal stress [Pa]
+  std::string              file;
+  LoadMode                 mode = LoadMode::uniaxial;
+  std::vector<double>      stretch;   // [-]
+  std::vector<double>      stress_Pa; // nominal stress [Pa]
+  std::vector<std::string> notes;     // what was read and dropped, one line each
+};
+
+// The specimen at rest, for an export of extension and force (SI); 0: not given.
+struct Specimen {
+  double gauge_length_m   = 0.0; // the clamps' separation (-fit_gauge_length)
+  double cross_section_m2 = 0.0; // width x thickness (-fit_cross_section, or -fit_width x -fit_thickness)
 };
 
 bool parse_mode(const std::string &text, LoadMode &mode);
 
 // mode_tag: "" (the file's "# mode:" line) or a mode name.
-Curve read_curve(const std::string &path, const std::string &mode_tag);
+Curve read_curve(const std::string &path, const std::string &mode_tag, const Specimen &specimen = {});
 
 } // namespace bapd::fit

@@ -2,15 +2,19 @@
 //
 //   bapd-fit -law gent,mooney_rivlin data/pure_shear.csv uniaxial:data/uni.csv
 //
-// Reads the curves (fit_data.hpp), fits each law (fit_run.hpp), prints the parameters
-// with their standard errors and a comparison table, writes the files of fit_report.hpp
+// Reads the curves (fit_data.hpp: bapd-fit's stretch-stress CSV or a test machine's
+// export, converted with the specimen options before it; what was converted or
+// dropped is noted), fits each law (fit_run.hpp), prints the parameters with their
+// standard errors and a comparison table, writes the files of fit_report.hpp
 // and, unless -no_plot, draws fit_<mode>.png with scripts/plot_fit.py. Bad input stops
 // it with one "bapd-fit: error: ..." line and exit status 1; so does any law that
 // cannot fit the data (after the others are written).
+#include <cmath>
 #include <cstdlib>
 #include <iostream>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "fit_error.hpp"
@@ -26,17 +30,23 @@ namespace {
 using namespace bapd::fit;
 
 const char *usage =
-    "usage: bapd-fit [options] [MODE:]FILE.csv ...\n"
-    "  FILE.csv          nominal stress against stretch: a 'stretch' column and one named ..._stress_Pa or\n"
-    "                    ..._stress_kPa; the test from a '# mode: uniaxial|pure_shear|equibiaxial' line or\n"
-    "                    the MODE: tag\n"
+    "usage: bapd-fit [options] [specimen options] [MODE:]FILE ...\n"
+    "  FILE              one test: nominal stress against stretch (a 'stretch' column and one named\n"
+    "                    ..._stress_Pa or ..._stress_kPa), or a test machine's export of extension and\n"
+    "                    force ('Extension (mm)', 'Load (N)', 'Force [kN]', 'Strain (%)', 'Stress (MPa)'...;\n"
+    "                    ',' ';' or tab separated, decimal commas read); the test from a\n"
+    "                    '# mode: uniaxial|pure_shear|equibiaxial' line or the MODE: tag\n"
     "  -law LIST         laws to fit, comma-separated: gent, neo_hookean, mooney_rivlin, yeoh, arruda_boyce,\n"
     "                    ogden, or all (default gent)\n"
     "  -ogden_terms N    terms of the Ogden law, 1 to 4 (default 2)\n"
     "  -weight W         relative (default: residual / max(|P|, 5 % of the curve's top)) or absolute (Pa)\n"
     "  -output_dir DIR   where the files go (default bapd_fit_output)\n"
     "  -no_plot          skip the PNGs (scripts/plot_fit.py; needs /usr/bin/python3 with matplotlib)\n"
-    "  -plot_script PATH the plotting script (default " BAPD_SOURCE_DIR "/scripts/plot_fit.py)\n";
+    "  -plot_script PATH the plotting script (default " BAPD_SOURCE_DIR "/scripts/plot_fit.py)\n"
+    "specimen options, at rest, in SI, for the files after them (an export of extension or force needs them):\n"
+    "  -fit_gauge_length L    the clamps' separation [m]: stretch = 1 + extension / L\n"
+    "  -fit_cross_section A   width x thickness [m^2]: nominal stress = force / A\n"
+    "  -fit_width W -fit_thickness T   the same section as two lengths [m]\n";
 
 std::vector<std::string> split_commas(const std::string &s)
 {
@@ -48,9 +58,38 @@ std::vector<std::string> split_commas(const std::string &s)
   return out;
 }
 
+// The specimen options given so far: every file takes those before it.
+struct SpecimenOptions {
+  double      gauge_length = 0.0, cross_section = 0.0, width = 0.0, thickness = 0.0;
+  std::string pending; // the last one given if no file has followed it yet
+
+  Specimen resolve() const
+  {
+    if ((width > 0.0) != (thickness > 0.0))
+      throw FitError(std::string(width > 0.0 ? "-fit_width" : "-fit_thickness") + " needs " +
+                     (width > 0.0 ? "-fit_thickness" : "-fit_width") + " too (the section is their product), or give -fit_cross_section A");
+    return {gauge_length, width > 0.0 ? width * thickness : cross_section};
+  }
+};
+
+// A length or an area > 0 for a specimen option, with a note when it is implausible in SI.
+double specimen_value(const std::string &option, const std::string &v, bool area)
+{
+  char        *end   = nullptr;
+  const double value = std::strtod(v.c_str(), &end);
+  if (v.empty() || *end != '\0' || !std::isfinite(value) || !(value > 0.0))
+    throw FitError(option + " " + v + ": give " + (area ? "the area in m^2, a number > 0 (e.g. 1e-5 for 10 mm^2)" : "the length in m, a number > 0 (e.g. 0.02 for 20 mm)"));
+  if (area ? value > 0.01 : value > 1.0)
+    std::cout << "note: " << option << " " << v << (area ? " m^2: areas are in m^2 (" + v + " mm^2 would be " : " m: lengths are in m (" + v + " mm would be ")
+              << value * (area ? 1e-6 : 1e-3) << ")\n";
+  return value;
+}
+
 int run(int argc, char **argv)
 {
-  std::vector<std::string> laws = {"gent"}, files;
+  std::vector<std::string> laws = {"gent"};
+  std::vector<std::pair<std::string, Specimen>> files;
+  SpecimenOptions          specimen;
   int                      ogden_terms = 2;
   Weighting                weighting   = Weighting::relative;
   std::string              output_dir = "bapd_fit_output", plot_script = BAPD_SOURCE_DIR "/scripts/plot_fit.py";
@@ -80,19 +119,38 @@ int run(int argc, char **argv)
     } else if (a == "-output_dir") output_dir = value();
     else if (a == "-no_plot") plot = false;
     else if (a == "-plot_script") plot_script = value();
-    else if (!a.empty() && a[0] == '-') throw FitError(a + " is not an option of bapd-fit (bapd-fit -help lists them)");
-    else files.push_back(a);
+    else if (a == "-fit_gauge_length") specimen.gauge_length = specimen_value(a, value(), false), specimen.pending = a;
+    else if (a == "-fit_cross_section") {
+      specimen.cross_section = specimen_value(a, value(), true), specimen.pending = a;
+      specimen.width = specimen.thickness = 0.0; // the latest way of giving the section counts
+    } else if (a == "-fit_width" || a == "-fit_thickness") {
+      (a == "-fit_width" ? specimen.width : specimen.thickness) = specimen_value(a, value(), false), specimen.pending = a;
+      specimen.cross_section = 0.0;
+    } else if (!a.empty() && a[0] == '-') throw FitError(a + " is not an option of bapd-fit (bapd-fit -help lists them)");
+    else {
+      files.emplace_back(a, specimen.resolve());
+      specimen.pending.clear();
+    }
   }
-  if (files.empty()) throw FitError("no data: give one or more CSV files of stretch and nominal stress (bapd-fit -help)");
+  if (files.empty()) throw FitError("no data: give one or more CSV files of stretch and nominal stress, or exports of extension and force (bapd-fit -help)");
+  if (!specimen.pending.empty())
+    throw FitError(specimen.pending + " comes after the last file and describes none: give the specimen options before the file(s) they "
+                   "describe, e.g. bapd-fit -fit_gauge_length 0.02 -fit_cross_section 1e-5 uniaxial:export.csv");
   if (laws.empty()) throw FitError("-law: give at least one law");
 
   std::vector<Curve> curves;
-  for (const std::string &f : files) {
+  for (const auto &[f, geometry] : files) {
     std::string mode, path = f;
     const auto  colon = f.find(':');
     bapd::LoadMode m;
     if (colon != std::string::npos && parse_mode(f.substr(0, colon), m)) mode = f.substr(0, colon), path = f.substr(colon + 1);
-    curves.push_back(read_curve(path, mode));
+    curves.push_back(read_curve(path, mode, geometry));
+  }
+  for (const Curve &c : curves) {
+    if (c.notes.empty()) continue;
+    std::cout << c.file << ": " << to_string(c.mode) << ", " << c.stretch.size() << " points, stretch " << c.stretch.front()
+              << " to " << c.stretch.back() << "\n";
+    for (const std::string &note : c.notes) std::cout << "  note: " << note << "\n";
   }
   std::vector<FitLaw> chosen;
   for (const std::string &name : laws) chosen.push_back(fit_law(name, ogden_terms)); // unknown names first

@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # bapd-fit refuses bad data with one "bapd-fit: error:" line and a non-zero exit, and
-# fits good data with exit 0 (usage: bad_data.sh path/to/bapd-fit).
+# fits good data with exit 0, a machine export too, given its specimen (usage:
+# bad_data.sh path/to/bapd-fit tests/data/fit).
 set -uo pipefail
 fit="$1"
+exports="$2"
 dir="$(mktemp -d)"
 trap 'rm -rf "$dir"' EXIT
 failures=0
@@ -24,10 +26,10 @@ expect_error() {
 csv() { local f="$dir/$1"; shift; printf '%s\n' "$@" > "$f"; echo "$f"; }
 
 expect_error non_monotone "must increase strictly" "$(csv a.csv '# mode: uniaxial' 'stretch,stress_Pa' 1.5,10 1.2,20 1.8,30)"
-expect_error at_rest "stretches > 1" "$(csv b.csv '# mode: uniaxial' 'stretch,stress_Pa' 1.0,0 1.2,20 1.8,30)"
+expect_error compression "stretches > 1 once loading starts" "$(csv b.csv '# mode: uniaxial' 'stretch,stress_Pa' 1.0,0 1.2,20 0.9,30)"
 expect_error negative "negative nominal stress" "$(csv c.csv '# mode: equibiaxial' 'stretch,stress_Pa' 1.1,10 1.2,-20 1.8,30)"
 expect_error too_few "3 data point(s) for 4 parameter(s)" -law ogden "$(csv d.csv '# mode: uniaxial' 'stretch,stress_Pa' 1.1,10 1.2,20 1.8,30)"
-expect_error no_units "named with its unit" "$(csv e.csv '# mode: uniaxial' 'stretch,stress' 1.1,10 1.2,20)"
+expect_error no_units "column 'stress' (stress) needs its unit" "$(csv e.csv '# mode: uniaxial' 'stretch,stress' 1.1,10 1.2,20)"
 expect_error no_mode "which test is it" "$(csv f.csv 'stretch,stress_Pa' 1.1,10 1.2,20)"
 expect_error unknown_law "not a law bapd-fit knows" -law fung "$good"
 expect_error undetermined "not determined by these data" -law mooney_rivlin "$good"
@@ -37,8 +39,27 @@ expect_error no_data "no data" -law gent
 # Gent, whose stiffness only grows, cannot follow with positive parameters
 expect_error cannot_fit "did not converge\|cannot fit" -law gent "$(csv g.csv '# mode: uniaxial' 'stretch,stress_Pa' 1.5,1000 2,1500 3,1600 4,400 5,100)"
 
+# a machine export: the specimen options before the file, in SI
+export_csv="$exports/uniaxial_comma_units.csv"
+expect_error no_gauge "column 'Extension (mm)' is the extension.*-fit_gauge_length" -fit_cross_section 1e-5 "uniaxial:$export_csv"
+expect_error no_section "column 'Load (N)' is the force.*-fit_cross_section" -fit_gauge_length 0.02 "uniaxial:$export_csv"
+expect_error width_alone "-fit_width needs -fit_thickness" -fit_gauge_length 0.02 -fit_width 0.005 "uniaxial:$export_csv"
+expect_error after_the_file "-fit_cross_section comes after the last file" -fit_gauge_length 0.02 "uniaxial:$export_csv" -fit_cross_section 1e-5
+expect_error bad_length "-fit_gauge_length 20mm: give the length in m" -fit_gauge_length 20mm "uniaxial:$export_csv"
+expect_error export_no_mode "which test is it" -fit_gauge_length 0.02 -fit_cross_section 1e-5 "$export_csv"
+
 # the good file fits, exit 0, and writes the scene's material section
 if "$fit" -no_plot -output_dir "$dir/out" -law gent "$good" > "$dir/log" 2>&1 && grep -q "^  model: gent" "$dir/out/material_gent.yaml"; then
   echo "ok   good data fits"
 else echo "FAIL good data: $(cat "$dir/log")"; failures=$((failures + 1)); fi
+# the export fits (a neo-Hookean law: its four points are no Gent curve), with the rest
+# rows dropped and the conversion noted, and so does one with the section as width x thickness
+if "$fit" -no_plot -output_dir "$dir/export" -law neo_hookean -fit_gauge_length 0.02 -fit_cross_section 1e-5 "uniaxial:$export_csv" \
+     > "$dir/log" 2>&1 && grep -q "note: dropped 2 row(s) before loading starts" "$dir/log" &&
+   grep -q "uniaxial_comma_units.csv,uniaxial,3,40000$" "$dir/export/data.csv" &&
+   "$fit" -no_plot -output_dir "$dir/export2" -law neo_hookean -fit_gauge_length 0.01 -fit_width 0.05 -fit_thickness 0.002 \
+     "pure_shear:$exports/pure_shear_semicolon_decimal_comma.csv" > "$dir/log2" 2>&1 &&
+   grep -q "pure_shear,2,20000$" "$dir/export2/data.csv"; then
+  echo "ok   machine exports fit"
+else echo "FAIL machine export: $(cat "$dir/log" "$dir/log2" 2>/dev/null)"; failures=$((failures + 1)); fi
 exit $((failures > 0))

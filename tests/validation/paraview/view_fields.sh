@@ -1,0 +1,45 @@
+#!/usr/bin/env bash
+# scripts/view_fields.py opens a run's fields ready to look at, in a real ParaView
+# (pvpython under Xvfb): on the notched sheet of fields.sh (720 points with the grips
+# outside), once as written (current positions) and once from files written at the
+# reference positions, it draws the points as spheres a point spacing wide, coloured
+# by the default field (the displacement magnitude, or the von Mises stress where the
+# files hold it) and by a tensor component, writes a PNG and a state file that
+# ParaView loads back (check_view.py). Exit code 77 (pvpython missing) is a skip.
+set -euo pipefail
+source "$BAPD_SOURCE_DIR/tests/mpi/restart/common.sh"
+if ! command -v pvpython > /dev/null || ! command -v xvfb-run > /dev/null; then
+  echo "SKIPPED: pvpython or xvfb-run is missing: run scripts/install-deps.sh (python3-paraview, xvfb)"
+  exit 77
+fi
+work="paraview_view_fields"
+rm -rf "$work"; mkdir -p "$work"
+scene=("${NOTCHED[@]}" "${FRACTURE[@]}" -body_dx 0.001 -end_step 200 -output_fields -output_fields_interval 100)
+run 2 "$work/current" "${scene[@]}"
+run 2 "$work/reference" "${scene[@]}" -output_fields_geometry reference
+
+# -noreset: Xvfb otherwise resets when pvpython's first, short-lived X connection
+# closes, and the render window then finds no server (fields.sh).
+pv() {
+  xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" pvpython "$@" 2>&1 | grep -v '^\s*[0-9]\+\s\+0x'
+  return "${PIPESTATUS[0]}"
+}
+view="$BAPD_SOURCE_DIR/scripts/view_fields.py"
+check="$BAPD_SOURCE_DIR/tests/validation/paraview/check_view.py"
+for geometry in current reference; do
+  pv "$view" "$work/$geometry" --png "$work/$geometry.png" --state "$work/$geometry.pvsm" --resolution 600 450 |
+    tee "$work/$geometry.log" || fail "view_fields.py failed on $work/$geometry"
+  grep -Eq "coloured by (displacement magnitude|von.mises)" "$work/$geometry.log" ||
+    fail "the default colouring is neither the displacement magnitude nor a von Mises stress: $(cat "$work/$geometry.log")"
+  pv "$check" "$work/$geometry.png" "$work/$geometry.pvsm" "$work/$geometry" 720 200 || fail "the view of $work/$geometry"
+done
+pv "$view" "$work/current" --field cauchy_stress --component yy --time 0 --png "$work/syy_t0.png" --resolution 600 450 |
+  tee "$work/syy.log" || fail "view_fields.py --field cauchy_stress --component yy"
+grep -q "coloured by cauchy stress yy" "$work/syy.log" || fail "not coloured by the yy component: $(cat "$work/syy.log")"
+grep -q "t = 0 s" "$work/syy.log" || fail "--time 0 does not show the first output: $(cat "$work/syy.log")"
+# a bad request is one clear error, not a ParaView trace
+if out="$(pv "$view" "$work/current" --field cauchy_stress --component x --png "$work/bad.png")"; then
+  fail "a vector component of a tensor was accepted"
+fi
+echo "$out" | grep -q "view_fields.py: error: cauchy_stress is a tensor" || fail "the error for --component x of a tensor: $out"
+echo "view_fields.py: spheres at the deformed positions, coloured, PNG and a state file ParaView loads"
