@@ -60,6 +60,22 @@ expect_error device_scene "'/dev/zero' (-options_file_yaml) is a device" "$scene
 expect_error missing_second_scene "cannot open scene file 'no_such_scene.yaml'" "$scene" -options_file_yaml no_such_scene.yaml
 expect_error missing_options_file "cannot open options file 'no_such_options.txt'" "$scene" -options_file no_such_options.txt
 expect_error yaml_syntax "is not valid YAML" "$fixtures/bad_syntax.yaml"
+# Scenes built to exhaust the reader: 1e5 nested brackets (libyaml's cost grows with the
+# square of the depth), sections nested past PETSc's 25 prefixes, aliases of aliases that
+# expand to 9^9 values, and a file far larger than a scene.
+if in_part; then
+  /usr/bin/python3 -c "print('body:\n  dx: 0.001\nx: ' + '[' * 100000 + ']' * 100000)" > deep_list.yaml
+  /usr/bin/python3 -c "print('material: ' + '{a: ' * 40 + '1' + '}' * 40)" > deep_sections.yaml
+  /usr/bin/python3 -c "
+print('a: &a {x: 1, y: 1, z: 1, u: 1, v: 1, w: 1, p: 1, q: 1, r: 1}')
+for i in range(1, 9):
+    print(f'a{i}: &a{i} {{' + ', '.join(f'k{k}: *a' + (str(i - 1) if i > 1 else '') for k in range(9)) + '}')" > alias_bomb.yaml
+  /usr/bin/python3 -c "print('body_dx: 0.001\n' + '# padding\n' * 200000)" > huge_scene.yaml
+fi
+expect_error yaml_deep_list "'deep_list.yaml': sections are nested more than 8 levels deep at line 3" deep_list.yaml
+expect_error yaml_deep_sections "'deep_sections.yaml': sections are nested more than 8 levels deep at line 1" deep_sections.yaml
+expect_error yaml_alias_bomb "'alias_bomb.yaml': it expands to more than 100000 values through its aliases" alias_bomb.yaml
+expect_error yaml_huge_scene "scene file 'huge_scene.yaml' holds 2000016 bytes, more than a scene's 1048576" huge_scene.yaml
 expect_error stray_argument "unexpected argument 'scene.txt'" "$scene" scene.txt
 expect_error bad_rank_count "-n needs a number of ranks" "$scene" -n two
 

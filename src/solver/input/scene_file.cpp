@@ -16,9 +16,52 @@ namespace bapd {
 
 namespace {
 
-std::string CheckNode(yaml_document_t *doc, yaml_node_t *node, const std::string &path)
+// A scene nests sections at most three deep (body: shapes: left: type); PETSc's reader
+// stops at 25 prefixes with an error stack, so deeper nesting is refused here first.
+constexpr int kMaxSceneDepth = 8;
+// A scene is a few kilobytes: points and meshes come from their own files. The cap
+// keeps a runaway file (a generated list, the wrong file) from being parsed for minutes.
+constexpr long kMaxSceneBytes = 1L << 20;
+// The values a scene may expand to through YAML aliases (*name), which repeat a node
+// without copying it: nine aliases of nine aliases ... is a billion values.
+constexpr std::size_t kMaxSceneValues = 100000;
+
+// One pass over the parser's events, before the document is loaded: libyaml's cost grows
+// with the square of the nesting depth ('[[[[...' of 1e5 brackets: minutes), so the depth
+// is checked as the events come and the parse stops at the first level too deep.
+std::string CheckNesting(FILE *fd)
+{
+  yaml_parser_t parser;
+  yaml_parser_initialize(&parser);
+  yaml_parser_set_input_file(&parser, fd);
+  std::string err;
+  int         depth = 0;
+  for (bool done = false; !done && err.empty();) {
+    yaml_event_t event;
+    if (!yaml_parser_parse(&parser, &event)) break; // the loader reports syntax errors with their place
+    switch (event.type) {
+    case YAML_MAPPING_START_EVENT:
+    case YAML_SEQUENCE_START_EVENT:
+      if (++depth > kMaxSceneDepth)
+        err = "sections are nested more than " + std::to_string(kMaxSceneDepth) + " levels deep at line " + std::to_string(event.start_mark.line + 1) +
+              ": a scene nests sections (body: shapes: NAME: type: circle) and lists of numbers or names only";
+      break;
+    case YAML_MAPPING_END_EVENT:
+    case YAML_SEQUENCE_END_EVENT: --depth; break;
+    case YAML_STREAM_END_EVENT: done = true; break;
+    default: break;
+    }
+    yaml_event_delete(&event);
+  }
+  yaml_parser_delete(&parser);
+  return err;
+}
+
+std::string CheckNode(yaml_document_t *doc, yaml_node_t *node, const std::string &path, std::size_t &values)
 {
   if (!node) return "";
+  if (++values > kMaxSceneValues)
+    return "it expands to more than " + std::to_string(kMaxSceneValues) + " values through its aliases (*name): write the values out";
   if (node->type == YAML_MAPPING_NODE) {
     // libyaml keeps both of two equal keys and PETSc would silently take the last.
     std::vector<std::pair<std::string, std::size_t>> seen; // key, line
@@ -33,7 +76,7 @@ std::string CheckNode(yaml_document_t *doc, yaml_node_t *node, const std::string
           return "key '" + name + "' is given twice " + (path.empty() ? std::string("at the top level") : "under '" + path + "'") +
                  " (lines " + std::to_string(other_line) + " and " + std::to_string(line) + "): give each key once";
       seen.emplace_back(name, line);
-      std::string       err  = CheckNode(doc, val, path.empty() ? name : path + "_" + name);
+      std::string       err  = CheckNode(doc, val, path.empty() ? name : path + "_" + name, values);
       if (!err.empty()) return err;
     }
   } else if (node->type == YAML_SEQUENCE_NODE) {
@@ -95,18 +138,33 @@ std::string CheckSceneFileArgument(int argc, char **argv)
     if (std::string why = NotARegularFile(file, "-options_file_yaml"); !why.empty()) return why;
     FILE       *fd   = std::fopen(file, "rb");
     if (!fd) return std::string("cannot open scene file '") + file + "': " + std::strerror(errno) + " (check the path given to -options_file_yaml)";
+    std::string err;
+    if (std::fseek(fd, 0, SEEK_END) == 0 && std::ftell(fd) > kMaxSceneBytes) {
+      err = std::string("scene file '") + file + "' holds " + std::to_string(std::ftell(fd)) + " bytes, more than a scene's " + std::to_string(kMaxSceneBytes) +
+            ": is it the right file? (point clouds and meshes are files of their own: -body_cloud, -body_S_file)";
+      std::fclose(fd);
+      return err;
+    }
+    std::rewind(fd);
+    if (err = CheckNesting(fd); !err.empty()) {
+      std::fclose(fd);
+      return std::string("scene file '") + file + "': " + err;
+    }
+    std::rewind(fd);
     yaml_parser_t   parser;
     yaml_document_t doc;
     yaml_parser_initialize(&parser);
     yaml_parser_set_input_file(&parser, fd);
-    std::string err;
     if (!yaml_parser_load(&parser, &doc)) {
       err = std::string("scene file '") + file + "' is not valid YAML: " + (parser.problem ? parser.problem : "syntax error") +
             " at line " + std::to_string(parser.problem_mark.line + 1) + ", column " + std::to_string(parser.problem_mark.column + 1);
     } else {
       yaml_node_t *root = yaml_document_get_root_node(&doc);
       if (root && root->type != YAML_MAPPING_NODE) err = std::string("scene file '") + file + "' must be a mapping of option names to values";
-      else err = CheckNode(&doc, root, "");
+      else {
+        std::size_t values = 0;
+        err                = CheckNode(&doc, root, "", values);
+      }
       if (!err.empty() && err.rfind("scene file", 0) != 0) err = std::string("scene file '") + file + "': " + err;
       yaml_document_delete(&doc);
     }
