@@ -10,6 +10,7 @@
 #include "bapd/core/kernel/point_quantities.hpp"
 #include "bapd/core/materials/gent.hpp"
 #include "bapd/solver/io/derived_fields.hpp"
+#include "materials/deformations.hpp"
 #include "unit/kernel_fixtures_3d.hpp"
 #include "unit/test_models.hpp"
 
@@ -39,7 +40,7 @@ Mat3 rotation3(double deg)
   return R;
 }
 
-Mat3 multiply(const Mat3 &a, const Mat3 &b)
+Mat3 multiply3(const Mat3 &a, const Mat3 &b)
 {
   Mat3 m{};
   for (int r = 0; r < 3; ++r)
@@ -48,7 +49,7 @@ Mat3 multiply(const Mat3 &a, const Mat3 &b)
   return m;
 }
 
-Mat3 transpose(const Mat3 &a)
+Mat3 transpose3(const Mat3 &a)
 {
   Mat3 t;
   for (int r = 0; r < 3; ++r)
@@ -59,7 +60,7 @@ Mat3 transpose(const Mat3 &a)
 Mat3 diagonal(double a, double b, double c) { return {a, 0, 0, 0, b, 0, 0, 0, c}; }
 
 // Q diag R^T: principal values diag, in rotated frames on both sides.
-Mat3 rotated(const Mat3 &d, double left, double right) { return multiply(multiply(rotation3(left), d), transpose(rotation3(right))); }
+Mat3 rotated(const Mat3 &d, double left, double right) { return multiply3(multiply3(rotation3(left), d), transpose3(rotation3(right))); }
 
 // Round-off: a few products and sums of O(1) numbers, a square root, and the Jacobi
 // rotations (each exact to a few eps): 1e-13 relative leaves two orders of margin.
@@ -80,7 +81,7 @@ TEST(VonMisesStress, InvariantAndZeroForAHydrostaticStateIn3D)
   const double s1 = 2.0e4, s2 = -0.5e4, s3 = 1.1e4;
   // sqrt(((s1 - s2)^2 + (s2 - s3)^2 + (s3 - s1)^2) / 2) in any frame.
   const double expected = std::sqrt(0.5 * ((s1 - s2) * (s1 - s2) + (s2 - s3) * (s2 - s3) + (s3 - s1) * (s3 - s1)));
-  const Mat3   Q = rotation3(37), sigma = multiply(multiply(Q, diagonal(s1, s2, s3)), transpose(Q));
+  const Mat3   Q = rotation3(37), sigma = multiply3(multiply3(Q, diagonal(s1, s2, s3)), transpose3(Q));
   EXPECT_NEAR(von_mises_stress<3>(sigma.data()), expected, kRoundOff * expected);
   const Mat3 pressure = diagonal(-4e3, -4e3, -4e3);
   EXPECT_NEAR(von_mises_stress<3>(pressure.data()), 0.0, kRoundOff * 4e3);
