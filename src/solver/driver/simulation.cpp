@@ -448,7 +448,7 @@ template <int D> PetscErrorCode SimulationD<D>::PostStep(TS ts)
   // results stay the same bits).
   const bool interval_row = step % sim->scene_.output_interval == 0;
   const bool load_row     = sim->history_times_.Due(t);
-  if (interval_row || load_row) PetscCall(sim->WriteHistoryRow(step, t));
+  if (interval_row || load_row) PetscCall(sim->WriteHistoryRow(step, t, interval_row));
   if (interval_row) PetscCall(sim->CheckStaticHold(step, t));
   PetscCall(sim->Progress(step, t, PETSC_FALSE));
   PetscCall(sim->OutputAfterStep(step, t)); // fields, checkpoints, SIGTERM/SIGINT

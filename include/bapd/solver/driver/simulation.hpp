@@ -109,7 +109,9 @@ private:
   PetscErrorCode DiagnoseDivergence(); // the cause and its fix, appended to stop_reason_ (divergence.hpp)
   PetscErrorCode ReadProbes(const double *u_owned, double *probe_u);
   PetscErrorCode GatherNatural(const double *values, std::vector<double> *natural);
-  PetscErrorCode WriteHistoryRow(PetscInt step, double t);
+  // checks: a row of the -output_interval grid (or the first or last), where the
+  // energy-balance warning is checked; the rows by load only write.
+  PetscErrorCode WriteHistoryRow(PetscInt step, double t, bool checks = true);
   // The grips' displacement: the mean of each load set's points, D components per set
   // (every component; history.csv writes the loaded ones). Collective, reproducible.
   PetscErrorCode GripDisplacements(const double *u_owned, double *mean);
