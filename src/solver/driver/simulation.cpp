@@ -113,7 +113,9 @@ template <int D> PetscErrorCode SimulationD<D>::Setup(Scene scene)
     PetscCall(TSGetTime(ts_, &t));
     progress_times_.Start(loading_.end_time() / 20, t);
     history_times_.Start(history_period, t);
-    last_progress_wall_ = MPI_Wtime() - wall_start_; // (rank 0's is printed; the wall-time lines follow rank 0's clock)
+    // Rank 0's clock, on every rank: the wall-time progress lines follow it (Progress).
+    last_progress_wall_ = MPI_Wtime() - wall_start_;
+    PetscCallMPI(MPI_Bcast(&last_progress_wall_, 1, MPI_DOUBLE, 0, comm_));
   }
   PetscCall(PetscLogStagePop());
   PetscFunctionReturn(0);
