@@ -113,9 +113,7 @@ template <int D> PetscErrorCode SimulationD<D>::Setup(Scene scene)
     PetscCall(TSGetTime(ts_, &t));
     progress_times_.Start(loading_.end_time() / 20, t);
     history_times_.Start(history_period, t);
-    // Rank 0's clock, on every rank: the wall-time progress lines follow it (Progress).
-    last_progress_wall_ = MPI_Wtime() - wall_start_;
-    PetscCallMPI(MPI_Bcast(&last_progress_wall_, 1, MPI_DOUBLE, 0, comm_));
+    last_progress_wall_ = MPI_Wtime() - wall_start_; // (rank 0's decides: OutputAfterStep)
   }
   PetscCall(PetscLogStagePop());
   PetscFunctionReturn(0);
@@ -452,8 +450,8 @@ template <int D> PetscErrorCode SimulationD<D>::PostStep(TS ts)
   const bool load_row     = sim->history_times_.Due(t);
   if (interval_row || load_row) PetscCall(sim->WriteHistoryRow(step, t, interval_row));
   if (interval_row) PetscCall(sim->CheckStaticHold(step, t));
+  PetscCall(sim->OutputAfterStep(step, t)); // fields, checkpoints, SIGTERM/SIGINT; rank 0's clock for the progress line
   PetscCall(sim->Progress(step, t, PETSC_FALSE));
-  PetscCall(sim->OutputAfterStep(step, t)); // fields, checkpoints, SIGTERM/SIGINT
   PetscFunctionReturn(0);
 }
 

@@ -351,20 +351,18 @@ template <int D> PetscErrorCode SimulationD<D>::CheckStaticHold(PetscInt step, d
 // A progress line every -progress_interval steps, or (0) every end time / 20 of
 // simulated time, and once -progress_wall_interval seconds of wall time have passed
 // since the last line (a slow run says where it is): step, time, step size, stretch,
-// energies, broken bonds, wall time. The wall clock is rank 0's, broadcast, so that
-// every rank takes the same branch (a line costs collective sums). Prints only.
+// energies, broken bonds, wall time. The wall clock is rank 0's, read in the step's one
+// reduction (OutputAfterStep), so that every rank takes the same branch (a line costs
+// collective sums) at no extra collective. Prints only.
 template <int D> PetscErrorCode SimulationD<D>::Progress(PetscInt step, double t, PetscBool force)
 {
   PetscFunctionBegin;
   const bool by_steps = scene_.progress_interval > 0 ? step % scene_.progress_interval == 0 : progress_times_.Due(t);
-  double     wall     = MPI_Wtime() - wall_start_;
-  bool       by_wall  = false;
-  if (scene_.progress_wall_interval > 0) {
-    PetscCallMPI(MPI_Bcast(&wall, 1, MPI_DOUBLE, 0, comm_));
-    by_wall = wall - last_progress_wall_ >= scene_.progress_wall_interval;
-  }
+  const bool by_wall  = progress_by_wall_;
+  progress_by_wall_   = false;
   if (!force && !by_steps && !by_wall) PetscFunctionReturn(0);
-  last_progress_wall_   = wall;
+  const double wall   = MPI_Wtime() - wall_start_;
+  last_progress_wall_ = wall;
   const double end_time = loading_.end_time();
   if (scene_.failure) PetscCall(BrokenBondCount(&total_broken_));
   double kinetic, internal;

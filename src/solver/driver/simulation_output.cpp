@@ -175,18 +175,23 @@ template <int D> PetscErrorCode SimulationD<D>::SaveGoodState(PetscInt step, dou
   PetscFunctionReturn(0);
 }
 
-// After PostStep's loading, health check, bond breaking and history row.
+// After PostStep's loading, health check, bond breaking and history row; before its
+// progress line.
 template <int D> PetscErrorCode SimulationD<D>::OutputAfterStep(PetscInt step, double t)
 {
   PetscFunctionBegin;
   const bool fields_due = output_.fields.interval > 0 ? step % output_.fields.interval == 0 : output_.field_times.Due(t);
   if (output_.fields.enabled && fields_due) PetscCall(WriteFields(step, t));
   // One reduction a step: did any rank get SIGTERM/SIGINT or SIGUSR1, and is rank 0's
-  // clock past the wall-clock interval? Every rank then takes the same branch.
+  // clock past the checkpoints' wall-clock interval, or past the progress lines' since
+  // the last one (Progress, after this)? Every rank then takes the same branch.
   const CheckpointOptions &options = output_.checkpoint;
-  int flags[3] = {PendingInterrupt(), rank_ == 0 && options.wall_interval > 0 && MPI_Wtime() - output_.last_checkpoint_wall >= options.wall_interval,
-                  TakeCheckpointRequest() ? 1 : 0};
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, flags, 3, MPI_INT, MPI_MAX, comm_));
+  const double             now     = MPI_Wtime();
+  int flags[4] = {PendingInterrupt(), rank_ == 0 && options.wall_interval > 0 && now - output_.last_checkpoint_wall >= options.wall_interval,
+                  TakeCheckpointRequest() ? 1 : 0,
+                  rank_ == 0 && scene_.progress_wall_interval > 0 && now - wall_start_ - last_progress_wall_ >= scene_.progress_wall_interval};
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, flags, 4, MPI_INT, MPI_MAX, comm_));
+  progress_by_wall_ = flags[3] != 0;
   if (flags[0]) {
     if (output_.fields.enabled && (output_.series.frames.empty() || output_.series.frames.back().step != step)) PetscCall(WriteFields(step, t));
     PetscCall(WriteCheckpointFile(step, t, "interrupted"));

@@ -190,7 +190,8 @@ private:
   std::vector<double> point_energy_;    // 1 per owned point
   Cadence             progress_times_; // -progress_interval 0: a line every end time / 20 of simulated time
   double wall_start_ = 0;
-  double last_progress_wall_ = 0; // rank 0's wall time (since wall_start_) of the last progress line, on every rank
+  double last_progress_wall_ = 0;  // wall time (since wall_start_) of the last progress line (rank 0's decides)
+  bool   progress_by_wall_   = false; // -progress_wall_interval has passed on rank 0's clock (OutputAfterStep, every rank)
   // History rows: every -output_interval steps (the static test's rows) and, by load,
   // at the first step at or past each end time / -output_history_rows.
   Cadence  history_times_;
