@@ -2,13 +2,14 @@
 # A restart in place that adds a probe keeps history.csv's earlier rows: the new header,
 # the earlier rows with their values under the same column names and nan in the new
 # probe's columns, then the continuation's rows.
+# (Rows every -output_interval steps only: -output_history_rows 0.)
 #   restart_columns.sh RANKS
 source "$BAPD_SOURCE_DIR/tests/faults/common.sh"
 ranks="$1"
 work="faults_restart_columns_np$ranks"
 rm -rf "$work" && mkdir -p "$work" || exit 1
 out="$work/out"
-bounded "$work/first.log" "$ranks" "$TINY" -end_step 20 -checkpoint_interval 20 -output_interval 5 -output_dir "$out"
+bounded "$work/first.log" "$ranks" "$TINY" -end_step 20 -checkpoint_interval 20 -output_interval 5 -output_history_rows 0 -output_dir "$out"
 ((STATUS == 0)) || fail "the first run failed"
 cp "$out/history.csv" "$work/first_history.csv"
 bounded "$work/second.log" "$ranks" -restart "$out/checkpoint.h5" -end_step 40 -probes centre -probe_centre_at 0.005,0.005

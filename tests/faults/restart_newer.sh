@@ -12,8 +12,9 @@ ranks="$1"
 work="faults_restart_newer_np$ranks"
 rm -rf "$work" && mkdir -p "$work" || exit 1
 out="$work/out"
-# Steps 0 to 20, a checkpoint at 20 (kept as a backup copy), then on to 40 in place.
-bounded "$work/first.log" "$ranks" "$TINY" -end_step 20 -checkpoint_interval 20 -output_interval 5 -output_fields \
+# Steps 0 to 20, a checkpoint at 20 (kept as a backup copy), then on to 40 in place;
+# rows every 5 steps only (-output_history_rows 0), so that their counts below are known.
+bounded "$work/first.log" "$ranks" "$TINY" -end_step 20 -checkpoint_interval 20 -output_interval 5 -output_history_rows 0 -output_fields \
   -output_fields_interval 10 -output_dir "$out"
 ((STATUS == 0)) || fail "the first run failed"
 cp "$out/checkpoint.h5" "$out/backup_step20.h5"

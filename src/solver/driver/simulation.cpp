@@ -84,6 +84,12 @@ template <int D> PetscErrorCode SimulationD<D>::Setup(Scene scene)
   PetscCall(BuildProbes());
   last_reaction_.assign(D * scene_.loads.size(), 0.0);
   last_probe_u_.assign(D * scene_.probes.size(), 0.0);
+  grip_u_.assign(D * scene_.loads.size(), 0.0);
+  {
+    std::size_t most = 0;
+    for (const LoadSetPoints &set : loading_.load_set_points()) most = std::max(most, set.points.size());
+    grip_terms_.assign(D * most, 0.0);
+  }
   PetscCall(step_control_.EstimateStable(comm_, scene_, time_step_options_, layout_, loading_, force_));
   PetscCall(SetupRelaxation());
   PetscCall(SetupTimeStepper());
@@ -94,12 +100,20 @@ template <int D> PetscErrorCode SimulationD<D>::Setup(Scene scene)
     PetscCall(budget_.Start(comm_, x + D * layout_.n_owned)); // the grips' speeds at t = 0
     PetscCall(VecRestoreArrayRead(X_, &x));
   }
+  // The rows by load: every end time / -output_history_rows of simulated time, the end
+  // time as the scene gives it (before a restart or an ended hold moves it), so that a
+  // continuation writes the rows the uninterrupted run writes.
+  const double history_end = loading_.end_time_original() > 0 ? loading_.end_time_original() : loading_.schedule().end_time();
+  const double history_period = scene_.output_history_rows > 0 ? history_end / (double)scene_.output_history_rows : 0.0;
+  history_times_.Start(history_period, 0.0); // (RestoreRunText reads its period)
   PetscCall(OpenHistory());
   PetscCall(SetupOutput()); // restores the state with -restart
   {
     PetscReal t;
     PetscCall(TSGetTime(ts_, &t));
     progress_times_.Start(loading_.end_time() / 20, t);
+    history_times_.Start(history_period, t);
+    last_progress_wall_ = MPI_Wtime() - wall_start_; // (rank 0's decides: OutputAfterStep)
   }
   PetscCall(PetscLogStagePop());
   PetscFunctionReturn(0);
@@ -428,12 +442,16 @@ template <int D> PetscErrorCode SimulationD<D>::PostStep(TS ts)
     PetscCall(VecRestoreArrayRead(X, &xr));
     sim->relaxation_.FollowStableStep(sim->step_control_.stable_now()); // its cap, 2 omega_max
   }
-  if (step % sim->scene_.output_interval == 0) {
-    PetscCall(sim->WriteHistoryRow(step, t));
-    PetscCall(sim->CheckStaticHold(step, t));
-  }
+  // History rows: every -output_interval steps, where the static test runs (its cadence
+  // is the solver's, whatever rows are added), and by load, at each end time /
+  // -output_history_rows (a row only reads the state: history.csv gains rows, the
+  // results stay the same bits).
+  const bool interval_row = step % sim->scene_.output_interval == 0;
+  const bool load_row     = sim->history_times_.Due(t);
+  if (interval_row || load_row) PetscCall(sim->WriteHistoryRow(step, t, interval_row));
+  if (interval_row) PetscCall(sim->CheckStaticHold(step, t));
+  PetscCall(sim->OutputAfterStep(step, t)); // fields, checkpoints, SIGTERM/SIGINT; rank 0's clock for the progress line
   PetscCall(sim->Progress(step, t, PETSC_FALSE));
-  PetscCall(sim->OutputAfterStep(step, t)); // fields, checkpoints, SIGTERM/SIGINT
   PetscFunctionReturn(0);
 }
 
@@ -450,7 +468,7 @@ template <int D> PetscErrorCode SimulationD<D>::Run()
   PetscCall(TSGetTime(ts_, &t));
   std::string cut_short;
   if (!stopped_on_error_) PetscCall(StoppedShort(step, t, &cut_short));
-  if (step % scene_.output_interval != 0 && !stopped_on_error_) PetscCall(WriteHistoryRow(step, t));
+  if (last_history_step_ != step && !stopped_on_error_) PetscCall(WriteHistoryRow(step, t)); // the end-of-run row
   PetscCall(OutputAtEnd(step, t)); // the last field file (and checkpoint)
   if (scene_.output_final_state) PetscCall(WriteFinalState());
   // Stopped short of the end time by a PETSc limit: everything a normal end writes is

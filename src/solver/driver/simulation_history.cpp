@@ -116,6 +116,12 @@ template <int D> std::string SimulationD<D>::HistoryHeader() const
     h += ",crack_area_m2,effective_fracture_energy_J_m2,crack_length_m,crack_tip_x_m,crack_tip_y_m";
     if (D == 3) h += ",crack_tip_z_m";
   }
+  // The grips' displacement, the mean over each load set's points along each component
+  // it holds (fixed or stretched): with <set>_reaction_*_N a force-displacement curve.
+  // Last, so that the columns before keep their places.
+  for (const LoadSet &s : scene_.loads)
+    for (int c = 0; c < D; ++c)
+      if (s.component(c) != ComponentLoad::free) h += Format(",%s_displacement_%c_m", s.name.c_str(), "xyz"[c]);
   return h;
 }
 
@@ -191,6 +197,23 @@ template <int D> PetscErrorCode SimulationD<D>::ReadProbes(const double *u_owned
   PetscFunctionReturn(0);
 }
 
+// The mean displacement of each load set's points (D per set), a reproducible sum
+// over the set's points divided by their count: the same bits on any rank layout. For
+// a rigid grip it is the displacement the grip imposes. No allocation.
+template <int D> PetscErrorCode SimulationD<D>::GripDisplacements(const double *u_owned, double *mean)
+{
+  PetscFunctionBegin;
+  const std::vector<LoadSetPoints> &sets = loading_.load_set_points();
+  for (std::size_t s = 0; s < sets.size(); ++s) {
+    const std::vector<PetscInt> &points = sets[s].points;
+    for (std::size_t k = 0; k < points.size(); ++k)
+      for (int c = 0; c < D; ++c) grip_terms_[D * k + c] = u_owned[D * points[k] + c];
+    PetscCall(ReproducibleSum(comm_, D, (PetscInt)points.size(), grip_terms_.data(), &mean[D * s]));
+    for (int c = 0; c < D; ++c) mean[D * s + c] /= (double)sets[s].global_count;
+  }
+  PetscFunctionReturn(0);
+}
+
 template <int D> PetscErrorCode SimulationD<D>::BrokenBondCount(PetscInt *count)
 {
   PetscFunctionBegin;
@@ -201,7 +224,7 @@ template <int D> PetscErrorCode SimulationD<D>::BrokenBondCount(PetscInt *count)
 }
 
 // One row of history.csv; keeps the values for the static-hold test. No allocation.
-template <int D> PetscErrorCode SimulationD<D>::WriteHistoryRow(PetscInt step, double t)
+template <int D> PetscErrorCode SimulationD<D>::WriteHistoryRow(PetscInt step, double t, bool checks)
 {
   const double *x;
 
@@ -211,6 +234,7 @@ template <int D> PetscErrorCode SimulationD<D>::WriteHistoryRow(PetscInt step, d
   PetscCall(ComputeForceDensity(x, force_density_.data()));
   PetscCall(loading_.Reactions(force_density_.data(), last_reaction_.data()));
   PetscCall(ReadProbes(x, last_probe_u_.data()));
+  PetscCall(GripDisplacements(x, grip_u_.data()));
   PetscCall(VecRestoreArrayRead(X_, &x));
   PetscCall(Energies(&last_kinetic_, &last_internal_));
   PetscInt broken;
@@ -222,7 +246,7 @@ template <int D> PetscErrorCode SimulationD<D>::WriteHistoryRow(PetscInt step, d
   // Every rank holds the same sums (reproducible), so every rank decides alike.
   const double work     = budget_.grip_work_total();
   const double residual = work - (last_internal_ + last_kinetic_ + budget_.damped() + budget_.released());
-  PetscCall(WarnEnergyBalance(step, t, work, residual));
+  if (checks) PetscCall(WarnEnergyBalance(step, t, work, residual)); // (its cadence the -output_interval rows')
   if (rank_ == 0) {
     const long   row_start = std::ftell(history_);
     const double area = NominalArea(scene_);
@@ -241,11 +265,15 @@ template <int D> PetscErrorCode SimulationD<D>::WriteHistoryRow(PetscInt step, d
       std::fprintf(history_, ",%.17g,%.17g", crack_area, crack_area > 0 ? budget_.released() / crack_area : nan);
       for (int c = 0; c <= D; ++c) std::fprintf(history_, ",%.17g", crack_tip[c]);
     }
+    for (std::size_t s = 0; s < scene_.loads.size(); ++s)
+      for (int c = 0; c < D; ++c)
+        if (scene_.loads[s].component(c) != ComponentLoad::free) std::fprintf(history_, ",%.17g", grip_u_[D * s + c]);
     std::fprintf(history_, "\n");
     error = FinishRows(history_, row_start);
   }
   PetscCallMPI(MPI_Bcast(&error, 1, MPI_INT, 0, comm_)); // rank 0 wrote: every rank stops alike
   PetscCall(CheckRows(comm_, error, scene_.output_dir, "history.csv"));
+  last_history_step_ = step;
   PetscCall(PetscLogStagePop());
   PetscFunctionReturn(0);
 }
@@ -321,14 +349,21 @@ template <int D> PetscErrorCode SimulationD<D>::CheckStaticHold(PetscInt step, d
 }
 
 // A progress line every -progress_interval steps, or (0) every end time / 20 of
-// simulated time: step, time, step size, stretch, energies, broken bonds, wall time.
+// simulated time, and once -progress_wall_interval seconds of wall time have passed
+// since the last line (a slow run says where it is): step, time, step size, stretch,
+// energies, broken bonds, wall time. The wall clock is rank 0's, read in the step's one
+// reduction (OutputAfterStep), so that every rank takes the same branch (a line costs
+// collective sums) at no extra collective. Prints only.
 template <int D> PetscErrorCode SimulationD<D>::Progress(PetscInt step, double t, PetscBool force)
 {
   PetscFunctionBegin;
-  const bool due = scene_.progress_interval > 0 ? step % scene_.progress_interval == 0 : progress_times_.Due(t);
-  if (!force && !due) PetscFunctionReturn(0);
+  const bool by_steps = scene_.progress_interval > 0 ? step % scene_.progress_interval == 0 : progress_times_.Due(t);
+  const bool by_wall  = progress_by_wall_;
+  progress_by_wall_   = false;
+  if (!force && !by_steps && !by_wall) PetscFunctionReturn(0);
+  const double wall   = MPI_Wtime() - wall_start_;
+  last_progress_wall_ = wall;
   const double end_time = loading_.end_time();
-  const double wall     = MPI_Wtime() - wall_start_;
   if (scene_.failure) PetscCall(BrokenBondCount(&total_broken_));
   double kinetic, internal;
   PetscCall(Energies(&kinetic, &internal));
@@ -458,7 +493,7 @@ template <int D> PetscErrorCode SimulationD<D>::ListOutputFiles()
     total += bytes;
     text += Format("  %-22s %10s  %s\n", name.c_str(), Size(bytes).c_str(), what.c_str());
   };
-  line("history.csv", "a row every -output_interval steps (scripts/plot_history.py)");
+  line("history.csv", "a row every -output_interval steps and at each end time / -output_history_rows (scripts/plot_history.py)");
   if (static_states_) line("static_states.csv", "one row per static state");
   if (output_.fields.enabled) {
     std::uintmax_t bytes = 0;
@@ -591,7 +626,8 @@ template <int D> PetscErrorCode SimulationD<D>::GatherBrokenBonds(std::vector<st
   template PetscErrorCode SimulationD<D>::Energies(double *kinetic, double *internal, Vec state); \
   template PetscErrorCode SimulationD<D>::ReadProbes(const double *u_owned, double *probe_u); \
   template PetscErrorCode SimulationD<D>::BrokenBondCount(PetscInt *count); \
-  template PetscErrorCode SimulationD<D>::WriteHistoryRow(PetscInt step, double t); \
+  template PetscErrorCode SimulationD<D>::GripDisplacements(const double *u_owned, double *mean); \
+  template PetscErrorCode SimulationD<D>::WriteHistoryRow(PetscInt step, double t, bool checks); \
   template PetscErrorCode SimulationD<D>::CheckStaticHold(PetscInt step, double t); \
   template PetscErrorCode SimulationD<D>::Progress(PetscInt step, double t, PetscBool force); \
   template PetscErrorCode SimulationD<D>::TimeStepSummary(PetscInt steps); \

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -17,6 +18,7 @@
 #include "bapd/core/kernel/point_quantities.hpp"
 #include "bapd/solver/driver/simulation.hpp"
 #include "bapd/solver/input/options_reader.hpp"
+#include "bapd/solver/io/derived_fields.hpp"
 
 namespace bapd {
 
@@ -75,6 +77,13 @@ std::vector<std::string> RemapColumns(const std::vector<std::string> &lines, con
     out.push_back(row);
   }
   return out;
+}
+
+// The time of a history.csv row ("step,time,..."), as written (%.17g: the same bits).
+double HistoryRowTime(const std::string &line)
+{
+  const std::size_t comma = line.find(',');
+  return comma == std::string::npos ? 0.0 : std::strtod(line.c_str() + comma + 1, nullptr);
 }
 
 std::string Joined(const std::vector<std::string> &names)
@@ -166,18 +175,23 @@ template <int D> PetscErrorCode SimulationD<D>::SaveGoodState(PetscInt step, dou
   PetscFunctionReturn(0);
 }
 
-// After PostStep's loading, health check, bond breaking and history row.
+// After PostStep's loading, health check, bond breaking and history row; before its
+// progress line.
 template <int D> PetscErrorCode SimulationD<D>::OutputAfterStep(PetscInt step, double t)
 {
   PetscFunctionBegin;
   const bool fields_due = output_.fields.interval > 0 ? step % output_.fields.interval == 0 : output_.field_times.Due(t);
   if (output_.fields.enabled && fields_due) PetscCall(WriteFields(step, t));
   // One reduction a step: did any rank get SIGTERM/SIGINT or SIGUSR1, and is rank 0's
-  // clock past the wall-clock interval? Every rank then takes the same branch.
+  // clock past the checkpoints' wall-clock interval, or past the progress lines' since
+  // the last one (Progress, after this)? Every rank then takes the same branch.
   const CheckpointOptions &options = output_.checkpoint;
-  int flags[3] = {PendingInterrupt(), rank_ == 0 && options.wall_interval > 0 && MPI_Wtime() - output_.last_checkpoint_wall >= options.wall_interval,
-                  TakeCheckpointRequest() ? 1 : 0};
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, flags, 3, MPI_INT, MPI_MAX, comm_));
+  const double             now     = MPI_Wtime();
+  int flags[4] = {PendingInterrupt(), rank_ == 0 && options.wall_interval > 0 && now - output_.last_checkpoint_wall >= options.wall_interval,
+                  TakeCheckpointRequest() ? 1 : 0,
+                  rank_ == 0 && scene_.progress_wall_interval > 0 && now - wall_start_ - last_progress_wall_ >= scene_.progress_wall_interval};
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, flags, 4, MPI_INT, MPI_MAX, comm_));
+  progress_by_wall_ = flags[3] != 0;
   if (flags[0]) {
     if (output_.fields.enabled && (output_.series.frames.empty() || output_.series.frames.back().step != step)) PetscCall(WriteFields(step, t));
     PetscCall(WriteCheckpointFile(step, t, "interrupted"));
@@ -267,6 +281,12 @@ template <int D> PetscErrorCode SimulationD<D>::WriteFields(PetscInt step, doubl
   fields.deformation_gradient  = quantities.deformation_gradient.data();
   fields.thickness_stretch     = D == 2 ? quantities.thickness_stretch.data() : nullptr; // (3D: none)
   fields.strain_energy_density = quantities.strain_energy_density.data();
+  // von Mises stress and principal stretches from sigma_i, F_i and lambda_3 (derived_fields.hpp).
+  std::vector<double> von_mises(n), principal(3 * n);
+  derived_fields<D>((std::size_t)n, quantities.cauchy_stress.data(), quantities.deformation_gradient.data(),
+                    D == 2 ? quantities.thickness_stretch.data() : nullptr, von_mises.data(), principal.data());
+  fields.von_mises_stress  = von_mises.data();
+  fields.principal_stretch = principal.data();
   const PetscErrorCode written = WriteFieldFrame<D>(comm_, output_.order, &output_.series, step, t, loading_.stretch_at(t), fields);
   PetscCall(VecRestoreArrayRead(X_, &x)); // also when the file could not be written
   PetscCall(written);
@@ -487,9 +507,9 @@ template <int D> PetscErrorCode SimulationD<D>::RestoreCheckpoint()
 }
 
 // history.csv and static_states.csv of a restart: the checkpoint's rows, to which this
-// run's are appended. A last history row at the checkpoint step that is off the
-// -output_interval grid was the end-of-run row of the run that wrote it: the
-// continuation writes its own rows. Columns that differ from the checkpoint's (a probe
+// run's are appended. A last history row at the checkpoint step that is neither on the
+// -output_interval grid nor a row by load (-output_history_rows) was the end-of-run row
+// of the run that wrote it: the continuation writes its own rows. Columns that differ from the checkpoint's (a probe
 // or load set added, failure switched on) keep the earlier rows: each value goes to its
 // column by name, "nan" where the earlier run had no such column. A column this run
 // does not write (a checkpoint of a bapd with other columns: a probe or load set
@@ -502,6 +522,7 @@ template <int D> PetscErrorCode SimulationD<D>::RestoreRunText(const CheckpointH
   // [errno, which file failed: 0 history.csv, 1 static_states.csv, 2 and 3 their copies of the earlier rows]
   int         error[2] = {0, 0};
   std::string notes; // rank 0: what changed, printed after the broadcast
+  PetscInt    last_row = -1; // the step of history.csv's last row (rank 0, broadcast)
   if (rank_ == 0) {
     const std::string dir = scene_.output_dir + "/";
     struct Text {
@@ -519,7 +540,15 @@ template <int D> PetscErrorCode SimulationD<D>::RestoreRunText(const CheckpointH
       std::vector<std::string> lines;
       std::istringstream       in(t.stored);
       for (std::string line; std::getline(in, line);) lines.push_back(line);
-      if (t.history && lines.size() > 1 && HistoryRowStep(lines.back()) == header.step && header.step % scene_.output_interval != 0) lines.pop_back();
+      if (t.history && lines.size() > 1 && HistoryRowStep(lines.back()) == header.step && header.step % scene_.output_interval != 0) {
+        // A row by load (-output_history_rows) stays: the step was the first at or past a
+        // multiple of the period, i.e. past the first due time after the row before it
+        // (every step in between was not due, or it would have written a row).
+        const bool by_load = history_times_.period() > 0 && lines.size() > 2 &&
+                             header.time >= history_times_.Next(HistoryRowTime(lines[lines.size() - 2]));
+        if (!by_load) lines.pop_back();
+      }
+      if (t.history && lines.size() > 1) last_row = HistoryRowStep(lines.back());
       if (lines.empty()) lines.push_back(t.columns);
       if (lines.front() != t.columns) {
         std::vector<std::string> added, dropped;
@@ -552,6 +581,8 @@ template <int D> PetscErrorCode SimulationD<D>::RestoreRunText(const CheckpointH
     }
   }
   PetscCallMPI(MPI_Bcast(error, 2, MPI_INT, 0, comm_));
+  PetscCallMPI(MPI_Bcast(&last_row, 1, MPIU_INT, 0, comm_));
+  last_history_step_ = last_row; // Run() writes the end-of-run row unless it is there
   static const char *const names[4] = {"history.csv", "static_states.csv", "history_to_step_N.csv", "static_states_to_step_N.csv"};
   PetscCheck(!error[0], comm_, PETSC_ERR_FILE_WRITE,
              "Cannot write %s/%s: %s; the file is as it was before the restart: free some space or choose another -output_dir",

@@ -210,8 +210,11 @@ std::string SceneText(const Scene &s)
   if (s.end_step >= 0) text += Format(" or after step %ld (-end_step), whichever comes first", (long)s.end_step);
   text += "\n";
   if (s.static_tolerance > 0)
-    text += Format("  static    a hold ends once kinetic energy < %g x internal energy (checked at every history row)\n", s.static_tolerance);
-  text += Format("  output    %s/, history every %ld steps\n", s.output_dir.c_str(), (long)s.output_interval);
+    text += Format("  static    a hold ends once kinetic energy < %g x internal energy (checked every %ld steps, at the -output_interval rows)\n", s.static_tolerance,
+                   (long)s.output_interval);
+  text += Format("  output    %s/, history every %ld steps", s.output_dir.c_str(), (long)s.output_interval);
+  if (s.output_history_rows > 0) text += Format(" and at each 1/%ld of the end time", (long)s.output_history_rows);
+  text += "\n";
   return text;
 }
 

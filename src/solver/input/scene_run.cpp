@@ -72,7 +72,12 @@ PetscErrorCode ReadOutputTime(MPI_Comm comm, Scene *scene, SceneInput *in)
   PetscFunctionBeginUser;
   PetscCall(ReadOptionBlock(comm, nullptr, "Output", [&](OptionReader &r) -> PetscErrorCode {
     PetscCall(r.String("-output_dir", "Directory for history and fields", &scene->output_dir));
-    PetscCall(r.Int("-output_interval", "Time steps between history rows [-], >= 1", &scene->output_interval));
+    PetscCall(r.Int("-output_interval", "Time steps between history rows [-], >= 1; the static test (-static_tolerance) runs at these rows",
+                    &scene->output_interval));
+    PetscCall(r.Int("-output_history_rows",
+                    "History rows by load [-]: also a row at the first step at or past each end time / N of simulated time, so that "
+                    "a run has at least N rows whatever its step (0: only the -output_interval rows)",
+                    &scene->output_history_rows));
     PetscCall(r.Bool("-output_final_state", "Also write final_state.csv (every point's displacement) and broken_bonds.csv at the end",
                      &scene->output_final_state));
     return 0;
@@ -90,6 +95,8 @@ PetscErrorCode ReadOutputTime(MPI_Comm comm, Scene *scene, SceneInput *in)
                     "parts, a test, a benchmark (-1: run to -end_time)",
                     &scene->end_step));
     PetscCall(r.Int("-progress_interval", "Time steps between progress lines [-] (0: every end time / 20 of simulated time)", &scene->progress_interval));
+    PetscCall(r.Real("-progress_wall_interval", "Also a progress line once this much wall time has passed since the last one [s] (0: off)",
+                     &scene->progress_wall_interval));
     return 0;
   }));
   PetscFunctionReturn(0);
@@ -114,6 +121,10 @@ PetscErrorCode CheckOutputTime(MPI_Comm comm, const SceneInput &in, Scene *scene
   }
   SceneCheck(scene->output_interval >= 1, comm,
              "-output_interval %" PetscInt_FMT ": history rows are written every N >= 1 time steps (default 100)", scene->output_interval);
+  SceneCheck(scene->output_history_rows >= 0, comm,
+             "-output_history_rows %" PetscInt_FMT ": give the number of history rows over the end time, N >= 1 (default 100), or 0 "
+             "for the -output_interval rows only",
+             scene->output_history_rows);
 
   SceneCheck(scene->time_step >= 0, comm,
              "-time_step %g: the time step must be > 0 s, or 0 for the automatic choice (safety x stable step)", scene->time_step);
@@ -135,6 +146,10 @@ PetscErrorCode CheckOutputTime(MPI_Comm comm, const SceneInput &in, Scene *scene
   SceneCheck(scene->progress_interval >= 0, comm,
              "-progress_interval %" PetscInt_FMT ": give N >= 1 time steps between progress lines, or 0 for about 20 lines a run",
              scene->progress_interval);
+  SceneCheck(scene->progress_wall_interval >= 0, comm,
+             "-progress_wall_interval %g: give the wall time between progress lines in seconds, > 0 (default 10), or 0 for lines by "
+             "simulated time (or -progress_interval) only",
+             scene->progress_wall_interval);
   SceneCheck(scene->end_step >= -1, comm,
              "-end_step %" PetscInt_FMT ": give the step number after which the run stops (>= 0), or -1 to run to -end_time",
              scene->end_step);

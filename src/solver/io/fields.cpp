@@ -16,10 +16,12 @@ namespace bapd {
 
 namespace {
 
-enum class Shape { scalar, vector, tensor }; // 1, 3, 9 components in the file
-int components(Shape s) { return s == Shape::scalar ? 1 : s == Shape::vector ? 3 : 9; }
-// Numbers a point holds in D dimensions: 1, D, D x D.
-template <int D> int width(Shape s) { return s == Shape::scalar ? 1 : s == Shape::vector ? D : D * D; }
+// 1, 3, 9 components in the file; a triple is 3 numbers in any D (the principal
+// stretches: 2D has an out-of-plane one), drawn as a vector.
+enum class Shape { scalar, vector, tensor, triple };
+int components(Shape s) { return s == Shape::scalar ? 1 : s == Shape::tensor ? 9 : 3; }
+// Numbers a point holds in D dimensions: 1, D, D x D, 3.
+template <int D> int width(Shape s) { return s == Shape::scalar ? 1 : s == Shape::vector ? D : s == Shape::tensor ? D * D : 3; }
 
 // Where a dataset's values come from.
 enum class Source {
@@ -59,6 +61,8 @@ constexpr FieldArray kArrays[] = {
     {"deformation_gradient", Shape::tensor, Source::point, &PointFields::deformation_gradient},
     {"thickness_stretch", Shape::scalar, Source::point, &PointFields::thickness_stretch},
     {"strain_energy_density", Shape::scalar, Source::point, &PointFields::strain_energy_density},
+    {"von_mises_stress", Shape::scalar, Source::point, &PointFields::von_mises_stress},
+    {"principal_stretch", Shape::triple, Source::point, &PointFields::principal_stretch},
 };
 constexpr std::size_t kArrayCount = sizeof kArrays / sizeof kArrays[0];
 
@@ -104,6 +108,8 @@ void FromBlock(const FieldArray &a, const std::vector<double> &block, const std:
       o[0] = row[source];
     } else if (a.shape == Shape::vector) {
       for (int d = 0; d < D; ++d) o[d] = row[source + d];
+    } else if (a.shape == Shape::triple) {
+      for (int d = 0; d < 3; ++d) o[d] = row[source + d];
     } else {
       for (int r = 0; r < D; ++r)
         for (int q = 0; q < D; ++q) o[3 * r + q] = row[source + D * r + q];
@@ -240,11 +246,11 @@ PetscErrorCode WriteFieldFrame(MPI_Comm comm, const NaturalOrder &order, FieldSe
   const hsize_t     N = (hsize_t)order.n_points, start = (hsize_t)order.point_start, n = (hsize_t)count;
   {
     // Its size: per point every array of kArrays (the file's components, precision()
-    // bytes each); 20 datasets and attributes.
+    // bytes each); 22 datasets and attributes.
     hsize_t point_bytes = 0;
     for (const FieldArray &a : kArrays) point_bytes += (hsize_t)(a.precision() * components(a.shape));
     H5ParallelFile f;
-    PetscCall(f.Create(comm, path, H5FileBytes(N * point_bytes, 24)));
+    PetscCall(f.Create(comm, path, H5FileBytes(N * point_bytes, 26)));
     PetscCall(f.WriteAttribute("/", "format", std::string("bapd fields")));
     PetscCall(f.WriteAttribute("/", "format_version", (std::int64_t)2));
     PetscCall(f.WriteAttribute("/", "step", (std::int64_t)step));
@@ -340,7 +346,7 @@ PetscErrorCode WriteFieldIndex(MPI_Comm comm, const FieldSeries &series, PetscIn
           std::snprintf(value, sizeof value, "%.17g", stretch);
           run_state("stretch", "Float", value);
         }
-        static const char *const type[] = {"Scalar", "Vector", "Tensor"};
+        static const char *const type[] = {"Scalar", "Vector", "Tensor", "Vector"};
         for (const FieldArray &a : kArrays) {
           if (&a == &Array(geometry) || !a.in_dimension(D)) continue;
           std::fprintf(f, "    <Attribute Name=\"%s\" AttributeType=\"%s\" Center=\"Node\">\n", a.name, type[(int)a.shape]);

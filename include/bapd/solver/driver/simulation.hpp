@@ -109,7 +109,12 @@ private:
   PetscErrorCode DiagnoseDivergence(); // the cause and its fix, appended to stop_reason_ (divergence.hpp)
   PetscErrorCode ReadProbes(const double *u_owned, double *probe_u);
   PetscErrorCode GatherNatural(const double *values, std::vector<double> *natural);
-  PetscErrorCode WriteHistoryRow(PetscInt step, double t);
+  // checks: a row of the -output_interval grid (or the first or last), where the
+  // energy-balance warning is checked; the rows by load only write.
+  PetscErrorCode WriteHistoryRow(PetscInt step, double t, bool checks = true);
+  // The grips' displacement: the mean of each load set's points, D components per set
+  // (every component; history.csv writes the loaded ones). Collective, reproducible.
+  PetscErrorCode GripDisplacements(const double *u_owned, double *mean);
   PetscErrorCode WarnEnergyBalance(PetscInt step, double t, double work, double residual); // once, past 1 % of the work
   PetscErrorCode Progress(PetscInt step, double t, PetscBool force);
   PetscErrorCode Summary();
@@ -185,6 +190,14 @@ private:
   std::vector<double> point_energy_;    // 1 per owned point
   Cadence             progress_times_; // -progress_interval 0: a line every end time / 20 of simulated time
   double wall_start_ = 0;
+  double last_progress_wall_ = 0;  // wall time (since wall_start_) of the last progress line (rank 0's decides)
+  bool   progress_by_wall_   = false; // -progress_wall_interval has passed on rank 0's clock (OutputAfterStep, every rank)
+  // History rows: every -output_interval steps (the static test's rows) and, by load,
+  // at the first step at or past each end time / -output_history_rows.
+  Cadence  history_times_;
+  PetscInt last_history_step_ = -1; // the step of the last row written (the end-of-run row is not written twice)
+  std::vector<double> grip_terms_;  // GripDisplacements' scratch, D per point of the largest load set
+  std::vector<double> grip_u_;      // D per load set
   FILE  *history_    = nullptr;
   PetscInt total_broken_ = 0;
   bool   stopped_on_error_ = false;

@@ -83,7 +83,8 @@ struct Scene {
   std::vector<Probe> probes;
 
   std::string output_dir      = "output";
-  PetscInt    output_interval = 100; // steps between history rows
+  PetscInt    output_interval = 100; // steps between history rows; the static test runs at these rows
+  PetscInt    output_history_rows = 100; // history rows by load: one at each end time / N of simulated time too (0: off)
   bool        output_final_state = false; // final_state.csv and broken_bonds.csv at the end
 
   double   time_step        = 0.0;  // 0: use safety * stable step
@@ -94,6 +95,7 @@ struct Scene {
   double   end_time         = 0.0;  // default: the schedule's last knot
   PetscInt end_step         = -1;   // stop after this step, before end_time, on purpose (split runs, tests; -1: run to end_time)
   PetscInt progress_interval = 0;   // steps between progress lines (0: about 20 lines a run)
+  double   progress_wall_interval = 10.0; // also a progress line after this much wall time [s] since the last (0: off)
 
   // -help was given: every option was listed, nothing was validated and the scene
   // holds defaults only. The driver should list the other components' options and stop.

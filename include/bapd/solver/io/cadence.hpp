@@ -25,9 +25,11 @@ public:
     return true;
   }
   double period() const { return period_; }
+  // The first due time after a step at t: where Due(t') turns true after a step at t
+  // that was not followed by a due step (a restart reads it off the last written row).
+  double Next(double t) const { return (std::floor(t / period_) + 1) * period_; }
 
 private:
-  double Next(double t) const { return (std::floor(t / period_) + 1) * period_; }
   double period_ = 0, next_ = 0;
 };
 

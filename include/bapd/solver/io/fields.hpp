@@ -27,6 +27,11 @@
 //   /thickness_stretch     (points)    -     2D only: lambda_3 = sqrt(C33) (plane stress;
 //                                            1 in plane strain)
 //   /strain_energy_density (points)    J/m^3 W_i (sum V_i W_i is history.csv's internal energy)
+//   /von_mises_stress      (points)    Pa    sqrt(3/2 s : s), s the deviator of sym(sigma_i)
+//                                            (2D: sigma_33 = 0; derived_fields.hpp)
+//   /principal_stretch     (points, 3) -     eigenvalues of sqrt(F_i^T F_i): 2D the two
+//                                            in-plane ones, largest first, then lambda_3;
+//                                            3D all three, largest first
 // with attributes step, time_s, stretch (the applied lambda) and dimension (D).
 // <output_dir>/fields.xdmf lists the files as a time series of Polyvertex point clouds
 // with an explicit connectivity (every ParaView reader then makes one cell per point),
@@ -88,6 +93,8 @@ struct PointFields {
   const double *deformation_gradient  = nullptr; // D x D per point
   const double *thickness_stretch     = nullptr; // 1 per point, 2D only (lambda_3)
   const double *strain_energy_density = nullptr; // 1 per point
+  const double *von_mises_stress      = nullptr; // 1 per point
+  const double *principal_stretch     = nullptr; // 3 per point, in 2D and 3D
 };
 
 // Largest stretch over the intact bonds of points [0, n) (y: current positions of
