@@ -174,6 +174,8 @@ expect_error shape_undeclared "'hole2' is not one of -body_shapes" "$scene" "${s
   -body_cut_radius 0.002 -body_hole2_radius 0.001
 expect_error mesh_missing_file "-body_cut_file: cannot open 'no_such.geo'" "$scene" "${sh[@]}" -body_cut_type mesh -body_cut_file no_such.geo
 expect_error mesh_device "-body_cut_file: '/dev/zero' is a device" "$scene" "${sh[@]}" -body_cut_type mesh -body_cut_file /dev/zero
+expect_error mesh_tiny_size "-body_cut: the mesh holds no lattice point of the sheet" "$scene" "${sh[@]}" -body_cut_type mesh \
+  -body_cut_file "$source_dir/tests/data/geometry/tiny_mesh_size.geo"
 expect_error mesh_no_surface "-body_cut_file: '$source_dir/tests/data/geometry/lines_only.geo' holds no surface" "$scene" "${sh[@]}" \
   -body_cut_type mesh -body_cut_file "$source_dir/tests/data/geometry/lines_only.geo"
 expect_error mesh_not_gmsh "-body_cut_file: Gmsh cannot read" "$scene" "${sh[@]}" -body_cut_type mesh -body_cut_file "$source_dir/tests/data/geometry/broken.geo"

@@ -27,7 +27,7 @@ template <class Read> std::string WithMeshedFile(const std::string &file, Read r
       std::vector<std::pair<int, int>> surfaces;
       gmsh::model::getEntities(surfaces, 2);
       if (surfaces.empty()) return "'" + file + "' holds no surface and no 2D element: give a .geo with a Plane Surface, or a .msh of a 2D mesh";
-      gmsh::model::mesh::generate(2);
+      GenerateOutlineMesh(2);
     }
     return read();
   });

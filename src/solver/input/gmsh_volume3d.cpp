@@ -28,7 +28,7 @@ std::string MeshIn3D(const std::string &file)
   std::vector<std::pair<int, int>> volumes;
   gmsh::model::getEntities(volumes, 3);
   if (volumes.empty()) return "'" + file + "' holds no volume and no 3D element: give a .geo with a Volume, or a .msh of a 3D mesh";
-  gmsh::model::mesh::generate(3);
+  GenerateOutlineMesh(3);
   return "";
 }
 
