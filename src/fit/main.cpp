@@ -16,6 +16,7 @@
 #include "fit_error.hpp"
 #include "fit_report.hpp"
 #include "fit_run.hpp"
+#include "bapd/version.hpp"
 
 #ifndef BAPD_SOURCE_DIR
 #define BAPD_SOURCE_DIR "."
@@ -36,7 +37,8 @@ const char *usage =
     "  -weight W         relative (default: residual / max(|P|, 5 % of the curve's top)) or absolute (Pa)\n"
     "  -output_dir DIR   where the files go (default bapd_fit_output)\n"
     "  -no_plot          skip the PNGs (scripts/plot_fit.py; needs /usr/bin/python3 with matplotlib)\n"
-    "  -plot_script PATH the plotting script (default " BAPD_SOURCE_DIR "/scripts/plot_fit.py)\n";
+    "  -plot_script PATH the plotting script (default " BAPD_SOURCE_DIR "/scripts/plot_fit.py)\n"
+    "  -version          the version of bapd-fit (bapd's)\n";
 
 std::vector<std::string> split_commas(const std::string &s)
 {
@@ -63,6 +65,9 @@ int run(int argc, char **argv)
     };
     if (a == "-help" || a == "--help" || a == "-h") {
       std::cout << usage;
+      return 0;
+    } else if (a == "-version" || a == "--version") {
+      std::cout << "bapd-fit " << bapd::VersionText() << "\n";
       return 0;
     } else if (a == "-law") {
       laws = split_commas(value());
