@@ -47,27 +47,28 @@ fi
 jobs="$(nproc)"
 echo "build.sh: building $what ($jobs jobs; the full log goes to $build/build.log)"
 # Make's and Ninja's progress lines, shortened to the file or program; everything else
-# (warnings, errors) as it comes. -Oline: the messages of one compiler run stay together with -j.
-export MAKEFLAGS="${MAKEFLAGS:-} -Oline"
+# (warnings, errors) as it comes, line by line (a shell loop: awk would read ahead).
+progress() {
+  local line step path
+  while IFS= read -r line; do
+    if [[ "$line" =~ ^(\[[^]]*\])\ Building\ (C|CXX)\ object\ ([^ ]+) ]]; then
+      step="${BASH_REMATCH[1]}" path="${BASH_REMATCH[3]}"
+      local target="${path%%.dir/*}"
+      target="${target##*/}"
+      path="${path#*.dir/}"
+      echo "$step $target: ${path%.o}"
+    elif [[ "$line" =~ ^(\[[^]]*\])\ Linking\ (C|CXX)\ [a-z\ ]+\ ([^ ]+) ]]; then
+      echo "${BASH_REMATCH[1]} linking ${BASH_REMATCH[3]##*/}"
+    elif [[ "$line" =~ ^\[[^]]*\]\ Built\ target || "$line" =~ Consolidate\ compiler\ generated\ dependencies ||
+      "$line" =~ ^--\ (Configuring\ done|Generating\ done|Build\ files\ have\ been\ written) ]]; then
+      :
+    else
+      echo "$line"
+    fi
+  done
+}
 set +e
-cmake --build "$build" -j "$jobs" "${targets[@]}" 2>&1 | tee "$build/build.log" | awk '
-  /^\[ *[0-9]+(%|\/[0-9]+)\] / {
-    match($0, /^\[[^]]*\]/); progress = substr($0, 1, RLENGTH)
-    if (match($0, /Building (C|CXX) object [^ ]+/)) {
-      file = substr($0, RSTART, RLENGTH); sub(/.* object /, "", file)
-      target = file; sub(/\.dir\/.*/, "", target); sub(/.*\//, "", target)
-      sub(/.*\.dir\//, "", file); sub(/\.o$/, "", file)
-      print progress " " target ": " file; fflush(); next
-    }
-    if (match($0, /Linking (C|CXX) (executable|static library|shared library) [^ ]+/)) {
-      program = substr($0, RSTART, RLENGTH); sub(/.* /, "", program)
-      print progress " linking " program; fflush(); next
-    }
-    if ($0 ~ /Built target/) next
-  }
-  /Consolidate compiler generated dependencies/ { next }
-  /^-- (Configuring done|Generating done|Build files have been written)/ { next }
-  { print; fflush() }'
+cmake --build "$build" -j "$jobs" "${targets[@]}" 2>&1 | tee "$build/build.log" | progress
 status=${PIPESTATUS[0]}
 set -e
 if ((status != 0)); then
