@@ -4,11 +4,14 @@
 #   ./run_mpi.sh                                   # the default scene on 2 ranks
 #   ./run_mpi.sh -n 4 examples/plate_hole.yaml     # a scene on 4 ranks
 #   ./run_mpi.sh -n 2 examples/pure_shear.yaml -material_mu 5e3 -log_view
+#   ./run_mpi.sh -output_dir out -end_step 100     # the default scene, with these options
 #
 # The first .yaml argument (or -options_file_yaml FILE) is the scene (passed as
 # -options_file_yaml, first, so that every later option overrides it); every other
 # argument goes to bapd unchanged. A scene that cannot be read, or a bad -n, is
-# reported before anything is installed or built.
+# reported before anything is installed or built. The first run installs what running
+# needs (scripts/install-deps.sh) and builds bapd and bapd-fit alone (scripts/build.sh
+# --run); scripts/test.sh adds the test suite.
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 ranks=2
@@ -28,8 +31,19 @@ while (($#)); do
     *) args+=("$1"); shift ;;
   esac
 done
-if [ -z "$scene" ] && ((${#args[@]} == 0)); then
-  scene="$here/examples/default.yaml"
+# No scene named: the default scene, with any options on top of it; not when the options
+# need no scene (-help, -version) or bring their own (-restart continues a checkpoint with
+# its options; -options_file).
+if [ -z "$scene" ]; then
+  own_scene=""
+  for a in ${args[@]+"${args[@]}"}; do
+    case "$a" in -help|-h|--help|-version|--version|-restart|-options_file) own_scene="$a" ;; esac
+  done
+  if [ -z "$own_scene" ]; then
+    scene="$here/examples/default.yaml"
+    ((${#args[@]} == 0)) ||
+      echo "run_mpi.sh: no scene given: running the default scene examples/default.yaml with the options on top (./run_mpi.sh SCENE.yaml [options] runs another)"
+  fi
 fi
 if [ -n "$scene" ] && ! [ -f "$scene" -a -r "$scene" ]; then
   echo "bapd: error: cannot open scene file '$scene': $([ -e "$scene" ] && echo "not a readable file" || echo "No such file or directory") (check the path given to run_mpi.sh)" >&2
@@ -37,7 +51,7 @@ if [ -n "$scene" ] && ! [ -f "$scene" -a -r "$scene" ]; then
 fi
 if [ -z "${BAPD_EXE:-}" ]; then
   "$here/scripts/install-deps.sh"
-  "$here/scripts/build.sh"
+  "$here/scripts/build.sh" --run
   BAPD_EXE="${BAPD_BUILD_DIR:-$here/build}/bapd"
 fi
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1

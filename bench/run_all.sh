@@ -63,7 +63,7 @@ log "install and build"
 "$here/scripts/install-deps.sh"
 "$here/scripts/bench/install-bench-deps.sh"
 if [ ! -f "$build/CMakeCache.txt" ]; then
-  cmake -S "$here" -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null
+  cmake -S "$here" -B "$build" -DCMAKE_BUILD_TYPE=Release -DBAPD_BUILD_TESTS=OFF >/dev/null
 fi
 # (flock: two run_all.sh --only ... at once must not link into the same tree together)
 flock "$build/.bench-build.lock" cmake --build "$build" -j "$(nproc)" --target benchmarks >"$out/build.log" 2>&1 ||

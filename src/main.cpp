@@ -7,9 +7,12 @@
 // command-line options override.
 #include <petscsys.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <new>
+#include <string>
 #include <utility>
 
 #include <unistd.h>
@@ -18,6 +21,7 @@
 #include "bapd/solver/input/help.hpp"
 #include "bapd/solver/input/scene_file.hpp"
 #include "bapd/solver/driver/simulation.hpp"
+#include "bapd/version.hpp"
 
 static const char help[] = "bapd: bond-associated NOSB peridynamics for hydrogels (six laws; 2D plane stress or strain, 3D).\n"
                            "Usage: mpiexec -n N bapd -options_file_yaml SCENE.yaml [-option value ...]\n\n";
@@ -33,6 +37,36 @@ static const char help[] = "bapd: bond-associated NOSB peridynamics for hydrogel
   (void)written;
   MPI_Abort(MPI_COMM_WORLD, 1);
   std::_Exit(1);
+}
+
+// The MPI library's own description, first line (MPI_Get_library_version may be called
+// before MPI_Init): "Open MPI v4.1.4, package: Debian OpenMPI, ...".
+static std::string MpiLibrary()
+{
+  char library[MPI_MAX_LIBRARY_VERSION_STRING] = "";
+  int  length                                  = 0;
+  if (MPI_Get_library_version(library, &length) != MPI_SUCCESS) return "unknown";
+  std::string text(library, (std::size_t)std::max(length, 0));
+  text = text.substr(0, text.find('\n'));
+  while (!text.empty() && (text.back() == ' ' || text.back() == '\0')) text.pop_back();
+  return text;
+}
+
+// The PETSc library bapd runs with (its own numbers, not the headers').
+static std::string PetscLibrary()
+{
+  PetscInt major = 0, minor = 0, subminor = 0, release = 0;
+  if (PetscGetVersionNumber(&major, &minor, &subminor, &release)) return "unknown";
+  return std::to_string(major) + "." + std::to_string(minor) + "." + std::to_string(subminor) + (release ? "" : " (development)");
+}
+
+// -version (or --version): what this bapd is, for a bug report or a paper's methods
+// section; printed once, before MPI starts, and the run stops with exit code 0.
+static bool TakeVersionArgument(int argc, char **argv)
+{
+  for (int a = 1; a < argc; ++a)
+    if (std::strcmp(argv[a], "-version") == 0 || std::strcmp(argv[a], "--version") == 0) return true;
+  return false;
 }
 
 template <int D> static PetscErrorCode RunDriver(bapd::Scene scene)
@@ -52,6 +86,14 @@ static PetscErrorCode RunScene()
 
   PetscFunctionBegin;
   PetscCall(bapd::ReadScene(PETSC_COMM_WORLD, &scene));
+  if (!scene.help_only) {
+    // The first line of a run's output: which bapd, on what (kept in any saved log).
+    PetscMPIInt       ranks = 0;
+    const std::string mpi   = MpiLibrary();
+    PetscCallMPI(MPI_Comm_size(PETSC_COMM_WORLD, &ranks));
+    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "bapd %s, PETSc %s, %s, %d rank(s)\n", bapd::VersionText().c_str(), PetscLibrary().c_str(),
+                          mpi.substr(0, mpi.find(',')).c_str(), ranks));
+  }
   if (scene.dimension == 3) PetscCall(RunDriver<3>(std::move(scene)));
   else PetscCall(RunDriver<2>(std::move(scene)));
   PetscFunctionReturn(0);
@@ -59,6 +101,12 @@ static PetscErrorCode RunScene()
 
 int main(int argc, char **argv)
 {
+  if (TakeVersionArgument(argc, argv)) {
+    const char *rank = std::getenv("OMPI_COMM_WORLD_RANK");
+    if (!rank || std::atoi(rank) == 0)
+      std::printf("bapd %s\nPETSc %s\nMPI: %s\n", bapd::VersionText().c_str(), PetscLibrary().c_str(), MpiLibrary().c_str());
+    return 0;
+  }
   // -help, -h, --help: bapd's options alone; -help all: PETSc's too (help.hpp).
   bapd::TakeHelpArguments(&argc, &argv);
   // A missing or malformed scene (or a stray word on the command line) is reported

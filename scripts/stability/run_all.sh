@@ -23,7 +23,7 @@ sections=("$@")
 ((${#sections[@]})) || sections=(spectrum shear rows timestep bulk horizon fracture)  # map: on request
 build="${BAPD_BUILD_DIR:-$here/build}"
 if [ -z "${BAPD_EXE:-}" ]; then
-  "$here/scripts/install-deps.sh"
+  "$here/scripts/install-deps.sh" --tests # (stability_spectrum is built with the tests)
   "$here/scripts/build.sh"
   export BAPD_EXE="$build/bapd"
 fi

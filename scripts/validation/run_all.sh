@@ -9,7 +9,7 @@ out="${2:-$here/output/validation}"
 mkdir -p "$out"
 if [ -z "${BAPD_EXE:-}" ]; then
   "$here/scripts/install-deps.sh"
-  "$here/scripts/build.sh"
+  "$here/scripts/build.sh" --run
   export BAPD_EXE="${BAPD_BUILD_DIR:-$here/build}/bapd"
 fi
 

@@ -20,6 +20,7 @@
 #include "fit_error.hpp"
 #include "fit_report.hpp"
 #include "fit_run.hpp"
+#include "bapd/version.hpp"
 
 #ifndef BAPD_SOURCE_DIR
 #define BAPD_SOURCE_DIR "."
@@ -43,6 +44,7 @@ const char *usage =
     "  -output_dir DIR   where the files go (default bapd_fit_output)\n"
     "  -no_plot          skip the PNGs (scripts/plot_fit.py; needs /usr/bin/python3 with matplotlib)\n"
     "  -plot_script PATH the plotting script (default " BAPD_SOURCE_DIR "/scripts/plot_fit.py)\n"
+    "  -version          the version of bapd-fit (bapd's)\n"
     "specimen options, at rest, in SI, for the files after them (an export of extension or force needs them):\n"
     "  -fit_gauge_length L    the clamps' separation [m]: stretch = 1 + extension / L\n"
     "  -fit_cross_section A   width x thickness [m^2]: nominal stress = force / A\n"
@@ -102,6 +104,9 @@ int run(int argc, char **argv)
     };
     if (a == "-help" || a == "--help" || a == "-h") {
       std::cout << usage;
+      return 0;
+    } else if (a == "-version" || a == "--version") {
+      std::cout << "bapd-fit " << bapd::VersionText() << "\n";
       return 0;
     } else if (a == "-law") {
       laws = split_commas(value());

@@ -26,13 +26,16 @@ cases=0
 part() { current_part="$1"; }
 in_part() { [ "$only" = all ] || [ "$only" = "$current_part" ]; }
 
-# expect_error NAME TEXT ARGS...: run_mpi.sh -n RANKS ARGS... must fail as described.
+# expect_error NAME TEXT ARGS...: run_mpi.sh -n RANKS ARGS... must fail as described
+# (with BAPD_DIRECT=1: mpiexec -n RANKS bapd ARGS..., for what run_mpi.sh would not pass on).
 expect_error() {
   local name="$1" text="$2" rc problems=""
   shift 2
   in_part || return 0
   cases=$((cases + 1))
-  timeout 60 "$run_mpi" -n "$ranks" "$@" > "$name.log" 2>&1
+  local launch=("$run_mpi" -n "$ranks")
+  [ -n "${BAPD_DIRECT:-}" ] && launch=(mpiexec -q -n "$ranks" --oversubscribe "$BAPD_EXE")
+  timeout 60 "${launch[@]}" "$@" > "$name.log" 2>&1
   rc=$?
   if ((rc == 124)); then problems+=" timed out (hang?);"
   elif ((rc == 0)); then problems+=" exit code 0;"
@@ -57,6 +60,9 @@ part options
 # The scene file and the command line
 expect_error missing_scene "cannot open scene file 'no_such_scene.yaml'" no_such_scene.yaml
 expect_error device_scene "'/dev/zero' (-options_file_yaml) is a device" "$scene" -options_file_yaml /dev/zero
+# bapd with options but no scene (run_mpi.sh would run the default scene under them)
+BAPD_DIRECT=1 expect_error no_scene "no scene was given: give a scene file, e.g. mpiexec -n 2 bapd -options_file_yaml examples/default.yaml" \
+  -output_dir no_scene -end_step 10
 expect_error missing_second_scene "cannot open scene file 'no_such_scene.yaml'" "$scene" -options_file_yaml no_such_scene.yaml
 expect_error missing_options_file "cannot open options file 'no_such_options.txt'" "$scene" -options_file no_such_options.txt
 expect_error yaml_syntax "is not valid YAML" "$fixtures/bad_syntax.yaml"

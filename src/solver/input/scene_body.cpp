@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <memory>
 #include <numeric>
 #include <string>
@@ -501,12 +502,35 @@ PetscErrorCode CheckNotches(MPI_Comm comm, const SceneInput &in, Body2D *body)
   PetscFunctionReturn(0);
 }
 
+// No scene at all: no scene or options file on the command line, and not one body
+// option from anywhere (`mpiexec bapd` alone, or options meant to go on top of a scene
+// that was left out). Said as such, rather than as the first size that is missing.
+PetscErrorCode CheckSceneGiven(MPI_Comm comm, const SceneInput &in)
+{
+  PetscFunctionBeginUser;
+  const bool body = in.width_set || in.height_set || in.thickness_set || in.dx_set || in.dimension_set || !in.holes.empty() ||
+                    !in.notches.empty() || !in.shape_names.empty() || !in.cloud.empty();
+  if (body) PetscFunctionReturn(0);
+  int    argc = 0;
+  char **args = nullptr;
+  PetscCall(PetscGetArgs(&argc, &args));
+  bool file = false;
+  for (int a = 1; a < argc; ++a) file = file || !std::strcmp(args[a], "-options_file_yaml") || !std::strcmp(args[a], "-options_file");
+  SceneCheck(file, comm,
+             "no scene was given: give a scene file, e.g. mpiexec -n 2 bapd -options_file_yaml examples/default.yaml [options] "
+             "(./run_mpi.sh with options but no scene runs that one), or the body's options (-body_width, -body_height, "
+             "-body_thickness, -body_dx; docs/options.md)%s",
+             MisspeltHint("-body_width").c_str());
+  PetscFunctionReturn(0);
+}
+
 } // namespace
 
 PetscErrorCode CheckBody(MPI_Comm comm, const SceneInput &in, Scene *scene)
 {
   Body2D &b = scene->body;
   PetscFunctionBeginUser;
+  PetscCall(CheckSceneGiven(comm, in));
   PetscCall(CheckDimension(comm, in, &scene->dimension));
   if (scene->dimension == 3) {
     PetscCall(CheckBody3D(comm, in, scene));

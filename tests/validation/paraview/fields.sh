@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The field output opens in a real ParaView (Debian's python3-paraview, installed by
-# scripts/install-deps.sh), with the reader it picks by default (Xdmf3ReaderS) and
+# scripts/install-deps.sh --tests), with the reader it picks by default (Xdmf3ReaderS) and
 # with the README's "Xdmf Reader": every point drawn as a cell, the arrays, the run
 # state as field data, every output time, a damage picture with the points in it
 # (open_fields.py). A notched sheet on 2 ranks whose crack has run, once drawn at the
@@ -8,7 +8,7 @@
 set -euo pipefail
 source "$BAPD_SOURCE_DIR/tests/mpi/restart/common.sh"
 if ! command -v pvpython > /dev/null || ! command -v xvfb-run > /dev/null; then
-  echo "SKIPPED: pvpython or xvfb-run is missing: run scripts/install-deps.sh (python3-paraview, xvfb)"
+  echo "SKIPPED: pvpython or xvfb-run is missing: run scripts/install-deps.sh --tests (python3-paraview, xvfb)"
   exit 77
 fi
 work="paraview_fields"
