@@ -1,11 +1,13 @@
 #!/usr/bin/env bash
 # The same scene on 1, 2, 3 and 4 ranks: the same history, final displacement field
 # (bit for bit: tolerance 0) and set of broken bonds.
-#   rank_invariance.sh elastic|fracture|fracture_energy|fracture_corrected|shapes|waisted_sheet|dogbone|double_edge_notched|cloud
+#   rank_invariance.sh elastic|fracture|fracture_energy|fracture_corrected|shapes|waisted_sheet|dogbone|double_edge_notched|cloud|volumetric_point
 # (dogbone, double_edge_notched: the examples from Gmsh files, gripped by physical group,
 # pulled a little; on 1, 2 and 3 ranks)
 # (fracture_corrected: fracture with the bond-only form and -force_stress_correction tensor, whose per-point
 # correction is built once from the unbroken families on every rank, ghosts included)
+# (volumetric_point: elastic in plane strain at K = 1000 mu with -material_volumetric point, whose
+# per-point mean dilatation is formed from the point's own bonds on every rank)
 # (fracture_energy: fracture by -failure_fracture_energy, whose pair energies need both
 # directed copies of a bond: a ring-1 ghost's from its own family on this rank)
 set -euo pipefail
@@ -62,6 +64,9 @@ elif [ "$case" = fracture ] || [ "$case" = fracture_corrected ]; then
   else
     scene+=(-end_step 1250)
   fi
+elif [ "$case" = volumetric_point ]; then
+  scene+=(-load_schedule 0,1,0.1,1.3 -material_formulation plane_strain -material_bulk_ratio 1000 -material_volumetric point
+          -end_step 400)
 elif [ "$case" = fracture_energy ]; then
   # Across the sheet by step 1400 (stretch 1.38).
   scene+=(-load_schedule 0,1,0.15,1.45 -failure_fracture_energy 6 -end_step 1400)

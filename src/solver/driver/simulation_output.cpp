@@ -302,7 +302,8 @@ template <int D> PetscErrorCode SimulationD<D>::ComputePointQuantities(const dou
   point_quantities(scene_.model, scene_.formulation, scene_.material, layout_.cloud, force_.positions(), families_, geometry_,
                    bond_state_, force_.warm_start().data(), (std::size_t)layout_.n_owned,
                    scene_.force_form == ForceForm::energy_consistent ? StressWeights::bond_energy : StressWeights::bond_force,
-                   *quantities);
+                   *quantities, scene_.volumetric,
+                   scene_.volumetric_stabilisation * scene_.material.mu);
   PetscFunctionReturn(0);
 }
 

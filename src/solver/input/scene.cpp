@@ -181,6 +181,8 @@ std::string SceneText(const Scene &s)
     text += Format(", stress correction %s%s", to_string(s.stress_correction),
                    s.force_form == ForceForm::energy_consistent ? " (the identity for this form)" : "");
   if (s.patch_correction != PatchCorrection::off) text += Format(", patch correction %s", to_string(s.patch_correction));
+  if (s.volumetric == Volumetric::point)
+    text += Format(", volumetric energy per point (mean dilatation), stabilisation %g mu", s.volumetric_stabilisation);
   text += "\n";
   if (s.failure && s.fracture_energy > 0)
     text += Format("  failure   bonds break at the critical pair energy of Gamma = %g J/m^2 (tip concentration %g)\n",

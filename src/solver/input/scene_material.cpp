@@ -56,6 +56,15 @@ PetscErrorCode ReadMaterial(MPI_Comm comm, Scene *scene, SceneInput *in)
                        "Bond force: energy_consistent (the default: minus the gradient of the strain energy, "
                        "conserves energy undamped, stress-consistent as it is) | bond_only (the paper's eq 23)",
                        &in->force_form));
+    PetscCall(r.String("-material_volumetric",
+                       "Where the volumetric energy U(J) is evaluated: bond (the paper's, U(J_ij) per bond: locks a nearly "
+                       "incompressible body in plane strain and 3D) | point (U of the mean dilatation of each point's bonds: "
+                       "no locking; energy_consistent force, plane strain or 3D; docs/method.md section 8)",
+                       &in->volumetric));
+    PetscCall(r.Real("-material_volumetric_stabilisation",
+                     "With -material_volumetric point: kappa / mu [-], the modulus that holds each bond's J_ij near its "
+                     "point's mean (the odd-even mode; a few mu: not K, which would lock again; docs/method.md section 8)",
+                     &scene->volumetric_stabilisation));
     PetscCall(r.String("-force_stress_correction",
                        "Bond-only force made stress-consistent (sum_j t_ij (x) xi_ij V_j = P for a uniform P; "
                        "docs/stress_consistency.md): none (the paper's) | tensor (M_i^-1 per point) | scalar (1/m_i, "
@@ -128,6 +137,20 @@ PetscErrorCode CheckMaterial(MPI_Comm comm, const SceneInput &in, Scene *scene)
   else
     SETERRQ(comm, PETSC_ERR_USER, "%s",
             Format("-force_form '%s' is not a force form: choose bond_only (the paper's) or energy_consistent", in.force_form.c_str()).c_str());
+  const std::string volumetric = Lower(in.volumetric);
+  if (volumetric == "bond" || volumetric == "point") scene->volumetric = volumetric == "point" ? Volumetric::point : Volumetric::bond;
+  else
+    SETERRQ(comm, PETSC_ERR_USER, "%s",
+            Format("-material_volumetric '%s' is not a choice: choose bond (the paper's) or point (no volumetric locking)",
+                   in.volumetric.c_str()).c_str());
+  SceneCheck(scene->volumetric_stabilisation >= 0.0, comm,
+             "-material_volumetric_stabilisation %g is negative: give kappa / mu >= 0 (default 10)", scene->volumetric_stabilisation);
+  SceneCheck(!(scene->volumetric == Volumetric::point && scene->force_form != ForceForm::energy_consistent), comm,
+             "-material_volumetric point is written for the energy-consistent force: remove -force_form bond_only, or use "
+             "-material_volumetric bond");
+  SceneCheck(!(scene->volumetric == Volumetric::point && !three && scene->formulation == Formulation::plane_stress), comm,
+             "-material_volumetric point relaxes the volumetric constraint of plane strain and 3D; plane stress has none (C33 "
+             "takes it): add -material_formulation plane_strain, or use -material_volumetric bond");
   // auto: the bond-only force corrected (its bulk is 4.2 % soft without); the
   // energy-consistent form (the default force form: the bond-only one folds the free
   // corners next to grips outside, docs/stress_consistency.md) is stress-consistent as it is.

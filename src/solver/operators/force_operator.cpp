@@ -24,6 +24,8 @@ PetscErrorCode ForceOperator::Setup(MPI_Comm comm, const Scene &scene, const Lay
     else return workspace3_;
   }();
   failed_          = &workspace.failed;
+  workspace.volumetric               = scene.volumetric; // -material_volumetric (volumetric.hpp)
+  workspace.volumetric_stabilisation = scene.volumetric_stabilisation * scene.material.mu; // kappa [Pa]
   keep_warm_start_ = &workspace.keep_warm_start;
   const std::size_t nbonds = families.neighbour.size();
   c33_.assign(D == 2 ? nbonds : 0, 0.0); // the 2D models' C33 warm starts; a 3D model has none (c33 nullptr)

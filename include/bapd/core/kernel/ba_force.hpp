@@ -69,6 +69,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <stdexcept>
 #include <type_traits>
 #include <vector>
 
@@ -115,12 +116,39 @@ void bond_only_range(const Model &model, const PointCloud &ref, const double *y,
   stats.largest_trC = std::max(stats.largest_trC, largest_trC);
 }
 
+// -material_volumetric point (volumetric.hpp), after the first pass over the bonds of a
+// point: Jbar_i = omega_i sum_q V_q J_iq over the bonds that carry energy, then
+//   M_iq += (U'(Jbar_i) - U'(J_iq) + kappa (J_iq - Jbar_i)) V_q cof(F_iq) K_iq^{-1}
+// (M_iq = V_q P*_iq K_iq^{-1}), and the word totals summed again, in family order.
+template <int D>
+inline void point_volumetric(Workspace<D> &ws, const MemberRecord<D> *rec, std::size_t m, double volume,
+                             double compressibility, double kappa)
+{
+  const std::uint64_t *energetic = ws.energetic.data();
+  double               sum       = 0.0;
+  for (std::size_t q = 0; q < m; ++q)
+    if ((energetic[q / 64] >> (q % 64)) & 1u) sum += rec[q][Member<D>::volume] * ws.bond_dilatation[q];
+  const double Jbar = sum / volume, slope_bar = volumetric_slope(Jbar, compressibility);
+  for (std::size_t w = 0; w < (m + 63) / 64; ++w) ws.bond_stress_total[w].zero();
+  for (std::size_t q = 0; q < m; ++q) {
+    if (!((energetic[q / 64] >> (q % 64)) & 1u)) continue;
+    const double    J = ws.bond_dilatation[q];
+    const double    a = slope_bar - volumetric_slope(J, compressibility) + stabilisation_slope(J, Jbar, kappa);
+    StressRecord<D> n = ws.bond_cofactor[q];
+    for (int v = 0; v < StressRecord<D>::vectors; ++v) n.v[v] *= a;
+    ws.bond_stress[q] += n;
+    ws.bond_stress_total[q / 64] += ws.bond_stress[q];
+  }
+}
+
 template <int D, std::size_t Words, class Model>
 void energy_consistent_range(const Model &model, const PointCloud &ref, const double *y, const Families &fam,
                              const BondGeometry<D> &geo, const BondState &state, double *c33, double *bond_force,
                              Workspace<D> &ws, std::size_t begin, std::size_t end, KernelStats &stats)
 {
   const std::size_t W = fam.mask_words;
+  const bool        point = ws.volumetric == Volumetric::point;
+  const double      compressibility = point ? detail::compressibility(model, 0) : 0.0;
   std::size_t       evaluated = 0, unusable = 0; // as in bond_only_range
   double            largest_trC = 0.0;
   for (std::size_t i = begin; i < end; ++i) {
@@ -132,8 +160,12 @@ void energy_consistent_range(const Model &model, const PointCloud &ref, const do
     EnergyConsistentForm<D> form{ws.bond_stress.data(),      ws.energetic.data(),
                                  ws.pending_data.data(),     ws.lane_stride,
                                  ws.point.member.data(),     ws.bond_stress_total.data(),
-                                 0.0};
+                                 0.0,
+                                 point ? ws.bond_cofactor.data() : nullptr,
+                                 point ? ws.bond_dilatation.data() : nullptr};
     stress_pass<D, Words>(model, fam, geo, state, i, totals, c33, ws, form, evaluated, unusable, largest_trC, stats);
+    if (point && form.volume != 0.0) point_volumetric<D>(ws, ws.point.member.data(), m, form.volume, compressibility,
+                                                         ws.volumetric_stabilisation);
     // Pass 2: t_ip = omega_i S_ip (x_p - x_i), S_ip = the sum of M_iq over q in B_ip
     // (BA masks are symmetric within a family: see the top of this file).
     double *t = bond_force + D * o;
@@ -190,6 +222,9 @@ KernelStats compute_bond_forces(ForceForm form, const Model &model, const PointC
 {
   KernelStats stats;
   ws.reserve(families);
+  if (ws.volumetric == Volumetric::point && (form != ForceForm::energy_consistent || !(detail::compressibility(model, 0) > 0.0)))
+    throw std::invalid_argument("nd::compute_bond_forces: the point volumetric energy needs the energy-consistent form and a "
+                                "model of the registry (its compressibility D > 0)");
   switch (families.mask_words) { // 1: 2D up to 64 members; 2, 3: 3D at delta <= 3.8 dx
   case 1: detail::forces_range<D, 1>(form, model, ref, y, families, geometry, state, c33, bond_force, ws, begin, end, stats); break;
   case 2: detail::forces_range<D, 2>(form, model, ref, y, families, geometry, state, c33, bond_force, ws, begin, end, stats); break;
@@ -243,24 +278,46 @@ void point_bond_energies(const Model &model, const PointCloud &ref, const double
       stats.record(i, q, status);
       continue;
     }
-    visit(q, psi);
+    visit(q, psi, k.F);
   }
 }
 
-// V_i W_i of point i: the mean of Psi over the bonds that carry energy, weighted by V_j.
+// V_i W_i of point i: the mean of Psi over the bonds that carry energy, weighted by V_j;
+// with -material_volumetric point the mean of Psi - U(J_iq) + kappa/2 (J_iq - Jbar_i)^2
+// plus U(Jbar_i), Jbar_i the same mean of J_iq (volumetric.hpp; the J_iq kept in
+// ws.bond_dilatation, 0 for a bond without energy, for the second sum).
 template <int D, class Model>
 double point_strain_energy(const Model &model, const PointCloud &ref, const double *y, const Families &families,
                            const BondGeometry<D> &geometry, const BondState &state, const double *c33, std::size_t i,
                            Workspace<D> &ws, KernelStats &stats)
 {
-  const std::size_t o   = families.offsets[i];
-  double            num = 0.0, den = 0.0;
-  point_bond_energies<D>(model, ref, y, families, geometry, state, c33, i, ws, stats, [&](std::size_t q, double psi) {
-    const double vj = ref.volume[static_cast<std::size_t>(families.neighbour[o + q])];
-    num += psi * vj;
-    den += vj;
-  });
-  return den > 0 ? ref.volume[i] * (num / den) : 0.0;
+  const std::size_t o     = families.offsets[i];
+  const bool        point = ws.volumetric == Volumetric::point;
+  const double      Dc    = point ? compressibility(model, 0) : 0.0;
+  const std::size_t m     = families.size(i);
+  double            num = 0.0, den = 0.0, dilatation = 0.0;
+  if (point) std::fill(ws.bond_dilatation.begin(), ws.bond_dilatation.begin() + m, 0.0);
+  point_bond_energies<D>(model, ref, y, families, geometry, state, c33, i, ws, stats,
+                         [&](std::size_t q, double psi, const Mat<D> &F) {
+                           const double vj = ref.volume[static_cast<std::size_t>(families.neighbour[o + q])];
+                           if (point) {
+                             const double J = det<D>(F);
+                             num += (psi - volumetric_energy(J, Dc)) * vj;
+                             dilatation += J * vj;
+                             ws.bond_dilatation[q] = J;
+                           } else num += psi * vj;
+                           den += vj;
+                         });
+  if (!(den > 0)) return 0.0;
+  if (!point) return ref.volume[i] * (num / den);
+  const double Jbar = dilatation / den, kappa = ws.volumetric_stabilisation;
+  double       spread = 0.0;
+  for (std::size_t q = 0; q < m; ++q)
+    if (ws.bond_dilatation[q] > 0.0) {
+      const double d = ws.bond_dilatation[q] - Jbar;
+      spread += ref.volume[static_cast<std::size_t>(families.neighbour[o + q])] * d * d;
+    }
+  return ref.volume[i] * (num / den + 0.5 * kappa * spread / den + volumetric_energy(Jbar, Dc));
 }
 
 } // namespace detail
@@ -315,7 +372,7 @@ void bond_energies(const Model &model, const PointCloud &ref, const double *y, c
     const std::size_t o = families.offsets[i];
     for (std::size_t q = 0; q < families.size(i); ++q) psi[o + q] = -1.0;
     detail::point_bond_energies<D>(model, ref, y, families, geometry, state, c33, i, ws, local,
-                                   [&](std::size_t q, double value) { psi[o + q] = value; });
+                                   [&](std::size_t q, double value, const Mat<D> &) { psi[o + q] = value; });
   }
 }
 

@@ -83,12 +83,33 @@ template <int D> struct EnergyConsistentForm {
   const MemberRecord<D>       *rec;
   StressRecord<D>             *stress_total; // by mask word, zeroed by the caller
   double                       volume = 0.0;
+  // -material_volumetric point (volumetric.hpp): per bond V_q cof(F_iq) K_iq^{-1} and
+  // J_iq (ws.bond_cofactor, ws.bond_dilatation); nullptr: bond (nothing kept).
+  StressRecord<D>             *cofactor   = nullptr;
+  double                      *dilatation = nullptr;
 
   void none(std::size_t) {} // no energy: M_iq is not read (its bit stays clear)
   void collect(std::size_t slot, std::size_t q, const BondKinematics<D> &k)
   {
     for (int c = 0; c < sym_size<D>; ++c) data[c * S + slot] = k.shape_tensor_inv[c];
     data[volume_component * S + slot] = rec[q][Member<D>::volume];
+    if (cofactor) keep_cofactor(q, k);
+  }
+  // cof F = adj(F)^T = J F^{-T}; kept before the model runs (a bond whose model fails
+  // keeps it too, unread: its energetic bit stays clear).
+  [[gnu::noinline]] void keep_cofactor(std::size_t q, const BondKinematics<D> &k)
+  {
+    const Mat<D> adj = adjugate<D>(k.F);
+    const double v   = rec[q][Member<D>::volume];
+    double       n[StressRecord<D>::vectors * StressRecord<D>::V] = {};
+    for (int r = 0; r < D; ++r)
+      for (int c = 0; c < D; ++c) {
+        double s = adj[r] * k.kinv(0, c); // cof(F)_{r0} = adj(F)_{0r}
+        for (int j = 1; j < D; ++j) s += adj[D * j + r] * k.kinv(j, c);
+        n[D * r + c] = v * s;
+      }
+    cofactor[q]   = StressRecord<D>::from(n);
+    dilatation[q] = det<D>(k.F);
   }
   // M = V_q P K^{-1}, in one bond's doubles or in lanes (slot = the first of the register's).
   template <class T> std::array<T, D * D> product(std::size_t slot, const std::array<T, D * D> &P) const

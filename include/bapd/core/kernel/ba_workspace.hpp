@@ -8,6 +8,7 @@
 #include "bapd/core/kernel/kernel_stats.hpp"
 #include "bapd/core/kernel/lanes.hpp"
 #include "bapd/core/kernel/bond_geometry.hpp"
+#include "bapd/core/kernel/volumetric.hpp"
 
 namespace bapd::nd {
 
@@ -20,6 +21,12 @@ template <int D> struct Workspace {
   std::vector<std::uint64_t>   energetic;   // which of them carry energy
   std::vector<FailedBond>      failed;      // every failed bond of the last call
   bool                         keep_warm_start = false; // read c33, do not write it back
+  // -material_volumetric (volumetric.hpp): point evaluates U once per point, from Jbar_i;
+  // then the energy-consistent form keeps, per bond, J_iq and V_q cof(F_iq) K_iq^{-1}.
+  Volumetric                   volumetric = Volumetric::bond;
+  double                       volumetric_stabilisation = 0.0; // kappa [Pa] (point only)
+  std::vector<StressRecord<D>> bond_cofactor;   // V_q cof(F_iq) K_iq^{-1} (point only)
+  std::vector<double>          bond_dilatation; // J_iq (point only)
   // What a form keeps of a bond between its kinematics and its P, data_components of
   // them a slot, by component (component c of slot s at pending_data[c lane_stride + s],
   // so that a form reads lane_count slots' component as one vector): g of the bond-only
@@ -38,6 +45,10 @@ template <int D> struct Workspace {
     if (bond_stress.size() < f.max_family_size) bond_stress.resize(f.max_family_size);
     if (bond_stress_total.size() < f.mask_words) bond_stress_total.resize(f.mask_words);
     if (energetic.size() < f.mask_words) energetic.resize(f.mask_words);
+    if (volumetric == Volumetric::point && bond_cofactor.size() < f.max_family_size) {
+      bond_cofactor.resize(f.max_family_size);
+      bond_dilatation.resize(f.max_family_size);
+    }
     const std::size_t L = lane_count, stride = (std::max<std::size_t>(f.max_family_size, 1) + L - 1) / L * L;
     if (lane_stride < stride) {
       lane_stride = stride;

@@ -34,6 +34,10 @@
 // no thickness stretch (thickness_stretch is left empty: there is no C33 to solve).
 // A point none of whose bonds carries force (damage 1, or every K singular) gets zeros
 // everywhere.
+// With -material_volumetric point (volumetric.hpp; energy-consistent weights) each bond's
+// P(F_ij) is the P*_ij the force uses, P + (U'(Jbar_i) - U'(J_ij) + kappa (J_ij - Jbar_i))
+// cof F_ij, Jbar_i the mean of J_ij with the same weights, kappa the stabilisation [Pa],
+// and W_i that of the point form's energy.
 //
 // Output only, outside the time step: it uses the slow per-bond path
 // (bond_shape, bond_deformation_gradient) and reads c33 as the warm start of the
@@ -129,15 +133,37 @@ inline Mat2 cauchy_stress(const Mat2 &P, const Mat2 &F, double lambda_3) { retur
 template <int D, class Model>
 void point_quantities(const Model &model, const PointCloud &cloud, const double *y, const Families &families,
                       const nd::BondGeometry<D> &geometry, const BondState &state, const double *c33,
-                      std::size_t n_points, StressWeights weights, PointQuantities &out)
+                      std::size_t n_points, StressWeights weights, PointQuantities &out,
+                      Volumetric volumetric = Volumetric::bond, double stabilisation = 0.0)
 {
   using Mat = nd::Mat<D>;
   out.resize(n_points, D);
-  const bool virial = geometry.corrected() && weights == StressWeights::bond_force;
+  const bool   virial = geometry.corrected() && weights == StressWeights::bond_force;
+  const bool   point  = volumetric == Volumetric::point;
+  const double Dc     = point ? nd::detail::compressibility(model, 0) : 0.0;
   for (std::size_t i = 0; i < n_points; ++i) {
     Mat       P_sum{}, F_sum{};
-    double    lambda_3_sum = 0.0, total = 0.0;
+    double    lambda_3_sum = 0.0, total = 0.0, slope_bar = 0.0, Jbar = 1.0;
     const Mat C = geometry.correction_of(i);
+    if (point) { // U'(Jbar_i), Jbar_i over the bonds that carry force, weights V_j
+      double num = 0.0, den = 0.0;
+      for (std::size_t q = 0; q < families.size(i); ++q) {
+        if (!state.is_intact(i, q) || !geometry.is_usable(i, q)) continue;
+        if (!nd::bond_shape<D>(cloud, families, state, i, q).usable) continue;
+        const std::size_t b = families.offsets[i] + q;
+        const Mat         F = nd::bond_deformation_gradient<D>(cloud, y, families, geometry, state, i, q);
+        double            c = c33 ? c33[b] : 0.0;
+        Mat               P;
+        if (nd::detail::stress_of<D>(model, F, c, P, 0) != StressStatus::ok) continue;
+        const double v = cloud.volume[static_cast<std::size_t>(families.neighbour[b])];
+        num += v * nd::det<D>(F);
+        den += v;
+      }
+      if (den > 0.0) {
+        Jbar      = num / den;
+        slope_bar = nd::detail::volumetric_slope(Jbar, Dc);
+      }
+    }
     for (std::size_t q = 0; q < families.size(i); ++q) {
       if (!state.is_intact(i, q) || !geometry.is_usable(i, q)) continue;
       const nd::BondShape<D> shape = nd::bond_shape<D>(cloud, families, state, i, q);
@@ -147,6 +173,13 @@ void point_quantities(const Model &model, const PointCloud &cloud, const double 
       double            c = c33 ? c33[b] : 0.0;
       Mat               P;
       if (nd::detail::stress_of<D>(model, F, c, P, 0) != StressStatus::ok) continue; // the kernel gives it t = 0
+      if (point) { // P -> P*
+        const Mat    adj = nd::adjugate<D>(F);
+        const double J   = nd::det<D>(F);
+        const double a   = slope_bar - nd::detail::volumetric_slope(J, Dc) + nd::detail::stabilisation_slope(J, Jbar, stabilisation);
+        for (int r = 0; r < D; ++r)
+          for (int s = 0; s < D; ++s) P[D * r + s] += a * adj[D * s + r]; // cof F = adj(F)^T
+      }
       const double v = cloud.volume[static_cast<std::size_t>(families.neighbour[b])];
       const double a = weights == StressWeights::bond_force ? shape.force_scale * v : v;
       if (virial) { // P B_ij, B_ij = V_j (C_i g_ij) (x) xi_ij
@@ -187,6 +220,8 @@ void point_quantities(const Model &model, const PointCloud &cloud, const double 
     if constexpr (D == 2) out.thickness_stretch[i] = lambda_3;
   }
   nd::Workspace<D> ws;
+  ws.volumetric               = volumetric;
+  ws.volumetric_stabilisation = stabilisation;
   nd::strain_energy<D>(model, cloud, y, families, geometry, state, c33, n_points, ws, nullptr,
                        out.strain_energy_density.data());
   for (std::size_t i = 0; i < n_points; ++i) out.strain_energy_density[i] /= cloud.volume[i]; // V_i W_i -> W_i
@@ -197,12 +232,14 @@ void point_quantities(ModelKind kind, Formulation formulation, const MaterialPar
                       const PointCloud &cloud, const double *y, const Families &families,
                       const nd::BondGeometry<2> &geometry,
                       const BondState &state, const double *c33, std::size_t n_points, StressWeights weights,
-                      PointQuantities &out);
+                      PointQuantities &out, Volumetric volumetric = Volumetric::bond,
+                      double stabilisation = 0.0);
 // A 3D body: the law's 3D form (with_model_3d, models.hpp); the formulation is not used.
 void point_quantities(ModelKind kind, Formulation formulation, const MaterialParameters &material,
                       const PointCloud &cloud, const double *y, const Families &families,
                       const nd::BondGeometry<3> &geometry,
                       const BondState &state, const double *c33, std::size_t n_points, StressWeights weights,
-                      PointQuantities &out);
+                      PointQuantities &out, Volumetric volumetric = Volumetric::bond,
+                      double stabilisation = 0.0);
 
 } // namespace bapd

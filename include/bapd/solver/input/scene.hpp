@@ -21,6 +21,7 @@
 #include "bapd/solver/input/scene_probes.hpp"
 #include "bapd/solver/input/scene_schedule.hpp"
 #include "bapd/core/kernel/force_form.hpp"
+#include "bapd/core/kernel/volumetric.hpp"
 #include "bapd/core/kernel/stress_correction.hpp"
 
 namespace bapd {
@@ -60,6 +61,10 @@ struct Scene {
   ModelKind          model       = ModelKind::gent;
   Formulation        formulation = Formulation::plane_stress;
   ForceForm          force_form  = ForceForm::energy_consistent;
+  // -material_volumetric (volumetric.hpp): U(J) per bond (the paper's) or once per point
+  // from the mean dilatation (no volumetric locking in plane strain and 3D).
+  Volumetric         volumetric  = Volumetric::bond;
+  double             volumetric_stabilisation = 10.0; // kappa / mu (-material_volumetric_stabilisation)
   // -force_stress_correction (stress_correction.hpp): the bond-only force made to give
   // sum_j t_ij (x) xi_ij V_j = P; the identity for the energy-consistent form.
   StressCorrection   stress_correction = StressCorrection::none;

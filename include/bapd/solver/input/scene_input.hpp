@@ -51,7 +51,7 @@ struct SceneInput {
   PetscInt                 dimension = 2; // -body_dimension (2 or 3; 3D solids imply 3)
   bool                     dimension_set = false, grip_placement_set = false, grip_field_set = false;
   std::string              model = "gent", formulation = "plane_stress", force_form = "energy_consistent",
-                           stress_correction = "auto", patch_correction = "auto", grip_field = "auto", grip_placement = "outside";
+                           stress_correction = "auto", patch_correction = "auto", volumetric = "bond", grip_field = "auto", grip_placement = "outside";
   bool                     formulation_set = false; // -material_formulation given (refused in 3D)
   bool                     D_set = false, bulk_ratio_set = false;
   double                   bulk_ratio = 1000.0;
