@@ -33,11 +33,12 @@ while (($#)); do
 done
 # No scene named: the default scene, with any options on top of it; not when the options
 # need no scene (-help, -version) or bring their own (-restart continues a checkpoint with
-# its options; -options_file).
+# its options; -options_file; -body_* options describe a body of their own, which the
+# default scene's hole would otherwise be cut from).
 if [ -z "$scene" ]; then
   own_scene=""
   for a in ${args[@]+"${args[@]}"}; do
-    case "$a" in -help|-h|--help|-version|--version|-restart|-options_file) own_scene="$a" ;; esac
+    case "$a" in -help|-h|--help|-version|--version|-restart|-options_file|-body_*) own_scene="$a" ;; esac
   done
   if [ -z "$own_scene" ]; then
     scene="$here/examples/default.yaml"

@@ -4,7 +4,7 @@ damage (0 blue .. 1 red), seen from the front (x right, y up) and tilted, so tha
 crack through the thickness shows.
 
     xvfb-run -a pvpython docs/images/damage_3d.py RUN_DIR OUT.png
-(docs/images/notched_block_3d_damage.png: examples/notched_block_3d.yaml, docs/validation.md 7.3)"""
+(docs/images/notched_block_3d_damage.png: examples/notched_block_3d.yaml, docs/validation_3d.md 7.3)"""
 import sys
 
 from paraview import simple as pv

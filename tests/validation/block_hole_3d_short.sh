@@ -7,7 +7,7 @@
 # P2-P1 solution of scripts/fe/block_hole_3d.py at the same K, read from
 # tests/data/fe/block_hole_3d_K10.json (s: the finest mesh; each probe: the FE displacement at
 # the lattice point the probe reads, "lattice" -> "0.5"). The convergence table
-# (docs/validation.md section 7.2, dx = 1, 0.5, 0.25 mm, both forms, rigid and affine
+# (docs/validation_3d.md section 7.2, dx = 1, 0.5, 0.25 mm, both forms, rigid and affine
 # tabs) says what holds at this spacing:
 # ASSERTED - the nominal stress s within 1 % (measured +0.07 %) and
 # the crown probe (crown_mid uy) within 3 % (+2.47 %);

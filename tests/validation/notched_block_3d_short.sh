@@ -14,7 +14,7 @@
 #    has grown from the tip: bonds on that plane broke at x < 17 mm (a horizon ahead of the
 #    tip; measured down to x = 14.5 mm);
 #  - the field file holds a damage dataset, nonzero.
-# docs/validation.md section 7.3 has the full example.
+# docs/validation_3d.md section 7.3 has the full example.
 #   notched_block_3d_short.sh        (ctest sets BAPD_EXE and BAPD_SOURCE_DIR)
 set -euo pipefail
 source "$BAPD_SOURCE_DIR/tests/mpi/restart/common.sh" # run, fail, history_column, PYTHON

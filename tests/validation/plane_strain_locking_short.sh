@@ -5,7 +5,7 @@
 # scripts/fe/slab_plane_strain_mixed.py, tests/data/fe/slab_plane_strain_mixed.csv,
 # h = 0.5 mm: s = 2.7078 kPa, converged to 0.06 % over h = 1.41-0.5 mm).
 # With -material_volumetric point (docs/method.md section 8; the default stabilisation
-# kappa = 10 mu) s is -0.81 % at dx = 0.5 mm (docs/validation.md 7.4; -3.7 % with kappa = 0):
+# kappa = 10 mu) s is -0.81 % at dx = 0.5 mm (docs/validation_3d.md 7.4; -3.7 % with kappa = 0):
 # asserted within 3 %. The per-bond volumetric energy (-material_volumetric bond, the
 # paper's) locks: +55.7 %, and must fail the same mark.
 #   plane_strain_locking_short.sh        (ctest sets BAPD_EXE and BAPD_SOURCE_DIR)

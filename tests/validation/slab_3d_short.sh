@@ -7,7 +7,7 @@
 # one): the same section (10 x 20 mm, hole r = 2.5 mm), force form, horizon factor, rigid
 # grips two horizons deep, stretch 1.25. Every layer is held in z (back and front, two
 # layers each): the slab is then in plane strain point by point.
-# Measured (docs/validation.md section 7.1): s -0.38 %, crown uy +0.28 %, side and
+# Measured (docs/validation_3d.md section 7.1): s -0.38 %, crown uy +0.28 %, side and
 # ligament ux +2.6 / +4.4 %. Asserted: s and the crown's uy within 1 %, and
 # the probes' uz = 0; the side and ligament are printed, not asserted: the 3D and 2D
 # bond families (sphere and disk lenses) weigh the non-affine field next to the free
