@@ -7,7 +7,6 @@
 #include <utility>
 
 namespace bapd::fit {
-namespace {
 
 std::string trim(const std::string &s)
 {
@@ -19,6 +18,9 @@ std::string lower(std::string s)
   for (char &c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   return s;
 }
+
+namespace {
+
 bool contains(const std::string &s, const char *word) { return s.find(word) != std::string::npos; }
 
 struct Unit {

@@ -28,6 +28,10 @@ struct ColumnName {
 };
 
 // Separator of a header line: '\t', ';' or ','.
+// Text of a cell: without the surrounding blanks; in lower case (ASCII).
+std::string trim(const std::string &s);
+std::string lower(std::string s);
+
 char detect_separator(const std::string &line);
 // The cells of a line (trimmed, unquoted).
 std::vector<std::string> split_cells(const std::string &line, char separator);

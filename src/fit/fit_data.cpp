@@ -14,16 +14,6 @@
 namespace bapd::fit {
 namespace {
 
-std::string trim(const std::string &s)
-{
-  const auto b = s.find_first_not_of(" \t\r\n"), e = s.find_last_not_of(" \t\r\n");
-  return b == std::string::npos ? "" : s.substr(b, e - b + 1);
-}
-std::string lower(std::string s)
-{
-  for (char &c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return s;
-}
 std::string g(double v)
 {
   char buf[32];
