@@ -19,8 +19,8 @@ its name. The component is in the title and the file name
 The grips placed outside the specimen (docs/options.md, "Loading": lattice rows
 beyond the sheet's edges, held by the load sets, not part of the specimen) are drawn
 apart, in grey, and left out of the colour scale: their stresses are the clamp's, not
-the specimen's. They are the points of a dataset `grip` or `load_set` (non-zero) when
-the file has one; otherwise the points of a 2D lattice outside the specimen's frame
+the specimen's. They are the points the load sets hold (the dataset `load_set`,
+non-zero), which bapd writes; in files without it, the points of a 2D lattice outside the specimen's frame
 [0, width] x [0, height], which a bottom or left grip shows as y < 0 or x < 0, and
 whose far edges are those of the other side mirrored (grips as deep at the top as at
 the bottom, the default) unless --specimen WIDTH HEIGHT gives them. --grips show
@@ -52,7 +52,7 @@ FIELDS = {"damage": ("-", "damage"), "max_bond_stretch": ("-", "largest bond str
           "force_density": ("N/m³", "force density"), "nominal_stress": ("Pa", "nominal stress P"),
           "cauchy_stress": ("Pa", "Cauchy stress σ"), "deformation_gradient": ("-", "deformation gradient F")}
 TENSOR_COMPONENTS = {"xx": 0, "xy": 1, "xz": 2, "yx": 3, "yy": 4, "yz": 5, "zx": 6, "zy": 7, "zz": 8}  # row-major 3x3
-GRIP_DATASETS = ("grip", "load_set")
+GRIP_DATASETS = ("load_set",)
 GRIP_GREY = "0.75"
 
 

@@ -14,7 +14,9 @@ displacement), its magnitude or a --component (x, y, z of a vector; xx, xy, ... 
 a tensor). The time shown is the output time nearest to --time, else the last. Files
 written with -output_fields_geometry reference are warped by their displacement, so
 the points are always at x + u. The sphere radius is half the point spacing
-(estimated from the reference positions), --radius-factor scales it. Without a
+(estimated from the reference positions), --radius-factor scales it. The points the
+load sets hold (the grips; the files' load_set dataset) are grey and out of the colour
+scale, --grips show colours them like the specimen. Without a
 display, run it under xvfb-run (-noreset keeps Xvfb up between pvpython's X
 connections: xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" pvpython ...).
 Needs ParaView's pvpython (Debian's paraview, python3-paraview; scripts/install-deps.sh).
@@ -63,6 +65,14 @@ def point_spacing(reference):
     return float(lattice) if lattice > 0.5 * estimate else float(estimate)
 
 
+def spheres(display, spacing, radius_factor):
+    """Draws a display's points as spheres, half a point spacing in radius by default."""
+    display.SetRepresentationType("Point Gaussian")
+    display.ShaderPreset = "Sphere"
+    display.GaussianRadius = 0.5 * spacing * radius_factor
+    return display
+
+
 def default_field(arrays):
     for name in arrays:
         if "von_mises" in name.lower():
@@ -81,6 +91,9 @@ def main():
     p.add_argument("--state", help="write a ParaView state file (.pvsm): paraview --state=FILE opens this view")
     p.add_argument("--resolution", nargs=2, type=int, default=[1200, 900], metavar=("W", "H"))
     p.add_argument("--radius-factor", type=float, default=1.0, help="sphere radius in half point spacings (default 1)")
+    p.add_argument("--grips", choices=["apart", "show"], default="apart",
+                   help="apart (default): the points the load sets hold in grey, out of the colour scale; "
+                        "show: coloured like the specimen")
     args = p.parse_args()
     if not args.png and not args.state:
         fail("nothing to write: give --png FILE.png and/or --state FILE.pvsm")
@@ -129,10 +142,20 @@ def main():
     if hasattr(view, "UseColorPaletteForBackground"):
         view.UseColorPaletteForBackground = 0
     view.Background = [1.0, 1.0, 1.0]  # white, for reports; text and labels black
-    display = pv.Show(source, view)
-    display.SetRepresentationType("Point Gaussian")
-    display.ShaderPreset = "Sphere"
-    display.GaussianRadius = 0.5 * spacing * args.radius_factor
+    # The grips (the points the load sets hold, dataset load_set > 0) in grey, apart from
+    # the specimen and out of its colour scale: their stresses are the clamp's.
+    grips = None
+    if "load_set" in arrays and args.grips == "apart":
+        specimen = pv.Threshold(registrationName="specimen", Input=source, Scalars=["POINTS", "load_set"],
+                                LowerThreshold=-0.5, UpperThreshold=0.5, ThresholdMethod="Between")
+        grips = pv.Threshold(registrationName="grips", Input=source, Scalars=["POINTS", "load_set"],
+                             LowerThreshold=0.5, UpperThreshold=1e9, ThresholdMethod="Between")
+        source = specimen
+    display = spheres(pv.Show(source, view), spacing, args.radius_factor)
+    if grips is not None:
+        grip_display = spheres(pv.Show(grips, view), spacing, args.radius_factor)
+        pv.ColorBy(grip_display, None)
+        grip_display.AmbientColor = grip_display.DiffuseColor = [0.6, 0.6, 0.6]
 
     # Colour: the magnitude or one component, the range of the shown time.
     if components == 1 and args.component != "magnitude":
@@ -179,8 +202,10 @@ def main():
     view.GetActiveCamera().Zoom(0.8)  # room for the text above and the colour bar beside
     pv.Render(view)
 
+    held = int((vtk_to_numpy(pd.GetArray("load_set")) > 0).sum()) if grips is not None else 0
     print(f"{xdmf}: {data.GetNumberOfPoints()} points at t = {time:.6g} s ({run_state}), coloured by {what}, "
-          f"spheres of radius {display.GaussianRadius:.4g} m (point spacing {spacing:.4g} m)")
+          f"spheres of radius {display.GaussianRadius:.4g} m (point spacing {spacing:.4g} m)"
+          + (f"; {held} grip points in grey" if grips is not None else ""))
     if args.png:
         pv.SaveScreenshot(args.png, view, ImageResolution=list(args.resolution))
         print(f"wrote {args.png}")

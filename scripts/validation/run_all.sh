@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Regenerates docs/validation.md: runs the paper's three scenes (docs/method.md section 7),
+# Regenerates sections 1-4 of docs/validation.md: runs the paper's three scenes (docs/method.md section 7),
 # then tabulates and plots them. Long (about an hour on 2 cores); not part of the
 # test suite. Usage: scripts/validation/run_all.sh [ranks] [output root] [case names]
 set -euo pipefail

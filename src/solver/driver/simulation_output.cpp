@@ -287,6 +287,13 @@ template <int D> PetscErrorCode SimulationD<D>::WriteFields(PetscInt step, doubl
                     D == 2 ? quantities.thickness_stretch.data() : nullptr, von_mises.data(), principal.data());
   fields.von_mises_stress  = von_mises.data();
   fields.principal_stretch = principal.data();
+  // The grips apart from the specimen: the (1-based) load set holding each point, the
+  // first in the scene's order where sets overlap.
+  std::vector<double> load_set(n, 0.0);
+  const auto         &sets = loading_.load_set_points();
+  for (std::size_t k = sets.size(); k-- > 0;)
+    for (PetscInt i : sets[k].points) load_set[i] = (double)(k + 1);
+  fields.load_set = load_set.data();
   const PetscErrorCode written = WriteFieldFrame<D>(comm_, output_.order, &output_.series, step, t, loading_.stretch_at(t), fields);
   PetscCall(VecRestoreArrayRead(X_, &x)); // also when the file could not be written
   PetscCall(written);

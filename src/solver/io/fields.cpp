@@ -63,6 +63,7 @@ constexpr FieldArray kArrays[] = {
     {"strain_energy_density", Shape::scalar, Source::point, &PointFields::strain_energy_density},
     {"von_mises_stress", Shape::scalar, Source::point, &PointFields::von_mises_stress},
     {"principal_stretch", Shape::triple, Source::point, &PointFields::principal_stretch},
+    {"load_set", Shape::scalar, Source::point, &PointFields::load_set},
 };
 constexpr std::size_t kArrayCount = sizeof kArrays / sizeof kArrays[0];
 

@@ -4,7 +4,7 @@
 # outside), once as written (current positions) and once from files written at the
 # reference positions, it draws the points as spheres a point spacing wide, coloured
 # by the default field (the displacement magnitude, or the von Mises stress where the
-# files hold it) and by a tensor component, writes a PNG and a state file that
+# files hold it) with the grips in grey, and by a tensor component, writes a PNG and a state file that
 # ParaView loads back (check_view.py). Exit code 77 (pvpython missing) is a skip.
 set -euo pipefail
 source "$BAPD_SOURCE_DIR/tests/mpi/restart/common.sh"
@@ -31,6 +31,8 @@ for geometry in current reference; do
     tee "$work/$geometry.log" || fail "view_fields.py failed on $work/$geometry"
   grep -Eq "coloured by (displacement magnitude|von.mises)" "$work/$geometry.log" ||
     fail "the default colouring is neither the displacement magnitude nor a von Mises stress: $(cat "$work/$geometry.log")"
+  grep -Eq "; [1-9][0-9]* grip points in grey" "$work/$geometry.log" ||
+    fail "the grips (the files' load_set) are not drawn apart in grey: $(cat "$work/$geometry.log")"
   pv "$check" "$work/$geometry.png" "$work/$geometry.pvsm" "$work/$geometry" 720 200 || fail "the view of $work/$geometry"
 done
 pv "$view" "$work/current" --field cauchy_stress --component yy --time 0 --png "$work/syy_t0.png" --resolution 600 450 |

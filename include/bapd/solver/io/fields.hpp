@@ -95,6 +95,7 @@ struct PointFields {
   const double *strain_energy_density = nullptr; // 1 per point
   const double *von_mises_stress      = nullptr; // 1 per point
   const double *principal_stretch     = nullptr; // 3 per point, in 2D and 3D
+  const double *load_set              = nullptr; // 1 per point: 0 free, k held by the scene's k-th load set
 };
 
 // Largest stretch over the intact bonds of points [0, n) (y: current positions of
