@@ -240,7 +240,9 @@ class GentSolid(GentProblem):
 
 
 class GentSolidMixed(GentProblem):
-    """The law of GentSolid in 3D, discretised without volumetric locking: Taylor-Hood
+    """The law of GentSolid in 3D or plane strain (a 2D mesh: F = diag(F~, 1), so
+    I1bar = (tr C~ + 1) J^{-2/3} with J = det F~; per unit thickness), discretised
+    without volumetric locking: Taylor-Hood
     (u in P2, a pressure p in P1) on the Hu-Washizu functional with the volume variable
     eliminated in closed form,
         Pi(u, p) = int Psi_iso(F) + U(Theta(p)) + p (J - Theta(p)) dV,
@@ -262,7 +264,8 @@ class GentSolidMixed(GentProblem):
         v, q = ufl.TestFunctions(self.space)
         Fv = ufl.variable(ufl.Identity(self.tdim) + ufl.grad(u))
         J = ufl.det(Fv)
-        psi_iso = gent_isochoric(ufl.tr(Fv.T * Fv) * J**(-2.0 / 3.0), mu, Jm)
+        trC = ufl.tr(Fv.T * Fv) + (1.0 if self.tdim == 2 else 0.0)  # plane strain: F33 = 1
+        psi_iso = gent_isochoric(trC * J**(-2.0 / 3.0), mu, Jm)
         D = self.D
         theta = (D * p + ufl.sqrt(D * D * p * p + 4.0)) / 2.0
         self.P = ufl.diff(psi_iso, Fv) + p * ufl.diff(J, Fv)

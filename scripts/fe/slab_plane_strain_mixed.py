@@ -26,7 +26,6 @@ import os
 import sys
 
 import numpy as np
-import ufl
 from dolfinx import fem
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -34,37 +33,6 @@ import gent_fe  # noqa: E402
 from block_hole_3d import FIRST_STEP, HEIGHT, RADIUS, WIDTH, XC, YC  # noqa: E402
 
 LATTICE_DX = (0.5, 0.25)    # mm: bapd spacings whose probe points are reported
-
-
-class GentPlaneStrainMixed(gent_fe.GentProblem):
-    """gent_fe.GentSolidMixed in plane strain: I1bar = (tr C~ + 1) J^{-2/3}, J = det F~."""
-
-    def __init__(self, msh, degree, bulk_ratio, mu=gent_fe.MU_KPA, Jm=gent_fe.JM):
-        self._setup(msh, degree, mu, Jm, bulk_ratio, None)
-        cell = msh.ufl_cell()
-        element = ufl.MixedElement([ufl.VectorElement("CG", cell, degree),
-                                    ufl.FiniteElement("CG", cell, degree - 1)])
-        self.space = fem.FunctionSpace(msh, element)
-        self.V = self.space.sub(0)
-        self.u = fem.Function(self.space, name="u_p")
-        u, p = ufl.split(self.u)
-        v, q = ufl.TestFunctions(self.space)
-        Fv = ufl.variable(ufl.Identity(2) + ufl.grad(u))
-        J = ufl.det(Fv)
-        psi_iso = gent_fe.gent_isochoric((ufl.tr(Fv.T * Fv) + 1.0) * J**(-2.0 / 3.0), mu, Jm)
-        D = self.D
-        theta = (D * p + ufl.sqrt(D * D * p * p + 4.0)) / 2.0
-        self.P = ufl.diff(psi_iso, Fv) + p * ufl.diff(J, Fv)
-        self.residual = (ufl.inner(self.P, ufl.grad(v)) + (J - theta) * q) * self.dx
-        self.jacobian = ufl.derivative(self.residual, self.u, ufl.TrialFunction(self.space))
-        self.factorisation = "cholesky"    # symmetric indefinite: LDL^T
-        self.line_search = True
-
-    def displacement(self):
-        return self.u.sub(0).collapse()
-
-    def _u_part(self, f):
-        return ufl.split(f)[0]
 
 
 def solve(h, bulk_ratio, lambdas, verbose=False):
@@ -76,7 +44,7 @@ def solve(h, bulk_ratio, lambdas, verbose=False):
         occ.synchronize()
         return [tag for _, tag in cut]
     msh = gent_fe.mesh_from_gmsh(build, h, dim=2)
-    fe = GentPlaneStrainMixed(msh, 2, bulk_ratio)
+    fe = gent_fe.GentSolidMixed(msh, 2, bulk_ratio)  # a 2D mesh: plane strain
     top = fe.facets(lambda x: np.isclose(x[1], HEIGHT))
     fe.add_bc(0, top)
     uy_top = fe.add_bc(1, top)
