@@ -5,7 +5,7 @@ through (5, 10), top edge clamped and moved by (lambda - 1) 20 mm, bottom held),
 compressible Gent in plane strain exactly as bapd's PlaneStrain (F = diag(F~, 1):
 tr C = tr C~ + 1, J = det F~), mu = 4.55 kPa, Jm = 162.6, K = 1000 mu by default.
 
-Discretised as gent_fe.GentSolidMixed does in 3D: Taylor-Hood, u in P2 and a pressure
+Discretised by gent_fe.GentSolidMixed (on a 2D mesh, plane strain): Taylor-Hood, u in P2 and a pressure
 in P1, on the Hu-Washizu functional with the volume variable eliminated,
     Pi(u, p) = int Psi_iso(F) + U(Theta(p)) + p (J - Theta(p)) dA,
 so K = 1000 mu does not lock the displacement (block_hole_3d.py --slab solves the same
