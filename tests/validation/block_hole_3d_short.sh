@@ -23,7 +23,7 @@ source "$BAPD_SOURCE_DIR/tests/mpi/restart/common.sh" # run, fail, PYTHON
 work="validation_block_hole_3d_short"
 rm -rf "$work"; mkdir -p "$work"
 run 2 "$work/pd" -options_file_yaml "$BAPD_SOURCE_DIR/examples/block_hole_3d.yaml" \
-    -material_bulk_ratio 10 -load_schedule 0,1.0,0.025,1.25,1.025,1.25 \
+    -material_bulk_ratio 10 -material_volumetric bond -load_schedule 0,1.0,0.025,1.25,1.025,1.25 \
     -progress_interval 1000000 "$@"
 $PYTHON - "$work" "$BAPD_SOURCE_DIR/tests/data/fe/block_hole_3d_K10.json" <<'PY'
 import csv, json, re, sys

@@ -7,7 +7,8 @@
 # With -material_volumetric point (docs/method.md section 8; the default stabilisation
 # kappa = 10 mu) s is -0.81 % at dx = 0.5 mm (docs/validation_3d.md 7.4; -3.7 % with kappa = 0):
 # asserted within 3 %. The per-bond volumetric energy (-material_volumetric bond, the
-# paper's) locks: +55.7 %, and must fail the same mark.
+# paper's) locks: +55.7 %, and must fail the same mark; its setup warns so, the point
+# form's does not.
 #   plane_strain_locking_short.sh        (ctest sets BAPD_EXE and BAPD_SOURCE_DIR)
 set -uo pipefail
 work="validation_plane_strain_locking"
@@ -42,4 +43,8 @@ run bond -material_volumetric bond
 echo "== -material_volumetric point"; check point || { echo "FAIL: point"; status=1; }
 echo "== -material_volumetric bond (locks: must fail)"
 if check bond; then echo "FAIL: the per-bond volumetric energy passed: the check cannot tell locking"; status=1; fi
+# The setup warns where the docs say the scene locks, and only there.
+grep -q "bapd: warning: K = 1000 mu in plane strain with -material_volumetric bond .* locks" "$work/bond.log" ||
+  { echo "FAIL: no locking warning for bond at K = 1000 mu"; status=1; }
+! grep -q "locks" "$work/point.log" || { echo "FAIL: a locking warning with -material_volumetric point"; status=1; }
 exit $status

@@ -34,7 +34,7 @@ elif [ "$case" = coarse ]; then
 else
   fail "unknown case '$case' (fine or coarse)"
 fi
-common=(-body_dx $dx -material_bulk_ratio 10 -load_top_depth $grip -load_bottom_depth $grip
+common=(-body_dx $dx -material_bulk_ratio 10 -material_volumetric bond -load_top_depth $grip -load_bottom_depth $grip
         -load_schedule 0,1.0,0.025,1.25,1.025,1.25 -output_interval 200 -progress_interval 1000000)
 run 1 "$work/2d" -options_file_yaml "$BAPD_SOURCE_DIR/examples/slab_plane_strain.yaml" "${common[@]}" \
     -body_thickness $t -probe_side_mid_at $side -probe_ligament_at $ligament -probe_crown_at $crown
