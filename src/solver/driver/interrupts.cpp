@@ -158,7 +158,7 @@ extern "C" void OnCheckpointRequest(int) { checkpoint_requests = checkpoint_requ
 extern "C" void OnFatalSignal(int signal, siginfo_t *info, void *)
 {
   const bool sent = info && info->si_code <= 0; // SI_USER, SI_QUEUE, SI_TKILL: kill(2), not a fault
-  if (sent) LetRankZeroSpeakFirst();
+  LetRankZeroSpeakFirst(); // (every signal is blocked meanwhile: mpiexec's SIGTERM waits)
   SafeLine line;
   line << "bapd: error: rank " << (long)world_rank << " stopped by " << SignalName(signal);
   if (sent)
@@ -230,7 +230,7 @@ void InstallFatalSignalHandlers()
   std::memset(&action, 0, sizeof action);
   action.sa_sigaction = OnFatalSignal;
   action.sa_flags     = SA_SIGINFO | SA_RESETHAND;
-  sigemptyset(&action.sa_mask);
+  sigfillset(&action.sa_mask);
   for (int signal : {SIGSEGV, SIGBUS, SIGILL, SIGFPE}) sigaction(signal, &action, nullptr);
 }
 
