@@ -68,10 +68,31 @@ scene_args=()
 # checkpoint and stop), and the signal's real name goes to $BAPD_SIGNAL_FILE, which
 # bapd reads for its message. mpiexec runs in a session of its own (setsid): a Ctrl-C
 # in a terminal reaches this script only, not the ranks as well.
-signal_file="$(mktemp "${TMPDIR:-/tmp}/bapd_signal.XXXXXX")"
+# What mpiexec needs before it starts a rank, checked here where its own failure would
+# be a page of PMIx errors or a hang: a writable TMPDIR with room for its session files
+# (a few MB of shared memory), and file descriptors for the ranks' pipes (the soft limit
+# is raised to that when the hard one allows).
+tmp="${TMPDIR:-/tmp}"
+if ! [ -d "$tmp" ] || ! [ -w "$tmp" ] || ! [ -x "$tmp" ]; then
+  echo "bapd: error: TMPDIR '$tmp' is not a writable directory, and mpiexec keeps its session files there: set TMPDIR to one (e.g. TMPDIR=/tmp ./run_mpi.sh ...)" >&2; exit 1
+fi
+tmp_free_kb=$(df -Pk "$tmp" 2> /dev/null | awk 'NR == 2 { print $4 }')
+if [ -n "$tmp_free_kb" ] && ((tmp_free_kb < 4096)); then
+  echo "bapd: error: TMPDIR '$tmp' has ${tmp_free_kb} kB free, and mpiexec needs a few MB there for its session files: free some space there or set TMPDIR to another directory" >&2; exit 1
+fi
+files_needed=$((32 + 4 * ranks))
+if [ "$(ulimit -S -n)" != unlimited ] && (($(ulimit -S -n) < files_needed)); then
+  ulimit -S -n "$files_needed" 2> /dev/null ||
+    { echo "bapd: error: the limit on open files (ulimit -n $(ulimit -S -n), at most $(ulimit -H -n)) is too small for mpiexec and $ranks rank(s), which need about $files_needed: raise it (ulimit -n 1024) or run on fewer ranks" >&2; exit 1; }
+fi
+signal_file="$(mktemp "$tmp/bapd_signal.XXXXXX")"
 trap 'rm -f "$signal_file"' EXIT
 export BAPD_SIGNAL_FILE="$signal_file"
-setsid mpiexec -q -x BAPD_SIGNAL_FILE -n "$ranks" --oversubscribe --bind-to none "$BAPD_EXE" "${scene_args[@]}" "${args[@]}" &
+# mpiexec gets SIGTERM should this script die without passing a signal on (kill -9):
+# it then stops the ranks, instead of running on without anyone waiting for it.
+launch=(setsid)
+command -v setpriv > /dev/null && launch+=(setpriv --pdeathsig TERM)
+"${launch[@]}" mpiexec -q -x BAPD_SIGNAL_FILE -n "$ranks" --oversubscribe --bind-to none "$BAPD_EXE" "${scene_args[@]}" "${args[@]}" &
 child=$!
 for sig in TERM INT; do trap "echo SIG$sig > '$signal_file'; kill -USR2 $child 2> /dev/null" "$sig"; done
 for sig in USR1 HUP; do trap "kill -$sig $child 2> /dev/null" "$sig"; done

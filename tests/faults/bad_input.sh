@@ -109,6 +109,7 @@ expect_error negative_thickness "-body_thickness -0.001: the sheet thickness mus
 expect_error zero_output_interval "-output_interval 0" "$scene" -output_interval 0
 expect_error critical_stretch_inf "-failure_critical_stretch 'inf' is not a finite number: give one value in SI units, e.g. -failure_critical_stretch 7.2" "$scene" -failure_critical_stretch inf
 expect_error huge_modulus "-material_mu 1e+308 Pa is too large" "$scene" -material_mu 1e308
+expect_error huge_bulk_ratio "-material_bulk_ratio 1e+30 is beyond what double precision resolves" "$scene" -material_bulk_ratio 1e30
 expect_error end_time_huge "-end_time 1e+300 s needs at least" "$scene" -end_time 1e300
 expect_error end_time_huge_step "-end_time 1e+06 s needs 1e+15 time steps with -time_step 1e-09 s" "$scene" -end_time 1e6 -time_step 1e-9
 expect_error critical_stretch_one "-failure_critical_stretch 1: a bond breaks once stretched past s_c, so s_c must be > 1" "$scene" -failure_critical_stretch 1

@@ -1,5 +1,7 @@
 #include "bapd/solver/driver/errors.hpp"
 
+#include "bapd/solver/io/checkpoint.hpp"
+
 #include <cctype>
 #include <cstdio>
 #include <cstring>
@@ -139,6 +141,10 @@ PetscErrorCode PushUserErrorHandler()
   PetscFunctionBegin;
   if (State().agree == MPI_COMM_NULL) PetscCallMPI(MPI_Comm_dup(PETSC_COMM_WORLD, &State().agree));
   PetscCall(PetscPushErrorHandler(UserErrorHandler, nullptr));
+  // In place of PETSc's signal handlers and their stack: a crash or a stop signal
+  // from the start (a stop during the set-up ends the run within seconds).
+  InstallFatalSignalHandlers();
+  InstallInterruptHandlers();
   PetscFunctionReturn(0);
 }
 

@@ -185,6 +185,13 @@ PetscErrorCode CheckMaterial(MPI_Comm comm, const SceneInput &in, Scene *scene)
   if (in.bulk_ratio_set) {
     SceneCheck(in.bulk_ratio > 0, comm,
                "-material_bulk_ratio %g: the ratio K/mu must be > 0; a nearly incompressible gel has K/mu >= 100 (the default)", in.bulk_ratio);
+    // Past about 1e24 the volume energy K/2 (J - 1)^2 of a J known to round-off (1e-16)
+    // outgrows the shear energy: the run's energies (history.csv) mean nothing (1e30:
+    // internal energy 20 x the grips' work on the tiny sheet). 1e12 leaves a margin.
+    SceneCheck(in.bulk_ratio <= 1e12, comm,
+               "-material_bulk_ratio %g is beyond what double precision resolves: the volume energy K/2 (J - 1)^2 of a J known to "
+               "1e-16 outgrows the shear energy. Give 1e12 or less (a nearly incompressible gel: 100 to 1e4; the default is 1000)",
+               in.bulk_ratio);
     m.D = 2.0 / (in.bulk_ratio * m.mu);
   } else if (!in.D_set) m.D = 2.0 / (1000.0 * m.mu); // K = 1000 mu, see ReadMaterial
   // A modulus so large that D = 2/(ratio mu) underflows would be reported below as a

@@ -32,7 +32,7 @@ PetscErrorCode WriteCheckpointFile(MPI_Comm comm, PetscMPIInt rank, const std::s
                             header.energy_totals.size());
   PetscCallMPI(MPI_Bcast(&text, 1, MPI_UINT64_T, 0, comm));
   H5ParallelFile f;
-  PetscCall(f.Create(comm, path, H5FileBytes(data + text, 32)));
+  PetscCall(f.Create(comm, path, data + text, 32));
   PetscCall(f.WriteAttribute("/", "format", std::string("bapd checkpoint")));
   PetscCall(f.WriteAttribute("/", "format_version", header.format_version));
   PetscCall(f.WriteAttribute("/", "dimension", header.dimension));

@@ -251,7 +251,7 @@ PetscErrorCode WriteFieldFrame(MPI_Comm comm, const NaturalOrder &order, FieldSe
     hsize_t point_bytes = 0;
     for (const FieldArray &a : kArrays) point_bytes += (hsize_t)(a.precision() * components(a.shape));
     H5ParallelFile f;
-    PetscCall(f.Create(comm, path, H5FileBytes(N * point_bytes, 26)));
+    PetscCall(f.Create(comm, path, N * point_bytes, 26));
     PetscCall(f.WriteAttribute("/", "format", std::string("bapd fields")));
     PetscCall(f.WriteAttribute("/", "format_version", (std::int64_t)2));
     PetscCall(f.WriteAttribute("/", "step", (std::int64_t)step));

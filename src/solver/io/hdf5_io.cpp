@@ -71,17 +71,44 @@ PetscErrorCode H5ParallelFile::Begin(MPI_Comm comm, const std::string &path, boo
 
 H5ParallelFile::~H5ParallelFile()
 {
+  GiveBackRoom();
   if (file_ < 0) return;
   H5Quiet quiet;
   H5Fclose(file_);
 }
 
-PetscErrorCode H5ParallelFile::Create(MPI_Comm comm, const std::string &path, std::uint64_t bytes)
+void H5ParallelFile::GiveBackRoom()
 {
-  std::string cause;
+  if (room_.empty()) return;
+  ::unlink(room_.c_str());
+  room_.clear();
+}
+
+PetscErrorCode H5ParallelFile::Create(MPI_Comm comm, const std::string &path, std::uint64_t data_bytes, std::uint64_t objects)
+{
+  const std::uint64_t bytes = H5FileBytes(data_bytes, objects), room = H5FileBytes(0, objects);
+  std::string         cause;
+  PetscMPIInt         rank;
 
   PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
   PetscCall(H5ReserveSpace(comm, path, bytes, &cause));
+  // The metadata's room, kept until the close (hdf5_io.hpp); part of `bytes`, so the
+  // reservation above has made sure of it. A disk that fills in between fails here.
+  int error = 0;
+  if (cause.empty() && rank == 0) {
+    const std::string name = path + ".room";
+    const int         fd   = ::open(name.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (fd < 0) error = errno;
+    else {
+      error = posix_fallocate(fd, 0, (off_t)room);
+      if (::close(fd) != 0 && !error) error = errno;
+      if (error) ::unlink(name.c_str());
+      else room_ = name;
+    }
+  }
+  PetscCallMPI(MPI_Bcast(&error, 1, MPI_INT, 0, comm));
+  if (cause.empty() && error) cause = std::strerror(error);
   PetscCheck(cause.empty(), comm, PETSC_ERR_FILE_WRITE, "Cannot write %s: %s (it needs about %.2f MB): free some space or choose another -output_dir",
              path.c_str(), cause.c_str(), (double)bytes / 1e6);
   PetscCall(Begin(comm, path, true));
@@ -115,13 +142,12 @@ PetscErrorCode H5ParallelFile::Close()
   // prints: it names its own failure, or the lowest failing rank's.
   int failing = failed_.empty() ? INT32_MAX : rank, first = INT32_MAX;
   PetscCallMPI(MPI_Allreduce(&failing, &first, 1, MPI_INT, MPI_MIN, comm_));
-  // A file being written that failed (a disk filled by someone else since Create's
-  // reservation) is worthless: rank 0 empties it first, so that the close's
-  // metadata flush finds room and every rank leaves it (a close failing on some
-  // ranks hangs the others, and leaves a file that crashes MPI_Finalize).
-  if (first != INT32_MAX && writing_ && rank == 0 && ::truncate(path_.c_str(), 0) != 0) {
-  } // best effort: the failure is reported either way
-  if (first != INT32_MAX) PetscCallMPI(MPI_Barrier(comm_)); // emptied before anyone flushes
+  // The close writes the metadata: rank 0 gives back the room it kept for it
+  // (Create), and every rank flushes only once it has (a close failing on some ranks
+  // hangs the others, or crashes them). The file is not cut short under HDF5: its
+  // flush reads back what it wrote before.
+  GiveBackRoom();
+  if (writing_) PetscCallMPI(MPI_Barrier(comm_));
   Record(H5Fclose(file_) >= 0, "close", path_.c_str());
   file_ = -1;
   if (first == INT32_MAX) {

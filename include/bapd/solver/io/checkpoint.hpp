@@ -164,8 +164,8 @@ PetscErrorCode ReadCheckpointState(MPI_Comm comm, const std::string &path, const
 // given on the command line still wins. Collective; does nothing without -restart.
 PetscErrorCode CheckpointMergeOptions(MPI_Comm comm);
 
-// Signals. SIGTERM / SIGINT / SIGUSR2: write a checkpoint and stop; SIGUSR1: write a
-// checkpoint and go on. Open MPI's mpiexec passes SIGUSR1 and SIGUSR2 on to the
+// Signals. SIGTERM / SIGINT / SIGQUIT / SIGHUP / SIGUSR2: write a checkpoint and stop;
+// SIGUSR1: write a checkpoint and go on. Open MPI's mpiexec passes SIGUSR1 and SIGUSR2 on to the
 // ranks at once; SIGINT it passes on as SIGTERM, and after SIGTERM it kills the ranks
 // 1 s later. So run_mpi.sh turns the SIGINT / SIGTERM it gets into SIGUSR2 and names
 // the real signal in the file $BAPD_SIGNAL_FILE (InterruptName). The handlers only
@@ -174,9 +174,17 @@ PetscErrorCode CheckpointMergeOptions(MPI_Comm comm);
 // 2 s or more after the first, while it is pending, ends the process the default way
 // (one sooner is the same request arriving twice, e.g. through `timeout`). SIGXFSZ is ignored:
 // a file past a size limit (ulimit -f) is then a write error that bapd reports.
+// A stop the driver has not taken 10 s after the signal (it came during the set-up,
+// or inside a step that lasts) ends the process there, with one line saying so and
+// what is kept (SIGALRM).
 void InstallInterruptHandlers();
 void RestoreInterruptHandlers();
-int  PendingInterrupt();      // SIGTERM, SIGINT or SIGUSR2 if one came, else 0
+// SIGSEGV, SIGBUS, SIGILL, SIGFPE (in place of PETSc's handler and its stack): one
+// line `bapd: error: rank R stopped by SIGSEGV ...`, telling a fault from a signal
+// sent with kill, and an exit without MPI_Finalize, so that mpiexec stops the other
+// ranks. Installed by PushUserErrorHandler (errors.hpp).
+void InstallFatalSignalHandlers();
+int  PendingInterrupt();      // the stop signal if one came, else 0 (a step has ended: asked once a step)
 bool TakeCheckpointRequest(); // a SIGUSR1 came since the last call
 // "SIGINT", "SIGTERM", or for SIGUSR2 the signal run_mpi.sh got ("SIGUSR2" if none).
 std::string InterruptName(int signal);

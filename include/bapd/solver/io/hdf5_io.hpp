@@ -12,7 +12,12 @@
 // is created only after its whole size has been reserved on the disk (Create's
 // `bytes`): a disk without the room is reported before HDF5 writes anything. A disk
 // that another program fills after the reservation fails a write: the ranks agree on
-// it before the close, and rank 0 empties the file so that the close finds room.
+// it before the close. The close itself needs room for HDF5's metadata, which it
+// writes then: a close that fails on one rank only leaves the others in mismatched
+// collectives (a hang, or a crash). So rank 0 also keeps that room taken, in a file
+// `<path>.room` (allocated, empty of data) from the creation to the close, and gives
+// it back just before the collective close: the metadata fits even on a disk filled
+// since, and the close ends alike on every rank.
 #include <hdf5.h>
 #include <petscsys.h>
 
@@ -43,10 +48,12 @@ public:
   H5ParallelFile(const H5ParallelFile &)            = delete;
   H5ParallelFile &operator=(const H5ParallelFile &) = delete;
 
-  // Creates (truncating) after reserving `bytes` (an upper bound of the file's size,
-  // H5FileBytes) on its disk, or opens read-only. Errors: PETSC_ERR_FILE_WRITE (no
-  // room: the cause, e.g. "No space left on device"), PETSC_ERR_FILE_OPEN.
-  PetscErrorCode Create(MPI_Comm comm, const std::string &path, std::uint64_t bytes);
+  // Creates (truncating) a file of `data_bytes` in datasets and `objects` datasets,
+  // groups and attributes, after reserving its size (H5FileBytes) on its disk and
+  // taking the room of its metadata (H5FileBytes(0, objects)) until Close(); or opens
+  // read-only. Errors: PETSC_ERR_FILE_WRITE (no room: the cause, e.g. "No space left
+  // on device"), PETSC_ERR_FILE_OPEN.
+  PetscErrorCode Create(MPI_Comm comm, const std::string &path, std::uint64_t data_bytes, std::uint64_t objects);
   PetscErrorCode Open(MPI_Comm comm, const std::string &path) { return Begin(comm, path, false); }
   // Collective: flushes, closes, reports any failure (the destructor only closes). A
   // file being written that failed is removed: a partial file is no use to anyone.
@@ -81,6 +88,8 @@ private:
   MPI_Comm    comm_ = MPI_COMM_NULL;
   hid_t       file_ = -1;
   std::string path_, failed_; // the first failed call on this rank
+  std::string room_;          // rank 0: the metadata's room (`<path>.room`) while it exists
+  void        GiveBackRoom();
   bool        writing_ = true;
 };
 
