@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <limits>
 
+#include "bapd/solver/driver/static_solver.hpp"
 #include "bapd/solver/input/help.hpp"
 #include "bapd/core/geometry/geometry.hpp"
 #include "bapd/core/kernel/patch_correction.hpp"
@@ -77,6 +78,7 @@ template <int D> PetscErrorCode SimulationD<D>::Setup(Scene scene)
     PetscFunctionReturn(0);
   }
   PetscCall(CheckOptionsEarly());
+  PetscCall(StaticSolverCheckScene(comm_, scene_, output_.checkpoint)); // -solver static: what it refuses
   PetscCall(SceneView(comm_, scene_));
   PetscCall(ClaimOutputDirectory()); // before anything is written: locked; a restart's newer results
   PetscCall(BuildBody());
@@ -459,6 +461,12 @@ template <int D> PetscErrorCode SimulationD<D>::Run()
 {
   PetscFunctionBegin;
   if (scene_.help_only) PetscFunctionReturn(0);
+  if (scene_.solver == SolverKind::static_newton) { // static states by Newton (static_solver.hpp)
+    StaticSolver<D> solver(*this);
+    PetscCall(solver.Setup());
+    PetscCall(solver.Run());
+    PetscFunctionReturn(0);
+  }
   PetscCall(PetscLogStagePush(stage_step_));
   PetscCall(TSSolve(ts_, X_));
   PetscCall(PetscLogStagePop());
