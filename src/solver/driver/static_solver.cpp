@@ -38,11 +38,13 @@ template <int D> StaticSolver<D>::~StaticSolver()
 {
   SNESDestroy(&snes_);
   MatDestroy(&H_);
+  MatDestroy(&P_);
   VecDestroy(&u_);
   VecDestroy(&r_);
   VecDestroy(&u_last_);
   VecDestroy(&du_);
   VecDestroy(&b_);
+  VecDestroy(&u_before_);
 }
 
 template <int D> PetscErrorCode StaticSolver<D>::Setup()
@@ -55,14 +57,41 @@ template <int D> PetscErrorCode StaticSolver<D>::Setup()
   PetscFunctionBegin;
   PetscCall(tangent_.Setup<D>(sim_.comm_, sim_.scene_, layout, sim_.families_, sim_.geometry_, sim_.bond_state_));
   PetscCall(tangent_.CreateMatrix(&H_));
+  {
+    // The preconditioner's copy in AIJ (GAMG, hypre and the factorisations take it), by
+    // conversion after each assembly: blocks are inserted into H_ at one search each.
+    PetscBool aij;
+    PetscCall(PetscObjectBaseTypeCompare((PetscObject)H_, MATAIJ, &aij));
+    if (!aij) PetscCall(PetscObjectTypeCompareAny((PetscObject)H_, &aij, MATSEQAIJ, MATMPIAIJ, ""));
+    if (aij) {
+      PetscCall(PetscObjectReference((PetscObject)H_));
+      P_ = H_;
+    } else PetscCall(MatConvert(H_, MATAIJ, MAT_INITIAL_MATRIX, &P_));
+  }
   PetscCall(VecCreateMPI(sim_.comm_, n, PETSC_DETERMINE, &u_));
   PetscCall(VecSetBlockSize(u_, D));
   PetscCall(VecDuplicate(u_, &r_));
   PetscCall(VecDuplicate(u_, &u_last_));
   PetscCall(VecDuplicate(u_, &du_));
   PetscCall(VecDuplicate(u_, &b_));
+  PetscCall(VecDuplicate(u_, &u_before_));
   u_scratch_.assign(n, 0.0);
   force_density_.assign(n, 0.0);
+  {
+    // The rigid-body modes at the reference positions: the near null space that an
+    // algebraic multigrid (-pc_type gamg) builds its coarse spaces from.
+    Vec          coordinates;
+    MatNullSpace rigid;
+    double      *c;
+    PetscCall(VecDuplicate(u_, &coordinates));
+    PetscCall(VecGetArray(coordinates, &c));
+    std::copy(layout.cloud.x.begin(), layout.cloud.x.begin() + n, c);
+    PetscCall(VecRestoreArray(coordinates, &c));
+    PetscCall(MatNullSpaceCreateRigidBody(coordinates, &rigid));
+    PetscCall(MatSetNearNullSpace(P_, rigid));
+    PetscCall(MatNullSpaceDestroy(&rigid));
+    PetscCall(VecDestroy(&coordinates));
+  }
   held_.clear();
   for (const ConstrainedDof &c : sim_.loading_.constrained()) {
     const PetscInt point = c.dof / D, component = c.dof % D;
@@ -72,20 +101,22 @@ template <int D> PetscErrorCode StaticSolver<D>::Setup()
 
   PetscCall(SNESCreate(sim_.comm_, &snes_));
   PetscCall(SNESSetFunction(snes_, r_, FormFunction, this));
-  PetscCall(SNESSetJacobian(snes_, H_, H_, FormJacobian, this));
+  PetscCall(SNESSetJacobian(snes_, H_, P_, FormJacobian, this));
   PetscCall(SNESSetConvergenceTest(snes_, ConvergenceTest, this, nullptr));
   // Defaults that the options may change: Newton with a backtracking line search, 50
   // iterations; the convergence test is relative to the grips' reactions (ConvergenceTest),
   // so PETSc's own relative tests are set tight enough not to end a solve before it.
   PetscCall(SNESSetTolerances(snes_, 0.0, 1e-14, 1e-14, 50, 10000));
   PetscCall(SNESGetKSP(snes_, &ksp));
-  PetscCall(KSPSetType(ksp, KSPPREONLY)); // a direct solve: robust for any tangent (docs/options_run.md "Static solver")
+  // CG with algebraic multigrid on the rigid-body modes: the tangent of a stable static
+  // state is symmetric positive definite; the wide stencil (two horizons) makes a direct
+  // factorisation costly beyond a few thousand points (docs/options_run.md "Static solver").
+  PetscCall(KSPSetType(ksp, KSPCG));
+  PetscCall(KSPSetTolerances(ksp, 1e-8, PETSC_DEFAULT, PETSC_DEFAULT, 1000));
   PetscCall(KSPGetPC(ksp, &pc));
-  PetscCall(PCSetType(pc, PCLU));
-#if defined(PETSC_HAVE_MUMPS)
-  PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
-#endif
+  PetscCall(PCSetType(pc, PCGAMG));
   PetscCall(SNESSetFromOptions(snes_));
+  use_secant_ = sim_.scene_.static_options.secant_predictor;
   PetscFunctionReturn(0);
 }
 
@@ -136,7 +167,7 @@ template <int D> PetscErrorCode StaticSolver<D>::FormFunction(SNES snes, Vec U, 
 
 // The tangent at u (its warm starts those of the evaluation at u, which SNES makes first),
 // the grips' dofs as Dirichlet rows and columns.
-template <int D> PetscErrorCode StaticSolver<D>::FormJacobian(SNES, Vec U, Mat H, Mat, void *ctx)
+template <int D> PetscErrorCode StaticSolver<D>::FormJacobian(SNES, Vec U, Mat H, Mat P, void *ctx)
 {
   auto *self = static_cast<StaticSolver<D> *>(ctx);
 
@@ -149,6 +180,7 @@ template <int D> PetscErrorCode StaticSolver<D>::FormJacobian(SNES, Vec U, Mat H
   PetscCall(VecGetSize(self->du_, &size));
   diagonal = diagonal > 0 ? diagonal / size : 1.0;
   PetscCall(MatZeroRowsColumns(H, (PetscInt)self->held_.size(), self->held_.data(), diagonal, nullptr, nullptr));
+  if (P != H) PetscCall(MatConvert(H, MATAIJ, MAT_REUSE_MATRIX, &P));
   ++self->jacobians_;
   PetscFunctionReturn(0);
 }
@@ -208,6 +240,14 @@ template <int D> PetscErrorCode StaticSolver<D>::Predict(double t)
   double  *x;
 
   PetscFunctionBegin;
+  const double lambda = sim_.loading_.stretch_at(t_), next = sim_.loading_.stretch_at(t);
+  if (secant_ && lambda != lambda_before_) {
+    // After a converged step: the secant through the last two states, u += (dlambda /
+    // dlambda_last) (u - u_before), no solve (the grips' dofs are set exactly by HoldGrips).
+    PetscCall(VecWAXPY(du_, -1.0, u_before_, u_));
+    PetscCall(VecAXPY(u_, (next - lambda) / (lambda - lambda_before_), du_));
+    PetscFunctionReturn(0);
+  }
   const double t_now = t_target_;
   t_target_          = t_;
   PetscCall(Tangent(u_, H_));
@@ -221,8 +261,9 @@ template <int D> PetscErrorCode StaticSolver<D>::Predict(double t)
   for (const ConstrainedDof &c : sim_.loading_.constrained()) x[c.dof] = after[c.dof] - before[c.dof];
   PetscCall(VecRestoreArray(du_, &x));
   PetscCall(MatZeroRowsColumns(H_, (PetscInt)held_.size(), held_.data(), 1.0, du_, b_));
+  if (P_ != H_) PetscCall(MatConvert(H_, MATAIJ, MAT_REUSE_MATRIX, &P_));
   PetscCall(SNESGetKSP(snes_, &ksp));
-  PetscCall(KSPSetOperators(ksp, H_, H_));
+  PetscCall(KSPSetOperators(ksp, H_, P_));
   PetscCall(KSPSolve(ksp, b_, du_));
   PetscCall(KSPGetIterationNumber(ksp, &its));
   krylov_iterations_ += its;
@@ -249,6 +290,9 @@ template <int D> PetscErrorCode StaticSolver<D>::LoadStep(double t, PetscBool *c
   *iterations = its;
   *converged  = last_reason_ > 0 ? PETSC_TRUE : PETSC_FALSE;
   if (*converged) {
+    PetscCall(VecCopy(u_last_, u_before_));
+    lambda_before_ = sim_.loading_.stretch_at(t_);
+    secant_        = use_secant_;
     double *u;
     PetscCall(VecGetArray(u_, &u));
     HoldGrips(t, u); // exactly the prescribed values
@@ -258,6 +302,7 @@ template <int D> PetscErrorCode StaticSolver<D>::LoadStep(double t, PetscBool *c
   } else {
     PetscCall(VecCopy(u_last_, u_));
     sim_.force_.warm_start() = c33_last;
+    secant_ = false; // the retry starts from the tangent predictor
     ++cutbacks_;
   }
   PetscFunctionReturn(0);
@@ -278,7 +323,7 @@ template <int D> PetscErrorCode StaticSolver<D>::SolveTo(double t, PetscBool *co
   while (t - t_ > 1e-12 * std::max(1.0, std::fabs(t))) {
     const double rate = std::fabs(load.schedule().rate_at(t_)); // d lambda / dt on this ramp
     double       next = rate > 0 ? std::min(t, t_ + step / rate) : t;
-    if (t - next < 1e-3 * (next - t_)) next = t; // no sliver of a step at the knot
+    if (t - next < 0.5 * (next - t_)) next = t; // no sliver of a step at the knot
     PetscBool ok;
     PetscInt  its;
     PetscCall(LoadStep(next, &ok, &its));

@@ -100,6 +100,10 @@ PetscErrorCode ReadOutputTime(MPI_Comm comm, Scene *scene, SceneInput *in)
     PetscCall(r.Real("-static_step_growth", "Static solver: the load step grows by this factor after a fast step [-], >= 1", &s.growth));
     PetscCall(r.Int("-static_fast_iterations", "Static solver: a load step that converged in at most this many Newton iterations is fast [-]",
                     &s.fast_iterations));
+    PetscCall(r.Bool("-static_secant_predictor",
+                     "Static solver: predict a load step by the secant through the last two states (no solve); false: one tangent "
+                     "solve with the grips' increment every step",
+                     &s.secant_predictor));
     PetscCall(r.Real("-static_residual_tolerance",
                      "Static solver: Newton ends once the free points' force norm is this fraction of the grips' reaction norm [-], > 0",
                      &s.residual_tolerance));

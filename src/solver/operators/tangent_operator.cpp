@@ -1,6 +1,7 @@
 // The tangent operator (tangent_operator.hpp): per-point Hessians into a PETSc matrix.
 #include "bapd/solver/operators/tangent_operator.hpp"
 
+#include <algorithm>
 #include <memory>
 #include <vector>
 
@@ -24,7 +25,11 @@ PetscErrorCode TangentOperator::Setup(MPI_Comm comm, const Scene &scene, const L
   ws->volumetric = scene.volumetric;
   ws->kappa      = scene.volumetric_stabilisation * scene.material.mu;
   ws->reserve(families);
-  auto index = std::make_shared<std::vector<PetscInt>>(families.max_family_size + 1);
+  // Per point: its block's points by increasing PETSc index (the order PETSc's row search
+  // is fastest in), and the block permuted to that order.
+  auto index  = std::make_shared<std::vector<PetscInt>>(families.max_family_size + 1);
+  auto order  = std::make_shared<std::vector<std::size_t>>(families.max_family_size + 1);
+  auto sorted = std::make_shared<std::vector<double>>(ws->H.size());
   const PointCloud          *cloud = &layout.cloud;
   const Families            *f     = &families;
   const nd::BondGeometry<D> *g     = &geometry;
@@ -32,17 +37,28 @@ PetscErrorCode TangentOperator::Setup(MPI_Comm comm, const Scene &scene, const L
   const Layout              *l     = &layout;
   auto choose = [&](const auto &model) {
     using Model = std::decay_t<decltype(model)>;
-    add_blocks_ = [ws, index, cloud, f, g, s, l, m = Model(model)](const double *y, const double *c33, Mat H, bool values,
-                                                                    PetscInt *failed) -> PetscErrorCode {
+    add_blocks_ = [ws, index, order, sorted, cloud, f, g, s, l, m = Model(model)](const double *y, const double *c33, Mat H, bool values,
+                                                                                  PetscInt *failed) -> PetscErrorCode {
       PetscFunctionBegin;
       *failed = 0;
+      std::vector<std::size_t> &k = *order;
       for (PetscInt i = 0; i < l->n_owned; ++i) {
-        const std::size_t o = f->offsets[i], n = f->size(i) + 1;
-        (*index)[0] = l->petsc_index[i];
-        for (std::size_t p = 0; p + 1 < n; ++p) (*index)[1 + p] = l->petsc_index[f->neighbour[o + p]];
-        if (values) *failed += (PetscInt)nd::point_tangent<D>(m, *cloud, y, *f, *g, *s, c33, (std::size_t)i, *ws);
-        else std::fill(ws->H.begin(), ws->H.begin() + n * n * D * D, 0.0);
-        PetscCall(MatSetValuesBlocked(H, (PetscInt)n, index->data(), (PetscInt)n, index->data(), ws->H.data(), ADD_VALUES));
+        const std::size_t o = f->offsets[i], n = f->size(i) + 1, N = D * n;
+        auto petsc = [&](std::size_t a) { return l->petsc_index[a == 0 ? (std::size_t)i : (std::size_t)f->neighbour[o + a - 1]]; };
+        for (std::size_t a = 0; a < n; ++a) k[a] = a;
+        std::sort(k.begin(), k.begin() + n, [&](std::size_t a, std::size_t b) { return petsc(a) < petsc(b); });
+        for (std::size_t a = 0; a < n; ++a) (*index)[a] = petsc(k[a]);
+        if (values) {
+          *failed += (PetscInt)nd::point_tangent<D>(m, *cloud, y, *f, *g, *s, c33, (std::size_t)i, *ws);
+          for (std::size_t a = 0; a < n; ++a)
+            for (int r = 0; r < D; ++r) {
+              const double *row = &ws->H[(D * k[a] + r) * N];
+              double       *out = &(*sorted)[(D * a + r) * N];
+              for (std::size_t b = 0; b < n; ++b)
+                for (int c = 0; c < D; ++c) out[D * b + c] = row[D * k[b] + c];
+            }
+        } else std::fill(sorted->begin(), sorted->begin() + N * N, 0.0);
+        PetscCall(MatSetValuesBlocked(H, (PetscInt)n, index->data(), (PetscInt)n, index->data(), sorted->data(), ADD_VALUES));
       }
       PetscFunctionReturn(0);
     };
@@ -75,7 +91,7 @@ PetscErrorCode TangentOperator::CreateMatrix(Mat *H) const
   PetscCall(MatCreate(comm_, H));
   PetscCall(MatSetSizes(*H, n, n, PETSC_DETERMINE, PETSC_DETERMINE));
   PetscCall(MatSetBlockSize(*H, dimension_));
-  PetscCall(MatSetType(*H, MATBAIJ));
+  PetscCall(MatSetType(*H, MATBAIJ)); // D x D blocks: each insertion one search (the static solver hands an AIJ copy to the preconditioner)
   PetscCall(MatSetOptionsPrefix(*H, nullptr));
   PetscCall(MatSetFromOptions(*H)); // -mat_type
   PetscCall(MatPreallocatorPreallocate(pattern, PETSC_TRUE, *H));

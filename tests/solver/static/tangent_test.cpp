@@ -70,6 +70,7 @@ template <int D> double TangentError(const std::string &options)
   VecNorm(fp, NORM_2, &diff);
   for (Vec *w : {&u, &v, &up, &um, &fp, &fm, &Hv}) VecDestroy(w);
   MatDestroy(&H);
+  PetscPrintf(PETSC_COMM_WORLD, "tangent error |Hv - dR| / |Hv| = %.3e\n", diff / norm);
   return diff / norm;
 }
 

@@ -47,8 +47,7 @@ template <int D> struct TangentWorkspace {
   std::vector<double> v;        // dJbar/dy, D per local point
   std::vector<int>    energetic; // per bond: 1 if it carries energy
   std::vector<double> dilatation; // J_iq per bond
-  std::vector<Mat<D>> tangent;  // A_q per bond is formed per bond; kept for the cofactor pass
-  std::vector<Mat<D>> cofactor; // cof F_iq per bond (point form)
+  std::vector<Mat<D>> deformation; // F_iq per bond
   std::vector<double> kinv;     // K_iq^{-1} upper triangle per bond
   Volumetric          volumetric = Volumetric::bond;
   double              kappa      = 0.0; // kappa [Pa] (-material_volumetric_stabilisation times mu)
@@ -66,7 +65,7 @@ template <int D> struct TangentWorkspace {
     if (energetic.size() < f.max_family_size) {
       energetic.resize(f.max_family_size);
       dilatation.resize(f.max_family_size);
-      cofactor.resize(f.max_family_size);
+      deformation.resize(f.max_family_size);
       kinv.resize(f.max_family_size * sym_size<D>);
     }
   }
@@ -133,7 +132,7 @@ std::size_t point_tangent(const Model &model, const PointCloud &ref, const doubl
   std::fill(ws.H.begin(), ws.H.begin() + N * N, 0.0);
   // Pass 1: which bonds carry energy, their F, K^{-1}, J and volume sums (omega_i, Jbar_i).
   double                       volume = 0.0, dilatation = 0.0;
-  std::vector<Mat<D>>         &Fq = ws.cofactor; // F_iq until the cofactor pass
+  std::vector<Mat<D>>         &Fq = ws.deformation;
   for (std::size_t q = 0; q < m; ++q) {
     ws.energetic[q] = 0;
     if (!state.is_intact(i, q) || !geo.is_usable(i, q)) continue;
@@ -168,8 +167,7 @@ std::size_t point_tangent(const Model &model, const PointCloud &ref, const doubl
     const std::uint64_t *ba   = fam.ba(o + q);
     const double        *kinv = &ws.kinv[sym_size<D> * q];
     double               ai[D] = {};
-    // Members as local indices 1 + p; the list is kept in ws.energetic's tail? No: a
-    // second sweep over the mask words is as cheap as a list.
+    // The members p of B_iq (local index 1 + p), by a sweep over the mask words.
     auto for_members = [&](auto &&visit) {
       for (std::size_t w = 0; w < W; ++w) {
         std::uint64_t bits = ba[w] & intact[w];
@@ -216,10 +214,11 @@ std::size_t point_tangent(const Model &model, const PointCloud &ref, const doubl
     form_T(0);
     for_members([&](std::size_t p) { form_T(1 + p); });
     add_block(0, 0);
-    for_members([&](std::size_t p) {
+    for_members([&](std::size_t p) { // the upper triangle of blocks (H is symmetric: mirrored below)
       add_block(0, 1 + p);
-      add_block(1 + p, 0);
-      for_members([&](std::size_t p2) { add_block(1 + p, 1 + p2); });
+      for_members([&](std::size_t p2) {
+        if (p2 >= p) add_block(1 + p, 1 + p2);
+      });
     });
     if (point) { // v += V_q cof F_iq : dF_iq/dy (omega_i applied below)
       const Mat<D> cof = detail::cofactor_of<D>(Fq[q]);
@@ -236,7 +235,10 @@ std::size_t point_tangent(const Model &model, const PointCloud &ref, const doubl
     }
   }
   const double Vi = ref.volume[i], scale = Vi * omega;
-  for (std::size_t k = 0; k < N * N; ++k) ws.H[k] *= scale;
+  for (std::size_t r = 0; r < N; ++r) {
+    for (std::size_t c = D * (r / D + 1); c < N; ++c) ws.H[c * N + r] = ws.H[r * N + c] *= scale; // lower blocks from the upper
+    for (std::size_t c = D * (r / D); c < D * (r / D + 1); ++c) ws.H[r * N + c] *= scale;            // the diagonal block
+  }
   if (point) {
     const double curvature = (1.0 + 1.0 / (Jbar * Jbar)) / Dc - ws.kappa; // U''(Jbar) - kappa
     const double f         = Vi * curvature * omega * omega;

@@ -4,7 +4,8 @@
 // section 3). The static solver finds it directly, in load steps along the schedule:
 //
 //   for each ramp of -load_schedule, in load steps of the applied stretch:
-//     predict: one tangent step from the last state with the grips' increment imposed
+//     predict: the secant through the last two states; at the first step and after a
+//              cutback one tangent step with the grips' increment imposed
 //     solve:   PETSc SNES (Newton with line search) on R(u) = dW/du = -V f(u) = 0 over
 //              the free dofs, the grips' dofs Dirichlet rows, the exact symmetric tangent
 //              (tangent_operator.hpp, ba_tangent.hpp)
@@ -74,8 +75,12 @@ private:
   SimulationD<D>       &sim_;
   TangentOperator       tangent_;
   SNES                  snes_ = nullptr;
-  Mat                   H_    = nullptr;
+  Mat                   H_    = nullptr; // the tangent (BAIJ unless -mat_type)
+  Mat                   P_    = nullptr; // its AIJ copy for the preconditioner (H_ itself if H_ is AIJ)
   Vec                   u_ = nullptr, r_ = nullptr, u_last_ = nullptr, du_ = nullptr, b_ = nullptr;
+  Vec                   u_before_ = nullptr; // the state before the last converged step (the secant predictor)
+  double                lambda_before_ = 1;  // ...and its stretch
+  bool                  secant_ = false, use_secant_ = true;
   std::vector<PetscInt> held_;          // global dof indices of the grips' dofs on this rank
   std::vector<double>   u_scratch_;     // D per owned point
   std::vector<double>   force_density_; // D per owned point

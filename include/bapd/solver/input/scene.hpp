@@ -42,6 +42,7 @@ struct StaticOptions {
   double   stretch_step_min = 1e-4;  // a step cut below this ends the run with an error [-]
   double   growth           = 1.5;   // step x this after a step that converged in at most fast_iterations Newton iterations
   PetscInt fast_iterations  = 4;
+  bool     secant_predictor = true;  // predict by the secant through the last two states (else a tangent solve)
   double   residual_tolerance = 1e-10; // Newton ends once |R| <= this x |grip reactions| (|R|: the free dofs' forces) [-]
 };
 
