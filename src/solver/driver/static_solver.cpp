@@ -330,6 +330,10 @@ template <int D> PetscErrorCode StaticSolver<D>::SolveTo(double t, PetscBool *co
     if (!ok) {
       const double from = load.stretch_at(t_), to = load.stretch_at(next);
       step *= 0.5;
+      // A linear solve that fails is the preconditioner's failure, not the load step's:
+      // cutting back does not help after twice.
+      linear_failures_ = last_reason_ == SNES_DIVERGED_LINEAR_SOLVE ? linear_failures_ + 1 : 0;
+      if (linear_failures_ >= 3) step = 0.0;
       PetscCall(PetscPrintf(sim_.comm_, "Load step to stretch %.5f did not converge (%s): cut back to %.3g in stretch\n", to,
                             SNESConvergedReasons[last_reason_], step));
       if (step < o.stretch_step_min) {
@@ -339,6 +343,7 @@ template <int D> PetscErrorCode StaticSolver<D>::SolveTo(double t, PetscBool *co
       }
       continue;
     }
+    linear_failures_ = 0;
     PetscCall(CopyToState());
     PetscCall(sim_.WriteHistoryRow(load_steps_, t_, false));
     PetscCall(PetscPrintf(sim_.comm_, "Load step %" PetscInt_FMT ": stretch %.5f, %" PetscInt_FMT " Newton iterations, |R| %.3e N, |reactions| %.3e N\n",
@@ -413,6 +418,7 @@ template <int D> PetscErrorCode StaticSolver<D>::Run()
   bool stopped = false;
   for (std::size_t k = 0; k + 1 < K && !stopped; ++k) {
     const bool hold = schedule.stretch[k + 1] == schedule.stretch[k];
+    if (hold) t_ = schedule.time[k + 1]; // the state holds: the next ramp starts at its own rate
     if (!hold) {
       PetscBool converged;
       PetscCall(SolveTo(schedule.time[k + 1], &converged));
@@ -423,9 +429,13 @@ template <int D> PetscErrorCode StaticSolver<D>::Run()
         SETERRQ(sim_.comm_, PETSC_ERR_NOT_CONVERGED,
                 "-solver static: no static state found beyond stretch %.5f on the way to %.5f (Newton: %s, after %" PetscInt_FMT
                 " cutbacks, the load step below -static_stretch_step_min %g). What was written is kept (history.csv up to load step %" PetscInt_FMT
-                "). Try a smaller -static_stretch_step_min, more Newton iterations (-snes_max_it 100), another line search "
+                ")%s. Try a smaller -static_stretch_step_min, more Newton iterations (-snes_max_it 100), another line search "
                 "(-snes_linesearch_type l2), or -solver dynamic (a body past its law's limit or buckling has no static state here)",
-                from, to, SNESConvergedReasons[last_reason_], cutbacks_, sim_.scene_.static_options.stretch_step_min, load_steps_);
+                from, to, SNESConvergedReasons[last_reason_], cutbacks_, sim_.scene_.static_options.stretch_step_min, load_steps_,
+                last_reason_ == SNES_DIVERGED_LINEAR_SOLVE
+                  ? ". The linear solver failed (CG with GAMG: a nearly incompressible plane-strain or 3D body can defeat it): use "
+                    "the direct solver, -ksp_type preonly -pc_type lu (-pc_factor_mat_solver_type mumps on several ranks)"
+                  : "");
       }
       if (sim_.scene_.end_step >= 0 && load_steps_ >= sim_.scene_.end_step && t_ < schedule.time[k + 1]) {
         PetscCall(PetscPrintf(sim_.comm_, "\nStopped after load step %" PetscInt_FMT " (-end_step), at stretch %.5f\n", load_steps_,

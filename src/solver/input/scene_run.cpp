@@ -173,7 +173,7 @@ PetscErrorCode CheckOutputTime(MPI_Comm comm, const SceneInput &in, Scene *scene
                    s.stretch_step <= s.stretch_step_max,
                comm,
                "-static_stretch_step %g, -static_stretch_step_min %g, -static_stretch_step_max %g: give 0 < min <= step <= max "
-               "(defaults 1e-4, 0.1, 0.25)",
+               "(defaults 1e-4, 0.25, 1)",
                s.stretch_step, s.stretch_step_min, s.stretch_step_max);
     SceneCheck(s.growth >= 1, comm, "-static_step_growth %g: give a factor >= 1 (1: the load step never grows; default 1.5)", s.growth);
     SceneCheck(s.fast_iterations >= 0, comm, "-static_fast_iterations %" PetscInt_FMT ": give N >= 0 (default 4)", s.fast_iterations);

@@ -91,6 +91,7 @@ private:
   double                step_           = 0;    // the load step in stretch (0: -static_stretch_step)
   PetscInt              newton_iterations_ = 0, krylov_iterations_ = 0, load_steps_ = 0, cutbacks_ = 0, jacobians_ = 0;
   PetscInt              static_states_ = 0;
+  PetscInt              linear_failures_ = 0; // consecutive load steps ended by a failed linear solve
   SNESConvergedReason   last_reason_   = SNES_CONVERGED_ITERATING;
 };
 

@@ -37,8 +37,8 @@ enum class SolverKind { dynamic, static_newton };
 
 // The static solver's load stepping (-static_*; docs/options_run.md "Static solver").
 struct StaticOptions {
-  double   stretch_step     = 0.1;   // first load step, in stretch [-]
-  double   stretch_step_max = 0.25;  // largest load step, in stretch [-]
+  double   stretch_step     = 0.25;  // first load step, in stretch [-]
+  double   stretch_step_max = 1.0;   // largest load step, in stretch [-]
   double   stretch_step_min = 1e-4;  // a step cut below this ends the run with an error [-]
   double   growth           = 1.5;   // step x this after a step that converged in at most fast_iterations Newton iterations
   PetscInt fast_iterations  = 4;
