@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <limits>
 
+#include "bapd/solver/driver/static_solver.hpp"
 #include "bapd/solver/input/help.hpp"
 #include "bapd/core/geometry/geometry.hpp"
 #include "bapd/core/kernel/patch_correction.hpp"
@@ -23,6 +24,24 @@ template <int D> SimulationD<D>::~SimulationD()
   ISDestroy(&is_momentum_);
   VecDestroy(&X_);
 }
+
+namespace {
+// The driver's -log_view stages, one set per process for both dimensions.
+PetscErrorCode LogStages(const PetscLogStage **stages)
+{
+  static PetscLogStage registered[6];
+  static bool          done = false;
+
+  PetscFunctionBegin;
+  if (!done) {
+    const char *names[6] = {"Setup", "Partition", "Force", "Ghost exchange", "Time step", "Output"};
+    for (int k = 0; k < 6; ++k) PetscCall(PetscLogStageRegister(names[k], &registered[k]));
+    done = true;
+  }
+  *stages = registered;
+  PetscFunctionReturn(0);
+}
+} // namespace
 
 PetscErrorCode ReadScene(MPI_Comm comm, Scene *scene)
 {
@@ -47,14 +66,10 @@ template <int D> PetscErrorCode SimulationD<D>::Setup(Scene scene)
   PetscFunctionBegin;
   PetscCallMPI(MPI_Comm_rank(comm_, &rank_));
   PetscCallMPI(MPI_Comm_size(comm_, &size_));
-  // -log_view stages, registered once per process (a test may build several runs).
-  static PetscLogStage stages[6];
-  static bool          registered = false;
-  if (!registered) {
-    const char *names[6] = {"Setup", "Partition", "Force", "Ghost exchange", "Time step", "Output"};
-    for (int k = 0; k < 6; ++k) PetscCall(PetscLogStageRegister(names[k], &stages[k]));
-    registered = true;
-  }
+  // -log_view stages, registered once per process (a test may build several runs, of
+  // either dimension).
+  const PetscLogStage *stages;
+  PetscCall(LogStages(&stages));
   stage_setup_ = stages[0], stage_partition_ = stages[1], stage_force_ = stages[2];
   stage_ghost_ = stages[3], stage_step_ = stages[4], stage_output_ = stages[5];
   wall_start_ = MPI_Wtime();
@@ -77,6 +92,7 @@ template <int D> PetscErrorCode SimulationD<D>::Setup(Scene scene)
     PetscFunctionReturn(0);
   }
   PetscCall(CheckOptionsEarly());
+  PetscCall(StaticSolverCheckScene(comm_, scene_, output_.checkpoint)); // -solver static: what it refuses
   PetscCall(SceneView(comm_, scene_));
   PetscCall(ClaimOutputDirectory()); // before anything is written: locked; a restart's newer results
   PetscCall(BuildBody());
@@ -459,6 +475,12 @@ template <int D> PetscErrorCode SimulationD<D>::Run()
 {
   PetscFunctionBegin;
   if (scene_.help_only) PetscFunctionReturn(0);
+  if (scene_.solver == SolverKind::static_newton) { // static states by Newton (static_solver.hpp)
+    StaticSolver<D> solver(*this);
+    PetscCall(solver.Setup());
+    PetscCall(solver.Run());
+    PetscFunctionReturn(0);
+  }
   PetscCall(PetscLogStagePush(stage_step_));
   PetscCall(TSSolve(ts_, X_));
   PetscCall(PetscLogStagePop());

@@ -83,6 +83,33 @@ PetscErrorCode ReadOutputTime(MPI_Comm comm, Scene *scene, SceneInput *in)
     return 0;
   }));
 
+  PetscCall(ReadOptionBlock(comm, nullptr, "Solver", [&](OptionReader &r) -> PetscErrorCode {
+    std::string solver = "dynamic";
+    PetscCall(r.String("-solver", "How the run reaches its states: dynamic (explicit dynamics, PETSc TS) or static (static states by Newton, "
+                                  "PETSc SNES, load steps along -load_schedule)",
+                       &solver));
+    SceneCheck(solver == "dynamic" || solver == "static", comm,
+               "-solver '%s' is not a solver: choose dynamic (explicit dynamics, the default) or static (static states by Newton)",
+               solver.c_str());
+    scene->solver = solver == "static" ? SolverKind::static_newton : SolverKind::dynamic;
+    StaticOptions &s = scene->static_options;
+    PetscCall(r.Real("-static_stretch_step", "Static solver: the first load step [stretch], > 0", &s.stretch_step));
+    PetscCall(r.Real("-static_stretch_step_max", "Static solver: the largest load step [stretch], > 0", &s.stretch_step_max));
+    PetscCall(r.Real("-static_stretch_step_min",
+                     "Static solver: a load step cut back below this ends the run with an error [stretch], > 0", &s.stretch_step_min));
+    PetscCall(r.Real("-static_step_growth", "Static solver: the load step grows by this factor after a fast step [-], >= 1", &s.growth));
+    PetscCall(r.Int("-static_fast_iterations", "Static solver: a load step that converged in at most this many Newton iterations is fast [-]",
+                    &s.fast_iterations));
+    PetscCall(r.Bool("-static_secant_predictor",
+                     "Static solver: predict a load step by the secant through the last two states (no solve); false: one tangent "
+                     "solve with the grips' increment every step",
+                     &s.secant_predictor));
+    PetscCall(r.Real("-static_residual_tolerance",
+                     "Static solver: Newton ends once the free points' force norm is this fraction of the grips' reaction norm [-], > 0",
+                     &s.residual_tolerance));
+    return 0;
+  }));
+
   PetscCall(ReadOptionBlock(comm, nullptr, "Time stepping (explicit dynamics)", [&](OptionReader &r) -> PetscErrorCode {
     PetscCall(r.Real("-time_step", "Time step [s]; 0: time_step_safety x the estimated stable step", &scene->time_step));
     PetscCall(r.Real("-time_step_safety", "Fraction of the estimated stable step [-], in (0, 1]", &scene->time_step_safety));
@@ -140,6 +167,19 @@ PetscErrorCode CheckOutputTime(MPI_Comm comm, const SceneInput &in, Scene *scene
   SceneCheck(scene->time_step_travel >= 0 || scene->time_step_travel == -1, comm,
              "-time_step_travel %g must be >= 0: it is the largest distance, in dx, that a point with bonds may move in one step (0: off; -1, the default: 0.1 with failure, off without)",
              scene->time_step_travel);
+  {
+    const StaticOptions &s = scene->static_options;
+    SceneCheck(s.stretch_step > 0 && s.stretch_step_max > 0 && s.stretch_step_min > 0 && s.stretch_step_min <= s.stretch_step &&
+                   s.stretch_step <= s.stretch_step_max,
+               comm,
+               "-static_stretch_step %g, -static_stretch_step_min %g, -static_stretch_step_max %g: give 0 < min <= step <= max "
+               "(defaults 1e-4, 0.25, 1)",
+               s.stretch_step, s.stretch_step_min, s.stretch_step_max);
+    SceneCheck(s.growth >= 1, comm, "-static_step_growth %g: give a factor >= 1 (1: the load step never grows; default 1.5)", s.growth);
+    SceneCheck(s.fast_iterations >= 0, comm, "-static_fast_iterations %" PetscInt_FMT ": give N >= 0 (default 4)", s.fast_iterations);
+    SceneCheck(s.residual_tolerance > 0 && s.residual_tolerance < 1, comm,
+               "-static_residual_tolerance %g: give a small positive fraction such as 1e-10", s.residual_tolerance);
+  }
   SceneCheck(scene->damping >= 0, comm, "-damping %g: the damping coefficient must be >= 0 1/s (0: undamped)", scene->damping);
   SceneCheck(scene->static_tolerance >= 0 && scene->static_tolerance < 1, comm,
              "-static_tolerance %g: use a small positive ratio such as 1e-6 (0: holds run their full length)", scene->static_tolerance);

@@ -38,6 +38,7 @@
 namespace bapd {
 
 struct PointQuantities;
+template <int D> class StaticSolver; // -solver static (static_solver.hpp)
 
 struct ProbePoint {
   PetscInt owner_rank  = -1; // rank that owns the point
@@ -89,6 +90,8 @@ public:
   PetscErrorCode GatherBrokenBonds(std::vector<std::pair<int64_t, int64_t>> *bonds);
 
 private:
+  friend class StaticSolver<D>; // reuses the set-up, the history and the output (static_solver.hpp)
+
   PetscErrorCode CheckOptionsEarly(); // before the body is built
   PetscErrorCode BuildBody();
   PetscErrorCode BuildProbes();

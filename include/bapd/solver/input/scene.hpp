@@ -31,6 +31,21 @@ namespace bapd {
 // and the virial).
 enum class PatchCorrection { off, lambda, virial };
 
+// -solver: explicit dynamics (PETSc TS, the default) or static states by Newton (PETSc
+// SNES on the energy-consistent force, load stepping along the schedule: static_solver.hpp).
+enum class SolverKind { dynamic, static_newton };
+
+// The static solver's load stepping (-static_*; docs/options_run.md "Static solver").
+struct StaticOptions {
+  double   stretch_step     = 0.25;  // first load step, in stretch [-]
+  double   stretch_step_max = 1.0;   // largest load step, in stretch [-]
+  double   stretch_step_min = 1e-4;  // a step cut below this ends the run with an error [-]
+  double   growth           = 1.5;   // step x this after a step that converged in at most fast_iterations Newton iterations
+  PetscInt fast_iterations  = 4;
+  bool     secant_predictor = true;  // predict by the secant through the last two states (else a tangent solve)
+  double   residual_tolerance = 1e-10; // Newton ends once |R| <= this x |grip reactions| (|R|: the free dofs' forces) [-]
+};
+
 // A 3D body (-body_dimension 3, or implied by a 3D solid;
 // docs/options.md "3D bodies"): the solids (boxes, cylinders, spheres, Gmsh volumes)
 // and planar polygon notches of shape3d.hpp on a lattice of spacing dx, or given
@@ -91,6 +106,9 @@ struct Scene {
   PetscInt    output_interval = 100; // steps between history rows; the static test runs at these rows
   PetscInt    output_history_rows = 100; // history rows by load: one at each end time / N of simulated time too (0: off)
   bool        output_final_state = false; // final_state.csv and broken_bonds.csv at the end
+
+  SolverKind    solver = SolverKind::dynamic; // -solver
+  StaticOptions static_options;             // -static_* (the static solver only)
 
   double   time_step        = 0.0;  // 0: use safety * stable step
   double   time_step_safety = 0.8;  // fraction of the computed stable step

@@ -1,0 +1,254 @@
+#pragma once
+// The tangent of the energy-consistent force (docs/method.md sections 3 and 8): the
+// Hessian of one point's share of the stored energy with respect to the positions of the
+// point and its family, the block the static solver adds into its stiffness matrix.
+//
+// W = sum_i W_i with (section 3)
+//   W_i = V_i omega_i sum_q V_q Psi(F_iq),   omega_i = 1 / sum_q V_q,
+// over the bonds of i that carry energy, and F_iq is linear in the positions (eq 9):
+//   F_iq = sum_{p in B} (y_p - y_i) (x) g_p,   g_p = K_iq^{-1} (x_p - x_i) V_p,
+// B the intact members of B_iq. With a_p = g_p for p in B and a_i = -sum_p g_p,
+// dF_iq / dy_a = e_r (x) a_a, so
+//   d^2 W_i / dy_a,r dy_b,s = V_i omega_i sum_q V_q sum_{m,n} A_q[r m][s n] a_a[m] a_b[n],
+// A_q = dP/dF at F_iq (the law's tangent; plane stress: of the reduced law, C33 solved
+// at every F, eq 33), here by central differences of the law's P (numerical_tangent.hpp's
+// step, 1e-4 of max(1, |F|): about 1e-8 relative).
+//
+// -material_volumetric point (section 8, volumetric.hpp): W_i's bond terms use P*_iq,
+// which depends on F_iq and on Jbar_i = omega_i sum_q V_q J_iq. Differentiating the
+// gradient V_i omega_i sum_q V_q P*_iq : dF_iq gives A_q = dP*/dF at fixed Jbar_i (the same
+// central differences, of P*) plus, from dP*/dJbar = (U''(Jbar) - kappa) cof F_iq,
+//   V_i (U''(Jbar_i) - kappa) v (x) v,   v = dJbar_i/dy = omega_i sum_q V_q cof F_iq : dF_iq/dy,
+// one dense rank-one block per point. U''(J) = (1 + 1/J^2) / D.
+//
+// The energetic set (intact, K usable, law ok at F_iq) is held fixed: a bond whose law
+// fails at F_iq carries no energy and no tangent, as in the force.
+//
+// Local numbering of the block: 0 = point i, 1 + p = the p-th member of i's family;
+// D rows a point. H is (m + 1) D square, row-major, m = family size.
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "bapd/core/kernel/ba_model_lanes.hpp"
+#include "bapd/core/kernel/bond_geometry.hpp"
+#include "bapd/core/kernel/volumetric.hpp"
+
+namespace bapd::nd {
+
+// Scratch of point_tangent, sized once for the largest family.
+template <int D> struct TangentWorkspace {
+  PointScratch<D>     point;
+  std::vector<double> H;        // (m + 1) D square
+  std::vector<double> a;        // a_p, D per local point (0: i)
+  std::vector<double> T;        // sum_m A[r m][s n] a_p[m], D^3 per local point
+  std::vector<double> v;        // dJbar/dy, D per local point
+  std::vector<int>    energetic; // per bond: 1 if it carries energy
+  std::vector<double> dilatation; // J_iq per bond
+  std::vector<Mat<D>> deformation; // F_iq per bond
+  std::vector<double> kinv;     // K_iq^{-1} upper triangle per bond
+  Volumetric          volumetric = Volumetric::bond;
+  double              kappa      = 0.0; // kappa [Pa] (-material_volumetric_stabilisation times mu)
+
+  void reserve(const Families &f)
+  {
+    point.reserve(f);
+    const std::size_t n = f.max_family_size + 1;
+    if (H.size() < n * n * D * D) H.resize(n * n * D * D);
+    if (a.size() < n * D) {
+      a.resize(n * D);
+      T.resize(n * D * D * D);
+      v.resize(n * D);
+    }
+    if (energetic.size() < f.max_family_size) {
+      energetic.resize(f.max_family_size);
+      dilatation.resize(f.max_family_size);
+      deformation.resize(f.max_family_size);
+      kinv.resize(f.max_family_size * sym_size<D>);
+    }
+  }
+};
+
+namespace detail {
+
+// cof F = adj(F)^T = J F^{-T}.
+template <int D> inline Mat<D> cofactor_of(const Mat<D> &F) { return transpose<D>(adjugate<D>(F)); }
+
+// P (or P* of the point form at fixed Jbar) at F; c33 is the warm start (copied).
+template <int D, class Model>
+inline StressStatus tangent_stress(const Model &model, const Mat<D> &F, double c33, bool point, double Jbar,
+                                   double compressibility, double kappa, Mat<D> &P)
+{
+  const StressStatus s = stress_of<D>(model, F, c33, P, 0);
+  if (s != StressStatus::ok || !point) return s;
+  const double J = det<D>(F);
+  const double f = volumetric_slope(Jbar, compressibility) - volumetric_slope(J, compressibility) + stabilisation_slope(J, Jbar, kappa);
+  const Mat<D> cof = cofactor_of<D>(F);
+  for (int k = 0; k < D * D; ++k) P[k] += f * cof[k];
+  return StressStatus::ok;
+}
+
+// A[(D r + m) D^2 + (D s + n)] = dP_rm / dF_sn by central differences (numerical_tangent.hpp's step).
+template <int D, class Model>
+inline StressStatus tangent_of(const Model &model, const Mat<D> &F, double c33, bool point, double Jbar,
+                               double compressibility, double kappa, double *A)
+{
+  double scale = 1.0;
+  for (double f : F) scale = std::max(scale, std::abs(f));
+  const double h = 1e-4 * scale;
+  for (int kl = 0; kl < D * D; ++kl) {
+    Mat<D> Fp = F, Fm = F, Pp, Pm;
+    Fp[kl] += h;
+    Fm[kl] -= h;
+    StressStatus s = tangent_stress<D>(model, Fp, c33, point, Jbar, compressibility, kappa, Pp);
+    if (s != StressStatus::ok) return s;
+    if ((s = tangent_stress<D>(model, Fm, c33, point, Jbar, compressibility, kappa, Pm)) != StressStatus::ok) return s;
+    const double step = Fp[kl] - Fm[kl];
+    for (int ij = 0; ij < D * D; ++ij) A[D * D * ij + kl] = (Pp[ij] - Pm[ij]) / step;
+  }
+  return StressStatus::ok;
+}
+
+} // namespace detail
+
+// The Hessian of W_i (above) into ws.H, (m + 1) D square; returns the number of
+// bonds whose law failed at a perturbed F (their tangent left out: the caller reports
+// it). y: current positions of every local point; c33 the plane-stress warm starts (1
+// per bond, may be nullptr), only read.
+template <int D, class Model>
+std::size_t point_tangent(const Model &model, const PointCloud &ref, const double *y, const Families &fam,
+                          const BondGeometry<D> &geo, const BondState &state, const double *c33, std::size_t i,
+                          TangentWorkspace<D> &ws)
+{
+  constexpr int     DD = D * D;
+  const std::size_t o = fam.offsets[i], m = fam.size(i), n = m + 1, W = fam.mask_words;
+  const std::size_t N = n * D;
+  const std::uint64_t *intact = state.intact_mask(i);
+  const PointTotals<D> totals = gather_point<D>(ref, y, fam, i, intact, ws.point);
+  const bool           point  = ws.volumetric == Volumetric::point;
+  const double         Dc     = point ? detail::compressibility(model, 0) : 0.0;
+  std::fill(ws.H.begin(), ws.H.begin() + N * N, 0.0);
+  // Pass 1: which bonds carry energy, their F, K^{-1}, J and volume sums (omega_i, Jbar_i).
+  double                       volume = 0.0, dilatation = 0.0;
+  std::vector<Mat<D>>         &Fq = ws.deformation;
+  for (std::size_t q = 0; q < m; ++q) {
+    ws.energetic[q] = 0;
+    if (!state.is_intact(i, q) || !geo.is_usable(i, q)) continue;
+    const BondKinematics<D> k = bond_kinematics<D>(fam.ba(o + q), intact, W, ws.point, totals);
+    if (!k.usable) continue;
+    double       c = c33 ? c33[o + q] : 0.0;
+    Mat<D>       P;
+    if (detail::stress_of<D>(model, k.F, c, P, 0) != StressStatus::ok) continue;
+    ws.energetic[q] = 1;
+    Fq[q]           = k.F;
+    for (int s = 0; s < sym_size<D>; ++s) ws.kinv[sym_size<D> * q + s] = k.shape_tensor_inv[s];
+    const double vq = ws.point.member[q][Member<D>::volume];
+    volume += vq;
+    if (point) {
+      ws.dilatation[q] = det<D>(k.F);
+      dilatation += vq * ws.dilatation[q];
+    }
+  }
+  if (!(volume > 0.0)) return 0;
+  const double omega = 1.0 / volume, Jbar = point ? dilatation * omega : 1.0;
+  if (point) std::fill(ws.v.begin(), ws.v.begin() + N, 0.0);
+  std::size_t failed = 0;
+  double      A[DD * DD];
+  for (std::size_t q = 0; q < m; ++q) {
+    if (!ws.energetic[q]) continue;
+    const double c = c33 ? c33[o + q] : 0.0;
+    if (detail::tangent_of<D>(model, Fq[q], c, point, Jbar, Dc, ws.kappa, A) != StressStatus::ok) {
+      ++failed;
+      continue;
+    }
+    // a_p = K^{-1} (x_p - x_i) V_p over the intact members of B_iq; a_i = -sum_p a_p.
+    const std::uint64_t *ba   = fam.ba(o + q);
+    const double        *kinv = &ws.kinv[sym_size<D> * q];
+    double               ai[D] = {};
+    // The members p of B_iq (local index 1 + p), by a sweep over the mask words.
+    auto for_members = [&](auto &&visit) {
+      for (std::size_t w = 0; w < W; ++w) {
+        std::uint64_t bits = ba[w] & intact[w];
+        while (bits) {
+          const std::size_t p = 64 * w + static_cast<std::size_t>(__builtin_ctzll(bits));
+          bits &= bits - 1;
+          visit(p);
+        }
+      }
+    };
+    for_members([&](std::size_t p) {
+      const double *d  = &ws.point.offset[D * p];
+      const double  vp = ws.point.member[p][Member<D>::volume];
+      for (int r = 0; r < D; ++r) {
+        double s = 0.0;
+        for (int c2 = 0; c2 < D; ++c2) s += kinv[sym_index<D>(r, c2)] * d[c2];
+        ws.a[D * (1 + p) + r] = s * vp;
+        ai[r] -= s * vp;
+      }
+    });
+    for (int r = 0; r < D; ++r) ws.a[r] = ai[r];
+    const double vq = ws.point.member[q][Member<D>::volume];
+    // T_a[r][s][n] = vq sum_m A[r m][s n] a_a[m], then H_ab[r][s] += sum_n T_a[r][s][n] a_b[n].
+    auto form_T = [&](std::size_t a) {
+      const double *g = &ws.a[D * a];
+      double       *T = &ws.T[DD * D * a];
+      for (int r = 0; r < D; ++r)
+        for (int s = 0; s < D; ++s)
+          for (int nn = 0; nn < D; ++nn) {
+            double t = 0.0;
+            for (int mm = 0; mm < D; ++mm) t += A[DD * (D * r + mm) + D * s + nn] * g[mm];
+            T[DD * r + D * s + nn] = vq * t;
+          }
+    };
+    auto add_block = [&](std::size_t a, std::size_t b) {
+      const double *T = &ws.T[DD * D * a], *g = &ws.a[D * b];
+      for (int r = 0; r < D; ++r)
+        for (int s = 0; s < D; ++s) {
+          double h = 0.0;
+          for (int nn = 0; nn < D; ++nn) h += T[DD * r + D * s + nn] * g[nn];
+          ws.H[(D * a + r) * N + D * b + s] += h;
+        }
+    };
+    form_T(0);
+    for_members([&](std::size_t p) { form_T(1 + p); });
+    add_block(0, 0);
+    for_members([&](std::size_t p) { // the upper triangle of blocks (H is symmetric: mirrored below)
+      add_block(0, 1 + p);
+      for_members([&](std::size_t p2) {
+        if (p2 >= p) add_block(1 + p, 1 + p2);
+      });
+    });
+    if (point) { // v += V_q cof F_iq : dF_iq/dy (omega_i applied below)
+      const Mat<D> cof = detail::cofactor_of<D>(Fq[q]);
+      auto add_v = [&](std::size_t a) {
+        const double *g = &ws.a[D * a];
+        for (int r = 0; r < D; ++r) {
+          double s = 0.0;
+          for (int nn = 0; nn < D; ++nn) s += cof[D * r + nn] * g[nn];
+          ws.v[D * a + r] += vq * s;
+        }
+      };
+      add_v(0);
+      for_members([&](std::size_t p) { add_v(1 + p); });
+    }
+  }
+  const double Vi = ref.volume[i], scale = Vi * omega;
+  for (std::size_t r = 0; r < N; ++r) {
+    for (std::size_t c = D * (r / D + 1); c < N; ++c) ws.H[c * N + r] = ws.H[r * N + c] *= scale; // lower blocks from the upper
+    for (std::size_t c = D * (r / D); c < D * (r / D + 1); ++c) ws.H[r * N + c] *= scale;            // the diagonal block
+  }
+  if (point) {
+    const double curvature = (1.0 + 1.0 / (Jbar * Jbar)) / Dc - ws.kappa; // U''(Jbar) - kappa
+    const double f         = Vi * curvature * omega * omega;
+    for (std::size_t r = 0; r < N; ++r) {
+      const double vr = f * ws.v[r];
+      if (vr == 0.0) continue;
+      for (std::size_t c = 0; c < N; ++c) ws.H[r * N + c] += vr * ws.v[c];
+    }
+  }
+  return failed;
+}
+
+} // namespace bapd::nd

@@ -1,0 +1,98 @@
+#pragma once
+// Static states by Newton (-solver static): a body without failure has one static state
+// per stretch, the minimum of its stored energy W(u) with the grips held (docs/method.md
+// section 3). The static solver finds it directly, in load steps along the schedule:
+//
+//   for each ramp of -load_schedule, in load steps of the applied stretch:
+//     predict: the secant through the last two states; at the first step and after a
+//              cutback one tangent step with the grips' increment imposed
+//     solve:   PETSc SNES (Newton with line search) on R(u) = dW/du = -V f(u) = 0 over
+//              the free dofs, the grips' dofs Dirichlet rows, the exact symmetric tangent
+//              (tangent_operator.hpp, ba_tangent.hpp)
+//     accept:  a history row; grow the step after a fast solve. Not converged: back to
+//              the last state with half the step (cutback), down to -static_stretch_step_min
+//   at the start of each hold and at the end: a row of static_states.csv (and fields)
+//
+// It reuses the dynamic driver's set-up (body, layout, force operator, loading, history
+// and field output: SimulationD is its friend) and changes none of it: -solver dynamic
+// runs as before. Not yet: failure inside load steps, checkpoints and restart (refused).
+#include <petscsnes.h>
+
+#include <vector>
+
+#include "bapd/solver/driver/simulation.hpp"
+#include "bapd/solver/operators/tangent_operator.hpp"
+
+namespace bapd {
+
+// What the static solver cannot do yet, refused before any work with the option to
+// change: failure (-failure_*), checkpoints and restart. Collective.
+PetscErrorCode StaticSolverCheckScene(MPI_Comm comm, const Scene &scene, const CheckpointOptions &checkpoint);
+
+template <int D> class StaticSolver {
+public:
+  explicit StaticSolver(SimulationD<D> &simulation) : sim_(simulation) {}
+  ~StaticSolver();
+  StaticSolver(const StaticSolver &)            = delete;
+  StaticSolver &operator=(const StaticSolver &) = delete;
+
+  // The tangent, the matrix and the SNES (with the PETSc options: -snes_*, -ksp_*, -pc_*).
+  PetscErrorCode Setup();
+  // Every load step of the schedule, the outputs, the summary. Fails (PETSC_ERR_NOT_CONVERGED)
+  // with the stretch and the options to change if a load step cannot converge.
+  PetscErrorCode Run();
+  // Solves for the static state at schedule time t from the current state (cutbacks
+  // included); *converged false if it could not (the state is then the last one).
+  PetscErrorCode SolveTo(double t, PetscBool *converged);
+
+  // For tests and tools. The nodal internal force -V f (D per owned point, every dof,
+  // the grips' too) at the owned displacements u, and the tangent dW/du at u (no
+  // Dirichlet rows), both without changing the state.
+  PetscErrorCode NodalForce(Vec u, Vec force);
+  PetscErrorCode Tangent(Vec u, Mat H);
+  PetscErrorCode CreateMatrix(Mat *H) const { return tangent_.CreateMatrix(H); }
+  Vec            displacement() const { return u_; } // the current state (owned dofs)
+  PetscInt       newton_iterations() const { return newton_iterations_; }
+  PetscInt       krylov_iterations() const { return krylov_iterations_; }
+  PetscInt       load_steps() const { return load_steps_; }
+  PetscInt       cutbacks() const { return cutbacks_; }
+
+private:
+  static PetscErrorCode FormFunction(SNES, Vec u, Vec r, void *ctx);
+  static PetscErrorCode FormJacobian(SNES, Vec u, Mat H, Mat P, void *ctx);
+  static PetscErrorCode ConvergenceTest(SNES, PetscInt it, PetscReal xnorm, PetscReal step, PetscReal fnorm, SNESConvergedReason *reason,
+                                        void *ctx);
+  // One load step from the current state (time t_) to t: predictor and Newton.
+  PetscErrorCode LoadStep(double t, PetscBool *converged, PetscInt *iterations);
+  PetscErrorCode Predict(double t);
+  // Owned displacements with the grips at their values at time t.
+  void           HoldGrips(double t, double *u) const;
+  PetscErrorCode Evaluate(const double *u, bool *ok); // force_density_ at u, committed warm starts
+  PetscErrorCode CopyToState(); // u_ into the driver's state X_ (v = 0), for its history and fields
+  PetscErrorCode WriteStaticState(double t);
+  PetscErrorCode Summary(double cpu);
+
+  SimulationD<D>       &sim_;
+  TangentOperator       tangent_;
+  SNES                  snes_ = nullptr;
+  Mat                   H_    = nullptr; // the tangent (BAIJ unless -mat_type)
+  Mat                   P_    = nullptr; // its AIJ copy for the preconditioner (H_ itself if H_ is AIJ)
+  Vec                   u_ = nullptr, r_ = nullptr, u_last_ = nullptr, du_ = nullptr, b_ = nullptr;
+  Vec                   u_before_ = nullptr; // the state before the last converged step (the secant predictor)
+  double                lambda_before_ = 1;  // ...and its stretch
+  bool                  secant_ = false, use_secant_ = true;
+  std::vector<PetscInt> held_;          // global dof indices of the grips' dofs on this rank
+  std::vector<double>   u_scratch_;     // D per owned point
+  std::vector<double>   force_density_; // D per owned point
+  double                t_              = 0;    // schedule time of the current state
+  double                t_target_       = 0;    // of the load step being solved
+  double                reaction_norm_  = 0;    // |V f| over the grips' dofs at the last evaluation
+  double                last_fnorm_     = 0;    // |R| at the last convergence test
+  double                step_           = 0;    // the load step in stretch (0: -static_stretch_step)
+  PetscInt              newton_iterations_ = 0, krylov_iterations_ = 0, load_steps_ = 0, cutbacks_ = 0, jacobians_ = 0;
+  PetscInt              static_states_ = 0;
+  PetscInt              linear_failures_ = 0; // consecutive load steps ended by a failed linear solve
+  SNESConvergedReason   last_reason_   = SNES_CONVERGED_ITERATING;
+};
+
+} // namespace bapd
