@@ -10,7 +10,7 @@ source "$BAPD_SOURCE_DIR/tests/mpi/restart/common.sh"
 work="restart_interrupt"
 rm -rf "$work"; mkdir -p "$work"
 # 650 steps, long enough to be interrupted after step 100, before the crack starts
-# (on this grid near step 450): the restarted run breaks the bonds (40 by step 650; the
+# (on this grid near step 450): the restarted run breaks the bonds (43 by step 650; the
 # crack runs on after it, which the restart has no need of).
 # On a grid twice as fine as the other restart tests: the signals must arrive while it
 # runs, and at dx = 0.5 mm the steps take barely a second.
