@@ -5,6 +5,9 @@
 #   bad_input.sh RANKS [PART]   (ctest sets BAPD_EXE and BAPD_SOURCE_DIR)
 # PART (options, geometry, sets; default all) runs one part of the cases, so that ctest
 # can run the parts side by side: each case starts an MPI job, about 3 s.
+# On 1 rank every case runs; on more ranks the parallel sample below: every rank builds
+# the scene and checks it alike, so most cases take the 1-rank path on each rank and
+# another rank count proves nothing new about them.
 set -uo pipefail
 ranks="$1"
 only="${2:-all}"
@@ -22,6 +25,27 @@ cases=0
 # ranks get that second to finish what they print.
 ((ranks == 1)) && export OMPI_MCA_odls_base_sigkill_timeout=0
 
+# The parallel sample: the cases whose path differs on more than one rank, and one of
+# each kind of check that every rank makes alike. Rank 0 alone looks and broadcasts
+# what it found for the memory estimate (dx_needs_more_memory, cloud_needs_more_memory),
+# the output directory (output_dir_*), a checkpoint's header (restart_*), the options
+# left unused (unknown_option) and the pieces of a partitioned body (cloud_two_pieces);
+# PETSc's own option errors are collective (petsc_*); every rank reads the same file at
+# once (yaml_*, mesh_not_gmsh, group_missing, cloud_unreadable, cloud_duplicate);
+# bapd without run_mpi.sh (no_scene); a check of the scene, the body, a 3D body, a load
+# set, a probe and the patch correction (negative_dx, shape_cuts_apart, body_3d_patch,
+# empty_load_set, curve_selects_nothing, probe_block_many, patch_correction_energy).
+parallel_sample=" no_scene yaml_syntax yaml_alias_bomb unknown_option petsc_real petsc_ts_type negative_dx
+  body_3d_patch dx_needs_more_memory empty_load_set output_dir_proc output_dir_under_file restart_missing
+  restart_truncated restart_other_body shape_cuts_apart mesh_not_gmsh
+  group_missing curve_selects_nothing cloud_unreadable cloud_duplicate cloud_two_pieces probe_block_many
+  cloud_needs_more_memory patch_correction_energy "
+in_sample() { ((ranks == 1)) || [[ " $(echo $parallel_sample) " == *" $1 "* ]]; }
+# (A name in the sample that no case below has would leave its path untried: refused.)
+for name in $parallel_sample; do
+  grep -qE "expect_error $name( |$)" "${BASH_SOURCE[0]}" || { echo "FAIL: the parallel sample names '$name', which is no case"; exit 1; }
+done
+
 # part NAME: the cases below belong to part NAME.
 part() { current_part="$1"; }
 in_part() { [ "$only" = all ] || [ "$only" = "$current_part" ]; }
@@ -31,7 +55,7 @@ in_part() { [ "$only" = all ] || [ "$only" = "$current_part" ]; }
 expect_error() {
   local name="$1" text="$2" rc problems=""
   shift 2
-  in_part || return 0
+  in_part && in_sample "$name" || return 0
   cases=$((cases + 1))
   local launch=("$run_mpi" -n "$ranks")
   [ -n "${BAPD_DIRECT:-}" ] && launch=(mpiexec -q -n "$ranks" --oversubscribe "$BAPD_EXE")
@@ -296,4 +320,4 @@ if ((failures)); then
   echo "$failures of $cases case(s) failed"
   exit 1
 fi
-echo "every bad input ($only, $cases cases) was refused cleanly on $ranks rank(s)"
+echo "every bad input ($only, $cases cases$( ((ranks == 1)) || echo ", the parallel sample")) was refused cleanly on $ranks rank(s)"

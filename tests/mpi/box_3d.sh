@@ -62,7 +62,7 @@ elif [ "$case" = failure ]; then
 elif [ "$case" = restart ]; then
   scene=("${BOX[@]}" -load_schedule 0,1,0.1,1.2 -output_fields -output_fields_interval 100)
   N=150
-  checkpointed_runs "$work" $N "${scene[@]}"
+  checkpointed_runs "$work" $N $((2 * N)) "${scene[@]}"
   compare "$work/whole" "$work/second_np2"
   compare "$work/whole" "$work/second_np3"
   last=$(printf "fields/step_%08d.h5" $((2 * N)))

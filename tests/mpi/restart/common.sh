@@ -26,18 +26,19 @@ run() {
     { cat "$dir.log"; echo "FAILED: bapd on $ranks rank(s) -> $dir"; exit 1; }
 }
 
-# checkpointed_runs WORK N OPTIONS...: on 2 ranks the run of 2N steps (WORK/whole) and
-# the run stopped at step N with a checkpoint (WORK/first); then its continuations with
-# -restart on 2 and 3 ranks (WORK/second_np2, WORK/second_np3), checked to restart at N.
+# checkpointed_runs WORK N END OPTIONS...: on 2 ranks the run of END steps (WORK/whole)
+# and the run stopped at step N with a checkpoint (WORK/first); then its continuations
+# with -restart on 2 and 3 ranks to step END (WORK/second_np2, WORK/second_np3), checked
+# to restart at N.
 checkpointed_runs() {
-  local work="$1" N="$2"
-  shift 2
-  run 2 "$work/whole" "$@" -end_step $((2 * N))
+  local work="$1" N="$2" end="$3"
+  shift 3
+  run 2 "$work/whole" "$@" -end_step $end
   run 2 "$work/first" "$@" -end_step $N -checkpoint_interval $N
   [ -f "$work/first/checkpoint.h5" ] || fail "no checkpoint after $N steps"
   # The scene comes from the checkpoint: only the run length and the output change.
-  run 2 "$work/second_np2" -restart "$work/first/checkpoint.h5" -end_step $((2 * N))
-  run 3 "$work/second_np3" -restart "$work/first/checkpoint.h5" -end_step $((2 * N))
+  run 2 "$work/second_np2" -restart "$work/first/checkpoint.h5" -end_step $end
+  run 3 "$work/second_np3" -restart "$work/first/checkpoint.h5" -end_step $end
   grep -q "Restart from $work/first/checkpoint.h5: step $N" "$work/second_np3.log" || fail "no restart line in second_np3.log"
 }
 
