@@ -12,10 +12,10 @@
 namespace bapd {
 
 // Exact for any force form and law, and cheap: W_i depends on the bonds of i alone
-// (listed_strain_energies, ba_force.hpp), so only the owned points whose bonds the pass
-// changed are evaluated, with the bonds after the pass, then with the bonds before it
+// (listed_strain_energies, ba_force.hpp), so only the owned points whose bonds the passes
+// changed are evaluated, with the bonds after the passes, then with the bonds before them
 // (intact_before_, copied by PostStep; their geometry recomputed for them), and the
-// pass's state is put back. Only in a step that broke bonds somewhere (one reduction a
+// passes' state is put back. Only in a step that broke bonds somewhere (one reduction a
 // step decides); no allocation (the scratch holds every owned point).
 template <int D> PetscErrorCode SimulationD<D>::ReleasedEnergy(double *released)
 {
@@ -49,8 +49,8 @@ template <int D> PetscErrorCode SimulationD<D>::ReleasedEnergy(double *released)
 // hold a pair energy past (5.2), the more so near a crack's opening, where F_ij then
 // reads the opening as strain. Left for the next step, such a bond sits near the Gent
 // chain limit, where the plane-stress sheet stiffens on the bulk scale: on the notched
-// sheet the crack-tip search found the tip 4600 to 60 000 x as stiff as the body at
-// rest, beyond any step the control allows, and points at the tip were thrown off with
+// sheet the crack-tip search found the tip up to 2e5 x as stiff as the body at rest,
+// beyond any step the control allows, and points at the tip were thrown off with
 // energy that no term of (5.3) holds. Breaking them in the same step, at the same
 // positions, is (5.2) applied to the state the pass leaves (docs/method.md 5.2).
 // Every pass breaks at least one bond on some rank, so the passes end; each costs one
