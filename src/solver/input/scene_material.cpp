@@ -108,6 +108,11 @@ PetscErrorCode ReadMaterial(MPI_Comm comm, Scene *scene, SceneInput *in)
                      "its crossing-bond share of the energy release rate; critical pair energy kappa Gamma / c (1: the "
                      "crossing-bond count alone; docs/method.md 5.2)",
                      &scene->tip_concentration));
+    PetscCall(r.Int("-failure_passes",
+                    "With -failure_fracture_energy: breaking passes a step at the same positions [-], >= 0 (0, the default: "
+                    "until no bond meets the criterion, the bonds that a pass loads past it break at once; 1: one pass a "
+                    "step, the earlier behaviour; docs/method.md 5.2)",
+                    &scene->failure_passes));
     return 0;
   }));
   PetscFunctionReturn(0);
@@ -241,6 +246,10 @@ PetscErrorCode CheckMaterial(MPI_Comm comm, const SceneInput &in, Scene *scene)
              "-failure_tip_concentration %g: kappa is a fraction in (0, 1] (default 0.43, measured for the BA force; 1: the "
              "crossing-bond count alone)",
              scene->tip_concentration);
+  SceneCheck(scene->failure_passes >= 0, comm,
+             "-failure_passes %" PetscInt_FMT ": give the most breaking passes a step, >= 1, or 0 (the default) for passes until "
+             "no bond meets the criterion",
+             scene->failure_passes);
   PetscFunctionReturn(0);
 }
 

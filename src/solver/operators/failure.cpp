@@ -24,6 +24,7 @@ PetscErrorCode Failure::Setup(MPI_Comm comm, const Layout &layout, const Familie
   PetscMPIInt size;
 
   PetscFunctionBegin;
+  comm_             = comm;
   layout_           = &layout;
   families_         = &families;
   critical_stretch_ = critical_stretch;
@@ -60,6 +61,7 @@ PetscErrorCode Failure::Setup(MPI_Comm comm, const Layout &layout, const Familie
   ghost_masks_.resize(layout.n_ring1 * families.mask_words);
   touched_.reserve(3 * (std::size_t)layout.n_family());
   stretched_.reserve((std::size_t)layout.n_family());
+  pass_.reserve((std::size_t)layout.n_family());
   PetscFunctionReturn(0);
 }
 
@@ -98,6 +100,25 @@ PetscErrorCode Failure::Break(const double *y, std::vector<FailedBond> &failed, 
   PetscFunctionReturn(0);
 }
 
+template <int D> PetscErrorCode Failure::Cascade(BondState &state, nd::BondGeometry<D> &geometry, bool *more)
+{
+  PetscFunctionBegin;
+  const std::size_t first = touched_.size();
+  break_bonds_by_energy(layout_->cloud, *families_, psi_.data(), crossing_.data(), critical_release_, state, stretched_);
+  touched_.insert(touched_.end(), stretched_.begin(), stretched_.end());
+  PetscCall(SynchroniseGhosts(state));
+  int any = touched_.size() > first ? 1 : 0;
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &any, 1, MPI_INT, MPI_LOR, comm_));
+  *more = any != 0;
+  if (touched_.size() > first) {
+    pass_.assign(touched_.begin() + (std::ptrdiff_t)first, touched_.end());
+    nd::compute_bond_geometry<D>(layout_->cloud, *families_, state, geometry, pass_);
+  }
+  PetscFunctionReturn(0);
+}
+
+template PetscErrorCode Failure::Cascade<2>(BondState &, nd::BondGeometry<2> &, bool *);
+template PetscErrorCode Failure::Cascade<3>(BondState &, nd::BondGeometry<3> &, bool *);
 template PetscErrorCode Failure::Break<2>(const double *, std::vector<FailedBond> &, BondState &, nd::BondGeometry<2> &);
 template PetscErrorCode Failure::Break<3>(const double *, std::vector<FailedBond> &, BondState &, nd::BondGeometry<3> &);
 

@@ -137,6 +137,10 @@ private:
   // After a breaking pass that broke bonds on some rank: the internal energy it
   // released, E(bonds before) - E(bonds after) at the same positions. Collective.
   PetscErrorCode ReleasedEnergy(double *released);
+  // With the fracture-energy criterion, after the step's first breaking pass: more
+  // passes at the same positions while the last one broke bonds somewhere (at most
+  // -failure_passes in all; docs/method.md 5.2). Collective.
+  PetscErrorCode BreakFurther();
   // The axis the crack's tip is measured along (crack_axis_): from the mouth of the
   // scene's first 2D notch towards its inner end; else +x from the body's smallest x.
   PetscErrorCode SetupCrackAxis();

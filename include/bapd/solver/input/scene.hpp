@@ -94,6 +94,7 @@ struct Scene {
   double critical_stretch = 0.0; // -failure_critical_stretch (eq 7), or 0
   double fracture_energy  = 0.0; // -failure_fracture_energy Gamma [J/m^2] (docs/method.md 5.2), or 0
   double tip_concentration = 0.43; // -failure_tip_concentration kappa: w_c = kappa Gamma / c (docs/method.md 5.2)
+  PetscInt failure_passes = 0;     // -failure_passes: breaking passes a step with Gamma (0: until none breaks; docs/method.md 5.2)
 
   std::vector<LoadSet> loads;
   Schedule             schedule;

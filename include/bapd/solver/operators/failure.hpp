@@ -42,6 +42,12 @@ public:
   // D: the body's (y and the geometry D a point; the masks know no dimension).
   template <int D>
   PetscErrorCode Break(const double *y, std::vector<FailedBond> &failed, BondState &state, nd::BondGeometry<D> &geometry);
+  // The fracture-energy criterion again at the same positions, on bond_energies()
+  // refilled after the last pass: a broken bond changes F_ij of its neighbours, and
+  // those that now meet (5.2) break in this pass, not a step later (docs/method.md
+  // section 5.2). touched() gains this pass's points; *more: whether any rank broke a
+  // bond in it. Collective.
+  template <int D> PetscErrorCode Cascade(BondState &state, nd::BondGeometry<D> &geometry, bool *more);
   // Whether the last Break broke bonds on this rank (owned or ghost copies). Local.
   bool broke() const { return !touched_.empty(); }
   // The points whose bonds the last Break changed (owned and ghost), its geometry recomputed.
@@ -52,6 +58,7 @@ public:
 private:
   PetscErrorCode SynchroniseGhosts(BondState &state);
 
+  MPI_Comm                 comm_     = MPI_COMM_NULL;
   const Layout            *layout_   = nullptr;
   const Families          *families_ = nullptr;
   double                   critical_stretch_ = 0, critical_release_ = 0;
@@ -59,7 +66,7 @@ private:
   PetscSF                  sf_   = nullptr;      // owners' intact masks -> their ring-1 ghost copies
   MPI_Datatype             mask_ = MPI_DATATYPE_NULL; // one point's intact mask
   std::vector<std::uint64_t> ghost_masks_;
-  std::vector<std::size_t> touched_, stretched_; // reserved at set-up
+  std::vector<std::size_t> touched_, stretched_, pass_; // reserved at set-up
 };
 
 } // namespace bapd
