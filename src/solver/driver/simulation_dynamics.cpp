@@ -130,7 +130,7 @@ template <int D> PetscErrorCode SimulationD<D>::SetupTimeStepper()
     PetscCall(TSGetMaxSteps(ts_, &max_steps));
     if (scene_.end_step < max_steps) PetscCall(TSSetMaxSteps(ts_, scene_.end_step));
   }
-  {
+  if (scene_.solver != SolverKind::static_newton) { // (a static run has no time step)
     TSType type;
     PetscCall(TSGetType(ts_, &type));
     PetscReal dt;

@@ -88,6 +88,8 @@ private:
   double                t_target_       = 0;    // of the load step being solved
   double                reaction_norm_  = 0;    // |V f| over the grips' dofs at the last evaluation
   double                last_fnorm_     = 0;    // |R| at the last convergence test
+  bool                  reuse_tangent_  = true; // modified Newton (StaticSolver::Setup); false with -snes_lag_jacobian
+  PetscInt              step_tangents_  = 0;    // tangents Newton built in the current load step
   double                step_           = 0;    // the load step in stretch (0: -static_stretch_step)
   PetscInt              newton_iterations_ = 0, krylov_iterations_ = 0, load_steps_ = 0, cutbacks_ = 0, jacobians_ = 0;
   PetscInt              static_states_ = 0;
