@@ -212,6 +212,46 @@ PetscErrorCode CheckComponents(MPI_Comm comm, const LoadInput &li, const Scene &
   PetscFunctionReturn(0);
 }
 
+// A stretch component moves by u = scale (lambda - 1) L; a negative scale moves it
+// against lambda - 1 (the bottom grip of a symmetric pull: -0.5, with 0.5 at the top).
+// Two grips on opposite edges (faces) that hold the same component then move apart by
+// (s_upper - s_lower) (lambda - 1) L (a fixed one: scale 0), so lambda is their stretch.
+// A negative difference pulls them together as lambda grows: the body is compressed
+// while the schedule says stretched (and a long schedule makes them cross), so lambda no
+// longer says what the grips do. Refused, naming both settings; a compression is a
+// schedule with stretches below 1.
+PetscErrorCode CheckGripsSeparate(MPI_Comm comm, const Scene &scene)
+{
+  using Region = LoadSet::Region;
+  static const Region lower[] = {Region::left, Region::bottom, Region::back}, upper[] = {Region::right, Region::top, Region::front};
+  auto scale = [](const LoadSet &l, int c) { return c == 0 ? l.x_scale : c == 1 ? l.y_scale : l.z_scale; };
+  // "-load_top_y_scale -1" or "-load_bottom_y fixed"
+  auto setting = [&](const LoadSet &l, int c) {
+    const char axis = "xyz"[c];
+    return l.component(c) == ComponentLoad::stretch ? Format("-load_%s_%c_scale %g", l.name.c_str(), axis, scale(l, c))
+                                                    : Format("-load_%s_%c fixed", l.name.c_str(), axis);
+  };
+  PetscFunctionBeginUser;
+  for (int c = 0; c < scene.dimension; ++c)
+    for (const LoadSet &lo : scene.loads) {
+      if (lo.region != lower[c] || lo.component(c) == ComponentLoad::free) continue;
+      for (const LoadSet &up : scene.loads) {
+        if (up.region != upper[c] || up.component(c) == ComponentLoad::free) continue;
+        const double s_lo = lo.component(c) == ComponentLoad::stretch ? scale(lo, c) : 0.0;
+        const double s_up = up.component(c) == ComponentLoad::stretch ? scale(up, c) : 0.0;
+        const char   axis = "xyz"[c];
+        SceneCheck(s_up - s_lo >= 0.0, comm,
+                   "%s (a %s grip) and %s (a %s grip) move the two grips toward each other as the schedule's stretch grows: their "
+                   "separation changes by (%g) (lambda - 1) L, so the body is compressed where -load_schedule says stretched. A negative "
+                   "scale moves a grip against the stretch (the %s grip of a symmetric pull: -load_%s_%c_scale -0.5 with "
+                   "-load_%s_%c_scale 0.5): fix the sign, or for a compression give -load_schedule stretches below 1 with positive scales",
+                   setting(up, c).c_str(), to_string(up.region), setting(lo, c).c_str(), to_string(lo.region), s_up - s_lo,
+                   to_string(lo.region), lo.name.c_str(), axis, up.name.c_str(), axis);
+      }
+    }
+  PetscFunctionReturn(0);
+}
+
 // -load_grip_field: how the top and bottom grips move y (GripField), from the sets
 // that hold y at the top and bottom edges, and elsewhere.
 PetscErrorCode CheckGripField(MPI_Comm comm, const SceneInput &in, Scene *scene)
@@ -307,6 +347,7 @@ PetscErrorCode CheckLoading(MPI_Comm comm, const SceneInput &in, Scene *scene, E
     PetscCall(CheckComponents(comm, li, *scene, &set));
     scene->loads.push_back(set);
   }
+  PetscCall(CheckGripsSeparate(comm, *scene));
   PetscCall(CheckGripField(comm, in, scene));
   PetscFunctionReturn(0);
 }

@@ -41,6 +41,32 @@ std::string ModelChoices()
   return text;
 }
 
+// A scene may carry the parameters of several laws (one file for a study that switches
+// -material_model on the command line), and those of the laws it does not use are read
+// and ignored: unchecked, they change nothing. One warning names them and the law in use,
+// so that a parameter meant for the run (-material_lambda_m on a Gent scene, the law left
+// at its default) is not ignored silently.
+PetscErrorCode WarnOtherLawsOptions(MPI_Comm comm, const SceneInput &in, ModelKind model)
+{
+  std::string ignored;
+  std::size_t count = 0;
+  PetscFunctionBeginUser;
+  for (const LawEntry &law : registered_laws()) {
+    if (law.kind == model) continue;
+    for (const LawOptionEntry &o : law.options)
+      if (std::find(in.law_options_given.begin(), in.law_options_given.end(), o.name) != in.law_options_given.end()) {
+        ignored += Format("%s%s (%s)", ignored.empty() ? "" : ", ", o.name, law.name);
+        ++count;
+      }
+  }
+  if (count == 0) PetscFunctionReturn(0);
+  PetscCall(Warn(comm, Format("%s %s this scene does not use: the law is %s (-material_model), which ignores %s; remove %s, "
+                              "or choose %s law with -material_model",
+                              ignored.c_str(), count == 1 ? "is a parameter of a law" : "are parameters of laws", law_entry(model).name,
+                              count == 1 ? "it" : "them", count == 1 ? "it" : "them", count == 1 ? "its" : "their")));
+  PetscFunctionReturn(0);
+}
+
 } // namespace
 
 PetscErrorCode ReadMaterial(MPI_Comm comm, Scene *scene, SceneInput *in)
@@ -81,9 +107,15 @@ PetscErrorCode ReadMaterial(MPI_Comm comm, Scene *scene, SceneInput *in)
                        &in->patch_correction));
     PetscCall(r.Real("-material_mu", "Shear modulus mu [Pa] (paper: 4.55e3)", &m.mu));
     // every law's own parameters (defaults: the members' initialisers), listed for all
-    // laws so that -help shows them and a file may carry them whatever the model
+    // laws so that -help shows them and a file may carry them whatever the model (those
+    // of a law the scene does not use draw a warning: WarnOtherLawsOptions)
+    in->law_options_given.clear(); // (PETSc may run the block more than once)
     for (const LawEntry &law : registered_laws())
-      for (const LawOptionEntry &o : law.options) PetscCall(r.Real(o.name, o.help, &m.values[o.index]));
+      for (const LawOptionEntry &o : law.options) {
+        bool given = false;
+        PetscCall(r.Real(o.name, o.help, &m.values[o.index], &given));
+        if (given) in->law_options_given.push_back(o.name);
+      }
     // Default compressibility: bulk modulus K = 2/D = 1000 mu (docs/method.md section 4:
     // the paper gives no D). K = 100 mu already softens the pure-shear curve by 7 %
     // at stretch 5.125 (the sheet thins less); 1000 mu keeps it within 1 %, and in
@@ -213,6 +245,7 @@ PetscErrorCode CheckMaterial(MPI_Comm comm, const SceneInput &in, Scene *scene)
   std::string problems = check_model(scene->model, three ? Formulation::plane_strain : scene->formulation, m);
   if (!problems.empty() && problems.back() == '\n') problems.pop_back();
   PetscCheck(problems.empty(), comm, PETSC_ERR_USER, "%s", problems.c_str());
+  PetscCall(WarnOtherLawsOptions(comm, in, scene->model));
   SceneCheck(scene->density > 0, comm, "-material_density %g: the density must be > 0 kg/m^3 (a hydrogel: about 1000)",
              scene->density);
   // Volumetric locking (docs/validation_3d.md 7.4): with U(J_ij) per bond a nearly

@@ -386,6 +386,31 @@ TEST_F(SceneOptions, WarnsAboutDoubtfulButUsableValues)
   EXPECT_TRUE(any("-horizon_factor 6")) << ::testing::PrintToString(w);
 }
 
+// A scene may carry the parameters of laws it does not use (one file for a study that
+// switches -material_model); they are ignored, and one warning names each with its law
+// and the law in use. The law's own parameters draw none.
+TEST_F(SceneOptions, WarnsOnceAboutParametersOfLawsNotInUse)
+{
+  Options o = PlateWithHole();
+  o["-material_Jm"] = "100"; // Gent's own: no warning
+  Scene own;
+  ASSERT_EQ(Read(o, &own), 0) << bapd::test::UserErrorText();
+  EXPECT_TRUE(bapd::SceneWarnings().empty()) << ::testing::PrintToString(bapd::SceneWarnings());
+
+  o["-material_lambda_m"]  = "-1"; // invalid for Arruda-Boyce, but unused here
+  o["-material_ogden_mu1"] = "3000";
+  Scene scene;
+  ASSERT_EQ(Read(o, &scene), 0) << bapd::test::UserErrorText();
+  const std::vector<std::string> &w = bapd::SceneWarnings();
+  ASSERT_EQ(w.size(), 1u) << ::testing::PrintToString(w);
+  EXPECT_NE(w[0].find("-material_lambda_m (arruda_boyce), -material_ogden_mu1 (ogden)"), std::string::npos) << w[0];
+  EXPECT_NE(w[0].find("the law is gent (-material_model)"), std::string::npos) << w[0];
+  EXPECT_EQ(w[0].find("-material_Jm"), std::string::npos) << w[0];
+
+  o["-material_model"] = "arruda_boyce"; // now -material_lambda_m is the law's own, and checked
+  EXPECT_NE(Rejection(o).find("-material_lambda_m"), std::string::npos);
+}
+
 // ----------------------------------------------------------------------------------
 // Invalid scenes: each is rejected, and the message names the option to change.
 
@@ -536,6 +561,9 @@ TEST_F(SceneOptions, RejectsEachInvalidInputNamingItsOption)
     {"schedule stretch zero", {{"-load_schedule", "0,1,1,0"}}, "-load_schedule", "> 0"},
     {"reference length zero", {{"-load_reference_length", "0"}}, "-load_reference_length"},
     {"unknown grip field", {{"-load_grip_field", "mirror"}}, "-load_grip_field", "rigid, affine or auto"},
+    {"grips pulled together by a negative scale", {{"-load_bottom_y", "fixed"}, {"-load_bottom_y_scale", "<erase>"}, {"-load_top_y_scale", "-1"}},
+     "-load_top_y_scale -1", "toward each other"},
+    {"grips pushed together by the lower scale", {{"-load_bottom_y_scale", "0.75"}}, "-load_bottom_y_scale 0.75", "(-0.25) (lambda - 1) L"},
     {"affine grips without a bottom grip", {{"-load_grip_field", "affine"}, {"-load_bottom_y", "free"}, {"-load_bottom_y_scale", "<erase>"}}, "-load_grip_field", "1 top and 0 bottom"},
     // probes
     {"probe outside", {{"-probe_left_mid_at", "0.1,0.08"}}, "-probe_left_mid_at", "outside the body"},

@@ -55,6 +55,7 @@ struct SceneInput {
   bool                     formulation_set = false; // -material_formulation given (refused in 3D)
   bool                     D_set = false, bulk_ratio_set = false;
   double                   bulk_ratio = 1000.0;
+  std::vector<std::string> law_options_given; // the laws' own options that were given (-material_Jm, ...), for CheckMaterial
   bool                     critical_stretch_set = false, fracture_energy_set = false;
   std::vector<std::string> load_names;
   std::vector<LoadInput>   loads;
