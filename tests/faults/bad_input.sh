@@ -203,6 +203,9 @@ expect_error shape_cuts_apart "-body_shapes: the body falls apart into 2 pieces"
 expect_error shape_reserved_name "-body_shapes: 'width' is the name of a body option" "$scene" -body_shapes width
 expect_error shape_undeclared "'hole2' is not one of -body_shapes" "$scene" "${sh[@]}" -body_cut_type circle -body_cut_centre 0,0 \
   -body_cut_radius 0.002 -body_hole2_radius 0.001
+# (every option of a shape's table counts, -body_S_discretisation the last of them)
+expect_error shape_undeclared_discretisation "'hole2' is not one of -body_shapes" "$scene" "${sh[@]}" -body_cut_type circle \
+  -body_cut_centre 0,0 -body_cut_radius 0.002 -body_hole2_discretisation centroids
 expect_error mesh_missing_file "-body_cut_file: cannot open 'no_such.geo'" "$scene" "${sh[@]}" -body_cut_type mesh -body_cut_file no_such.geo
 expect_error mesh_device "-body_cut_file: '/dev/zero' is a device" "$scene" "${sh[@]}" -body_cut_type mesh -body_cut_file /dev/zero
 expect_error mesh_tiny_size "-body_cut: the mesh holds no lattice point of the sheet" "$scene" "${sh[@]}" -body_cut_type mesh \

@@ -38,6 +38,27 @@ const char *to_string(PatchCorrection c)
   return "unknown";
 }
 
+std::vector<SetFamily> SetFamilies() { return {ShapeFamily(), LoadSetFamily(), ProbeFamily()}; }
+
+namespace {
+
+// -help's note on the options of named sets: listed above for the names given, and
+// here by family (from the sets' option tables), so that a scene without any still
+// shows them.
+std::string SetFamiliesHelp()
+{
+  std::string text = "  Options of named sets, listed above for the names given in -body_shapes, -load_sets and -probes "
+                     "(docs/options.md: Body, Loading, Probes):\n";
+  for (const SetFamily &family : SetFamilies()) {
+    text += "    " + family.head + "NAME_{";
+    for (std::size_t k = 0; k < family.suffixes.size(); ++k) text += (k ? "," : "") + family.suffixes[k].substr(1);
+    text += "}  (NAME in " + family.list_option + ")\n";
+  }
+  return text;
+}
+
+} // namespace
+
 PetscErrorCode SceneFromOptions(MPI_Comm comm, Scene *scene)
 {
   SceneInput in;
@@ -54,8 +75,7 @@ PetscErrorCode SceneFromOptions(MPI_Comm comm, Scene *scene)
   PetscCall(PetscOptionsHasHelp(nullptr, &help));
   if (help) {
     scene->help_only = true;
-    PetscCall(PetscPrintf(comm, "  (per-set options -load_NAME_... and per-probe options -probe_NAME_at are listed for the names given "
-                                "in -load_sets and -probes; see docs/options.md)\n"));
+    PetscCall(PetscPrintf(comm, "%s", SetFamiliesHelp().c_str()));
     PetscFunctionReturn(0);
   }
   PetscCall(CheckBody(comm, in, scene));

@@ -26,44 +26,50 @@ bool ParseComponent(const std::string &text, ComponentLoad *load)
   return true;
 }
 
-// One load set's options (-load_NAME_...).
+// One load set's options (-load_NAME_...), in -help's order.
+const std::vector<SetOption<LoadInput>> &LoadSetOptions()
+{
+  using L = LoadInput;
+  static const std::vector<SetOption<L>> table = {
+      {"-region",
+       "Points held: top | bottom | left | right (edge layers; 3D: faces, with back | front, or x- | x+ | y- | y+ | z- | "
+       "z+) | box | polygon | curve (points near a polyline) | group (a Gmsh physical group) | block (a block id of "
+       "the point cloud) (required)",
+       &L::region, &L::region_set},
+      {"-box", "Region box xmin,ymin,xmax,ymax [m] (3D: xmin,ymin,zmin,xmax,ymax,zmax)", &L::box, &L::box_set},
+      {"-points", "Region polygon (closed) or curve (open polyline): vertices x0,y0,x1,y1,... [m]", &L::points, &L::points_set},
+      {"-group", "Region group: the name of a physical surface, curve or point of the Gmsh file (3D: also a volume)", &L::group},
+      {"-file", "Region group: the Gmsh .geo or .msh file (default: the body's mesh shape's file; 3D: its mesh solid's)", &L::file},
+      {"-block", "Region block: the block id (-body_cloud's block_id column) whose points the set holds", &L::block, &L::block_set},
+      {"-placement",
+       "outside (beyond the specimen's edge) | inside (the specimen's edge rows) | auto (-load_grip_placement's); edge "
+       "regions (the others are inside)",
+       &L::placement},
+      {"-layers",
+       "Point rows the grip holds at its edge [-] (default: 2 horizons deep outside, 1 inside); curve and group "
+       "curve/point (3D: also surface): the points closer than layers x dx",
+       &L::layers, &L::layers_set},
+      {"-depth",
+       "Grip depth instead of -layers: the rows whose centres lie within it [m] (default outside: 2 horizons); curve "
+       "and group curve/point (3D: also surface): the points closer than it (default dx)",
+       &L::depth, &L::depth_set},
+      {"-x", "x component: free | fixed (u = 0) | stretch (follows the schedule)", &L::x},
+      {"-y", "y component: free | fixed (u = 0) | stretch (follows the schedule)", &L::y},
+      {"-z", "z component (3D bodies): free | fixed (u = 0) | stretch (follows the schedule)", &L::z},
+      {"-x_scale", "Scale of a stretch x component: u = scale (lambda - 1) L [-]", &L::x_scale, &L::x_scale_set},
+      {"-y_scale", "Scale of a stretch y component: u = scale (lambda - 1) L [-]", &L::y_scale, &L::y_scale_set},
+      {"-z_scale", "Scale of a stretch z component (3D bodies): u = scale (lambda - 1) L [-]", &L::z_scale, &L::z_scale_set},
+  };
+  return table;
+}
+
 PetscErrorCode ReadLoadSet(MPI_Comm comm, const std::string &name, LoadInput *set)
 {
   const std::string prefix = "load_" + name + "_";
   const std::string title  = "Load set " + name;
   PetscFunctionBeginUser;
   set->name = name;
-  PetscCall(ReadOptionBlock(comm, prefix.c_str(), title.c_str(), [&](OptionReader &r) -> PetscErrorCode {
-    PetscCall(r.String("-region",
-                       "Points held: top | bottom | left | right (edge layers; 3D: faces, with back | front, or x- | x+ | y- | y+ | z- | "
-                       "z+) | box | polygon | curve (points near a polyline) | group (a Gmsh physical group) | block (a block id of "
-                       "the point cloud) (required)",
-                       &set->region, &set->region_set));
-    PetscCall(r.RealArray("-box", "Region box xmin,ymin,xmax,ymax [m] (3D: xmin,ymin,zmin,xmax,ymax,zmax)", &set->box, &set->box_set));
-    PetscCall(r.RealArray("-points", "Region polygon (closed) or curve (open polyline): vertices x0,y0,x1,y1,... [m]", &set->points,
-                          &set->points_set));
-    PetscCall(r.String("-group", "Region group: the name of a physical surface, curve or point of the Gmsh file (3D: also a volume)", &set->group));
-    PetscCall(r.String("-file", "Region group: the Gmsh .geo or .msh file (default: the body's mesh shape's file; 3D: its mesh solid's)", &set->file));
-    PetscCall(r.Int("-block", "Region block: the block id (-body_cloud's block_id column) whose points the set holds", &set->block, &set->block_set));
-    PetscCall(r.String("-placement", "outside (beyond the specimen's edge) | inside (the specimen's edge rows) | auto (-load_grip_placement's); edge "
-                       "regions (the others are inside)",
-                       &set->placement));
-    PetscCall(r.Int("-layers",
-                    "Point rows the grip holds at its edge [-] (default: 2 horizons deep outside, 1 inside); curve and group "
-                    "curve/point (3D: also surface): the points closer than layers x dx",
-                    &set->layers, &set->layers_set));
-    PetscCall(r.Real("-depth",
-                     "Grip depth instead of -layers: the rows whose centres lie within it [m] (default outside: 2 horizons); curve "
-                     "and group curve/point (3D: also surface): the points closer than it (default dx)",
-                     &set->depth, &set->depth_set));
-    PetscCall(r.String("-x", "x component: free | fixed (u = 0) | stretch (follows the schedule)", &set->x));
-    PetscCall(r.String("-y", "y component: free | fixed (u = 0) | stretch (follows the schedule)", &set->y));
-    PetscCall(r.String("-z", "z component (3D bodies): free | fixed (u = 0) | stretch (follows the schedule)", &set->z));
-    PetscCall(r.Real("-x_scale", "Scale of a stretch x component: u = scale (lambda - 1) L [-]", &set->x_scale, &set->x_scale_set));
-    PetscCall(r.Real("-y_scale", "Scale of a stretch y component: u = scale (lambda - 1) L [-]", &set->y_scale, &set->y_scale_set));
-    PetscCall(r.Real("-z_scale", "Scale of a stretch z component (3D bodies): u = scale (lambda - 1) L [-]", &set->z_scale, &set->z_scale_set));
-    return 0;
-  }));
+  PetscCall(ReadOptionBlock(comm, prefix.c_str(), title.c_str(), [&](OptionReader &r) { return ReadSetOptions(r, LoadSetOptions(), set); }));
   PetscFunctionReturn(0);
 }
 
@@ -290,6 +296,8 @@ PetscErrorCode CheckGripField(MPI_Comm comm, const SceneInput &in, Scene *scene)
 }
 
 } // namespace
+
+SetFamily LoadSetFamily() { return {"-load_", "-load_sets", SetOptionSuffixes(LoadSetOptions())}; }
 
 PetscErrorCode ReadLoading(MPI_Comm comm, Scene *scene, SceneInput *in)
 {

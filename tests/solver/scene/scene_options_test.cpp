@@ -14,6 +14,7 @@
 #include <unistd.h>
 
 #include "bapd/solver/input/scene.hpp"
+#include "bapd/solver/input/scene_input.hpp"
 #include "scene_reading.hpp"
 
 namespace {
@@ -620,6 +621,34 @@ TEST_F(SceneOptions, UnusedOptionsOfAnUndeclaredSetNameTheSetList)
   EXPECT_NE(message.find("-load_grip_region is not a bapd option. 'grip' is not one of -load_sets"), std::string::npos) << message;
   EXPECT_NE(message.find("-probe_tipp_at is not a bapd option. 'tipp' is not one of -probes"), std::string::npos) << message;
   EXPECT_NE(message.find("-load_top_regoin is not a bapd option. Did you mean -load_top_region?"), std::string::npos) << message;
+}
+
+// The options of a named set come from its option table (SetFamily): every option in it
+// is read for a declared set, and answered with the set list for an undeclared one.
+TEST_F(SceneOptions, EveryOptionOfASetTableIsReadAndNamesItsSetList)
+{
+  const std::map<std::string, std::string> declared = {{"-body_", "cut"}, {"-load_", "top"}, {"-probe_", "left_mid"}};
+  const std::vector<bapd::SetFamily>       families = bapd::SetFamilies();
+  ASSERT_EQ(families.size(), declared.size());
+  Options given = PlateWithHole();
+  given["-body_shapes"] = "cut";
+  for (const bapd::SetFamily &f : families)
+    for (const std::string &suffix : f.suffixes)
+      given[f.head + declared.at(f.head) + suffix] = "1"; // (a value every kind parses; the checks may refuse it)
+  Scene scene;
+  Read(given, &scene);
+  EXPECT_EQ(bapd::CheckUnusedOptions(PETSC_COMM_WORLD), 0) << bapd::test::UserErrorText();
+
+  for (const bapd::SetFamily &f : families)
+    for (const std::string &suffix : f.suffixes) { // one at a time: PETSc keeps a message of about 1000 characters
+      Options           stray = PlateWithHole();
+      const std::string name  = f.head + "zz" + suffix;
+      stray[name]             = "1";
+      ASSERT_EQ(Read(stray, &scene), 0) << bapd::test::UserErrorText();
+      EXPECT_EQ(bapd::CheckUnusedOptions(PETSC_COMM_WORLD), PETSC_ERR_USER) << name;
+      const std::string message = bapd::test::UserErrorText();
+      EXPECT_EQ(message.find(name + " is not a bapd option. 'zz' is not one of " + f.list_option + ": add it there"), 0u) << message;
+    }
 }
 
 TEST_F(SceneOptions, PetscRuntimeOptionsAreNotTypos)

@@ -66,6 +66,21 @@ struct SceneInput {
   bool                     end_time_set = false;
 };
 
+// The options of the named sets, each family from its set's option table: -load_NAME_...
+// (scene_loading.cpp), -probe_NAME_... (scene_probes.cpp), -body_NAME_... (the shapes,
+// scene_body.cpp). The unused-option check names the list an undeclared set is missing
+// from ("'grip' is not one of -load_sets"), and -help lists each family's options.
+struct SetFamily {
+  std::string              head;        // "-load_": the options' names start with it, then the set's name
+  std::string              list_option; // "-load_sets": the option that lists the names
+  std::vector<std::string> suffixes;    // "_region", ...: after the set's name, in -help's order
+};
+SetFamily LoadSetFamily();
+SetFamily ProbeFamily();
+SetFamily ShapeFamily();
+// Every family, in the order of the sections (the body's shapes, load sets, probes).
+std::vector<SetFamily> SetFamilies();
+
 // Body (scene_body.cpp): -body_* and -horizon_factor.
 PetscErrorCode ReadBody(MPI_Comm comm, Scene *scene, SceneInput *in);
 PetscErrorCode CheckBody(MPI_Comm comm, const SceneInput &in, Scene *scene);
