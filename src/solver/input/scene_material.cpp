@@ -150,9 +150,11 @@ PetscErrorCode ReadMaterial(MPI_Comm comm, Scene *scene, SceneInput *in)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode CheckMaterial(MPI_Comm comm, const SceneInput &in, Scene *scene)
+namespace {
+
+// -material_model and -material_formulation (none in 3D).
+PetscErrorCode CheckLawChoice(MPI_Comm comm, const SceneInput &in, Scene *scene)
 {
-  MaterialParameters &m = scene->material;
   PetscFunctionBeginUser;
   std::string model = Lower(in.model);
   std::replace(model.begin(), model.end(), '-', '_'); // "neo-hookean" as the paper writes it
@@ -167,6 +169,14 @@ PetscErrorCode CheckMaterial(MPI_Comm comm, const SceneInput &in, Scene *scene)
              "-material_formulation %s is a 2D reduction (plane stress or plane strain of a sheet), and this body is 3D: remove it (a 3D "
              "body uses the law's full 3D form)",
              in.formulation.c_str());
+  PetscFunctionReturn(0);
+}
+
+// The force: -force_form, -material_volumetric and the corrections of the bond-only force.
+PetscErrorCode CheckForce(MPI_Comm comm, const SceneInput &in, Scene *scene)
+{
+  const bool three = scene->dimension == 3;
+  PetscFunctionBeginUser;
   std::string form = Lower(in.force_form);
   std::replace(form.begin(), form.end(), '-', '_');
   if (form == "bond_only") scene->force_form = ForceForm::bond_only;
@@ -216,7 +226,14 @@ PetscErrorCode CheckMaterial(MPI_Comm comm, const SceneInput &in, Scene *scene)
   SceneCheck(!(scene->patch_correction != PatchCorrection::off && scene->force_form != ForceForm::bond_only), comm,
              "-force_patch_correction %s corrects the bond-only force only: add -force_form bond_only, or leave the option at auto",
              to_string(scene->patch_correction));
+  PetscFunctionReturn(0);
+}
 
+// -material_D or -material_bulk_ratio (default K = 1000 mu): D.
+PetscErrorCode CheckCompressibility(MPI_Comm comm, const SceneInput &in, Scene *scene)
+{
+  MaterialParameters &m = scene->material;
+  PetscFunctionBeginUser;
   SceneCheck(!(in.D_set && in.bulk_ratio_set), comm,
              "-material_D and -material_bulk_ratio both set the compressibility (D = 2/(bulk_ratio mu)): give only one of them");
   if (in.bulk_ratio_set) {
@@ -238,6 +255,15 @@ PetscErrorCode CheckMaterial(MPI_Comm comm, const SceneInput &in, Scene *scene)
                "-material_mu %g Pa is too large: the compressibility D = 2/(%g mu) it implies underflows to %g; give the shear modulus in "
                "Pa, e.g. -material_mu 4.55e3 (the paper's gel; stiff solids are below 1e12)",
                m.mu, in.bulk_ratio_set ? in.bulk_ratio : 1000.0, m.D);
+  PetscFunctionReturn(0);
+}
+
+// The law's parameters, the density, and the volumetric-locking warning.
+PetscErrorCode CheckLawParameters(MPI_Comm comm, const SceneInput &in, Scene *scene)
+{
+  const MaterialParameters &m     = scene->material;
+  const bool                three = scene->dimension == 3;
+  PetscFunctionBeginUser;
   // -material_mu, the law's own (-material_Jm), -material_D; then whether the law runs in
   // the formulation (the plane-stress solve refuses laws it cannot solve)
   // (3D: the parameters as plane strain checks them, which accepts every law; each has
@@ -257,7 +283,14 @@ PetscErrorCode CheckMaterial(MPI_Comm comm, const SceneInput &in, Scene *scene)
                                 "cent too stiff (+47 to +94 %% at K = 1000 mu, docs/validation_3d.md 7.4); add -material_volumetric point%s",
                                 bulk_ratio, three ? "3D" : "plane strain",
                                 scene->force_form == ForceForm::energy_consistent ? "" : " with the energy-consistent force")));
+  PetscFunctionReturn(0);
+}
 
+// The failure criterion: -failure_critical_stretch or -failure_fracture_energy, and
+// the fracture energy's -failure_tip_concentration and -failure_passes.
+PetscErrorCode CheckFailure(MPI_Comm comm, const SceneInput &in, Scene *scene)
+{
+  PetscFunctionBeginUser;
   scene->failure = in.critical_stretch_set || in.fracture_energy_set;
   SceneCheck(!(in.critical_stretch_set && in.fracture_energy_set), comm,
              "-failure_critical_stretch %g and -failure_fracture_energy %g: give one failure criterion (the critical stretch is "
@@ -283,6 +316,19 @@ PetscErrorCode CheckMaterial(MPI_Comm comm, const SceneInput &in, Scene *scene)
              "-failure_passes %" PetscInt_FMT ": give the most breaking passes a step, >= 1, or 0 (the default) for passes until "
              "no bond meets the criterion",
              scene->failure_passes);
+  PetscFunctionReturn(0);
+}
+
+} // namespace
+
+PetscErrorCode CheckMaterial(MPI_Comm comm, const SceneInput &in, Scene *scene)
+{
+  PetscFunctionBeginUser;
+  PetscCall(CheckLawChoice(comm, in, scene));
+  PetscCall(CheckForce(comm, in, scene));
+  PetscCall(CheckCompressibility(comm, in, scene));
+  PetscCall(CheckLawParameters(comm, in, scene));
+  PetscCall(CheckFailure(comm, in, scene));
   PetscFunctionReturn(0);
 }
 
