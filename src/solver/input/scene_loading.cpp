@@ -31,11 +31,7 @@ const std::vector<SetOption<LoadInput>> &LoadSetOptions()
 {
   using L = LoadInput;
   static const std::vector<SetOption<L>> table = {
-      {"-region",
-       "Points held: top | bottom | left | right (edge layers; 3D: faces, with back | front, or x- | x+ | y- | y+ | z- | "
-       "z+) | box | polygon | curve (points near a polyline) | group (a Gmsh physical group) | block (a block id of "
-       "the point cloud) (required)",
-       &L::region, &L::region_set},
+      {"-region", RegionHelp(), &L::region, &L::region_set}, // (the words of the region registry)
       {"-box", "Region box xmin,ymin,xmax,ymax [m] (3D: xmin,ymin,zmin,xmax,ymax,zmax)", &L::box, &L::box_set},
       {"-points", "Region polygon (closed) or curve (open polyline): vertices x0,y0,x1,y1,... [m]", &L::points, &L::points_set},
       {"-group", "Region group: the name of a physical surface, curve or point of the Gmsh file (3D: also a volume)", &L::group},
@@ -151,7 +147,7 @@ PetscErrorCode CheckRegion(const RegionInput &r, LoadSet *set, EdgeRows *grip_ro
   const LoadInput &li    = r.li;
   const char      *n     = li.name.c_str();
   const bool       three = r.scene.dimension == 3;
-  const char      *choices = three ? kRegionChoices3D : kRegionChoices;
+  const char      *choices = RegionChoices(three);
   PetscFunctionBeginUser;
   SceneCheck(li.region_set, r.comm, "-load_%s_region is required for load set '%s': choose %s%s", n, n, choices,
              MisspeltHint("-load_" + li.name + "_region").c_str());
@@ -160,7 +156,7 @@ PetscErrorCode CheckRegion(const RegionInput &r, LoadSet *set, EdgeRows *grip_ro
   const RegionType &type = region_type(set->region);
   if (three) {
     SceneCheck(type.check3d != nullptr, r.comm, "-load_%s_region %s is a 2D region (a shape in the sheet's plane), and this body is 3D: choose %s",
-               n, to_string(set->region), kRegionChoices3D);
+               n, to_string(set->region), RegionChoices(true));
     PetscCall(CheckOptionsFit(r.comm, li, *set, true));
     PetscCall(CheckInside3D(r.comm, li, r.in));
     set->placement = GripPlacement::inside;
@@ -169,7 +165,7 @@ PetscErrorCode CheckRegion(const RegionInput &r, LoadSet *set, EdgeRows *grip_ro
     SceneCheck(type.check2d != nullptr, r.comm,
                "-load_%s_region %s is a face of a 3D body (z), and this body is a 2D sheet: choose %s (or make the body 3D, "
                "-body_dimension 3)",
-               n, li.region.c_str(), kRegionChoices);
+               n, li.region.c_str(), RegionChoices(false));
     PetscCall(CheckOptionsFit(r.comm, li, *set, false));
     PetscCall(type.check2d(r, set, grip_rows));
   }
