@@ -98,6 +98,26 @@ PetscErrorCode CheckSchedule(MPI_Comm comm, const SceneInput &in, Schedule *sche
   PetscFunctionReturn(0);
 }
 
+// The regions that read a per-set option (RegionType::uses2d or uses3d has `bit`), for
+// the message when another region is given it: "region box", "regions polygon and
+// curve", "edge regions, curve and group" (3D: "the faces and group"); in 3D, when no
+// region reads it there, the 2D ones ("the 2D regions polygon and curve").
+std::string RegionsReading(unsigned bit, bool three)
+{
+  std::vector<std::string> names;
+  bool                     edges = false;
+  for (const RegionType &r : registered_regions()) {
+    if (!((three ? r.uses3d : r.uses2d) & bit) || !(three ? r.check3d != nullptr : r.check2d != nullptr)) continue;
+    if (r.edge) edges = true;
+    else names.push_back(r.word);
+  }
+  if (three && !edges && names.empty()) return "the 2D " + RegionsReading(bit, false);
+  std::string list;
+  for (std::size_t k = 0; k < names.size(); ++k) list += (k == 0 ? "" : k + 1 == names.size() ? " and " : ", ") + names[k];
+  if (edges) return (three ? "the faces" : "edge regions") + (list.empty() ? "" : (names.size() == 1 ? " and " : ", ") + list);
+  return (names.size() == 1 ? "region " : "regions ") + list;
+}
+
 // Each per-set option belongs to some regions (RegionType::uses2d, uses3d); one given
 // to another region is a mistake.
 PetscErrorCode CheckOptionsFit(MPI_Comm comm, const LoadInput &li, const LoadSet &set, bool three)
@@ -109,18 +129,13 @@ PetscErrorCode CheckOptionsFit(MPI_Comm comm, const LoadInput &li, const LoadSet
     bool        given;
     const char *option;
     unsigned    bit;
-    const char *which2d, *which3d; // the regions that read it
-  } options[] = {{li.box_set, "box", uses_box, "region box", "region box"},
-                 {li.points_set, "points", uses_points, "regions polygon and curve", "the 2D regions polygon and curve"},
-                 {!li.group.empty(), "group", uses_group, "region group", "region group"},
-                 {!li.file.empty(), "file", uses_file, "region group", "region group"},
-                 {li.block_set, "block", uses_block, "region block", "region block"},
-                 {li.layers_set, "layers", uses_layers, "edge regions, curve and group", "the faces and group"},
-                 {li.depth_set, "depth", uses_depth, "edge regions, curve and group", "the faces and group"}};
+  } options[] = {{li.box_set, "box", uses_box},       {li.points_set, "points", uses_points}, {!li.group.empty(), "group", uses_group},
+                 {!li.file.empty(), "file", uses_file}, {li.block_set, "block", uses_block},   {li.layers_set, "layers", uses_layers},
+                 {li.depth_set, "depth", uses_depth}};
   PetscFunctionBeginUser;
   for (const auto &o : options)
     SceneCheck(!o.given || (uses & o.bit), comm, "-load_%s_%s is set but -load_%s_region is %s: it is used by %s only; remove it or change the region",
-               n, o.option, n, to_string(set.region), three ? o.which3d : o.which2d);
+               n, o.option, n, to_string(set.region), RegionsReading(o.bit, three).c_str());
   PetscFunctionReturn(0);
 }
 
