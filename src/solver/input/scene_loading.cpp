@@ -371,6 +371,25 @@ PetscErrorCode CheckLoading(MPI_Comm comm, const SceneInput &in, Scene *scene, E
   PetscFunctionReturn(0);
 }
 
+std::string LoadingText(const Scene &s)
+{
+  const bool  three = s.dimension == 3;
+  std::string text;
+  auto        component = [](ComponentLoad c, double scale) {
+    return c == ComponentLoad::stretch ? Format("stretch (scale %g)", scale) : std::string(to_string(c));
+  };
+  for (const LoadSet &l : s.loads)
+    text += Format("  load set  %s: %s; x %s, y %s%s\n", l.name.c_str(), RegionText(s, l).c_str(), component(l.x, l.x_scale).c_str(),
+                   component(l.y, l.y_scale).c_str(), three ? (", z " + component(l.z, l.z_scale)).c_str() : "");
+  if (s.loads.empty()) text += "  load set  none\n";
+  if (!s.schedule.time.empty()) {
+    text += "  schedule  (t, lambda):";
+    for (std::size_t k = 0; k < s.schedule.time.size(); ++k) text += Format(" (%g s, %g)", s.schedule.time[k], s.schedule.stretch[k]);
+    text += Format("; u = scale (lambda - 1) %g m; grip field %s\n", s.reference_length, to_string(s.grip_field));
+  }
+  return text;
+}
+
 int GripRows(double depth, double dx)
 {
   // Row j's centre lies (j + 1/2) dx from the edge; 1e-9: a depth of whole rows given

@@ -321,6 +321,28 @@ PetscErrorCode CheckFailure(MPI_Comm comm, const SceneInput &in, Scene *scene)
 
 } // namespace
 
+std::string MaterialText(const Scene &s)
+{
+  const double K    = 2.0 / s.material.D;
+  std::string  text = Format("  material  %s, %s: mu %g Pa", to_string(s.model), s.dimension == 3 ? "3D" : to_string(s.formulation), s.material.mu);
+  text += parameter_summary(s.model, s.material); // (every law's own: the registry's summary)
+  text += Format(", D %g 1/Pa (bulk modulus K = 2/D = %g Pa = %g mu), density %g kg/m^3\n", s.material.D, K, K / s.material.mu, s.density);
+  text += Format("  force     %s", to_string(s.force_form));
+  if (s.stress_correction != StressCorrection::none) // (absent by default: the summary stays as it was)
+    text += Format(", stress correction %s%s", to_string(s.stress_correction),
+                   s.force_form == ForceForm::energy_consistent ? " (the identity for this form)" : "");
+  if (s.patch_correction != PatchCorrection::off) text += Format(", patch correction %s", to_string(s.patch_correction));
+  if (s.volumetric == Volumetric::point)
+    text += Format(", volumetric energy per point (mean dilatation), stabilisation %g mu", s.volumetric_stabilisation);
+  text += "\n";
+  if (s.failure && s.fracture_energy > 0)
+    text += Format("  failure   bonds break at the critical pair energy of Gamma = %g J/m^2 (tip concentration %g)\n",
+                   s.fracture_energy, s.tip_concentration);
+  else if (s.failure) text += Format("  failure   bonds break past stretch s_c = %g\n", s.critical_stretch);
+  else text += "  failure   none\n";
+  return text;
+}
+
 PetscErrorCode CheckMaterial(MPI_Comm comm, const SceneInput &in, Scene *scene)
 {
   PetscFunctionBeginUser;

@@ -33,6 +33,15 @@ const std::vector<SetOption<ProbeInput>> &ProbeOptions()
 
 } // namespace
 
+std::string ProbesText(const Scene &s)
+{
+  std::string text;
+  for (const Probe &p : s.probes)
+    text += s.dimension == 3 ? Format("  probe     %s at (%g, %g, %g) m\n", p.name.c_str(), p.x, p.y, p.z)
+                             : Format("  probe     %s at (%g, %g) m\n", p.name.c_str(), p.x, p.y);
+  return text;
+}
+
 SetFamily ProbeFamily() { return {"-probe_", "-probes", SetOptionSuffixes(ProbeOptions())}; }
 
 PetscErrorCode ReadProbes(MPI_Comm comm, SceneInput *in)
