@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "fit_error.hpp"
+#include "fit_laws.hpp"
 #include "fit_report.hpp"
 #include "fit_run.hpp"
 #include "bapd/version.hpp"
@@ -30,15 +31,14 @@ namespace {
 
 using namespace bapd::fit;
 
-const char *usage =
+const char *usage_head =
     "usage: bapd-fit [options] [specimen options] [MODE:]FILE ...\n"
     "  FILE              one test: nominal stress against stretch (a 'stretch' column and one named\n"
     "                    ..._stress_Pa or ..._stress_kPa), or a test machine's export of extension and\n"
     "                    force ('Extension (mm)', 'Load (N)', 'Force [kN]', 'Strain (%)', 'Stress (MPa)'...;\n"
     "                    ',' ';' or tab separated, decimal commas read); the test from a\n"
-    "                    '# mode: uniaxial|pure_shear|equibiaxial' line or the MODE: tag\n"
-    "  -law LIST         laws to fit, comma-separated: gent, neo_hookean, mooney_rivlin, yeoh, arruda_boyce,\n"
-    "                    ogden, or all (default gent)\n"
+    "                    '# mode: uniaxial|pure_shear|equibiaxial' line or the MODE: tag\n"; // then -law's (LawUsage)
+const char *usage_tail =
     "  -ogden_terms N    terms of the Ogden law, 1 to 4 (default 2)\n"
     "  -weight W         relative (default: residual / max(|P|, 5 % of the curve's top)) or absolute (Pa)\n"
     "  -output_dir DIR   where the files go (default bapd_fit_output)\n"
@@ -49,6 +49,23 @@ const char *usage =
     "  -fit_gauge_length L    the clamps' separation [m]: stretch = 1 + extension / L\n"
     "  -fit_cross_section A   width x thickness [m^2]: nominal stress = force / A\n"
     "  -fit_width W -fit_thickness T   the same section as two lengths [m]\n";
+
+// -law's lines of the usage: the laws bapd-fit knows (fit_law_names, the law registry's),
+// wrapped at 104 columns as the other lines are.
+std::string LawUsage()
+{
+  std::vector<std::string> words;
+  for (const std::string &name : fit_law_names()) words.push_back(name + ",");
+  for (const char *w : {"or", "all", "(default", "gent)"}) words.push_back(w);
+  std::string text, line = "  -law LIST         laws to fit, comma-separated:";
+  for (const std::string &w : words) {
+    if (line.size() + 1 + w.size() > 104) {
+      text += line + "\n";
+      line = std::string(20, ' ') + w;
+    } else line += " " + w;
+  }
+  return text + line + "\n";
+}
 
 std::vector<std::string> split_commas(const std::string &s)
 {
@@ -103,7 +120,7 @@ int run(int argc, char **argv)
       return argv[++i];
     };
     if (a == "-help" || a == "--help" || a == "-h") {
-      std::cout << usage;
+      std::cout << usage_head << LawUsage() << usage_tail;
       return 0;
     } else if (a == "-version" || a == "--version") {
       std::cout << "bapd-fit " << bapd::VersionText() << "\n";

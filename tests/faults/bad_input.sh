@@ -203,6 +203,9 @@ expect_error shape_cuts_apart "-body_shapes: the body falls apart into 2 pieces"
 expect_error shape_reserved_name "-body_shapes: 'width' is the name of a body option" "$scene" -body_shapes width
 expect_error shape_undeclared "'hole2' is not one of -body_shapes" "$scene" "${sh[@]}" -body_cut_type circle -body_cut_centre 0,0 \
   -body_cut_radius 0.002 -body_hole2_radius 0.001
+# (every option of a shape's table counts, -body_S_discretisation the last of them)
+expect_error shape_undeclared_discretisation "'hole2' is not one of -body_shapes" "$scene" "${sh[@]}" -body_cut_type circle \
+  -body_cut_centre 0,0 -body_cut_radius 0.002 -body_hole2_discretisation centroids
 expect_error mesh_missing_file "-body_cut_file: cannot open 'no_such.geo'" "$scene" "${sh[@]}" -body_cut_type mesh -body_cut_file no_such.geo
 expect_error mesh_device "-body_cut_file: '/dev/zero' is a device" "$scene" "${sh[@]}" -body_cut_type mesh -body_cut_file /dev/zero
 expect_error mesh_tiny_size "-body_cut: the mesh holds no lattice point of the sheet" "$scene" "${sh[@]}" -body_cut_type mesh \
@@ -237,6 +240,13 @@ expect_error curve_selects_nothing "-load_top_points: the curve selects no mater
   -load_top_region curve -load_top_points 0,0.01,0.01,0.01 -load_top_depth 0.0002
 expect_error group_placed_outside "-load_top_placement outside: load set 'top' is a group" "$scene" "${den[@]}" -load_top_region group \
   -load_top_group grip_bottom -load_top_placement outside
+# A negative scale moves a grip against the stretch (the plate's bottom grip, -0.5): two
+# opposite grips pulled together as lambda grows compress the body where the schedule
+# says stretched (the tiny scene's bottom grip is fixed).
+expect_error scale_compresses "-load_top_y_scale -1 (a top grip) and -load_bottom_y fixed (a bottom grip) move the two grips toward each other" \
+  "$scene" -load_top_y_scale -1
+expect_error scale_pushes_lower_grip "-load_top_y_scale 1 (a top grip) and -load_bottom_y_scale 2 (a bottom grip) move the two grips toward each other" \
+  "$scene" -load_bottom_y stretch -load_bottom_y_scale 2
 # Probes by physical point (scene_probes.cpp)
 pp="$source_dir/tests/data/geometry/probe_point.geo"
 ppb=(-body_shapes sq -body_sq_type mesh -body_sq_op intersect -body_sq_file "$pp" -probes p)

@@ -3,13 +3,13 @@
 // pointed at (MisspeltHint). PETSc's own options may go unread.
 #include <algorithm>
 #include <cctype>
-#include <initializer_list>
 #include <string>
 #include <vector>
 
 #include "bapd/solver/input/option_suggest.hpp"
 #include "bapd/solver/input/options.hpp"
 #include "bapd/solver/input/options_reader.hpp"
+#include "bapd/solver/input/scene_input.hpp"
 
 namespace bapd {
 
@@ -33,15 +33,20 @@ bool IsPetscOption(const std::string &name)
   return false;
 }
 
-// "-load_grip_region" when 'grip' is not in -load_sets: the set name, else "".
-std::string UndeclaredName(const std::string &name, const char *head, std::initializer_list<const char *> tails)
+// "grip" for -load_grip_region: the name between a family's head and one of its
+// suffixes (the longest that fits), else "".
+std::string UndeclaredName(const std::string &name, const SetFamily &family)
 {
-  if (name.compare(0, std::char_traits<char>::length(head), head) != 0) return "";
-  for (const char *tail : tails) {
-    const std::size_t lh = std::char_traits<char>::length(head), lt = std::char_traits<char>::length(tail);
-    if (name.size() > lh + lt && name.compare(name.size() - lt, lt, tail) == 0) return name.substr(lh, name.size() - lh - lt);
+  const std::string &head = family.head;
+  if (name.compare(0, head.size(), head) != 0) return "";
+  std::string found;
+  for (const std::string &tail : family.suffixes) {
+    if (name.size() > head.size() + tail.size() && name.compare(name.size() - tail.size(), tail.size(), tail) == 0) {
+      const std::string set = name.substr(head.size(), name.size() - head.size() - tail.size());
+      if (found.empty() || set.size() < found.size()) found = set;
+    }
   }
-  return "";
+  return found;
 }
 
 // A YAML value written as a mapping (dx: {value: 0.001}) reaches PETSc as the option
@@ -65,13 +70,12 @@ std::string NestedKeyHint(const std::string &given, const std::vector<std::strin
 std::string UnusedMessage(const std::string &name)
 {
   const std::string suggestion = SuggestOption(name, KnownOptionNames());
-  const std::string set        = UndeclaredName(Lower(name), "-load_", {"_x_scale", "_y_scale", "_z_scale", "_region", "_box", "_layers", "_depth", "_placement", "_points", "_group", "_file", "_block", "_x", "_y", "_z"});
-  const std::string probe      = UndeclaredName(Lower(name), "-probe_", {"_at", "_group", "_file", "_block"});
-  const std::string shape      = UndeclaredName(Lower(name), "-body_", {"_type", "_op", "_box", "_centre", "_radius", "_radii", "_angle", "_points", "_file", "_axis"});
   std::string       message    = name + " is not a bapd option.";
-  if (!set.empty()) message += " '" + set + "' is not one of -load_sets: add it there, or fix the name.";
-  else if (!probe.empty()) message += " '" + probe + "' is not one of -probes: add it there, or fix the name.";
-  else if (!shape.empty()) message += " '" + shape + "' is not one of -body_shapes: add it there, or fix the name.";
+  for (const SetFamily &family : SetFamilies()) // (the options of a set that -load_sets, -probes or -body_shapes lacks)
+    if (const std::string set = UndeclaredName(Lower(name), family); !set.empty()) {
+      message += " '" + set + "' is not one of " + family.list_option + ": add it there, or fix the name.";
+      break;
+    }
   if (!suggestion.empty()) message += " Did you mean " + suggestion + "?";
   else if (std::string nested = NestedKeyHint(name, KnownOptionNames()); !nested.empty()) {
     nested[0] = 'I'; // "In YAML, ..." starts a sentence here

@@ -8,7 +8,9 @@
 // when the scene is incomplete, and the checks, which need the whole scene (a probe
 // must lie in the body, a stretch grip needs a schedule), see it all at once.
 //
-// Where each part lives (scene_input.hpp lists the sections):
+// Each section is read (Read*) and checked (Check*) by its file, which also writes its
+// lines of SceneText (MaterialText, LoadingText, ProbesText; the body's and the run's
+// are written here). Where each part lives (scene_input.hpp lists the sections):
 //   options_reader.cpp   reading one option, the registry of names, warnings
 //   options_unused.cpp   options nobody read, typo suggestions
 //   scene_body.cpp       the sheet, holes, notches, horizon; the point estimate
@@ -38,6 +40,27 @@ const char *to_string(PatchCorrection c)
   return "unknown";
 }
 
+std::vector<SetFamily> SetFamilies() { return {ShapeFamily(), LoadSetFamily(), ProbeFamily()}; }
+
+namespace {
+
+// -help's note on the options of named sets: listed above for the names given, and
+// here by family (from the sets' option tables), so that a scene without any still
+// shows them.
+std::string SetFamiliesHelp()
+{
+  std::string text = "  Options of named sets, listed above for the names given in -body_shapes, -load_sets and -probes "
+                     "(docs/options.md: Body, Loading, Probes):\n";
+  for (const SetFamily &family : SetFamilies()) {
+    text += "    " + family.head + "NAME_{";
+    for (std::size_t k = 0; k < family.suffixes.size(); ++k) text += (k ? "," : "") + family.suffixes[k].substr(1);
+    text += "}  (NAME in " + family.list_option + ")\n";
+  }
+  return text;
+}
+
+} // namespace
+
 PetscErrorCode SceneFromOptions(MPI_Comm comm, Scene *scene)
 {
   SceneInput in;
@@ -54,8 +77,7 @@ PetscErrorCode SceneFromOptions(MPI_Comm comm, Scene *scene)
   PetscCall(PetscOptionsHasHelp(nullptr, &help));
   if (help) {
     scene->help_only = true;
-    PetscCall(PetscPrintf(comm, "  (per-set options -load_NAME_... and per-probe options -probe_NAME_at are listed for the names given "
-                                "in -load_sets and -probes; see docs/options.md)\n"));
+    PetscCall(PetscPrintf(comm, "%s", SetFamiliesHelp().c_str()));
     PetscFunctionReturn(0);
   }
   PetscCall(CheckBody(comm, in, scene));
@@ -165,45 +187,10 @@ std::string BodyText3D(const Scene &s)
   return text + HorizonText(s, b.given_points != nullptr, "cbrt(V_i)");
 }
 
-} // namespace
-
-std::string SceneText(const Scene &s)
+// The time stepping, static-hold and output lines (scene_run.cpp's options).
+std::string RunText(const Scene &s)
 {
-  const bool  three = s.dimension == 3;
-  std::string text  = "Scene\n"; // built with the C library's printf (see SceneCheck), printed once by SceneView
-  text += three ? BodyText3D(s) : BodyText2D(s);
-  const double K = 2.0 / s.material.D;
-  text += Format("  material  %s, %s: mu %g Pa", to_string(s.model), three ? "3D" : to_string(s.formulation), s.material.mu);
-  text += parameter_summary(s.model, s.material);
-  text += Format(", D %g 1/Pa (bulk modulus K = 2/D = %g Pa = %g mu), density %g kg/m^3\n", s.material.D, K, K / s.material.mu, s.density);
-  text += Format("  force     %s", to_string(s.force_form));
-  if (s.stress_correction != StressCorrection::none) // (absent by default: the summary stays as it was)
-    text += Format(", stress correction %s%s", to_string(s.stress_correction),
-                   s.force_form == ForceForm::energy_consistent ? " (the identity for this form)" : "");
-  if (s.patch_correction != PatchCorrection::off) text += Format(", patch correction %s", to_string(s.patch_correction));
-  if (s.volumetric == Volumetric::point)
-    text += Format(", volumetric energy per point (mean dilatation), stabilisation %g mu", s.volumetric_stabilisation);
-  text += "\n";
-  if (s.failure && s.fracture_energy > 0)
-    text += Format("  failure   bonds break at the critical pair energy of Gamma = %g J/m^2 (tip concentration %g)\n",
-                   s.fracture_energy, s.tip_concentration);
-  else if (s.failure) text += Format("  failure   bonds break past stretch s_c = %g\n", s.critical_stretch);
-  else text += "  failure   none\n";
-  auto component = [](ComponentLoad c, double scale) {
-    return c == ComponentLoad::stretch ? Format("stretch (scale %g)", scale) : std::string(to_string(c));
-  };
-  for (const LoadSet &l : s.loads)
-    text += Format("  load set  %s: %s; x %s, y %s%s\n", l.name.c_str(), RegionText(s, l).c_str(), component(l.x, l.x_scale).c_str(),
-                   component(l.y, l.y_scale).c_str(), three ? (", z " + component(l.z, l.z_scale)).c_str() : "");
-  if (s.loads.empty()) text += "  load set  none\n";
-  if (!s.schedule.time.empty()) {
-    text += "  schedule  (t, lambda):";
-    for (std::size_t k = 0; k < s.schedule.time.size(); ++k) text += Format(" (%g s, %g)", s.schedule.time[k], s.schedule.stretch[k]);
-    text += Format("; u = scale (lambda - 1) %g m; grip field %s\n", s.reference_length, to_string(s.grip_field));
-  }
-  for (const Probe &p : s.probes)
-    text += three ? Format("  probe     %s at (%g, %g, %g) m\n", p.name.c_str(), p.x, p.y, p.z)
-                  : Format("  probe     %s at (%g, %g) m\n", p.name.c_str(), p.x, p.y);
+  std::string text;
   if (s.time_step > 0) text += Format("  time      step %g s", s.time_step);
   else text += Format("  time      step %g x the stable step", s.time_step_safety);
   if (s.time_step_travel > 0) text += Format(" (shorter while a point with bonds would move > %g dx a step)", s.time_step_travel);
@@ -216,8 +203,18 @@ std::string SceneText(const Scene &s)
                    (long)s.output_interval);
   text += Format("  output    %s/, history every %ld steps", s.output_dir.c_str(), (long)s.output_interval);
   if (s.output_history_rows > 0) text += Format(" and at each 1/%ld of the end time", (long)s.output_history_rows);
-  text += "\n";
-  return text;
+  return text + "\n";
+}
+
+} // namespace
+
+std::string SceneText(const Scene &s)
+{
+  // built with the C library's printf (see SceneCheck), printed once by SceneView; each
+  // section's lines from the section (scene_input.hpp)
+  std::string text = "Scene\n";
+  text += s.dimension == 3 ? BodyText3D(s) : BodyText2D(s);
+  return text + MaterialText(s) + LoadingText(s) + ProbesText(s) + RunText(s);
 }
 
 PetscErrorCode SceneView(MPI_Comm comm, const Scene &s)

@@ -259,6 +259,47 @@ PetscErrorCode CheckHorizonFactor(MPI_Comm comm, const Scene &scene)
   PetscFunctionReturn(0);
 }
 
+namespace {
+
+// One shape's options (-body_NAME_...), in -help's order.
+const std::vector<SetOption<ShapeInput>> &ShapeOptions()
+{
+  using S = ShapeInput;
+  static const std::vector<SetOption<S>> table = {
+      {"-type",
+       "rectangle | circle | ellipse | polygon | mesh (a Gmsh file); 3D: box | cylinder | sphere | mesh (a Gmsh "
+       "volume) | notch (a planar polygon) (required)",
+       &S::type, &S::type_set},
+      {"-op",
+       "What it does to the body so far: subtract | add (within the sheet) | intersect (default subtract; 3D: add "
+       "for the first solid, which starts the body, subtract after it)",
+       &S::op, &S::op_set},
+      {"-box", "Rectangle xmin,ymin,xmax,ymax [m]; 3D box xmin,ymin,zmin,xmax,ymax,zmax [m]", &S::box},
+      {"-centre", "Circle or ellipse centre x,y [m]; 3D sphere x,y,z [m]", &S::centre},
+      {"-radius", "Circle, 3D sphere or cylinder radius [m]", &S::radius, &S::radius_set},
+      {"-axis", "3D cylinder: its axis's end points (the end caps' centres) x0,y0,z0,x1,y1,z1 [m]", &S::axis},
+      {"-radii", "Ellipse semi-axes a,b [m] (a along -angle)", &S::radii},
+      {"-angle", "Ellipse: angle of the a axis from x [degrees]", &S::angle},
+      {"-points",
+       "Polygon vertices x0,y0,x1,y1,... [m] (closed: the last joins the first); 3D notch: x0,y0,z0,x1,y1,z1,... in "
+       "one plane",
+       &S::points},
+      {"-file",
+       "Mesh: a Gmsh .geo (meshed in 2D) or .msh file whose 2D elements are the shape [m]; 3D: a .geo with a volume "
+       "(meshed in 3D) or a .msh of tetrahedra",
+       &S::file},
+      {"-discretisation",
+       "Mesh: lattice (the lattice clipped to the mesh) | centroids (one point per 2D element, volume = area x "
+       "thickness; 3D: per tetrahedron, volume = its volume)",
+       &S::discretisation},
+  };
+  return table;
+}
+
+} // namespace
+
+SetFamily ShapeFamily() { return {"-body_", "-body_shapes", SetOptionSuffixes(ShapeOptions())}; }
+
 PetscErrorCode ReadBody(MPI_Comm comm, Scene *scene, SceneInput *in)
 {
   Body2D     &b = scene->body;
@@ -287,35 +328,7 @@ PetscErrorCode ReadBody(MPI_Comm comm, Scene *scene, SceneInput *in)
     ShapeInput        shape;
     const std::string prefix = "body_" + name + "_", title = "Shape " + name;
     shape.name               = name;
-    PetscCall(ReadOptionBlock(comm, prefix.c_str(), title.c_str(), [&](OptionReader &r) -> PetscErrorCode {
-      PetscCall(r.String("-type",
-                         "rectangle | circle | ellipse | polygon | mesh (a Gmsh file); 3D: box | cylinder | sphere | mesh (a Gmsh "
-                         "volume) | notch (a planar polygon) (required)",
-                         &shape.type, &shape.type_set));
-      PetscCall(r.String("-op",
-                         "What it does to the body so far: subtract | add (within the sheet) | intersect (default subtract; 3D: add "
-                         "for the first solid, which starts the body, subtract after it)",
-                         &shape.op, &shape.op_set));
-      PetscCall(r.RealArray("-box", "Rectangle xmin,ymin,xmax,ymax [m]; 3D box xmin,ymin,zmin,xmax,ymax,zmax [m]", &shape.box));
-      PetscCall(r.RealArray("-centre", "Circle or ellipse centre x,y [m]; 3D sphere x,y,z [m]", &shape.centre));
-      PetscCall(r.Real("-radius", "Circle, 3D sphere or cylinder radius [m]", &shape.radius, &shape.radius_set));
-      PetscCall(r.RealArray("-axis", "3D cylinder: its axis's end points (the end caps' centres) x0,y0,z0,x1,y1,z1 [m]", &shape.axis));
-      PetscCall(r.RealArray("-radii", "Ellipse semi-axes a,b [m] (a along -angle)", &shape.radii));
-      PetscCall(r.Real("-angle", "Ellipse: angle of the a axis from x [degrees]", &shape.angle));
-      PetscCall(r.RealArray("-points",
-                            "Polygon vertices x0,y0,x1,y1,... [m] (closed: the last joins the first); 3D notch: x0,y0,z0,x1,y1,z1,... in "
-                            "one plane",
-                            &shape.points));
-      PetscCall(r.String("-file",
-                         "Mesh: a Gmsh .geo (meshed in 2D) or .msh file whose 2D elements are the shape [m]; 3D: a .geo with a volume "
-                         "(meshed in 3D) or a .msh of tetrahedra",
-                         &shape.file));
-      PetscCall(r.String("-discretisation",
-                         "Mesh: lattice (the lattice clipped to the mesh) | centroids (one point per 2D element, volume = area x "
-                         "thickness; 3D: per tetrahedron, volume = its volume)",
-                         &shape.discretisation));
-      return 0;
-    }));
+    PetscCall(ReadOptionBlock(comm, prefix.c_str(), title.c_str(), [&](OptionReader &r) { return ReadSetOptions(r, ShapeOptions(), &shape); }));
     in->shapes.push_back(shape);
   }
 

@@ -26,44 +26,46 @@ bool ParseComponent(const std::string &text, ComponentLoad *load)
   return true;
 }
 
-// One load set's options (-load_NAME_...).
+// One load set's options (-load_NAME_...), in -help's order.
+const std::vector<SetOption<LoadInput>> &LoadSetOptions()
+{
+  using L = LoadInput;
+  static const std::vector<SetOption<L>> table = {
+      {"-region", RegionHelp(), &L::region, &L::region_set}, // (the words of the region registry)
+      {"-box", "Region box xmin,ymin,xmax,ymax [m] (3D: xmin,ymin,zmin,xmax,ymax,zmax)", &L::box, &L::box_set},
+      {"-points", "Region polygon (closed) or curve (open polyline): vertices x0,y0,x1,y1,... [m]", &L::points, &L::points_set},
+      {"-group", "Region group: the name of a physical surface, curve or point of the Gmsh file (3D: also a volume)", &L::group},
+      {"-file", "Region group: the Gmsh .geo or .msh file (default: the body's mesh shape's file; 3D: its mesh solid's)", &L::file},
+      {"-block", "Region block: the block id (-body_cloud's block_id column) whose points the set holds", &L::block, &L::block_set},
+      {"-placement",
+       "outside (beyond the specimen's edge) | inside (the specimen's edge rows) | auto (-load_grip_placement's); edge "
+       "regions (the others are inside)",
+       &L::placement},
+      {"-layers",
+       "Point rows the grip holds at its edge [-] (default: 2 horizons deep outside, 1 inside); curve and group "
+       "curve/point (3D: also surface): the points closer than layers x dx",
+       &L::layers, &L::layers_set},
+      {"-depth",
+       "Grip depth instead of -layers: the rows whose centres lie within it [m] (default outside: 2 horizons); curve "
+       "and group curve/point (3D: also surface): the points closer than it (default dx)",
+       &L::depth, &L::depth_set},
+      {"-x", "x component: free | fixed (u = 0) | stretch (follows the schedule)", &L::x},
+      {"-y", "y component: free | fixed (u = 0) | stretch (follows the schedule)", &L::y},
+      {"-z", "z component (3D bodies): free | fixed (u = 0) | stretch (follows the schedule)", &L::z},
+      {"-x_scale", "Scale of a stretch x component: u = scale (lambda - 1) L [-]", &L::x_scale, &L::x_scale_set},
+      {"-y_scale", "Scale of a stretch y component: u = scale (lambda - 1) L [-]", &L::y_scale, &L::y_scale_set},
+      {"-z_scale", "Scale of a stretch z component (3D bodies): u = scale (lambda - 1) L [-]", &L::z_scale, &L::z_scale_set},
+  };
+  return table;
+}
+
 PetscErrorCode ReadLoadSet(MPI_Comm comm, const std::string &name, LoadInput *set)
 {
   const std::string prefix = "load_" + name + "_";
   const std::string title  = "Load set " + name;
   PetscFunctionBeginUser;
   set->name = name;
-  PetscCall(ReadOptionBlock(comm, prefix.c_str(), title.c_str(), [&](OptionReader &r) -> PetscErrorCode {
-    PetscCall(r.String("-region",
-                       "Points held: top | bottom | left | right (edge layers; 3D: faces, with back | front, or x- | x+ | y- | y+ | z- | "
-                       "z+) | box | polygon | curve (points near a polyline) | group (a Gmsh physical group) | block (a block id of "
-                       "the point cloud) (required)",
-                       &set->region, &set->region_set));
-    PetscCall(r.RealArray("-box", "Region box xmin,ymin,xmax,ymax [m] (3D: xmin,ymin,zmin,xmax,ymax,zmax)", &set->box, &set->box_set));
-    PetscCall(r.RealArray("-points", "Region polygon (closed) or curve (open polyline): vertices x0,y0,x1,y1,... [m]", &set->points,
-                          &set->points_set));
-    PetscCall(r.String("-group", "Region group: the name of a physical surface, curve or point of the Gmsh file (3D: also a volume)", &set->group));
-    PetscCall(r.String("-file", "Region group: the Gmsh .geo or .msh file (default: the body's mesh shape's file; 3D: its mesh solid's)", &set->file));
-    PetscCall(r.Int("-block", "Region block: the block id (-body_cloud's block_id column) whose points the set holds", &set->block, &set->block_set));
-    PetscCall(r.String("-placement", "outside (beyond the specimen's edge) | inside (the specimen's edge rows) | auto (-load_grip_placement's); edge "
-                       "regions (the others are inside)",
-                       &set->placement));
-    PetscCall(r.Int("-layers",
-                    "Point rows the grip holds at its edge [-] (default: 2 horizons deep outside, 1 inside); curve and group "
-                    "curve/point (3D: also surface): the points closer than layers x dx",
-                    &set->layers, &set->layers_set));
-    PetscCall(r.Real("-depth",
-                     "Grip depth instead of -layers: the rows whose centres lie within it [m] (default outside: 2 horizons); curve "
-                     "and group curve/point (3D: also surface): the points closer than it (default dx)",
-                     &set->depth, &set->depth_set));
-    PetscCall(r.String("-x", "x component: free | fixed (u = 0) | stretch (follows the schedule)", &set->x));
-    PetscCall(r.String("-y", "y component: free | fixed (u = 0) | stretch (follows the schedule)", &set->y));
-    PetscCall(r.String("-z", "z component (3D bodies): free | fixed (u = 0) | stretch (follows the schedule)", &set->z));
-    PetscCall(r.Real("-x_scale", "Scale of a stretch x component: u = scale (lambda - 1) L [-]", &set->x_scale, &set->x_scale_set));
-    PetscCall(r.Real("-y_scale", "Scale of a stretch y component: u = scale (lambda - 1) L [-]", &set->y_scale, &set->y_scale_set));
-    PetscCall(r.Real("-z_scale", "Scale of a stretch z component (3D bodies): u = scale (lambda - 1) L [-]", &set->z_scale, &set->z_scale_set));
-    return 0;
-  }));
+  PetscCall(ReadOptionBlock(comm, prefix.c_str(), title.c_str(), [&](OptionReader &r) { return ReadSetOptions(r, LoadSetOptions(), set); }));
   PetscFunctionReturn(0);
 }
 
@@ -96,6 +98,26 @@ PetscErrorCode CheckSchedule(MPI_Comm comm, const SceneInput &in, Schedule *sche
   PetscFunctionReturn(0);
 }
 
+// The regions that read a per-set option (RegionType::uses2d or uses3d has `bit`), for
+// the message when another region is given it: "region box", "regions polygon and
+// curve", "edge regions, curve and group" (3D: "the faces and group"); in 3D, when no
+// region reads it there, the 2D ones ("the 2D regions polygon and curve").
+std::string RegionsReading(unsigned bit, bool three)
+{
+  std::vector<std::string> names;
+  bool                     edges = false;
+  for (const RegionType &r : registered_regions()) {
+    if (!((three ? r.uses3d : r.uses2d) & bit) || !(three ? r.check3d != nullptr : r.check2d != nullptr)) continue;
+    if (r.edge) edges = true;
+    else names.push_back(r.word);
+  }
+  if (three && !edges && names.empty()) return "the 2D " + RegionsReading(bit, false);
+  std::string list;
+  for (std::size_t k = 0; k < names.size(); ++k) list += (k == 0 ? "" : k + 1 == names.size() ? " and " : ", ") + names[k];
+  if (edges) return (three ? "the faces" : "edge regions") + (list.empty() ? "" : (names.size() == 1 ? " and " : ", ") + list);
+  return (names.size() == 1 ? "region " : "regions ") + list;
+}
+
 // Each per-set option belongs to some regions (RegionType::uses2d, uses3d); one given
 // to another region is a mistake.
 PetscErrorCode CheckOptionsFit(MPI_Comm comm, const LoadInput &li, const LoadSet &set, bool three)
@@ -107,18 +129,13 @@ PetscErrorCode CheckOptionsFit(MPI_Comm comm, const LoadInput &li, const LoadSet
     bool        given;
     const char *option;
     unsigned    bit;
-    const char *which2d, *which3d; // the regions that read it
-  } options[] = {{li.box_set, "box", uses_box, "region box", "region box"},
-                 {li.points_set, "points", uses_points, "regions polygon and curve", "the 2D regions polygon and curve"},
-                 {!li.group.empty(), "group", uses_group, "region group", "region group"},
-                 {!li.file.empty(), "file", uses_file, "region group", "region group"},
-                 {li.block_set, "block", uses_block, "region block", "region block"},
-                 {li.layers_set, "layers", uses_layers, "edge regions, curve and group", "the faces and group"},
-                 {li.depth_set, "depth", uses_depth, "edge regions, curve and group", "the faces and group"}};
+  } options[] = {{li.box_set, "box", uses_box},       {li.points_set, "points", uses_points}, {!li.group.empty(), "group", uses_group},
+                 {!li.file.empty(), "file", uses_file}, {li.block_set, "block", uses_block},   {li.layers_set, "layers", uses_layers},
+                 {li.depth_set, "depth", uses_depth}};
   PetscFunctionBeginUser;
   for (const auto &o : options)
     SceneCheck(!o.given || (uses & o.bit), comm, "-load_%s_%s is set but -load_%s_region is %s: it is used by %s only; remove it or change the region",
-               n, o.option, n, to_string(set.region), three ? o.which3d : o.which2d);
+               n, o.option, n, to_string(set.region), RegionsReading(o.bit, three).c_str());
   PetscFunctionReturn(0);
 }
 
@@ -145,7 +162,7 @@ PetscErrorCode CheckRegion(const RegionInput &r, LoadSet *set, EdgeRows *grip_ro
   const LoadInput &li    = r.li;
   const char      *n     = li.name.c_str();
   const bool       three = r.scene.dimension == 3;
-  const char      *choices = three ? kRegionChoices3D : kRegionChoices;
+  const char      *choices = RegionChoices(three);
   PetscFunctionBeginUser;
   SceneCheck(li.region_set, r.comm, "-load_%s_region is required for load set '%s': choose %s%s", n, n, choices,
              MisspeltHint("-load_" + li.name + "_region").c_str());
@@ -154,7 +171,7 @@ PetscErrorCode CheckRegion(const RegionInput &r, LoadSet *set, EdgeRows *grip_ro
   const RegionType &type = region_type(set->region);
   if (three) {
     SceneCheck(type.check3d != nullptr, r.comm, "-load_%s_region %s is a 2D region (a shape in the sheet's plane), and this body is 3D: choose %s",
-               n, to_string(set->region), kRegionChoices3D);
+               n, to_string(set->region), RegionChoices(true));
     PetscCall(CheckOptionsFit(r.comm, li, *set, true));
     PetscCall(CheckInside3D(r.comm, li, r.in));
     set->placement = GripPlacement::inside;
@@ -163,7 +180,7 @@ PetscErrorCode CheckRegion(const RegionInput &r, LoadSet *set, EdgeRows *grip_ro
     SceneCheck(type.check2d != nullptr, r.comm,
                "-load_%s_region %s is a face of a 3D body (z), and this body is a 2D sheet: choose %s (or make the body 3D, "
                "-body_dimension 3)",
-               n, li.region.c_str(), kRegionChoices);
+               n, li.region.c_str(), RegionChoices(false));
     PetscCall(CheckOptionsFit(r.comm, li, *set, false));
     PetscCall(type.check2d(r, set, grip_rows));
   }
@@ -212,6 +229,46 @@ PetscErrorCode CheckComponents(MPI_Comm comm, const LoadInput &li, const Scene &
   PetscFunctionReturn(0);
 }
 
+// A stretch component moves by u = scale (lambda - 1) L; a negative scale moves it
+// against lambda - 1 (the bottom grip of a symmetric pull: -0.5, with 0.5 at the top).
+// Two grips on opposite edges (faces) that hold the same component then move apart by
+// (s_upper - s_lower) (lambda - 1) L (a fixed one: scale 0), so lambda is their stretch.
+// A negative difference pulls them together as lambda grows: the body is compressed
+// while the schedule says stretched (and a long schedule makes them cross), so lambda no
+// longer says what the grips do. Refused, naming both settings; a compression is a
+// schedule with stretches below 1.
+PetscErrorCode CheckGripsSeparate(MPI_Comm comm, const Scene &scene)
+{
+  using Region = LoadSet::Region;
+  static const Region lower[] = {Region::left, Region::bottom, Region::back}, upper[] = {Region::right, Region::top, Region::front};
+  auto scale = [](const LoadSet &l, int c) { return c == 0 ? l.x_scale : c == 1 ? l.y_scale : l.z_scale; };
+  // "-load_top_y_scale -1" or "-load_bottom_y fixed"
+  auto setting = [&](const LoadSet &l, int c) {
+    const char axis = "xyz"[c];
+    return l.component(c) == ComponentLoad::stretch ? Format("-load_%s_%c_scale %g", l.name.c_str(), axis, scale(l, c))
+                                                    : Format("-load_%s_%c fixed", l.name.c_str(), axis);
+  };
+  PetscFunctionBeginUser;
+  for (int c = 0; c < scene.dimension; ++c)
+    for (const LoadSet &lo : scene.loads) {
+      if (lo.region != lower[c] || lo.component(c) == ComponentLoad::free) continue;
+      for (const LoadSet &up : scene.loads) {
+        if (up.region != upper[c] || up.component(c) == ComponentLoad::free) continue;
+        const double s_lo = lo.component(c) == ComponentLoad::stretch ? scale(lo, c) : 0.0;
+        const double s_up = up.component(c) == ComponentLoad::stretch ? scale(up, c) : 0.0;
+        const char   axis = "xyz"[c];
+        SceneCheck(s_up - s_lo >= 0.0, comm,
+                   "%s (a %s grip) and %s (a %s grip) move the two grips toward each other as the schedule's stretch grows: their "
+                   "separation changes by (%g) (lambda - 1) L, so the body is compressed where -load_schedule says stretched. A negative "
+                   "scale moves a grip against the stretch (the %s grip of a symmetric pull: -load_%s_%c_scale -0.5 with "
+                   "-load_%s_%c_scale 0.5): fix the sign, or for a compression give -load_schedule stretches below 1 with positive scales",
+                   setting(up, c).c_str(), to_string(up.region), setting(lo, c).c_str(), to_string(lo.region), s_up - s_lo,
+                   to_string(lo.region), lo.name.c_str(), axis, up.name.c_str(), axis);
+      }
+    }
+  PetscFunctionReturn(0);
+}
+
 // -load_grip_field: how the top and bottom grips move y (GripField), from the sets
 // that hold y at the top and bottom edges, and elsewhere.
 PetscErrorCode CheckGripField(MPI_Comm comm, const SceneInput &in, Scene *scene)
@@ -250,6 +307,8 @@ PetscErrorCode CheckGripField(MPI_Comm comm, const SceneInput &in, Scene *scene)
 }
 
 } // namespace
+
+SetFamily LoadSetFamily() { return {"-load_", "-load_sets", SetOptionSuffixes(LoadSetOptions())}; }
 
 PetscErrorCode ReadLoading(MPI_Comm comm, Scene *scene, SceneInput *in)
 {
@@ -307,8 +366,28 @@ PetscErrorCode CheckLoading(MPI_Comm comm, const SceneInput &in, Scene *scene, E
     PetscCall(CheckComponents(comm, li, *scene, &set));
     scene->loads.push_back(set);
   }
+  PetscCall(CheckGripsSeparate(comm, *scene));
   PetscCall(CheckGripField(comm, in, scene));
   PetscFunctionReturn(0);
+}
+
+std::string LoadingText(const Scene &s)
+{
+  const bool  three = s.dimension == 3;
+  std::string text;
+  auto        component = [](ComponentLoad c, double scale) {
+    return c == ComponentLoad::stretch ? Format("stretch (scale %g)", scale) : std::string(to_string(c));
+  };
+  for (const LoadSet &l : s.loads)
+    text += Format("  load set  %s: %s; x %s, y %s%s\n", l.name.c_str(), RegionText(s, l).c_str(), component(l.x, l.x_scale).c_str(),
+                   component(l.y, l.y_scale).c_str(), three ? (", z " + component(l.z, l.z_scale)).c_str() : "");
+  if (s.loads.empty()) text += "  load set  none\n";
+  if (!s.schedule.time.empty()) {
+    text += "  schedule  (t, lambda):";
+    for (std::size_t k = 0; k < s.schedule.time.size(); ++k) text += Format(" (%g s, %g)", s.schedule.time[k], s.schedule.stretch[k]);
+    text += Format("; u = scale (lambda - 1) %g m; grip field %s\n", s.reference_length, to_string(s.grip_field));
+  }
+  return text;
 }
 
 int GripRows(double depth, double dx)

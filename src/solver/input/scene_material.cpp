@@ -41,6 +41,32 @@ std::string ModelChoices()
   return text;
 }
 
+// A scene may carry the parameters of several laws (one file for a study that switches
+// -material_model on the command line), and those of the laws it does not use are read
+// and ignored: unchecked, they change nothing. One warning names them and the law in use,
+// so that a parameter meant for the run (-material_lambda_m on a Gent scene, the law left
+// at its default) is not ignored silently.
+PetscErrorCode WarnOtherLawsOptions(MPI_Comm comm, const SceneInput &in, ModelKind model)
+{
+  std::string ignored;
+  std::size_t count = 0;
+  PetscFunctionBeginUser;
+  for (const LawEntry &law : registered_laws()) {
+    if (law.kind == model) continue;
+    for (const LawOptionEntry &o : law.options)
+      if (std::find(in.law_options_given.begin(), in.law_options_given.end(), o.name) != in.law_options_given.end()) {
+        ignored += Format("%s%s (%s)", ignored.empty() ? "" : ", ", o.name, law.name);
+        ++count;
+      }
+  }
+  if (count == 0) PetscFunctionReturn(0);
+  PetscCall(Warn(comm, Format("%s %s this scene does not use: the law is %s (-material_model), which ignores %s; remove %s, "
+                              "or choose %s law with -material_model",
+                              ignored.c_str(), count == 1 ? "is a parameter of a law" : "are parameters of laws", law_entry(model).name,
+                              count == 1 ? "it" : "them", count == 1 ? "it" : "them", count == 1 ? "its" : "their")));
+  PetscFunctionReturn(0);
+}
+
 } // namespace
 
 PetscErrorCode ReadMaterial(MPI_Comm comm, Scene *scene, SceneInput *in)
@@ -81,9 +107,15 @@ PetscErrorCode ReadMaterial(MPI_Comm comm, Scene *scene, SceneInput *in)
                        &in->patch_correction));
     PetscCall(r.Real("-material_mu", "Shear modulus mu [Pa] (paper: 4.55e3)", &m.mu));
     // every law's own parameters (defaults: the members' initialisers), listed for all
-    // laws so that -help shows them and a file may carry them whatever the model
+    // laws so that -help shows them and a file may carry them whatever the model (those
+    // of a law the scene does not use draw a warning: WarnOtherLawsOptions)
+    in->law_options_given.clear(); // (PETSc may run the block more than once)
     for (const LawEntry &law : registered_laws())
-      for (const LawOptionEntry &o : law.options) PetscCall(r.Real(o.name, o.help, &m.values[o.index]));
+      for (const LawOptionEntry &o : law.options) {
+        bool given = false;
+        PetscCall(r.Real(o.name, o.help, &m.values[o.index], &given));
+        if (given) in->law_options_given.push_back(o.name);
+      }
     // Default compressibility: bulk modulus K = 2/D = 1000 mu (docs/method.md section 4:
     // the paper gives no D). K = 100 mu already softens the pure-shear curve by 7 %
     // at stretch 5.125 (the sheet thins less); 1000 mu keeps it within 1 %, and in
@@ -118,9 +150,11 @@ PetscErrorCode ReadMaterial(MPI_Comm comm, Scene *scene, SceneInput *in)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode CheckMaterial(MPI_Comm comm, const SceneInput &in, Scene *scene)
+namespace {
+
+// -material_model and -material_formulation (none in 3D).
+PetscErrorCode CheckLawChoice(MPI_Comm comm, const SceneInput &in, Scene *scene)
 {
-  MaterialParameters &m = scene->material;
   PetscFunctionBeginUser;
   std::string model = Lower(in.model);
   std::replace(model.begin(), model.end(), '-', '_'); // "neo-hookean" as the paper writes it
@@ -135,6 +169,14 @@ PetscErrorCode CheckMaterial(MPI_Comm comm, const SceneInput &in, Scene *scene)
              "-material_formulation %s is a 2D reduction (plane stress or plane strain of a sheet), and this body is 3D: remove it (a 3D "
              "body uses the law's full 3D form)",
              in.formulation.c_str());
+  PetscFunctionReturn(0);
+}
+
+// The force: -force_form, -material_volumetric and the corrections of the bond-only force.
+PetscErrorCode CheckForce(MPI_Comm comm, const SceneInput &in, Scene *scene)
+{
+  const bool three = scene->dimension == 3;
+  PetscFunctionBeginUser;
   std::string form = Lower(in.force_form);
   std::replace(form.begin(), form.end(), '-', '_');
   if (form == "bond_only") scene->force_form = ForceForm::bond_only;
@@ -184,7 +226,14 @@ PetscErrorCode CheckMaterial(MPI_Comm comm, const SceneInput &in, Scene *scene)
   SceneCheck(!(scene->patch_correction != PatchCorrection::off && scene->force_form != ForceForm::bond_only), comm,
              "-force_patch_correction %s corrects the bond-only force only: add -force_form bond_only, or leave the option at auto",
              to_string(scene->patch_correction));
+  PetscFunctionReturn(0);
+}
 
+// -material_D or -material_bulk_ratio (default K = 1000 mu): D.
+PetscErrorCode CheckCompressibility(MPI_Comm comm, const SceneInput &in, Scene *scene)
+{
+  MaterialParameters &m = scene->material;
+  PetscFunctionBeginUser;
   SceneCheck(!(in.D_set && in.bulk_ratio_set), comm,
              "-material_D and -material_bulk_ratio both set the compressibility (D = 2/(bulk_ratio mu)): give only one of them");
   if (in.bulk_ratio_set) {
@@ -206,6 +255,15 @@ PetscErrorCode CheckMaterial(MPI_Comm comm, const SceneInput &in, Scene *scene)
                "-material_mu %g Pa is too large: the compressibility D = 2/(%g mu) it implies underflows to %g; give the shear modulus in "
                "Pa, e.g. -material_mu 4.55e3 (the paper's gel; stiff solids are below 1e12)",
                m.mu, in.bulk_ratio_set ? in.bulk_ratio : 1000.0, m.D);
+  PetscFunctionReturn(0);
+}
+
+// The law's parameters, the density, and the volumetric-locking warning.
+PetscErrorCode CheckLawParameters(MPI_Comm comm, const SceneInput &in, Scene *scene)
+{
+  const MaterialParameters &m     = scene->material;
+  const bool                three = scene->dimension == 3;
+  PetscFunctionBeginUser;
   // -material_mu, the law's own (-material_Jm), -material_D; then whether the law runs in
   // the formulation (the plane-stress solve refuses laws it cannot solve)
   // (3D: the parameters as plane strain checks them, which accepts every law; each has
@@ -213,6 +271,7 @@ PetscErrorCode CheckMaterial(MPI_Comm comm, const SceneInput &in, Scene *scene)
   std::string problems = check_model(scene->model, three ? Formulation::plane_strain : scene->formulation, m);
   if (!problems.empty() && problems.back() == '\n') problems.pop_back();
   PetscCheck(problems.empty(), comm, PETSC_ERR_USER, "%s", problems.c_str());
+  PetscCall(WarnOtherLawsOptions(comm, in, scene->model));
   SceneCheck(scene->density > 0, comm, "-material_density %g: the density must be > 0 kg/m^3 (a hydrogel: about 1000)",
              scene->density);
   // Volumetric locking (docs/validation_3d.md 7.4): with U(J_ij) per bond a nearly
@@ -224,7 +283,14 @@ PetscErrorCode CheckMaterial(MPI_Comm comm, const SceneInput &in, Scene *scene)
                                 "cent too stiff (+47 to +94 %% at K = 1000 mu, docs/validation_3d.md 7.4); add -material_volumetric point%s",
                                 bulk_ratio, three ? "3D" : "plane strain",
                                 scene->force_form == ForceForm::energy_consistent ? "" : " with the energy-consistent force")));
+  PetscFunctionReturn(0);
+}
 
+// The failure criterion: -failure_critical_stretch or -failure_fracture_energy, and
+// the fracture energy's -failure_tip_concentration and -failure_passes.
+PetscErrorCode CheckFailure(MPI_Comm comm, const SceneInput &in, Scene *scene)
+{
+  PetscFunctionBeginUser;
   scene->failure = in.critical_stretch_set || in.fracture_energy_set;
   SceneCheck(!(in.critical_stretch_set && in.fracture_energy_set), comm,
              "-failure_critical_stretch %g and -failure_fracture_energy %g: give one failure criterion (the critical stretch is "
@@ -250,6 +316,41 @@ PetscErrorCode CheckMaterial(MPI_Comm comm, const SceneInput &in, Scene *scene)
              "-failure_passes %" PetscInt_FMT ": give the most breaking passes a step, >= 1, or 0 (the default) for passes until "
              "no bond meets the criterion",
              scene->failure_passes);
+  PetscFunctionReturn(0);
+}
+
+} // namespace
+
+std::string MaterialText(const Scene &s)
+{
+  const double K    = 2.0 / s.material.D;
+  std::string  text = Format("  material  %s, %s: mu %g Pa", to_string(s.model), s.dimension == 3 ? "3D" : to_string(s.formulation), s.material.mu);
+  text += parameter_summary(s.model, s.material); // (every law's own: the registry's summary)
+  text += Format(", D %g 1/Pa (bulk modulus K = 2/D = %g Pa = %g mu), density %g kg/m^3\n", s.material.D, K, K / s.material.mu, s.density);
+  text += Format("  force     %s", to_string(s.force_form));
+  if (s.stress_correction != StressCorrection::none) // (absent by default: the summary stays as it was)
+    text += Format(", stress correction %s%s", to_string(s.stress_correction),
+                   s.force_form == ForceForm::energy_consistent ? " (the identity for this form)" : "");
+  if (s.patch_correction != PatchCorrection::off) text += Format(", patch correction %s", to_string(s.patch_correction));
+  if (s.volumetric == Volumetric::point)
+    text += Format(", volumetric energy per point (mean dilatation), stabilisation %g mu", s.volumetric_stabilisation);
+  text += "\n";
+  if (s.failure && s.fracture_energy > 0)
+    text += Format("  failure   bonds break at the critical pair energy of Gamma = %g J/m^2 (tip concentration %g)\n",
+                   s.fracture_energy, s.tip_concentration);
+  else if (s.failure) text += Format("  failure   bonds break past stretch s_c = %g\n", s.critical_stretch);
+  else text += "  failure   none\n";
+  return text;
+}
+
+PetscErrorCode CheckMaterial(MPI_Comm comm, const SceneInput &in, Scene *scene)
+{
+  PetscFunctionBeginUser;
+  PetscCall(CheckLawChoice(comm, in, scene));
+  PetscCall(CheckForce(comm, in, scene));
+  PetscCall(CheckCompressibility(comm, in, scene));
+  PetscCall(CheckLawParameters(comm, in, scene));
+  PetscCall(CheckFailure(comm, in, scene));
   PetscFunctionReturn(0);
 }
 

@@ -15,6 +15,35 @@
 
 namespace bapd {
 
+namespace {
+
+// One probe's options (-probe_NAME_...), in -help's order.
+const std::vector<SetOption<ProbeInput>> &ProbeOptions()
+{
+  using P = ProbeInput;
+  static const std::vector<SetOption<P>> table = {
+      {"-at", "Position x,y [m] (3D: x,y,z); the nearest material point is recorded (this or -group is required)", &P::at, &P::at_set},
+      {"-group", "A physical point of a Gmsh file (Physical Point(\"name\") = {k};): the probe is placed at it", &P::group},
+      {"-file", "The Gmsh .geo or .msh file of -group (default: the body's mesh shape's file)", &P::file},
+      {"-block", "A block id of the point cloud (-body_cloud's block_id column) that one point has: the probe reads it", &P::block,
+       &P::block_set},
+  };
+  return table;
+}
+
+} // namespace
+
+std::string ProbesText(const Scene &s)
+{
+  std::string text;
+  for (const Probe &p : s.probes)
+    text += s.dimension == 3 ? Format("  probe     %s at (%g, %g, %g) m\n", p.name.c_str(), p.x, p.y, p.z)
+                             : Format("  probe     %s at (%g, %g) m\n", p.name.c_str(), p.x, p.y);
+  return text;
+}
+
+SetFamily ProbeFamily() { return {"-probe_", "-probes", SetOptionSuffixes(ProbeOptions())}; }
+
 PetscErrorCode ReadProbes(MPI_Comm comm, SceneInput *in)
 {
   PetscFunctionBeginUser;
@@ -28,15 +57,7 @@ PetscErrorCode ReadProbes(MPI_Comm comm, SceneInput *in)
     const std::string prefix = "probe_" + name + "_";
     const std::string title  = "Probe " + name;
     probe.name               = name;
-    PetscCall(ReadOptionBlock(comm, prefix.c_str(), title.c_str(), [&](OptionReader &r) -> PetscErrorCode {
-      PetscCall(r.RealArray("-at", "Position x,y [m] (3D: x,y,z); the nearest material point is recorded (this or -group is required)", &probe.at,
-                            &probe.at_set));
-      PetscCall(r.String("-group", "A physical point of a Gmsh file (Physical Point(\"name\") = {k};): the probe is placed at it", &probe.group));
-      PetscCall(r.String("-file", "The Gmsh .geo or .msh file of -group (default: the body's mesh shape's file)", &probe.file));
-      PetscCall(r.Int("-block", "A block id of the point cloud (-body_cloud's block_id column) that one point has: the probe reads it",
-                      &probe.block, &probe.block_set));
-      return 0;
-    }));
+    PetscCall(ReadOptionBlock(comm, prefix.c_str(), title.c_str(), [&](OptionReader &r) { return ReadSetOptions(r, ProbeOptions(), &probe); }));
     in->probes.push_back(probe);
   }
   PetscFunctionReturn(0);

@@ -13,6 +13,7 @@
 #include "bapd/solver/parallel/layout.hpp"
 #include "bapd/solver/operators/loading.hpp"
 #include "bapd/solver/input/scene.hpp"
+#include "bapd/solver/input/regions/region_registry.hpp"
 
 namespace {
 
@@ -132,6 +133,29 @@ PetscInt GlobalCount(const Scene &scene, const LoadSet &set, const Share &share)
   PetscInt local = static_cast<PetscInt>(selected.size()), global = 0;
   MPI_Allreduce(&local, &global, 1, MPIU_INT, MPI_SUM, PETSC_COMM_WORLD);
   return global;
+}
+
+// The region words quoted in messages and -help come from the registry: every region a
+// sheet takes is among the 2D choices, every one a 3D body takes among the 3D choices
+// (a face also by its alias), and all of them in -load_NAME_region's help.
+TEST(RegionRegistry, ChoicesAndHelpNameEveryRegisteredRegion)
+{
+  const std::string sheet = bapd::RegionChoices(false), solid = bapd::RegionChoices(true), help = bapd::RegionHelp();
+  auto word_in = [](const std::string &text, const std::string &word) { // a whole word: not "box" in "block"
+    for (std::size_t at = text.find(word); at != std::string::npos; at = text.find(word, at + 1)) {
+      const bool start = at == 0 || std::string(" (,|").find(text[at - 1]) != std::string::npos;
+      const bool end   = at + word.size() == text.size() || std::string(" ),|").find(text[at + word.size()]) != std::string::npos;
+      if (start && end) return true;
+    }
+    return false;
+  };
+  for (const bapd::RegionType &r : bapd::registered_regions()) {
+    EXPECT_TRUE(word_in(help, r.word)) << r.word << " missing from: " << help;
+    EXPECT_EQ(word_in(sheet, r.word), r.check2d != nullptr) << r.word << " / " << sheet;
+    EXPECT_EQ(word_in(solid, r.word), r.check3d != nullptr) << r.word << " / " << solid;
+    if (r.alias && r.check3d) EXPECT_TRUE(word_in(solid, std::string(r.word) + " or " + r.alias)) << r.word << " / " << solid;
+  }
+  EXPECT_EQ(sheet, "top, bottom, left, right, box, polygon, curve, group or block");
 }
 
 TEST(LoadSetSelect, TakesWholePointLayersFromTheEdges)

@@ -14,6 +14,7 @@
 #include <unistd.h>
 
 #include "bapd/solver/input/scene.hpp"
+#include "bapd/solver/input/scene_input.hpp"
 #include "scene_reading.hpp"
 
 namespace {
@@ -386,6 +387,31 @@ TEST_F(SceneOptions, WarnsAboutDoubtfulButUsableValues)
   EXPECT_TRUE(any("-horizon_factor 6")) << ::testing::PrintToString(w);
 }
 
+// A scene may carry the parameters of laws it does not use (one file for a study that
+// switches -material_model); they are ignored, and one warning names each with its law
+// and the law in use. The law's own parameters draw none.
+TEST_F(SceneOptions, WarnsOnceAboutParametersOfLawsNotInUse)
+{
+  Options o = PlateWithHole();
+  o["-material_Jm"] = "100"; // Gent's own: no warning
+  Scene own;
+  ASSERT_EQ(Read(o, &own), 0) << bapd::test::UserErrorText();
+  EXPECT_TRUE(bapd::SceneWarnings().empty()) << ::testing::PrintToString(bapd::SceneWarnings());
+
+  o["-material_lambda_m"]  = "-1"; // invalid for Arruda-Boyce, but unused here
+  o["-material_ogden_mu1"] = "3000";
+  Scene scene;
+  ASSERT_EQ(Read(o, &scene), 0) << bapd::test::UserErrorText();
+  const std::vector<std::string> &w = bapd::SceneWarnings();
+  ASSERT_EQ(w.size(), 1u) << ::testing::PrintToString(w);
+  EXPECT_NE(w[0].find("-material_lambda_m (arruda_boyce), -material_ogden_mu1 (ogden)"), std::string::npos) << w[0];
+  EXPECT_NE(w[0].find("the law is gent (-material_model)"), std::string::npos) << w[0];
+  EXPECT_EQ(w[0].find("-material_Jm"), std::string::npos) << w[0];
+
+  o["-material_model"] = "arruda_boyce"; // now -material_lambda_m is the law's own, and checked
+  EXPECT_NE(Rejection(o).find("-material_lambda_m"), std::string::npos);
+}
+
 // ----------------------------------------------------------------------------------
 // Invalid scenes: each is rejected, and the message names the option to change.
 
@@ -536,6 +562,9 @@ TEST_F(SceneOptions, RejectsEachInvalidInputNamingItsOption)
     {"schedule stretch zero", {{"-load_schedule", "0,1,1,0"}}, "-load_schedule", "> 0"},
     {"reference length zero", {{"-load_reference_length", "0"}}, "-load_reference_length"},
     {"unknown grip field", {{"-load_grip_field", "mirror"}}, "-load_grip_field", "rigid, affine or auto"},
+    {"grips pulled together by a negative scale", {{"-load_bottom_y", "fixed"}, {"-load_bottom_y_scale", "<erase>"}, {"-load_top_y_scale", "-1"}},
+     "-load_top_y_scale -1", "toward each other"},
+    {"grips pushed together by the lower scale", {{"-load_bottom_y_scale", "0.75"}}, "-load_bottom_y_scale 0.75", "(-0.25) (lambda - 1) L"},
     {"affine grips without a bottom grip", {{"-load_grip_field", "affine"}, {"-load_bottom_y", "free"}, {"-load_bottom_y_scale", "<erase>"}}, "-load_grip_field", "1 top and 0 bottom"},
     // probes
     {"probe outside", {{"-probe_left_mid_at", "0.1,0.08"}}, "-probe_left_mid_at", "outside the body"},
@@ -592,6 +621,34 @@ TEST_F(SceneOptions, UnusedOptionsOfAnUndeclaredSetNameTheSetList)
   EXPECT_NE(message.find("-load_grip_region is not a bapd option. 'grip' is not one of -load_sets"), std::string::npos) << message;
   EXPECT_NE(message.find("-probe_tipp_at is not a bapd option. 'tipp' is not one of -probes"), std::string::npos) << message;
   EXPECT_NE(message.find("-load_top_regoin is not a bapd option. Did you mean -load_top_region?"), std::string::npos) << message;
+}
+
+// The options of a named set come from its option table (SetFamily): every option in it
+// is read for a declared set, and answered with the set list for an undeclared one.
+TEST_F(SceneOptions, EveryOptionOfASetTableIsReadAndNamesItsSetList)
+{
+  const std::map<std::string, std::string> declared = {{"-body_", "cut"}, {"-load_", "top"}, {"-probe_", "left_mid"}};
+  const std::vector<bapd::SetFamily>       families = bapd::SetFamilies();
+  ASSERT_EQ(families.size(), declared.size());
+  Options given = PlateWithHole();
+  given["-body_shapes"] = "cut";
+  for (const bapd::SetFamily &f : families)
+    for (const std::string &suffix : f.suffixes)
+      given[f.head + declared.at(f.head) + suffix] = "1"; // (a value every kind parses; the checks may refuse it)
+  Scene scene;
+  Read(given, &scene);
+  EXPECT_EQ(bapd::CheckUnusedOptions(PETSC_COMM_WORLD), 0) << bapd::test::UserErrorText();
+
+  for (const bapd::SetFamily &f : families)
+    for (const std::string &suffix : f.suffixes) { // one at a time: PETSc keeps a message of about 1000 characters
+      Options           stray = PlateWithHole();
+      const std::string name  = f.head + "zz" + suffix;
+      stray[name]             = "1";
+      ASSERT_EQ(Read(stray, &scene), 0) << bapd::test::UserErrorText();
+      EXPECT_EQ(bapd::CheckUnusedOptions(PETSC_COMM_WORLD), PETSC_ERR_USER) << name;
+      const std::string message = bapd::test::UserErrorText();
+      EXPECT_EQ(message.find(name + " is not a bapd option. 'zz' is not one of " + f.list_option + ": add it there"), 0u) << message;
+    }
 }
 
 TEST_F(SceneOptions, PetscRuntimeOptionsAreNotTypos)

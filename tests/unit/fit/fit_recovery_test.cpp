@@ -13,6 +13,7 @@
 
 #include "fit_data.hpp"
 #include "fit_run.hpp"
+#include "bapd/core/materials/law_registry.hpp"
 
 namespace bapd::fit {
 namespace {
@@ -56,6 +57,27 @@ void expect_recovered(const LawFit &fit, const std::vector<double> &p_true)
   }
   // the weighted residual's RMS estimates the 1 % noise
   EXPECT_NEAR(fit.rms_weighted, 0.01, 0.004);
+}
+
+// bapd-fit's laws are the registry's (fit_law_names): each has its fit (parameters,
+// starting points), a defined stress at its starting point and a scene section naming
+// it, so that a law added to the registry without a fit fails here, not in a user's hands.
+TEST(FitLaws, EveryRegisteredLawHasAFit)
+{
+  const std::vector<std::string> names = fit_law_names();
+  ASSERT_EQ(names.size(), registered_laws().size());
+  for (const std::string &name : names) {
+    FitLaw law;
+    ASSERT_NO_THROW(law = fit_law(name, 2)) << name;
+    EXPECT_EQ(law.name.compare(0, name.size(), name), 0) << law.name;
+    const std::vector<std::vector<double>> starts = law.starts(4550.0, 30.0);
+    ASSERT_FALSE(starts.empty()) << name;
+    ASSERT_EQ(starts[0].size(), law.parameters.size()) << name;
+    double P = 0.0;
+    EXPECT_TRUE(law.stress(starts[0], LoadMode::uniaxial, 1.5, P)) << name;
+    EXPECT_GT(P, 0.0) << name; // a stretched rubber pulls back
+    EXPECT_NE(law.yaml(starts[0]).find("model: " + name), std::string::npos) << law.yaml(starts[0]);
+  }
 }
 
 TEST(FitRecovery, GentFromPureShear)

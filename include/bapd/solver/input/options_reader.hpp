@@ -5,6 +5,7 @@
 #include <petscsys.h>
 #include <functional>
 #include <string>
+#include <variant>
 #include <vector>
 
 namespace bapd {
@@ -74,6 +75,43 @@ private:
   PetscOptionItems *items_;
   std::string       problem_;
 };
+
+// One option of a named set (a load set, a probe, a shape: -load_NAME_region): its name
+// after the set's prefix ("-region"), its help, where its value goes in the set's input
+// record and, if it has one, the flag that says it was given. A set's options are one
+// table (LoadSetOptions, ProbeOptions, ShapeOptions): ReadSetOptions reads it (in order,
+// so that -help lists it so), and the unused-option check and -help take the names
+// from it (SetFamily, scene_input.hpp).
+template <class Input> struct SetOption {
+  const char *name;
+  const char *help;
+  std::variant<std::string Input::*, double Input::*, PetscInt Input::*, std::vector<double> Input::*> value;
+  bool Input::*given = nullptr;
+};
+
+// Reads every option of `table` into *input through `r`.
+template <class Input>
+PetscErrorCode ReadSetOptions(OptionReader &r, const std::vector<SetOption<Input>> &table, Input *input)
+{
+  PetscFunctionBeginUser;
+  for (const SetOption<Input> &o : table) {
+    bool given = false;
+    if (auto text = std::get_if<std::string Input::*>(&o.value)) PetscCall(r.String(o.name, o.help, &(input->**text), &given));
+    else if (auto real = std::get_if<double Input::*>(&o.value)) PetscCall(r.Real(o.name, o.help, &(input->**real), &given));
+    else if (auto whole = std::get_if<PetscInt Input::*>(&o.value)) PetscCall(r.Int(o.name, o.help, &(input->**whole), &given));
+    else PetscCall(r.RealArray(o.name, o.help, &(input->*std::get<std::vector<double> Input::*>(o.value)), &given));
+    if (o.given) input->*o.given = given;
+  }
+  PetscFunctionReturn(0);
+}
+
+// The names of a set's options as suffixes of the set's name: "_region", ...
+template <class Input> std::vector<std::string> SetOptionSuffixes(const std::vector<SetOption<Input>> &table)
+{
+  std::vector<std::string> suffixes;
+  for (const SetOption<Input> &o : table) suffixes.push_back(std::string("_") + (o.name + 1));
+  return suffixes;
+}
 
 // One PetscOptionsBegin block titled `title` (options prefixed by `prefix`, or
 // none): `read` reads its options through the OptionReader (PETSc may run it more

@@ -55,6 +55,7 @@ struct SceneInput {
   bool                     formulation_set = false; // -material_formulation given (refused in 3D)
   bool                     D_set = false, bulk_ratio_set = false;
   double                   bulk_ratio = 1000.0;
+  std::vector<std::string> law_options_given; // the laws' own options that were given (-material_Jm, ...), for CheckMaterial
   bool                     critical_stretch_set = false, fracture_energy_set = false;
   std::vector<std::string> load_names;
   std::vector<LoadInput>   loads;
@@ -64,6 +65,21 @@ struct SceneInput {
   std::vector<ProbeInput>  probes;
   bool                     end_time_set = false;
 };
+
+// The options of the named sets, each family from its set's option table: -load_NAME_...
+// (scene_loading.cpp), -probe_NAME_... (scene_probes.cpp), -body_NAME_... (the shapes,
+// scene_body.cpp). The unused-option check names the list an undeclared set is missing
+// from ("'grip' is not one of -load_sets"), and -help lists each family's options.
+struct SetFamily {
+  std::string              head;        // "-load_": the options' names start with it, then the set's name
+  std::string              list_option; // "-load_sets": the option that lists the names
+  std::vector<std::string> suffixes;    // "_region", ...: after the set's name, in -help's order
+};
+SetFamily LoadSetFamily();
+SetFamily ProbeFamily();
+SetFamily ShapeFamily();
+// Every family, in the order of the sections (the body's shapes, load sets, probes).
+std::vector<SetFamily> SetFamilies();
 
 // Body (scene_body.cpp): -body_* and -horizon_factor.
 PetscErrorCode ReadBody(MPI_Comm comm, Scene *scene, SceneInput *in);
@@ -81,6 +97,11 @@ PetscErrorCode CheckBodyFits(MPI_Comm comm, const Scene &scene);
 // Material and failure (scene_material.cpp): -material_*, -force_form, -failure_*.
 PetscErrorCode ReadMaterial(MPI_Comm comm, Scene *scene, SceneInput *in);
 PetscErrorCode CheckMaterial(MPI_Comm comm, const SceneInput &in, Scene *scene);
+// Each section's lines of SceneText: the material, force and failure; the load sets and
+// the schedule (scene_loading.cpp); the probes (scene_probes.cpp).
+std::string MaterialText(const Scene &scene);
+std::string LoadingText(const Scene &scene);
+std::string ProbesText(const Scene &scene);
 // Loading (scene_loading.cpp): -load_sets, -load_schedule, -load_NAME_*.
 PetscErrorCode ReadLoading(MPI_Comm comm, Scene *scene, SceneInput *in);
 // grip_rows: the rows the edge grips placed outside the sheet add beyond it, for the

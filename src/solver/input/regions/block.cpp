@@ -76,7 +76,7 @@ std::string BlockEmpty(const Scene &s, const LoadSet &set)
 
 RegionType block_region(LoadSet::Region id, const char *word, const char *alias)
 {
-  return {id, word, alias, false, uses_block, uses_block, CheckBlock2D, ReadBlock, AmongSorted<2>, AmongSorted<3>, BlockText, BlockEmpty};
+  return {id, word, alias, false, uses_block, uses_block, CheckBlock2D, ReadBlock, AmongSorted<2>, AmongSorted<3>, BlockText, BlockEmpty, "a block id of the point cloud"};
 }
 
 } // namespace bapd

@@ -67,7 +67,7 @@ void SetCurveReach(LoadSet *set)
 
 RegionType curve_region(LoadSet::Region id, const char *word, const char *alias)
 {
-  return {id, word, alias, false, uses_points | uses_layers | uses_depth, 0, CheckCurve2D, nullptr, CurveContains2D, nullptr, CurveText, CurveEmpty};
+  return {id, word, alias, false, uses_points | uses_layers | uses_depth, 0, CheckCurve2D, nullptr, CurveContains2D, nullptr, CurveText, CurveEmpty, "points near a polyline"};
 }
 
 } // namespace bapd

@@ -92,7 +92,7 @@ std::string GroupEmpty(const Scene &, const LoadSet &set)
 RegionType group_region(LoadSet::Region id, const char *word, const char *alias)
 {
   const unsigned uses = uses_group | uses_file | uses_layers | uses_depth;
-  return {id, word, alias, false, uses, uses, CheckGroup2D, CheckGroup3D, GroupContains2D, GroupContains3D, GroupText, GroupEmpty};
+  return {id, word, alias, false, uses, uses, CheckGroup2D, CheckGroup3D, GroupContains2D, GroupContains3D, GroupText, GroupEmpty, "a Gmsh physical group"};
 }
 
 } // namespace bapd

@@ -33,6 +33,78 @@ bool ParseRegion(const std::string &text, LoadSet::Region *region)
 
 const char *to_string(LoadSet::Region region) { return region_type(region).word; }
 
+namespace {
+
+// "a, b or c"
+std::string ChoiceList(const std::vector<std::string> &items)
+{
+  std::string text;
+  for (std::size_t k = 0; k < items.size(); ++k) text += (k == 0 ? "" : k + 1 == items.size() ? " or " : ", ") + items[k];
+  return text;
+}
+
+// The faces of a 3D body by axis, the lower first (their aliases: x-, x+, y-, ...).
+std::vector<const RegionType *> Faces()
+{
+  std::vector<const RegionType *> faces;
+  for (const RegionType &r : registered_regions())
+    if (r.edge && r.check3d && r.alias) faces.push_back(&r);
+  std::sort(faces.begin(), faces.end(), [](const RegionType *a, const RegionType *b) {
+    return a->alias[0] != b->alias[0] ? a->alias[0] < b->alias[0] : a->alias[1] == '-' && b->alias[1] == '+';
+  });
+  return faces;
+}
+
+std::string MakeRegionChoices(bool three)
+{
+  std::vector<std::string> items;
+  if (three) {
+    std::string faces;
+    for (const RegionType *f : Faces()) faces += std::string(faces.empty() ? "" : ", ") + f->word + " or " + f->alias;
+    items.push_back("a face (" + faces + ")");
+  }
+  for (const RegionType &r : registered_regions()) {
+    if (three ? !r.check3d || r.edge : !r.check2d) continue;
+    items.push_back(std::string(r.word) + (three && r.gloss ? std::string(" (") + r.gloss + ")" : ""));
+  }
+  return ChoiceList(items);
+}
+
+// "top | bottom | left | right (edge layers; 3D: faces, with back | front, or x- | x+ |
+// ... ) | box | ... | block (a block id of the point cloud) (required)"
+std::string MakeRegionHelp()
+{
+  std::string edges3d, aliases, text;
+  for (const RegionType *f : Faces()) {
+    if (!f->check2d) edges3d += std::string(edges3d.empty() ? "" : " | ") + f->word;
+    aliases += std::string(aliases.empty() ? "" : " | ") + f->alias;
+  }
+  const std::vector<RegionType> &regions = registered_regions();
+  for (std::size_t k = 0; k < regions.size(); ++k) {
+    const RegionType &r = regions[k];
+    if (!r.check2d) continue;
+    text += std::string(text.empty() ? "Points held: " : " | ") + r.word;
+    const bool last_edge = r.edge && (k + 1 == regions.size() || !regions[k + 1].edge || !regions[k + 1].check2d);
+    if (last_edge) text += " (edge layers; 3D: faces, with " + edges3d + ", or " + aliases + ")";
+    else if (r.gloss) text += std::string(" (") + r.gloss + ")";
+  }
+  return text + " (required)";
+}
+
+} // namespace
+
+const char *RegionChoices(bool three)
+{
+  static const std::string sheet = MakeRegionChoices(false), solid = MakeRegionChoices(true);
+  return three ? solid.c_str() : sheet.c_str();
+}
+
+const char *RegionHelp()
+{
+  static const std::string help = MakeRegionHelp();
+  return help.c_str();
+}
+
 template <int D> bool LoadSetContains(const Scene &scene, const LoadSet &set, const double *p)
 {
   const RegionType &r        = region_type(set.region);

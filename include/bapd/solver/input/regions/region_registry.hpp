@@ -7,9 +7,8 @@
 // none. A new region is that file plus one line X(id, alias, type) in
 // BAPD_REGISTERED_REGIONS (region_list.hpp); LoadSet::Region, the region words, the selection
 // (LoadSetContains), the summary (RegionText) and the empty-selection message are
-// generated from that list. (The region choices quoted in messages and -help,
-// kRegionChoices below and -load_NAME_region's help in scene_loading.cpp, are text:
-// name the new word there too.)
+// generated from that list, and so are the region choices quoted in messages
+// (RegionChoices) and -load_NAME_region's help (RegionHelp), from the words and glosses.
 #include <petscsys.h>
 
 #include <string>
@@ -23,10 +22,12 @@ namespace bapd {
 struct LoadInput;
 struct SceneInput;
 
-// The region choices of the messages (2D sheet, 3D body).
-inline const char *const kRegionChoices   = "top, bottom, left, right, box, polygon, curve, group or block";
-inline const char *const kRegionChoices3D =
-    "a face (left or x-, right or x+, bottom or y-, top or y+, back or z-, front or z+), box, group (a Gmsh physical group) or block";
+// The region choices of the messages, from the registry: a 2D sheet's regions ("top,
+// bottom, left, right, box, polygon, curve, group or block"), or a 3D body's ("a face
+// (left or x-, right or x+, ...), box, group (a Gmsh physical group) or block (...)").
+const char *RegionChoices(bool three);
+// -load_NAME_region's help: every word with its gloss, the faces' aliases, "(required)".
+const char *RegionHelp();
 
 // The per-set options a region reads (RegionType::uses2d, uses3d); one given to a
 // region that does not read it is refused by name.
@@ -64,6 +65,9 @@ struct RegionType {
   // holds no material point (Loading::Setup).
   std::string (*text)(const Scene &, const LoadSet &)          = nullptr;
   std::string (*empty_message)(const Scene &, const LoadSet &) = nullptr;
+  // A few words after the word in -help and the 3D choices ("points near a polyline"), or
+  // nullptr (the edges: their gloss is made from the list, RegionHelp).
+  const char *gloss = nullptr;
 };
 
 #define BAPD_REGION_MAKER(id, alias, type) RegionType type##_region(LoadSet::Region, const char *, const char *);
