@@ -13,7 +13,11 @@ compared with lambda_c, the stretch at which the energy release rate of this she
 reaches Gamma (Rivlin-Thomas G = W H0, which the finite-element G meets within 0.1 %:
 tests/data/fe/notched_energy_release.csv). The energy budget of history.csv at the onset
 and at the last row: the effective toughness (dissipated by breaking / crack area), the
-crack's growth past the notch and the balance residual over the grips' work. Writes
+crack's growth past the notch and the balance residual over the grips' work; between the
+onset and the last row, the energy the sheet gave up per unit of new crack area,
+G_in = (grips' work - change of internal and kinetic energy) / new area, and the share
+of it that breaking released (the rest went to the damping: the waves that sudden
+breaks send out and the retraction of the flaps behind the tip). Writes
 DIR/onset.csv and prints the table; the spread is (max - min) / mean of the onset
 stretches of each Gamma.
 """
@@ -99,6 +103,10 @@ def run(args, dx, factor, gamma, notch, extra):
     budget = lambda r, key: float(r[key]) if r and r.get(key) not in (None, "") else float("nan")
     work = lambda r: sum(float(v) for k, v in r.items() if k.endswith("_work_J")) if r else float("nan")
     last = rows[-1] if rows else None
+    grown = budget(last, "crack_area_m2") - budget(onset, "crack_area_m2")
+    given_up = (work(last) - work(onset) - (budget(last, "internal_energy_J") - budget(onset, "internal_energy_J"))
+                - (budget(last, "kinetic_energy_J") - budget(onset, "kinetic_energy_J")))
+    released = budget(last, "fracture_dissipation_J") - budget(onset, "fracture_dissipation_J")
     return {
         "dx_mm": dx * 1e3, "factor": factor, "gamma": gamma, "notch_mm": notch * 1e3, "rc": rc,
         "onset_stretch": float(onset["stretch"]) if onset else float("nan"),
@@ -112,6 +120,8 @@ def run(args, dx, factor, gamma, notch, extra):
         "crack_growth_last_mm": (budget(last, "crack_length_m") - notch) * 1e3,
         "gamma_effective_last": budget(last, "effective_fracture_energy_J_m2"),
         "residual_over_work_last": budget(last, "energy_balance_residual_J") / work(last),
+        "gamma_in_after_onset": given_up / grown if grown > 0 else float("nan"),
+        "breaking_share_after_onset": released / given_up if grown > 0 else float("nan"),
     }
 
 
@@ -136,7 +146,7 @@ def main():
     os.makedirs(args.out, exist_ok=True)
     results = []
     print(f"{'dx mm':>7} {'d/dx':>6} {'Gamma':>6} {'a mm':>5} {'peak kPa':>9} {'onset':>7} {'lambda_c':>8} {'error':>7}"
-          f" {'G_eff':>6} {'res %':>7} | {'last':>6} {'da mm':>6} {'G_eff':>6} {'res %':>7}", flush=True)
+          f" {'G_eff':>6} {'res %':>7} | {'last':>6} {'da mm':>6} {'G_eff':>6} {'res %':>7} | {'G_in':>6} {'break':>5}", flush=True)
     for dx, factor, gamma, notch in itertools.product(args.dx, args.factor, args.gamma, args.notch):
         r = run(args, dx, factor, gamma, notch, args.extra)
         results.append(r)
@@ -144,7 +154,8 @@ def main():
         print(f"{r['dx_mm']:7.4f} {factor:6.3f} {gamma:6g} {r['notch_mm']:5g} {r['peak_stress_kPa']:9.3f} "
               f"{r['onset_stretch']:7.4f} {r['lambda_c']:8.4f} {100 * err:+6.2f}% {r['gamma_effective_onset']:6.1f}"
               f" {100 * r['residual_over_work_onset']:+7.3f} | {r['last_stretch']:6.3f} {r['crack_growth_last_mm']:6.2f}"
-              f" {r['gamma_effective_last']:6.1f} {100 * r['residual_over_work_last']:+7.3f}" + ("" if r["rc"] == 0 else f"  rc {r['rc']}"),
+              f" {r['gamma_effective_last']:6.1f} {100 * r['residual_over_work_last']:+7.3f}"
+              f" | {r['gamma_in_after_onset']:6.1f} {r['breaking_share_after_onset']:5.2f}" + ("" if r["rc"] == 0 else f"  rc {r['rc']}"),
               flush=True)
     with open(os.path.join(args.out, "onset.csv"), "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=list(results[0]))
