@@ -57,6 +57,7 @@ template <int D> struct TangentWorkspace {
   std::vector<Mat<D>> deformation; // F_iq per bond
   std::vector<double> kinv;     // K_iq^{-1} upper triangle per bond
   std::vector<double> c33;      // C33 solved at F_iq per bond (plane stress: the tangent's warm start)
+  std::vector<double> law_A;    // the law's exact dP/dF per bond, D^4 (where it has one)
   std::vector<std::size_t> local; // the current bond's points: i (0), then the members of B_iq (1 + p)
   bool                law_tangent = true; // the law's exact dP/dF where it has one (false: central differences)
   Volumetric          volumetric = Volumetric::bond;
@@ -78,6 +79,7 @@ template <int D> struct TangentWorkspace {
       deformation.resize(f.max_family_size);
       kinv.resize(f.max_family_size * sym_size<D>);
       c33.resize(f.max_family_size);
+      law_A.resize(f.max_family_size * D * D * D * D);
       local.resize(f.max_family_size + 1);
     }
   }
@@ -153,6 +155,8 @@ std::size_t point_tangent(const Model &model, const PointCloud &ref, const doubl
   const std::uint64_t *intact = state.intact_mask(i);
   const PointTotals<D> totals = gather_point<D>(ref, y, fam, i, intact, ws.point);
   const bool           point  = ws.volumetric == Volumetric::point;
+  // The law's exact tangent, formed in the first pass (one C33 solve a bond).
+  const bool exact = detail::has_law_tangent<Model>::value && D == 2 && ws.law_tangent && !point;
   const double         Dc     = point ? detail::compressibility(model, 0) : 0.0;
   std::fill(ws.H.begin(), ws.H.begin() + N * N, 0.0);
   // Pass 1: which bonds carry energy, their F, K^{-1}, J and volume sums (omega_i, Jbar_i).
@@ -163,9 +167,13 @@ std::size_t point_tangent(const Model &model, const PointCloud &ref, const doubl
     if (!state.is_intact(i, q) || !geo.is_usable(i, q)) continue;
     const BondKinematics<D> k = bond_kinematics<D>(fam.ba(o + q), intact, W, ws.point, totals);
     if (!k.usable) continue;
-    double       c = c33 ? c33[o + q] : 0.0;
-    Mat<D>       P;
-    if (detail::stress_of<D>(model, k.F, c, P, 0) != StressStatus::ok) continue;
+    double c = c33 ? c33[o + q] : 0.0;
+    if (exact) { // the law's tangent decides (its C33 solve is the stress's) and is kept
+      if (detail::tangent_of<D>(model, k.F, c, false, 1.0, 0.0, 0.0, true, &ws.law_A[DD * DD * q]) != StressStatus::ok) continue;
+    } else {
+      Mat<D> P;
+      if (detail::stress_of<D>(model, k.F, c, P, 0) != StressStatus::ok) continue;
+    }
     ws.energetic[q] = 1;
     Fq[q]           = k.F;
     ws.c33[q]       = c;
@@ -184,7 +192,8 @@ std::size_t point_tangent(const Model &model, const PointCloud &ref, const doubl
   double      A[DD * DD];
   for (std::size_t q = 0; q < m; ++q) {
     if (!ws.energetic[q]) continue;
-    if (detail::tangent_of<D>(model, Fq[q], ws.c33[q], point, Jbar, Dc, ws.kappa, ws.law_tangent, A) != StressStatus::ok) {
+    if (exact) std::copy_n(&ws.law_A[DD * DD * q], DD * DD, A);
+    else if (detail::tangent_of<D>(model, Fq[q], ws.c33[q], point, Jbar, Dc, ws.kappa, ws.law_tangent, A) != StressStatus::ok) {
       ++failed;
       continue;
     }
