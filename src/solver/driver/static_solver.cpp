@@ -164,14 +164,15 @@ template <int D> PetscErrorCode StaticSolver<D>::Setup()
   // it (and the preconditioner built on it) while the residual falls fast enough
   // (ConvergenceTest); assembling a tangent costs about as much as twenty CG iterations.
   // With a kept tangent the convergence is linear, its rate set by the tangent's change,
-  // not by the linear solve: CG to 1e-3 takes as many Newton iterations as to 1e-8 (plate
-  // with a hole, docs/performance.md section 6). -snes_lag_jacobian N gives PETSc's fixed
-  // lag instead (1: full Newton, a fresh tangent every iteration, CG to 1e-8).
+  // not by the linear solve: CG to 3e-2 takes about as many Newton iterations as to 1e-8
+  // and 40 % fewer CG iterations than to 1e-3 (plate with a hole, docs/performance.md
+  // section 6). -snes_lag_jacobian N gives PETSc's fixed lag instead (1: full Newton, a
+  // fresh tangent every iteration, CG to 1e-8).
   PetscBool lag_given = PETSC_FALSE;
   PetscCall(PetscOptionsHasName(nullptr, nullptr, "-snes_lag_jacobian", &lag_given));
   reuse_tangent_ = !lag_given;
   PetscCall(KSPSetType(ksp, KSPCG));
-  PetscCall(KSPSetTolerances(ksp, reuse_tangent_ ? 1e-3 : 1e-8, PETSC_DEFAULT, PETSC_DEFAULT, 1000));
+  PetscCall(KSPSetTolerances(ksp, reuse_tangent_ ? 3e-2 : 1e-8, PETSC_DEFAULT, PETSC_DEFAULT, 1000));
   PetscCall(KSPGetPC(ksp, &pc));
   PetscCall(PCSetType(pc, PCGAMG));
   PetscCall(SNESSetFromOptions(snes_));
@@ -389,7 +390,11 @@ template <int D> PetscErrorCode StaticSolver<D>::LoadStep(double t, PetscBool *c
   t_target_ = t;
   PetscCall(Predict(t));
   step_tangents_ = 0;
-  if (reuse_tangent_) PetscCall(SNESSetLagJacobian(snes_, -2)); // a fresh tangent at the first iteration, then kept (ConvergenceTest)
+  // A fresh tangent at the first iteration, then kept (ConvergenceTest). Keeping the last
+  // load step's instead saves 2 of 7 tangents on the plate with a hole but takes more CG
+  // iterations, and its static states end closer to the tolerance (1, 2 and 3 ranks then
+  // differ by 1e-9 with CG to 3e-2).
+  if (reuse_tangent_) PetscCall(SNESSetLagJacobian(snes_, -2));
   PetscCall(SNESSolve(snes_, nullptr, u_));
   PetscCall(SNESGetConvergedReason(snes_, &last_reason_));
   PetscCall(SNESGetIterationNumber(snes_, &its));
