@@ -3,7 +3,8 @@
 # (adaptive dynamic relaxation, each hold ended at kinetic < 1e-10 x internal energy;
 # docs/options_run.md "Static states faster") and the static solver (-solver static,
 # Newton; docs/options_run.md "Static solver"). CPU = user + system seconds (/usr/bin/time),
-# the probes' static displacements and their relative difference. Table: docs/performance.md.
+# the probes' static displacements and their relative difference, and last the two CPU
+# ratios (dynamic over static) side by side. Table: docs/performance.md.
 #   bench/static_vs_relaxation.sh [BAPD] [PLATE_DX] [SHEAR_DX]
 # (defaults: build/bapd, the plate at dx = 1 mm, pure shear at dx = 0.5 mm; examples/).
 set -uo pipefail
@@ -41,13 +42,14 @@ def cpu(name):
     return float(open(f"{name}.cpu").read())
 def counts(name):
     text = open(f"{name}.log").read()
-    m = re.search(r"(\d+) load steps .*?(\d+) Newton iterations, (\d+) Krylov", text)
+    m = re.search(r"(\d+) load steps .*?(\d+) Newton iterations, (\d+) Krylov.*?(\d+) tangents", text)
     if m:
-        return f"{m.group(1)} load steps, {m.group(2)} Newton, {m.group(3)} Krylov iterations"
+        return f"{m.group(1)} load steps, {m.group(2)} Newton, {m.group(3)} Krylov iterations, {m.group(4)} tangents"
     m = re.search(r"Finished: (\d+) steps", text)
     return f"{m.group(1)} time steps" if m else "?"
 print("| scene | dx (mm) | route | work | CPU (s) | static states: probe ux (mm) | largest difference | CPU ratio |")
 print("|---|---|---|---|---|---|---|---|")
+ratios = []
 for scene, dx, probe in (("plate", sys.argv[1], "left_mid_ux_m"), ("shear", sys.argv[2], "right_mid_ux_m")):
     d, s = states(f"{scene}_dynamic"), states(f"{scene}_static")
     diff = max(abs(float(b[probe]) / float(a[probe]) - 1) for a, b in zip(d, s))
@@ -57,4 +59,6 @@ for scene, dx, probe in (("plate", sys.argv[1], "left_mid_ux_m"), ("shear", sys.
         ratio = f"{cpu(scene + '_dynamic') / cpu(name):.1f}" if route == "static" else "1"
         print(f"| {scene} | {1e3 * float(dx):g} | {route} | {counts(name)} | {cpu(name):.1f} | {ux} | "
               f"{'' if route == 'dynamic' else f'{diff:.1e}'} | {ratio} |")
+    ratios.append(f"{scene} (dx {1e3 * float(dx):g} mm) {cpu(scene + '_dynamic') / cpu(scene + '_static'):.2f}")
+print("\nCPU ratio, dynamic route over static solver: " + ", ".join(ratios))
 PY

@@ -25,7 +25,8 @@ bool IsPetscOption(const std::string &name)
   static const char *const prefixes[] = {"options_", "log_", "malloc", "on_error_", "info_", "ts_", "vec_", "mat_", "snes_", "ksp_",
                                          "pc_", "dm_", "viewer", "draw_", "saws_", "debugger_", "device_", "cuda", "hip", "sycl",
                                          "kokkos", "petsc", "is_", "sf_", "tao_", "mpi_", "check_pointer", "error_output", "memory_",
-                                         "citations", "blas_", "omp_", "timeout", "sys_", "matload_", "pointer_", "fp_"};
+                                         "citations", "blas_", "omp_", "timeout", "sys_", "matload_", "pointer_", "fp_",
+                                         "mg_levels_", "mg_coarse_"}; // PCMG's (and GAMG's) levels, read at the first solve
   for (const char *e : exact)
     if (name == e) return true;
   for (const char *p : prefixes)

@@ -20,6 +20,7 @@ PetscErrorCode TangentOperator::Setup(MPI_Comm comm, const Scene &scene, const L
              "energy, so it has no symmetric tangent and no energy to minimise");
   comm_      = comm;
   layout_    = &layout;
+  families_  = &families;
   dimension_ = D;
   auto ws        = std::make_shared<nd::TangentWorkspace<D>>();
   ws->volumetric = scene.volumetric;
@@ -37,10 +38,11 @@ PetscErrorCode TangentOperator::Setup(MPI_Comm comm, const Scene &scene, const L
   const Layout              *l     = &layout;
   auto choose = [&](const auto &model) {
     using Model = std::decay_t<decltype(model)>;
-    add_blocks_ = [ws, index, order, sorted, cloud, f, g, s, l, m = Model(model)](const double *y, const double *c33, Mat H, bool values,
-                                                                                  PetscInt *failed) -> PetscErrorCode {
+    add_blocks_ = [ws, index, order, sorted, cloud, f, g, s, l, law = law_tangent_, m = Model(model)](const double *y, const double *c33, Mat H,
+                                                                                            PetscInt *failed) -> PetscErrorCode {
       PetscFunctionBegin;
-      *failed = 0;
+      *failed         = 0;
+      ws->law_tangent = *law;
       std::vector<std::size_t> &k = *order;
       for (PetscInt i = 0; i < l->n_owned; ++i) {
         const std::size_t o = f->offsets[i], n = f->size(i) + 1, N = D * n;
@@ -48,16 +50,14 @@ PetscErrorCode TangentOperator::Setup(MPI_Comm comm, const Scene &scene, const L
         for (std::size_t a = 0; a < n; ++a) k[a] = a;
         std::sort(k.begin(), k.begin() + n, [&](std::size_t a, std::size_t b) { return petsc(a) < petsc(b); });
         for (std::size_t a = 0; a < n; ++a) (*index)[a] = petsc(k[a]);
-        if (values) {
-          *failed += (PetscInt)nd::point_tangent<D>(m, *cloud, y, *f, *g, *s, c33, (std::size_t)i, *ws);
-          for (std::size_t a = 0; a < n; ++a)
-            for (int r = 0; r < D; ++r) {
-              const double *row = &ws->H[(D * k[a] + r) * N];
-              double       *out = &(*sorted)[(D * a + r) * N];
-              for (std::size_t b = 0; b < n; ++b)
-                for (int c = 0; c < D; ++c) out[D * b + c] = row[D * k[b] + c];
-            }
-        } else std::fill(sorted->begin(), sorted->begin() + N * N, 0.0);
+        *failed += (PetscInt)nd::point_tangent<D>(m, *cloud, y, *f, *g, *s, c33, (std::size_t)i, *ws);
+        for (std::size_t a = 0; a < n; ++a)
+          for (int r = 0; r < D; ++r) {
+            const double *row = &ws->H[(D * k[a] + r) * N];
+            double       *out = &(*sorted)[(D * a + r) * N];
+            for (std::size_t b = 0; b < n; ++b)
+              for (int c = 0; c < D; ++c) out[D * b + c] = row[D * k[b] + c];
+          }
         PetscCall(MatSetValuesBlocked(H, (PetscInt)n, index->data(), (PetscInt)n, index->data(), sorted->data(), ADD_VALUES));
       }
       PetscFunctionReturn(0);
@@ -73,10 +73,57 @@ template PetscErrorCode TangentOperator::Setup<2>(MPI_Comm, const Scene &, const
 template PetscErrorCode TangentOperator::Setup<3>(MPI_Comm, const Scene &, const Layout &, const Families &, const nd::BondGeometry<3> &,
                                                   const BondState &);
 
+// The pattern: owned point i adds S_i x S_i blocks, S_i = {i} and its family, so the
+// block row of a local point a holds the union of the S_i that contain a. Each row's
+// union is formed here (a stamp per local point) and inserted once, rather than every
+// point's whole block (its family size squared insertions into MATPREALLOCATOR's hash).
+PetscErrorCode TangentOperator::InsertPattern(Mat pattern) const
+{
+  const Layout   &l = *layout_;
+  const Families &f = *families_;
+  const std::size_t n_local = (std::size_t)l.n_local();
+
+  PetscFunctionBegin;
+  // contributors[a]: the owned i with a in S_i (CSR)
+  std::vector<std::size_t> start(n_local + 1, 0);
+  for (PetscInt i = 0; i < l.n_owned; ++i) {
+    ++start[(std::size_t)i + 1];
+    for (std::size_t b = f.offsets[i]; b < f.offsets[i + 1]; ++b) ++start[(std::size_t)f.neighbour[b] + 1];
+  }
+  for (std::size_t a = 0; a < n_local; ++a) start[a + 1] += start[a];
+  std::vector<std::size_t> contributors(start[n_local]), next(start.begin(), start.end() - 1);
+  for (PetscInt i = 0; i < l.n_owned; ++i) {
+    contributors[next[(std::size_t)i]++] = (std::size_t)i;
+    for (std::size_t b = f.offsets[i]; b < f.offsets[i + 1]; ++b) contributors[next[(std::size_t)f.neighbour[b]]++] = (std::size_t)i;
+  }
+  std::vector<std::size_t> stamp(n_local, n_local);
+  std::vector<PetscInt>    columns;
+  std::vector<double>      zeros;
+  for (std::size_t a = 0; a < n_local; ++a) {
+    if (start[a] == start[a + 1]) continue;
+    columns.clear();
+    auto add = [&](std::size_t c) {
+      if (stamp[c] == a) return;
+      stamp[c] = a;
+      columns.push_back(l.petsc_index[c]);
+    };
+    for (std::size_t k = start[a]; k < start[a + 1]; ++k) {
+      const std::size_t i = contributors[k];
+      add(i);
+      for (std::size_t b = f.offsets[i]; b < f.offsets[i + 1]; ++b) add((std::size_t)f.neighbour[b]);
+    }
+    std::sort(columns.begin(), columns.end());
+    const std::size_t values = columns.size() * (std::size_t)(dimension_ * dimension_);
+    if (zeros.size() < values) zeros.resize(values, 0.0);
+    const PetscInt row = l.petsc_index[a];
+    PetscCall(MatSetValuesBlocked(pattern, 1, &row, (PetscInt)columns.size(), columns.data(), zeros.data(), ADD_VALUES));
+  }
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode TangentOperator::CreateMatrix(Mat *H) const
 {
   Mat            pattern;
-  PetscInt       failed;
   const PetscInt n = dimension_ * layout_->n_owned;
 
   PetscFunctionBegin;
@@ -85,7 +132,7 @@ PetscErrorCode TangentOperator::CreateMatrix(Mat *H) const
   PetscCall(MatSetBlockSize(pattern, dimension_));
   PetscCall(MatSetType(pattern, MATPREALLOCATOR));
   PetscCall(MatSetUp(pattern));
-  PetscCall(add_blocks_(layout_->cloud.x.data(), nullptr, pattern, false, &failed));
+  PetscCall(InsertPattern(pattern));
   PetscCall(MatAssemblyBegin(pattern, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(pattern, MAT_FINAL_ASSEMBLY));
   PetscCall(MatCreate(comm_, H));
@@ -108,7 +155,7 @@ PetscErrorCode TangentOperator::Assemble(const double *y, const double *c33, Mat
 
   PetscFunctionBegin;
   PetscCall(MatZeroEntries(H));
-  PetscCall(add_blocks_(y, c33, H, true, &mine));
+  PetscCall(add_blocks_(y, c33, H, &mine));
   PetscCall(MatAssemblyBegin(H, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(H, MAT_FINAL_ASSEMBLY));
   PetscCallMPI(MPI_Allreduce(&mine, failed, 1, MPIU_INT, MPI_SUM, comm_));

@@ -2,12 +2,7 @@
 # What the static solver refuses, and a load step that cannot converge: each ends with one
 # "bapd: error:" naming the option or the stretch and what to change, and a non-zero exit.
 #   errors_static.sh       (ctest sets BAPD_EXE and BAPD_SOURCE_DIR)
-set -uo pipefail
-src="$BAPD_SOURCE_DIR"
-work="static_errors"
-rm -rf "$work" && mkdir -p "$work" && cd "$work" || exit 1
-failures=0
-fail() { echo "FAIL $*"; failures=$((failures + 1)); }
+. "$(dirname "$0")/common.sh" static_errors
 scene=(-options_file_yaml "$src/tests/data/scenes/tiny.yaml" -progress_wall_interval 0 -solver static)
 # expect NAME PATTERN OPTIONS...: exit non-zero with a "bapd: error:" line matching PATTERN.
 expect() {
@@ -28,5 +23,4 @@ expect step "-static_stretch_step" -static_stretch_step 0
 # then one error naming the last stretch reached and the options to change, not a hang.
 expect no_convergence "no static state found beyond stretch 1.00000 on the way to 1.50000.*-static_stretch_step_min.*-snes_max_it" \
   -load_schedule 0,1,1,1.5 -snes_max_it 1 -static_stretch_step_min 0.05
-((failures == 0)) && echo "errors_static: passed"
-exit $((failures > 0))
+finish errors_static

@@ -3,13 +3,8 @@
 # dx = 2 mm) against the dynamic route's (examples/plate_hole_fast.yaml: adaptive
 # relaxation, each hold ended at kinetic < 1e-10 x internal energy), both run here.
 #   plate_static.sh        (ctest sets BAPD_EXE and BAPD_SOURCE_DIR)
-set -uo pipefail
-src="$BAPD_SOURCE_DIR"
-work="static_plate"
-rm -rf "$work" && mkdir -p "$work" && cd "$work" || exit 1
-failures=0
-fail() { echo "FAIL $*"; failures=$((failures + 1)); }
-plate=(-options_file_yaml "$src/examples/plate_hole.yaml" -body_dx 0.002 -progress_wall_interval 0)
+. "$(dirname "$0")/common.sh" static_plate
+plate+=(-body_dx 0.002)
 timeout 600 mpiexec -n 1 "$BAPD_EXE" "${plate[@]}" -options_file_yaml "$src/examples/plate_hole_fast.yaml" \
   -output_dir dynamic > dynamic.log 2>&1 || fail "dynamic route: exit $?"
 timeout 600 mpiexec -n 1 "$BAPD_EXE" "${plate[@]}" -solver static -output_dir static > static.log 2>&1 || fail "static solver: exit $?"
@@ -35,7 +30,7 @@ sys.exit(0 if ok else 1)
 PY
 # The default modified Newton keeps its tangent (fewer tangents than Newton iterations)
 # and reaches the states full Newton (-snes_lag_jacobian 1) reaches: both end at |R| =
-# 1e-10 of the reactions, measured 2e-12 apart in displacement; 1e-8 allows for it. The
+# 1e-10 of the reactions, measured 4e-12 apart in displacement; 1e-8 allows for it. The
 # static run does no stable-step estimate (the dynamic set-up's).
 timeout 600 mpiexec -n 1 "$BAPD_EXE" "${plate[@]}" -solver static -snes_lag_jacobian 1 -output_dir full > full.log 2>&1 || fail "full Newton: exit $?"
 read -r newton tangents < <(grep -oE "[0-9]+ Newton iterations, .* [0-9]+ tangents assembled" static.log | grep -oE "^[0-9]+|[0-9]+ tangents" | grep -oE "[0-9]+" | tr '\n' ' ')
@@ -55,5 +50,4 @@ PY
 steps=$(grep -oE "^Static solver \(Newton, -solver static\): [0-9]+ load steps" static.log | grep -oE "[0-9]+ load" | grep -oE "[0-9]+")
 rows=$(($(wc -l < static/history.csv) - 2)) # header and the row at rest
 [ "$rows" = "$steps" ] || fail "$rows history rows after the one at rest for $steps load steps"
-((failures == 0)) && echo "plate_static: passed"
-exit $((failures > 0))
+finish plate_static

@@ -3,15 +3,10 @@
 # (each Newton solve ends at 1e-10 of the grips' reactions; the ranks' partial sums in
 # the Krylov solves differ at round-off), on the plate with a hole at dx = 4 mm.
 #   ranks_static.sh        (ctest sets BAPD_EXE and BAPD_SOURCE_DIR)
-set -uo pipefail
-src="$BAPD_SOURCE_DIR"
-work="static_ranks"
-rm -rf "$work" && mkdir -p "$work" && cd "$work" || exit 1
-failures=0
-fail() { echo "FAIL $*"; failures=$((failures + 1)); }
+. "$(dirname "$0")/common.sh" static_ranks
 for n in 1 2 3; do
-  timeout 600 mpiexec -n $n "$BAPD_EXE" -options_file_yaml "$src/examples/plate_hole.yaml" -body_dx 0.004 -solver static \
-    -progress_wall_interval 0 -output_final_state -output_dir np$n > np$n.log 2>&1 || fail "$n rank(s): exit $?"
+  timeout 600 mpiexec -n $n "$BAPD_EXE" "${plate[@]}" -body_dx 0.004 -solver static -output_final_state -output_dir np$n \
+    > np$n.log 2>&1 || fail "$n rank(s): exit $?"
 done
 /usr/bin/python3 - <<'PY' || failures=$((failures + 1))
 import csv
@@ -32,5 +27,4 @@ if not ok:
     print("FAIL the ranks disagree")
 raise SystemExit(0 if ok else 1)
 PY
-((failures == 0)) && echo "ranks_static: passed"
-exit $((failures > 0))
+finish ranks_static

@@ -1,13 +1,17 @@
 // The static solver's tangent (ba_tangent.hpp, tangent_operator.hpp) is the derivative
 // of its nodal force: H v against central differences of -V f, at a deformed state, in
-// plane stress, plane strain (with the point volumetric energy too) and 3D, two laws.
+// plane stress, plane strain (with the point volumetric energy too) and 3D, two laws;
+// and the plane-stress law's exact dP/dF (PlaneStress::tangent) against differences of P.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
 
 #include "bapd/solver/driver/simulation.hpp"
+#include "bapd/core/materials/models.hpp"
+#include "bapd/core/materials/numerical_tangent.hpp"
 #include "bapd/solver/driver/static_solver.hpp"
 #include "mpi/test_scenes.hpp"
 
@@ -32,13 +36,15 @@ template <int D> void Field(const Layout &layout, double a, double L, int phase,
 }
 
 // |H v - (R(u + e v) - R(u - e v)) / 2e| / |H v| at a deformed state.
-template <int D> double TangentError(const std::string &options)
+// exact: the law's own dP/dF where it has one (the default), else differences everywhere.
+template <int D> double TangentError(const std::string &options, bool exact = true)
 {
   EXPECT_EQ(bapd_test::SetOptions(options), 0);
   SimulationD<D> sim(PETSC_COMM_WORLD);
   EXPECT_EQ(sim.Setup(), 0);
   StaticSolver<D> solver(sim);
   EXPECT_EQ(solver.Setup(), 0);
+  solver.set_law_tangent(exact);
   Vec u, v, up, um, fp, fm, Hv;
   Mat H;
   VecDuplicate(solver.displacement(), &u);
@@ -95,10 +101,50 @@ constexpr double tolerance = 1e-6;
 
 TEST(StaticTangent, PlaneStressMatchesForceDifferences)
 {
-  for (const char *law : {"gent", "neo_hookean"}) {
-    const double err = TangentError<2>(Sheet(std::string("-material_model ") + law + " -material_bulk_ratio 1000"));
-    EXPECT_LT(err, tolerance) << law;
+  // gent and neo_hookean: the law's exact tangent, and differences of P; mooney_rivlin
+  // (a law of I2bar): differences.
+  for (const char *law : {"gent", "neo_hookean", "mooney_rivlin"})
+    for (bool exact : {true, false}) {
+      const double err = TangentError<2>(Sheet(std::string("-material_model ") + law + " -material_bulk_ratio 1000"), exact);
+      EXPECT_LT(err, tolerance) << law << (exact ? " (the law's tangent)" : " (differences)");
+    }
+}
+
+// PlaneStress::tangent against central differences of P (numerical_tangent.hpp): at rest, in tension, shear, compression, pure shear at stretch 5 and
+// near the Gent chain limit (stretch 9 uniaxial, I1bar - 3 about 0.5 Jm).
+template <class Model> void LawTangentMatchesDifferences(const Model &model, const char *name)
+{
+  const std::vector<Mat2> states = {{1, 0, 0, 1},      {1.5, 0, 0, 1},       {1, 0.4, 0, 1},   {0.7, 0.1, -0.05, 0.9},
+                                    {5, 0, 0, 0.2},    {1.3, 0.7, -0.2, 2.1}, {9, 0, 0, 0.35}};
+  for (const Mat2 &F : states) {
+    Tangent2               coarse, fine;
+    std::array<double, 16> exact;
+    ASSERT_EQ(numerical_tangent(model, F, 0.0, coarse, 2e-4), StressStatus::ok);
+    ASSERT_EQ(numerical_tangent(model, F, 0.0, fine, 1e-4), StressStatus::ok);
+    ASSERT_EQ(model.tangent(F, 0.0, exact), StressStatus::ok);
+    double worst = 0, size = 0;
+    for (int e = 0; e < 16; ++e) {
+      const double extrapolated = (4 * fine[e] - coarse[e]) / 3; // Richardson: O(h^4)
+      worst                     = std::max(worst, std::abs(exact[e] - extrapolated));
+      size                      = std::max(size, std::abs(exact[e]));
+    }
+    // The differences' step h = 1e-4 max|F| is up to 2.5e-3 of the smallest F component
+    // here: O(h^4) truncation ~1e-10 after extrapolation, and the plane-stress solve's
+    // 1e-12 noise over h ~1e-8 of |A|. An error in A shows at 1e-3 and above.
+    EXPECT_LT(worst, 1e-7 * size) << name << " at F = " << F[0] << "," << F[1] << "," << F[2] << "," << F[3];
   }
+}
+
+TEST(StaticTangent, PlaneStressLawTangentMatchesDifferences)
+{
+  MaterialParameters p;
+  p.mu              = 4.55e3;
+  p["-material_Jm"] = 162.6;
+  p.D               = 2.0 / (1000 * p.mu);
+  LawTangentMatchesDifferences(GentPlaneStress{p}, "gent");
+  LawTangentMatchesDifferences(NeoHookeanPlaneStress{p}, "neo_hookean");
+  p.D = 2.0 / (10 * p.mu); // compressible
+  LawTangentMatchesDifferences(GentPlaneStress{p}, "gent, K = 10 mu");
 }
 
 TEST(StaticTangent, PlaneStrainMatchesForceDifferences)

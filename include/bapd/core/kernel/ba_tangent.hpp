@@ -11,8 +11,13 @@
 // dF_iq / dy_a = e_r (x) a_a, so
 //   d^2 W_i / dy_a,r dy_b,s = V_i omega_i sum_q V_q sum_{m,n} A_q[r m][s n] a_a[m] a_b[n],
 // A_q = dP/dF at F_iq (the law's tangent; plane stress: of the reduced law, C33 solved
-// at every F, eq 33), here by central differences of the law's P (numerical_tangent.hpp's
-// step, 1e-4 of max(1, |F|): about 1e-8 relative).
+// at every F, eq 33): the law's exact one where it has it (PlaneStress::tangent, a law of
+// I1bar only: Gent, neo-Hookean), else central differences of the law's P
+// (numerical_tangent.hpp's step, 1e-4 of max(1, |F|): about 1e-8 relative).
+//
+// The pair loop: per bond, the points of B_iq (and i) are listed once, T_a = V_q A a_a
+// formed once for each, and only the blocks with b >= a summed (H is symmetric: the
+// lower blocks are mirrored at the end).
 //
 // -material_volumetric point (section 8, volumetric.hpp): W_i's bond terms use P*_iq,
 // which depends on F_iq and on Jbar_i = omega_i sum_q V_q J_iq. Differentiating the
@@ -27,9 +32,11 @@
 // Local numbering of the block: 0 = point i, 1 + p = the p-th member of i's family;
 // D rows a point. H is (m + 1) D square, row-major, m = family size.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <type_traits>
 #include <vector>
 
 #include "bapd/core/kernel/ba_model_lanes.hpp"
@@ -42,13 +49,17 @@ namespace bapd::nd {
 template <int D> struct TangentWorkspace {
   PointScratch<D>     point;
   std::vector<double> H;        // (m + 1) D square
-  std::vector<double> a;        // a_p, D per local point (0: i)
-  std::vector<double> T;        // sum_m A[r m][s n] a_p[m], D^3 per local point
+  std::vector<double> a;        // a_k, D per point of the current bond (k = 0: i)
+  std::vector<double> T;        // V_q sum_m A[r m][s n] a_k[m], D^3 per point of the current bond
   std::vector<double> v;        // dJbar/dy, D per local point
   std::vector<int>    energetic; // per bond: 1 if it carries energy
   std::vector<double> dilatation; // J_iq per bond
   std::vector<Mat<D>> deformation; // F_iq per bond
   std::vector<double> kinv;     // K_iq^{-1} upper triangle per bond
+  std::vector<double> c33;      // C33 solved at F_iq per bond (plane stress: the tangent's warm start)
+  std::vector<double> law_A;    // the law's exact dP/dF per bond, D^4 (where it has one)
+  std::vector<std::size_t> local; // the current bond's points: i (0), then the members of B_iq (1 + p)
+  bool                law_tangent = true; // the law's exact dP/dF where it has one (false: central differences)
   Volumetric          volumetric = Volumetric::bond;
   double              kappa      = 0.0; // kappa [Pa] (-material_volumetric_stabilisation times mu)
 
@@ -67,6 +78,9 @@ template <int D> struct TangentWorkspace {
       dilatation.resize(f.max_family_size);
       deformation.resize(f.max_family_size);
       kinv.resize(f.max_family_size * sym_size<D>);
+      c33.resize(f.max_family_size);
+      law_A.resize(f.max_family_size * D * D * D * D);
+      local.resize(f.max_family_size + 1);
     }
   }
 };
@@ -90,11 +104,24 @@ inline StressStatus tangent_stress(const Model &model, const Mat<D> &F, double c
   return StressStatus::ok;
 }
 
-// A[(D r + m) D^2 + (D s + n)] = dP_rm / dF_sn by central differences (numerical_tangent.hpp's step).
+// Whether the model has an exact dP/dF (PlaneStress::tangent).
+template <class Model, class = void> struct has_law_tangent : std::false_type {};
+template <class Model> struct has_law_tangent<Model, std::enable_if_t<Model::has_tangent>> : std::true_type {};
+
+// A[(D r + m) D^2 + (D s + n)] = dP_rm / dF_sn: the law's own (exact) where it has one and
+// law_tangent is set, else by central differences (numerical_tangent.hpp's step).
 template <int D, class Model>
 inline StressStatus tangent_of(const Model &model, const Mat<D> &F, double c33, bool point, double Jbar,
-                               double compressibility, double kappa, double *A)
+                               double compressibility, double kappa, bool law_tangent, double *A)
 {
+  if constexpr (D == 2 && has_law_tangent<Model>::value) {
+    if (law_tangent && !point) {
+      std::array<double, 16> exact;
+      const StressStatus     s = model.tangent(F, c33, exact);
+      std::copy(exact.begin(), exact.end(), A);
+      return s;
+    }
+  }
   double scale = 1.0;
   for (double f : F) scale = std::max(scale, std::abs(f));
   const double h = 1e-4 * scale;
@@ -128,6 +155,8 @@ std::size_t point_tangent(const Model &model, const PointCloud &ref, const doubl
   const std::uint64_t *intact = state.intact_mask(i);
   const PointTotals<D> totals = gather_point<D>(ref, y, fam, i, intact, ws.point);
   const bool           point  = ws.volumetric == Volumetric::point;
+  // The law's exact tangent, formed in the first pass (one C33 solve a bond).
+  const bool exact = detail::has_law_tangent<Model>::value && D == 2 && ws.law_tangent && !point;
   const double         Dc     = point ? detail::compressibility(model, 0) : 0.0;
   std::fill(ws.H.begin(), ws.H.begin() + N * N, 0.0);
   // Pass 1: which bonds carry energy, their F, K^{-1}, J and volume sums (omega_i, Jbar_i).
@@ -138,11 +167,16 @@ std::size_t point_tangent(const Model &model, const PointCloud &ref, const doubl
     if (!state.is_intact(i, q) || !geo.is_usable(i, q)) continue;
     const BondKinematics<D> k = bond_kinematics<D>(fam.ba(o + q), intact, W, ws.point, totals);
     if (!k.usable) continue;
-    double       c = c33 ? c33[o + q] : 0.0;
-    Mat<D>       P;
-    if (detail::stress_of<D>(model, k.F, c, P, 0) != StressStatus::ok) continue;
+    double c = c33 ? c33[o + q] : 0.0;
+    if (exact) { // the law's tangent decides (its C33 solve is the stress's) and is kept
+      if (detail::tangent_of<D>(model, k.F, c, false, 1.0, 0.0, 0.0, true, &ws.law_A[DD * DD * q]) != StressStatus::ok) continue;
+    } else {
+      Mat<D> P;
+      if (detail::stress_of<D>(model, k.F, c, P, 0) != StressStatus::ok) continue;
+    }
     ws.energetic[q] = 1;
     Fq[q]           = k.F;
+    ws.c33[q]       = c;
     for (int s = 0; s < sym_size<D>; ++s) ws.kinv[sym_size<D> * q + s] = k.shape_tensor_inv[s];
     const double vq = ws.point.member[q][Member<D>::volume];
     volume += vq;
@@ -158,80 +192,77 @@ std::size_t point_tangent(const Model &model, const PointCloud &ref, const doubl
   double      A[DD * DD];
   for (std::size_t q = 0; q < m; ++q) {
     if (!ws.energetic[q]) continue;
-    const double c = c33 ? c33[o + q] : 0.0;
-    if (detail::tangent_of<D>(model, Fq[q], c, point, Jbar, Dc, ws.kappa, A) != StressStatus::ok) {
+    if (exact) std::copy_n(&ws.law_A[DD * DD * q], DD * DD, A);
+    else if (detail::tangent_of<D>(model, Fq[q], ws.c33[q], point, Jbar, Dc, ws.kappa, ws.law_tangent, A) != StressStatus::ok) {
       ++failed;
       continue;
     }
-    // a_p = K^{-1} (x_p - x_i) V_p over the intact members of B_iq; a_i = -sum_p a_p.
+    // The points of the bond: i (local 0), then the intact members p of B_iq (local 1 + p,
+    // by a sweep over the mask words, increasing), with a_p = K^{-1} (x_p - x_i) V_p and
+    // a_i = -sum_p a_p side by side in ws.a.
     const std::uint64_t *ba   = fam.ba(o + q);
     const double        *kinv = &ws.kinv[sym_size<D> * q];
+    std::size_t         *local = ws.local.data();
+    double              *g     = ws.a.data();
+    std::size_t          nb    = 1;
     double               ai[D] = {};
-    // The members p of B_iq (local index 1 + p), by a sweep over the mask words.
-    auto for_members = [&](auto &&visit) {
-      for (std::size_t w = 0; w < W; ++w) {
-        std::uint64_t bits = ba[w] & intact[w];
-        while (bits) {
-          const std::size_t p = 64 * w + static_cast<std::size_t>(__builtin_ctzll(bits));
-          bits &= bits - 1;
-          visit(p);
+    local[0]                   = 0;
+    for (std::size_t w = 0; w < W; ++w) {
+      std::uint64_t bits = ba[w] & intact[w];
+      while (bits) {
+        const std::size_t p = 64 * w + static_cast<std::size_t>(__builtin_ctzll(bits));
+        bits &= bits - 1;
+        const double *d  = &ws.point.offset[D * p];
+        const double  vp = ws.point.member[p][Member<D>::volume];
+        for (int r = 0; r < D; ++r) {
+          double t = 0.0;
+          for (int c2 = 0; c2 < D; ++c2) t += kinv[sym_index<D>(r, c2)] * d[c2];
+          g[D * nb + r] = t * vp;
+          ai[r] -= t * vp;
         }
+        local[nb++] = 1 + p;
       }
-    };
-    for_members([&](std::size_t p) {
-      const double *d  = &ws.point.offset[D * p];
-      const double  vp = ws.point.member[p][Member<D>::volume];
-      for (int r = 0; r < D; ++r) {
-        double s = 0.0;
-        for (int c2 = 0; c2 < D; ++c2) s += kinv[sym_index<D>(r, c2)] * d[c2];
-        ws.a[D * (1 + p) + r] = s * vp;
-        ai[r] -= s * vp;
-      }
-    });
-    for (int r = 0; r < D; ++r) ws.a[r] = ai[r];
+    }
+    for (int r = 0; r < D; ++r) g[r] = ai[r];
     const double vq = ws.point.member[q][Member<D>::volume];
-    // T_a[r][s][n] = vq sum_m A[r m][s n] a_a[m], then H_ab[r][s] += sum_n T_a[r][s][n] a_b[n].
-    auto form_T = [&](std::size_t a) {
-      const double *g = &ws.a[D * a];
-      double       *T = &ws.T[DD * D * a];
+    // T_k[r][s][n] = vq sum_m A[r m][s n] a_k[m] (k: the bond's k-th point)
+    for (std::size_t k = 0; k < nb; ++k) {
+      const double *gk = &g[D * k];
+      double       *T  = &ws.T[DD * D * k];
       for (int r = 0; r < D; ++r)
-        for (int s = 0; s < D; ++s)
+        for (int s2 = 0; s2 < D; ++s2)
           for (int nn = 0; nn < D; ++nn) {
             double t = 0.0;
-            for (int mm = 0; mm < D; ++mm) t += A[DD * (D * r + mm) + D * s + nn] * g[mm];
-            T[DD * r + D * s + nn] = vq * t;
+            for (int mm = 0; mm < D; ++mm) t += A[DD * (D * r + mm) + D * s2 + nn] * gk[mm];
+            T[DD * r + D * s2 + nn] = vq * t;
           }
-    };
-    auto add_block = [&](std::size_t a, std::size_t b) {
-      const double *T = &ws.T[DD * D * a], *g = &ws.a[D * b];
-      for (int r = 0; r < D; ++r)
-        for (int s = 0; s < D; ++s) {
-          double h = 0.0;
-          for (int nn = 0; nn < D; ++nn) h += T[DD * r + D * s + nn] * g[nn];
-          ws.H[(D * a + r) * N + D * b + s] += h;
-        }
-    };
-    form_T(0);
-    for_members([&](std::size_t p) { form_T(1 + p); });
-    add_block(0, 0);
-    for_members([&](std::size_t p) { // the upper triangle of blocks (H is symmetric: mirrored below)
-      add_block(0, 1 + p);
-      for_members([&](std::size_t p2) {
-        if (p2 >= p) add_block(1 + p, 1 + p2);
-      });
-    });
+    }
+    // H_ab[r][s] += sum_n T_a[r][s][n] a_b[n] over the pairs with b >= a (local is increasing)
+    for (std::size_t k1 = 0; k1 < nb; ++k1) {
+      double Tk[DD * D];
+      for (int e = 0; e < DD * D; ++e) Tk[e] = ws.T[DD * D * k1 + e];
+      double *row = &ws.H[D * local[k1] * N];
+      for (std::size_t k2 = k1; k2 < nb; ++k2) {
+        const double *gb  = &g[D * k2];
+        double       *out = row + D * local[k2];
+        for (int r = 0; r < D; ++r)
+          for (int s2 = 0; s2 < D; ++s2) {
+            double h = 0.0;
+            for (int nn = 0; nn < D; ++nn) h += Tk[DD * r + D * s2 + nn] * gb[nn];
+            out[r * N + s2] += h;
+          }
+      }
+    }
     if (point) { // v += V_q cof F_iq : dF_iq/dy (omega_i applied below)
       const Mat<D> cof = detail::cofactor_of<D>(Fq[q]);
-      auto add_v = [&](std::size_t a) {
-        const double *g = &ws.a[D * a];
+      for (std::size_t k = 0; k < nb; ++k) {
+        const double *gk = &g[D * k];
         for (int r = 0; r < D; ++r) {
-          double s = 0.0;
-          for (int nn = 0; nn < D; ++nn) s += cof[D * r + nn] * g[nn];
-          ws.v[D * a + r] += vq * s;
+          double t = 0.0;
+          for (int nn = 0; nn < D; ++nn) t += cof[D * r + nn] * gk[nn];
+          ws.v[D * local[k] + r] += vq * t;
         }
-      };
-      add_v(0);
-      for_members([&](std::size_t p) { add_v(1 + p); });
+      }
     }
   }
   const double Vi = ref.volume[i], scale = Vi * omega;

@@ -291,6 +291,52 @@ template <class Law> struct PlaneStress {
     return done;
   }
 
+  // The exact tangent A[4 (2i + j) + (2k + l)] = dP~_ij / dF~_kl of a law of I1bar only
+  // (has_tangent; the static solver's Hessian, ba_tangent.hpp), C33 solved as stress()
+  // does. P~ = Gbar (F~ - c F~^{-T}) with Gbar(a, k, c) = G(I1bar) q, q = (c k)^{-1/3},
+  // I1bar = (a + c) q, a = tr C~, k = J~^2, and c = C33(a, k) the root of f (eq 33), so
+  // by implicit differentiation dc = -(f_a da + f_k dk) / f_c with da = 2 F~ : dF~ and
+  // dk = 2 k F~^{-T} : dF~. Then with dGbar = Cg : dF~ and d(Gbar c) = Cb : dF~,
+  //   A_ijkl = Gbar d_ik d_jl + F~_ij Cg_kl - F~^{-T}_ij Cb_kl + Gbar c F~^{-T}_il F~^{-T}_kj.
+  static constexpr bool has_tangent = Law::variables == LawVariables::invariants && !Law::uses_I2bar;
+  StressStatus tangent(const Mat2 &F, double c33, std::array<double, 16> &A) const
+  {
+    static_assert(has_tangent, "PlaneStress::tangent: a law of I1bar only (a law of I2bar takes differences of P)");
+    const double              Jt = det(F), inv_Jt = Jt > 0.0 ? 1.0 / Jt : 0.0;
+    const PlaneStressSolution s = solve(F, Jt, inv_Jt, c33);
+    if (s.status != StressStatus::ok) return s.status;
+    const double a = F[0] * F[0] + F[1] * F[1] + F[2] * F[2] + F[3] * F[3], k = Jt * Jt, c = s.c33;
+    const double q = 1.0 / std::cbrt(c * k), I1bar = (a + c) * q, inv_D = 1.0 / p.D;
+    ModulusOf<double> G;
+    Law::modulus(p, InvariantsOf<double>{I1bar}, G);
+    const double Gbar = s.shear, dG = G[1] * q; // Gbar as stress() has it; dG = q dG/dI1bar
+    // partial derivatives of Gbar(a, k, c) (q_c = -q / 3c, q_k = -q / 3k)
+    const double Gbar_a = dG * q;
+    const double Gbar_c = dG * q * (1.0 - (a + c) / (3.0 * c)) - G[0] * q / (3.0 * c);
+    const double Gbar_k = -dG * (a + c) * q / (3.0 * k) - G[0] * q / (3.0 * k);
+    // f = Gbar t + (c k - 1)/D, t = (2c - a)/3
+    const double t = (2.0 * c - a) / 3.0;
+    const double f_c = Gbar_c * t + (2.0 / 3.0) * Gbar + k * inv_D;
+    const double f_a = Gbar_a * t - Gbar / 3.0, f_k = Gbar_k * t + c * inv_D;
+    const Mat2   FinvT = {F[3] * inv_Jt, -F[2] * inv_Jt, -F[1] * inv_Jt, F[0] * inv_Jt}; // cof F~ / J~
+    Mat2         Cc, Cg, Cb;
+    for (int kl = 0; kl < 4; ++kl) {
+      const double da = 2.0 * F[kl], dk = 2.0 * k * FinvT[kl];
+      Cc[kl]          = -(f_a * da + f_k * dk) / f_c;
+      Cg[kl]          = Gbar_a * da + Gbar_k * dk + Gbar_c * Cc[kl];
+      Cb[kl]          = c * Cg[kl] + Gbar * Cc[kl];
+    }
+    const double Gc = Gbar * c;
+    for (int i = 0; i < 2; ++i)
+      for (int j = 0; j < 2; ++j)
+        for (int kk = 0; kk < 2; ++kk)
+          for (int l = 0; l < 2; ++l) {
+            const int ij = 2 * i + j, kl = 2 * kk + l;
+            A[4 * ij + kl] = (i == kk && j == l ? Gbar : 0.0) + F[ij] * Cg[kl] - FinvT[ij] * Cb[kl] + Gc * FinvT[2 * i + l] * FinvT[2 * kk + j];
+          }
+    return StressStatus::ok;
+  }
+
   // The reduced energy Psi(F~, C33(F~)) per unit reference volume.
   StressStatus energy(const Mat2 &F, double &c33, double &psi) const
   {

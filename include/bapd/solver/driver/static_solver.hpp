@@ -51,6 +51,7 @@ public:
   PetscErrorCode NodalForce(Vec u, Vec force);
   PetscErrorCode Tangent(Vec u, Mat H);
   PetscErrorCode CreateMatrix(Mat *H) const { return tangent_.CreateMatrix(H); }
+  void           set_law_tangent(bool exact) { tangent_.set_law_tangent(exact); } // TangentOperator::set_law_tangent
   Vec            displacement() const { return u_; } // the current state (owned dofs)
   PetscInt       newton_iterations() const { return newton_iterations_; }
   PetscInt       krylov_iterations() const { return krylov_iterations_; }
@@ -68,6 +69,7 @@ private:
   // Owned displacements with the grips at their values at time t.
   void           HoldGrips(double t, double *u) const;
   PetscErrorCode Evaluate(const double *u, bool *ok); // force_density_ at u, committed warm starts
+  PetscErrorCode CopyToPreconditioner(); // P_ = H_ after an assembly
   PetscErrorCode CopyToState(); // u_ into the driver's state X_ (v = 0), for its history and fields
   PetscErrorCode WriteStaticState(double t);
   PetscErrorCode Summary(double cpu);
@@ -84,6 +86,10 @@ private:
   std::vector<PetscInt> held_;          // global dof indices of the grips' dofs on this rank
   std::vector<double>   u_scratch_;     // D per owned point
   std::vector<double>   force_density_; // D per owned point
+  std::vector<double>   grips_before_, grips_after_; // the predictor's grips at the two times, D per owned point
+  std::vector<double>   c33_last_;      // the warm starts at the start of the load step (a cutback's)
+  double                dirichlet_diagonal_ = 0; // the grips' rows' diagonal (FormJacobian), set at the first tangent
+  int                   block_copy_ = -1; // CopyToPreconditioner: -1 not tried yet, 1 block by block, 0 MatConvert
   double                t_              = 0;    // schedule time of the current state
   double                t_target_       = 0;    // of the load step being solved
   double                reaction_norm_  = 0;    // |V f| over the grips' dofs at the last evaluation
