@@ -189,6 +189,41 @@ LatticePieces lattice_pieces(const Body2D &body)
   return pieces;
 }
 
+int64_t lattice_rows(const Body2D &body)
+{
+  const LatticeCells cells = lattice_cells(body);
+  if (cells.nx < 1 || cells.ny < 1) return 0;
+  return cell_range(body, cells).ny();
+}
+
+void append_lattice_rows(const Body2D &body, int64_t row_begin, int64_t row_end, PointCloud *cloud, std::vector<int64_t> *row_counts)
+{
+  const LatticeCells cells = lattice_cells(body);
+  if (cells.nx < 1 || cells.ny < 1) return;
+  const CellRange r           = cell_range(body, cells);
+  const double    cell_volume = body.dx * body.dx * body.thickness;
+  row_begin                   = std::max<int64_t>(row_begin, 0);
+  row_end                     = std::min<int64_t>(row_end, r.ny());
+  if (row_end <= row_begin) return;
+  const auto most = cloud->size() + static_cast<std::size_t>(r.nx() * (row_end - row_begin));
+  cloud->x.reserve(2 * most);
+  cloud->volume.reserve(most);
+  cloud->natural_id.reserve(most);
+  for (int64_t iy = r.y0 + row_begin; iy < r.y0 + row_end; ++iy) {
+    const double      py    = cell_centre(iy, body.dx);
+    const std::size_t first = cloud->size();
+    for (int64_t ix = r.x0; ix < r.x1; ++ix) {
+      const double px = cell_centre(ix, body.dx);
+      if (!material_cell(body, cells, ix, iy)) continue;
+      cloud->natural_id.push_back(static_cast<int64_t>(cloud->volume.size()));
+      cloud->x.push_back(px);
+      cloud->x.push_back(py);
+      cloud->volume.push_back(cell_volume);
+    }
+    if (row_counts) row_counts->push_back(static_cast<int64_t>(cloud->size() - first));
+  }
+}
+
 PointCloud make_lattice(const Body2D &body)
 {
   if (!(body.dx > 0) || !(body.width > 0) || !(body.height > 0) || !(body.thickness > 0))
@@ -201,24 +236,8 @@ PointCloud make_lattice(const Body2D &body)
   if (nx < 1 || ny < 1)
     throw std::invalid_argument("make_lattice: the body is narrower than one cell; reduce dx");
 
-  const CellRange r           = cell_range(body, cells);
-  const double    cell_volume = body.dx * body.dx * body.thickness;
-  const auto      most        = static_cast<std::size_t>(r.nx() * r.ny());
-  PointCloud      cloud;
-  cloud.x.reserve(2 * most);
-  cloud.volume.reserve(most);
-  cloud.natural_id.reserve(most);
-  for (int64_t iy = r.y0; iy < r.y1; ++iy) {
-    const double py = cell_centre(iy, body.dx);
-    for (int64_t ix = r.x0; ix < r.x1; ++ix) {
-      const double px = cell_centre(ix, body.dx);
-      if (!material_cell(body, cells, ix, iy)) continue;
-      cloud.natural_id.push_back(static_cast<int64_t>(cloud.volume.size()));
-      cloud.x.push_back(px);
-      cloud.x.push_back(py);
-      cloud.volume.push_back(cell_volume);
-    }
-  }
+  PointCloud cloud;
+  append_lattice_rows(body, 0, lattice_rows(body), &cloud, nullptr);
   return cloud;
 }
 

@@ -450,6 +450,36 @@ SolidPieces body_pieces(const SolidBody &body, const PointCloud &points)
   return pieces;
 }
 
+int64_t solid_layers(const SolidBody &body)
+{
+  bool adds = false;
+  for (const Solid &s : body.solids) adds = adds || solid_adds(s);
+  return adds && body.dx > 0 ? body_grid(body).count[2] : 0;
+}
+
+void append_solid_layers(const SolidBody &body, int64_t layer_begin, int64_t layer_end, PointCloud *cloud,
+                         std::vector<int64_t> *layer_counts)
+{
+  const Grid g = body_grid(body);
+  layer_begin  = std::max<int64_t>(layer_begin, 0);
+  layer_end    = std::min<int64_t>(layer_end, g.count[2]);
+  PointCloud &c = *cloud;
+  for (int64_t k = layer_begin; k < layer_end; ++k) {
+    const std::size_t first = c.size();
+    for (int64_t j = 0; j < g.count[1]; ++j)
+      for (int64_t i = 0; i < g.count[0]; ++i) {
+        const double p[3] = {body.origin[0] + (static_cast<double>(g.first[0] + i) + 0.5) * body.dx,
+                             body.origin[1] + (static_cast<double>(g.first[1] + j) + 0.5) * body.dx,
+                             body.origin[2] + (static_cast<double>(g.first[2] + k) + 0.5) * body.dx};
+        if (!body_contains(body.solids, p)) continue;
+        c.x.insert(c.x.end(), p, p + 3);
+        c.natural_id.push_back(static_cast<int64_t>(c.volume.size()));
+        c.volume.push_back(body.dx * body.dx * body.dx);
+      }
+    if (layer_counts) layer_counts->push_back(static_cast<int64_t>(c.size() - first));
+  }
+}
+
 PointCloud make_solid_points(const SolidBody &body)
 {
   if (!(body.dx > 0) || !std::isfinite(body.dx))
@@ -478,17 +508,7 @@ PointCloud make_solid_points(const SolidBody &body)
                                        body.dx));
 
   PointCloud c;
-  for (int64_t k = 0; k < g.count[2]; ++k)
-    for (int64_t j = 0; j < g.count[1]; ++j)
-      for (int64_t i = 0; i < g.count[0]; ++i) {
-        const double p[3] = {body.origin[0] + (static_cast<double>(g.first[0] + i) + 0.5) * body.dx,
-                             body.origin[1] + (static_cast<double>(g.first[1] + j) + 0.5) * body.dx,
-                             body.origin[2] + (static_cast<double>(g.first[2] + k) + 0.5) * body.dx};
-        if (!body_contains(body.solids, p)) continue;
-        c.x.insert(c.x.end(), p, p + 3);
-        c.natural_id.push_back(static_cast<int64_t>(c.volume.size()));
-        c.volume.push_back(body.dx * body.dx * body.dx);
-      }
+  append_solid_layers(body, 0, g.count[2], &c, nullptr);
   if (c.size() == 0)
     throw std::invalid_argument(format("3D body: the solids keep no lattice point (no cell centre at dx = %g lies in "
                                        "the body); make dx smaller or the solids larger",

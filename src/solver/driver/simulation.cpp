@@ -12,6 +12,7 @@
 #include "bapd/solver/input/help.hpp"
 #include "bapd/core/geometry/geometry.hpp"
 #include "bapd/core/kernel/patch_correction.hpp"
+#include "bapd/solver/parallel/distributed_body.hpp"
 
 namespace bapd {
 
@@ -240,34 +241,37 @@ template <int D> PointCloud BodyPoints(const Scene &scene)
   }
 }
 
-} // namespace
-
-// Body, partition, layout, families and reference bond geometry.
-template <int D> PetscErrorCode SimulationD<D>::BuildBody()
+// The whole body on rank 0 (global with family_volume and, with
+// -force_patch_correction, the correction's numbers; the bond graph in CSR form,
+// natural order), checked there (given points in pieces, the correction's solve) and
+// against the memory with the real bond count; every rank stops together.
+template <int D>
+PetscErrorCode WholeBodyOnRankZero(MPI_Comm comm, const Scene &scene, PointCloud *global_out, std::vector<int> *offsets_out,
+                                   std::vector<int> *neighbours_out)
 {
-  PointCloud         global;
-  std::vector<int>   offsets, neighbours;
-  int                patch_failed = 0;
-  char               pieces[512]  = ""; // rank 0: the message if given points fall apart
+  PointCloud       &global = *global_out;
+  std::vector<int> &offsets = *offsets_out, &neighbours = *neighbours_out;
+  int               patch_failed = 0, rank;
+  char              pieces[512]  = ""; // rank 0: the message if given points fall apart
 
   PetscFunctionBegin;
-  PetscCall(PetscLogStagePush(stage_partition_));
-  if (rank_ == 0) {
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  if (rank == 0) {
     // Rank 0 builds the whole bond graph; fine up to a few 10^7 points (README). The
     // geometry stage gives the points: the lattice, or the given points with their
     // own volumes and horizons (geometry.hpp).
-    global               = BodyPoints<D>(scene_);
-    Families all         = BodyFamilies<D>(scene_, global, global.size());
+    global               = BodyPoints<D>(scene);
+    Families all         = BodyFamilies<D>(scene, global, global.size());
     compute_family_volumes(global, all);
     // (a 3D lattice body in pieces was refused by the scene: make_solid_points)
-    if (D == 2 && scene_.body.given_points) DescribePieces<D>(global, all, scene_.body.given_points->source, pieces, sizeof pieces);
-    if (D == 3 && scene_.body3d.given_points) DescribePieces<D>(global, all, scene_.body3d.source, pieces, sizeof pieces);
-    if (scene_.patch_correction != PatchCorrection::off && !pieces[0]) { // per point, shipped with the points (patch_correction.hpp, layout.cpp)
-      const bool            virial = scene_.patch_correction == PatchCorrection::virial;
+    if (D == 2 && scene.body.given_points) DescribePieces<D>(global, all, scene.body.given_points->source, pieces, sizeof pieces);
+    if (D == 3 && scene.body3d.given_points) DescribePieces<D>(global, all, scene.body3d.source, pieces, sizeof pieces);
+    if (scene.patch_correction != PatchCorrection::off && !pieces[0]) { // per point, shipped with the points (patch_correction.hpp, layout.cpp)
+      const bool            virial = scene.patch_correction == PatchCorrection::virial;
       PatchCorrectionReport report;
       try {
-        global.patch_correction = virial ? compute_virial_patch_correction<D>(global, all, scene_.stress_correction, &report)
-                                         : compute_patch_correction<D>(global, all, scene_.stress_correction, &report);
+        global.patch_correction = virial ? compute_virial_patch_correction<D>(global, all, scene.stress_correction, &report)
+                                         : compute_patch_correction<D>(global, all, scene.stress_correction, &report);
         global.patch_virial     = virial;
         PetscCall(PetscPrintf(PETSC_COMM_SELF, "%s", describe_patch_correction(report, virial).c_str()));
       } catch (const std::exception &e) {
@@ -278,17 +282,53 @@ template <int D> PetscErrorCode SimulationD<D>::BuildBody()
     offsets.assign(all.offsets.begin(), all.offsets.end());
     neighbours.assign(all.neighbour.begin(), all.neighbour.end());
   }
-  PetscCallMPI(MPI_Bcast(pieces, sizeof pieces, MPI_CHAR, 0, comm_));
-  PetscCheck(!pieces[0], comm_, PETSC_ERR_USER, "%s", pieces);
+  PetscCallMPI(MPI_Bcast(pieces, sizeof pieces, MPI_CHAR, 0, comm));
+  PetscCheck(!pieces[0], comm, PETSC_ERR_USER, "%s", pieces);
   // The memory check with the real bond count (the scene's assumed the lattice's).
   int64_t counts[2] = {static_cast<int64_t>(global.size()), static_cast<int64_t>(offsets.empty() ? 0 : offsets.back())};
-  PetscCallMPI(MPI_Bcast(counts, 2, MPI_INT64_T, 0, comm_));
-  PetscCall(CheckBodyMemory(comm_, scene_, counts[0], counts[1]));
-  PetscCallMPI(MPI_Bcast(&patch_failed, 1, MPI_INT, 0, comm_)); // every rank stops together
-  PetscCheck(!patch_failed, comm_, PETSC_ERR_USER,
+  PetscCallMPI(MPI_Bcast(counts, 2, MPI_INT64_T, 0, comm));
+  PetscCall(CheckBodyMemory(comm, scene, counts[0], counts[1]));
+  PetscCallMPI(MPI_Bcast(&patch_failed, 1, MPI_INT, 0, comm)); // every rank stops together
+  PetscCheck(!patch_failed, comm, PETSC_ERR_USER,
              "-force_patch_correction %s: the affine patch correction could not be solved on these points (above); run "
-             "with -force_patch_correction off", to_string(scene_.patch_correction));
-  PetscCall(DistributePoints<D>(comm_, global, offsets, neighbours, &layout_));
+             "with -force_patch_correction off", to_string(scene.patch_correction));
+  PetscFunctionReturn(0);
+}
+
+} // namespace
+
+// Body, partition, layout, families and reference bond geometry.
+template <int D> PetscErrorCode SimulationD<D>::BuildBody()
+{
+  PointCloud         global;
+  std::vector<int>   offsets, neighbours;
+  const bool         parallel     = scene_.partition_type == PartitionType::ptscotch;
+  const bool         given        = D == 2 ? (bool)scene_.body.given_points : (bool)scene_.body3d.given_points;
+  const FamilyBuilder families_of = [this](const PointCloud &cloud, std::size_t n) { return BodyFamilies<D>(scene_, cloud, n); };
+
+  PetscFunctionBegin;
+  PetscCall(PetscLogStagePush(stage_partition_));
+  if (parallel && !given && scene_.patch_correction == PatchCorrection::off) {
+    // -partition_type ptscotch on a lattice: every rank builds a slab of it, and no
+    // rank holds the whole body or bond graph (distributed_body.hpp).
+    BodyBlock block;
+    PetscCall(LatticeBlock<D>(comm_, scene_.body, scene_.body3d.solid, scene_.horizon(), families_of, &block));
+    int64_t counts[2] = {static_cast<int64_t>(block.size()), static_cast<int64_t>(block.neighbours.size())};
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, counts, 2, MPI_INT64_T, MPI_SUM, comm_));
+    PetscCall(CheckBodyMemory(comm_, scene_, counts[0], counts[1]));
+    PetscCall(DistributeBlocks<D>(comm_, block, &layout_));
+  } else {
+    if (parallel) // given points, or the patch correction's solve over the whole body
+      PetscCall(PetscPrintf(comm_, "Set-up: %s built on rank 0 (-partition_type ptscotch sets up a lattice body on every rank), partitioned by PT-Scotch\n",
+                            given ? "the given points" : "the body and its patch correction"));
+    PetscCall(WholeBodyOnRankZero<D>(comm_, scene_, &global, &offsets, &neighbours));
+    if (parallel) {
+      BodyBlock block;
+      PetscCall(ScatterBody<D>(comm_, global, offsets, neighbours, &block));
+      global = PointCloud(), offsets.clear(), neighbours.clear();
+      PetscCall(DistributeBlocks<D>(comm_, block, &layout_));
+    } else PetscCall(DistributePoints<D>(comm_, global, offsets, neighbours, &layout_));
+  }
   PetscCall(PetscLogStagePop());
 
   // Every rank finds the same families for its owned and ring-1 points as rank 0
@@ -321,6 +361,13 @@ template <int D> PetscErrorCode SimulationD<D>::BuildBody()
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &owned_min, 1, MPIU_INT, MPI_MIN, comm_));
   PetscCall(PetscPrintf(comm_, "Body: %" PetscInt_FMT " points, %" PetscInt_FMT " bonds, %d rank(s); edge cut %" PetscInt_FMT ", fewest owned %" PetscInt_FMT ", most ghosts %" PetscInt_FMT "\n",
                         layout_.n_global, bonds_global, size_, layout_.edge_cut, owned_min, ghost_max));
+  if (scene_.log_setup_memory) { // -log_setup_memory: the set-up's cost, every rank's peak so far
+    double mine[2] = {MPI_Wtime() - wall_start_, PeakResidentBytes() / 1048576.0}, most[2], total;
+    PetscCallMPI(MPI_Allreduce(mine, most, 2, MPI_DOUBLE, MPI_MAX, comm_));
+    PetscCallMPI(MPI_Allreduce(&mine[1], &total, 1, MPI_DOUBLE, MPI_SUM, comm_));
+    PetscCall(PetscPrintf(comm_, "Set-up: %.3f s (-partition_type %s); peak memory (VmHWM) largest rank %.1f MB, mean rank %.1f MB, rank 0 %.1f MB\n",
+                          most[0], parallel ? "ptscotch" : "metis", most[1], total / size_, mine[1]));
+  }
   PetscInt unusable = 0;
   for (PetscInt i = 0; i < layout_.n_owned; ++i)
     for (std::size_t q = 0; q < families_.size((std::size_t)i); ++q) unusable += !geometry_.is_usable((std::size_t)i, q);

@@ -92,6 +92,19 @@ PetscErrorCode ReadOutputTime(MPI_Comm comm, Scene *scene, SceneInput *in)
                "-solver '%s' is not a solver: choose dynamic (explicit dynamics, the default) or static (static states by Newton)",
                solver.c_str());
     scene->solver = solver == "static" ? SolverKind::static_newton : SolverKind::dynamic;
+    std::string partition = "metis";
+    PetscCall(r.String("-partition_type",
+                       "Who splits the body over the ranks: metis (rank 0 builds the whole body and bond graph, METIS splits it) or "
+                       "ptscotch (PT-Scotch on every rank; a lattice body is built in slabs, one a rank, and no rank holds it whole; "
+                       "given points and -force_patch_correction are still built on rank 0)",
+                       &partition));
+    SceneCheck(partition == "metis" || partition == "ptscotch", comm,
+               "-partition_type '%s' is not a partitioner: choose metis (the default) or ptscotch (in parallel)", partition.c_str());
+    scene->partition_type = partition == "ptscotch" ? PartitionType::ptscotch : PartitionType::metis;
+    PetscCall(r.Bool("-log_setup_memory",
+                     "Print the set-up's wall time and peak memory (VmHWM) of the largest rank, the mean rank and rank 0 once the "
+                     "body is distributed",
+                     &scene->log_setup_memory));
     StaticOptions &s = scene->static_options;
     PetscCall(r.Real("-static_stretch_step", "Static solver: the first load step [stretch], > 0", &s.stretch_step));
     PetscCall(r.Real("-static_stretch_step_max", "Static solver: the largest load step [stretch], > 0", &s.stretch_step_max));

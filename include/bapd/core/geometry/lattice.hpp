@@ -2,6 +2,7 @@
 // The material points of a 2D body (docs/method.md section 1): a uniform grid of spacing
 // dx, one point at the centre of each cell, points inside holes removed.
 #include <cstdint>
+#include <vector>
 
 #include "bapd/core/geometry/body.hpp"
 
@@ -50,5 +51,15 @@ int64_t lattice_point_count(const Body2D &body);
 // empty (compute_family_volumes in family.hpp fills it).
 // Throws std::invalid_argument for a non-positive dx, width, height or thickness.
 PointCloud make_lattice(const Body2D &body);
+
+// The lattice row by row, for a body built in slabs of rows (one a rank): row 0 is
+// the lowest (iy = -grip_rows.bottom), lattice_rows(body) of them (0 for a body
+// narrower than a cell). append_lattice_rows appends the points of rows
+// [row_begin, row_end) to *cloud in make_lattice's order, natural_id = the point's
+// index in *cloud (a slab's caller renumbers them), and, when row_counts is given,
+// each row's count of points to it. make_lattice is it over every row.
+int64_t lattice_rows(const Body2D &body);
+void    append_lattice_rows(const Body2D &body, int64_t row_begin, int64_t row_end, PointCloud *cloud,
+                            std::vector<int64_t> *row_counts);
 
 } // namespace bapd

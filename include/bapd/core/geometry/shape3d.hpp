@@ -126,6 +126,15 @@ SolidPieces body_pieces(const SolidBody &body, const PointCloud &points);
 // one piece (body_pieces).
 PointCloud make_solid_points(const SolidBody &body);
 
+// The lattice layer by layer (z cells), for a body built in slabs of layers (one a
+// rank), with no check (make_solid_points's are the scene's): solid_layers(body)
+// layers (0 without a solid that adds), append_solid_layers appends the points of
+// layers [layer_begin, layer_end) to *cloud in make_solid_points's order, natural_id =
+// the point's index in *cloud, and each layer's count to layer_counts when given.
+int64_t solid_layers(const SolidBody &body);
+void    append_solid_layers(const SolidBody &body, int64_t layer_begin, int64_t layer_end, PointCloud *cloud,
+                            std::vector<int64_t> *layer_counts);
+
 const char *to_string(Solid::Kind kind);
 
 // The element centroids of a 3D mesh as given points (the 3D form of geometry.hpp's

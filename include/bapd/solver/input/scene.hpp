@@ -35,6 +35,11 @@ enum class PatchCorrection { off, lambda, virial };
 // SNES on the energy-consistent force, load stepping along the schedule: static_solver.hpp).
 enum class SolverKind { dynamic, static_newton };
 
+// -partition_type: who splits the bond graph over the ranks (docs/options_run.md
+// "Partition"): METIS on rank 0 (the whole body built there), or PT-Scotch in parallel
+// (a lattice body built in slabs, one a rank: src/solver/parallel/distributed_body.hpp).
+enum class PartitionType { metis, ptscotch };
+
 // The static solver's load stepping (-static_*; docs/options_run.md "Static solver").
 struct StaticOptions {
   double   stretch_step     = 0.25;  // first load step, in stretch [-]
@@ -109,6 +114,8 @@ struct Scene {
   bool        output_final_state = false; // final_state.csv and broken_bonds.csv at the end
 
   SolverKind    solver = SolverKind::dynamic; // -solver
+  PartitionType partition_type   = PartitionType::metis; // -partition_type
+  bool          log_setup_memory = false;                // -log_setup_memory: every rank's peak memory after the set-up
   StaticOptions static_options;             // -static_* (the static solver only)
 
   double   time_step        = 0.0;  // 0: use safety * stable step
