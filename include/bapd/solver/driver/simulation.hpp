@@ -110,6 +110,10 @@ private:
   // located once it fires): *message is the stop.
   PetscErrorCode CheckLawValidity(PetscInt step, double t, std::string *message);
   PetscErrorCode DiagnoseDivergence(); // the cause and its fix, appended to stop_reason_ (divergence.hpp)
+  // The largest chain reach of a state's bonds and that bond's largest principal stretch
+  // (DivergenceFacts::chain_reach, bond_stretch); span: the law's I1bar limit - 3.
+  PetscErrorCode ChainReach(const double *u_owned, const std::vector<double> &c33, double span, double reach[2]);
+  PetscErrorCode DiagnoseEarlierState(std::size_t c33_size, double span, DivergenceFacts *f); // the state 10 to 20 steps before
   PetscErrorCode ReadProbes(const double *u_owned, double *probe_u);
   PetscErrorCode GatherNatural(const double *values, std::vector<double> *natural);
   // checks: a row of the -output_interval grid (or the first or last), where the
