@@ -76,6 +76,7 @@ template <int D> PetscErrorCode SimulationD<D>::Setup(Scene scene)
 
   PetscCall(PetscLogStagePush(stage_setup_));
   scene_ = std::move(scene);
+  paths_ = OutputPaths(scene_.output_dir);
   PetscCheck(scene_.help_only || scene_.dimension == D, comm_, PETSC_ERR_PLIB,
              "SimulationD<%d> was given a scene of dimension %d: build the driver of the scene's dimension (main.cpp)", D, scene_.dimension);
   PetscCall(ReadOutputOptions()); // -output_fields..., -checkpoint_..., -restart

@@ -147,8 +147,8 @@ template <int D> PetscErrorCode SimulationD<D>::OpenHistory()
   std::string why; // rank 0, which prints the message
   if (rank_ == 0) {
     std::error_code ec;
-    std::filesystem::create_directories(scene_.output_dir, ec);
-    const std::string path = scene_.output_dir + "/history.csv";
+    std::filesystem::create_directories(paths_.dir(), ec);
+    const std::string path = paths_.history();
     history_               = ec ? nullptr : std::fopen(path.c_str(), "w");
     ok                     = history_ != nullptr;
     if (!ok) why = ec ? "cannot create the directory: " + ec.message() : std::string(std::strerror(errno));
@@ -327,7 +327,7 @@ template <int D> PetscErrorCode SimulationD<D>::CheckStaticHold(PetscInt step, d
   PetscCall(PetscPrintf(comm_, "\n"));
   int error = 0;
   if (rank_ == 0 && !static_states_) {
-    static_states_ = std::fopen((scene_.output_dir + "/static_states.csv").c_str(), "w");
+    static_states_ = std::fopen(paths_.static_states().c_str(), "w");
     if (!static_states_) error = errno;
   }
   if (rank_ == 0 && static_states_) {
@@ -483,12 +483,12 @@ template <int D> PetscErrorCode SimulationD<D>::ListOutputFiles()
 {
   PetscFunctionBegin;
   if (rank_ != 0) PetscFunctionReturn(0);
-  const std::string dir = scene_.output_dir + "/";
+  const std::string dir = paths_.dir() + "/"; // (as the summary prints it)
   std::string       text;
   std::uintmax_t    total = 0;
   auto line = [&](const std::string &name, const std::string &what) {
     std::error_code      ec;
-    const std::uintmax_t bytes = std::filesystem::file_size(dir + name, ec);
+    const std::uintmax_t bytes = std::filesystem::file_size(paths_.file(name), ec);
     if (ec) return; // not written (or gone: the run's own checks say so)
     total += bytes;
     text += Format("  %-22s %10s  %s\n", name.c_str(), Size(bytes).c_str(), what.c_str());
@@ -500,7 +500,7 @@ template <int D> PetscErrorCode SimulationD<D>::ListOutputFiles()
     std::size_t    files = 0;
     for (const FieldFrame &frame : output_.series.frames) {
       std::error_code      ec;
-      const std::uintmax_t b = std::filesystem::file_size(dir + FieldFileName(frame.step), ec);
+      const std::uintmax_t b = std::filesystem::file_size(paths_.field_file(frame.step), ec);
       if (!ec) bytes += b, ++files;
     }
     total += bytes;
@@ -510,7 +510,7 @@ template <int D> PetscErrorCode SimulationD<D>::ListOutputFiles()
                    output_.series.frames.empty() ? 0.0 : output_.series.frames.back().time);
   }
   if (output_.last_checkpoint_step >= 0)
-    line("checkpoint.h5", Format("step %" PetscInt_FMT ": continue with -restart %scheckpoint.h5", output_.last_checkpoint_step, dir.c_str()));
+    line("checkpoint.h5", Format("step %" PetscInt_FMT ": continue with -restart %s", output_.last_checkpoint_step, paths_.checkpoint().c_str()));
   if (scene_.output_final_state) {
     line("final_state.csv", "every point's displacement, natural order");
     line("broken_bonds.csv", "broken bonds as pairs of natural ids");
@@ -536,7 +536,7 @@ template <int D> PetscErrorCode SimulationD<D>::WriteFinalState()
   // complete): a full disk leaves no torn last row.
   int error[2] = {0, 0};
   if (rank_ == 0) {
-    error[0] = WriteFileWhole(scene_.output_dir + "/final_state.csv", [&](FILE *f) {
+    error[0] = WriteFileWhole(paths_.final_state(), [&](FILE *f) {
       std::fprintf(f, D == 2 ? "natural_id,x_m,y_m,ux_m,uy_m\n" : "natural_id,x_m,y_m,z_m,ux_m,uy_m,uz_m\n");
       for (std::size_t i = 0; i < (std::size_t)layout_.n_global; ++i) {
         std::fprintf(f, "%zu", i);
@@ -547,7 +547,7 @@ template <int D> PetscErrorCode SimulationD<D>::WriteFinalState()
     });
     if (!error[0]) {
       error[1] = 1;
-      error[0] = WriteFileWhole(scene_.output_dir + "/broken_bonds.csv", [&](FILE *f) {
+      error[0] = WriteFileWhole(paths_.broken_bonds(), [&](FILE *f) {
         std::fprintf(f, "i,j\n");
         for (const auto &b : broken) std::fprintf(f, "%lld,%lld\n", (long long)b.first, (long long)b.second);
       });

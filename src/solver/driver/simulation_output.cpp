@@ -195,7 +195,7 @@ template <int D> PetscErrorCode SimulationD<D>::OutputAfterStep(PetscInt step, d
   if (flags[0]) {
     if (output_.fields.enabled && (output_.series.frames.empty() || output_.series.frames.back().step != step)) PetscCall(WriteFields(step, t));
     PetscCall(WriteCheckpointFile(step, t, "interrupted"));
-    const std::string path = scene_.output_dir + "/checkpoint.h5";
+    const std::string path = paths_.checkpoint();
     char              msg[1024];
     std::snprintf(msg, sizeof msg, "interrupted by %s at step %" PetscInt_FMT " (t = %.6e s); the state is saved in %s: continue with -restart %s",
                   InterruptName(flags[0]).c_str(), step, t, path.c_str(), path.c_str());
@@ -230,7 +230,7 @@ template <int D> PetscErrorCode SimulationD<D>::OutputOnDivergence()
   PetscCall(TSSetTime(ts_, output_.good_time));
   if (output_.fields.enabled) PetscCall(WriteFields(output_.good_step, output_.good_time));
   PetscCall(WriteCheckpointFile(output_.good_step, output_.good_time, "last good state"));
-  const std::string path = scene_.output_dir + "/checkpoint.h5";
+  const std::string path = paths_.checkpoint();
   char              msg[512];
   std::snprintf(msg, sizeof msg, " The last good state (step %" PetscInt_FMT ", t = %.6e s) is saved in %s: continue from it with -restart %s and the change above.",
                 output_.good_step, output_.good_time, path.c_str(), path.c_str());
@@ -347,11 +347,11 @@ template <int D> PetscErrorCode SimulationD<D>::WriteCheckpointFile(PetscInt ste
     PetscCall(PetscOptionsGetAll(nullptr, &all));
     header.options = all ? all : "";
     PetscCall(PetscFree(all));
-    std::ifstream      in(scene_.output_dir + "/history.csv");
+    std::ifstream      in(paths_.history());
     std::ostringstream text;
     text << in.rdbuf();
     header.history = text.str();
-    std::ifstream      states(scene_.output_dir + "/static_states.csv");
+    std::ifstream      states(paths_.static_states());
     std::ostringstream states_text;
     if (states) states_text << states.rdbuf();
     header.static_states = states_text.str();
@@ -367,7 +367,7 @@ template <int D> PetscErrorCode SimulationD<D>::WriteCheckpointFile(PetscInt ste
     header.field_frames.push_back((double)frame.step);
     header.field_frames.push_back(frame.time);
   }
-  const std::string path = scene_.output_dir + "/checkpoint.h5";
+  const std::string path = paths_.checkpoint();
   PetscCall(VecGetArray(X_, &x));
   CheckpointState state = CheckpointView(x);
   // -relaxation adaptive: the latest force evaluation, which the next step's damping
@@ -499,7 +499,7 @@ template <int D> PetscErrorCode SimulationD<D>::RestoreCheckpoint()
   if (rank_ == 0)
     for (std::size_t k = 0; k < present.size(); ++k) {
       std::error_code ec;
-      present[k] = std::filesystem::exists(scene_.output_dir + "/" + FieldFileName((PetscInt)header.field_frames[2 * k]), ec);
+      present[k] = std::filesystem::exists(paths_.field_file((long long)header.field_frames[2 * k]), ec);
     }
   if (!present.empty()) PetscCallMPI(MPI_Bcast(present.data(), (int)present.size(), MPI_INT, 0, comm_));
   output_.series.frames.clear();
@@ -532,16 +532,15 @@ template <int D> PetscErrorCode SimulationD<D>::RestoreRunText(const CheckpointH
   std::string notes; // rank 0: what changed, printed after the broadcast
   PetscInt    last_row = -1; // the step of history.csv's last row (rank 0, broadcast)
   if (rank_ == 0) {
-    const std::string dir = scene_.output_dir + "/";
+    const std::string dir = paths_.dir() + "/"; // (as the notes print it)
     struct Text {
       const char  *name, *copy;
       std::string  stored, columns;
       bool         history;
       FILE       **stream;
     };
-    const std::string step = std::to_string((long long)header.step);
-    Text texts[2] = {{"history.csv", "history_to_step_", header.history, HistoryHeader(), true, &history_},
-                     {"static_states.csv", "static_states_to_step_", header.static_states, StaticStatesHeader(), false, &static_states_}};
+    Text texts[2] = {{"history.csv", "history", header.history, HistoryHeader(), true, &history_},
+                     {"static_states.csv", "static_states", header.static_states, StaticStatesHeader(), false, &static_states_}};
     for (int k = 0; k < 2 && !error[0]; ++k) {
       Text &t = texts[k];
       if (!t.history && t.stored.empty()) continue; // no static state yet: static_states.csv starts with the first one
@@ -565,8 +564,8 @@ template <int D> PetscErrorCode SimulationD<D>::RestoreRunText(const CheckpointH
         std::string note = Format("Note: %s has other columns than the checkpoint's: its %zu earlier row(s) are kept", t.name, earlier.size() - 1);
         if (!added.empty()) note += ", with nan in the new column(s) " + Joined(added);
         if (!dropped.empty()) {
-          const std::string copy = t.copy + step + ".csv";
-          error[0] = WriteFileWhole(dir + copy, [&](FILE *f) {
+          const std::string copy = paths_.rows_copy_name(t.copy, header.step);
+          error[0] = WriteFileWhole(paths_.file(copy), [&](FILE *f) {
             for (const std::string &line : earlier) std::fprintf(f, "%s\n", line.c_str());
           });
           if (error[0]) {
@@ -580,7 +579,7 @@ template <int D> PetscErrorCode SimulationD<D>::RestoreRunText(const CheckpointH
       if (*t.stream) std::fclose(*t.stream);
       *t.stream = nullptr;
       error[0] = WriteFileWhole(
-        dir + t.name,
+        paths_.file(t.name),
         [&](FILE *f) {
           for (const std::string &line : lines) std::fprintf(f, "%s\n", line.c_str());
         },

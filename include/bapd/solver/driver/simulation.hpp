@@ -171,6 +171,7 @@ private:
   MPI_Comm    comm_;
   PetscMPIInt rank_ = 0, size_ = 1;
   Scene       scene_; // read once in Setup, only read afterwards
+  OutputPaths paths_; // every file in -output_dir (output_directory.hpp)
   Layout      layout_;
 
   // The body's bonds, shared by the objects below (failure changes the last two).
