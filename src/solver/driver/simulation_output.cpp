@@ -41,58 +41,6 @@ PetscErrorCode RegisterEvents()
   PetscFunctionReturn(0);
 }
 
-std::vector<std::string> SplitCells(const std::string &line)
-{
-  std::vector<std::string> cells;
-  std::istringstream       in(line);
-  for (std::string cell; std::getline(in, cell, ',');) cells.push_back(cell);
-  if (!line.empty() && line.back() == ',') cells.emplace_back();
-  return cells;
-}
-
-// The rows of a CSV text (`lines`, the first its header) under another header: each
-// cell moves to the column of the same name, and a column the old header lacks gets
-// "nan" (what a history column holds before it has a value, e.g. the crack's tip).
-// `dropped`: the old columns the new header lacks (their values are not in the result).
-std::vector<std::string> RemapColumns(const std::vector<std::string> &lines, const std::string &header, std::vector<std::string> *added,
-                                      std::vector<std::string> *dropped)
-{
-  const std::vector<std::string> from = SplitCells(lines.front()), to = SplitCells(header);
-  std::vector<int>               source(to.size(), -1);
-  for (std::size_t j = 0; j < to.size(); ++j) {
-    const auto it = std::find(from.begin(), from.end(), to[j]);
-    if (it != from.end()) source[j] = (int)(it - from.begin());
-    else added->push_back(to[j]);
-  }
-  for (const std::string &name : from)
-    if (std::find(to.begin(), to.end(), name) == to.end()) dropped->push_back(name);
-  std::vector<std::string> out{header};
-  for (std::size_t k = 1; k < lines.size(); ++k) {
-    const std::vector<std::string> cells = SplitCells(lines[k]);
-    std::string                    row;
-    for (std::size_t j = 0; j < to.size(); ++j) {
-      if (j) row += ',';
-      row += source[j] >= 0 && (std::size_t)source[j] < cells.size() ? cells[(std::size_t)source[j]] : "nan";
-    }
-    out.push_back(row);
-  }
-  return out;
-}
-
-// The time of a history.csv row ("step,time,..."), as written (%.17g: the same bits).
-double HistoryRowTime(const std::string &line)
-{
-  const std::size_t comma = line.find(',');
-  return comma == std::string::npos ? 0.0 : std::strtod(line.c_str() + comma + 1, nullptr);
-}
-
-std::string Joined(const std::vector<std::string> &names)
-{
-  std::string text;
-  for (std::size_t k = 0; k < names.size(); ++k) text += (k ? ", " : "") + names[k];
-  return text;
-}
-
 } // namespace
 
 template <int D> PetscErrorCode SimulationD<D>::ReadOutputOptions()
@@ -347,14 +295,7 @@ template <int D> PetscErrorCode SimulationD<D>::WriteCheckpointFile(PetscInt ste
     PetscCall(PetscOptionsGetAll(nullptr, &all));
     header.options = all ? all : "";
     PetscCall(PetscFree(all));
-    std::ifstream      in(paths_.history());
-    std::ostringstream text;
-    text << in.rdbuf();
-    header.history = text.str();
-    std::ifstream      states(paths_.static_states());
-    std::ostringstream states_text;
-    if (states) states_text << states.rdbuf();
-    header.static_states = states_text.str();
+    history_.Texts(&header.history, &header.static_states); // (history_report.hpp)
   }
   header.schedule_original = loading_.schedule_original();
   header.schedule_current  = loading_.schedule().time;
@@ -491,7 +432,7 @@ template <int D> PetscErrorCode SimulationD<D>::RestoreCheckpoint()
                           step_control_.current()));
   PetscCall(BrokenBondCount(&total_broken_));
 
-  PetscCall(RestoreRunText(header));
+  PetscCall(history_.Restore(comm_, header)); // history.csv and static_states.csv from the checkpoint
 
   // Field files: those of the checkpoint's list that are here, listed again (a run
   // killed after the checkpoint may have written later ones).
@@ -514,90 +455,6 @@ template <int D> PetscErrorCode SimulationD<D>::RestoreCheckpoint()
   PetscFunctionReturn(0);
 }
 
-// history.csv and static_states.csv of a restart: the checkpoint's rows, to which this
-// run's are appended. A last history row at the checkpoint step that is neither on the
-// -output_interval grid nor a row by load (-output_history_rows) was the end-of-run row
-// of the run that wrote it: the continuation writes its own rows. Columns that differ from the checkpoint's (a probe
-// or load set added, failure switched on) keep the earlier rows: each value goes to its
-// column by name, "nan" where the earlier run had no such column. A column this run
-// does not write (a checkpoint of a bapd with other columns: a probe or load set
-// cannot be taken away on a restart, its stored options would be unused) keeps its
-// values with the rows as they were in history_to_step_N.csv (static_states_to_step_N.csv). Each file is written whole
-// (WriteFileWhole), so a full disk leaves the previous one as it was.
-template <int D> PetscErrorCode SimulationD<D>::RestoreRunText(const CheckpointHeader &header)
-{
-  PetscFunctionBegin;
-  // [errno, which file failed: 0 history.csv, 1 static_states.csv, 2 and 3 their copies of the earlier rows]
-  int         error[2] = {0, 0};
-  std::string notes; // rank 0: what changed, printed after the broadcast
-  PetscInt    last_row = -1; // the step of history.csv's last row (rank 0, broadcast)
-  if (rank_ == 0) {
-    const std::string dir = paths_.dir() + "/"; // (as the notes print it)
-    struct Text {
-      const char  *name, *copy;
-      std::string  stored, columns;
-      bool         history;
-      FILE       **stream;
-    };
-    Text texts[2] = {{"history.csv", "history", header.history, HistoryHeader(), true, &history_},
-                     {"static_states.csv", "static_states", header.static_states, StaticStatesHeader(), false, &static_states_}};
-    for (int k = 0; k < 2 && !error[0]; ++k) {
-      Text &t = texts[k];
-      if (!t.history && t.stored.empty()) continue; // no static state yet: static_states.csv starts with the first one
-      std::vector<std::string> lines;
-      std::istringstream       in(t.stored);
-      for (std::string line; std::getline(in, line);) lines.push_back(line);
-      if (t.history && lines.size() > 1 && HistoryRowStep(lines.back()) == header.step && header.step % scene_.output_interval != 0) {
-        // A row by load (-output_history_rows) stays: the step was the first at or past a
-        // multiple of the period, i.e. past the first due time after the row before it
-        // (every step in between was not due, or it would have written a row).
-        const bool by_load = history_times_.period() > 0 && lines.size() > 2 &&
-                             header.time >= history_times_.Next(HistoryRowTime(lines[lines.size() - 2]));
-        if (!by_load) lines.pop_back();
-      }
-      if (t.history && lines.size() > 1) last_row = HistoryRowStep(lines.back());
-      if (lines.empty()) lines.push_back(t.columns);
-      if (lines.front() != t.columns) {
-        std::vector<std::string> added, dropped;
-        const std::vector<std::string> earlier = lines;
-        lines = RemapColumns(earlier, t.columns, &added, &dropped);
-        std::string note = Format("Note: %s has other columns than the checkpoint's: its %zu earlier row(s) are kept", t.name, earlier.size() - 1);
-        if (!added.empty()) note += ", with nan in the new column(s) " + Joined(added);
-        if (!dropped.empty()) {
-          const std::string copy = paths_.rows_copy_name(t.copy, header.step);
-          error[0] = WriteFileWhole(paths_.file(copy), [&](FILE *f) {
-            for (const std::string &line : earlier) std::fprintf(f, "%s\n", line.c_str());
-          });
-          if (error[0]) {
-            error[1] = 2 + k;
-            break;
-          }
-          note += "; the column(s) " + Joined(dropped) + ", which this run does not write, are kept with those rows as they were in " + dir + copy;
-        }
-        notes += note + "\n";
-      }
-      if (*t.stream) std::fclose(*t.stream);
-      *t.stream = nullptr;
-      error[0] = WriteFileWhole(
-        paths_.file(t.name),
-        [&](FILE *f) {
-          for (const std::string &line : lines) std::fprintf(f, "%s\n", line.c_str());
-        },
-        t.stream);
-      error[1] = k;
-    }
-  }
-  PetscCallMPI(MPI_Bcast(error, 2, MPI_INT, 0, comm_));
-  PetscCallMPI(MPI_Bcast(&last_row, 1, MPIU_INT, 0, comm_));
-  last_history_step_ = last_row; // Run() writes the end-of-run row unless it is there
-  static const char *const names[4] = {"history.csv", "static_states.csv", "history_to_step_N.csv", "static_states_to_step_N.csv"};
-  PetscCheck(!error[0], comm_, PETSC_ERR_FILE_WRITE,
-             "Cannot write %s/%s: %s; the file is as it was before the restart: free some space or choose another -output_dir",
-             scene_.output_dir.c_str(), names[error[1]], std::strerror(error[0]));
-  if (!notes.empty()) PetscCall(PetscPrintf(PETSC_COMM_SELF, "%s", notes.c_str()));
-  PetscFunctionReturn(0);
-}
-
 // The driver at D = 2 and 3 (main.cpp chooses one from the scene): the members defined
 // here, one by one. simulation.cpp instantiates the class, which covers only what it
 // defines; a class may be explicitly instantiated once in a program.
@@ -615,8 +472,7 @@ template <int D> PetscErrorCode SimulationD<D>::RestoreRunText(const CheckpointH
   template CheckpointState SimulationD<D>::CheckpointView(double *x); \
   template PetscErrorCode SimulationD<D>::WriteCheckpointFile(PetscInt step, double t, const char *reason); \
   template PetscErrorCode SimulationD<D>::RestoreSchedule(const CheckpointHeader &header); \
-  template PetscErrorCode SimulationD<D>::RestoreCheckpoint(); \
-  template PetscErrorCode SimulationD<D>::RestoreRunText(const CheckpointHeader &header);
+  template PetscErrorCode SimulationD<D>::RestoreCheckpoint();
 BAPD_SIMULATION_OUTPUT(2)
 BAPD_SIMULATION_OUTPUT(3)
 #undef BAPD_SIMULATION_OUTPUT

@@ -32,6 +32,7 @@
 #include "bapd/solver/operators/loading.hpp"
 #include "bapd/solver/operators/relaxation.hpp"
 #include "bapd/solver/input/scene.hpp"
+#include "bapd/solver/driver/history_report.hpp"
 #include "bapd/solver/driver/simulation_output.hpp"
 #include "bapd/solver/operators/time_step_control.hpp"
 
@@ -96,9 +97,8 @@ private:
   PetscErrorCode BuildBody();
   PetscErrorCode BuildProbes();
   PetscErrorCode SetupTimeStepper();
-  PetscErrorCode OpenHistory();
-  std::string    HistoryHeader() const;      // history.csv's columns for this scene
-  std::string    StaticStatesHeader() const; // static_states.csv's
+  PetscErrorCode OpenHistory(); // history.csv with its first row (history_report.hpp)
+  std::string    StaticStatesHeader() const { return history_.StaticStatesHeader(); } // (static_solver.cpp)
   PetscErrorCode SetupRelaxation(); // -relaxation (relaxation.hpp)
 
   // The acceleration of the owned points for displacement u (owned, D per point).
@@ -166,7 +166,6 @@ private:
   CheckpointState CheckpointView(double *x); // u, v, bond states and C33 as a checkpoint holds them
   PetscErrorCode RestoreCheckpoint();
   PetscErrorCode RestoreSchedule(const CheckpointHeader &header);
-  PetscErrorCode RestoreRunText(const CheckpointHeader &header); // history.csv and static_states.csv from the checkpoint
 
   MPI_Comm    comm_;
   PetscMPIInt rank_ = 0, size_ = 1;
@@ -204,13 +203,13 @@ private:
   double wall_start_ = 0;
   double last_progress_wall_ = 0;  // wall time (since wall_start_) of the last progress line (rank 0's decides)
   bool   progress_by_wall_   = false; // -progress_wall_interval has passed on rank 0's clock (OutputAfterStep, every rank)
-  // History rows: every -output_interval steps (the static test's rows) and, by load,
-  // at the first step at or past each end time / -output_history_rows.
-  Cadence  history_times_;
-  PetscInt last_history_step_ = -1; // the step of the last row written (the end-of-run row is not written twice)
+  // history.csv and static_states.csv: their rows, their schedule, their restart.
+  HistoryReport history_;
+  // static_solver.cpp's names for what history_ owns (it writes its own static states).
+  FILE    *&static_states_     = history_.static_states_stream();
+  PetscInt &last_history_step_ = history_.last_step_ref();
   std::vector<double> grip_terms_;  // GripDisplacements' scratch, D per point of the largest load set
   std::vector<double> grip_u_;      // D per load set
-  FILE  *history_    = nullptr;
   PetscInt total_broken_ = 0;
   bool   stopped_on_error_ = false;
   bool   warned_balance_   = false; // WarnEnergyBalance said it
@@ -222,7 +221,6 @@ private:
   // The latest history row, for the static-hold test.
   double              last_kinetic_ = 0, last_internal_ = 0;
   std::vector<double> last_reaction_, last_probe_u_;
-  FILE               *static_states_    = nullptr;
   std::string stop_reason_;
   RunawayEnergyMonitor energy_monitor_; // divergence by runaway energy (divergence.hpp)
   SimulationOutput output_; // fields, checkpoints, restart
