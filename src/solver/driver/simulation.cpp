@@ -132,9 +132,8 @@ template <int D> PetscErrorCode SimulationD<D>::Setup(Scene scene)
   {
     PetscReal t;
     PetscCall(TSGetTime(ts_, &t));
-    progress_times_.Start(loading_.end_time() / 20, t);
     history_.StartRowsByLoad(history_period, t);
-    last_progress_wall_ = MPI_Wtime() - wall_start_; // (rank 0's decides: OutputAfterStep)
+    PetscCall(SetupObservers(t)); // history, fields, checkpoints, progress from t on
   }
   PetscCall(PetscLogStagePop());
   PetscFunctionReturn(0);
@@ -464,15 +463,10 @@ template <int D> PetscErrorCode SimulationD<D>::PostStep(TS ts)
     PetscCall(VecRestoreArrayRead(X, &xr));
     sim->relaxation_.FollowStableStep(sim->step_control_.stable_now()); // its cap, 2 omega_max
   }
-  // History rows: every -output_interval steps, where the static test runs (its cadence
-  // is the solver's, whatever rows are added), and by load, at each end time /
-  // -output_history_rows (a row only reads the state: history.csv gains rows, the
-  // results stay the same bits).
-  bool interval_row;
-  if (sim->history_.Due(step, t, &interval_row)) PetscCall(sim->WriteHistoryRow(step, t, interval_row));
-  if (interval_row) PetscCall(sim->CheckStaticHold(step, t));
-  PetscCall(sim->OutputAfterStep(step, t)); // fields, checkpoints, SIGTERM/SIGINT; rank 0's clock for the progress line
-  PetscCall(sim->Progress(step, t, PETSC_FALSE));
+  // The reporting (a row, a file or a line only reads the state: the results stay the
+  // same bits): history.csv and the static-hold test, field files, checkpoints and
+  // SIGTERM/SIGINT, progress lines (run_observer.hpp).
+  PetscCall(sim->Report(step, t));
   PetscFunctionReturn(0);
 }
 

@@ -215,21 +215,12 @@ template <int D> PetscErrorCode SimulationD<D>::CheckStaticHold(PetscInt step, d
   PetscFunctionReturn(0);
 }
 
-// A progress line every -progress_interval steps, or (0) every end time / 20 of
-// simulated time, and once -progress_wall_interval seconds of wall time have passed
-// since the last line (a slow run says where it is): step, time, step size, stretch,
-// energies, broken bonds, wall time. The wall clock is rank 0's, read in the step's one
-// reduction (OutputAfterStep), so that every rank takes the same branch (a line costs
-// collective sums) at no extra collective. Prints only.
-template <int D> PetscErrorCode SimulationD<D>::Progress(PetscInt step, double t, PetscBool force)
+// One progress line (ProgressObserver, simulation_report.cpp, decides when): step, time,
+// step size, stretch, energies, broken bonds, wall time (since the start) and the wall
+// time left. Collective (the energies are sums); prints only.
+template <int D> PetscErrorCode SimulationD<D>::ProgressLine(PetscInt step, double t, double wall)
 {
   PetscFunctionBegin;
-  const bool by_steps = scene_.progress_interval > 0 ? step % scene_.progress_interval == 0 : progress_times_.Due(t);
-  const bool by_wall  = progress_by_wall_;
-  progress_by_wall_   = false;
-  if (!force && !by_steps && !by_wall) PetscFunctionReturn(0);
-  const double wall   = MPI_Wtime() - wall_start_;
-  last_progress_wall_ = wall;
   const double end_time = loading_.end_time();
   if (scene_.failure) PetscCall(BrokenBondCount(&total_broken_));
   double kinetic, internal;
@@ -494,7 +485,7 @@ template <int D> PetscErrorCode SimulationD<D>::GatherBrokenBonds(std::vector<st
   template PetscErrorCode SimulationD<D>::GripDisplacements(const double *u_owned, double *mean); \
   template PetscErrorCode SimulationD<D>::WriteHistoryRow(PetscInt step, double t, bool checks); \
   template PetscErrorCode SimulationD<D>::CheckStaticHold(PetscInt step, double t); \
-  template PetscErrorCode SimulationD<D>::Progress(PetscInt step, double t, PetscBool force); \
+  template PetscErrorCode SimulationD<D>::ProgressLine(PetscInt step, double t, double wall); \
   template PetscErrorCode SimulationD<D>::TimeStepSummary(PetscInt steps); \
   template PetscErrorCode SimulationD<D>::Summary(); \
   template PetscErrorCode SimulationD<D>::ListOutputFiles(); \

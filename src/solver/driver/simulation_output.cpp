@@ -123,41 +123,6 @@ template <int D> PetscErrorCode SimulationD<D>::SaveGoodState(PetscInt step, dou
   PetscFunctionReturn(0);
 }
 
-// After PostStep's loading, health check, bond breaking and history row; before its
-// progress line.
-template <int D> PetscErrorCode SimulationD<D>::OutputAfterStep(PetscInt step, double t)
-{
-  PetscFunctionBegin;
-  const bool fields_due = output_.fields.interval > 0 ? step % output_.fields.interval == 0 : output_.field_times.Due(t);
-  if (output_.fields.enabled && fields_due) PetscCall(WriteFields(step, t));
-  // One reduction a step: did any rank get SIGTERM/SIGINT or SIGUSR1, and is rank 0's
-  // clock past the checkpoints' wall-clock interval, or past the progress lines' since
-  // the last one (Progress, after this)? Every rank then takes the same branch.
-  const CheckpointOptions &options = output_.checkpoint;
-  const double             now     = MPI_Wtime();
-  int flags[4] = {PendingInterrupt(), rank_ == 0 && options.wall_interval > 0 && now - output_.last_checkpoint_wall >= options.wall_interval,
-                  TakeCheckpointRequest() ? 1 : 0,
-                  rank_ == 0 && scene_.progress_wall_interval > 0 && now - wall_start_ - last_progress_wall_ >= scene_.progress_wall_interval};
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, flags, 4, MPI_INT, MPI_MAX, comm_));
-  progress_by_wall_ = flags[3] != 0;
-  if (flags[0]) {
-    if (output_.fields.enabled && (output_.series.frames.empty() || output_.series.frames.back().step != step)) PetscCall(WriteFields(step, t));
-    PetscCall(WriteCheckpointFile(step, t, "interrupted"));
-    const std::string path = paths_.checkpoint();
-    char              msg[1024];
-    std::snprintf(msg, sizeof msg, "interrupted by %s at step %" PetscInt_FMT " (t = %.6e s); the state is saved in %s: continue with -restart %s",
-                  InterruptName(flags[0]).c_str(), step, t, path.c_str(), path.c_str());
-    stop_reason_      = msg;
-    stopped_on_error_ = true;
-    PetscCall(TSSetConvergedReason(ts_, TS_CONVERGED_USER));
-    PetscFunctionReturn(0);
-  }
-  if (flags[2]) PetscCall(WriteCheckpointFile(step, t, "SIGUSR1"));
-  else if ((options.step_interval > 0 && step % options.step_interval == 0) || flags[1]) PetscCall(WriteCheckpointFile(step, t, "interval"));
-  if (output_.checkpoint.on_error) PetscCall(SaveGoodState(step, t));
-  PetscFunctionReturn(0);
-}
-
 // CheckHealth stopped the run: put the last good state back, write it as a
 // checkpoint (and a field file), and say so in the stop message.
 template <int D> PetscErrorCode SimulationD<D>::OutputOnDivergence()
@@ -464,7 +429,6 @@ template <int D> PetscErrorCode SimulationD<D>::RestoreCheckpoint()
   template PetscErrorCode SimulationD<D>::SetupOutput(); \
   template PetscErrorCode SimulationD<D>::CreateNaturalOrder(); \
   template PetscErrorCode SimulationD<D>::SaveGoodState(PetscInt step, double t); \
-  template PetscErrorCode SimulationD<D>::OutputAfterStep(PetscInt step, double t); \
   template PetscErrorCode SimulationD<D>::OutputOnDivergence(); \
   template PetscErrorCode SimulationD<D>::OutputAtEnd(PetscInt step, double t); \
   template PetscErrorCode SimulationD<D>::WriteFields(PetscInt step, double t); \

@@ -18,6 +18,7 @@
 
 #include <cstdio>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -33,6 +34,7 @@
 #include "bapd/solver/operators/relaxation.hpp"
 #include "bapd/solver/input/scene.hpp"
 #include "bapd/solver/driver/history_report.hpp"
+#include "bapd/solver/driver/run_observer.hpp"
 #include "bapd/solver/driver/simulation_output.hpp"
 #include "bapd/solver/operators/time_step_control.hpp"
 
@@ -123,7 +125,7 @@ private:
   // (every component; history.csv writes the loaded ones). Collective, reproducible.
   PetscErrorCode GripDisplacements(const double *u_owned, double *mean);
   PetscErrorCode WarnEnergyBalance(PetscInt step, double t, double work, double residual); // once, past 1 % of the work
-  PetscErrorCode Progress(PetscInt step, double t, PetscBool force);
+  PetscErrorCode ProgressLine(PetscInt step, double t, double wall); // one progress line (ProgressObserver decides when)
   PetscErrorCode Summary();
   // After TSSolve: the TS stopped at its step limit before the end time (-end_step: a
   // note; -ts_max_steps: *message, the error the run ends with).
@@ -138,6 +140,14 @@ private:
   static PetscErrorCode RHSFull(TS, PetscReal, Vec, Vec, void *);
   static PetscErrorCode PreStep(TS);
   static PetscErrorCode PostStep(TS);
+  // The reporting observers (run_observer.hpp, simulation_report.cpp), in the order a
+  // step is handed to them: history, field files, checkpoints, progress.
+  class HistoryObserver;
+  class FieldObserver;
+  class CheckpointObserver;
+  class ProgressObserver;
+  PetscErrorCode SetupObservers(double t); // after a restart's state is restored
+  PetscErrorCode Report(PetscInt step, double t); // after PostStep's physics: the step's one reduction, then each observer
   // After a breaking pass that broke bonds on some rank: the internal energy it
   // released, E(bonds before) - E(bonds after) at the same positions. Collective.
   PetscErrorCode ReleasedEnergy(double *released);
@@ -156,7 +166,6 @@ private:
   PetscErrorCode ReadOutputOptions();
   PetscErrorCode ClaimOutputDirectory(); // locked; a restart's newer results refused (output_directory.hpp)
   PetscErrorCode SetupOutput();
-  PetscErrorCode OutputAfterStep(PetscInt step, double t);
   PetscErrorCode OutputOnDivergence();
   PetscErrorCode OutputAtEnd(PetscInt step, double t);
   PetscErrorCode CreateNaturalOrder();
@@ -199,10 +208,7 @@ private:
   std::vector<double> force_density_;   // D per owned point
   std::vector<double> per_point_;       // 2 per owned point: kinetic, internal energy
   std::vector<double> point_energy_;    // 1 per owned point
-  Cadence             progress_times_; // -progress_interval 0: a line every end time / 20 of simulated time
   double wall_start_ = 0;
-  double last_progress_wall_ = 0;  // wall time (since wall_start_) of the last progress line (rank 0's decides)
-  bool   progress_by_wall_   = false; // -progress_wall_interval has passed on rank 0's clock (OutputAfterStep, every rank)
   // history.csv and static_states.csv: their rows, their schedule, their restart.
   HistoryReport history_;
   // static_solver.cpp's names for what history_ owns (it writes its own static states).
@@ -224,6 +230,9 @@ private:
   std::string stop_reason_;
   RunawayEnergyMonitor energy_monitor_; // divergence by runaway energy (divergence.hpp)
   SimulationOutput output_; // fields, checkpoints, restart
+  std::vector<std::unique_ptr<RunObserver>> observers_; // SetupObservers
+  CheckpointObserver *checkpoints_ = nullptr; // (in observers_) its wall clock, read in Report's reduction
+  ProgressObserver   *progress_    = nullptr; // (in observers_) likewise
   RelaxationKind     relaxation_kind_ = RelaxationKind::none; // -relaxation
   AdaptiveRelaxation<D> relaxation_;                          // its damping coefficient (relaxation.hpp)
 
