@@ -330,6 +330,25 @@ template <int D> PetscErrorCode SimulationD<D>::RestoreSchedule(const Checkpoint
   PetscFunctionReturn(0);
 }
 
+// A restart's field files: those of the checkpoint's list that are here, listed again
+// (a run killed after the checkpoint may have written later ones), and fields.xdmf.
+template <int D> PetscErrorCode SimulationD<D>::RestoreFieldSeries(const CheckpointHeader &header)
+{
+  PetscFunctionBegin;
+  std::vector<int> present(header.field_frames.size() / 2, 0);
+  if (rank_ == 0)
+    for (std::size_t k = 0; k < present.size(); ++k) {
+      std::error_code ec;
+      present[k] = std::filesystem::exists(paths_.field_file((long long)header.field_frames[2 * k]), ec);
+    }
+  if (!present.empty()) PetscCallMPI(MPI_Bcast(present.data(), (int)present.size(), MPI_INT, 0, comm_));
+  output_.series.frames.clear();
+  for (std::size_t k = 0; k < present.size(); ++k)
+    if (present[k]) output_.series.frames.push_back({(PetscInt)header.field_frames[2 * k], header.field_frames[2 * k + 1]});
+  if (output_.fields.enabled) PetscCall(WriteFieldIndex<D>(comm_, output_.series, layout_.n_global));
+  PetscFunctionReturn(0);
+}
+
 // -restart FILE: the options were merged before the scene was read
 // (CheckpointMergeOptions); here the state replaces the initial one.
 template <int D> PetscErrorCode SimulationD<D>::RestoreCheckpoint()
@@ -399,19 +418,7 @@ template <int D> PetscErrorCode SimulationD<D>::RestoreCheckpoint()
 
   PetscCall(history_.Restore(comm_, header)); // history.csv and static_states.csv from the checkpoint
 
-  // Field files: those of the checkpoint's list that are here, listed again (a run
-  // killed after the checkpoint may have written later ones).
-  std::vector<int> present(header.field_frames.size() / 2, 0);
-  if (rank_ == 0)
-    for (std::size_t k = 0; k < present.size(); ++k) {
-      std::error_code ec;
-      present[k] = std::filesystem::exists(paths_.field_file((long long)header.field_frames[2 * k]), ec);
-    }
-  if (!present.empty()) PetscCallMPI(MPI_Bcast(present.data(), (int)present.size(), MPI_INT, 0, comm_));
-  output_.series.frames.clear();
-  for (std::size_t k = 0; k < present.size(); ++k)
-    if (present[k]) output_.series.frames.push_back({(PetscInt)header.field_frames[2 * k], header.field_frames[2 * k + 1]});
-  if (output_.fields.enabled) PetscCall(WriteFieldIndex<D>(comm_, output_.series, layout_.n_global));
+  PetscCall(RestoreFieldSeries(header));
 
   PetscCall(PetscPrintf(comm_, "Restart from %s: step %" PetscInt_FMT ", t = %.6e s, stretch %.5f, %" PetscInt_FMT " broken bonds (written by %lld rank(s), %s)\n",
                         path.c_str(), header.step, header.time, loading_.stretch_at(header.time), total_broken_,
@@ -436,6 +443,7 @@ template <int D> PetscErrorCode SimulationD<D>::RestoreCheckpoint()
   template CheckpointState SimulationD<D>::CheckpointView(double *x); \
   template PetscErrorCode SimulationD<D>::WriteCheckpointFile(PetscInt step, double t, const char *reason); \
   template PetscErrorCode SimulationD<D>::RestoreSchedule(const CheckpointHeader &header); \
+  template PetscErrorCode SimulationD<D>::RestoreFieldSeries(const CheckpointHeader &header); \
   template PetscErrorCode SimulationD<D>::RestoreCheckpoint();
 BAPD_SIMULATION_OUTPUT(2)
 BAPD_SIMULATION_OUTPUT(3)

@@ -175,6 +175,7 @@ private:
   CheckpointState CheckpointView(double *x); // u, v, bond states and C33 as a checkpoint holds them
   PetscErrorCode RestoreCheckpoint();
   PetscErrorCode RestoreSchedule(const CheckpointHeader &header);
+  PetscErrorCode RestoreFieldSeries(const CheckpointHeader &header); // the field files the checkpoint lists, and fields.xdmf
 
   MPI_Comm    comm_;
   PetscMPIInt rank_ = 0, size_ = 1;
