@@ -1,7 +1,7 @@
 // Signals (checkpoint.hpp): SIGTERM / SIGINT / SIGQUIT / SIGHUP / SIGUSR2 ask for a
 // checkpoint and a stop, SIGUSR1 for a checkpoint and going on; SIGXFSZ is ignored. The
 // handlers only record the signal; the driver asks once per step, collectively
-// (Simulation::OutputAfterStep). A stop that the driver has not taken within
+// (SimulationD::Report, simulation_report.cpp). A stop that the driver has not taken within
 // kInterruptGraceSeconds (a signal during the set-up, or inside a long step) ends the
 // process from SIGALRM's handler. SIGSEGV, SIGBUS, SIGILL, SIGFPE end it with one line
 // naming the signal and the rank. Everything a handler does is async-signal-safe:

@@ -18,8 +18,6 @@ namespace bapd {
 
 template <int D> SimulationD<D>::~SimulationD()
 {
-  if (history_) std::fclose(history_);
-  if (static_states_) std::fclose(static_states_);
   TSDestroy(&ts_);
   ISDestroy(&is_position_);
   ISDestroy(&is_momentum_);
@@ -77,6 +75,7 @@ template <int D> PetscErrorCode SimulationD<D>::Setup(Scene scene)
 
   PetscCall(PetscLogStagePush(stage_setup_));
   scene_ = std::move(scene);
+  paths_ = OutputPaths(scene_.output_dir);
   PetscCheck(scene_.help_only || scene_.dimension == D, comm_, PETSC_ERR_PLIB,
              "SimulationD<%d> was given a scene of dimension %d: build the driver of the scene's dimension (main.cpp)", D, scene_.dimension);
   PetscCall(ReadOutputOptions()); // -output_fields..., -checkpoint_..., -restart
@@ -127,15 +126,15 @@ template <int D> PetscErrorCode SimulationD<D>::Setup(Scene scene)
   // continuation writes the rows the uninterrupted run writes.
   const double history_end = loading_.end_time_original() > 0 ? loading_.end_time_original() : loading_.schedule().end_time();
   const double history_period = scene_.output_history_rows > 0 ? history_end / (double)scene_.output_history_rows : 0.0;
-  history_times_.Start(history_period, 0.0); // (RestoreRunText reads its period)
+  history_.Setup(scene_, paths_);
+  history_.StartRowsByLoad(history_period, 0.0); // (HistoryReport::Restore reads its period)
   PetscCall(OpenHistory());
   PetscCall(SetupOutput()); // restores the state with -restart
   {
     PetscReal t;
     PetscCall(TSGetTime(ts_, &t));
-    progress_times_.Start(loading_.end_time() / 20, t);
-    history_times_.Start(history_period, t);
-    last_progress_wall_ = MPI_Wtime() - wall_start_; // (rank 0's decides: OutputAfterStep)
+    history_.StartRowsByLoad(history_period, t);
+    PetscCall(SetupObservers(t)); // history, fields, checkpoints, progress from t on
   }
   PetscCall(PetscLogStagePop());
   PetscFunctionReturn(0);
@@ -511,16 +510,10 @@ template <int D> PetscErrorCode SimulationD<D>::PostStep(TS ts)
     PetscCall(VecRestoreArrayRead(X, &xr));
     sim->relaxation_.FollowStableStep(sim->step_control_.stable_now()); // its cap, 2 omega_max
   }
-  // History rows: every -output_interval steps, where the static test runs (its cadence
-  // is the solver's, whatever rows are added), and by load, at each end time /
-  // -output_history_rows (a row only reads the state: history.csv gains rows, the
-  // results stay the same bits).
-  const bool interval_row = step % sim->scene_.output_interval == 0;
-  const bool load_row     = sim->history_times_.Due(t);
-  if (interval_row || load_row) PetscCall(sim->WriteHistoryRow(step, t, interval_row));
-  if (interval_row) PetscCall(sim->CheckStaticHold(step, t));
-  PetscCall(sim->OutputAfterStep(step, t)); // fields, checkpoints, SIGTERM/SIGINT; rank 0's clock for the progress line
-  PetscCall(sim->Progress(step, t, PETSC_FALSE));
+  // The reporting (a row, a file or a line only reads the state: the results stay the
+  // same bits): history.csv and the static-hold test, field files, checkpoints and
+  // SIGTERM/SIGINT, progress lines (run_observer.hpp).
+  PetscCall(sim->Report(step, t));
   PetscFunctionReturn(0);
 }
 
@@ -543,7 +536,7 @@ template <int D> PetscErrorCode SimulationD<D>::Run()
   PetscCall(TSGetTime(ts_, &t));
   std::string cut_short;
   if (!stopped_on_error_) PetscCall(StoppedShort(step, t, &cut_short));
-  if (last_history_step_ != step && !stopped_on_error_) PetscCall(WriteHistoryRow(step, t)); // the end-of-run row
+  if (history_.last_step() != step && !stopped_on_error_) PetscCall(WriteHistoryRow(step, t)); // the end-of-run row
   PetscCall(OutputAtEnd(step, t)); // the last field file (and checkpoint)
   if (scene_.output_final_state) PetscCall(WriteFinalState());
   // Stopped short of the end time by a PETSc limit: everything a normal end writes is

@@ -61,6 +61,101 @@ template <int D> PetscErrorCode SimulationD<D>::CheckHealth(PetscInt step, doubl
   PetscFunctionReturn(0);
 }
 
+// The chain reach of a state (u: owned, c33: its warm starts): max over owned bonds of
+// (I1bar - 3) / (I1bar_limit - 3) (Gent: / Jm), I1bar = tr(C) J^{-2/3} with
+// C = diag(F~^T F~, C33) (C33 = 1 in plane strain; hyperelastic.hpp), and the largest
+// principal stretch of that bond: reach = {reach, stretch}. `span`: I1bar_limit - 3 of a
+// law with a limit. Once, when the run stops: the slow per-bond path. Collective.
+template <int D> PetscErrorCode SimulationD<D>::ChainReach(const double *state_u, const std::vector<double> &state_c33, double span, double reach[2])
+{
+  const bool plane_strain = scene_.formulation == Formulation::plane_strain;
+
+  PetscFunctionBegin;
+  reach[0] = 0.0, reach[1] = 1.0;
+  PetscCall(force_.UpdatePositions(state_u));
+  const double *y = force_.positions();
+  for (PetscInt i = 0; i < layout_.n_owned; ++i)
+    for (std::size_t q = 0; q < families_.size((std::size_t)i); ++q) {
+      if (!bond_state_.is_intact((std::size_t)i, q) || !geometry_.is_usable((std::size_t)i, q)) continue;
+      if constexpr (D == 2) {
+        const Mat2   F   = bond_deformation_gradient(layout_.cloud, y, families_, geometry_, bond_state_, (std::size_t)i, q);
+        const double C33 = plane_strain ? 1.0 : state_c33[families_.offsets[i] + q];
+        const double J   = det(F) * std::sqrt(C33);
+        if (!(J > 0) || !(C33 > 0)) continue;
+        const double c11 = F[0] * F[0] + F[2] * F[2], c22 = F[1] * F[1] + F[3] * F[3], c12 = F[0] * F[1] + F[2] * F[3];
+        const double I1bar = (c11 + c22 + C33) * std::pow(J, -2.0 / 3.0);
+        const double r     = (I1bar - 3.0) / span;
+        if (r > reach[0]) {
+          const double mean = 0.5 * (c11 + c22), dev = std::sqrt(0.25 * (c11 - c22) * (c11 - c22) + c12 * c12);
+          reach[0] = r, reach[1] = std::sqrt(mean + dev);
+        }
+      } else { // 3D: I1bar = tr(C) J^{-2/3}; the largest principal stretch by power iteration on C (once, at the stop)
+        const nd::Mat<3> F = nd::bond_deformation_gradient<3>(layout_.cloud, y, families_, geometry_, bond_state_, (std::size_t)i, q);
+        const double     J = nd::det<3>(F);
+        if (!(J > 0)) continue;
+        double C[9], trC = 0;
+        for (int a = 0; a < 3; ++a)
+          for (int b = 0; b < 3; ++b) {
+            C[3 * a + b] = F[a] * F[b] + F[3 + a] * F[3 + b] + F[6 + a] * F[6 + b];
+            if (a == b) trC += C[3 * a + b];
+          }
+        const double r = (trC * std::pow(J, -2.0 / 3.0) - 3.0) / span;
+        if (r > reach[0]) {
+          double e[3] = {1, 1, 1}, largest = 0;
+          for (int it = 0; it < 50; ++it) {
+            double w[3];
+            for (int a = 0; a < 3; ++a) w[a] = C[3 * a] * e[0] + C[3 * a + 1] * e[1] + C[3 * a + 2] * e[2];
+            largest = std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+            for (int a = 0; a < 3; ++a) e[a] = w[a] / largest;
+          }
+          reach[0] = r, reach[1] = std::sqrt(largest);
+        }
+      }
+    }
+  struct {
+    double value;
+    int    rank;
+  } mine = {reach[0], rank_}, best;
+  PetscCallMPI(MPI_Allreduce(&mine, &best, 1, MPI_DOUBLE_INT, MPI_MAXLOC, comm_));
+  PetscCallMPI(MPI_Bcast(reach, 2, MPI_DOUBLE, best.rank, comm_));
+  PetscFunctionReturn(0);
+}
+
+// The state 10 to 20 steps before the last good one, which a blow-up has often wrecked
+// already (DivergenceFacts::stable_earlier, chain_reach_earlier): its stable step and its
+// chain reach, into *f. c33_size: the warm starts' length. Collective.
+template <int D> PetscErrorCode SimulationD<D>::DiagnoseEarlierState(std::size_t c33_size, double span, DivergenceFacts *f)
+{
+  const PetscInt n = D * layout_.n_owned;
+  int            older = -1;
+
+  PetscFunctionBegin;
+  for (int k = 0; k < 2; ++k)
+    if (output_.earlier_step[k] >= 0 && output_.earlier_step[k] + SimulationOutput::earlier_interval <= output_.good_step &&
+        (older < 0 || output_.earlier_step[k] > output_.earlier_step[older]))
+      older = k;
+  if (older < 0) PetscFunctionReturn(0);
+  const double *xe;
+  PetscCall(VecGetArrayRead(output_.earlier_state[older], &xe));
+  std::vector<double> ue(xe, xe + n);
+  PetscCall(VecRestoreArrayRead(output_.earlier_state[older], &xe));
+  f->earlier_steps = output_.good_step - output_.earlier_step[older];
+  // Its C33, solved again from a cold start (the snapshot keeps no per-bond copy,
+  // simulation_output.hpp): the same values to the solve's tolerance.
+  std::vector<double> c33_earlier(c33_size, 0.0), unused(n);
+  PetscCall(force_.EvaluateWithWarmStart(ue.data(), unused.data(), c33_earlier));
+  PetscCall(step_control_.SharpEstimate(comm_, force_, ue.data(), c33_earlier, 40, &f->stable_earlier));
+  if (!std::isfinite(f->stable_earlier) || f->stable_earlier <= 0) f->stable_earlier = 0;
+  if (law_entry(scene_.model).limit) {
+    double reach[2];
+    PetscCall(ChainReach(ue.data(), c33_earlier, span, reach));
+    f->chain_reach_earlier     = reach[0];
+    f->bond_stretch_earlier    = reach[1];
+    f->applied_stretch_earlier = loading_.stretch_at(output_.earlier_time[older]);
+  }
+  PetscFunctionReturn(0);
+}
+
 // What the solver sees at the last good state (the state saved before the step that
 // failed; the current one without -checkpoint_on_error): the stable step of that
 // state by a sharp power iteration, and how close its bonds came to the law's limit
@@ -105,99 +200,15 @@ template <int D> PetscErrorCode SimulationD<D>::DiagnoseDivergence()
   f.horizon_factor = scene_.horizon_factor;
   f.stiffening     = step_control_.largest_lambda() / step_control_.lambda_rest();
   f.applied_stretch = loading_.stretch_at(t);
-  // Chain reach of a state (u: owned, c33: its warm starts): max over owned bonds of
-  // (I1bar - 3) / (I1bar_limit - 3) (Gent: / Jm), I1bar = tr(C) J^{-2/3} with
-  // C = diag(F~^T F~, C33) (C33 = 1 in plane strain; hyperelastic.hpp), and the largest
-  // principal stretch of that bond. Only for a law with a limit.
+  // The chain reach only for a law with a limit (ChainReach).
   const LawEntry &law  = law_entry(scene_.model);
   const double    span = law.limit ? law.I1bar_limit(scene_.material) - 3.0 : 0.0;
-  auto chain_reach = [&](const double *state_u, const std::vector<double> &state_c33, double reach[2]) -> PetscErrorCode {
-    PetscFunctionBegin;
-    reach[0] = 0.0, reach[1] = 1.0;
-    PetscCall(force_.UpdatePositions(state_u));
-    const double *y = force_.positions();
-    for (PetscInt i = 0; i < layout_.n_owned; ++i)
-      for (std::size_t q = 0; q < families_.size((std::size_t)i); ++q) {
-        if (!bond_state_.is_intact((std::size_t)i, q) || !geometry_.is_usable((std::size_t)i, q)) continue;
-        if constexpr (D == 2) {
-          const Mat2   F   = bond_deformation_gradient(layout_.cloud, y, families_, geometry_, bond_state_, (std::size_t)i, q);
-          const double C33 = f.plane_strain ? 1.0 : state_c33[families_.offsets[i] + q];
-          const double J   = det(F) * std::sqrt(C33);
-          if (!(J > 0) || !(C33 > 0)) continue;
-          const double c11 = F[0] * F[0] + F[2] * F[2], c22 = F[1] * F[1] + F[3] * F[3], c12 = F[0] * F[1] + F[2] * F[3];
-          const double I1bar = (c11 + c22 + C33) * std::pow(J, -2.0 / 3.0);
-          const double r     = (I1bar - 3.0) / span;
-          if (r > reach[0]) {
-            const double mean = 0.5 * (c11 + c22), dev = std::sqrt(0.25 * (c11 - c22) * (c11 - c22) + c12 * c12);
-            reach[0] = r, reach[1] = std::sqrt(mean + dev);
-          }
-        } else { // 3D: I1bar = tr(C) J^{-2/3}; the largest principal stretch by power iteration on C (once, at the stop)
-          const nd::Mat<3> F = nd::bond_deformation_gradient<3>(layout_.cloud, y, families_, geometry_, bond_state_, (std::size_t)i, q);
-          const double     J = nd::det<3>(F);
-          if (!(J > 0)) continue;
-          double C[9], trC = 0;
-          for (int a = 0; a < 3; ++a)
-            for (int b = 0; b < 3; ++b) {
-              C[3 * a + b] = F[a] * F[b] + F[3 + a] * F[3 + b] + F[6 + a] * F[6 + b];
-              if (a == b) trC += C[3 * a + b];
-            }
-          const double r = (trC * std::pow(J, -2.0 / 3.0) - 3.0) / span;
-          if (r > reach[0]) {
-            double e[3] = {1, 1, 1}, largest = 0;
-            for (int it = 0; it < 50; ++it) {
-              double w[3];
-              for (int a = 0; a < 3; ++a) w[a] = C[3 * a] * e[0] + C[3 * a + 1] * e[1] + C[3 * a + 2] * e[2];
-              largest = std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
-              for (int a = 0; a < 3; ++a) e[a] = w[a] / largest;
-            }
-            reach[0] = r, reach[1] = std::sqrt(largest);
-          }
-        }
-      }
-    struct {
-      double value;
-      int    rank;
-    } mine = {reach[0], rank_}, best;
-    PetscCallMPI(MPI_Allreduce(&mine, &best, 1, MPI_DOUBLE_INT, MPI_MAXLOC, comm_));
-    PetscCallMPI(MPI_Bcast(reach, 2, MPI_DOUBLE, best.rank, comm_));
-    PetscFunctionReturn(0);
-  };
-
-  // Also the state 10 to 20 steps before the last good one, which a blow-up has often
-  // wrecked already (DivergenceFacts::stable_earlier, chain_reach_earlier): its stable
-  // step and its chain reach.
-  if (good) {
-    int older = -1;
-    for (int k = 0; k < 2; ++k)
-      if (output_.earlier_step[k] >= 0 && output_.earlier_step[k] + SimulationOutput::earlier_interval <= output_.good_step &&
-          (older < 0 || output_.earlier_step[k] > output_.earlier_step[older]))
-        older = k;
-    if (older >= 0) {
-      const double *xe;
-      PetscCall(VecGetArrayRead(output_.earlier_state[older], &xe));
-      std::vector<double> ue(xe, xe + n);
-      PetscCall(VecRestoreArrayRead(output_.earlier_state[older], &xe));
-      f.earlier_steps = output_.good_step - output_.earlier_step[older];
-      // Its C33, solved again from a cold start (the snapshot keeps no per-bond copy,
-      // simulation_output.hpp): the same values to the solve's tolerance.
-      std::vector<double> c33_earlier(c33.size(), 0.0), unused(n);
-      PetscCall(force_.EvaluateWithWarmStart(ue.data(), unused.data(), c33_earlier));
-      PetscCall(step_control_.SharpEstimate(comm_, force_, ue.data(), c33_earlier, 40, &f.stable_earlier));
-      if (!std::isfinite(f.stable_earlier) || f.stable_earlier <= 0) f.stable_earlier = 0;
-      if (law.limit) {
-        double reach[2];
-        PetscCall(chain_reach(ue.data(), c33_earlier, reach));
-        f.chain_reach_earlier  = reach[0];
-        f.bond_stretch_earlier = reach[1];
-        f.applied_stretch_earlier = loading_.stretch_at(output_.earlier_time[older]);
-      }
-    }
-  }
+  if (good) PetscCall(DiagnoseEarlierState(c33.size(), span, &f));
   PetscCall(step_control_.SharpEstimate(comm_, force_, u.data(), c33, 40, &f.stable));
   if (!std::isfinite(f.stable) || f.stable <= 0) f.stable = step_control_.stable_now();
   if (law.limit) {
     double reach[2];
-    PetscCall(chain_reach(u.data(), c33, reach));
+    PetscCall(ChainReach(u.data(), c33, span, reach));
     f.chain_reach  = reach[0];
     f.bond_stretch = reach[1];
     f.limit        = law.limit;
@@ -349,6 +360,8 @@ template <int D> PetscErrorCode SimulationD<D>::CheckRunaway(PetscInt step, doub
 // defines; a class may be explicitly instantiated once in a program.
 #define BAPD_SIMULATION_HEALTH(D) \
   template PetscErrorCode SimulationD<D>::CheckHealth(PetscInt step, double t, PetscBool *diverged); \
+  template PetscErrorCode SimulationD<D>::ChainReach(const double *state_u, const std::vector<double> &state_c33, double span, double reach[2]); \
+  template PetscErrorCode SimulationD<D>::DiagnoseEarlierState(std::size_t c33_size, double span, DivergenceFacts *f); \
   template PetscErrorCode SimulationD<D>::DiagnoseDivergence(); \
   template PetscErrorCode SimulationD<D>::CheckRunaway(PetscInt step, double t, std::string *message); \
   template PetscErrorCode SimulationD<D>::CheckLawValidity(PetscInt step, double t, std::string *message);

@@ -43,120 +43,16 @@ template <class T> PetscErrorCode GatherOnRankZero(MPI_Comm comm, const std::vec
   PetscFunctionReturn(0);
 }
 
-// The outcome of rank 0's writing of rows to a CSV file since `row_start` (its
-// offset before them): 0; the errno of a failed write or flush, after which the file
-// is cut back to its last whole row (the rows before are kept) and what stdio still
-// holds goes to /dev/null; or -1 if the file was deleted (st_nlink 0: the output
-// directory removed during the run). One fstat: cheap at each history row.
-int FinishRows(FILE *f, long row_start)
-{
-  errno = 0;
-  int error = 0;
-  if (std::fflush(f) != 0 || std::ferror(f)) error = errno ? errno : EIO;
-  struct stat st;
-  if (!error && fstat(fileno(f), &st) == 0 && st.st_nlink == 0) return -1;
-  if (error) {
-    // (never longer: a header that did not reach the disk is not padded with zeros)
-    if (row_start >= 0 && fstat(fileno(f), &st) == 0 && st.st_size > row_start && ftruncate(fileno(f), row_start) != 0) {
-    } // best effort: the error is reported either way
-    const int null = ::open("/dev/null", O_WRONLY);
-    if (null >= 0) {
-      dup2(null, fileno(f));
-      ::close(null);
-    }
-  }
-  return error;
-}
-
-// The message for FinishRows' outcome (collective after the broadcast of `error`).
-PetscErrorCode CheckRows(MPI_Comm comm, int error, const std::string &dir, const char *file)
-{
-  PetscFunctionBegin;
-  PetscCheck(error != -1, comm, PETSC_ERR_FILE_WRITE,
-             "%s/%s was deleted during the run (the output directory removed?): the run stops. Keep -output_dir until the run ends",
-             dir.c_str(), file);
-  PetscCheck(error == 0, comm, PETSC_ERR_FILE_WRITE,
-             "Cannot write %s/%s: %s; the rows written before are kept: free some space or choose another -output_dir (continue from "
-             "a checkpoint with -restart if one was written)",
-             dir.c_str(), file, std::strerror(error));
-  PetscFunctionReturn(0);
-}
-
-// The area the nominal stress of a load set divides its y reaction by: the sheet's
-// width x thickness (2D), the x-z section of the body's extent (3D).
-double NominalArea(const Scene &scene)
-{
-  const Body3D &b = scene.body3d;
-  return scene.dimension == 3 ? (b.hi[0] - b.lo[0]) * (b.hi[2] - b.lo[2]) : scene.body.width * scene.body.thickness;
-}
-
 } // namespace
 
 
-// The header of history.csv: its columns for this scene's load sets, probes,
-// dimension and failure (docs/options_run.md, "Output").
-template <int D> std::string SimulationD<D>::HistoryHeader() const
-{
-  std::string h = "step,time_s,stretch";
-  // (z columns in 3D only: a 2D history keeps its columns)
-  for (const LoadSet &s : scene_.loads) {
-    h += Format(",%s_reaction_x_N,%s_reaction_y_N", s.name.c_str(), s.name.c_str());
-    if (D == 3) h += Format(",%s_reaction_z_N", s.name.c_str());
-    h += Format(",%s_nominal_stress_Pa", s.name.c_str());
-  }
-  for (const Probe &p : scene_.probes) {
-    h += Format(",%s_ux_m,%s_uy_m", p.name.c_str(), p.name.c_str());
-    if (D == 3) h += Format(",%s_uz_m", p.name.c_str());
-  }
-  h += ",kinetic_energy_J,internal_energy_J,broken_bonds,dt_s"; // dt_s: the next step (time_step_control.hpp)
-  // The energy budget (energy_budget.hpp), the crack's columns only with failure.
-  for (const LoadSet &s : scene_.loads) h += Format(",%s_work_J", s.name.c_str());
-  h += ",damping_dissipation_J,fracture_dissipation_J,energy_balance_residual_J";
-  if (scene_.failure) {
-    h += ",crack_area_m2,effective_fracture_energy_J_m2,crack_length_m,crack_tip_x_m,crack_tip_y_m";
-    if (D == 3) h += ",crack_tip_z_m";
-  }
-  // The grips' displacement, the mean over each load set's points along each component
-  // it holds (fixed or stretched): with <set>_reaction_*_N a force-displacement curve.
-  // Last, so that the columns before keep their places.
-  for (const LoadSet &s : scene_.loads)
-    for (int c = 0; c < D; ++c)
-      if (s.component(c) != ComponentLoad::free) h += Format(",%s_displacement_%c_m", s.name.c_str(), "xyz"[c]);
-  return h;
-}
-
-// The header of static_states.csv.
-template <int D> std::string SimulationD<D>::StaticStatesHeader() const
-{
-  std::string h = "stretch,time_s,step,kinetic_over_internal";
-  for (const Probe &p : scene_.probes) {
-    h += Format(",%s_ux_m,%s_uy_m", p.name.c_str(), p.name.c_str());
-    if (D == 3) h += Format(",%s_uz_m", p.name.c_str());
-  }
-  for (const LoadSet &l : scene_.loads) h += Format(",%s_reaction_y_N", l.name.c_str());
-  return h;
-}
-
+// A fresh run's history.csv, with its header and the row at t = 0 (a restart's is
+// written from its checkpoint's rows by HistoryReport::Restore).
 template <int D> PetscErrorCode SimulationD<D>::OpenHistory()
 {
   PetscFunctionBegin;
-  // A restart writes history.csv from its checkpoint's rows (RestoreRunText): nothing
-  // here touches the file it continues.
   if (!output_.checkpoint.restart.empty()) PetscFunctionReturn(0);
-  int         ok = 1;
-  std::string why; // rank 0, which prints the message
-  if (rank_ == 0) {
-    std::error_code ec;
-    std::filesystem::create_directories(scene_.output_dir, ec);
-    const std::string path = scene_.output_dir + "/history.csv";
-    history_               = ec ? nullptr : std::fopen(path.c_str(), "w");
-    ok                     = history_ != nullptr;
-    if (!ok) why = ec ? "cannot create the directory: " + ec.message() : std::string(std::strerror(errno));
-  }
-  PetscCallMPI(MPI_Bcast(&ok, 1, MPI_INT, 0, comm_));
-  PetscCheck(ok, comm_, PETSC_ERR_FILE_OPEN, "-output_dir %s: cannot write %s/history.csv (%s): choose a writable directory, e.g. -output_dir output",
-             scene_.output_dir.c_str(), scene_.output_dir.c_str(), why.c_str());
-  if (rank_ == 0) std::fprintf(history_, "%s\n", HistoryHeader().c_str());
+  PetscCall(history_.Open(comm_));
   PetscCall(WriteHistoryRow(0, 0.0));
   PetscFunctionReturn(0);
 }
@@ -241,39 +137,26 @@ template <int D> PetscErrorCode SimulationD<D>::WriteHistoryRow(PetscInt step, d
   PetscCall(BrokenBondCount(&broken));
   double crack_area = 0, crack_tip[4] = {0, 0, 0, 0};
   if (scene_.failure) PetscCall(CrackExtent(&crack_area, crack_tip));
-  const std::vector<double> &reaction = last_reaction_, &probe_u = last_probe_u_;
-  int                        error    = 0;
   // Every rank holds the same sums (reproducible), so every rank decides alike.
   const double work     = budget_.grip_work_total();
   const double residual = work - (last_internal_ + last_kinetic_ + budget_.damped() + budget_.released());
   if (checks) PetscCall(WarnEnergyBalance(step, t, work, residual)); // (its cadence the -output_interval rows')
-  if (rank_ == 0) {
-    const long   row_start = std::ftell(history_);
-    const double area = NominalArea(scene_);
-    std::fprintf(history_, "%" PetscInt_FMT ",%.17g,%.17g", step, t, loading_.stretch_at(t));
-    for (std::size_t s = 0; s < scene_.loads.size(); ++s) {
-      for (int c = 0; c < D; ++c) std::fprintf(history_, ",%.17g", reaction[D * s + c]);
-      std::fprintf(history_, ",%.17g", reaction[D * s + 1] / area);
-    }
-    for (std::size_t p = 0; p < probes_.size(); ++p)
-      for (int c = 0; c < D; ++c) std::fprintf(history_, ",%.17g", probe_u[D * p + c]);
-    std::fprintf(history_, ",%.17g,%.17g,%" PetscInt_FMT ",%.17g", last_kinetic_, last_internal_, broken, step_control_.current());
-    for (std::size_t s = 0; s < budget_.load_sets(); ++s) std::fprintf(history_, ",%.17g", budget_.grip_work(s));
-    std::fprintf(history_, ",%.17g,%.17g,%.17g", budget_.damped(), budget_.released(), residual);
-    if (scene_.failure) {
-      const double nan = std::numeric_limits<double>::quiet_NaN();
-      std::fprintf(history_, ",%.17g,%.17g", crack_area, crack_area > 0 ? budget_.released() / crack_area : nan);
-      for (int c = 0; c <= D; ++c) std::fprintf(history_, ",%.17g", crack_tip[c]);
-    }
-    for (std::size_t s = 0; s < scene_.loads.size(); ++s)
-      for (int c = 0; c < D; ++c)
-        if (scene_.loads[s].component(c) != ComponentLoad::free) std::fprintf(history_, ",%.17g", grip_u_[D * s + c]);
-    std::fprintf(history_, "\n");
-    error = FinishRows(history_, row_start);
-  }
-  PetscCallMPI(MPI_Bcast(&error, 1, MPI_INT, 0, comm_)); // rank 0 wrote: every rank stops alike
-  PetscCall(CheckRows(comm_, error, scene_.output_dir, "history.csv"));
-  last_history_step_ = step;
+  HistoryRow row;
+  row.step         = step;
+  row.time         = t;
+  row.stretch      = loading_.stretch_at(t);
+  row.reaction     = last_reaction_.data();
+  row.probe_u      = last_probe_u_.data();
+  row.kinetic      = last_kinetic_;
+  row.internal     = last_internal_;
+  row.broken_bonds = broken;
+  row.next_dt      = step_control_.current();
+  row.budget       = &budget_;
+  row.residual     = residual;
+  row.crack_area   = crack_area;
+  row.crack_tip    = crack_tip;
+  row.grip_u       = grip_u_.data();
+  PetscCall(history_.WriteRow(comm_, row));
   PetscCall(PetscLogStagePop());
   PetscFunctionReturn(0);
 }
@@ -325,44 +208,19 @@ template <int D> PetscErrorCode SimulationD<D>::CheckStaticHold(PetscInt step, d
     PetscCall(PetscPrintf(comm_, "; %s ux = %.6e m", scene_.probes[p].name.c_str(), last_probe_u_[D * p]));
   if (relaxation_.active()) PetscCall(PetscPrintf(comm_, "; damping %.4g 1/s", relaxation_.last()));
   PetscCall(PetscPrintf(comm_, "\n"));
-  int error = 0;
-  if (rank_ == 0 && !static_states_) {
-    static_states_ = std::fopen((scene_.output_dir + "/static_states.csv").c_str(), "w");
-    if (!static_states_) error = errno;
-  }
-  if (rank_ == 0 && static_states_) {
-    const long row_start = std::ftell(static_states_);
-    if (row_start == 0) std::fprintf(static_states_, "%s\n", StaticStatesHeader().c_str());
-    std::fprintf(static_states_, "%.17g,%.17g,%" PetscInt_FMT ",%.6e", lambda, t, step, last_kinetic_ / last_internal_);
-    for (std::size_t p = 0; p < probes_.size(); ++p)
-      for (int c = 0; c < D; ++c) std::fprintf(static_states_, ",%.17g", last_probe_u_[D * p + c]);
-    for (std::size_t l = 0; l < scene_.loads.size(); ++l) std::fprintf(static_states_, ",%.17g", last_reaction_[D * l + 1]);
-    std::fprintf(static_states_, "\n");
-    error = FinishRows(static_states_, row_start);
-  }
-  PetscCallMPI(MPI_Bcast(&error, 1, MPI_INT, 0, comm_));
-  PetscCall(CheckRows(comm_, error, scene_.output_dir, "static_states.csv"));
+  PetscCall(history_.WriteStaticState(comm_, lambda, t, step, last_kinetic_ / last_internal_, last_probe_u_.data(), last_reaction_.data()));
   // Skip what is left of the hold.
   loading_.EndHold(k, t);
   PetscCall(TSSetMaxTime(ts_, loading_.end_time()));
   PetscFunctionReturn(0);
 }
 
-// A progress line every -progress_interval steps, or (0) every end time / 20 of
-// simulated time, and once -progress_wall_interval seconds of wall time have passed
-// since the last line (a slow run says where it is): step, time, step size, stretch,
-// energies, broken bonds, wall time. The wall clock is rank 0's, read in the step's one
-// reduction (OutputAfterStep), so that every rank takes the same branch (a line costs
-// collective sums) at no extra collective. Prints only.
-template <int D> PetscErrorCode SimulationD<D>::Progress(PetscInt step, double t, PetscBool force)
+// One progress line (ProgressObserver, simulation_report.cpp, decides when): step, time,
+// step size, stretch, energies, broken bonds, wall time (since the start) and the wall
+// time left. Collective (the energies are sums); prints only.
+template <int D> PetscErrorCode SimulationD<D>::ProgressLine(PetscInt step, double t, double wall)
 {
   PetscFunctionBegin;
-  const bool by_steps = scene_.progress_interval > 0 ? step % scene_.progress_interval == 0 : progress_times_.Due(t);
-  const bool by_wall  = progress_by_wall_;
-  progress_by_wall_   = false;
-  if (!force && !by_steps && !by_wall) PetscFunctionReturn(0);
-  const double wall   = MPI_Wtime() - wall_start_;
-  last_progress_wall_ = wall;
   const double end_time = loading_.end_time();
   if (scene_.failure) PetscCall(BrokenBondCount(&total_broken_));
   double kinetic, internal;
@@ -483,24 +341,24 @@ template <int D> PetscErrorCode SimulationD<D>::ListOutputFiles()
 {
   PetscFunctionBegin;
   if (rank_ != 0) PetscFunctionReturn(0);
-  const std::string dir = scene_.output_dir + "/";
+  const std::string dir = paths_.dir() + "/"; // (as the summary prints it)
   std::string       text;
   std::uintmax_t    total = 0;
   auto line = [&](const std::string &name, const std::string &what) {
     std::error_code      ec;
-    const std::uintmax_t bytes = std::filesystem::file_size(dir + name, ec);
+    const std::uintmax_t bytes = std::filesystem::file_size(paths_.file(name), ec);
     if (ec) return; // not written (or gone: the run's own checks say so)
     total += bytes;
     text += Format("  %-22s %10s  %s\n", name.c_str(), Size(bytes).c_str(), what.c_str());
   };
   line("history.csv", "a row every -output_interval steps and at each end time / -output_history_rows (scripts/plot_history.py)");
-  if (static_states_) line("static_states.csv", "one row per static state");
+  if (history_.has_static_states()) line("static_states.csv", "one row per static state");
   if (output_.fields.enabled) {
     std::uintmax_t bytes = 0;
     std::size_t    files = 0;
     for (const FieldFrame &frame : output_.series.frames) {
       std::error_code      ec;
-      const std::uintmax_t b = std::filesystem::file_size(dir + FieldFileName(frame.step), ec);
+      const std::uintmax_t b = std::filesystem::file_size(paths_.field_file(frame.step), ec);
       if (!ec) bytes += b, ++files;
     }
     total += bytes;
@@ -510,7 +368,7 @@ template <int D> PetscErrorCode SimulationD<D>::ListOutputFiles()
                    output_.series.frames.empty() ? 0.0 : output_.series.frames.back().time);
   }
   if (output_.last_checkpoint_step >= 0)
-    line("checkpoint.h5", Format("step %" PetscInt_FMT ": continue with -restart %scheckpoint.h5", output_.last_checkpoint_step, dir.c_str()));
+    line("checkpoint.h5", Format("step %" PetscInt_FMT ": continue with -restart %s", output_.last_checkpoint_step, paths_.checkpoint().c_str()));
   if (scene_.output_final_state) {
     line("final_state.csv", "every point's displacement, natural order");
     line("broken_bonds.csv", "broken bonds as pairs of natural ids");
@@ -536,7 +394,7 @@ template <int D> PetscErrorCode SimulationD<D>::WriteFinalState()
   // complete): a full disk leaves no torn last row.
   int error[2] = {0, 0};
   if (rank_ == 0) {
-    error[0] = WriteFileWhole(scene_.output_dir + "/final_state.csv", [&](FILE *f) {
+    error[0] = WriteFileWhole(paths_.final_state(), [&](FILE *f) {
       std::fprintf(f, D == 2 ? "natural_id,x_m,y_m,ux_m,uy_m\n" : "natural_id,x_m,y_m,z_m,ux_m,uy_m,uz_m\n");
       for (std::size_t i = 0; i < (std::size_t)layout_.n_global; ++i) {
         std::fprintf(f, "%zu", i);
@@ -547,7 +405,7 @@ template <int D> PetscErrorCode SimulationD<D>::WriteFinalState()
     });
     if (!error[0]) {
       error[1] = 1;
-      error[0] = WriteFileWhole(scene_.output_dir + "/broken_bonds.csv", [&](FILE *f) {
+      error[0] = WriteFileWhole(paths_.broken_bonds(), [&](FILE *f) {
         std::fprintf(f, "i,j\n");
         for (const auto &b : broken) std::fprintf(f, "%lld,%lld\n", (long long)b.first, (long long)b.second);
       });
@@ -620,8 +478,6 @@ template <int D> PetscErrorCode SimulationD<D>::GatherBrokenBonds(std::vector<st
 // defines; a class may be explicitly instantiated once in a program.
 #define BAPD_SIMULATION_HISTORY(D) \
   template PetscErrorCode SimulationD<D>::OpenHistory(); \
-  template std::string SimulationD<D>::HistoryHeader() const; \
-  template std::string SimulationD<D>::StaticStatesHeader() const; \
   template PetscErrorCode SimulationD<D>::WarnEnergyBalance(PetscInt step, double t, double work, double residual); \
   template PetscErrorCode SimulationD<D>::Energies(double *kinetic, double *internal, Vec state); \
   template PetscErrorCode SimulationD<D>::ReadProbes(const double *u_owned, double *probe_u); \
@@ -629,7 +485,7 @@ template <int D> PetscErrorCode SimulationD<D>::GatherBrokenBonds(std::vector<st
   template PetscErrorCode SimulationD<D>::GripDisplacements(const double *u_owned, double *mean); \
   template PetscErrorCode SimulationD<D>::WriteHistoryRow(PetscInt step, double t, bool checks); \
   template PetscErrorCode SimulationD<D>::CheckStaticHold(PetscInt step, double t); \
-  template PetscErrorCode SimulationD<D>::Progress(PetscInt step, double t, PetscBool force); \
+  template PetscErrorCode SimulationD<D>::ProgressLine(PetscInt step, double t, double wall); \
   template PetscErrorCode SimulationD<D>::TimeStepSummary(PetscInt steps); \
   template PetscErrorCode SimulationD<D>::Summary(); \
   template PetscErrorCode SimulationD<D>::ListOutputFiles(); \

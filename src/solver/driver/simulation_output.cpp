@@ -41,58 +41,6 @@ PetscErrorCode RegisterEvents()
   PetscFunctionReturn(0);
 }
 
-std::vector<std::string> SplitCells(const std::string &line)
-{
-  std::vector<std::string> cells;
-  std::istringstream       in(line);
-  for (std::string cell; std::getline(in, cell, ',');) cells.push_back(cell);
-  if (!line.empty() && line.back() == ',') cells.emplace_back();
-  return cells;
-}
-
-// The rows of a CSV text (`lines`, the first its header) under another header: each
-// cell moves to the column of the same name, and a column the old header lacks gets
-// "nan" (what a history column holds before it has a value, e.g. the crack's tip).
-// `dropped`: the old columns the new header lacks (their values are not in the result).
-std::vector<std::string> RemapColumns(const std::vector<std::string> &lines, const std::string &header, std::vector<std::string> *added,
-                                      std::vector<std::string> *dropped)
-{
-  const std::vector<std::string> from = SplitCells(lines.front()), to = SplitCells(header);
-  std::vector<int>               source(to.size(), -1);
-  for (std::size_t j = 0; j < to.size(); ++j) {
-    const auto it = std::find(from.begin(), from.end(), to[j]);
-    if (it != from.end()) source[j] = (int)(it - from.begin());
-    else added->push_back(to[j]);
-  }
-  for (const std::string &name : from)
-    if (std::find(to.begin(), to.end(), name) == to.end()) dropped->push_back(name);
-  std::vector<std::string> out{header};
-  for (std::size_t k = 1; k < lines.size(); ++k) {
-    const std::vector<std::string> cells = SplitCells(lines[k]);
-    std::string                    row;
-    for (std::size_t j = 0; j < to.size(); ++j) {
-      if (j) row += ',';
-      row += source[j] >= 0 && (std::size_t)source[j] < cells.size() ? cells[(std::size_t)source[j]] : "nan";
-    }
-    out.push_back(row);
-  }
-  return out;
-}
-
-// The time of a history.csv row ("step,time,..."), as written (%.17g: the same bits).
-double HistoryRowTime(const std::string &line)
-{
-  const std::size_t comma = line.find(',');
-  return comma == std::string::npos ? 0.0 : std::strtod(line.c_str() + comma + 1, nullptr);
-}
-
-std::string Joined(const std::vector<std::string> &names)
-{
-  std::string text;
-  for (std::size_t k = 0; k < names.size(); ++k) text += (k ? ", " : "") + names[k];
-  return text;
-}
-
 } // namespace
 
 template <int D> PetscErrorCode SimulationD<D>::ReadOutputOptions()
@@ -175,41 +123,6 @@ template <int D> PetscErrorCode SimulationD<D>::SaveGoodState(PetscInt step, dou
   PetscFunctionReturn(0);
 }
 
-// After PostStep's loading, health check, bond breaking and history row; before its
-// progress line.
-template <int D> PetscErrorCode SimulationD<D>::OutputAfterStep(PetscInt step, double t)
-{
-  PetscFunctionBegin;
-  const bool fields_due = output_.fields.interval > 0 ? step % output_.fields.interval == 0 : output_.field_times.Due(t);
-  if (output_.fields.enabled && fields_due) PetscCall(WriteFields(step, t));
-  // One reduction a step: did any rank get SIGTERM/SIGINT or SIGUSR1, and is rank 0's
-  // clock past the checkpoints' wall-clock interval, or past the progress lines' since
-  // the last one (Progress, after this)? Every rank then takes the same branch.
-  const CheckpointOptions &options = output_.checkpoint;
-  const double             now     = MPI_Wtime();
-  int flags[4] = {PendingInterrupt(), rank_ == 0 && options.wall_interval > 0 && now - output_.last_checkpoint_wall >= options.wall_interval,
-                  TakeCheckpointRequest() ? 1 : 0,
-                  rank_ == 0 && scene_.progress_wall_interval > 0 && now - wall_start_ - last_progress_wall_ >= scene_.progress_wall_interval};
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, flags, 4, MPI_INT, MPI_MAX, comm_));
-  progress_by_wall_ = flags[3] != 0;
-  if (flags[0]) {
-    if (output_.fields.enabled && (output_.series.frames.empty() || output_.series.frames.back().step != step)) PetscCall(WriteFields(step, t));
-    PetscCall(WriteCheckpointFile(step, t, "interrupted"));
-    const std::string path = scene_.output_dir + "/checkpoint.h5";
-    char              msg[1024];
-    std::snprintf(msg, sizeof msg, "interrupted by %s at step %" PetscInt_FMT " (t = %.6e s); the state is saved in %s: continue with -restart %s",
-                  InterruptName(flags[0]).c_str(), step, t, path.c_str(), path.c_str());
-    stop_reason_      = msg;
-    stopped_on_error_ = true;
-    PetscCall(TSSetConvergedReason(ts_, TS_CONVERGED_USER));
-    PetscFunctionReturn(0);
-  }
-  if (flags[2]) PetscCall(WriteCheckpointFile(step, t, "SIGUSR1"));
-  else if ((options.step_interval > 0 && step % options.step_interval == 0) || flags[1]) PetscCall(WriteCheckpointFile(step, t, "interval"));
-  if (output_.checkpoint.on_error) PetscCall(SaveGoodState(step, t));
-  PetscFunctionReturn(0);
-}
-
 // CheckHealth stopped the run: put the last good state back, write it as a
 // checkpoint (and a field file), and say so in the stop message.
 template <int D> PetscErrorCode SimulationD<D>::OutputOnDivergence()
@@ -230,7 +143,7 @@ template <int D> PetscErrorCode SimulationD<D>::OutputOnDivergence()
   PetscCall(TSSetTime(ts_, output_.good_time));
   if (output_.fields.enabled) PetscCall(WriteFields(output_.good_step, output_.good_time));
   PetscCall(WriteCheckpointFile(output_.good_step, output_.good_time, "last good state"));
-  const std::string path = scene_.output_dir + "/checkpoint.h5";
+  const std::string path = paths_.checkpoint();
   char              msg[512];
   std::snprintf(msg, sizeof msg, " The last good state (step %" PetscInt_FMT ", t = %.6e s) is saved in %s: continue from it with -restart %s and the change above.",
                 output_.good_step, output_.good_time, path.c_str(), path.c_str());
@@ -347,14 +260,7 @@ template <int D> PetscErrorCode SimulationD<D>::WriteCheckpointFile(PetscInt ste
     PetscCall(PetscOptionsGetAll(nullptr, &all));
     header.options = all ? all : "";
     PetscCall(PetscFree(all));
-    std::ifstream      in(scene_.output_dir + "/history.csv");
-    std::ostringstream text;
-    text << in.rdbuf();
-    header.history = text.str();
-    std::ifstream      states(scene_.output_dir + "/static_states.csv");
-    std::ostringstream states_text;
-    if (states) states_text << states.rdbuf();
-    header.static_states = states_text.str();
+    history_.Texts(&header.history, &header.static_states); // (history_report.hpp)
   }
   header.schedule_original = loading_.schedule_original();
   header.schedule_current  = loading_.schedule().time;
@@ -367,7 +273,7 @@ template <int D> PetscErrorCode SimulationD<D>::WriteCheckpointFile(PetscInt ste
     header.field_frames.push_back((double)frame.step);
     header.field_frames.push_back(frame.time);
   }
-  const std::string path = scene_.output_dir + "/checkpoint.h5";
+  const std::string path = paths_.checkpoint();
   PetscCall(VecGetArray(X_, &x));
   CheckpointState state = CheckpointView(x);
   // -relaxation adaptive: the latest force evaluation, which the next step's damping
@@ -421,6 +327,25 @@ template <int D> PetscErrorCode SimulationD<D>::RestoreSchedule(const Checkpoint
   if (loading_.end_time() <= header.time)
     PetscCall(PetscPrintf(comm_, "\n*** WARNING: the checkpoint is at t = %.6e s, already at the end time %.6e s: this run takes no step. "
                                  "Give a later -end_time to go on.\n\n", header.time, loading_.end_time()));
+  PetscFunctionReturn(0);
+}
+
+// A restart's field files: those of the checkpoint's list that are here, listed again
+// (a run killed after the checkpoint may have written later ones), and fields.xdmf.
+template <int D> PetscErrorCode SimulationD<D>::RestoreFieldSeries(const CheckpointHeader &header)
+{
+  PetscFunctionBegin;
+  std::vector<int> present(header.field_frames.size() / 2, 0);
+  if (rank_ == 0)
+    for (std::size_t k = 0; k < present.size(); ++k) {
+      std::error_code ec;
+      present[k] = std::filesystem::exists(paths_.field_file((long long)header.field_frames[2 * k]), ec);
+    }
+  if (!present.empty()) PetscCallMPI(MPI_Bcast(present.data(), (int)present.size(), MPI_INT, 0, comm_));
+  output_.series.frames.clear();
+  for (std::size_t k = 0; k < present.size(); ++k)
+    if (present[k]) output_.series.frames.push_back({(PetscInt)header.field_frames[2 * k], header.field_frames[2 * k + 1]});
+  if (output_.fields.enabled) PetscCall(WriteFieldIndex<D>(comm_, output_.series, layout_.n_global));
   PetscFunctionReturn(0);
 }
 
@@ -491,111 +416,14 @@ template <int D> PetscErrorCode SimulationD<D>::RestoreCheckpoint()
                           step_control_.current()));
   PetscCall(BrokenBondCount(&total_broken_));
 
-  PetscCall(RestoreRunText(header));
+  PetscCall(history_.Restore(comm_, header)); // history.csv and static_states.csv from the checkpoint
 
-  // Field files: those of the checkpoint's list that are here, listed again (a run
-  // killed after the checkpoint may have written later ones).
-  std::vector<int> present(header.field_frames.size() / 2, 0);
-  if (rank_ == 0)
-    for (std::size_t k = 0; k < present.size(); ++k) {
-      std::error_code ec;
-      present[k] = std::filesystem::exists(scene_.output_dir + "/" + FieldFileName((PetscInt)header.field_frames[2 * k]), ec);
-    }
-  if (!present.empty()) PetscCallMPI(MPI_Bcast(present.data(), (int)present.size(), MPI_INT, 0, comm_));
-  output_.series.frames.clear();
-  for (std::size_t k = 0; k < present.size(); ++k)
-    if (present[k]) output_.series.frames.push_back({(PetscInt)header.field_frames[2 * k], header.field_frames[2 * k + 1]});
-  if (output_.fields.enabled) PetscCall(WriteFieldIndex<D>(comm_, output_.series, layout_.n_global));
+  PetscCall(RestoreFieldSeries(header));
 
   PetscCall(PetscPrintf(comm_, "Restart from %s: step %" PetscInt_FMT ", t = %.6e s, stretch %.5f, %" PetscInt_FMT " broken bonds (written by %lld rank(s), %s)\n",
                         path.c_str(), header.step, header.time, loading_.stretch_at(header.time), total_broken_,
                         (long long)header.ranks, header.reason.c_str()));
   PetscCall(PetscLogEventEnd(event_restart, 0, 0, 0, 0));
-  PetscFunctionReturn(0);
-}
-
-// history.csv and static_states.csv of a restart: the checkpoint's rows, to which this
-// run's are appended. A last history row at the checkpoint step that is neither on the
-// -output_interval grid nor a row by load (-output_history_rows) was the end-of-run row
-// of the run that wrote it: the continuation writes its own rows. Columns that differ from the checkpoint's (a probe
-// or load set added, failure switched on) keep the earlier rows: each value goes to its
-// column by name, "nan" where the earlier run had no such column. A column this run
-// does not write (a checkpoint of a bapd with other columns: a probe or load set
-// cannot be taken away on a restart, its stored options would be unused) keeps its
-// values with the rows as they were in history_to_step_N.csv (static_states_to_step_N.csv). Each file is written whole
-// (WriteFileWhole), so a full disk leaves the previous one as it was.
-template <int D> PetscErrorCode SimulationD<D>::RestoreRunText(const CheckpointHeader &header)
-{
-  PetscFunctionBegin;
-  // [errno, which file failed: 0 history.csv, 1 static_states.csv, 2 and 3 their copies of the earlier rows]
-  int         error[2] = {0, 0};
-  std::string notes; // rank 0: what changed, printed after the broadcast
-  PetscInt    last_row = -1; // the step of history.csv's last row (rank 0, broadcast)
-  if (rank_ == 0) {
-    const std::string dir = scene_.output_dir + "/";
-    struct Text {
-      const char  *name, *copy;
-      std::string  stored, columns;
-      bool         history;
-      FILE       **stream;
-    };
-    const std::string step = std::to_string((long long)header.step);
-    Text texts[2] = {{"history.csv", "history_to_step_", header.history, HistoryHeader(), true, &history_},
-                     {"static_states.csv", "static_states_to_step_", header.static_states, StaticStatesHeader(), false, &static_states_}};
-    for (int k = 0; k < 2 && !error[0]; ++k) {
-      Text &t = texts[k];
-      if (!t.history && t.stored.empty()) continue; // no static state yet: static_states.csv starts with the first one
-      std::vector<std::string> lines;
-      std::istringstream       in(t.stored);
-      for (std::string line; std::getline(in, line);) lines.push_back(line);
-      if (t.history && lines.size() > 1 && HistoryRowStep(lines.back()) == header.step && header.step % scene_.output_interval != 0) {
-        // A row by load (-output_history_rows) stays: the step was the first at or past a
-        // multiple of the period, i.e. past the first due time after the row before it
-        // (every step in between was not due, or it would have written a row).
-        const bool by_load = history_times_.period() > 0 && lines.size() > 2 &&
-                             header.time >= history_times_.Next(HistoryRowTime(lines[lines.size() - 2]));
-        if (!by_load) lines.pop_back();
-      }
-      if (t.history && lines.size() > 1) last_row = HistoryRowStep(lines.back());
-      if (lines.empty()) lines.push_back(t.columns);
-      if (lines.front() != t.columns) {
-        std::vector<std::string> added, dropped;
-        const std::vector<std::string> earlier = lines;
-        lines = RemapColumns(earlier, t.columns, &added, &dropped);
-        std::string note = Format("Note: %s has other columns than the checkpoint's: its %zu earlier row(s) are kept", t.name, earlier.size() - 1);
-        if (!added.empty()) note += ", with nan in the new column(s) " + Joined(added);
-        if (!dropped.empty()) {
-          const std::string copy = t.copy + step + ".csv";
-          error[0] = WriteFileWhole(dir + copy, [&](FILE *f) {
-            for (const std::string &line : earlier) std::fprintf(f, "%s\n", line.c_str());
-          });
-          if (error[0]) {
-            error[1] = 2 + k;
-            break;
-          }
-          note += "; the column(s) " + Joined(dropped) + ", which this run does not write, are kept with those rows as they were in " + dir + copy;
-        }
-        notes += note + "\n";
-      }
-      if (*t.stream) std::fclose(*t.stream);
-      *t.stream = nullptr;
-      error[0] = WriteFileWhole(
-        dir + t.name,
-        [&](FILE *f) {
-          for (const std::string &line : lines) std::fprintf(f, "%s\n", line.c_str());
-        },
-        t.stream);
-      error[1] = k;
-    }
-  }
-  PetscCallMPI(MPI_Bcast(error, 2, MPI_INT, 0, comm_));
-  PetscCallMPI(MPI_Bcast(&last_row, 1, MPIU_INT, 0, comm_));
-  last_history_step_ = last_row; // Run() writes the end-of-run row unless it is there
-  static const char *const names[4] = {"history.csv", "static_states.csv", "history_to_step_N.csv", "static_states_to_step_N.csv"};
-  PetscCheck(!error[0], comm_, PETSC_ERR_FILE_WRITE,
-             "Cannot write %s/%s: %s; the file is as it was before the restart: free some space or choose another -output_dir",
-             scene_.output_dir.c_str(), names[error[1]], std::strerror(error[0]));
-  if (!notes.empty()) PetscCall(PetscPrintf(PETSC_COMM_SELF, "%s", notes.c_str()));
   PetscFunctionReturn(0);
 }
 
@@ -608,7 +436,6 @@ template <int D> PetscErrorCode SimulationD<D>::RestoreRunText(const CheckpointH
   template PetscErrorCode SimulationD<D>::SetupOutput(); \
   template PetscErrorCode SimulationD<D>::CreateNaturalOrder(); \
   template PetscErrorCode SimulationD<D>::SaveGoodState(PetscInt step, double t); \
-  template PetscErrorCode SimulationD<D>::OutputAfterStep(PetscInt step, double t); \
   template PetscErrorCode SimulationD<D>::OutputOnDivergence(); \
   template PetscErrorCode SimulationD<D>::OutputAtEnd(PetscInt step, double t); \
   template PetscErrorCode SimulationD<D>::WriteFields(PetscInt step, double t); \
@@ -616,8 +443,8 @@ template <int D> PetscErrorCode SimulationD<D>::RestoreRunText(const CheckpointH
   template CheckpointState SimulationD<D>::CheckpointView(double *x); \
   template PetscErrorCode SimulationD<D>::WriteCheckpointFile(PetscInt step, double t, const char *reason); \
   template PetscErrorCode SimulationD<D>::RestoreSchedule(const CheckpointHeader &header); \
-  template PetscErrorCode SimulationD<D>::RestoreCheckpoint(); \
-  template PetscErrorCode SimulationD<D>::RestoreRunText(const CheckpointHeader &header);
+  template PetscErrorCode SimulationD<D>::RestoreFieldSeries(const CheckpointHeader &header); \
+  template PetscErrorCode SimulationD<D>::RestoreCheckpoint();
 BAPD_SIMULATION_OUTPUT(2)
 BAPD_SIMULATION_OUTPUT(3)
 #undef BAPD_SIMULATION_OUTPUT

@@ -10,6 +10,7 @@
 #include <filesystem>
 
 #include "bapd/solver/io/hdf5_io.hpp"
+#include "bapd/solver/io/output_directory.hpp"
 #include "bapd/solver/input/scene.hpp"
 
 namespace bapd {
@@ -197,12 +198,7 @@ void largest_bond_stretch(const PointCloud &cloud, const double *y, const Famili
   }
 }
 
-std::string FieldFileName(PetscInt step)
-{
-  char name[64];
-  std::snprintf(name, sizeof name, "fields/step_%08lld.h5", (long long)step);
-  return name;
-}
+std::string FieldFileName(PetscInt step) { return OutputPaths::FieldName((long long)step); }
 
 template <int D>
 PetscErrorCode WriteFieldFrame(MPI_Comm comm, const NaturalOrder &order, FieldSeries *series, PetscInt step, double time,
@@ -221,7 +217,7 @@ PetscErrorCode WriteFieldFrame(MPI_Comm comm, const NaturalOrder &order, FieldSe
   if (rank == 0) {
     std::error_code ec;
     there = std::filesystem::is_directory(series->output_dir, ec);
-    if (there) std::filesystem::create_directories(series->output_dir + "/fields", ec);
+    if (there) std::filesystem::create_directories(OutputPaths(series->output_dir).fields_folder(), ec);
     ok = !ec;
     if (!ok) there = std::filesystem::is_directory(series->output_dir, ec); // deleted meanwhile?
   }
@@ -243,7 +239,7 @@ PetscErrorCode WriteFieldFrame(MPI_Comm comm, const NaturalOrder &order, FieldSe
     PetscCall(DoublesToNaturalOrder(order.owned_points, D, fields.reference, series->reference.data()));
   }
 
-  const std::string path = series->output_dir + "/" + FieldFileName(step);
+  const std::string path = OutputPaths(series->output_dir).field_file(step);
   const hsize_t     N = (hsize_t)order.n_points, start = (hsize_t)order.point_start, n = (hsize_t)count;
   {
     // Its size: per point every array of kArrays (the file's components, precision()
@@ -300,10 +296,10 @@ PetscErrorCode WriteFieldIndex(MPI_Comm comm, const FieldSeries &series, PetscIn
     std::vector<char> present(series.frames.size(), 1);
     for (std::size_t k = 0; k < series.frames.size(); ++k) {
       std::error_code ec;
-      present[k] = std::filesystem::exists(series.output_dir + "/" + FieldFileName(series.frames[k].step), ec);
+      present[k] = std::filesystem::exists(OutputPaths(series.output_dir).field_file(series.frames[k].step), ec);
       if (!present[k] && !status[1]) status[1] = (int)k + 1;
     }
-    const std::string path = series.output_dir + "/fields.xdmf", tmp = path + ".tmp";
+    const std::string path = OutputPaths(series.output_dir).field_index(), tmp = path + ".tmp";
     FILE             *f    = std::fopen(tmp.c_str(), "w");
     if (!f) status[0] = errno;
     if (f) {
@@ -343,7 +339,7 @@ PetscErrorCode WriteFieldIndex(MPI_Comm comm, const FieldSeries &series, PetscIn
         std::snprintf(value, sizeof value, "%lld", (long long)frame.step);
         run_state("step", "Int", value);
         double stretch = frame.stretch;
-        if (stretch >= 0 || StretchFromFile(series.output_dir + "/" + file, &stretch)) {
+        if (stretch >= 0 || StretchFromFile(OutputPaths(series.output_dir).file(file), &stretch)) {
           std::snprintf(value, sizeof value, "%.17g", stretch);
           run_state("stretch", "Float", value);
         }

@@ -62,7 +62,7 @@ std::string FindNewerResults(const std::string &dir, const std::string &checkpoi
 {
   std::vector<std::string> found;
   {
-    std::ifstream in(dir + "/history.csv");
+    std::ifstream in(OutputPaths(dir).history());
     long long     rows = 0, last = -1;
     for (std::string line; std::getline(in, line);) {
       const long long s = HistoryRowStep(line);
@@ -72,7 +72,7 @@ std::string FindNewerResults(const std::string &dir, const std::string &checkpoi
                               std::to_string(last) + ")");
   }
   {
-    const std::string other = dir + "/checkpoint.h5";
+    const std::string other = OutputPaths(dir).checkpoint();
     std::error_code   ec;
     if (std::filesystem::exists(other, ec) && !std::filesystem::equivalent(other, checkpoint, ec)) {
       H5Quiet      quiet;
@@ -96,7 +96,7 @@ std::string FindNewerResults(const std::string &dir, const std::string &checkpoi
     std::error_code ec;
     long long       last = -1;
     std::string     last_name;
-    for (const auto &entry : std::filesystem::directory_iterator(dir + "/fields", ec)) {
+    for (const auto &entry : std::filesystem::directory_iterator(OutputPaths(dir).fields_folder(), ec)) {
       const std::string name = entry.path().filename().string();
       long long         s    = -1;
       char              tail[8];
@@ -115,6 +115,13 @@ std::string FindNewerResults(const std::string &dir, const std::string &checkpoi
 }
 
 } // namespace
+
+std::string OutputPaths::FieldName(long long step)
+{
+  char name[64];
+  std::snprintf(name, sizeof name, "fields/step_%08lld.h5", step);
+  return name;
+}
 
 long long HistoryRowStep(const std::string &line)
 {
@@ -137,7 +144,7 @@ PetscErrorCode OutputDirectoryLock::Acquire(MPI_Comm comm, const std::string &di
   // (text: why); 3: the file system has no locks (text: why).
   int         outcome = 0;
   std::string text;
-  const std::string path = dir + "/.bapd.lock";
+  const std::string path = OutputPaths(dir).lock();
   if (rank == 0 && fd_ < 0) {
     std::error_code ec;
     std::filesystem::create_directories(dir, ec);
@@ -189,7 +196,7 @@ PetscErrorCode CheckNewerResults(MPI_Comm comm, const std::string &dir, const st
   int own = 0;
   if (rank == 0) {
     std::error_code ec;
-    own = newer_checkpoint.empty() && std::filesystem::equivalent(dir + "/checkpoint.h5", checkpoint, ec) ? 1 : 0;
+    own = newer_checkpoint.empty() && std::filesystem::equivalent(OutputPaths(dir).checkpoint(), checkpoint, ec) ? 1 : 0;
   }
   PetscCallMPI(MPI_Bcast(&own, 1, MPI_INT, 0, comm));
   if (!discard && !own) {

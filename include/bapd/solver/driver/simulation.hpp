@@ -18,6 +18,7 @@
 
 #include <cstdio>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -32,6 +33,8 @@
 #include "bapd/solver/operators/loading.hpp"
 #include "bapd/solver/operators/relaxation.hpp"
 #include "bapd/solver/input/scene.hpp"
+#include "bapd/solver/driver/history_report.hpp"
+#include "bapd/solver/driver/run_observer.hpp"
 #include "bapd/solver/driver/simulation_output.hpp"
 #include "bapd/solver/operators/time_step_control.hpp"
 
@@ -96,9 +99,8 @@ private:
   PetscErrorCode BuildBody();
   PetscErrorCode BuildProbes();
   PetscErrorCode SetupTimeStepper();
-  PetscErrorCode OpenHistory();
-  std::string    HistoryHeader() const;      // history.csv's columns for this scene
-  std::string    StaticStatesHeader() const; // static_states.csv's
+  PetscErrorCode OpenHistory(); // history.csv with its first row (history_report.hpp)
+  std::string    StaticStatesHeader() const { return history_.StaticStatesHeader(); } // (static_solver.cpp)
   PetscErrorCode SetupRelaxation(); // -relaxation (relaxation.hpp)
 
   // The acceleration of the owned points for displacement u (owned, D per point).
@@ -110,6 +112,10 @@ private:
   // located once it fires): *message is the stop.
   PetscErrorCode CheckLawValidity(PetscInt step, double t, std::string *message);
   PetscErrorCode DiagnoseDivergence(); // the cause and its fix, appended to stop_reason_ (divergence.hpp)
+  // The largest chain reach of a state's bonds and that bond's largest principal stretch
+  // (DivergenceFacts::chain_reach, bond_stretch); span: the law's I1bar limit - 3.
+  PetscErrorCode ChainReach(const double *u_owned, const std::vector<double> &c33, double span, double reach[2]);
+  PetscErrorCode DiagnoseEarlierState(std::size_t c33_size, double span, DivergenceFacts *f); // the state 10 to 20 steps before
   PetscErrorCode ReadProbes(const double *u_owned, double *probe_u);
   PetscErrorCode GatherNatural(const double *values, std::vector<double> *natural);
   // checks: a row of the -output_interval grid (or the first or last), where the
@@ -119,7 +125,7 @@ private:
   // (every component; history.csv writes the loaded ones). Collective, reproducible.
   PetscErrorCode GripDisplacements(const double *u_owned, double *mean);
   PetscErrorCode WarnEnergyBalance(PetscInt step, double t, double work, double residual); // once, past 1 % of the work
-  PetscErrorCode Progress(PetscInt step, double t, PetscBool force);
+  PetscErrorCode ProgressLine(PetscInt step, double t, double wall); // one progress line (ProgressObserver decides when)
   PetscErrorCode Summary();
   // After TSSolve: the TS stopped at its step limit before the end time (-end_step: a
   // note; -ts_max_steps: *message, the error the run ends with).
@@ -134,6 +140,14 @@ private:
   static PetscErrorCode RHSFull(TS, PetscReal, Vec, Vec, void *);
   static PetscErrorCode PreStep(TS);
   static PetscErrorCode PostStep(TS);
+  // The reporting observers (run_observer.hpp, simulation_report.cpp), in the order a
+  // step is handed to them: history, field files, checkpoints, progress.
+  class HistoryObserver;
+  class FieldObserver;
+  class CheckpointObserver;
+  class ProgressObserver;
+  PetscErrorCode SetupObservers(double t); // after a restart's state is restored
+  PetscErrorCode Report(PetscInt step, double t); // after PostStep's physics: the step's one reduction, then each observer
   // After a breaking pass that broke bonds on some rank: the internal energy it
   // released, E(bonds before) - E(bonds after) at the same positions. Collective.
   PetscErrorCode ReleasedEnergy(double *released);
@@ -152,7 +166,6 @@ private:
   PetscErrorCode ReadOutputOptions();
   PetscErrorCode ClaimOutputDirectory(); // locked; a restart's newer results refused (output_directory.hpp)
   PetscErrorCode SetupOutput();
-  PetscErrorCode OutputAfterStep(PetscInt step, double t);
   PetscErrorCode OutputOnDivergence();
   PetscErrorCode OutputAtEnd(PetscInt step, double t);
   PetscErrorCode CreateNaturalOrder();
@@ -162,11 +175,12 @@ private:
   CheckpointState CheckpointView(double *x); // u, v, bond states and C33 as a checkpoint holds them
   PetscErrorCode RestoreCheckpoint();
   PetscErrorCode RestoreSchedule(const CheckpointHeader &header);
-  PetscErrorCode RestoreRunText(const CheckpointHeader &header); // history.csv and static_states.csv from the checkpoint
+  PetscErrorCode RestoreFieldSeries(const CheckpointHeader &header); // the field files the checkpoint lists, and fields.xdmf
 
   MPI_Comm    comm_;
   PetscMPIInt rank_ = 0, size_ = 1;
   Scene       scene_; // read once in Setup, only read afterwards
+  OutputPaths paths_; // every file in -output_dir (output_directory.hpp)
   Layout      layout_;
 
   // The body's bonds, shared by the objects below (failure changes the last two).
@@ -195,17 +209,14 @@ private:
   std::vector<double> force_density_;   // D per owned point
   std::vector<double> per_point_;       // 2 per owned point: kinetic, internal energy
   std::vector<double> point_energy_;    // 1 per owned point
-  Cadence             progress_times_; // -progress_interval 0: a line every end time / 20 of simulated time
   double wall_start_ = 0;
-  double last_progress_wall_ = 0;  // wall time (since wall_start_) of the last progress line (rank 0's decides)
-  bool   progress_by_wall_   = false; // -progress_wall_interval has passed on rank 0's clock (OutputAfterStep, every rank)
-  // History rows: every -output_interval steps (the static test's rows) and, by load,
-  // at the first step at or past each end time / -output_history_rows.
-  Cadence  history_times_;
-  PetscInt last_history_step_ = -1; // the step of the last row written (the end-of-run row is not written twice)
+  // history.csv and static_states.csv: their rows, their schedule, their restart.
+  HistoryReport history_;
+  // static_solver.cpp's names for what history_ owns (it writes its own static states).
+  FILE    *&static_states_     = history_.static_states_stream();
+  PetscInt &last_history_step_ = history_.last_step_ref();
   std::vector<double> grip_terms_;  // GripDisplacements' scratch, D per point of the largest load set
   std::vector<double> grip_u_;      // D per load set
-  FILE  *history_    = nullptr;
   PetscInt total_broken_ = 0;
   bool   stopped_on_error_ = false;
   bool   warned_balance_   = false; // WarnEnergyBalance said it
@@ -217,10 +228,12 @@ private:
   // The latest history row, for the static-hold test.
   double              last_kinetic_ = 0, last_internal_ = 0;
   std::vector<double> last_reaction_, last_probe_u_;
-  FILE               *static_states_    = nullptr;
   std::string stop_reason_;
   RunawayEnergyMonitor energy_monitor_; // divergence by runaway energy (divergence.hpp)
   SimulationOutput output_; // fields, checkpoints, restart
+  std::vector<std::unique_ptr<RunObserver>> observers_; // SetupObservers
+  CheckpointObserver *checkpoints_ = nullptr; // (in observers_) its wall clock, read in Report's reduction
+  ProgressObserver   *progress_    = nullptr; // (in observers_) likewise
   RelaxationKind     relaxation_kind_ = RelaxationKind::none; // -relaxation
   AdaptiveRelaxation<D> relaxation_;                          // its damping coefficient (relaxation.hpp)
 

@@ -170,7 +170,7 @@ PetscErrorCode CheckpointMergeOptions(MPI_Comm comm);
 // 1 s later. So run_mpi.sh turns the SIGINT / SIGTERM it gets into SIGUSR2 and names
 // the real signal in the file $BAPD_SIGNAL_FILE (InterruptName). The handlers only
 // record the signal; the driver asks, once per step and collectively, whether any
-// rank got one (Simulation::OutputAfterStep). A second SIGTERM / SIGINT / SIGUSR2
+// rank got one (SimulationD::Report, simulation_report.cpp). A second SIGTERM / SIGINT / SIGUSR2
 // 2 s or more after the first, while it is pending, ends the process the default way
 // (one sooner is the same request arriving twice, e.g. through `timeout`). SIGXFSZ is ignored:
 // a file past a size limit (ulimit -f) is then a write error that bapd reports.

@@ -12,13 +12,47 @@
 //    checkpoint.h5 or later field files are refused, or dropped on request
 //    (-restart_discard_newer).
 // And every end-of-run text file is written whole or not at all (WriteFileWhole).
+// Every path into the directory is built by OutputPaths: one list of the files a run
+// writes.
 #include <petscsys.h>
 
 #include <cstdio>
 #include <functional>
 #include <string>
+#include <utility>
 
 namespace bapd {
+
+// The files of a run's output directory, named in one place: the driver, its
+// reporters and the writers in solver/io build every path here.
+class OutputPaths {
+public:
+  OutputPaths() = default;
+  explicit OutputPaths(std::string dir) : dir_(std::move(dir)) {}
+
+  const std::string &dir() const { return dir_; }
+  std::string        file(const std::string &name) const { return dir_ + "/" + name; } // <dir>/name
+
+  std::string history() const { return file("history.csv"); }           // a row per -output_interval steps
+  std::string static_states() const { return file("static_states.csv"); } // a row per static state
+  std::string checkpoint() const { return file("checkpoint.h5"); }
+  std::string final_state() const { return file("final_state.csv"); }
+  std::string broken_bonds() const { return file("broken_bonds.csv"); }
+  std::string fields_folder() const { return file("fields"); }
+  std::string field_index() const { return file("fields.xdmf"); }
+  std::string field_file(long long step) const { return file(FieldName(step)); }
+  std::string lock() const { return file(".bapd.lock"); }
+  // A restart's copy of earlier rows whose columns this run does not write:
+  // <stem>_to_step_N.csv (stem: history or static_states).
+  std::string rows_copy_name(const std::string &stem, long long step) const { return stem + "_to_step_" + std::to_string(step) + ".csv"; }
+
+  // A field file's name inside the directory, "fields/step_NNNNNNNN.h5" (fields.xdmf
+  // lists them so).
+  static std::string FieldName(long long step);
+
+private:
+  std::string dir_;
+};
 
 class OutputDirectoryLock {
 public:
