@@ -362,7 +362,7 @@ PetscErrorCode TimeStepControl::Reestimate(MPI_Comm comm, ForceOperator &force, 
 // (MPI_MAX of doubles), so the step is the same on any number of ranks.
 PetscErrorCode TimeStepControl::AfterStep(MPI_Comm comm, PetscInt step, double stretch, const Layout &layout, const Families &families,
                                           const BondState &state, ForceOperator &force, const double *v, const std::vector<std::size_t> *touched,
-                                          TS ts)
+                                          bool broke, TS ts)
 {
   PetscFunctionBegin;
   // Due after `interval` steps, or sooner on a fast ramp: a ramp of the fast route
@@ -370,13 +370,9 @@ PetscErrorCode TimeStepControl::AfterStep(MPI_Comm comm, PetscInt step, double s
   // (docs/stability.md, section 8).
   const bool by_step = step >= next_estimate_;
   const bool due     = by_step || std::fabs(stretch - estimate_stretch_) > stretch_now_;
-  // Bonds broke on any rank: asked every step for the crack-tip search, else only when
-  // an estimate is due (its base point is then stale).
-  bool broke = false;
-  if (failure_ && options_.interval > 0 && (due || !v_kept_.empty())) {
-    const bool broke_here = touched && !touched->empty();
-    PetscCallMPI(MPI_Allreduce(&broke_here, &broke, 1, MPI_C_BOOL, MPI_LOR, comm));
-  }
+  // Bonds broke on any rank (the driver's reduction, which the breaking passes and the
+  // released energy read too): the crack-tip search, and an estimate due now evaluates
+  // its base point again (it is stale).
   if (options_.interval > 0 && recorded_ && due) {
     const double stretch_moved = std::fabs(stretch - estimate_stretch_);
     estimate_stretch_          = stretch;

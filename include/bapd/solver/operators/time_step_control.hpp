@@ -113,12 +113,13 @@ public:
   // After a step: the re-estimate when due (about the last recorded evaluation, with
   // the operator's committed warm starts copied: side-effect free), then the travel
   // limit over the owned velocities v (2 per point), then the step the TS takes next.
-  // touched: the local points whose bonds the step's breaking pass broke
-  // (Failure::touched; nullptr without failure). Broken bonds make the recorded
+  // touched: the local points whose bonds the step's breaking passes broke
+  // (Failure::touched; nullptr without failure); broke: whether they broke any on some
+  // rank (the driver's one reduction a step of it). Broken bonds make the recorded
   // evaluation stale as the re-estimate's base point, and call the crack-tip search.
   // Collective.
   PetscErrorCode AfterStep(MPI_Comm comm, PetscInt step, double stretch, const Layout &layout, const Families &families, const BondState &state,
-                           ForceOperator &force, const double *v, const std::vector<std::size_t> *touched, TS ts);
+                           ForceOperator &force, const double *v, const std::vector<std::size_t> *touched, bool broke, TS ts);
   // The stable step of the state (u: owned, 2 per point; c33: its warm starts, 1 per
   // bond) by `iterations` shifted power iterations from the current eigenvector: for
   // the diagnosis of a divergence (divergence.hpp), once. Collective.
