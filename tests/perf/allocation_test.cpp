@@ -31,16 +31,16 @@ template <class F> long CountAllocations(F &&work)
   return allocations;
 }
 
-// The grips pull the free test sheet apart; bonds break past the critical stretch
-// (with 3, none does in the first steps, so the breaking pass and the ring-1 exchange
-// run and find nothing to do; a critical stretch just above 1 breaks bonds at once).
-std::string LoadedSheet(const std::string &form, const std::string &critical_stretch = "3")
+// The grips pull the free test sheet apart; bonds break by the criterion `failure`: by
+// default past the critical stretch 3, which none reaches in the first steps, so the
+// breaking pass and the ring-1 exchange run and find nothing to do (a critical stretch
+// just above 1 breaks bonds at once).
+std::string LoadedSheet(const std::string &form, const std::string &failure = "-failure_critical_stretch 3")
 {
   return bapd_test::FreeSheetScene("allocation_output") +
          " -load_sets top,bottom -load_top_region top -load_top_x fixed -load_top_y stretch -load_top_y_scale 1"
-         " -load_bottom_region bottom -load_bottom_x fixed -load_bottom_y fixed -load_schedule 0,1,0.1,1.3"
-         " -failure_critical_stretch " + critical_stretch + " -probes tip -probe_tip_at 0.012,0.0065 -output_interval 1 -force_form " +
-         form;
+         " -load_bottom_region bottom -load_bottom_x fixed -load_bottom_y fixed -load_schedule 0,1,0.1,1.3 " +
+         failure + " -probes tip -probe_tip_at 0.012,0.0065 -output_interval 1 -force_form " + form;
 }
 
 } // namespace
@@ -109,7 +109,7 @@ TEST(Allocation, TimeStepsInWhichBondsBreakAllocateNothing)
   // the geometry of the points whose bonds broke (compute_bond_geometry) use only
   // work space sized at set-up.
   for (const char *form : {"bond_only", "energy_consistent"}) {
-    ASSERT_EQ(bapd_test::SetOptions(LoadedSheet(form, "1.001")), 0);
+    ASSERT_EQ(bapd_test::SetOptions(LoadedSheet(form, "-failure_critical_stretch 1.001")), 0);
     bapd::Simulation sim(PETSC_COMM_WORLD);
     ASSERT_EQ(sim.Setup(), 0);
     ASSERT_EQ(sim.Advance(5), 0); // warm-up
@@ -122,4 +122,43 @@ TEST(Allocation, TimeStepsInWhichBondsBreakAllocateNothing)
     EXPECT_GT(after, before) << form << ": no bond broke in the counted steps";
     EXPECT_EQ(count, 0) << form << ": operator new calls in 6 time steps in which bonds break";
   }
+}
+
+TEST(Allocation, AStepInWhichACascadeBreaksTheSheetAllocatesNothing)
+{
+  // With the fracture-energy criterion a step breaks in passes at the same positions
+  // until none breaks (Failure::Cascade), and a point whose bonds break in several
+  // passes is listed by each. The free sheet stretched affinely by 1.2 in y at t = 0
+  // with Gamma = 0.25 J/m^2 breaks about 4 300 of its bonds in the first step, in two
+  // passes, nearly every point losing bonds: the list of the points whose bonds broke
+  // (one entry a point) and the released energy's scratch (one entry an owned point)
+  // are sized at set-up for it. The first step allocates once whatever breaks (the
+  // TS's work); so it is counted against the same first step with Gamma = 100 J/m^2,
+  // where no bond breaks.
+  struct Outcome {
+    long     allocations = 0;
+    PetscInt broken      = 0;
+  };
+  auto first_step = [](const std::string &failure, Outcome *outcome) {
+    ASSERT_EQ(bapd_test::SetOptions(bapd_test::FreeSheetScene("allocation_output") + " " + failure), 0);
+    bapd::Simulation sim(PETSC_COMM_WORLD);
+    ASSERT_EQ(sim.Setup(), 0);
+    const PetscInt n = sim.layout().n_owned;
+    double        *x;
+    ASSERT_EQ(VecGetArray(sim.state(), &x), 0);
+    for (PetscInt i = 0; i < n; ++i) x[2 * i] = 0, x[2 * i + 1] = 0.2 * sim.layout().cloud.x[2 * i + 1]; // u; v stays 0
+    ASSERT_EQ(VecRestoreArray(sim.state(), &x), 0);
+    PetscErrorCode ierr   = 0;
+    outcome->allocations = CountAllocations([&] { ierr = sim.Advance(1); });
+    ASSERT_EQ(ierr, 0);
+    ASSERT_EQ(sim.BrokenBondCount(&outcome->broken), 0);
+  };
+  Outcome intact, cascade, one_pass;
+  first_step("-failure_fracture_energy 100", &intact);
+  first_step("-failure_fracture_energy 0.25", &cascade);
+  first_step("-failure_fracture_energy 0.25 -failure_passes 1", &one_pass);
+  EXPECT_EQ(intact.broken, 0);
+  EXPECT_GT(cascade.broken, 1000) << "the sheet was expected to break in the first step";
+  EXPECT_GT(cascade.broken, one_pass.broken) << "the first step was expected to break in more than one pass";
+  EXPECT_EQ(cascade.allocations, intact.allocations) << "operator new calls in a first step in which a cascade breaks the sheet";
 }

@@ -488,6 +488,7 @@ template <int D> PetscErrorCode SimulationD<D>::PostStep(TS ts)
     PetscCall(TSSetConvergedReason(ts, TS_DIVERGED_NONLINEAR_SOLVE));
     PetscFunctionReturn(0);
   }
+  bool broke = false; // bonds broke on some rank in this step (BreakFurther)
   if (sim->scene_.failure) {
     PetscCall(VecGetArray(X, &x));
     PetscCall(sim->force_.UpdatePositions(x));
@@ -495,9 +496,9 @@ template <int D> PetscErrorCode SimulationD<D>::PostStep(TS ts)
     if (sim->failure_.by_energy()) sim->force_.BondEnergies(sim->failure_.bond_energies());
     std::copy(sim->bond_state_.intact.begin(), sim->bond_state_.intact.end(), sim->intact_before_.begin());
     PetscCall(sim->failure_.Break(sim->force_.positions(), sim->force_.failed_bonds(), sim->bond_state_, sim->geometry_));
-    PetscCall(sim->BreakFurther());
+    PetscCall(sim->BreakFurther(&broke));
     double released;
-    PetscCall(sim->ReleasedEnergy(&released));
+    PetscCall(sim->ReleasedEnergy(broke, &released));
     sim->budget_.Release(released);
   }
   {
@@ -506,7 +507,7 @@ template <int D> PetscErrorCode SimulationD<D>::PostStep(TS ts)
     const double *xr;
     PetscCall(VecGetArrayRead(X, &xr));
     PetscCall(sim->step_control_.AfterStep(sim->comm_, step, sim->loading_.stretch_at(t), sim->layout_, sim->families_, sim->bond_state_, sim->force_, xr + n,
-                                           sim->scene_.failure ? &sim->failure_.touched() : nullptr, ts));
+                                           sim->scene_.failure ? &sim->failure_.touched() : nullptr, broke, ts));
     PetscCall(VecRestoreArrayRead(X, &xr));
     sim->relaxation_.FollowStableStep(sim->step_control_.stable_now()); // its cap, 2 omega_max
   }

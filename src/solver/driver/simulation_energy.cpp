@@ -15,15 +15,13 @@ namespace bapd {
 // (listed_strain_energies, ba_force.hpp), so only the owned points whose bonds the passes
 // changed are evaluated, with the bonds after the passes, then with the bonds before them
 // (intact_before_, copied by PostStep; their geometry recomputed for them), and the
-// passes' state is put back. Only in a step that broke bonds somewhere (one reduction a
-// step decides); no allocation (the scratch holds every owned point).
-template <int D> PetscErrorCode SimulationD<D>::ReleasedEnergy(double *released)
+// passes' state is put back. Only in a step that broke bonds somewhere (BreakFurther's
+// reduction decides); no allocation (the scratch holds every owned point).
+template <int D> PetscErrorCode SimulationD<D>::ReleasedEnergy(bool broke, double *released)
 {
   PetscFunctionBegin;
   *released = 0;
-  int any   = failure_.broke() ? 1 : 0;
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &any, 1, MPI_INT, MPI_LOR, comm_));
-  if (!any) PetscFunctionReturn(0);
+  if (!broke) PetscFunctionReturn(0);
   std::vector<std::size_t> &points = released_points_;
   points.clear();
   for (std::size_t p : failure_.touched())
@@ -54,14 +52,17 @@ template <int D> PetscErrorCode SimulationD<D>::ReleasedEnergy(double *released)
 // energy that no term of (5.3) holds. Breaking them in the same step, at the same
 // positions, is (5.2) applied to the state the pass leaves (docs/method.md 5.2).
 // Every pass breaks at least one bond on some rank, so the passes end; each costs one
-// evaluation of the bond energies, in the steps that break bonds only.
-template <int D> PetscErrorCode SimulationD<D>::BreakFurther()
+// evaluation of the bond energies, in the steps that break bonds only. Whether the
+// first pass broke a bond on any rank is the step's one reduction of it, with any
+// criterion: the released energy and the time-step control are handed it.
+template <int D> PetscErrorCode SimulationD<D>::BreakFurther(bool *broke)
 {
   PetscFunctionBegin;
-  if (!failure_.by_energy()) PetscFunctionReturn(0);
   int any = failure_.broke() ? 1 : 0;
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &any, 1, MPI_INT, MPI_LOR, comm_));
-  bool more = any != 0;
+  *broke = any != 0;
+  if (!failure_.by_energy()) PetscFunctionReturn(0);
+  bool more = *broke;
   for (PetscInt pass = 1; more && (scene_.failure_passes == 0 || pass < scene_.failure_passes); ++pass) {
     force_.BondEnergies(failure_.bond_energies());
     PetscCall(failure_.Cascade<D>(bond_state_, geometry_, &more));
@@ -116,10 +117,10 @@ template <int D> PetscErrorCode SimulationD<D>::CrackExtent(double *area, double
   PetscFunctionReturn(0);
 }
 
-template PetscErrorCode SimulationD<2>::ReleasedEnergy(double *);
-template PetscErrorCode SimulationD<3>::ReleasedEnergy(double *);
-template PetscErrorCode SimulationD<2>::BreakFurther();
-template PetscErrorCode SimulationD<3>::BreakFurther();
+template PetscErrorCode SimulationD<2>::ReleasedEnergy(bool, double *);
+template PetscErrorCode SimulationD<3>::ReleasedEnergy(bool, double *);
+template PetscErrorCode SimulationD<2>::BreakFurther(bool *);
+template PetscErrorCode SimulationD<3>::BreakFurther(bool *);
 template PetscErrorCode SimulationD<2>::SetupCrackAxis();
 template PetscErrorCode SimulationD<3>::SetupCrackAxis();
 template PetscErrorCode SimulationD<2>::CrackExtent(double *, double *);

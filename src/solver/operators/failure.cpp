@@ -59,10 +59,24 @@ PetscErrorCode Failure::Setup(MPI_Comm comm, const Layout &layout, const Familie
   PetscCallMPI(MPI_Type_contiguous((int)families.mask_words, MPI_UINT64_T, &mask_));
   PetscCallMPI(MPI_Type_commit(&mask_));
   ghost_masks_.resize(layout.n_ring1 * families.mask_words);
-  touched_.reserve(3 * (std::size_t)layout.n_family());
+  // touched_ holds one entry a point after Break and after each Cascade pass (both make
+  // it unique). Before that, Break lists each local point at most once for its failed
+  // bonds (once their list, 2 entries a bond, is made unique), once a family point for
+  // the criterion and once a ring-1 ghost for the exchange, and a pass adds to the
+  // unique list at most one a family point and one a ring-1 ghost: n_local + n_family +
+  // n_ring1 entries bound it however long the cascade. And the failed bonds' list fits
+  // for up to 1.5 n_family bonds that fail in one step, as before.
+  touched_.reserve((std::size_t)layout.n_local() + 2 * (std::size_t)layout.n_family());
   stretched_.reserve((std::size_t)layout.n_family());
-  pass_.reserve((std::size_t)layout.n_family());
+  pass_.reserve((std::size_t)layout.n_family() + (std::size_t)layout.n_ring1); // a pass's family points and ring-1 ghosts
   PetscFunctionReturn(0);
+}
+
+// Sorted, one entry a point (in place: no allocation); its readers take it as a set.
+void Failure::TouchedOnce()
+{
+  std::sort(touched_.begin(), touched_.end());
+  touched_.erase(std::unique(touched_.begin(), touched_.end()), touched_.end());
 }
 
 PetscErrorCode Failure::SynchroniseGhosts(BondState &state)
@@ -97,6 +111,7 @@ PetscErrorCode Failure::Break(const double *y, std::vector<FailedBond> &failed, 
   touched_.insert(touched_.end(), stretched_.begin(), stretched_.end());
   PetscCall(SynchroniseGhosts(state));
   if (!touched_.empty()) nd::compute_bond_geometry<D>(layout_->cloud, *families_, state, geometry, touched_);
+  TouchedOnce();
   PetscFunctionReturn(0);
 }
 
@@ -113,6 +128,7 @@ template <int D> PetscErrorCode Failure::Cascade(BondState &state, nd::BondGeome
   if (touched_.size() > first) {
     pass_.assign(touched_.begin() + (std::ptrdiff_t)first, touched_.end());
     nd::compute_bond_geometry<D>(layout_->cloud, *families_, state, geometry, pass_);
+    TouchedOnce();
   }
   PetscFunctionReturn(0);
 }

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <string>
 
 #include "bapd/core/materials/law_registry.hpp"
 #include "bapd/solver/input/options_reader.hpp"
@@ -76,6 +77,17 @@ PetscErrorCode TimeStepOptionsFromOptions(MPI_Comm comm, TimeStepOptions *option
                     "bonds (a partly broken family at a crack tip is stiffer than the body), which shortens the step at once when "
                     "it is stiffer than the estimate in use [-], 0 to 15 (default 4; 0: off, the paper's fixed step)",
                     &options->tip));
+    std::string estimate = options->startup_krylov ? "krylov" : "power";
+    PetscCall(r.String("-time_step_estimate",
+                       "The stable step at rest: krylov (the default: the Krylov search until its largest Ritz value moves by less "
+                       "than 0.1 % a step twice in a row, at most 60 force evaluations) | power (60 power iterations: the estimate of earlier "
+                       "versions, bit for bit)",
+                       &estimate));
+    PetscCheck(estimate == "krylov" || estimate == "power", comm, PETSC_ERR_USER,
+               "-time_step_estimate '%s' is not an estimate: choose krylov (the default) or power (60 power iterations, as earlier "
+               "versions)",
+               estimate.c_str());
+    options->startup_krylov = estimate == "krylov";
     PetscCall(r.Int("-time_step_monitor_reference",
                     "Measurements: every 25 steps, also print a converged lambda_max of the same state by this many force evaluations "
                     "(restarted Krylov; not counted in the cost, the run's steps unchanged) next to the estimate in use [-] (0: off)",
@@ -111,10 +123,12 @@ PetscErrorCode TimeStepOptionsFromOptions(MPI_Comm comm, TimeStepOptions *option
   PetscFunctionReturn(0);
 }
 
-// Stable step of the linearised system at the reference state, by power iteration on
+// Stable step of the linearised system at the reference state, from lambda_max of
 // M^{-1} K (the bond kernel itself, so every model, horizon and formulation is
-// covered), 60 iterations from a deterministic start. Norms are reproducible sums: dt
-// is the same on any number of ranks.
+// covered) from a deterministic start: the Krylov search until its largest Ritz value
+// settles (StartupKrylov), or 60 power iterations (-time_step_estimate power, the
+// estimate before the search; it gives the same bits as then). Norms are reproducible
+// sums: dt is the same on any number of ranks.
 PetscErrorCode TimeStepControl::EstimateStable(MPI_Comm comm, const Scene &scene, const TimeStepOptions &options, const Layout &layout,
                                                const Loading &loading, ForceOperator &force)
 {
@@ -155,7 +169,10 @@ PetscErrorCode TimeStepControl::EstimateStable(MPI_Comm comm, const Scene &scene
   u_probe_.assign(n, 0.0);
   a_probe_.assign(n, 0.0);
   sq_.assign(n, 0.0);
-  if (options_.interval > 0 && options_.krylov) PetscCall(KrylovReserve(std::max(options_.max_iterations, options_.tip) + 1));
+  // The re-estimates' basis; the start-up search's (krylov_cap vectors) is given back
+  // to this size after it.
+  const PetscInt run_vectors = options_.interval > 0 && options_.krylov ? std::min(std::max(options_.max_iterations, options_.tip) + 1, krylov_cap) : 0;
+  if (run_vectors > 0) PetscCall(KrylovReserve(run_vectors));
   if (tip_search) v_kept_.assign(n, 0.0);
   // A deterministic start with energy in every wavelength: a hash of the natural id.
   for (PetscInt i = 0; i < layout.n_owned; ++i)
@@ -168,17 +185,29 @@ PetscErrorCode TimeStepControl::EstimateStable(MPI_Comm comm, const Scene &scene
     }
   seed_ = v_;
   std::vector<double> u0(n, 0.0), a0(n); // set-up only
-  // The iteration's warm starts are the operator's own, zero (no warm start) at set-up,
-  // advanced probe by probe and set back to zero after it, so that the operator is left
-  // as it was without a per-bond copy.
+  // The warm starts are the operator's own, zero (no warm start) at set-up: the Krylov
+  // search only reads them, as the re-estimates read the committed ones; the power
+  // iteration advances them probe by probe and sets them back to zero after it, so
+  // that the operator is left as it was without a per-bond copy.
   std::vector<double> &c33 = force.warm_start();
   PetscCheck(std::all_of(c33.begin(), c33.end(), [](double c) { return c == 0.0; }), comm, PETSC_ERR_PLIB,
              "EstimateStable: the operator has warm starts already (it must run before any evaluation)");
-  PetscCall(ProbeAcceleration(force, c33, &c33, inv_rho_, held_, u0.data(), a0.data()));
   double lambda = 0.0;
-  for (PetscInt it = 0; it < 60; ++it) PetscCall(PowerStep(comm, force, c33, &c33, u0.data(), a0.data(), 0.0, &lambda));
-  std::fill(c33.begin(), c33.end(), 0.0);
-  evaluations_ = 0; // counts the re-estimates' cost only
+  if (options_.startup_krylov) {
+    PetscCall(ProbeAcceleration(force, c33, nullptr, inv_rho_, held_, u0.data(), a0.data()));
+    PetscCall(KrylovReserve(krylov_cap));
+    PetscCall(StartupKrylov(comm, force, c33, u0.data(), a0.data(), &lambda));
+    // The basis back to the re-estimates' size (set-up: the reallocation is allowed).
+    basis_.resize((std::size_t)run_vectors * n);
+    basis_.shrink_to_fit();
+    krylov_size_ = run_vectors;
+  } else {
+    PetscCall(ProbeAcceleration(force, c33, &c33, inv_rho_, held_, u0.data(), a0.data()));
+    for (PetscInt it = 0; it < startup_iterations; ++it) PetscCall(PowerStep(comm, force, c33, &c33, u0.data(), a0.data(), 0.0, &lambda));
+    std::fill(c33.begin(), c33.end(), 0.0);
+  }
+  startup_evaluations_ = 1 + evaluations_; // the base point and the probes
+  evaluations_         = 0;                // counts the re-estimates' cost only
   PetscCheck(std::isfinite(lambda) && lambda > 0, comm, PETSC_ERR_USER,
              "Could not estimate a stable time step (lambda_max = %g): check -material_mu, -material_D and -material_density", lambda);
   // The Rayleigh quotient approaches lambda_max from below: pad it by 10 %.
@@ -189,8 +218,8 @@ PetscErrorCode TimeStepControl::EstimateStable(MPI_Comm comm, const Scene &scene
   interval_now_     = options_.interval;
   stretch_now_      = options_.stretch;
   estimate_stretch_ = loading.stretch_at(0.0);
-  PetscCall(PetscPrintf(comm, "Stable time step %.4e s (power iteration, lambda_max = %.4e 1/s^2); using dt = %.4e s (%.3g x stable)\n",
-                        stable_dt_, lambda, dt_, dt_ / stable_dt_));
+  PetscCall(PetscPrintf(comm, "Stable time step %.4e s (%s, %" PetscInt_FMT " force evaluations, lambda_max = %.6e 1/s^2); using dt = %.4e s (%.3g x stable)\n",
+                        stable_dt_, options_.startup_krylov ? "Krylov search" : "power iteration", startup_evaluations_, lambda, dt_, dt_ / stable_dt_));
   if (options_.interval > 0)
     PetscCall(PetscPrintf(comm, "Time step: re-estimated every %" PetscInt_FMT " steps (%" PetscInt_FMT " to %" PetscInt_FMT " %s about the current state), at most %.4e s%s\n",
                           options_.interval, options_.iterations, std::max(options_.iterations, options_.max_iterations), options_.krylov ? "Krylov steps" : "power iterations", dt_,
@@ -362,7 +391,7 @@ PetscErrorCode TimeStepControl::Reestimate(MPI_Comm comm, ForceOperator &force, 
 // (MPI_MAX of doubles), so the step is the same on any number of ranks.
 PetscErrorCode TimeStepControl::AfterStep(MPI_Comm comm, PetscInt step, double stretch, const Layout &layout, const Families &families,
                                           const BondState &state, ForceOperator &force, const double *v, const std::vector<std::size_t> *touched,
-                                          TS ts)
+                                          bool broke, TS ts)
 {
   PetscFunctionBegin;
   // Due after `interval` steps, or sooner on a fast ramp: a ramp of the fast route
@@ -370,13 +399,9 @@ PetscErrorCode TimeStepControl::AfterStep(MPI_Comm comm, PetscInt step, double s
   // (docs/stability.md, section 8).
   const bool by_step = step >= next_estimate_;
   const bool due     = by_step || std::fabs(stretch - estimate_stretch_) > stretch_now_;
-  // Bonds broke on any rank: asked every step for the crack-tip search, else only when
-  // an estimate is due (its base point is then stale).
-  bool broke = false;
-  if (failure_ && options_.interval > 0 && (due || !v_kept_.empty())) {
-    const bool broke_here = touched && !touched->empty();
-    PetscCallMPI(MPI_Allreduce(&broke_here, &broke, 1, MPI_C_BOOL, MPI_LOR, comm));
-  }
+  // Bonds broke on any rank (the driver's reduction, which the breaking passes and the
+  // released energy read too): the crack-tip search, and an estimate due now evaluates
+  // its base point again (it is stale).
   if (options_.interval > 0 && recorded_ && due) {
     const double stretch_moved = std::fabs(stretch - estimate_stretch_);
     estimate_stretch_          = stretch;

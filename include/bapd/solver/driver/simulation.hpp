@@ -148,13 +148,15 @@ private:
   class ProgressObserver;
   PetscErrorCode SetupObservers(double t); // after a restart's state is restored
   PetscErrorCode Report(PetscInt step, double t); // after PostStep's physics: the step's one reduction, then each observer
-  // After a breaking pass that broke bonds on some rank: the internal energy it
-  // released, E(bonds before) - E(bonds after) at the same positions. Collective.
-  PetscErrorCode ReleasedEnergy(double *released);
-  // With the fracture-energy criterion, after the step's first breaking pass: more
-  // passes at the same positions while the last one broke bonds somewhere (at most
+  // After the step's breaking passes, broke: whether they broke bonds on some rank
+  // (BreakFurther's): the internal energy they released, E(bonds before) - E(bonds
+  // after) at the same positions (0 if none broke). Collective.
+  PetscErrorCode ReleasedEnergy(bool broke, double *released);
+  // After the step's first breaking pass: *broke, whether it broke bonds on any rank
+  // (the step's one reduction of it); with the fracture-energy criterion, more passes at
+  // the same positions while the last one broke bonds somewhere (at most
   // -failure_passes in all; docs/method.md 5.2). Collective.
-  PetscErrorCode BreakFurther();
+  PetscErrorCode BreakFurther(bool *broke);
   // The axis the crack's tip is measured along (crack_axis_): from the mouth of the
   // scene's first 2D notch towards its inner end; else +x from the body's smallest x.
   PetscErrorCode SetupCrackAxis();

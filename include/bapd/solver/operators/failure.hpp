@@ -5,8 +5,9 @@
 // ring-1 ghosts so every rank layout holds the same bond state (README, "Parallel
 // design"). Everything a breaking pass uses is allocated at set-up (the geometry's
 // recomputation uses the work space of BondGeometry), so a step in which bonds break
-// allocates nothing, as long as the bonds whose model failed in one step are fewer
-// than 1.5 times the local family points (touched_ is reserved for that).
+// allocates nothing, however long its cascade of passes (touched_ keeps one entry a
+// point), as long as the bonds whose model failed in one step are fewer than 1.5 times
+// the local family points (their list holds both ends of each before it is made unique).
 #include <petscsf.h>
 
 #include <vector>
@@ -50,13 +51,15 @@ public:
   template <int D> PetscErrorCode Cascade(BondState &state, nd::BondGeometry<D> &geometry, bool *more);
   // Whether the last Break broke bonds on this rank (owned or ghost copies). Local.
   bool broke() const { return !touched_.empty(); }
-  // The points whose bonds the last Break changed (owned and ghost), its geometry recomputed.
+  // The points whose bonds the last Break and its Cascades changed (owned and ghost),
+  // their geometry recomputed: ascending, one entry a point.
   const std::vector<std::size_t> &touched() const { return touched_; }
   // c_i of every family point (damage.hpp), for either criterion: the crack's area.
   const double *crossing() const { return crossing_.data(); }
 
 private:
   PetscErrorCode SynchroniseGhosts(BondState &state);
+  void           TouchedOnce(); // touched_ sorted, one entry a point (Setup's reserve counts on it)
 
   MPI_Comm                 comm_     = MPI_COMM_NULL;
   const Layout            *layout_   = nullptr;

@@ -1,7 +1,8 @@
 #pragma once
-// Time-step control: the stable step of the linearised system (power iteration on
-// the force operator; the estimate is time_step_estimate.cpp, the policy
-// time_step_control.cpp), re-estimated during the run as the material stiffens or
+// Time-step control: the stable step of the linearised system (a Krylov search on the
+// force operator, or the power iteration, -time_step_estimate; the estimate is
+// time_step_estimate.cpp, the policy time_step_control.cpp), re-estimated during the
+// run as the material stiffens or
 // softens (-time_step_reestimate), and the shortening while points fly
 // (-time_step_travel, docs/stability.md sections 5 and 8). SetBaseStep is where a new
 // base step enters (the -ts_dt override at set-up).
@@ -66,6 +67,7 @@ struct TimeStepOptions {
   // estimate (45 evaluations, the mode found 40 steps later).
   double   growth     = 1.5;
   PetscInt tip        = 4;     // Krylov steps of the crack-tip search after a step that broke bonds (0: off)
+  bool     startup_krylov = true; // -time_step_estimate krylov (the set-up's estimate by the Krylov search) | power (60 power iterations)
 };
 // Reads (and lists under -help) the options. Collective.
 PetscErrorCode TimeStepOptionsFromOptions(MPI_Comm comm, TimeStepOptions *options);
@@ -85,9 +87,10 @@ struct TimeStepState {
 
 class TimeStepControl {
 public:
-  // Power iteration for lambda_max of M^{-1} K at the reference state, then the step
+  // lambda_max of M^{-1} K at the reference state (-time_step_estimate: the Krylov
+  // search until its largest Ritz value settles, or 60 power iterations), then the step
   // -time_step or -time_step_safety x stable. Leaves the operator as it was (the
-  // iteration carries its own warm starts). Collective; prints the steps.
+  // estimate reads or carries its own warm starts). Collective; prints the steps.
   PetscErrorCode EstimateStable(MPI_Comm comm, const Scene &scene, const TimeStepOptions &options, const Layout &layout,
                                 const Loading &loading, ForceOperator &force);
   // A new base step (and step in use); the TS takes it with the next step.
@@ -113,12 +116,13 @@ public:
   // After a step: the re-estimate when due (about the last recorded evaluation, with
   // the operator's committed warm starts copied: side-effect free), then the travel
   // limit over the owned velocities v (2 per point), then the step the TS takes next.
-  // touched: the local points whose bonds the step's breaking pass broke
-  // (Failure::touched; nullptr without failure). Broken bonds make the recorded
+  // touched: the local points whose bonds the step's breaking passes broke
+  // (Failure::touched; nullptr without failure); broke: whether they broke any on some
+  // rank (the driver's one reduction a step of it). Broken bonds make the recorded
   // evaluation stale as the re-estimate's base point, and call the crack-tip search.
   // Collective.
   PetscErrorCode AfterStep(MPI_Comm comm, PetscInt step, double stretch, const Layout &layout, const Families &families, const BondState &state,
-                           ForceOperator &force, const double *v, const std::vector<std::size_t> *touched, TS ts);
+                           ForceOperator &force, const double *v, const std::vector<std::size_t> *touched, bool broke, TS ts);
   // The stable step of the state (u: owned, 2 per point; c33: its warm starts, 1 per
   // bond) by `iterations` shifted power iterations from the current eigenvector: for
   // the diagnosis of a divergence (divergence.hpp), once. Collective.
@@ -141,6 +145,7 @@ public:
   PetscInt shortened_by_travel() const { return by_travel_; }       // ...shorter still because points flew
   PetscInt estimates() const { return estimates_; }                 // re-estimates so far (this process's run)
   PetscInt estimate_evaluations() const { return evaluations_; }    // force evaluations they cost
+  PetscInt startup_evaluations() const { return startup_evaluations_; } // force evaluations of the estimate at rest (EstimateStable)
   PetscInt kinks() const { return kinks_; }                         // estimates dropped as a kink of the force (Kink)
   PetscInt tip_searches() const { return tip_searches_; }           // crack-tip searches (CrackTipSearch)
   PetscInt tip_shortenings() const { return tip_shortenings_; }     // ...that shortened the step
@@ -219,6 +224,16 @@ private:
   // Restarted Krylov about (u_rec_, a_rec_) from v_ with the seed mixed in, `iterations`
   // evaluations (probes with the warm starts c33, read only): the largest quotient found. Leaves the Ritz vector in v_.
   PetscErrorCode RestartedKrylov(MPI_Comm comm, ForceOperator &force, const std::vector<double> &c33, PetscInt iterations, double *best);
+  // The set-up's Krylov search (-time_step_estimate krylov) about (u0, a0) from v_, the
+  // warm starts c33 only read: cycles of krylov_cap steps, each from the last one's Ritz
+  // vector, until the largest Ritz value moves by less than startup_tolerance in two steps in a row,
+  // at most startup_limit evaluations. *lambda: the largest Ritz value found; leaves its
+  // Ritz vector in v_. time_step_estimate.cpp explains the stop.
+  PetscErrorCode StartupKrylov(MPI_Comm comm, ForceOperator &force, const std::vector<double> &c33, const double *u0, const double *a0,
+                               double *lambda);
+  static constexpr double   startup_tolerance  = 1e-3;
+  static constexpr PetscInt startup_iterations = 60; // the power iteration's count (-time_step_estimate power)
+  static constexpr PetscInt startup_limit      = 60; // the Krylov search's most: never more than the power iteration
   // Whether the force has a kink (a bond switching its state) at the recorded state along
   // the unit Ritz vector: the Rayleigh quotient from both sides disagrees
   // (time_step_control.cpp explains); two force evaluations.
@@ -257,7 +272,7 @@ private:
   bool     plane_strain_ = false, failure_ = false;
   int      dimension_    = 2; // D: dofs a point (the loading's)
   double   psi_ = 0;           // the stiffening indicator at the last search (0: none yet)
-  PetscInt next_estimate_ = 0, estimates_ = 0, evaluations_ = 0, kinks_ = 0;
+  PetscInt next_estimate_ = 0, estimates_ = 0, evaluations_ = 0, kinks_ = 0, startup_evaluations_ = 0;
   PetscInt tip_searches_ = 0, tip_shortenings_ = 0;
   double   estimate_stretch_ = 1; // the applied stretch at the last re-estimate
   PetscInt interval_now_ = 0;     // steps between re-estimates now: the option's, or up to backoff x it while quiet
