@@ -106,8 +106,8 @@ template <int D> PetscErrorCode SimulationD<D>::Setup(Scene scene)
     for (const LoadSetPoints &set : loading_.load_set_points()) most = std::max(most, set.points.size());
     grip_terms_.assign(D * most, 0.0);
   }
-  // -solver static takes no time step: the stable-step estimate (60 power iterations, each
-  // a force evaluation) and the relaxation are the dynamic route's alone. The TS is still
+  // -solver static takes no time step: the stable-step estimate (a Krylov search of 10-60
+  // force evaluations) and the relaxation are the dynamic route's alone. The TS is still
   // made (it holds the state and the time that the output reads) but never stepped.
   if (scene_.solver != SolverKind::static_newton) {
     PetscCall(step_control_.EstimateStable(comm_, scene_, time_step_options_, layout_, loading_, force_));

@@ -3,10 +3,8 @@
 #include "bapd/solver/driver/static_solver.hpp"
 
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
 #include <ctime>
-#include <cstring>
 #include <string>
 
 #include "bapd/solver/input/options_reader.hpp"
@@ -494,30 +492,13 @@ template <int D> PetscErrorCode StaticSolver<D>::WriteStaticState(double t)
 
   PetscFunctionBegin;
   PetscCall(CopyToState());
-  if (s.last_history_step_ != load_steps_) PetscCall(s.WriteHistoryRow(load_steps_, t, false));
+  if (s.history_.last_step() != load_steps_) PetscCall(s.WriteHistoryRow(load_steps_, t, false));
   const double lambda = s.loading_.stretch_at(t);
   PetscCall(PetscPrintf(s.comm_, "Static at stretch %.5f: load step %" PetscInt_FMT, lambda, load_steps_));
   for (std::size_t p = 0; p < s.probes_.size(); ++p)
     PetscCall(PetscPrintf(s.comm_, "; %s ux = %.6e m", s.scene_.probes[p].name.c_str(), s.last_probe_u_[D * p]));
   PetscCall(PetscPrintf(s.comm_, "\n"));
-  int error = 0;
-  if (s.rank_ == 0 && !s.static_states_) {
-    s.static_states_ = std::fopen((s.scene_.output_dir + "/static_states.csv").c_str(), "w");
-    if (!s.static_states_) error = errno;
-  }
-  if (s.rank_ == 0 && s.static_states_) {
-    const long row_start = std::ftell(s.static_states_);
-    if (row_start == 0) std::fprintf(s.static_states_, "%s\n", s.StaticStatesHeader().c_str());
-    std::fprintf(s.static_states_, "%.17g,%.17g,%" PetscInt_FMT ",%.6e", lambda, t, load_steps_, 0.0);
-    for (std::size_t p = 0; p < s.probes_.size(); ++p)
-      for (int c = 0; c < D; ++c) std::fprintf(s.static_states_, ",%.17g", s.last_probe_u_[D * p + c]);
-    for (std::size_t l = 0; l < s.scene_.loads.size(); ++l) std::fprintf(s.static_states_, ",%.17g", s.last_reaction_[D * l + 1]);
-    std::fprintf(s.static_states_, "\n");
-    if (std::fflush(s.static_states_) != 0 || std::ferror(s.static_states_)) error = errno ? errno : EIO;
-  }
-  PetscCallMPI(MPI_Bcast(&error, 1, MPI_INT, 0, s.comm_));
-  PetscCheck(error == 0, s.comm_, PETSC_ERR_FILE_WRITE, "Cannot write %s/static_states.csv: %s; free some space or choose another -output_dir",
-             s.scene_.output_dir.c_str(), std::strerror(error));
+  PetscCall(s.history_.WriteStaticState(s.comm_, lambda, t, load_steps_, 0.0, s.last_probe_u_.data(), s.last_reaction_.data()));
   if (s.output_.fields.enabled) PetscCall(s.WriteFields(load_steps_, t));
   ++static_states_;
   PetscFunctionReturn(0);
@@ -565,7 +546,7 @@ template <int D> PetscErrorCode StaticSolver<D>::Run()
     if (!hold && (last || hold_next)) PetscCall(WriteStaticState(schedule.time[k + 1]));
   }
   PetscCall(PetscLogStagePop());
-  if (sim_.last_history_step_ != load_steps_) PetscCall(sim_.WriteHistoryRow(load_steps_, t_, false));
+  if (sim_.history_.last_step() != load_steps_) PetscCall(sim_.WriteHistoryRow(load_steps_, t_, false));
   PetscCall(sim_.OutputAtEnd(load_steps_, t_));
   if (sim_.scene_.output_final_state) PetscCall(sim_.WriteFinalState());
   PetscCall(Summary((double)(std::clock() - start) / CLOCKS_PER_SEC));

@@ -153,7 +153,9 @@ TEST(RegionRegistry, ChoicesAndHelpNameEveryRegisteredRegion)
     EXPECT_TRUE(word_in(help, r.word)) << r.word << " missing from: " << help;
     EXPECT_EQ(word_in(sheet, r.word), r.check2d != nullptr) << r.word << " / " << sheet;
     EXPECT_EQ(word_in(solid, r.word), r.check3d != nullptr) << r.word << " / " << solid;
-    if (r.alias && r.check3d) EXPECT_TRUE(word_in(solid, std::string(r.word) + " or " + r.alias)) << r.word << " / " << solid;
+    if (r.alias && r.check3d) {
+      EXPECT_TRUE(word_in(solid, std::string(r.word) + " or " + r.alias)) << r.word << " / " << solid;
+    }
   }
   EXPECT_EQ(sheet, "top, bottom, left, right, box, polygon, curve, group or block");
 }

@@ -78,10 +78,6 @@ public:
   PetscInt last_step() const { return last_step_; } // the step of the last row (-1: none)
   bool     has_static_states() const { return static_states_ != nullptr; }
 
-  // static_solver.cpp's names for what this report owns (it writes its own rows).
-  FILE   *&static_states_stream() { return static_states_; }
-  PetscInt &last_step_ref() { return last_step_; }
-
 private:
   const Scene *scene_ = nullptr;
   OutputPaths  paths_;

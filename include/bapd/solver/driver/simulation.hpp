@@ -100,7 +100,6 @@ private:
   PetscErrorCode BuildProbes();
   PetscErrorCode SetupTimeStepper();
   PetscErrorCode OpenHistory(); // history.csv with its first row (history_report.hpp)
-  std::string    StaticStatesHeader() const { return history_.StaticStatesHeader(); } // (static_solver.cpp)
   PetscErrorCode SetupRelaxation(); // -relaxation (relaxation.hpp)
 
   // The acceleration of the owned points for displacement u (owned, D per point).
@@ -214,9 +213,6 @@ private:
   double wall_start_ = 0;
   // history.csv and static_states.csv: their rows, their schedule, their restart.
   HistoryReport history_;
-  // static_solver.cpp's names for what history_ owns (it writes its own static states).
-  FILE    *&static_states_     = history_.static_states_stream();
-  PetscInt &last_history_step_ = history_.last_step_ref();
   std::vector<double> grip_terms_;  // GripDisplacements' scratch, D per point of the largest load set
   std::vector<double> grip_u_;      // D per load set
   PetscInt total_broken_ = 0;
