@@ -5,7 +5,7 @@
 #   SIGQUIT to one rank: as SIGTERM, a checkpoint and "interrupted by SIGQUIT at step N";
 #   SIGSEGV, SIGBUS to one rank: "rank R stopped by SIGSEGV, sent by process P", every
 #     rank stopped (no checkpoint: the process that got it may be damaged);
-#   SIGTERM during the set-up of a large body (304 235 points: half a minute of set-up on
+#   SIGTERM during the set-up of a large body (590 400 points: about a minute of set-up on
 #     this sheet): the run ends 10 s later, not after the set-up, saying so.
 #   signals.sh RANKS
 source "$BAPD_SOURCE_DIR/tests/faults/common.sh"
@@ -50,11 +50,16 @@ for sig in QUIT SEGV BUS; do
   ok "SIG$sig to rank $victim_rank of $ranks, stopped ${SECONDS_LEFT} s later"
 done
 
-# SIGTERM to run_mpi.sh 4 s into the set-up of a body of 304 235 points, whose set-up
-# (28 s on one idle core, 615 MB; 13 s for 151 200 points) outlasts the signal's 4 s and the
-# 10 s of grace on any machine.
+# SIGTERM to run_mpi.sh 4 s into the set-up of a body of 590 400 points, whose set-up
+# with the power iteration's 61 force evaluations for the stable step (about twice the
+# 28 s and 615 MB of 304 235 points on one idle core; half the time on two) outlasts the
+# signal's 4 s and the 10 s of grace.
+# The run ends 10 s after the signal whatever the body's size. (A body of 304 235 points
+# with the Krylov search's 14 evaluations, or even with the 61, set up on two idle cores
+# within the 14 s.)
 out="$work/setup"
-timeout 60 "$BAPD_SOURCE_DIR/run_mpi.sh" -n "$ranks" "${LONG[@]}" -body_dx 0.000035 -output_dir "$out" > "$work/setup.log" 2>&1 &
+timeout 60 "$BAPD_SOURCE_DIR/run_mpi.sh" -n "$ranks" "${LONG[@]}" -body_dx 0.000025 -time_step_estimate power \
+  -output_dir "$out" > "$work/setup.log" 2>&1 &
 PID=$!
 log="$work/setup.log"
 for _ in $(seq 300); do grep -q '^Scene' "$log" 2> /dev/null && break; sleep 0.1; done
@@ -62,6 +67,7 @@ sleep 4
 grep -q '^step ' "$log" && fail "the set-up ended before the signal: the case tests nothing"
 kill -TERM $PID
 finish_long
+grep -q '^Time stepping:' "$log" && fail "the set-up ended within the signal's 4 s and the 10 s of grace: the case tests nothing (give it a larger body)"
 stopped_cleanly "interrupted by SIGTERM" "during the set-up"
 python3 -c "import sys; sys.exit(float(sys.argv[1]) > 25)" "$SECONDS_LEFT" || fail "the run took ${SECONDS_LEFT} s to stop after SIGTERM in the set-up"
 none_left "$out"
