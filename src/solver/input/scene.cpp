@@ -17,7 +17,9 @@
 //   scene_material.cpp   the constitutive model, its parameters, failure
 //   scene_loading.cpp    grips and the stretch schedule
 //   scene_probes.cpp     probes
-//   scene_run.cpp        output and time stepping
+//   scene_output.cpp     output: history, fields, checkpoints
+//   scene_run.cpp        the solver, partition, static solver
+//   scene_time_stepping.cpp  the time step, its re-estimate, damping, the run's end
 //   scene_schedule.cpp   lambda(t) at run time
 //   scene_selection.cpp  the points a load set or probe picks at run time
 #include "bapd/solver/input/scene.hpp"
@@ -32,12 +34,8 @@ namespace bapd {
 
 const char *to_string(PatchCorrection c)
 {
-  switch (c) {
-  case PatchCorrection::off: return "off";
-  case PatchCorrection::lambda: return "on";
-  case PatchCorrection::virial: return "virial";
-  }
-  return "unknown";
+  static const char *const words[] = {"off", "on", "virial"}; // in the enum's order
+  return words[static_cast<int>(c)];
 }
 
 std::vector<SetFamily> SetFamilies() { return {ShapeFamily(), LoadSetFamily(), ProbeFamily()}; }
@@ -72,7 +70,9 @@ PetscErrorCode SceneFromOptions(MPI_Comm comm, Scene *scene)
   PetscCall(ReadMaterial(comm, scene, &in));
   PetscCall(ReadLoading(comm, scene, &in));
   PetscCall(ReadProbes(comm, &in));
-  PetscCall(ReadOutputTime(comm, scene, &in));
+  PetscCall(ReadOutput(comm, scene, &in));
+  PetscCall(ReadRun(comm, scene, &in));
+  PetscCall(ReadTimeStepping(comm, scene, &in));
 
   PetscCall(PetscOptionsHasHelp(nullptr, &help));
   if (help) {
@@ -87,7 +87,9 @@ PetscErrorCode SceneFromOptions(MPI_Comm comm, Scene *scene)
   scene->body.grip_rows = grip_rows;
   PetscCall(CheckBodyFits(comm, *scene));
   PetscCall(CheckProbes(comm, in, scene));
-  PetscCall(CheckOutputTime(comm, in, scene));
+  PetscCall(CheckOutput(comm, in, scene));
+  PetscCall(CheckRun(comm, in, scene));
+  PetscCall(CheckTimeStepping(comm, in, scene));
   PetscFunctionReturn(0);
 }
 
