@@ -118,15 +118,16 @@ const OptionTable<TimeStepOptions> kReestimateOptions = {
      &TimeStepOptions::reference},
 };
 
-PetscErrorCode CheckReestimate(MPI_Comm comm, TimeStepOptions *options_out)
+// The re-estimate's options; -time_step_estimate's word into startup_krylov.
+PetscErrorCode CheckReestimate(MPI_Comm comm, TimeStepOptions *reestimate)
 {
-  const TimeStepOptions &options = *options_out;
+  const TimeStepOptions &options = *reestimate;
   PetscFunctionBeginUser;
   PetscCheck(options.estimate == "krylov" || options.estimate == "power", comm, PETSC_ERR_USER,
              "-time_step_estimate '%s' is not an estimate: choose krylov (the default) or power (60 power iterations, as earlier "
              "versions)",
              options.estimate.c_str());
-  options_out->startup_krylov = options.estimate == "krylov";
+  reestimate->startup_krylov = options.estimate == "krylov";
   PetscCheck(options.interval >= 0, comm, PETSC_ERR_USER,
              "-time_step_reestimate %" PetscInt_FMT ": give the number of steps between re-estimates (>= 1), or 0 to keep the step at rest",
              options.interval);

@@ -80,10 +80,11 @@ private:
 // set: "-region" of -load_NAME_region), its help, where its value goes in the section's
 // input record and, if it has one, the flag (in `Flags`, the record of what was given)
 // that says it was given; `example`: a valid value for the message on a malformed real.
-// Every block of options is one table, top-level sections (TimeStepOptionRows, the
-// output and run sections) as named sets (LoadSetOptions, ProbeOptions, ShapeOptions):
-// ReadOptionRows reads it in order, so that -help lists it so, and the unused-option
-// check and -help take the names from it (SetFamily, scene_input.hpp).
+// A block of options is read from tables of rows, the top-level sections' (kStepOptions,
+// kOutputOptions, ... in scene_*.cpp) as the named sets' (kLoadSetOptions,
+// kProbeOptions, kShapeOptions): ReadOptionRows reads one in order, so that -help lists
+// it so, and the unused-option check and -help take the names from it (SetFamily,
+// scene_input.hpp).
 template <class Input, class Flags = Input> struct OptionRow {
   const char *name;
   const char *help;
