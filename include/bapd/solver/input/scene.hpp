@@ -3,9 +3,10 @@
 // given with -options_file_yaml, every value overridable on the command line).
 // SI units throughout. See docs/options.md for the full list.
 //
-// This header is the whole public interface: the grips, probes, schedule and option
-// registry have their own headers, included here. The definitions: scene.cpp (reading
-// and checking, SceneView) lists the files of each section.
+// This header is the whole public interface: the grips, probes, schedule, output and
+// time-stepping records and the option registry have their own headers, included here.
+// The definitions: scene.cpp (reading and checking, SceneView) lists the files of each
+// section.
 #include <petscsys.h>
 #include <array>
 #include <cstdint>
@@ -160,7 +161,8 @@ struct Scene {
   TimeStepOptions time_step_control;                 // the stable step's re-estimate, -time_step_reestimate ... (time_step_control.hpp)
 
   // -help was given: every option was listed, nothing was validated and the scene
-  // holds defaults only. The driver should list the other components' options and stop.
+  // holds defaults only. The driver stops (with -help all, after PETSc's time stepper
+  // has listed its options).
   bool help_only = false;
 
   double horizon() const { return horizon_factor * body.dx; } // (given points: the smallest delta_i)
