@@ -14,6 +14,7 @@
 //   options_reader.cpp   reading one option, the registry of names, warnings
 //   options_unused.cpp   options nobody read, typo suggestions
 //   scene_body.cpp       the sheet, holes, notches, horizon; the point estimate
+//   scene_body_memory.cpp  whether the body fits in memory
 //   scene_material.cpp   the constitutive model, its parameters, failure
 //   scene_loading.cpp    grips and the stretch schedule
 //   scene_probes.cpp     probes
@@ -189,7 +190,8 @@ std::string BodyText3D(const Scene &s)
   return text + HorizonText(s, b.given_points != nullptr, "cbrt(V_i)");
 }
 
-// The time stepping, static-hold and output lines (scene_run.cpp's options).
+// The time stepping, static-hold and output lines (scene_time_stepping.cpp's and
+// scene_output.cpp's options).
 std::string RunText(const Scene &s)
 {
   std::string text;
