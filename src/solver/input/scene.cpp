@@ -9,8 +9,9 @@
 // must lie in the body, a stretch grip needs a schedule), see it all at once.
 //
 // Each section is read (Read*) and checked (Check*) by its file, which also writes its
-// lines of SceneText (MaterialText, LoadingText, ProbesText; the body's and the run's
-// are written here). Where each part lives (scene_input.hpp lists the sections):
+// lines of SceneText (MaterialText, LoadingText, ProbesText, TimeSteppingText,
+// OutputText; the body's are written here). Where each part lives (scene_input.hpp
+// lists the sections):
 //   options_reader.cpp   reading one option, the registry of names, warnings
 //   options_unused.cpp   options nobody read, typo suggestions
 //   scene_body.cpp       the sheet, holes, notches, horizon; the point estimate
@@ -190,26 +191,6 @@ std::string BodyText3D(const Scene &s)
   return text + HorizonText(s, b.given_points != nullptr, "cbrt(V_i)");
 }
 
-// The time stepping, static-hold and output lines (scene_time_stepping.cpp's and
-// scene_output.cpp's options).
-std::string RunText(const Scene &s)
-{
-  std::string text;
-  if (s.time_step > 0) text += Format("  time      step %g s", s.time_step);
-  else text += Format("  time      step %g x the stable step", s.time_step_safety);
-  if (s.time_step_travel > 0) text += Format(" (shorter while a point with bonds would move > %g dx a step)", s.time_step_travel);
-  else if (s.time_step_travel < 0 && s.failure) text += " (shorter while a point with bonds would move > 0.1 dx a step)";
-  text += Format(", damping %g 1/s, end %g s", s.damping, s.end_time);
-  if (s.end_step >= 0) text += Format(" or after step %ld (-end_step), whichever comes first", (long)s.end_step);
-  text += "\n";
-  if (s.static_tolerance > 0)
-    text += Format("  static    a hold ends once kinetic energy < %g x internal energy (checked every %ld steps, at the -output_interval rows)\n", s.static_tolerance,
-                   (long)s.output_interval);
-  text += Format("  output    %s/, history every %ld steps", s.output_dir.c_str(), (long)s.output_interval);
-  if (s.output_history_rows > 0) text += Format(" and at each 1/%ld of the end time", (long)s.output_history_rows);
-  return text + "\n";
-}
-
 } // namespace
 
 std::string SceneText(const Scene &s)
@@ -218,7 +199,7 @@ std::string SceneText(const Scene &s)
   // section's lines from the section (scene_input.hpp)
   std::string text = "Scene\n";
   text += s.dimension == 3 ? BodyText3D(s) : BodyText2D(s);
-  return text + MaterialText(s) + LoadingText(s) + ProbesText(s) + RunText(s);
+  return text + MaterialText(s) + LoadingText(s) + ProbesText(s) + TimeSteppingText(s) + OutputText(s);
 }
 
 PetscErrorCode SceneView(MPI_Comm comm, const Scene &s)

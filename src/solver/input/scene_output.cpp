@@ -130,6 +130,13 @@ PetscErrorCode CheckCheckpoints(MPI_Comm comm, const SceneInput &in, CheckpointO
 
 } // namespace
 
+std::string OutputText(const Scene &s)
+{
+  std::string text = Format("  output    %s/, history every %ld steps", s.output_dir.c_str(), (long)s.output_interval);
+  if (s.output_history_rows > 0) text += Format(" and at each 1/%ld of the end time", (long)s.output_history_rows);
+  return text + "\n";
+}
+
 PetscErrorCode ReadOutput(MPI_Comm comm, Scene *scene, SceneInput *in)
 {
   PetscFunctionBeginUser;

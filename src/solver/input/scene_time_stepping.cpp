@@ -185,6 +185,22 @@ PetscErrorCode CheckStepCount(MPI_Comm comm, const Scene &scene, bool end_time_s
 
 } // namespace
 
+std::string TimeSteppingText(const Scene &s)
+{
+  std::string text;
+  if (s.time_step > 0) text += Format("  time      step %g s", s.time_step);
+  else text += Format("  time      step %g x the stable step", s.time_step_safety);
+  if (s.time_step_travel > 0) text += Format(" (shorter while a point with bonds would move > %g dx a step)", s.time_step_travel);
+  else if (s.time_step_travel < 0 && s.failure) text += " (shorter while a point with bonds would move > 0.1 dx a step)";
+  text += Format(", damping %g 1/s, end %g s", s.damping, s.end_time);
+  if (s.end_step >= 0) text += Format(" or after step %ld (-end_step), whichever comes first", (long)s.end_step);
+  text += "\n";
+  if (s.static_tolerance > 0)
+    text += Format("  static    a hold ends once kinetic energy < %g x internal energy (checked every %ld steps, at the -output_interval rows)\n", s.static_tolerance,
+                   (long)s.output_interval);
+  return text;
+}
+
 PetscErrorCode ReadTimeStepping(MPI_Comm comm, Scene *scene, SceneInput *in)
 {
   PetscFunctionBeginUser;

@@ -102,10 +102,13 @@ PetscErrorCode CheckBodyFits(MPI_Comm comm, const Scene &scene);
 PetscErrorCode ReadMaterial(MPI_Comm comm, Scene *scene, SceneInput *in);
 PetscErrorCode CheckMaterial(MPI_Comm comm, const SceneInput &in, Scene *scene);
 // Each section's lines of SceneText: the material, force and failure; the load sets and
-// the schedule (scene_loading.cpp); the probes (scene_probes.cpp).
+// the schedule (scene_loading.cpp); the probes (scene_probes.cpp); the time step, the
+// run's end and holds (scene_time_stepping.cpp); the output (scene_output.cpp).
 std::string MaterialText(const Scene &scene);
 std::string LoadingText(const Scene &scene);
 std::string ProbesText(const Scene &scene);
+std::string TimeSteppingText(const Scene &scene);
+std::string OutputText(const Scene &scene);
 // Loading (scene_loading.cpp): -load_sets, -load_schedule, -load_NAME_*.
 PetscErrorCode ReadLoading(MPI_Comm comm, Scene *scene, SceneInput *in);
 // grip_rows: the rows the edge grips placed outside the sheet add beyond it, for the
