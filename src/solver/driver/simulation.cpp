@@ -75,9 +75,7 @@ template <int D> PetscErrorCode SimulationD<D>::Setup(Scene scene)
   paths_ = OutputPaths(scene_.output_dir);
   PetscCheck(scene_.help_only || scene_.dimension == D, comm_, PETSC_ERR_PLIB,
              "SimulationD<%d> was given a scene of dimension %d: build the driver of the scene's dimension (main.cpp)", D, scene_.dimension);
-  PetscCall(ReadOutputOptions()); // -output_fields..., -checkpoint_..., -restart
-  PetscCall(RelaxationFromOptions(comm_, &relaxation_kind_)); // -relaxation
-  PetscCall(TimeStepOptionsFromOptions(comm_, &time_step_options_)); // -time_step_reestimate ...
+  PetscCall(TakeOutputOptions()); // the scene's -output_fields..., -checkpoint_..., -restart
   if (scene_.help_only) {
     // -help all: list the time stepper's options too (PETSc's), and stop.
     if (CurrentHelpMode() != HelpMode::bapd) {
@@ -107,7 +105,7 @@ template <int D> PetscErrorCode SimulationD<D>::Setup(Scene scene)
   // force evaluations) and the relaxation are the dynamic route's alone. The TS is still
   // made (it holds the state and the time that the output reads) but never stepped.
   if (scene_.solver != SolverKind::static_newton) {
-    PetscCall(step_control_.EstimateStable(comm_, scene_, time_step_options_, layout_, loading_, force_));
+    PetscCall(step_control_.EstimateStable(comm_, scene_.time_stepping(), layout_, loading_, force_));
     PetscCall(SetupRelaxation());
   }
   PetscCall(SetupTimeStepper());
@@ -209,7 +207,7 @@ template <int D> PetscErrorCode SimulationD<D>::SetupRelaxation()
 {
   PetscFunctionBegin;
   const double stable_dt = step_control_.stable();
-  relaxation_.Setup(relaxation_kind_, (std::size_t)layout_.n_owned, layout_.cloud.volume.data(), loading_.held_dofs(), scene_.damping,
+  relaxation_.Setup(scene_.relaxation, (std::size_t)layout_.n_owned, layout_.cloud.volume.data(), loading_.held_dofs(), scene_.damping,
                     stable_dt);
   if (relaxation_.active()) {
     char range[96]; // PETSc's %g would print "50."

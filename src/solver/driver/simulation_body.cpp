@@ -177,7 +177,7 @@ template <int D> PetscErrorCode SimulationD<D>::BuildBody()
       scene_.force_form == ForceForm::bond_only ? scene_.stress_correction : StressCorrection::none;
   nd::compute_bond_geometry<D>(layout_.cloud, families_, bond_state_, geometry_);
 
-  PetscCall(force_.Setup<D>(comm_, scene_, layout_, families_, geometry_, bond_state_, stage_ghost_, stage_force_));
+  PetscCall(force_.Setup<D>(comm_, scene_.force_model(), layout_, families_, geometry_, bond_state_, stage_ghost_, stage_force_));
   if (scene_.failure)
     PetscCall(failure_.Setup(comm_, layout_, families_, scene_.critical_stretch,
                              scene_.tip_concentration * scene_.fracture_energy, D, scene_.horizon(), scene_.body.thickness));

@@ -216,7 +216,7 @@ template <int D> PetscErrorCode SimulationD<D>::DiagnoseDivergence()
     for (const LawOptionEntry &o : law.options)
       if (std::string(o.name) == law.limit_option) f.limit_value = scene_.material.values[o.index];
   }
-  if (time_step_options_.monitor)
+  if (scene_.time_step_control.monitor)
     PetscCall(PetscPrintf(comm_, "Diagnosis at the last good state: dt %.4e s, stable %.4e s (at rest %.4e s), chain reach %.4g (bond stretch %.4g), applied stretch %.4g; %" PetscInt_FMT " steps before: stable %.4e s, chain reach %.4g\n",
                           f.dt, f.stable, f.stable_rest, f.chain_reach, f.bond_stretch, f.applied_stretch, f.earlier_steps, f.stable_earlier, f.chain_reach_earlier));
   stop_reason_ += DivergenceAdvice(f);
@@ -337,8 +337,11 @@ template <int D> PetscErrorCode SimulationD<D>::CheckRunaway(PetscInt step, doub
   PetscCall(TSGetTimeStep(ts_, &dt));
   RunawayInputs inputs;
   inputs.comm      = comm_;
-  inputs.scene     = &scene_;
-  inputs.schedule  = &loading_.schedule();
+  inputs.density          = scene_.density;
+  inputs.dx               = scene_.body.dx;
+  inputs.loads            = &scene_.loads;
+  inputs.reference_length = scene_.reference_length;
+  inputs.schedule         = &loading_.schedule();
   inputs.layout    = &layout_;
   inputs.state     = X_;
   inputs.dt        = dt;

@@ -43,11 +43,11 @@ PetscErrorCode RegisterEvents()
 
 } // namespace
 
-template <int D> PetscErrorCode SimulationD<D>::ReadOutputOptions()
+template <int D> PetscErrorCode SimulationD<D>::TakeOutputOptions()
 {
   PetscFunctionBegin;
-  PetscCall(FieldOptionsFromOptions(comm_, &output_.fields));
-  PetscCall(CheckpointOptionsFromOptions(comm_, &output_.checkpoint));
+  output_.fields     = scene_.fields;
+  output_.checkpoint = scene_.checkpoint;
   if (!output_.handlers) InstallInterruptHandlers(); // a signal during the set-up acts at the first step
   output_.handlers = true;
   PetscFunctionReturn(0);
@@ -431,7 +431,7 @@ template <int D> PetscErrorCode SimulationD<D>::RestoreCheckpoint()
 // here, one by one. simulation.cpp instantiates the class, which covers only what it
 // defines; a class may be explicitly instantiated once in a program.
 #define BAPD_SIMULATION_OUTPUT(D) \
-  template PetscErrorCode SimulationD<D>::ReadOutputOptions(); \
+  template PetscErrorCode SimulationD<D>::TakeOutputOptions(); \
   template PetscErrorCode SimulationD<D>::ClaimOutputDirectory(); \
   template PetscErrorCode SimulationD<D>::SetupOutput(); \
   template PetscErrorCode SimulationD<D>::CreateNaturalOrder(); \

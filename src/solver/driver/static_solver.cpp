@@ -99,7 +99,7 @@ template <int D> PetscErrorCode StaticSolver<D>::Setup()
   PC             pc;
 
   PetscFunctionBegin;
-  PetscCall(tangent_.Setup<D>(sim_.comm_, sim_.scene_, layout, sim_.families_, sim_.geometry_, sim_.bond_state_));
+  PetscCall(tangent_.Setup<D>(sim_.comm_, sim_.scene_.force_model(), layout, sim_.families_, sim_.geometry_, sim_.bond_state_));
   PetscCall(tangent_.CreateMatrix(&H_));
   {
     // The preconditioner's copy in AIJ (GAMG, hypre and the factorisations take it), by

@@ -9,15 +9,19 @@
 // must lie in the body, a stretch grip needs a schedule), see it all at once.
 //
 // Each section is read (Read*) and checked (Check*) by its file, which also writes its
-// lines of SceneText (MaterialText, LoadingText, ProbesText; the body's and the run's
-// are written here). Where each part lives (scene_input.hpp lists the sections):
+// lines of SceneText (MaterialText, LoadingText, ProbesText, TimeSteppingText,
+// OutputText; the body's are written here). Where each part lives (scene_input.hpp
+// lists the sections):
 //   options_reader.cpp   reading one option, the registry of names, warnings
 //   options_unused.cpp   options nobody read, typo suggestions
 //   scene_body.cpp       the sheet, holes, notches, horizon; the point estimate
+//   scene_body_memory.cpp  whether the body fits in memory
 //   scene_material.cpp   the constitutive model, its parameters, failure
 //   scene_loading.cpp    grips and the stretch schedule
 //   scene_probes.cpp     probes
-//   scene_run.cpp        output and time stepping
+//   scene_output.cpp     output: history, fields, checkpoints
+//   scene_run.cpp        the solver, partition, static solver
+//   scene_time_stepping.cpp  the time step, its re-estimate, damping, the run's end
 //   scene_schedule.cpp   lambda(t) at run time
 //   scene_selection.cpp  the points a load set or probe picks at run time
 #include "bapd/solver/input/scene.hpp"
@@ -32,12 +36,8 @@ namespace bapd {
 
 const char *to_string(PatchCorrection c)
 {
-  switch (c) {
-  case PatchCorrection::off: return "off";
-  case PatchCorrection::lambda: return "on";
-  case PatchCorrection::virial: return "virial";
-  }
-  return "unknown";
+  static const char *const words[] = {"off", "on", "virial"}; // in the enum's order
+  return words[static_cast<int>(c)];
 }
 
 std::vector<SetFamily> SetFamilies() { return {ShapeFamily(), LoadSetFamily(), ProbeFamily()}; }
@@ -72,7 +72,9 @@ PetscErrorCode SceneFromOptions(MPI_Comm comm, Scene *scene)
   PetscCall(ReadMaterial(comm, scene, &in));
   PetscCall(ReadLoading(comm, scene, &in));
   PetscCall(ReadProbes(comm, &in));
-  PetscCall(ReadOutputTime(comm, scene, &in));
+  PetscCall(ReadOutput(comm, scene, &in));
+  PetscCall(ReadRun(comm, scene, &in));
+  PetscCall(ReadTimeStepping(comm, scene, &in));
 
   PetscCall(PetscOptionsHasHelp(nullptr, &help));
   if (help) {
@@ -87,7 +89,9 @@ PetscErrorCode SceneFromOptions(MPI_Comm comm, Scene *scene)
   scene->body.grip_rows = grip_rows;
   PetscCall(CheckBodyFits(comm, *scene));
   PetscCall(CheckProbes(comm, in, scene));
-  PetscCall(CheckOutputTime(comm, in, scene));
+  PetscCall(CheckOutput(comm, in, scene));
+  PetscCall(CheckRun(comm, in, scene));
+  PetscCall(CheckTimeStepping(comm, in, scene));
   PetscFunctionReturn(0);
 }
 
@@ -187,25 +191,6 @@ std::string BodyText3D(const Scene &s)
   return text + HorizonText(s, b.given_points != nullptr, "cbrt(V_i)");
 }
 
-// The time stepping, static-hold and output lines (scene_run.cpp's options).
-std::string RunText(const Scene &s)
-{
-  std::string text;
-  if (s.time_step > 0) text += Format("  time      step %g s", s.time_step);
-  else text += Format("  time      step %g x the stable step", s.time_step_safety);
-  if (s.time_step_travel > 0) text += Format(" (shorter while a point with bonds would move > %g dx a step)", s.time_step_travel);
-  else if (s.time_step_travel < 0 && s.failure) text += " (shorter while a point with bonds would move > 0.1 dx a step)";
-  text += Format(", damping %g 1/s, end %g s", s.damping, s.end_time);
-  if (s.end_step >= 0) text += Format(" or after step %ld (-end_step), whichever comes first", (long)s.end_step);
-  text += "\n";
-  if (s.static_tolerance > 0)
-    text += Format("  static    a hold ends once kinetic energy < %g x internal energy (checked every %ld steps, at the -output_interval rows)\n", s.static_tolerance,
-                   (long)s.output_interval);
-  text += Format("  output    %s/, history every %ld steps", s.output_dir.c_str(), (long)s.output_interval);
-  if (s.output_history_rows > 0) text += Format(" and at each 1/%ld of the end time", (long)s.output_history_rows);
-  return text + "\n";
-}
-
 } // namespace
 
 std::string SceneText(const Scene &s)
@@ -214,7 +199,7 @@ std::string SceneText(const Scene &s)
   // section's lines from the section (scene_input.hpp)
   std::string text = "Scene\n";
   text += s.dimension == 3 ? BodyText3D(s) : BodyText2D(s);
-  return text + MaterialText(s) + LoadingText(s) + ProbesText(s) + RunText(s);
+  return text + MaterialText(s) + LoadingText(s) + ProbesText(s) + TimeSteppingText(s) + OutputText(s);
 }
 
 PetscErrorCode SceneView(MPI_Comm comm, const Scene &s)

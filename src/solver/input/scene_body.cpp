@@ -2,7 +2,7 @@
 // -horizon_factor). The checks see the body whole: every hole and notch inside it,
 // none cutting it apart (FindCut), at least one material point left by the hole rule
 // of lattice.hpp, the same rule make_lattice applies. A 3D body (-body_dimension 3) is
-// checked by scene_body3d.cpp.
+// checked by scene_body3d.cpp, the memory the body needs by scene_body_memory.cpp.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -15,8 +15,6 @@
 #include <numeric>
 #include <string>
 #include <vector>
-
-#include <sys/resource.h>
 
 #include "bapd/core/geometry/geometry.hpp"
 #include "bapd/solver/input/gmsh_shape.hpp"
@@ -124,125 +122,6 @@ std::string FindCut(const Body2D &b)
   return "";
 }
 
-// Bytes the machine can still give, from /proc/meminfo's MemAvailable (Linux); 0 when
-// it cannot be read (then nothing is refused).
-double AvailableMemoryBytes()
-{
-  std::FILE *file = std::fopen("/proc/meminfo", "r");
-  if (!file) return 0;
-  char   line[256];
-  double kib = 0;
-  while (std::fgets(line, sizeof(line), file))
-    if (std::sscanf(line, "MemAvailable: %lf kB", &kib) == 1) break;
-  std::fclose(file);
-  return kib * 1024.0;
-}
-
-// Bytes this process may still map under its own limits (ulimit -v: RLIMIT_AS against
-// VmSize; ulimit -d: RLIMIT_DATA against VmData, /proc/self/status); 0 when neither is
-// set (then only the machine's memory counts).
-double ProcessRoomBytes()
-{
-  double       room = 0;
-  std::FILE   *file = std::fopen("/proc/self/status", "r");
-  double       vm_size = 0, vm_data = 0, kib;
-  char         line[256];
-  while (file && std::fgets(line, sizeof(line), file)) {
-    if (std::sscanf(line, "VmSize: %lf kB", &kib) == 1) vm_size = kib * 1024.0;
-    if (std::sscanf(line, "VmData: %lf kB", &kib) == 1) vm_data = kib * 1024.0;
-  }
-  if (file) std::fclose(file);
-  const std::pair<int, double> limits[] = {{RLIMIT_AS, vm_size}, {RLIMIT_DATA, vm_data}};
-  for (const auto &[resource, used] : limits) {
-    struct rlimit limit;
-    if (getrlimit(resource, &limit) != 0 || limit.rlim_cur == RLIM_INFINITY) continue;
-    const double left = std::max((double)limit.rlim_cur - used, 1.0);
-    room              = room > 0 ? std::min(room, left) : left;
-  }
-  return room;
-}
-
-// Refuses a body that cannot fit: the points, their bonds (before anything is built:
-// about pi x horizon_factor^2 a point, the lattice's; after rank 0 has built the bond
-// graph: the real count, CheckBodyMemory) and the memory they need, against what
-// the node of rank 0 has available for the ranks it runs. The cost per point is the
-// one measured at delta = 3.015 dx (docs/performance.md section 2: 1.83 KB, 27.9
-// bonds a point), scaled with the bonds a point has.
-PetscErrorCode CheckMemory(MPI_Comm comm, const Scene &scene, int64_t points, double bonds_per_point)
-{
-  const double bytes_per_point_paper = 1.9e3, horizon_factor_paper = 3.015;
-  const double bytes_per_point = bytes_per_point_paper * bonds_per_point / (M_PI * horizon_factor_paper * horizon_factor_paper);
-  PetscMPIInt  size, rank, node_ranks;
-  MPI_Comm     node;
-  PetscFunctionBeginUser;
-  PetscCallMPI(MPI_Comm_size(comm, &size));
-  PetscCallMPI(MPI_Comm_rank(comm, &rank));
-  PetscCallMPI(MPI_Comm_split_type(comm, MPI_COMM_TYPE_SHARED, rank, MPI_INFO_NULL, &node));
-  PetscCallMPI(MPI_Comm_size(node, &node_ranks));
-  PetscCallMPI(MPI_Comm_free(&node));
-  double available = rank == 0 ? AvailableMemoryBytes() : 0.0;
-  PetscCallMPI(MPI_Bcast(&available, 1, MPI_DOUBLE, 0, comm));
-  PetscCallMPI(MPI_Bcast(&node_ranks, 1, MPI_INT, 0, comm));
-  const double per_rank = static_cast<double>(points) * bytes_per_point / size;
-  const double needed   = per_rank * node_ranks; // on rank 0's node
-  const double gb       = 1e9;
-  // The process's own limit (a batch system's or the shell's ulimit), which
-  // MemAvailable does not show: std::bad_alloc half-way through the set-up otherwise.
-  // Each rank holds at least its share; rank 0 builds the bonds of the whole body.
-  double room = ProcessRoomBytes(), worst = 0;
-  if (room > 0 && per_rank > room) worst = per_rank / room;
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &worst, 1, MPI_DOUBLE, MPI_MAX, comm));
-  PetscCheck(!(worst > 0), comm, PETSC_ERR_USER,
-             "%lld material points need about %.3g GB on each of %d rank(s), %.3g times what a rank's process limit leaves it (ulimit -v "
-             "or -d, RLIMIT_AS/RLIMIT_DATA; %.3g GB left on rank 0): raise the limit, run on more ranks, or use a coarser %s",
-             static_cast<long long>(points), per_rank / gb, size, worst, rank == 0 ? room / gb : 0.0,
-             scene.dimension == 3 && (scene.body3d.given_points || scene.body3d.centroids) ? "point set" : "-body_dx");
-  if (available <= 0 || needed <= available) PetscFunctionReturn(0);
-  // Points go as 1/dx^2 (3D: 1/dx^3): the spacing at which the estimate just fits.
-  const double      dx_fit = scene.body.dx * (scene.dimension == 3 ? std::cbrt(needed / available) : std::sqrt(needed / available));
-  const std::string what   = Format("%lld material points and %.3g bonds, about %.3g GB (%.3g GB on each of %d rank(s); %.2g KB a point "
-                                    "at delta = %g x spacing), but this machine has %.3g GB available (MemAvailable, /proc/meminfo)",
-                                    static_cast<long long>(points), static_cast<double>(points) * bonds_per_point,
-                                    static_cast<double>(points) * bytes_per_point / gb, per_rank / gb, size, bytes_per_point / 1e3,
-                                    scene.horizon_factor, available / gb);
-  // Given points have no -body_dx (it is refused with them): the fix is fewer points at
-  // their source, about needed / available times fewer (a spacing that much coarser).
-  const Body2D &b = scene.body;
-  if (scene.body3d.centroids)
-    SETERRQ(comm, PETSC_ERR_USER, "%s",
-            Format("-body_%s_discretisation centroids: the tetrahedra of '%s' give %s: mesh it about %.2g times coarser, use the "
-                   "lattice (-body_dx) instead, or run on more machines",
-                   scene.body3d.solid_names[0].c_str(), scene.body3d.source.c_str(), what.c_str(), 1.05 * std::cbrt(needed / available))
-                .c_str());
-  if (scene.body3d.given_points)
-    SETERRQ(comm, PETSC_ERR_USER, "%s",
-            Format("-body_cloud '%s' gives %s: give a cloud about %.2g times coarser in spacing, a smaller -horizon_factor (bonds go as "
-                   "its cube in 3D), or run on more machines",
-                   scene.body3d.source.c_str(), what.c_str(), 1.05 * std::cbrt(needed / available))
-                .c_str());
-  if (b.given_points) {
-    const Shape *mesh = nullptr;
-    for (const Shape &s : b.shapes)
-      if (s.centroids) mesh = &s;
-    const double coarser = 1.05 * std::sqrt(needed / available);
-    if (mesh)
-      SETERRQ(comm, PETSC_ERR_USER, "%s",
-              Format("-body_%s_discretisation centroids: the elements of '%s' give %s: mesh it about %.2g times coarser (e.g. a "
-                     "larger characteristic length in the .geo, or gmsh -clscale %.2g), use -body_%s_discretisation lattice with "
-                     "a -body_dx of your choice, or run on more machines",
-                     mesh->name.c_str(), b.given_points->source.c_str(), what.c_str(), coarser, coarser, mesh->name.c_str())
-                  .c_str());
-    SETERRQ(comm, PETSC_ERR_USER, "%s",
-            Format("-body_cloud '%s' gives %s: give a cloud about %.2g times coarser in spacing (%.2g times fewer points), a smaller "
-                   "-horizon_factor (bonds go as its square), or run on more machines",
-                   b.given_points->source.c_str(), what.c_str(), coarser, coarser * coarser)
-                .c_str());
-  }
-  SETERRQ(comm, PETSC_ERR_USER, "%s",
-          Format("-body_dx %g m asks for about %s: choose -body_dx %.2g or coarser, or run on more machines", b.dx, what.c_str(), 1.05 * dx_fit)
-              .c_str());
-}
-
 } // namespace
 
 PetscErrorCode CheckHorizonFactor(MPI_Comm comm, const Scene &scene)
@@ -262,81 +141,86 @@ PetscErrorCode CheckHorizonFactor(MPI_Comm comm, const Scene &scene)
 namespace {
 
 // One shape's options (-body_NAME_...), in -help's order.
-const std::vector<SetOption<ShapeInput>> &ShapeOptions()
-{
-  using S = ShapeInput;
-  static const std::vector<SetOption<S>> table = {
-      {"-type",
-       "rectangle | circle | ellipse | polygon | mesh (a Gmsh file); 3D: box | cylinder | sphere | mesh (a Gmsh "
-       "volume) | notch (a planar polygon) (required)",
-       &S::type, &S::type_set},
-      {"-op",
-       "What it does to the body so far: subtract | add (within the sheet) | intersect (default subtract; 3D: add "
-       "for the first solid, which starts the body, subtract after it)",
-       &S::op, &S::op_set},
-      {"-box", "Rectangle xmin,ymin,xmax,ymax [m]; 3D box xmin,ymin,zmin,xmax,ymax,zmax [m]", &S::box},
-      {"-centre", "Circle or ellipse centre x,y [m]; 3D sphere x,y,z [m]", &S::centre},
-      {"-radius", "Circle, 3D sphere or cylinder radius [m]", &S::radius, &S::radius_set},
-      {"-axis", "3D cylinder: its axis's end points (the end caps' centres) x0,y0,z0,x1,y1,z1 [m]", &S::axis},
-      {"-radii", "Ellipse semi-axes a,b [m] (a along -angle)", &S::radii},
-      {"-angle", "Ellipse: angle of the a axis from x [degrees]", &S::angle},
-      {"-points",
-       "Polygon vertices x0,y0,x1,y1,... [m] (closed: the last joins the first); 3D notch: x0,y0,z0,x1,y1,z1,... in "
-       "one plane",
-       &S::points},
-      {"-file",
-       "Mesh: a Gmsh .geo (meshed in 2D) or .msh file whose 2D elements are the shape [m]; 3D: a .geo with a volume "
-       "(meshed in 3D) or a .msh of tetrahedra",
-       &S::file},
-      {"-discretisation",
-       "Mesh: lattice (the lattice clipped to the mesh) | centroids (one point per 2D element, volume = area x "
-       "thickness; 3D: per tetrahedron, volume = its volume)",
-       &S::discretisation},
-  };
-  return table;
-}
+const OptionTable<ShapeInput> kShapeOptions = {
+    {"-type",
+     "rectangle | circle | ellipse | polygon | mesh (a Gmsh file); 3D: box | cylinder | sphere | mesh (a Gmsh "
+     "volume) | notch (a planar polygon) (required)",
+     &ShapeInput::type, &ShapeInput::type_set},
+    {"-op",
+     "What it does to the body so far: subtract | add (within the sheet) | intersect (default subtract; 3D: add "
+     "for the first solid, which starts the body, subtract after it)",
+     &ShapeInput::op, &ShapeInput::op_set},
+    {"-box", "Rectangle xmin,ymin,xmax,ymax [m]; 3D box xmin,ymin,zmin,xmax,ymax,zmax [m]", &ShapeInput::box},
+    {"-centre", "Circle or ellipse centre x,y [m]; 3D sphere x,y,z [m]", &ShapeInput::centre},
+    {"-radius", "Circle, 3D sphere or cylinder radius [m]", &ShapeInput::radius, &ShapeInput::radius_set},
+    {"-axis", "3D cylinder: its axis's end points (the end caps' centres) x0,y0,z0,x1,y1,z1 [m]", &ShapeInput::axis},
+    {"-radii", "Ellipse semi-axes a,b [m] (a along -angle)", &ShapeInput::radii},
+    {"-angle", "Ellipse: angle of the a axis from x [degrees]", &ShapeInput::angle},
+    {"-points",
+     "Polygon vertices x0,y0,x1,y1,... [m] (closed: the last joins the first); 3D notch: x0,y0,z0,x1,y1,z1,... in "
+     "one plane",
+     &ShapeInput::points},
+    {"-file",
+     "Mesh: a Gmsh .geo (meshed in 2D) or .msh file whose 2D elements are the shape [m]; 3D: a .geo with a volume "
+     "(meshed in 3D) or a .msh of tetrahedra",
+     &ShapeInput::file},
+    {"-discretisation",
+     "Mesh: lattice (the lattice clipped to the mesh) | centroids (one point per 2D element, volume = area x "
+     "thickness; 3D: per tetrahedron, volume = its volume)",
+     &ShapeInput::discretisation},
+};
+
+// The sheet's size and spacing: values in the Body2D, whether each was given in the
+// SceneInput (each is required).
+const OptionTable<Body2D, SceneInput> kSheetOptions = {
+    {"-body_width", "Sheet width along x [m] (required)", &Body2D::width, &SceneInput::width_set},
+    {"-body_height", "Sheet height along y [m] (required)", &Body2D::height, &SceneInput::height_set},
+    {"-body_thickness", "Sheet thickness [m] (required)", &Body2D::thickness, &SceneInput::thickness_set},
+    {"-body_dx", "Lattice spacing of the material points [m] (required)", &Body2D::dx, &SceneInput::dx_set},
+};
+
+// What cuts the sheet, or replaces its lattice, and the dimension, as given (CheckBody).
+const OptionTable<SceneInput> kBodyInputOptions = {
+    {"-body_holes", "Circular holes cx,cy,r,cx,cy,r,... [m] (default: none)", &SceneInput::holes},
+    {"-body_notches", "Pre-notch segments x0,y0,x1,y1,... [m]; bonds crossing one are never created (default: none)", &SceneInput::notches},
+    {"-body_cloud",
+     "Point cloud file instead of the lattice: x, y, volume [, block_id] a point, .csv or .h5 [m, m^3] (default: "
+     "the lattice); 3D: x, y, z, volume [, block_id], text",
+     &SceneInput::cloud},
+    {"-body_dimension",
+     "2 (a plane sheet) or 3 (a solid body: -body_shapes of type box, cylinder, sphere, mesh (a Gmsh volume), notch) "
+     "(default: 3 if a shape is a 3D solid or notch, else 2)",
+     &SceneInput::dimension, &SceneInput::dimension_set},
+    {"-body_shapes", "Shapes applied in order to the sheet, name1,name2,... (each shape S is set by -body_S_...)", &SceneInput::shape_names},
+};
+
+const OptionTable<Scene> kHorizonOptions = {
+    {"-horizon_factor",
+     "Horizon over lattice spacing, delta/dx [-] (given points: over each one's spacing sqrt(V/t), 3D cbrt(V)) (paper: "
+     "3.015; 2.515 and 3.515 also studied)",
+     &Scene::horizon_factor, nullptr, "3.015"},
+};
 
 } // namespace
 
-SetFamily ShapeFamily() { return {"-body_", "-body_shapes", SetOptionSuffixes(ShapeOptions())}; }
+SetFamily ShapeFamily() { return {"-body_", "-body_shapes", OptionRowSuffixes(kShapeOptions)}; }
 
 PetscErrorCode ReadBody(MPI_Comm comm, Scene *scene, SceneInput *in)
 {
-  Body2D     &b = scene->body;
   PetscFunctionBeginUser;
   PetscCall(ReadOptionBlock(comm, nullptr, "Body: a plane sheet [0, width] x [0, height] cut by holes, shapes and notches", [&](OptionReader &r) -> PetscErrorCode {
-    PetscCall(r.Real("-body_width", "Sheet width along x [m] (required)", &b.width, &in->width_set));
-    PetscCall(r.Real("-body_height", "Sheet height along y [m] (required)", &b.height, &in->height_set));
-    PetscCall(r.Real("-body_thickness", "Sheet thickness [m] (required)", &b.thickness, &in->thickness_set));
-    PetscCall(r.Real("-body_dx", "Lattice spacing of the material points [m] (required)", &b.dx, &in->dx_set));
-    PetscCall(r.RealArray("-body_holes", "Circular holes cx,cy,r,cx,cy,r,... [m] (default: none)", &in->holes));
-    PetscCall(r.RealArray("-body_notches", "Pre-notch segments x0,y0,x1,y1,... [m]; bonds crossing one are never created (default: none)", &in->notches));
-    PetscCall(r.String("-body_cloud",
-                       "Point cloud file instead of the lattice: x, y, volume [, block_id] a point, .csv or .h5 [m, m^3] (default: "
-                       "the lattice); 3D: x, y, z, volume [, block_id], text",
-                       &in->cloud));
-    PetscCall(r.Int("-body_dimension",
-                    "2 (a plane sheet) or 3 (a solid body: -body_shapes of type box, cylinder, sphere, mesh (a Gmsh volume), notch) "
-                    "(default: 3 if a shape is a 3D solid or notch, else 2)",
-                    &in->dimension, &in->dimension_set));
-    PetscCall(r.StringArray("-body_shapes", "Shapes applied in order to the sheet, name1,name2,... (each shape S is set by -body_S_...)",
-                            &in->shape_names));
-    return 0;
+    PetscCall(ReadOptionRows(r, kSheetOptions, &scene->body, in));
+    return ReadOptionRows(r, kBodyInputOptions, in);
   }));
   PetscCall(CheckNames(comm, in->shape_names, "-body_shapes", "shape"));
   for (const std::string &name : in->shape_names) {
     ShapeInput        shape;
     const std::string prefix = "body_" + name + "_", title = "Shape " + name;
     shape.name               = name;
-    PetscCall(ReadOptionBlock(comm, prefix.c_str(), title.c_str(), [&](OptionReader &r) { return ReadSetOptions(r, ShapeOptions(), &shape); }));
+    PetscCall(ReadOptionBlock(comm, prefix.c_str(), title.c_str(), [&](OptionReader &r) { return ReadOptionRows(r, kShapeOptions, &shape); }));
     in->shapes.push_back(shape);
   }
-
-  PetscCall(ReadOptionBlock(comm, nullptr, "Horizon", [&](OptionReader &r) -> PetscErrorCode {
-    PetscCall(r.Real("-horizon_factor", "Horizon over lattice spacing, delta/dx [-] (given points: over each one's spacing sqrt(V/t), 3D cbrt(V)) (paper: 3.015; 2.515 and 3.515 also studied)",
-                     &scene->horizon_factor, nullptr, "3.015"));
-    return 0;
-  }));
+  PetscCall(ReadOptionTable(comm, "Horizon", kHorizonOptions, scene));
   PetscFunctionReturn(0);
 }
 
@@ -580,22 +464,6 @@ PetscErrorCode CheckBody(MPI_Comm comm, const SceneInput &in, Scene *scene)
   }
 
   PetscCall(CheckHorizonFactor(comm, *scene));
-  PetscFunctionReturn(0);
-}
-
-// After CheckLoading: the grips outside the sheet (Body2D::grip_rows) are points too.
-PetscErrorCode CheckBodyFits(MPI_Comm comm, const Scene &scene)
-{
-  PetscFunctionBeginUser;
-  const double f = scene.horizon_factor; // bonds a point on the lattice: the horizon's area (2D) or volume (3D) in cells
-  PetscCall(CheckMemory(comm, scene, ScenePointEstimate(scene), scene.dimension == 3 ? 4.0 / 3.0 * M_PI * f * f * f : M_PI * f * f));
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode CheckBodyMemory(MPI_Comm comm, const Scene &scene, int64_t points, int64_t bonds)
-{
-  PetscFunctionBeginUser;
-  PetscCall(CheckMemory(comm, scene, points, points > 0 ? static_cast<double>(bonds) / static_cast<double>(points) : 0.0));
   PetscFunctionReturn(0);
 }
 

@@ -27,37 +27,32 @@ bool ParseComponent(const std::string &text, ComponentLoad *load)
 }
 
 // One load set's options (-load_NAME_...), in -help's order.
-const std::vector<SetOption<LoadInput>> &LoadSetOptions()
-{
-  using L = LoadInput;
-  static const std::vector<SetOption<L>> table = {
-      {"-region", RegionHelp(), &L::region, &L::region_set}, // (the words of the region registry)
-      {"-box", "Region box xmin,ymin,xmax,ymax [m] (3D: xmin,ymin,zmin,xmax,ymax,zmax)", &L::box, &L::box_set},
-      {"-points", "Region polygon (closed) or curve (open polyline): vertices x0,y0,x1,y1,... [m]", &L::points, &L::points_set},
-      {"-group", "Region group: the name of a physical surface, curve or point of the Gmsh file (3D: also a volume)", &L::group},
-      {"-file", "Region group: the Gmsh .geo or .msh file (default: the body's mesh shape's file; 3D: its mesh solid's)", &L::file},
-      {"-block", "Region block: the block id (-body_cloud's block_id column) whose points the set holds", &L::block, &L::block_set},
-      {"-placement",
-       "outside (beyond the specimen's edge) | inside (the specimen's edge rows) | auto (-load_grip_placement's); edge "
-       "regions (the others are inside)",
-       &L::placement},
-      {"-layers",
-       "Point rows the grip holds at its edge [-] (default: 2 horizons deep outside, 1 inside); curve and group "
-       "curve/point (3D: also surface): the points closer than layers x dx",
-       &L::layers, &L::layers_set},
-      {"-depth",
-       "Grip depth instead of -layers: the rows whose centres lie within it [m] (default outside: 2 horizons); curve "
-       "and group curve/point (3D: also surface): the points closer than it (default dx)",
-       &L::depth, &L::depth_set},
-      {"-x", "x component: free | fixed (u = 0) | stretch (follows the schedule)", &L::x},
-      {"-y", "y component: free | fixed (u = 0) | stretch (follows the schedule)", &L::y},
-      {"-z", "z component (3D bodies): free | fixed (u = 0) | stretch (follows the schedule)", &L::z},
-      {"-x_scale", "Scale of a stretch x component: u = scale (lambda - 1) L [-]", &L::x_scale, &L::x_scale_set},
-      {"-y_scale", "Scale of a stretch y component: u = scale (lambda - 1) L [-]", &L::y_scale, &L::y_scale_set},
-      {"-z_scale", "Scale of a stretch z component (3D bodies): u = scale (lambda - 1) L [-]", &L::z_scale, &L::z_scale_set},
-  };
-  return table;
-}
+const OptionTable<LoadInput> kLoadSetOptions = {
+    {"-region", RegionHelp(), &LoadInput::region, &LoadInput::region_set}, // (the words of the region registry)
+    {"-box", "Region box xmin,ymin,xmax,ymax [m] (3D: xmin,ymin,zmin,xmax,ymax,zmax)", &LoadInput::box, &LoadInput::box_set},
+    {"-points", "Region polygon (closed) or curve (open polyline): vertices x0,y0,x1,y1,... [m]", &LoadInput::points, &LoadInput::points_set},
+    {"-group", "Region group: the name of a physical surface, curve or point of the Gmsh file (3D: also a volume)", &LoadInput::group},
+    {"-file", "Region group: the Gmsh .geo or .msh file (default: the body's mesh shape's file; 3D: its mesh solid's)", &LoadInput::file},
+    {"-block", "Region block: the block id (-body_cloud's block_id column) whose points the set holds", &LoadInput::block, &LoadInput::block_set},
+    {"-placement",
+     "outside (beyond the specimen's edge) | inside (the specimen's edge rows) | auto (-load_grip_placement's); edge "
+     "regions (the others are inside)",
+     &LoadInput::placement},
+    {"-layers",
+     "Point rows the grip holds at its edge [-] (default: 2 horizons deep outside, 1 inside); curve and group "
+     "curve/point (3D: also surface): the points closer than layers x dx",
+     &LoadInput::layers, &LoadInput::layers_set},
+    {"-depth",
+     "Grip depth instead of -layers: the rows whose centres lie within it [m] (default outside: 2 horizons); curve "
+     "and group curve/point (3D: also surface): the points closer than it (default dx)",
+     &LoadInput::depth, &LoadInput::depth_set},
+    {"-x", "x component: free | fixed (u = 0) | stretch (follows the schedule)", &LoadInput::x},
+    {"-y", "y component: free | fixed (u = 0) | stretch (follows the schedule)", &LoadInput::y},
+    {"-z", "z component (3D bodies): free | fixed (u = 0) | stretch (follows the schedule)", &LoadInput::z},
+    {"-x_scale", "Scale of a stretch x component: u = scale (lambda - 1) L [-]", &LoadInput::x_scale, &LoadInput::x_scale_set},
+    {"-y_scale", "Scale of a stretch y component: u = scale (lambda - 1) L [-]", &LoadInput::y_scale, &LoadInput::y_scale_set},
+    {"-z_scale", "Scale of a stretch z component (3D bodies): u = scale (lambda - 1) L [-]", &LoadInput::z_scale, &LoadInput::z_scale_set},
+};
 
 PetscErrorCode ReadLoadSet(MPI_Comm comm, const std::string &name, LoadInput *set)
 {
@@ -65,7 +60,7 @@ PetscErrorCode ReadLoadSet(MPI_Comm comm, const std::string &name, LoadInput *se
   const std::string title  = "Load set " + name;
   PetscFunctionBeginUser;
   set->name = name;
-  PetscCall(ReadOptionBlock(comm, prefix.c_str(), title.c_str(), [&](OptionReader &r) { return ReadSetOptions(r, LoadSetOptions(), set); }));
+  PetscCall(ReadOptionBlock(comm, prefix.c_str(), title.c_str(), [&](OptionReader &r) { return ReadOptionRows(r, kLoadSetOptions, set); }));
   PetscFunctionReturn(0);
 }
 
@@ -308,7 +303,7 @@ PetscErrorCode CheckGripField(MPI_Comm comm, const SceneInput &in, Scene *scene)
 
 } // namespace
 
-SetFamily LoadSetFamily() { return {"-load_", "-load_sets", SetOptionSuffixes(LoadSetOptions())}; }
+SetFamily LoadSetFamily() { return {"-load_", "-load_sets", OptionRowSuffixes(kLoadSetOptions)}; }
 
 PetscErrorCode ReadLoading(MPI_Comm comm, Scene *scene, SceneInput *in)
 {

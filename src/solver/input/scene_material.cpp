@@ -1,6 +1,7 @@
 // The material section: the constitutive model and its parameters, the 2D
 // reduction, the bond force form, the density and the failure criterion
-// (-material_*, -force_form, -force_stress_correction, -failure_*). Read in one block, checked
+// (-material_*, -force_form, -force_stress_correction, -failure_*). Read in two blocks (the
+// choices and the failure criterion as option tables), checked
 // once the model is known (check_model, material.hpp, names the parameters). The
 // laws, their own options, help texts, defaults and checks come from the law registry
 // (law_registry.hpp): a new law needs nothing here.
@@ -67,44 +68,75 @@ PetscErrorCode WarnOtherLawsOptions(MPI_Comm comm, const SceneInput &in, ModelKi
   PetscFunctionReturn(0);
 }
 
+
+// The law, the 2D reduction and the force's choices, as given (CheckLawChoice, CheckForce).
+const OptionTable<SceneInput> &MaterialChoiceOptions()
+{
+  using I = SceneInput;
+  static const std::string model_help = ModelHelp(); // (outlives every -help listing)
+  static const OptionTable<I> table = {
+      {"-material_model", model_help.c_str(), &I::model},
+      {"-material_formulation", "2D reduction: plane_stress | plane_strain (a 3D body has none: refused there)", &I::formulation,
+       &I::formulation_set},
+      {"-force_form",
+       "Bond force: energy_consistent (the default: minus the gradient of the strain energy, "
+       "conserves energy undamped, stress-consistent as it is) | bond_only (the paper's eq 23)",
+       &I::force_form},
+      {"-material_volumetric",
+       "Where the volumetric energy U(J) is evaluated: bond (the paper's, U(J_ij) per bond: locks a nearly "
+       "incompressible body in plane strain and 3D) | point (U of the mean dilatation of each point's bonds: "
+       "no locking; energy_consistent force, plane strain or 3D; docs/method.md section 8)",
+       &I::volumetric},
+      {"-force_stress_correction",
+       "Bond-only force made stress-consistent (sum_j t_ij (x) xi_ij V_j = P for a uniform P; "
+       "docs/stress_consistency.md): none (the paper's) | tensor (M_i^-1 per point) | scalar (1/m_i, "
+       "m_i = tr M_i / 2) | auto (tensor for bond_only, none for energy_consistent, which needs none)",
+       &I::stress_correction},
+      {"-force_patch_correction",
+       "Bond-only force made to pass the affine patch test on irregular points (no interior force "
+       "under an affine motion; docs/discretisations.md): virial (the patch test and each point's "
+       "virial stress, 5 numbers a point in 2D, 9 in 3D) | on (the patch test only, lambda: 2 or 3 numbers a "
+       "point) | off | "
+       "auto (virial for given points: a cloud or element centroids, with -force_form bond_only, as it "
+       "keeps the stress consistency that on loses and is the closest to the FE of the three on the "
+       "centroid dogbone; off on the lattice, which passes both as it is)",
+       &I::patch_correction},
+  };
+  return table;
+}
+
+// Failure: the values in the Scene, whether a criterion was given in the SceneInput.
+const OptionTable<Scene, SceneInput> kFailureOptions = {
+    {"-failure_critical_stretch", "Critical bond stretch s_c [-], > 1 (paper: 7.2); absent: no failure", &Scene::critical_stretch,
+     &SceneInput::critical_stretch_set, "7.2"},
+    {"-failure_fracture_energy",
+     "Fracture energy Gamma [J/m^2], > 0: a bond breaks once its pair energy reaches the critical one that "
+     "Gamma and the horizon set, so that a crack starts where G = Gamma on any grid (docs/method.md 5.2)",
+     &Scene::fracture_energy, &SceneInput::fracture_energy_set, "165"},
+    {"-failure_tip_concentration",
+     "With -failure_fracture_energy: kappa [-], the pair energy of the first bond to break at a crack tip over "
+     "its crossing-bond share of the energy release rate; critical pair energy kappa Gamma / c (1: the "
+     "crossing-bond count alone; docs/method.md 5.2)",
+     &Scene::tip_concentration},
+    {"-failure_passes",
+     "With -failure_fracture_energy: breaking passes a step at the same positions [-], >= 0 (0, the default: "
+     "until no bond meets the criterion, the bonds that a pass loads past it break at once; 1: one pass a "
+     "step, the earlier behaviour; docs/method.md 5.2)",
+     &Scene::failure_passes},
+};
+
 } // namespace
 
 PetscErrorCode ReadMaterial(MPI_Comm comm, Scene *scene, SceneInput *in)
 {
-  MaterialParameters &m          = scene->material;
-  const std::string   model_help = ModelHelp(); // (outlives the block that lists it)
+  MaterialParameters &m = scene->material;
   PetscFunctionBeginUser;
   PetscCall(ReadOptionBlock(comm, nullptr, "Material", [&](OptionReader &r) -> PetscErrorCode {
-    PetscCall(r.String("-material_model", model_help.c_str(), &in->model));
-    PetscCall(r.String("-material_formulation", "2D reduction: plane_stress | plane_strain (a 3D body has none: refused there)",
-                       &in->formulation, &in->formulation_set));
-    PetscCall(r.String("-force_form",
-                       "Bond force: energy_consistent (the default: minus the gradient of the strain energy, "
-                       "conserves energy undamped, stress-consistent as it is) | bond_only (the paper's eq 23)",
-                       &in->force_form));
-    PetscCall(r.String("-material_volumetric",
-                       "Where the volumetric energy U(J) is evaluated: bond (the paper's, U(J_ij) per bond: locks a nearly "
-                       "incompressible body in plane strain and 3D) | point (U of the mean dilatation of each point's bonds: "
-                       "no locking; energy_consistent force, plane strain or 3D; docs/method.md section 8)",
-                       &in->volumetric));
+    PetscCall(ReadOptionRows(r, MaterialChoiceOptions(), in));
     PetscCall(r.Real("-material_volumetric_stabilisation",
                      "With -material_volumetric point: kappa / mu [-], the modulus that holds each bond's J_ij near its "
                      "point's mean (the odd-even mode; a few mu: not K, which would lock again; docs/method.md section 8)",
                      &scene->volumetric_stabilisation));
-    PetscCall(r.String("-force_stress_correction",
-                       "Bond-only force made stress-consistent (sum_j t_ij (x) xi_ij V_j = P for a uniform P; "
-                       "docs/stress_consistency.md): none (the paper's) | tensor (M_i^-1 per point) | scalar (1/m_i, "
-                       "m_i = tr M_i / 2) | auto (tensor for bond_only, none for energy_consistent, which needs none)",
-                       &in->stress_correction));
-    PetscCall(r.String("-force_patch_correction",
-                       "Bond-only force made to pass the affine patch test on irregular points (no interior force "
-                       "under an affine motion; docs/discretisations.md): virial (the patch test and each point's "
-                       "virial stress, 5 numbers a point in 2D, 9 in 3D) | on (the patch test only, lambda: 2 or 3 numbers a "
-                       "point) | off | "
-                       "auto (virial for given points: a cloud or element centroids, with -force_form bond_only, as it "
-                       "keeps the stress consistency that on loses and is the closest to the FE of the three on the "
-                       "centroid dogbone; off on the lattice, which passes both as it is)",
-                       &in->patch_correction));
     PetscCall(r.Real("-material_mu", "Shear modulus mu [Pa] (paper: 4.55e3)", &m.mu));
     // every law's own parameters (defaults: the members' initialisers), listed for all
     // laws so that -help shows them and a file may carry them whatever the model (those
@@ -127,26 +159,7 @@ PetscErrorCode ReadMaterial(MPI_Comm comm, Scene *scene, SceneInput *in)
     PetscCall(r.Real("-material_density", "Mass density [kg/m^3]", &scene->density));
     return 0;
   }));
-
-  PetscCall(ReadOptionBlock(comm, nullptr, "Failure (no option: bonds never break; give one of the two)", [&](OptionReader &r) -> PetscErrorCode {
-    PetscCall(r.Real("-failure_critical_stretch", "Critical bond stretch s_c [-], > 1 (paper: 7.2); absent: no failure",
-                     &scene->critical_stretch, &in->critical_stretch_set, "7.2"));
-    PetscCall(r.Real("-failure_fracture_energy",
-                     "Fracture energy Gamma [J/m^2], > 0: a bond breaks once its pair energy reaches the critical one that "
-                     "Gamma and the horizon set, so that a crack starts where G = Gamma on any grid (docs/method.md 5.2)",
-                     &scene->fracture_energy, &in->fracture_energy_set, "165"));
-    PetscCall(r.Real("-failure_tip_concentration",
-                     "With -failure_fracture_energy: kappa [-], the pair energy of the first bond to break at a crack tip over "
-                     "its crossing-bond share of the energy release rate; critical pair energy kappa Gamma / c (1: the "
-                     "crossing-bond count alone; docs/method.md 5.2)",
-                     &scene->tip_concentration));
-    PetscCall(r.Int("-failure_passes",
-                    "With -failure_fracture_energy: breaking passes a step at the same positions [-], >= 0 (0, the default: "
-                    "until no bond meets the criterion, the bonds that a pass loads past it break at once; 1: one pass a "
-                    "step, the earlier behaviour; docs/method.md 5.2)",
-                    &scene->failure_passes));
-    return 0;
-  }));
+  PetscCall(ReadOptionTable(comm, "Failure (no option: bonds never break; give one of the two)", kFailureOptions, scene, in));
   PetscFunctionReturn(0);
 }
 

@@ -18,18 +18,13 @@ namespace bapd {
 namespace {
 
 // One probe's options (-probe_NAME_...), in -help's order.
-const std::vector<SetOption<ProbeInput>> &ProbeOptions()
-{
-  using P = ProbeInput;
-  static const std::vector<SetOption<P>> table = {
-      {"-at", "Position x,y [m] (3D: x,y,z); the nearest material point is recorded (this or -group is required)", &P::at, &P::at_set},
-      {"-group", "A physical point of a Gmsh file (Physical Point(\"name\") = {k};): the probe is placed at it", &P::group},
-      {"-file", "The Gmsh .geo or .msh file of -group (default: the body's mesh shape's file)", &P::file},
-      {"-block", "A block id of the point cloud (-body_cloud's block_id column) that one point has: the probe reads it", &P::block,
-       &P::block_set},
-  };
-  return table;
-}
+const OptionTable<ProbeInput> kProbeOptions = {
+    {"-at", "Position x,y [m] (3D: x,y,z); the nearest material point is recorded (this or -group is required)", &ProbeInput::at, &ProbeInput::at_set},
+    {"-group", "A physical point of a Gmsh file (Physical Point(\"name\") = {k};): the probe is placed at it", &ProbeInput::group},
+    {"-file", "The Gmsh .geo or .msh file of -group (default: the body's mesh shape's file)", &ProbeInput::file},
+    {"-block", "A block id of the point cloud (-body_cloud's block_id column) that one point has: the probe reads it", &ProbeInput::block,
+     &ProbeInput::block_set},
+};
 
 } // namespace
 
@@ -42,7 +37,7 @@ std::string ProbesText(const Scene &s)
   return text;
 }
 
-SetFamily ProbeFamily() { return {"-probe_", "-probes", SetOptionSuffixes(ProbeOptions())}; }
+SetFamily ProbeFamily() { return {"-probe_", "-probes", OptionRowSuffixes(kProbeOptions)}; }
 
 PetscErrorCode ReadProbes(MPI_Comm comm, SceneInput *in)
 {
@@ -57,7 +52,7 @@ PetscErrorCode ReadProbes(MPI_Comm comm, SceneInput *in)
     const std::string prefix = "probe_" + name + "_";
     const std::string title  = "Probe " + name;
     probe.name               = name;
-    PetscCall(ReadOptionBlock(comm, prefix.c_str(), title.c_str(), [&](OptionReader &r) { return ReadSetOptions(r, ProbeOptions(), &probe); }));
+    PetscCall(ReadOptionBlock(comm, prefix.c_str(), title.c_str(), [&](OptionReader &r) { return ReadOptionRows(r, kProbeOptions, &probe); }));
     in->probes.push_back(probe);
   }
   PetscFunctionReturn(0);

@@ -1,5 +1,6 @@
-// Checkpoints: their options, and a restart's options taken from the checkpoint
-// (checkpoint.hpp; writing in checkpoint_write.cpp, reading in checkpoint_read.cpp,
+// Checkpoints: a restart's options taken from the checkpoint (their own options are
+// the scene's output section, scene_output.cpp; checkpoint.hpp; writing in
+// checkpoint_write.cpp, reading in checkpoint_read.cpp,
 // checksums in checkpoint_checksum.cpp).
 #include "bapd/solver/io/checkpoint.hpp"
 
@@ -11,62 +12,6 @@
 #include "bapd/solver/input/scene.hpp"
 
 namespace bapd {
-
-namespace {
-
-// "600s", "10min", "2h" -> seconds; "1000" -> steps. False if neither.
-bool ParseInterval(const std::string &text, PetscInt *steps, double *seconds)
-{
-  *steps   = 0;
-  *seconds = 0;
-  if (text.empty()) return true;
-  char        *end   = nullptr;
-  const double value = std::strtod(text.c_str(), &end);
-  if (end == text.c_str() || !(value >= 0) || !std::isfinite(value)) return false;
-  std::string unit(end);
-  unit.erase(std::remove_if(unit.begin(), unit.end(), [](unsigned char c) { return std::isspace(c); }), unit.end());
-  if (unit.empty()) {
-    if (value != std::floor(value) || value > 1e15) return false;
-    *steps = (PetscInt)value;
-    return true;
-  }
-  if (unit == "s") *seconds = value;
-  else if (unit == "min") *seconds = 60 * value;
-  else if (unit == "h") *seconds = 3600 * value;
-  else return false;
-  return true;
-}
-
-} // namespace
-
-PetscErrorCode CheckpointOptionsFromOptions(MPI_Comm comm, CheckpointOptions *options)
-{
-  char      interval[128] = "", restart[PETSC_MAX_PATH_LEN] = "";
-  PetscBool has_interval = PETSC_FALSE, has_restart = PETSC_FALSE;
-
-  PetscFunctionBegin;
-  for (const char *name : {"-checkpoint_interval", "-checkpoint_on_error", "-restart", "-restart_discard_newer"}) RegisterOptionName(name);
-  PetscOptionsBegin(comm, nullptr, "Checkpoints and restart", "bapd");
-  PetscCall(PetscOptionsString("-checkpoint_interval",
-                               "Between checkpoints (<output_dir>/checkpoint.h5, also written at the end): steps (1000) or wall-clock "
-                               "time (600s, 10min, 2h); absent: only on a signal (SIGTERM, SIGINT, SIGUSR1) or an error",
-                               "docs/options.md", "", interval, sizeof interval, &has_interval));
-  PetscCall(PetscOptionsBool("-checkpoint_on_error", "On divergence, write the last good state as a checkpoint (keeps a copy of the state every step)",
-                             "docs/options.md", options->on_error, &options->on_error, nullptr));
-  PetscCall(PetscOptionsString("-restart", "Continue from this checkpoint file (its options are the defaults)", "docs/options.md", "", restart,
-                               sizeof restart, &has_restart));
-  PetscCall(PetscOptionsBool("-restart_discard_newer",
-                             "With -restart: drop what the output directory holds after the checkpoint (history rows, a later "
-                             "checkpoint.h5, field files) instead of refusing to replace it",
-                             "docs/options.md", options->discard_newer, &options->discard_newer, nullptr));
-  PetscOptionsEnd();
-  const bool ok = ParseInterval(interval, &options->step_interval, &options->wall_interval);
-  PetscCheck(ok, comm, PETSC_ERR_USER,
-             "-checkpoint_interval %s: give a number of steps (e.g. 1000) or a wall-clock time with a unit (600s, 10min or 2h)", interval);
-  PetscCheck(!has_restart || restart[0], comm, PETSC_ERR_USER, "-restart needs the checkpoint file to continue from (e.g. -restart output/checkpoint.h5)");
-  options->restart = has_restart ? restart : "";
-  PetscFunctionReturn(0);
-}
 
 PetscErrorCode CheckpointMergeOptions(MPI_Comm comm)
 {

@@ -147,35 +147,6 @@ bool StretchFromFile(const std::string &path, double *stretch)
 
 } // namespace
 
-PetscErrorCode FieldOptionsFromOptions(MPI_Comm comm, FieldOptions *options)
-{
-  char      geometry[32] = "current";
-  PetscBool set          = PETSC_FALSE;
-
-  PetscFunctionBegin;
-  for (const char *name : {"-output_fields", "-output_fields_interval", "-output_fields_geometry"}) RegisterOptionName(name);
-  PetscOptionsBegin(comm, nullptr, "Field output (HDF5 + XDMF for ParaView)", "bapd");
-  PetscCall(PetscOptionsBool("-output_fields", "Write the point fields (<output_dir>/fields/*.h5 and fields.xdmf)", "docs/options.md",
-                             options->enabled, &options->enabled, nullptr));
-  PetscCall(PetscOptionsInt("-output_fields_interval", "Time steps between field files [-]; 0: every end time / 20 of simulated time", "docs/options.md",
-                            options->interval, &options->interval, nullptr));
-  PetscCall(PetscOptionsString("-output_fields_geometry", "Where fields.xdmf draws the points: current (deformed) or reference positions",
-                               "docs/options.md", geometry, geometry, sizeof geometry, &set));
-  PetscOptionsEnd();
-  PetscCheck(options->interval >= 0, comm, PETSC_ERR_USER, "-output_fields_interval %" PetscInt_FMT ": give a number of steps >= 1 (or 0 for about 20 files a run)",
-             options->interval);
-  std::string value(geometry);
-  for (char &ch : value) ch = (char)std::tolower((unsigned char)ch);
-  if (value == "current") options->geometry = FieldGeometry::current;
-  else if (value == "reference") options->geometry = FieldGeometry::reference;
-  else
-    SETERRQ(comm, PETSC_ERR_USER,
-            "-output_fields_geometry '%s' is not a geometry: choose current (the deformed positions) or reference (the undeformed "
-            "ones; warp by displacement in ParaView to see the deformation)",
-            geometry);
-  PetscFunctionReturn(0);
-}
-
 template <int D>
 void largest_bond_stretch(const PointCloud &cloud, const double *y, const Families &families, const BondState &state,
                           std::size_t n, double *stretch)

@@ -131,18 +131,18 @@ namespace {
 // Kinetic energy of the whole body moving at the fastest grip speed of the schedule,
 // plus a round-off guard (every point moving a millionth of a spacing per step), so
 // a body at rest, whose KE is zero or noise, never raises suspicion.
-double KineticFloor(const Scene &scene, const Schedule &s, double mass, double dt)
+double KineticFloor(const RunawayInputs &in, const Schedule &s, double mass, double dt)
 {
   double          max_rate = 0; // |d lambda / dt| over the schedule
   for (std::size_t k = 1; k < s.time.size(); ++k) max_rate = std::max(max_rate, std::fabs((s.stretch[k] - s.stretch[k - 1]) / (s.time[k] - s.time[k - 1])));
   double max_scale = 0;
-  for (const LoadSet &set : scene.loads) {
+  for (const LoadSet &set : *in.loads) {
     if (set.x == ComponentLoad::stretch) max_scale = std::max(max_scale, std::fabs(set.x_scale));
     if (set.y == ComponentLoad::stretch) max_scale = std::max(max_scale, std::fabs(set.y_scale));
     if (set.z == ComponentLoad::stretch) max_scale = std::max(max_scale, std::fabs(set.z_scale)); // (3D)
   }
-  const double grip_speed = max_scale * max_rate * scene.reference_length;
-  const double guard      = 1e-6 * scene.body.dx / dt;
+  const double grip_speed = max_scale * max_rate * in.reference_length;
+  const double guard      = 1e-6 * in.dx / dt;
   return 0.5 * mass * (grip_speed * grip_speed + guard * guard);
 }
 
@@ -150,7 +150,6 @@ double KineticFloor(const Scene &scene, const Schedule &s, double mass, double d
 
 PetscErrorCode CheckRunawayEnergy(const RunawayInputs &inputs, RunawayEnergyMonitor &monitor, PetscInt step, double t, std::string *message)
 {
-  const Scene   &scene  = *inputs.scene;
   const Layout  &layout = *inputs.layout;
   const PetscInt n      = layout.n_owned;
   MPI_Comm       comm   = inputs.comm;
@@ -161,9 +160,9 @@ PetscErrorCode CheckRunawayEnergy(const RunawayInputs &inputs, RunawayEnergyMoni
   message->clear();
   if (!monitor.started()) {
     double mass = 0;
-    for (PetscInt i = 0; i < n; ++i) mass += scene.density * layout.cloud.volume[i];
+    for (PetscInt i = 0; i < n; ++i) mass += inputs.density * layout.cloud.volume[i];
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &mass, 1, MPI_DOUBLE, MPI_SUM, comm));
-    monitor.Start(KineticFloor(scene, *inputs.schedule, mass, dt), dt); // a tick: the full step
+    monitor.Start(KineticFloor(inputs, *inputs.schedule, mass, dt), dt); // a tick: the full step
   }
   // Kinetic energy and the fastest owned point (for the message), one pass. The sum is
   // reproducible: the same bits on every rank and on any number of ranks, so every
@@ -179,7 +178,7 @@ PetscErrorCode CheckRunawayEnergy(const RunawayInputs &inputs, RunawayEnergyMoni
     const double *vi = v + D * i;
     double        vv = vi[0] * vi[0] + vi[1] * vi[1];
     if (D == 3) vv += vi[2] * vi[2];
-    per_point[i] = std::min(0.5 * scene.density * layout.cloud.volume[i] * vv, RunawayEnergyMonitor::overflow); // finite, whatever the speed
+    per_point[i] = std::min(0.5 * inputs.density * layout.cloud.volume[i] * vv, RunawayEnergyMonitor::overflow); // finite, whatever the speed
     if (per_point[i] > fastest) fastest = per_point[i], fastest_i = i;
   }
   PetscCall(VecRestoreArrayRead(inputs.state, &x));

@@ -12,31 +12,6 @@
 
 namespace bapd {
 
-const char *to_string(RelaxationKind kind) { return kind == RelaxationKind::adaptive ? "adaptive" : "none"; }
-
-PetscErrorCode RelaxationFromOptions(MPI_Comm comm, RelaxationKind *kind)
-{
-  char      text[64] = "none";
-  PetscBool set      = PETSC_FALSE;
-
-  PetscFunctionBeginUser;
-  PetscOptionsBegin(comm, nullptr, "Static states (relaxation)", "bapd");
-  PetscCall(PetscOptionsString("-relaxation",
-                               "Damping route to static states: none (the -damping coefficient) or adaptive (adaptive dynamic "
-                               "relaxation: c = 2 omega_min estimated every step, at least -damping)",
-                               "docs/options.md", text, text, sizeof text, &set));
-  PetscOptionsEnd();
-  std::string value(text);
-  for (char &ch : value) ch = (char)std::tolower((unsigned char)ch);
-  if (value == "none") *kind = RelaxationKind::none;
-  else if (value == "adaptive") *kind = RelaxationKind::adaptive;
-  else
-    SETERRQ(comm, PETSC_ERR_USER,
-            "-relaxation '%s' is not a relaxation route: choose none (fixed -damping) or adaptive (adaptive dynamic relaxation)",
-            text);
-  PetscFunctionReturn(0);
-}
-
 template <int D> void AdaptiveRelaxation<D>::Setup(RelaxationKind kind, std::size_t n_owned, const double *volume, const std::vector<PetscInt> &held_dofs,
                                double floor, double stable_dt)
 {

@@ -11,11 +11,11 @@
 namespace bapd {
 
 template <int D>
-PetscErrorCode TangentOperator::Setup(MPI_Comm comm, const Scene &scene, const Layout &layout, const Families &families,
+PetscErrorCode TangentOperator::Setup(MPI_Comm comm, const ForceModel &force, const Layout &layout, const Families &families,
                                       const nd::BondGeometry<D> &geometry, const BondState &state)
 {
   PetscFunctionBegin;
-  PetscCheck(scene.force_form == ForceForm::energy_consistent, comm, PETSC_ERR_USER,
+  PetscCheck(force.force_form == ForceForm::energy_consistent, comm, PETSC_ERR_USER,
              "-solver static needs -force_form energy_consistent (the default): the bond-only force is not the gradient of an "
              "energy, so it has no symmetric tangent and no energy to minimise");
   comm_      = comm;
@@ -23,8 +23,8 @@ PetscErrorCode TangentOperator::Setup(MPI_Comm comm, const Scene &scene, const L
   families_  = &families;
   dimension_ = D;
   auto ws        = std::make_shared<nd::TangentWorkspace<D>>();
-  ws->volumetric = scene.volumetric;
-  ws->kappa      = scene.volumetric_stabilisation * scene.material.mu;
+  ws->volumetric = force.volumetric;
+  ws->kappa      = force.volumetric_stabilisation * force.material.mu;
   ws->reserve(families);
   // Per point: its block's points by increasing PETSc index (the order PETSc's row search
   // is fastest in), and the block permuted to that order.
@@ -63,14 +63,14 @@ PetscErrorCode TangentOperator::Setup(MPI_Comm comm, const Scene &scene, const L
       PetscFunctionReturn(0);
     };
   };
-  if constexpr (D == 2) with_model(scene.model, scene.formulation, scene.material, choose);
-  else with_model_3d(scene.model, scene.material, choose);
+  if constexpr (D == 2) with_model(force.model, force.formulation, force.material, choose);
+  else with_model_3d(force.model, force.material, choose);
   PetscFunctionReturn(0);
 }
 
-template PetscErrorCode TangentOperator::Setup<2>(MPI_Comm, const Scene &, const Layout &, const Families &, const nd::BondGeometry<2> &,
+template PetscErrorCode TangentOperator::Setup<2>(MPI_Comm, const ForceModel &, const Layout &, const Families &, const nd::BondGeometry<2> &,
                                                   const BondState &);
-template PetscErrorCode TangentOperator::Setup<3>(MPI_Comm, const Scene &, const Layout &, const Families &, const nd::BondGeometry<3> &,
+template PetscErrorCode TangentOperator::Setup<3>(MPI_Comm, const ForceModel &, const Layout &, const Families &, const nd::BondGeometry<3> &,
                                                   const BondState &);
 
 // The pattern: owned point i adds S_i x S_i blocks, S_i = {i} and its family, so the

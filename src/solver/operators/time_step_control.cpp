@@ -1,6 +1,6 @@
 // Time-step control: the step at rest, when to re-estimate and what the
 // step does with the estimate (the dead band, the rate limit, the back-off, the kink
-// check, the travel limit), restarts. The options: time_step_options.cpp; the
+// check, the travel limit), restarts. The options: the scene's, scene_time_stepping.cpp; the
 // estimate itself: time_step_estimate.cpp.
 #include "bapd/solver/operators/time_step_control.hpp"
 
@@ -21,21 +21,17 @@ namespace bapd {
 // settles (StartupKrylov), or 60 power iterations (-time_step_estimate power, the
 // estimate before the search; it gives the same bits as then). Norms are reproducible
 // sums: dt is the same on any number of ranks.
-PetscErrorCode TimeStepControl::EstimateStable(MPI_Comm comm, const Scene &scene, const TimeStepOptions &options, const Layout &layout,
+PetscErrorCode TimeStepControl::EstimateStable(MPI_Comm comm, const TimeStepping &stepping, const Layout &layout,
                                                const Loading &loading, ForceOperator &force)
 {
   const int      D = loading.dimension(); // dofs a point (2 or 3)
   const PetscInt n = D * layout.n_owned;
 
   PetscFunctionBegin;
-  // The points' indicator forms F~ and the plane-stress I1bar of a 2D point.
-  PetscCheck(D == 2 || !options.indicator, comm, PETSC_ERR_USER,
-             "-time_step_reestimate_indicator is a 2D measurement (the points' plane-stress I1bar): leave it out for a 3D body, or use "
-             "-time_step_reestimate_bonds");
   dimension_ = D;
-  options_ = options;
-  inv_rho_ = 1.0 / scene.density;
-  eps_     = 1e-7 * scene.body.dx;
+  options_ = stepping.options;
+  inv_rho_ = 1.0 / stepping.density;
+  eps_     = 1e-7 * stepping.dx;
   // -time_step_travel: given, or chosen here. With failure on, bonds that snap fling
   // their points at many times the wave speed at rest (docs/stability.md, section 5):
   // 0.1 dx a step is what the torn sheets need (0.3 is not enough). A step that the
@@ -45,14 +41,14 @@ PetscErrorCode TimeStepControl::EstimateStable(MPI_Comm comm, const Scene &scene
   // above half the base step: the search is what tells a stiff mode at the tip
   // from the forces of bonds that broke after the base point's evaluation (which once
   // read as 1e6 x lambda_rest on the notched sheet; Reestimate and Kink explain).
-  const bool tip_search = scene.failure && options_.tip > 0 && options_.interval > 0 && options_.krylov;
-  floor_        = options_.floor > 0 ? options_.floor : (scene.failure && !tip_search ? 0.5 : 0.1);
-  const LawEntry &law = law_entry(scene.model);
-  span_         = law.limit ? law.I1bar_limit(scene.material) - 3.0 : 0.0;
-  plane_strain_ = scene.formulation == Formulation::plane_strain;
-  failure_      = scene.failure;
-  travel_auto_  = scene.time_step_travel < 0;
-  travel_given_ = (travel_auto_ ? (scene.failure ? 0.1 : 0.0) : scene.time_step_travel) * scene.body.dx;
+  const bool tip_search = stepping.failure && options_.tip > 0 && options_.interval > 0 && options_.krylov;
+  floor_        = options_.floor > 0 ? options_.floor : (stepping.failure && !tip_search ? 0.5 : 0.1);
+  const LawEntry &law = law_entry(stepping.model);
+  span_         = law.limit ? law.I1bar_limit(stepping.material) - 3.0 : 0.0;
+  plane_strain_ = stepping.formulation == Formulation::plane_strain;
+  failure_      = stepping.failure;
+  travel_auto_  = stepping.time_step_travel < 0;
+  travel_given_ = (travel_auto_ ? (stepping.failure ? 0.1 : 0.0) : stepping.time_step_travel) * stepping.dx;
   held_.assign(n, 0);
   for (const ConstrainedDof &d : loading.constrained()) held_[d.dof] = 1;
   v_.assign(n, 0.0);
@@ -66,16 +62,7 @@ PetscErrorCode TimeStepControl::EstimateStable(MPI_Comm comm, const Scene &scene
   const PetscInt run_vectors = options_.interval > 0 && options_.krylov ? std::min(std::max(options_.max_iterations, options_.tip) + 1, krylov_cap) : 0;
   if (run_vectors > 0) PetscCall(KrylovReserve(run_vectors));
   if (tip_search) v_kept_.assign(n, 0.0);
-  // A deterministic start with energy in every wavelength: a hash of the natural id.
-  for (PetscInt i = 0; i < layout.n_owned; ++i)
-    for (int c = 0; c < D; ++c) {
-      uint64_t h = (uint64_t)layout.cloud.natural_id[i] * D + c + 0x9E3779B97F4A7C15ULL;
-      h ^= h >> 33;
-      h *= 0xff51afd7ed558ccdULL;
-      h ^= h >> 33;
-      v_[D * i + c] = held_[D * i + c] ? 0.0 : (double)(h >> 11) / 9007199254740992.0 - 0.5;
-    }
-  seed_ = v_;
+  SeedStart(layout);
   std::vector<double> u0(n, 0.0), a0(n); // set-up only
   // The warm starts are the operator's own, zero (no warm start) at set-up: the Krylov
   // search only reads them, as the re-estimates read the committed ones; the power
@@ -105,11 +92,36 @@ PetscErrorCode TimeStepControl::EstimateStable(MPI_Comm comm, const Scene &scene
   // The Rayleigh quotient approaches lambda_max from below: pad it by 10 %.
   lambda_rest_ = lambda_ = lambda_largest_ = lambda;
   stable_dt_ = stable_now_ = 2.0 / std::sqrt(1.1 * lambda);
-  SetBaseStep(scene.time_step > 0 ? scene.time_step : scene.time_step_safety * stable_dt_);
+  SetBaseStep(stepping.time_step > 0 ? stepping.time_step : stepping.time_step_safety * stable_dt_);
   next_estimate_    = options_.interval;
   interval_now_     = options_.interval;
   stretch_now_      = options_.stretch;
   estimate_stretch_ = loading.stretch_at(0.0);
+  PetscCall(ReportStartup(comm, stepping.time_step > 0, lambda));
+  PetscFunctionReturn(0);
+}
+
+// A deterministic start with energy in every wavelength: a hash of the natural id
+// (held dofs zero), kept as the seed of later searches.
+void TimeStepControl::SeedStart(const Layout &layout)
+{
+  const int D = dimension_;
+  for (PetscInt i = 0; i < layout.n_owned; ++i)
+    for (int c = 0; c < D; ++c) {
+      uint64_t h = (uint64_t)layout.cloud.natural_id[i] * D + c + 0x9E3779B97F4A7C15ULL;
+      h ^= h >> 33;
+      h *= 0xff51afd7ed558ccdULL;
+      h ^= h >> 33;
+      v_[D * i + c] = held_[D * i + c] ? 0.0 : (double)(h >> 11) / 9007199254740992.0 - 0.5;
+    }
+  seed_ = v_;
+}
+
+// The set-up's lines on the step: the estimate, the re-estimates, the travel limit, and
+// a step given (-time_step) or taken above the stable one.
+PetscErrorCode TimeStepControl::ReportStartup(MPI_Comm comm, bool step_given, double lambda) const
+{
+  PetscFunctionBegin;
   PetscCall(PetscPrintf(comm, "Stable time step %.4e s (%s, %" PetscInt_FMT " force evaluations, lambda_max = %.6e 1/s^2); using dt = %.4e s (%.3g x stable)\n",
                         stable_dt_, options_.startup_krylov ? "Krylov search" : "power iteration", startup_evaluations_, lambda, dt_, dt_ / stable_dt_));
   if (options_.interval > 0)
@@ -118,7 +130,7 @@ PetscErrorCode TimeStepControl::EstimateStable(MPI_Comm comm, const Scene &scene
                           travel_ > 0 ? "; shorter while points with bonds fly" : ""));
   if (travel_ > 0 && travel_auto_)
     PetscCall(PetscPrintf(comm, "Time step: with failure on, no point with bonds moves more than 0.1 dx in one step (-time_step_travel 0 turns it off)\n"));
-  if (scene.time_step > 0) PetscCall(CheckFixedStep(comm, "-time_step", dt_));
+  if (step_given) PetscCall(CheckFixedStep(comm, "-time_step", dt_));
   else if (dt_ > stable_dt_)
     PetscCall(PetscPrintf(comm, "\n*** WARNING: dt = %.4e s is LARGER than the stable step %.4e s: expect the run to blow up.\n"
                                 "*** Lower -time_step_safety below 1.\n\n",

@@ -5,7 +5,6 @@
 #include <gtest/gtest.h>
 #include <petscsys.h>
 
-#include <cstdarg>
 #include <cstdio>
 #include <cstdlib>
 #include <map>
@@ -163,30 +162,12 @@ void ExpectSameScene(const Scene &a, const Scene &b)
 }
 
 // -help lists the options of every component even without a scene, and validates
-// nothing. PETSc lists a block only the first time the process opens it, so this
-// test must come first in the file (gtest runs tests in file order; no shuffling).
-std::string *help_text = nullptr;
-PetscErrorCode CaptureHelp(MPI_Comm, const char format[], ...)
-{
-  char    buffer[4096];
-  va_list args;
-  va_start(args, format);
-  std::vsnprintf(buffer, sizeof(buffer), format, args);
-  va_end(args);
-  if (help_text) *help_text += buffer;
-  return 0;
-}
-
+// nothing. It must come first in the file (CaptureHelp, scene_reading.hpp).
 TEST_F(SceneOptions, HelpListsEveryComponentWithoutAScene)
 {
   std::string text;
-  help_text  = &text;
-  auto saved = PetscHelpPrintf;
-  PetscHelpPrintf = CaptureHelp;
-  Scene scene;
-  const PetscErrorCode ierr = Read({{"-help", ""}, {"-load_sets", "grip"}}, &scene);
-  PetscHelpPrintf = saved;
-  help_text       = nullptr;
+  Scene       scene;
+  const PetscErrorCode ierr = bapd::test::CaptureHelp([&] { return Read({{"-help", ""}, {"-load_sets", "grip"}}, &scene); }, &text);
   ASSERT_EQ(ierr, 0) << bapd::test::UserErrorText();
   EXPECT_TRUE(scene.help_only);
   for (const char *name : {"-body_width", "-body_holes", "-horizon_factor", "-material_mu", "-material_bulk_ratio", "-failure_critical_stretch",

@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 #include <petscsys.h>
 
+#include <cstdarg>
+#include <cstdio>
 #include <string>
 
 #include "bapd/solver/input/scene.hpp"
@@ -27,6 +29,35 @@ inline std::string UserErrorText()
   char       *specific = nullptr;
   PetscErrorMessage(PETSC_ERR_USER, &generic, &specific);
   return specific ? specific : "";
+}
+
+// What -help prints while `read` runs: PetscHelpPrintf is pointed at a string for it.
+// PETSc lists a block only the first time the process opens it, so a test that reads
+// the help must come before any other reading in its file (gtest keeps file order).
+inline std::string *&HelpSink()
+{
+  static std::string *sink = nullptr;
+  return sink;
+}
+inline PetscErrorCode AppendHelp(MPI_Comm, const char format[], ...)
+{
+  char    buffer[4096];
+  va_list args;
+  va_start(args, format);
+  std::vsnprintf(buffer, sizeof(buffer), format, args);
+  va_end(args);
+  if (HelpSink()) *HelpSink() += buffer;
+  return 0;
+}
+template <class Read> PetscErrorCode CaptureHelp(const Read &read, std::string *text)
+{
+  HelpSink()      = text;
+  auto saved      = PetscHelpPrintf;
+  PetscHelpPrintf = AppendHelp;
+  const PetscErrorCode ierr = read();
+  PetscHelpPrintf = saved;
+  HelpSink()      = nullptr;
+  return ierr;
 }
 
 template <class Options> class SceneReading : public ::testing::Test {

@@ -164,7 +164,7 @@ private:
   PetscErrorCode CrackExtent(double *area, double tip[4]);
 
   // Field output, checkpoints and restart (simulation_output.cpp).
-  PetscErrorCode ReadOutputOptions();
+  PetscErrorCode TakeOutputOptions(); // the scene's output section into output_
   PetscErrorCode ClaimOutputDirectory(); // locked; a restart's newer results refused (output_directory.hpp)
   PetscErrorCode SetupOutput();
   PetscErrorCode OutputOnDivergence();
@@ -198,7 +198,6 @@ private:
   std::vector<double> tips_;     // every rank's crack tip (CrackExtent)
   std::vector<std::size_t> released_points_; // ReleasedEnergy's scratch (capacity n_owned)
   std::vector<double>      released_terms_;  // n_owned
-  TimeStepOptions time_step_options_; // -time_step_reestimate ...
   TimeStepControl step_control_;      // stable step, its re-estimate, travel limit (time_step_control.hpp)
   std::vector<ProbePoint> probes_;
 
@@ -232,7 +231,6 @@ private:
   std::vector<std::unique_ptr<RunObserver>> observers_; // SetupObservers
   CheckpointObserver *checkpoints_ = nullptr; // (in observers_) its wall clock, read in Report's reduction
   ProgressObserver   *progress_    = nullptr; // (in observers_) likewise
-  RelaxationKind     relaxation_kind_ = RelaxationKind::none; // -relaxation
   AdaptiveRelaxation<D> relaxation_;                          // its damping coefficient (relaxation.hpp)
 
   PetscLogStage stage_setup_ = 0, stage_partition_ = 0, stage_force_ = 0, stage_ghost_ = 0, stage_step_ = 0,

@@ -76,40 +76,60 @@ private:
   std::string       problem_;
 };
 
-// One option of a named set (a load set, a probe, a shape: -load_NAME_region): its name
-// after the set's prefix ("-region"), its help, where its value goes in the set's input
-// record and, if it has one, the flag that says it was given. A set's options are one
-// table (LoadSetOptions, ProbeOptions, ShapeOptions): ReadSetOptions reads it (in order,
-// so that -help lists it so), and the unused-option check and -help take the names
-// from it (SetFamily, scene_input.hpp).
-template <class Input> struct SetOption {
+// One row of an option table: the option's name (after the set's prefix for a named
+// set: "-region" of -load_NAME_region), its help, where its value goes in the section's
+// input record and, if it has one, the flag (in `Flags`, the record of what was given)
+// that says it was given; `example`: a valid value for the message on a malformed real.
+// A block of options is read from tables of rows, the top-level sections' (kStepOptions,
+// kOutputOptions, ... in scene_*.cpp) as the named sets' (kLoadSetOptions,
+// kProbeOptions, kShapeOptions): ReadOptionRows reads one in order, so that -help lists
+// it so, and the unused-option check and -help take the names from it (SetFamily,
+// scene_input.hpp).
+template <class Input, class Flags = Input> struct OptionRow {
   const char *name;
   const char *help;
-  std::variant<std::string Input::*, double Input::*, PetscInt Input::*, std::vector<double> Input::*> value;
-  bool Input::*given = nullptr;
+  std::variant<std::string Input::*, double Input::*, PetscInt Input::*, std::vector<double> Input::*, bool Input::*,
+               std::vector<std::string> Input::*, PetscBool Input::*>
+              value;
+  bool Flags::*given   = nullptr;
+  const char *example = "0.01";
 };
+template <class Input, class Flags = Input> using OptionTable = std::vector<OptionRow<Input, Flags>>;
 
-// Reads every option of `table` into *input through `r`.
-template <class Input>
-PetscErrorCode ReadSetOptions(OptionReader &r, const std::vector<SetOption<Input>> &table, Input *input)
+// Reads every option of `table` into *input through `r`; the given flags into *flags.
+template <class Input, class Flags>
+PetscErrorCode ReadOptionRows(OptionReader &r, const OptionTable<Input, Flags> &table, Input *input, Flags *flags)
 {
   PetscFunctionBeginUser;
-  for (const SetOption<Input> &o : table) {
+  for (const OptionRow<Input, Flags> &o : table) {
     bool given = false;
     if (auto text = std::get_if<std::string Input::*>(&o.value)) PetscCall(r.String(o.name, o.help, &(input->**text), &given));
-    else if (auto real = std::get_if<double Input::*>(&o.value)) PetscCall(r.Real(o.name, o.help, &(input->**real), &given));
+    else if (auto real = std::get_if<double Input::*>(&o.value)) PetscCall(r.Real(o.name, o.help, &(input->**real), &given, o.example));
     else if (auto whole = std::get_if<PetscInt Input::*>(&o.value)) PetscCall(r.Int(o.name, o.help, &(input->**whole), &given));
-    else PetscCall(r.RealArray(o.name, o.help, &(input->*std::get<std::vector<double> Input::*>(o.value)), &given));
-    if (o.given) input->*o.given = given;
+    else if (auto reals = std::get_if<std::vector<double> Input::*>(&o.value)) PetscCall(r.RealArray(o.name, o.help, &(input->**reals), &given));
+    else if (auto names = std::get_if<std::vector<std::string> Input::*>(&o.value))
+      PetscCall(r.StringArray(o.name, o.help, &(input->**names), &given));
+    else if (auto flag = std::get_if<bool Input::*>(&o.value)) PetscCall(r.Bool(o.name, o.help, &(input->**flag)));
+    else {
+      PetscBool &petsc = input->*std::get<PetscBool Input::*>(o.value);
+      bool       value = petsc;
+      PetscCall(r.Bool(o.name, o.help, &value));
+      petsc = value ? PETSC_TRUE : PETSC_FALSE;
+    }
+    if (o.given) flags->*o.given = given;
   }
   PetscFunctionReturn(0);
 }
+template <class Input> PetscErrorCode ReadOptionRows(OptionReader &r, const OptionTable<Input> &table, Input *input)
+{
+  return ReadOptionRows(r, table, input, input);
+}
 
 // The names of a set's options as suffixes of the set's name: "_region", ...
-template <class Input> std::vector<std::string> SetOptionSuffixes(const std::vector<SetOption<Input>> &table)
+template <class Input> std::vector<std::string> OptionRowSuffixes(const OptionTable<Input> &table)
 {
   std::vector<std::string> suffixes;
-  for (const SetOption<Input> &o : table) suffixes.push_back(std::string("_") + (o.name + 1));
+  for (const OptionRow<Input> &o : table) suffixes.push_back(std::string("_") + (o.name + 1));
   return suffixes;
 }
 
@@ -118,6 +138,17 @@ template <class Input> std::vector<std::string> SetOptionSuffixes(const std::vec
 // than once, e.g. for -help); the first malformed value is then reported.
 PetscErrorCode ReadOptionBlock(MPI_Comm comm, const char *prefix, const char *title,
                                const std::function<PetscErrorCode(OptionReader &)> &read);
+
+// A top-level block that is one table: its rows into *input, their given flags into *flags.
+template <class Input, class Flags>
+PetscErrorCode ReadOptionTable(MPI_Comm comm, const char *title, const OptionTable<Input, Flags> &table, Input *input, Flags *flags)
+{
+  return ReadOptionBlock(comm, nullptr, title, [&](OptionReader &r) { return ReadOptionRows(r, table, input, flags); });
+}
+template <class Input> PetscErrorCode ReadOptionTable(MPI_Comm comm, const char *title, const OptionTable<Input> &table, Input *input)
+{
+  return ReadOptionTable(comm, title, table, input, input);
+}
 
 } // namespace bapd
 

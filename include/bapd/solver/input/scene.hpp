@@ -3,9 +3,10 @@
 // given with -options_file_yaml, every value overridable on the command line).
 // SI units throughout. See docs/options.md for the full list.
 //
-// This header is the whole public interface: the grips, probes, schedule and option
-// registry have their own headers, included here. The definitions: scene.cpp (reading
-// and checking, SceneView) lists the files of each section.
+// This header is the whole public interface: the grips, probes, schedule, output and
+// time-stepping records and the option registry have their own headers, included here.
+// The definitions: scene.cpp (reading and checking, SceneView) lists the files of each
+// section.
 #include <petscsys.h>
 #include <array>
 #include <cstdint>
@@ -18,8 +19,10 @@
 #include "bapd/core/materials/material.hpp"
 #include "bapd/solver/input/options.hpp"
 #include "bapd/solver/input/scene_loading.hpp"
+#include "bapd/solver/input/scene_output.hpp"
 #include "bapd/solver/input/scene_probes.hpp"
 #include "bapd/solver/input/scene_schedule.hpp"
+#include "bapd/solver/input/scene_time_stepping.hpp"
 #include "bapd/core/kernel/force_form.hpp"
 #include "bapd/core/kernel/volumetric.hpp"
 #include "bapd/core/kernel/stress_correction.hpp"
@@ -70,6 +73,31 @@ struct Body3D {
   std::array<double, 3>              lo{}, hi{};   // the extent of the points' cells [m]: lattice point +- dx/2
 };
 
+// What the force (ForceOperator, TangentOperator) reads of the scene: the law, its 2D
+// reduction and parameters, and how the bond force is formed (Scene::force_model).
+struct ForceModel {
+  ModelKind                 model;
+  Formulation               formulation;
+  ForceForm                 force_form;
+  Volumetric                volumetric;
+  double                    volumetric_stabilisation; // kappa / mu
+  const MaterialParameters &material;
+};
+
+// What the time-step control (TimeStepControl::EstimateStable) reads of the scene: the
+// step asked for, the re-estimate's options, and of the body and law what sets the
+// probes' size, the mass, the travel limit and the law's stiffening span
+// (Scene::time_stepping).
+struct TimeStepping {
+  double                    time_step, time_step_safety, time_step_travel; // -time_step, -time_step_safety, -time_step_travel
+  const TimeStepOptions    &options;                                       // -time_step_reestimate ...
+  double                    density, dx;                                   // [kg/m^3], the spacing [m]
+  bool                      failure;
+  ModelKind                 model;
+  Formulation               formulation;
+  const MaterialParameters &material;
+};
+
 struct Scene {
   // 2 (the plane sheet `body`) or 3 (`body3d`): the driver's D (SimulationD<D>,
   // chosen once by main.cpp from the scene).
@@ -112,6 +140,8 @@ struct Scene {
   PetscInt    output_interval = 100; // steps between history rows; the static test runs at these rows
   PetscInt    output_history_rows = 100; // history rows by load: one at each end time / N of simulated time too (0: off)
   bool        output_final_state = false; // final_state.csv and broken_bonds.csv at the end
+  FieldOptions      fields;     // -output_fields* (fields.hpp)
+  CheckpointOptions checkpoint; // -checkpoint_*, -restart* (checkpoint.hpp)
 
   SolverKind    solver = SolverKind::dynamic; // -solver
   PartitionType partition_type   = PartitionType::metis; // -partition_type
@@ -127,12 +157,20 @@ struct Scene {
   PetscInt end_step         = -1;   // stop after this step, before end_time, on purpose (split runs, tests; -1: run to end_time)
   PetscInt progress_interval = 0;   // steps between progress lines (0: about 20 lines a run)
   double   progress_wall_interval = 10.0; // also a progress line after this much wall time [s] since the last (0: off)
+  RelaxationKind  relaxation = RelaxationKind::none; // -relaxation (relaxation.hpp)
+  TimeStepOptions time_step_control;                 // the stable step's re-estimate, -time_step_reestimate ... (time_step_control.hpp)
 
   // -help was given: every option was listed, nothing was validated and the scene
-  // holds defaults only. The driver should list the other components' options and stop.
+  // holds defaults only. The driver stops (with -help all, after PETSc's time stepper
+  // has listed its options).
   bool help_only = false;
 
   double horizon() const { return horizon_factor * body.dx; } // (given points: the smallest delta_i)
+  ForceModel force_model() const { return {model, formulation, force_form, volumetric, volumetric_stabilisation, material}; }
+  TimeStepping time_stepping() const
+  {
+    return {time_step, time_step_safety, time_step_travel, time_step_control, density, body.dx, failure, model, formulation, material};
+  }
   // Prescribed displacement of a stretch component with the given scale at time t,
   // u = scale * (lambda(t) - 1) * reference_length, and its rate du/dt.
   double grip_displacement(double scale, double t) const

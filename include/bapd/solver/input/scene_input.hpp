@@ -64,6 +64,10 @@ struct SceneInput {
   std::vector<std::string> probe_names;
   std::vector<ProbeInput>  probes;
   bool                     end_time_set = false;
+  std::string              solver = "dynamic", partition_type = "metis"; // -solver, -partition_type as given
+  std::string              relaxation = "none";       // -relaxation as given
+  std::string              field_geometry = "current"; // -output_fields_geometry as given
+  bool                     restart_set = false;        // -restart given (it needs a file)
 };
 
 // The options of the named sets, each family from its set's option table: -load_NAME_...
@@ -98,10 +102,13 @@ PetscErrorCode CheckBodyFits(MPI_Comm comm, const Scene &scene);
 PetscErrorCode ReadMaterial(MPI_Comm comm, Scene *scene, SceneInput *in);
 PetscErrorCode CheckMaterial(MPI_Comm comm, const SceneInput &in, Scene *scene);
 // Each section's lines of SceneText: the material, force and failure; the load sets and
-// the schedule (scene_loading.cpp); the probes (scene_probes.cpp).
+// the schedule (scene_loading.cpp); the probes (scene_probes.cpp); the time step, the
+// run's end and holds (scene_time_stepping.cpp); the output (scene_output.cpp).
 std::string MaterialText(const Scene &scene);
 std::string LoadingText(const Scene &scene);
 std::string ProbesText(const Scene &scene);
+std::string TimeSteppingText(const Scene &scene);
+std::string OutputText(const Scene &scene);
 // Loading (scene_loading.cpp): -load_sets, -load_schedule, -load_NAME_*.
 PetscErrorCode ReadLoading(MPI_Comm comm, Scene *scene, SceneInput *in);
 // grip_rows: the rows the edge grips placed outside the sheet add beyond it, for the
@@ -119,10 +126,16 @@ PetscErrorCode GroupGmshFile(MPI_Comm comm, const std::string &given, const std:
 // Probes (scene_probes.cpp): -probes, -probe_NAME_at or -probe_NAME_group.
 PetscErrorCode ReadProbes(MPI_Comm comm, SceneInput *in);
 PetscErrorCode CheckProbes(MPI_Comm comm, const SceneInput &in, Scene *scene);
-// Output and time stepping (scene_run.cpp): -output_*, -time_step*, -damping,
-// -static_tolerance, -end_time, -progress_interval. Checked after the loading (the
+// Output (scene_output.cpp): -output_*, -checkpoint_*, -restart*.
+PetscErrorCode ReadOutput(MPI_Comm comm, Scene *scene, SceneInput *in);
+PetscErrorCode CheckOutput(MPI_Comm comm, const SceneInput &in, Scene *scene);
+// The run (scene_run.cpp): -solver, -partition_type, -log_setup_memory, -static_*.
+PetscErrorCode ReadRun(MPI_Comm comm, Scene *scene, SceneInput *in);
+PetscErrorCode CheckRun(MPI_Comm comm, const SceneInput &in, Scene *scene);
+// Time stepping (scene_time_stepping.cpp): -time_step*, -damping, -relaxation,
+// -static_tolerance, -end_time, -end_step, -progress_*. Checked after the loading (the
 // end time defaults to the schedule's).
-PetscErrorCode ReadOutputTime(MPI_Comm comm, Scene *scene, SceneInput *in);
-PetscErrorCode CheckOutputTime(MPI_Comm comm, const SceneInput &in, Scene *scene);
+PetscErrorCode ReadTimeStepping(MPI_Comm comm, Scene *scene, SceneInput *in);
+PetscErrorCode CheckTimeStepping(MPI_Comm comm, const SceneInput &in, Scene *scene);
 
 } // namespace bapd

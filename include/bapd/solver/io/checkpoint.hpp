@@ -57,6 +57,7 @@
 
 #include "bapd/core/kernel/bond_state.hpp"
 #include "bapd/core/geometry/family.hpp"
+#include "bapd/solver/input/scene_output.hpp"
 #include "bapd/solver/parallel/layout.hpp"
 #include "bapd/solver/parallel/natural_order.hpp"
 
@@ -64,18 +65,6 @@ namespace bapd {
 
 constexpr std::int64_t kCheckpointFormatVersion       = 7;
 constexpr std::int64_t kCheckpointOldestFormatVersion = 1; // still read
-
-// -checkpoint_interval, -checkpoint_on_error, -restart, -restart_discard_newer.
-struct CheckpointOptions {
-  PetscInt    step_interval = 0;   // steps between checkpoints (0: none)
-  double      wall_interval = 0;   // wall-clock seconds between checkpoints (0: none)
-  PetscBool   on_error      = PETSC_TRUE;
-  std::string restart;             // checkpoint to continue from ("" for a fresh run)
-  PetscBool   discard_newer = PETSC_FALSE; // a restart may drop newer results in its output directory (output_directory.hpp)
-  bool periodic() const { return step_interval > 0 || wall_interval > 0; }
-};
-// Reads (and registers) the options. Collective.
-PetscErrorCode CheckpointOptionsFromOptions(MPI_Comm comm, CheckpointOptions *options);
 
 // What identifies the body: a checkpoint only fits the same points and bonds.
 struct GeometryFingerprint {

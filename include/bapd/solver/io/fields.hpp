@@ -49,20 +49,10 @@
 #include "bapd/core/geometry/body.hpp"
 #include "bapd/core/kernel/bond_state.hpp"
 #include "bapd/core/geometry/family.hpp"
+#include "bapd/solver/input/scene_output.hpp"
 #include "bapd/solver/parallel/natural_order.hpp"
 
 namespace bapd {
-
-// The positions the XDMF draws the points at.
-enum class FieldGeometry { current, reference };
-
-// -output_fields, -output_fields_interval, -output_fields_geometry.
-struct FieldOptions {
-  PetscBool     enabled  = PETSC_FALSE;
-  PetscInt      interval = 0; // steps between files; 0: every end time / 20 of simulated time (cadence.hpp)
-  FieldGeometry geometry = FieldGeometry::current;
-};
-PetscErrorCode FieldOptionsFromOptions(MPI_Comm comm, FieldOptions *options);
 
 struct FieldFrame {
   PetscInt step    = 0;

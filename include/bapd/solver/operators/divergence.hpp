@@ -43,7 +43,8 @@
 #include <vector>
 
 #include "bapd/solver/parallel/layout.hpp"
-#include "bapd/solver/input/scene.hpp"
+#include "bapd/solver/input/scene_loading.hpp"
+#include "bapd/solver/input/scene_schedule.hpp"
 
 namespace bapd {
 
@@ -154,8 +155,11 @@ std::string DivergenceAdvice(const DivergenceFacts &facts);
 // What the post-step check reads, handed to it by the driver.
 struct RunawayInputs {
   MPI_Comm        comm     = MPI_COMM_NULL;
-  const Scene    *scene    = nullptr; // density, loads, failure options
-  const Schedule *schedule = nullptr; // as it stands (static holds move it: loading.hpp)
+  double                      density          = 0;       // [kg/m^3]
+  double                      dx               = 0;       // the spacing [m]: the kinetic floor's round-off guard
+  const std::vector<LoadSet> *loads            = nullptr; // the stretch grips' scales: the fastest grip speed
+  double                      reference_length = 0;       // [m]: u = scale (lambda - 1) reference_length
+  const Schedule             *schedule         = nullptr; // as it stands (static holds move it: loading.hpp)
   const Layout   *layout   = nullptr;
   Vec             state    = nullptr; // [u, v] of the owned points
   double          dt = 0, stable_dt = 0;

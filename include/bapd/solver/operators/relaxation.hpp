@@ -30,13 +30,10 @@
 #include <algorithm>
 #include <vector>
 
+#include "bapd/solver/input/scene_time_stepping.hpp"
+
 namespace bapd {
 
-enum class RelaxationKind { none, adaptive };
-const char *to_string(RelaxationKind kind);
-
-// -relaxation none|adaptive. Collective; also lists the option under -help.
-PetscErrorCode RelaxationFromOptions(MPI_Comm comm, RelaxationKind *kind);
 
 // The kinetic energy of a point of mass m and velocity v (D components),
 // 1/2 m v.v, v.v summed from its first term (for D = 2 the history's arithmetic).

@@ -41,36 +41,9 @@
 #include "bapd/solver/parallel/layout.hpp"
 #include "bapd/solver/operators/loading.hpp"
 #include "bapd/solver/input/scene.hpp"
+#include "bapd/solver/input/scene_time_stepping.hpp"
 
 namespace bapd {
-
-// -time_step_reestimate, -time_step_reestimate_iterations, ..._stretch, -time_step_band.
-struct TimeStepOptions {
-  PetscInt interval   = 50;   // steps between re-estimates (0: the step at rest all run long)
-  PetscInt iterations = 1;    // fewest power iterations per re-estimate (one force evaluation each)
-  PetscInt max_iterations = 8; // most, while lambda still moves by more than tolerance per iteration
-  double   tolerance  = 0.005; // measured on the Jm = 8 plate: 0.01 stalls 30 % below lambda_max (docs/stability.md section 8)
-  double   band       = 0.05; // dead band of the stiffness step [-]
-  double   floor      = -1;   // the stiffness step is at least this x base (-1: 0.1, or 0.5 with failure)
-  double   stretch    = 0.05; // ...and whenever the applied stretch moved by this much since the last one
-  double   shift      = 0.45; // the power iteration runs on A - shift lambda I: faster convergence to lambda_max
-  PetscInt backoff    = 4;    // while the estimates find nothing that moves the step, interval and stretch grow up to this x
-  bool     krylov     = true; // Rayleigh-Ritz on the Krylov space of the iterations (Arnoldi) instead of the last power iterate
-  bool     monitor    = false; // a line per re-estimate (measurements, docs/stability.md section 8)
-  bool     allow_unstable = false; // -time_step_allow_unstable: a -time_step or -ts_dt above the stable step is run (it blows up), not refused
-  PetscInt reference  = 0;     // measurements: every 25 steps, also a converged lambda_max of the same state (this many evaluations, not counted)
-  bool     indicator  = false; // the search only when the points' stiffening indicator rose (StiffeningIndicator): measured, not the default
-  bool     bonds      = false; // ...or when the kernel's stiffest bond stiffened (BondIndicator)
-  // The indicator's growth since the last search that calls the next one (Reestimate).
-  // 1.5: lambda_max grew about as psi^0.4 on the Jm = 8 plate (psi 5.9 -> 15.8 while
-  // lambda 1.29 -> 1.9 x), so about 18 % in lambda; (1 + band)^2 searched on every ramp
-  // estimate (45 evaluations, the mode found 40 steps later).
-  double   growth     = 1.5;
-  PetscInt tip        = 4;     // Krylov steps of the crack-tip search after a step that broke bonds (0: off)
-  bool     startup_krylov = true; // -time_step_estimate krylov (the set-up's estimate by the Krylov search) | power (60 power iterations)
-};
-// Reads (and lists under -help) the options. Collective.
-PetscErrorCode TimeStepOptionsFromOptions(MPI_Comm comm, TimeStepOptions *options);
 
 // What a checkpoint carries of the re-estimate (natural order is the caller's job).
 struct TimeStepState {
@@ -91,8 +64,8 @@ public:
   // search until its largest Ritz value settles, or 60 power iterations), then the step
   // -time_step or -time_step_safety x stable. Leaves the operator as it was (the
   // estimate reads or carries its own warm starts). Collective; prints the steps.
-  PetscErrorCode EstimateStable(MPI_Comm comm, const Scene &scene, const TimeStepOptions &options, const Layout &layout,
-                                const Loading &loading, ForceOperator &force);
+  PetscErrorCode EstimateStable(MPI_Comm comm, const TimeStepping &scene, const Layout &layout, const Loading &loading,
+                                ForceOperator &force);
   // A new base step (and step in use); the TS takes it with the next step.
   // The solver's travel limit is off for a step above the stable one.
   void SetBaseStep(double dt);
@@ -157,6 +130,8 @@ public:
   double       *eigenvector() { return v_.data(); }
 
 private:
+  void           SeedStart(const Layout &layout); // the searches' deterministic start, v_ and seed_
+  PetscErrorCode ReportStartup(MPI_Comm comm, bool step_given, double lambda) const; // the set-up's lines on the step
   // The acceleration of the free dofs, M^{-1} f, the held ones zero, of a probe u: the
   // C33 warm starts c33 only read, or read from and advanced in *advance (the set-up's
   // iteration). time_step_estimate.cpp.
