@@ -20,6 +20,9 @@ TEST(TextTableHeader, FindsColumnsInAnyCaseAndByAlias)
   EXPECT_EQ(at, (std::vector<int>{1, 3, 0, 2}));
   EXPECT_EQ(table_header("c.csv", 1, {"x", "y", "z", "volume"}, "", kColumns3D, 4, &at), "");
   EXPECT_EQ(at, (std::vector<int>{0, 1, 2, 3, -1})); // block_id is optional
+  // The alias list is the table's notation, not a column name.
+  EXPECT_EQ(table_header("c.csv", 1, {"x", "y", "volume", "block_id|block"}, "", kColumns2D, 3, &at), "");
+  EXPECT_EQ(at, (std::vector<int>{0, 1, 2, -1}));
 }
 
 TEST(TextTableHeader, NumbersInTheFirstLine)

@@ -1,6 +1,7 @@
 // A comma- or blank-separated text table (text_table.hpp).
 #include "bapd/core/geometry/text_table.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <cstdlib>
 
@@ -46,8 +47,13 @@ std::string find_columns(const std::vector<std::string> &header, const std::vect
     std::string name = header[c];
     for (char &ch : name) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
     for (std::size_t k = 0; k < columns.size(); ++k) {
-      const std::string aliases = "|" + columns[k] + "|";
-      if (aliases.find("|" + name + "|") == std::string::npos) continue;
+      bool named = false; // name is one of the '|'-separated names of columns[k]
+      for (std::size_t from = 0; !named && from <= columns[k].size();) {
+        const std::size_t to = std::min(columns[k].find('|', from), columns[k].size());
+        named                = columns[k].compare(from, to - from, name) == 0;
+        from                 = to + 1;
+      }
+      if (!named) continue;
       if ((*at)[k] >= 0) return name;
       (*at)[k] = static_cast<int>(c);
     }
