@@ -4,6 +4,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
+#include <iterator>
 #include <utility>
 
 namespace bapd::fit {
@@ -38,11 +39,35 @@ const Unit kStrain[] = {{"%", 0.01}, {"-", 1.0}, {"mm/mm", 1.0}, {"m/m", 1.0}};
 const Unit kStretch[] = {{"", 1.0}, {"-", 1.0}};
 const Unit kTime[]   = {{"s", 1.0}, {"ms", 1e-3}, {"min", 60.0}, {"h", 3600.0}};
 
-template <std::size_t N> double look_up(const Unit (&table)[N], const std::string &unit)
+// Each quantity's name, the units bapd-fit reads as its messages list them, and their
+// factors to SI.
+struct QuantityUnits {
+  Quantity    quantity;
+  const char *name, *listed;
+  const Unit *units;
+  std::size_t count;
+};
+const QuantityUnits kQuantities[] = {
+    {Quantity::none, "other", "", nullptr, 0},
+    {Quantity::time, "time", "s, ms, min, h", kTime, std::size(kTime)},
+    {Quantity::stretch, "stretch", "none or -", kStretch, std::size(kStretch)},
+    {Quantity::strain, "strain", "%, - or mm/mm", kStrain, std::size(kStrain)},
+    {Quantity::extension, "extension", "m, mm, cm, um, in", kLength, std::size(kLength)},
+    {Quantity::stress, "stress", "Pa, kPa, MPa, N/mm2, psi", kStress, std::size(kStress)},
+    {Quantity::force, "force", "N, kN, mN, lbf", kForce, std::size(kForce)},
+};
+const QuantityUnits &units_of(Quantity quantity)
+{
+  for (const QuantityUnits &q : kQuantities)
+    if (q.quantity == quantity) return q;
+  return kQuantities[0];
+}
+
+double look_up(const QuantityUnits &quantity, const std::string &unit)
 {
   const std::string u = lower(trim(unit));
-  for (const Unit &entry : table)
-    if (u == entry.name) return entry.factor;
+  for (std::size_t k = 0; k < quantity.count; ++k)
+    if (u == quantity.units[k].name) return quantity.units[k].factor;
   return 0.0;
 }
 bool is_unit(const std::string &unit)
@@ -139,46 +164,10 @@ std::string unit_cell(const std::string &cell)
   return is_unit(unit) ? unit : "";
 }
 
-double si_factor(Quantity quantity, const std::string &unit)
-{
-  switch (quantity) {
-  case Quantity::extension: return look_up(kLength, unit);
-  case Quantity::force: return look_up(kForce, unit);
-  case Quantity::stress: return look_up(kStress, unit);
-  case Quantity::strain: return look_up(kStrain, unit);
-  case Quantity::stretch: return look_up(kStretch, unit);
-  case Quantity::time: return look_up(kTime, unit);
-  case Quantity::none: return 0.0;
-  }
-  return 0.0;
-}
+double si_factor(Quantity quantity, const std::string &unit) { return look_up(units_of(quantity), unit); }
 
-std::string known_units(Quantity quantity)
-{
-  switch (quantity) {
-  case Quantity::extension: return "m, mm, cm, um, in";
-  case Quantity::force: return "N, kN, mN, lbf";
-  case Quantity::stress: return "Pa, kPa, MPa, N/mm2, psi";
-  case Quantity::strain: return "%, - or mm/mm";
-  case Quantity::stretch: return "none or -";
-  case Quantity::time: return "s, ms, min, h";
-  case Quantity::none: return "";
-  }
-  return "";
-}
+std::string known_units(Quantity quantity) { return units_of(quantity).listed; }
 
-const char *to_string(Quantity quantity)
-{
-  switch (quantity) {
-  case Quantity::none: return "other";
-  case Quantity::time: return "time";
-  case Quantity::stretch: return "stretch";
-  case Quantity::strain: return "strain";
-  case Quantity::extension: return "extension";
-  case Quantity::stress: return "stress";
-  case Quantity::force: return "force";
-  }
-  return "other";
-}
+const char *to_string(Quantity quantity) { return units_of(quantity).name; }
 
 } // namespace bapd::fit

@@ -3,22 +3,15 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <sstream>
 
 #include "bapd/core/materials/law_registry.hpp"
 #include "bapd/core/materials/material.hpp"
 #include "fit_error.hpp"
+#include "number_text.hpp"
 
 namespace bapd::fit {
 namespace {
-
-std::string number(double v)
-{
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.10g", v);
-  return buf;
-}
 
 // A registry law from the fitted values: set(m, p) puts them into MaterialParameters.
 template <class Law>
@@ -51,9 +44,9 @@ FitLaw registry_law(std::vector<std::string> names, std::vector<std::string> uni
     ModelKind kind{};
     parse(Law::name, kind);
     std::ostringstream y;
-    y << "material:\n  model: " << Law::name << "\n  mu: " << number(m.mu) << "\n";
+    y << "material:\n  model: " << Law::name << "\n  mu: " << number_text(m.mu, 10) << "\n";
     for (const LawOptionEntry &o : law_entry(kind).options)
-      y << "  " << std::string(o.name).substr(std::string("-material_").size()) << ": " << number(m.values[o.index]) << "\n";
+      y << "  " << std::string(o.name).substr(std::string("-material_").size()) << ": " << number_text(m.values[o.index], 10) << "\n";
     return y.str();
   };
   return f;
@@ -124,14 +117,14 @@ FitLaw ogden(int n)
     for (int k = 0; k < n; ++k) mu += 0.5 * p[2 * k] * p[2 * k + 1];
     if (n > Ogden::max_terms) {
       y << "# Ogden (" << n << " terms): bapd's Ogden law has at most " << Ogden::max_terms << " terms; the values, for the record:\n";
-      y << "#   shear modulus at rest mu = sum mu_k alpha_k / 2 = " << number(mu) << " Pa\n";
-      for (int k = 0; k < n; ++k) y << "#   mu" << k + 1 << " = " << number(p[2 * k]) << " Pa, alpha" << k + 1 << " = " << number(p[2 * k + 1]) << "\n";
+      y << "#   shear modulus at rest mu = sum mu_k alpha_k / 2 = " << number_text(mu, 10) << " Pa\n";
+      for (int k = 0; k < n; ++k) y << "#   mu" << k + 1 << " = " << number_text(p[2 * k], 10) << " Pa, alpha" << k + 1 << " = " << number_text(p[2 * k + 1], 10) << "\n";
       return y.str();
     }
-    y << "material:\n  model: ogden\n  mu: " << number(mu) << "\n";
+    y << "material:\n  model: ogden\n  mu: " << number_text(mu, 10) << "\n";
     for (int k = 0; k < Ogden::max_terms; ++k) // unused terms: mu_k = 0
-      y << "  ogden_mu" << k + 1 << ": " << number(k < n ? p[2 * k] : 0.0) << "\n  ogden_alpha" << k + 1 << ": "
-        << number(k < n ? p[2 * k + 1] : 0.0) << "\n";
+      y << "  ogden_mu" << k + 1 << ": " << number_text(k < n ? p[2 * k] : 0.0, 10) << "\n  ogden_alpha" << k + 1 << ": "
+        << number_text(k < n ? p[2 * k + 1] : 0.0, 10) << "\n";
     return y.str();
   };
   return f;

@@ -8,16 +8,10 @@
 #include <sstream>
 
 #include "fit_error.hpp"
+#include "number_text.hpp"
 
 namespace bapd::fit {
 namespace {
-
-std::string g(double v, int digits = 10)
-{
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*g", digits, v);
-  return buf;
-}
 
 std::ofstream open(const std::string &path)
 {
@@ -48,9 +42,9 @@ void print_fit(std::ostream &out, const LawFit &fit)
   }
   out << ", " << fit.ls.iterations << " iterations\n";
   for (std::size_t j = 0; j < fit.law.parameters.size(); ++j)
-    out << "  " << fit.law.parameters[j] << " = " << g(fit.ls.p[j], 6) << " +- " << g(fit.ls.standard_error[j], 2) << " "
+    out << "  " << fit.law.parameters[j] << " = " << number_text(fit.ls.p[j], 6) << " +- " << number_text(fit.ls.standard_error[j], 2) << " "
         << fit.law.units[j] << "\n";
-  out << "  RMS error " << g(fit.rms_Pa, 4) << " Pa, weighted RMS " << g(fit.rms_weighted, 4) << ", AIC " << g(fit.aic, 6) << "\n";
+  out << "  RMS error " << number_text(fit.rms_Pa, 4) << " Pa, weighted RMS " << number_text(fit.rms_weighted, 4) << ", AIC " << number_text(fit.aic, 6) << "\n";
 }
 
 void print_comparison(std::ostream &out, const std::vector<LawFit> &fits)
@@ -80,7 +74,7 @@ void write_outputs(const std::string &dir, const std::vector<Curve> &curves, con
     f << "file,mode,stretch,nominal_stress_Pa\n";
     for (const Curve &c : curves)
       for (std::size_t k = 0; k < c.stretch.size(); ++k)
-        f << c.file << "," << to_string(c.mode) << "," << g(c.stretch[k], 12) << "," << g(c.stress_Pa[k], 12) << "\n";
+        f << c.file << "," << to_string(c.mode) << "," << number_text(c.stretch[k], 12) << "," << number_text(c.stress_Pa[k], 12) << "\n";
   }
   std::ofstream curves_csv = open(dir + "/curves.csv");
   curves_csv << "law,mode,stretch,nominal_stress_Pa\n";
@@ -91,7 +85,7 @@ void write_outputs(const std::string &dir, const std::vector<Curve> &curves, con
       std::ofstream f = open(dir + "/parameters_" + name + ".csv");
       f << "parameter,value,standard_error,unit\n";
       for (std::size_t j = 0; j < fit.law.parameters.size(); ++j)
-        f << fit.law.parameters[j] << "," << g(fit.ls.p[j], 12) << "," << g(fit.ls.standard_error[j], 6) << "," << fit.law.units[j] << "\n";
+        f << fit.law.parameters[j] << "," << number_text(fit.ls.p[j], 12) << "," << number_text(fit.ls.standard_error[j], 6) << "," << fit.law.units[j] << "\n";
     }
     {
       std::ofstream f = open(dir + "/residuals_" + name + ".csv");
@@ -99,14 +93,14 @@ void write_outputs(const std::string &dir, const std::vector<Curve> &curves, con
       std::size_t i = 0;
       for (const Curve &c : curves)
         for (std::size_t k = 0; k < c.stretch.size(); ++k, ++i)
-          f << c.file << "," << to_string(c.mode) << "," << g(c.stretch[k], 12) << "," << g(c.stress_Pa[k], 12) << ","
-            << g(fit.fitted[i], 12) << "," << g(fit.fitted[i] - c.stress_Pa[k], 6) << "\n";
+          f << c.file << "," << to_string(c.mode) << "," << number_text(c.stretch[k], 12) << "," << number_text(c.stress_Pa[k], 12) << ","
+            << number_text(fit.fitted[i], 12) << "," << number_text(fit.fitted[i] - c.stress_Pa[k], 6) << "\n";
     }
     {
       std::ofstream f = open(dir + "/material_" + name + ".yaml");
       f << "# bapd-fit: " << name << " fitted to";
       for (const Curve &c : curves) f << " " << c.file << " (" << to_string(c.mode) << ")";
-      f << "\n# RMS error " << g(fit.rms_Pa, 4) << " Pa. Include it after the scene: -options_file_yaml scene.yaml "
+      f << "\n# RMS error " << number_text(fit.rms_Pa, 4) << " Pa. Include it after the scene: -options_file_yaml scene.yaml "
         << "-options_file_yaml material_" << name << ".yaml\n"
         << fit.law.yaml(fit.ls.p);
     }
@@ -116,7 +110,7 @@ void write_outputs(const std::string &dir, const std::vector<Curve> &curves, con
         const double lambda = 1.0 + (top - 1.0) * s / 200.0;
         double       P      = 0.0;
         if (fit.law.stress(fit.ls.p, c.mode, lambda, P))
-          curves_csv << name << "," << to_string(c.mode) << "," << g(lambda, 8) << "," << g(P, 10) << "\n";
+          curves_csv << name << "," << to_string(c.mode) << "," << number_text(lambda, 8) << "," << number_text(P, 10) << "\n";
       }
     }
   }
@@ -124,8 +118,8 @@ void write_outputs(const std::string &dir, const std::vector<Curve> &curves, con
     std::ofstream f = open(dir + "/comparison.csv");
     f << "law,parameters,rms_Pa,weighted_rms,aic,status\n";
     for (const LawFit *fit : by_aic(fits))
-      f << fit->law.name << "," << fit->law.parameters.size() << "," << g(fit->rms_Pa, 6) << "," << g(fit->rms_weighted, 6) << ","
-        << g(fit->aic, 8) << "," << (fit->problem.empty() ? "ok" : "no fit") << "\n";
+      f << fit->law.name << "," << fit->law.parameters.size() << "," << number_text(fit->rms_Pa, 6) << "," << number_text(fit->rms_weighted, 6) << ","
+        << number_text(fit->aic, 8) << "," << (fit->problem.empty() ? "ok" : "no fit") << "\n";
   }
 }
 

@@ -66,30 +66,13 @@ std::string read_point_cloud_3d(const std::string &file, PointCloud *points, std
   std::vector<std::string> header;
   std::vector<long>        line_of; // the file line of each point, for messages
   long                     at = 0;
-  int                      col[5] = {-1, -1, -1, -1, -1}; // x, y, z, volume, block
+  std::vector<int>         col; // the columns of x, y, z, volume, block
   const char              *names[5] = {"x", "y", "z", "volume", "block_id"};
   while (next_table_line(in, header.empty(), &at, &trimmed)) {
     if (header.empty()) {
       header = table_tokens(trimmed, true);
-      double v;
-      if (!header.empty() && table_number(header[0], &v))
-        return format("'%s', line %ld: the first line must name the columns (x, y, z, volume and optionally block_id, "
-                      "e.g. 'x,y,z,volume'), not hold numbers",
-                      file.c_str(), at);
-      for (std::size_t c = 0; c < header.size(); ++c) {
-        const std::string &name = header[c];
-        const int          k    = name == "x" ? 0 : name == "y" ? 1 : name == "z" ? 2 : name == "volume" ? 3
-                                  : (name == "block_id" || name == "block")                         ? 4
-                                                                                                    : -1;
-        if (k >= 0 && col[k] >= 0)
-          return format("'%s', line %ld: the header names column '%s' twice", file.c_str(), at, name.c_str());
-        if (k >= 0) col[k] = static_cast<int>(c);
-      }
-      for (int k = 0; k < 4; ++k)
-        if (col[k] < 0)
-          return format("'%s', line %ld: the header names no column '%s': the columns must include x, y, z and volume "
-                        "(block_id optional), e.g. 'x,y,z,volume'",
-                        file.c_str(), at, names[k]);
+      const std::string problem = table_header(file, at, header, "", {"x", "y", "z", "volume", "block_id|block"}, 4, &col);
+      if (!problem.empty()) return problem;
       continue;
     }
     const std::vector<std::string> row = table_tokens(trimmed, true);

@@ -7,116 +7,123 @@
 
 namespace bapd {
 
+namespace {
+
+// What every observer of the driver holds: the driver whose state it reads, handed to
+// its Observe with each step (the observers are SimulationD's nested classes, so they
+// read its private members; WallDue, outside a step, reads sim_).
+template <class Simulation> class DriverObserver : public RunObserver {
+public:
+  explicit DriverObserver(Simulation &sim) : sim_(sim) {}
+  PetscErrorCode AfterStep(PetscInt step, double t, const StepEvents &events) final { return Observe(sim_, step, t, events); }
+
+protected:
+  virtual PetscErrorCode Observe(Simulation &sim, PetscInt step, double t, const StepEvents &events) = 0;
+  Simulation &sim_;
+};
+
+} // namespace
+
 // history.csv: a row every -output_interval steps and by load (HistoryReport decides);
 // the static-hold test reads the -output_interval rows, so it runs with them (the
 // schedule it moves is Loading's), before any checkpoint of this step.
-template <int D> class SimulationD<D>::HistoryObserver final : public RunObserver {
+template <int D> class SimulationD<D>::HistoryObserver final : public DriverObserver<SimulationD<D>> {
 public:
-  explicit HistoryObserver(SimulationD &sim) : sim_(sim) {}
-  PetscErrorCode AfterStep(PetscInt step, double t, const StepEvents &) override
+  using DriverObserver<SimulationD<D>>::DriverObserver;
+  PetscErrorCode Observe(SimulationD &sim, PetscInt step, double t, const StepEvents &) override
   {
     bool interval_row;
 
     PetscFunctionBegin;
-    if (sim_.history_.Due(step, t, &interval_row)) PetscCall(sim_.WriteHistoryRow(step, t, interval_row));
-    if (interval_row) PetscCall(sim_.CheckStaticHold(step, t));
+    if (sim.history_.Due(step, t, &interval_row)) PetscCall(sim.WriteHistoryRow(step, t, interval_row));
+    if (interval_row) PetscCall(sim.CheckStaticHold(step, t));
     PetscFunctionReturn(0);
   }
-
-private:
-  SimulationD &sim_;
 };
 
 // The field files: every -output_fields_interval steps or every end time / 20 of
 // simulated time (SimulationOutput::field_times), and one at the step a signal stops
 // the run, before its checkpoint.
-template <int D> class SimulationD<D>::FieldObserver final : public RunObserver {
+template <int D> class SimulationD<D>::FieldObserver final : public DriverObserver<SimulationD<D>> {
 public:
-  explicit FieldObserver(SimulationD &sim) : sim_(sim) {}
-  PetscErrorCode AfterStep(PetscInt step, double t, const StepEvents &events) override
+  using DriverObserver<SimulationD<D>>::DriverObserver;
+  PetscErrorCode Observe(SimulationD &sim, PetscInt step, double t, const StepEvents &events) override
   {
-    SimulationOutput &out = sim_.output_;
+    SimulationOutput &out = sim.output_;
 
     PetscFunctionBegin;
     const bool due = out.fields.interval > 0 ? step % out.fields.interval == 0 : out.field_times.Due(t);
-    if (out.fields.enabled && due) PetscCall(sim_.WriteFields(step, t));
+    if (out.fields.enabled && due) PetscCall(sim.WriteFields(step, t));
     if (events.interrupt && out.fields.enabled && (out.series.frames.empty() || out.series.frames.back().step != step))
-      PetscCall(sim_.WriteFields(step, t));
+      PetscCall(sim.WriteFields(step, t));
     PetscFunctionReturn(0);
   }
-
-private:
-  SimulationD &sim_;
 };
 
 // checkpoint.h5: on SIGTERM/SIGINT (and the run stops), on SIGUSR1, every
 // -checkpoint_interval steps or -checkpoint_wall_interval seconds; and the last good
 // state kept for -checkpoint_on_error.
-template <int D> class SimulationD<D>::CheckpointObserver final : public RunObserver {
+template <int D> class SimulationD<D>::CheckpointObserver final : public DriverObserver<SimulationD<D>> {
 public:
-  explicit CheckpointObserver(SimulationD &sim) : sim_(sim) {}
-  PetscErrorCode AfterStep(PetscInt step, double t, const StepEvents &events) override
+  using DriverObserver<SimulationD<D>>::DriverObserver;
+  PetscErrorCode Observe(SimulationD &sim, PetscInt step, double t, const StepEvents &events) override
   {
-    const CheckpointOptions &options = sim_.output_.checkpoint;
+    const CheckpointOptions &options = sim.output_.checkpoint;
 
     PetscFunctionBegin;
     if (events.interrupt) {
-      PetscCall(sim_.WriteCheckpointFile(step, t, "interrupted"));
-      const std::string path = sim_.paths_.checkpoint();
+      PetscCall(sim.WriteCheckpointFile(step, t, "interrupted"));
+      const std::string path = sim.paths_.checkpoint();
       char              msg[1024];
       std::snprintf(msg, sizeof msg, "interrupted by %s at step %" PetscInt_FMT " (t = %.6e s); the state is saved in %s: continue with -restart %s",
                     InterruptName(events.interrupt).c_str(), step, t, path.c_str(), path.c_str());
-      sim_.stop_reason_      = msg;
-      sim_.stopped_on_error_ = true;
-      PetscCall(TSSetConvergedReason(sim_.ts_, TS_CONVERGED_USER));
+      sim.stop_reason_      = msg;
+      sim.stopped_on_error_ = true;
+      PetscCall(TSSetConvergedReason(sim.ts_, TS_CONVERGED_USER));
       PetscFunctionReturn(0);
     }
-    if (events.checkpoint_request) PetscCall(sim_.WriteCheckpointFile(step, t, "SIGUSR1"));
+    if (events.checkpoint_request) PetscCall(sim.WriteCheckpointFile(step, t, "SIGUSR1"));
     else if ((options.step_interval > 0 && step % options.step_interval == 0) || events.checkpoint_wall)
-      PetscCall(sim_.WriteCheckpointFile(step, t, "interval"));
-    if (options.on_error) PetscCall(sim_.SaveGoodState(step, t));
+      PetscCall(sim.WriteCheckpointFile(step, t, "interval"));
+    if (options.on_error) PetscCall(sim.SaveGoodState(step, t));
     PetscFunctionReturn(0);
   }
   // Rank 0: is the wall-clock interval since the last checkpoint over?
   bool WallDue(double now) const
   {
-    const SimulationOutput &out = sim_.output_;
+    const SimulationOutput &out = this->sim_.output_;
     return out.checkpoint.wall_interval > 0 && now - out.last_checkpoint_wall >= out.checkpoint.wall_interval;
   }
-
-private:
-  SimulationD &sim_;
 };
 
 // The progress lines: every -progress_interval steps, or (0) every end time / 20 of
 // simulated time, and once -progress_wall_interval seconds of wall time have passed
 // since the last line (a slow run says where it is).
-template <int D> class SimulationD<D>::ProgressObserver final : public RunObserver {
+template <int D> class SimulationD<D>::ProgressObserver final : public DriverObserver<SimulationD<D>> {
 public:
-  ProgressObserver(SimulationD &sim, double period, double t0) : sim_(sim)
+  ProgressObserver(SimulationD &sim, double period, double t0) : DriverObserver<SimulationD<D>>(sim)
   {
     times_.Start(period, t0);
-    last_wall_ = MPI_Wtime() - sim_.wall_start_;
+    last_wall_ = MPI_Wtime() - sim.wall_start_;
   }
-  PetscErrorCode AfterStep(PetscInt step, double t, const StepEvents &events) override
+  PetscErrorCode Observe(SimulationD &sim, PetscInt step, double t, const StepEvents &events) override
   {
     PetscFunctionBegin;
-    const PetscInt interval = sim_.scene_.progress_interval;
+    const PetscInt interval = sim.scene_.progress_interval;
     const bool     by_steps = interval > 0 ? step % interval == 0 : times_.Due(t);
     if (!by_steps && !events.progress_wall) PetscFunctionReturn(0);
-    last_wall_ = MPI_Wtime() - sim_.wall_start_;
-    PetscCall(sim_.ProgressLine(step, t, last_wall_));
+    last_wall_ = MPI_Wtime() - sim.wall_start_;
+    PetscCall(sim.ProgressLine(step, t, last_wall_));
     PetscFunctionReturn(0);
   }
   // Rank 0: is the wall-clock interval since the last line over?
   bool WallDue(double now) const
   {
-    const double interval = sim_.scene_.progress_wall_interval;
-    return interval > 0 && now - sim_.wall_start_ - last_wall_ >= interval;
+    const double interval = this->sim_.scene_.progress_wall_interval;
+    return interval > 0 && now - this->sim_.wall_start_ - last_wall_ >= interval;
   }
 
 private:
-  SimulationD &sim_;
   Cadence      times_;         // -progress_interval 0: a line every end time / 20 of simulated time
   double       last_wall_ = 0; // wall time (since the start) of the last line (rank 0's decides)
 };

@@ -53,18 +53,11 @@ private:
 std::string AppendTriangles(const NodeTable &table, int tag, std::vector<double> &corners,
                             std::vector<std::size_t> *element = nullptr)
 {
-  std::vector<int>                      types;
-  std::vector<std::vector<std::size_t>> tags, nodes;
-  gmsh::model::mesh::getElements(types, tags, nodes, 2, tag);
-  for (std::size_t t = 0; t < types.size(); ++t) {
-    std::string         name;
-    int                 dim, order, per, primary;
-    std::vector<double> local;
-    gmsh::model::mesh::getElementProperties(types[t], name, dim, order, per, local, primary);
-    const int n_corners = GmshCornerCount2D(types[t]);
+  return ForEachElementType(2, tag, [&](int type, const std::string &name, std::size_t per, const std::vector<std::size_t> &nodes) {
+    const int n_corners = GmshCornerCount2D(type);
     if (n_corners == 0) return "2D elements of a kind bapd does not read (" + name + "): mesh with triangles or quadrangles";
-    for (std::size_t e = 0; e + per <= nodes[t].size(); e += (std::size_t)per) {
-      const std::size_t *n     = &nodes[t][e];
+    for (std::size_t e = 0; e + per <= nodes.size(); e += per) {
+      const std::size_t *n     = &nodes[e];
       const std::size_t  index = element && !element->empty() ? element->back() + 1 : 0;
       table.Append(n[0], corners), table.Append(n[1], corners), table.Append(n[2], corners);
       if (element) element->push_back(index);
@@ -73,8 +66,8 @@ std::string AppendTriangles(const NodeTable &table, int tag, std::vector<double>
         if (element) element->push_back(index);
       }
     }
-  }
-  return "";
+    return std::string();
+  });
 }
 
 // Appends the line elements (dim 1) or the point elements (dim 0) of entity `tag` to

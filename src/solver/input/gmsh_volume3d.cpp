@@ -49,19 +49,12 @@ private:
 // "" or the element kind bapd does not read.
 std::string AppendTetrahedra(const NodeTable3D &table, int tag, std::vector<double> &corners)
 {
-  std::vector<int>                      types;
-  std::vector<std::vector<std::size_t>> tags, nodes;
-  gmsh::model::mesh::getElements(types, tags, nodes, 3, tag);
-  for (std::size_t t = 0; t < types.size(); ++t) {
-    std::string         name;
-    int                 dim, order, per, primary;
-    std::vector<double> local;
-    gmsh::model::mesh::getElementProperties(types[t], name, dim, order, per, local, primary);
-    if (!IsTetrahedron(types[t])) return "3D elements of a kind bapd does not read (" + name + "): mesh the volume with tetrahedra";
-    for (std::size_t e = 0; e + static_cast<std::size_t>(per) <= nodes[t].size(); e += static_cast<std::size_t>(per))
-      for (int c = 0; c < 4; ++c) table.Append(nodes[t][e + static_cast<std::size_t>(c)], corners);
-  }
-  return "";
+  return ForEachElementType(3, tag, [&](int type, const std::string &name, std::size_t per, const std::vector<std::size_t> &nodes) {
+    if (!IsTetrahedron(type)) return "3D elements of a kind bapd does not read (" + name + "): mesh the volume with tetrahedra";
+    for (std::size_t e = 0; e + per <= nodes.size(); e += per)
+      for (std::size_t c = 0; c < 4; ++c) table.Append(nodes[e + c], corners);
+    return std::string();
+  });
 }
 
 // Appends the elements of dimension dim (2: triangles, a quadrangle as two; 1: line

@@ -69,23 +69,10 @@ std::string ReadText(const std::string &file, GivenPoints *pts)
   while (next_table_line(in, header.empty(), &number, &trimmed)) {
     if (header.empty()) {
       header = table_tokens(trimmed, false);
-      double v;
-      if (!header.empty() && table_number(header[0], &v))
-        return Format("'%s', line %ld: the first line must name the columns (x, y, volume and optionally block_id, e.g. 'x,y,volume'), "
-                      "not hold numbers",
-                      file.c_str(), number);
-      for (std::size_t c = 0; c < header.size(); ++c) {
-        const std::string name = Lower(header[c]);
-        int              *slot = name == "x" ? &col_x : name == "y" ? &col_y : name == "volume" ? &col_v
-                                                        : (name == "block_id" || name == "block") ? &col_b : nullptr;
-        if (slot && *slot >= 0) return Format("'%s', line %ld: the header names column '%s' twice", file.c_str(), number, name.c_str());
-        if (slot) *slot = static_cast<int>(c);
-      }
-      const char *missing = col_x < 0 ? "x" : col_y < 0 ? "y" : col_v < 0 ? "volume" : nullptr;
-      if (missing)
-        return Format("'%s', line %ld: the header '%s' names no column '%s': the columns must include x, y and volume (block_id optional), "
-                      "e.g. 'x,y,volume'",
-                      file.c_str(), number, trimmed.c_str(), missing);
+      std::vector<int>  col;
+      const std::string problem = table_header(file, number, header, trimmed, {"x", "y", "volume", "block_id|block"}, 3, &col);
+      if (!problem.empty()) return problem;
+      col_x = col[0], col_y = col[1], col_v = col[2], col_b = col[3];
       continue;
     }
     const std::vector<std::string> row = table_tokens(trimmed, false);

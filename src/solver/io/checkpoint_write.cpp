@@ -5,6 +5,9 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <initializer_list>
+#include <utility>
+#include <variant>
 
 #include "bapd/solver/io/checkpoint.hpp"
 #include "bapd/solver/io/checkpoint_checksum.hpp"
@@ -13,6 +16,18 @@
 namespace bapd {
 
 namespace {
+
+// One attribute: its name and value (the value's type is the attribute's).
+using Attribute = std::pair<const char *, std::variant<double, std::int64_t, std::uint64_t, std::string>>;
+
+// The attributes of object, in the order listed.
+PetscErrorCode WriteAttributes(H5ParallelFile &f, const char *object, std::initializer_list<Attribute> attributes)
+{
+  PetscFunctionBegin;
+  for (const Attribute &a : attributes)
+    PetscCall(std::visit([&](const auto &value) { return f.WriteAttribute(object, a.first, value); }, a.second));
+  PetscFunctionReturn(0);
+}
 
 // The checkpoint's file at `path` (the temporary name): the header's attributes, texts
 // and tables (rank 0's) and this rank's natural block of the arrays.
@@ -33,26 +48,16 @@ PetscErrorCode WriteCheckpointFile(MPI_Comm comm, PetscMPIInt rank, const std::s
   PetscCallMPI(MPI_Bcast(&text, 1, MPI_UINT64_T, 0, comm));
   H5ParallelFile f;
   PetscCall(f.Create(comm, path, data + text, 32));
-  PetscCall(f.WriteAttribute("/", "format", std::string("bapd checkpoint")));
-  PetscCall(f.WriteAttribute("/", "format_version", header.format_version));
-  PetscCall(f.WriteAttribute("/", "dimension", header.dimension));
-  PetscCall(f.WriteAttribute("/", "step", (std::int64_t)header.step));
-  PetscCall(f.WriteAttribute("/", "time_s", header.time));
-  PetscCall(f.WriteAttribute("/", "time_step_s", header.time_step));
-  PetscCall(f.WriteAttribute("/", "stretch", header.stretch));
-  PetscCall(f.WriteAttribute("/", "reason", header.reason));
-  PetscCall(f.WriteAttribute("/", "ranks", header.ranks));
-  PetscCall(f.WriteAttribute("/", "content_hash", header.content_hash));
-  PetscCall(f.WriteAttribute("/", "text_hash", text_hash));
-  PetscCall(f.WriteAttribute("/", "end_time_original_s", header.end_time_original));
-  PetscCall(f.WriteAttribute("/", "end_time_s", header.end_time));
-  PetscCall(f.WriteAttribute("/", "static_hold_done", header.static_hold_done));
+  PetscCall(WriteAttributes(f, "/", {{"format", std::string("bapd checkpoint")}, {"format_version", header.format_version},
+                                     {"dimension", header.dimension}, {"step", (std::int64_t)header.step},
+                                     {"time_s", header.time}, {"time_step_s", header.time_step}, {"stretch", header.stretch},
+                                     {"reason", header.reason}, {"ranks", header.ranks}, {"content_hash", header.content_hash},
+                                     {"text_hash", text_hash}, {"end_time_original_s", header.end_time_original},
+                                     {"end_time_s", header.end_time}, {"static_hold_done", header.static_hold_done}}));
   PetscCall(f.CreateGroup("/geometry"));
-  PetscCall(f.WriteAttribute("/geometry", "points", header.geometry.points));
-  PetscCall(f.WriteAttribute("/geometry", "bonds", header.geometry.bonds));
-  PetscCall(f.WriteAttribute("/geometry", "dx_m", header.geometry.dx));
-  PetscCall(f.WriteAttribute("/geometry", "horizon_m", header.geometry.horizon));
-  PetscCall(f.WriteAttribute("/geometry", "hash", header.geometry.hash));
+  PetscCall(WriteAttributes(f, "/geometry", {{"points", header.geometry.points}, {"bonds", header.geometry.bonds},
+                                             {"dx_m", header.geometry.dx}, {"horizon_m", header.geometry.horizon},
+                                             {"hash", header.geometry.hash}}));
   const hsize_t P = (hsize_t)order.n_points, B = (hsize_t)order.n_bonds;
   PetscCall(f.CreateGroup("/points"));
   PetscCall(f.WriteBlock("/points/displacement", H5T_NATIVE_DOUBLE, P, D, order.point_start, order.point_count, block.u.data()));
@@ -76,16 +81,13 @@ PetscErrorCode WriteCheckpointFile(MPI_Comm comm, PetscMPIInt rank, const std::s
   }
   if (header.step_lambda > 0) {
     PetscCall(f.CreateGroup("/time_step"));
-    PetscCall(f.WriteAttribute("/time_step", "lambda_per_s2", header.step_lambda));
-    PetscCall(f.WriteAttribute("/time_step", "stiffness_dt_s", header.step_stiffness_dt));
-    PetscCall(f.WriteAttribute("/time_step", "shortest_dt_s", header.step_shortest));
-    PetscCall(f.WriteAttribute("/time_step", "next_estimate", header.step_next_estimate));
-    PetscCall(f.WriteAttribute("/time_step", "by_stiffness", header.step_by_stiffness));
-    PetscCall(f.WriteAttribute("/time_step", "by_travel", header.step_by_travel));
-    PetscCall(f.WriteAttribute("/time_step", "stretch", header.step_stretch));
-    PetscCall(f.WriteAttribute("/time_step", "interval_now", header.step_interval_now));
-    PetscCall(f.WriteAttribute("/time_step", "stretch_increment", header.step_stretch_increment));
-    PetscCall(f.WriteAttribute("/time_step", "indicator", header.step_indicator));
+    PetscCall(WriteAttributes(f, "/time_step", {{"lambda_per_s2", header.step_lambda},
+                                                {"stiffness_dt_s", header.step_stiffness_dt},
+                                                {"shortest_dt_s", header.step_shortest},
+                                                {"next_estimate", header.step_next_estimate},
+                                                {"by_stiffness", header.step_by_stiffness}, {"by_travel", header.step_by_travel},
+                                                {"stretch", header.step_stretch}, {"interval_now", header.step_interval_now},
+                                                {"stretch_increment", header.step_stretch_increment}, {"indicator", header.step_indicator}}));
     PetscCall(f.WriteBlock("/time_step/eigenvector", H5T_NATIVE_DOUBLE, P, D, order.point_start, order.point_count, block.eigenvector.data()));
   }
   const hsize_t frames = header.field_frames.size() / 2;

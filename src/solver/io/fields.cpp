@@ -33,8 +33,8 @@ enum class Source {
   point,      // an array of the owned points' PointFields (FieldArray::array)
 };
 
-// One dataset of a field file. A new output field is one row of kArrays (its name,
-// shape and PointFields array) plus its computation into that array.
+// One dataset of a field file: the four of the points' identity and place, then a row
+// of BAPD_POINT_FIELDS (fields.hpp) each.
 struct FieldArray {
   const char *name;
   Shape       shape;
@@ -51,20 +51,9 @@ constexpr FieldArray kArrays[] = {
     {"rank", Shape::scalar, Source::rank},
     {"reference_position", Shape::vector, Source::reference},
     {"position", Shape::vector, Source::position},
-    {"displacement", Shape::vector, Source::point, &PointFields::displacement},
-    {"velocity", Shape::vector, Source::point, &PointFields::velocity},
-    {"volume", Shape::scalar, Source::point, &PointFields::volume},
-    {"force_density", Shape::vector, Source::point, &PointFields::force_density},
-    {"damage", Shape::scalar, Source::point, &PointFields::damage},
-    {"max_bond_stretch", Shape::scalar, Source::point, &PointFields::max_bond_stretch},
-    {"nominal_stress", Shape::tensor, Source::point, &PointFields::nominal_stress},
-    {"cauchy_stress", Shape::tensor, Source::point, &PointFields::cauchy_stress},
-    {"deformation_gradient", Shape::tensor, Source::point, &PointFields::deformation_gradient},
-    {"thickness_stretch", Shape::scalar, Source::point, &PointFields::thickness_stretch},
-    {"strain_energy_density", Shape::scalar, Source::point, &PointFields::strain_energy_density},
-    {"von_mises_stress", Shape::scalar, Source::point, &PointFields::von_mises_stress},
-    {"principal_stretch", Shape::triple, Source::point, &PointFields::principal_stretch},
-    {"load_set", Shape::scalar, Source::point, &PointFields::load_set},
+#define BAPD_POINT_FIELD_ROW(name, shape) {#name, Shape::shape, Source::point, &PointFields::name},
+    BAPD_POINT_FIELDS(BAPD_POINT_FIELD_ROW)
+#undef BAPD_POINT_FIELD_ROW
 };
 constexpr std::size_t kArrayCount = sizeof kArrays / sizeof kArrays[0];
 

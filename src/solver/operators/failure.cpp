@@ -27,10 +27,12 @@ PetscErrorCode Failure::Setup(MPI_Comm comm, const Layout &layout, const Familie
   comm_             = comm;
   layout_           = &layout;
   families_         = &families;
-  critical_stretch_ = critical_stretch;
-  critical_release_ = critical_release;
   {
+    // The criterion (failure.hpp): the critical stretch, or the critical energy release
+    // with the bonds' energies and the family points' crossing densities.
     const PointCloud &cloud = layout.cloud;
+    critical_stretch_       = critical_stretch;
+    critical_release_       = critical_release;
     if (critical_release > 0) psi_.assign(families.neighbour.size(), -1.0);
     crossing_.resize(families.n_family);
     // Uniform lattices share one (volume, horizon): computed once.

@@ -161,6 +161,68 @@ std::vector<PetscInt> NextRing(const std::vector<PetscInt> &neighbours, const st
   return ring;
 }
 
+// The points this rank owns after the partition: natural ids (sorted), their family
+// members' natural ids (one family after another) and their reals.
+struct OwnedPoints {
+  std::vector<PetscInt> ids, neighbours;
+  std::vector<double>   real;
+};
+
+// The block's points to their owners (part): natural id, family, reals. Blocks are in
+// rank order and natural order inside, so each owner receives its points sorted.
+template <int D>
+PetscErrorCode SendToOwners(MPI_Comm comm, const BodyBlock &block, const std::vector<PetscInt> &part, const PointReals<D> &reals,
+                            OwnedPoints *owned)
+{
+  PetscMPIInt size;
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  std::vector<std::vector<PetscInt>> out_int(size);
+  std::vector<std::vector<double>>   out_real(size);
+  for (PetscInt i = 0; i < block.size(); ++i) {
+    std::vector<PetscInt> &o = out_int[part[i]];
+    o.push_back(block.first + i);
+    o.push_back(block.offsets[i + 1] - block.offsets[i]);
+    o.insert(o.end(), block.neighbours.begin() + block.offsets[i], block.neighbours.begin() + block.offsets[i + 1]);
+    std::vector<double> &r  = out_real[part[i]];
+    const std::size_t    at = r.size();
+    r.resize(at + reals.R);
+    reals.Pack(block.cloud, (int)i, r.data() + at);
+  }
+  std::vector<PetscInt> in_int;
+  PetscCall(Exchange(comm, out_int, &in_int));
+  PetscCall(Exchange(comm, out_real, &owned->real));
+  for (auto &o : out_int) std::vector<PetscInt>().swap(o);
+  for (std::size_t p = 0; p < in_int.size();) {
+    owned->ids.push_back(in_int[p++]);
+    const PetscInt k = in_int[p++];
+    owned->neighbours.insert(owned->neighbours.end(), in_int.begin() + p, in_int.begin() + p + k);
+    p += k;
+  }
+  PetscFunctionReturn(0);
+}
+
+// PETSc numbering: rank blocks in rank order, natural order inside a rank's. Each
+// block learns its points' indices (*block_petsc), which it hands out with them as ghosts.
+PetscErrorCode TellBlockIndices(MPI_Comm comm, const std::vector<PetscInt> &starts, const BodyBlock &block,
+                                const std::vector<PetscInt> &owned, PetscInt owned_start, std::vector<PetscInt> *block_petsc)
+{
+  std::vector<std::vector<PetscInt>> tell(starts.size() - 1);
+  std::vector<PetscInt>              told;
+
+  PetscFunctionBegin;
+  for (std::size_t k = 0; k < owned.size(); ++k) {
+    std::vector<PetscInt> &t = tell[HolderOf(starts, owned[k])];
+    t.push_back(owned[k]);
+    t.push_back(owned_start + (PetscInt)k);
+  }
+  PetscCall(Exchange(comm, tell, &told));
+  block_petsc->assign(block.size(), -1);
+  for (std::size_t p = 0; p < told.size(); p += 2) (*block_petsc)[told[p] - block.first] = told[p + 1];
+  PetscFunctionReturn(0);
+}
+
 } // namespace
 
 template <int D>
@@ -172,13 +234,9 @@ PetscErrorCode ScatterBody(MPI_Comm comm, const PointCloud &global_cloud, const 
   PetscFunctionBegin;
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   PetscCallMPI(MPI_Comm_size(comm, &size));
-  PetscInt n = (PetscInt)global_cloud.size();
-  PetscCallMPI(MPI_Bcast(&n, 1, MPIU_INT, 0, comm));
-  int R = global_cloud.horizon.empty() ? D + 2 : D + 3,
-      L = global_cloud.patch_correction.empty() ? 0 : (int)nd::patch_stride<D>(global_cloud.patch_virial);
-  PetscCallMPI(MPI_Bcast(&R, 1, MPI_INT, 0, comm));
-  PetscCallMPI(MPI_Bcast(&L, 1, MPI_INT, 0, comm));
-  const PointReals<D> reals{R + L, L, R, R == D + 3};
+  PetscInt      n;
+  PointReals<D> reals;
+  PetscCall(BroadcastCloudShape<D>(comm, global_cloud, &n, &reals));
   auto                first_of = [&](int r) { return (PetscInt)(n / size * r + std::min<PetscInt>(r, n % size)); };
   std::vector<std::vector<PetscInt>> out_int(size);
   std::vector<std::vector<double>>   out_real(size);
@@ -297,50 +355,18 @@ template <int D> PetscErrorCode DistributeBlocks(MPI_Comm comm, const BodyBlock 
   std::vector<PetscInt> part;
   PetscCall(PartitionBlocks(comm, block, n_global, &part));
 
-  // The owned points to their owners: natural id, family, reals. Blocks are in rank
-  // order and natural order inside, so each owner receives its points sorted.
-  std::vector<std::vector<PetscInt>> out_int(size);
-  std::vector<std::vector<double>>   out_real(size);
-  for (PetscInt i = 0; i < m; ++i) {
-    std::vector<PetscInt> &o = out_int[part[i]];
-    o.push_back(block.first + i);
-    o.push_back(block.offsets[i + 1] - block.offsets[i]);
-    o.insert(o.end(), block.neighbours.begin() + block.offsets[i], block.neighbours.begin() + block.offsets[i + 1]);
-    std::vector<double> &r  = out_real[part[i]];
-    const std::size_t    at = r.size();
-    r.resize(at + reals.R);
-    reals.Pack(block.cloud, (int)i, r.data() + at);
-  }
-  std::vector<PetscInt> in_int, owned, owned_offsets{0}, owned_neighbours;
-  std::vector<double>   owned_real;
-  PetscCall(Exchange(comm, out_int, &in_int));
-  PetscCall(Exchange(comm, out_real, &owned_real));
-  for (auto &o : out_int) std::vector<PetscInt>().swap(o);
-  for (std::size_t p = 0; p < in_int.size();) {
-    owned.push_back(in_int[p++]);
-    const PetscInt k = in_int[p++];
-    owned_neighbours.insert(owned_neighbours.end(), in_int.begin() + p, in_int.begin() + p + k);
-    owned_offsets.push_back((PetscInt)owned_neighbours.size());
-    p += k;
-  }
-  std::vector<PetscInt>().swap(in_int);
+  OwnedPoints own;
+  PetscCall(SendToOwners<D>(comm, block, part, reals, &own));
+  const std::vector<PetscInt> &owned = own.ids, &owned_neighbours = own.neighbours;
+  const std::vector<double>   &owned_real = own.real;
   PetscInt n_owned = (PetscInt)owned.size(), owned_start = 0, fewest = n_owned;
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &fewest, 1, MPIU_INT, MPI_MIN, comm));
   PetscCheck(fewest > 0, comm, PETSC_ERR_USER, "The partition left a rank without points: run on fewer ranks");
   PetscCallMPI(MPI_Exscan(&n_owned, &owned_start, 1, MPIU_INT, MPI_SUM, comm));
   if (rank == 0) owned_start = 0;
 
-  // PETSc numbering: rank blocks in rank order, natural order inside a rank's. Each
-  // block learns its points' indices, which it hands out with them as ghosts.
-  std::vector<std::vector<PetscInt>> tell(size);
-  for (PetscInt k = 0; k < n_owned; ++k) {
-    std::vector<PetscInt> &t = tell[HolderOf(starts, owned[k])];
-    t.push_back(owned[k]);
-    t.push_back(owned_start + k);
-  }
-  std::vector<PetscInt> told, block_petsc(m, -1);
-  PetscCall(Exchange(comm, tell, &told));
-  for (std::size_t p = 0; p < told.size(); p += 2) block_petsc[told[p] - block.first] = told[p + 1];
+  std::vector<PetscInt> block_petsc;
+  PetscCall(TellBlockIndices(comm, starts, block, owned, owned_start, &block_petsc));
 
   // Ring 1: the owned points' family members owned elsewhere; ring 2: the ring-1
   // points' members in neither (CollectRings, layout.cpp).

@@ -59,14 +59,10 @@ PetscErrorCode DistributePoints(MPI_Comm comm, const PointCloud &global_cloud, c
   PetscFunctionBegin;
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   PetscCallMPI(MPI_Comm_size(comm, &size));
-  PetscInt n_global = (PetscInt)global_cloud.size(), edge_cut = 0;
-  PetscCallMPI(MPI_Bcast(&n_global, 1, MPIU_INT, 0, comm));
-  int R = global_cloud.horizon.empty() ? D + 2 : D + 3,
-      L = global_cloud.patch_correction.empty() ? 0 : (int)nd::patch_stride<D>(global_cloud.patch_virial);
-  PetscCallMPI(MPI_Bcast(&R, 1, MPI_INT, 0, comm));
-  PetscCallMPI(MPI_Bcast(&L, 1, MPI_INT, 0, comm));
-  const PointReals<D> reals{R + L, L, R, R == D + 3};
-  R += L;
+  PetscInt      n_global, edge_cut = 0;
+  PointReals<D> reals;
+  PetscCall(BroadcastCloudShape<D>(comm, global_cloud, &n_global, &reals));
+  const int R = reals.R;
   PetscCheck(n_global >= size, comm, PETSC_ERR_USER, "The body has %" PetscInt_FMT " points, fewer than the %d ranks: run on fewer ranks or refine -body_dx", n_global, size);
 
   std::vector<int>      my_ids;

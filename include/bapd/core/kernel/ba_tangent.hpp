@@ -140,6 +140,157 @@ inline StressStatus tangent_of(const Model &model, const Mat<D> &F, double c33, 
 
 } // namespace detail
 
+namespace detail {
+
+// The sums of pass 1 over the bonds that carry energy: sum_q V_q (1 / omega_i) and
+// sum_q V_q J_iq (Jbar_i / omega_i, point form only).
+struct EnergeticSums {
+  double volume = 0.0, dilatation = 0.0;
+};
+
+// Pass 1: which bonds of i carry energy (intact, K usable, law ok at F_iq), with their
+// F, K^{-1}, C33, J (point form) and, for a law with an exact tangent (exact), its dP/dF.
+template <int D, class Model>
+EnergeticSums energetic_bonds(const Model &model, const Families &fam, const BondGeometry<D> &geo, const BondState &state,
+                              const double *c33, std::size_t i, const PointTotals<D> &totals, bool exact, bool point,
+                              TangentWorkspace<D> &ws)
+{
+  constexpr int        DD = D * D;
+  const std::size_t    o = fam.offsets[i], m = fam.size(i), W = fam.mask_words;
+  const std::uint64_t *intact = state.intact_mask(i);
+  EnergeticSums        sums;
+  for (std::size_t q = 0; q < m; ++q) {
+    ws.energetic[q] = 0;
+    if (!state.is_intact(i, q) || !geo.is_usable(i, q)) continue;
+    const BondKinematics<D> k = bond_kinematics<D>(fam.ba(o + q), intact, W, ws.point, totals);
+    if (!k.usable) continue;
+    double c = c33 ? c33[o + q] : 0.0;
+    if (exact) { // the law's tangent decides (its C33 solve is the stress's) and is kept
+      if (tangent_of<D>(model, k.F, c, false, 1.0, 0.0, 0.0, true, &ws.law_A[DD * DD * q]) != StressStatus::ok) continue;
+    } else {
+      Mat<D> P;
+      if (stress_of<D>(model, k.F, c, P, 0) != StressStatus::ok) continue;
+    }
+    ws.energetic[q]   = 1;
+    ws.deformation[q] = k.F;
+    ws.c33[q]         = c;
+    for (int s = 0; s < sym_size<D>; ++s) ws.kinv[sym_size<D> * q + s] = k.shape_tensor_inv[s];
+    const double vq = ws.point.member[q][Member<D>::volume];
+    sums.volume += vq;
+    if (point) {
+      ws.dilatation[q] = det<D>(k.F);
+      sums.dilatation += vq * ws.dilatation[q];
+    }
+  }
+  return sums;
+}
+
+// The points of bond q: i (local 0), then the intact members p of B_iq (local 1 + p, by
+// a sweep over the mask words, increasing), with a_p = K^{-1} (x_p - x_i) V_p and
+// a_i = -sum_p a_p side by side in ws.a; returns their number.
+template <int D>
+std::size_t bond_points(const Families &fam, std::size_t i, std::size_t q, const std::uint64_t *intact, TangentWorkspace<D> &ws)
+{
+  const std::uint64_t *ba    = fam.ba(fam.offsets[i] + q);
+  const double        *kinv  = &ws.kinv[sym_size<D> * q];
+  std::size_t         *local = ws.local.data();
+  double              *g     = ws.a.data();
+  std::size_t          nb    = 1;
+  double               ai[D] = {};
+  local[0]                   = 0;
+  for (std::size_t w = 0; w < fam.mask_words; ++w) {
+    std::uint64_t bits = ba[w] & intact[w];
+    while (bits) {
+      const std::size_t p = 64 * w + static_cast<std::size_t>(__builtin_ctzll(bits));
+      bits &= bits - 1;
+      const double *d  = &ws.point.offset[D * p];
+      const double  vp = ws.point.member[p][Member<D>::volume];
+      for (int r = 0; r < D; ++r) {
+        double t = 0.0;
+        for (int c2 = 0; c2 < D; ++c2) t += kinv[sym_index<D>(r, c2)] * d[c2];
+        g[D * nb + r] = t * vp;
+        ai[r] -= t * vp;
+      }
+      local[nb++] = 1 + p;
+    }
+  }
+  for (int r = 0; r < D; ++r) g[r] = ai[r];
+  return nb;
+}
+
+// Bond q's blocks into the upper blocks of ws.H (N columns): T_k[r][s][n] = vq sum_m
+// A[r m][s n] a_k[m], then H_ab[r][s] += sum_n T_a[r][s][n] a_b[n] over the pairs with
+// b >= a (ws.local is increasing).
+template <int D> void add_bond_blocks(const double *A, double vq, std::size_t nb, std::size_t N, TangentWorkspace<D> &ws)
+{
+  constexpr int      DD    = D * D;
+  const std::size_t *local = ws.local.data();
+  const double      *g     = ws.a.data();
+  for (std::size_t k = 0; k < nb; ++k) {
+    const double *gk = &g[D * k];
+    double       *T  = &ws.T[DD * D * k];
+    for (int r = 0; r < D; ++r)
+      for (int s2 = 0; s2 < D; ++s2)
+        for (int nn = 0; nn < D; ++nn) {
+          double t = 0.0;
+          for (int mm = 0; mm < D; ++mm) t += A[DD * (D * r + mm) + D * s2 + nn] * gk[mm];
+          T[DD * r + D * s2 + nn] = vq * t;
+        }
+  }
+  for (std::size_t k1 = 0; k1 < nb; ++k1) {
+    double Tk[DD * D];
+    for (int e = 0; e < DD * D; ++e) Tk[e] = ws.T[DD * D * k1 + e];
+    double *row = &ws.H[D * local[k1] * N];
+    for (std::size_t k2 = k1; k2 < nb; ++k2) {
+      const double *gb  = &g[D * k2];
+      double       *out = row + D * local[k2];
+      for (int r = 0; r < D; ++r)
+        for (int s2 = 0; s2 < D; ++s2) {
+          double h = 0.0;
+          for (int nn = 0; nn < D; ++nn) h += Tk[DD * r + D * s2 + nn] * gb[nn];
+          out[r * N + s2] += h;
+        }
+    }
+  }
+}
+
+// Point form: v += V_q cof F_iq : dF_iq/dy over the bond's points (omega_i applied later).
+template <int D> void add_dilatation_gradient(const Mat<D> &F, double vq, std::size_t nb, TangentWorkspace<D> &ws)
+{
+  const Mat<D>  cof = cofactor_of<D>(F);
+  const double *g   = ws.a.data();
+  for (std::size_t k = 0; k < nb; ++k) {
+    const double *gk = &g[D * k];
+    for (int r = 0; r < D; ++r) {
+      double t = 0.0;
+      for (int nn = 0; nn < D; ++nn) t += cof[D * r + nn] * gk[nn];
+      ws.v[D * ws.local[k] + r] += vq * t;
+    }
+  }
+}
+
+// H scaled by V_i omega_i, its lower blocks mirrored from the upper; the point form's
+// rank-one block V_i (U''(Jbar_i) - kappa) v (x) v added (with v's omega_i).
+template <int D>
+void finish_tangent(double Vi, double omega, double Jbar, double compressibility, bool point, std::size_t N, TangentWorkspace<D> &ws)
+{
+  const double scale = Vi * omega;
+  for (std::size_t r = 0; r < N; ++r) {
+    for (std::size_t c = D * (r / D + 1); c < N; ++c) ws.H[c * N + r] = ws.H[r * N + c] *= scale; // lower blocks from the upper
+    for (std::size_t c = D * (r / D); c < D * (r / D + 1); ++c) ws.H[r * N + c] *= scale;            // the diagonal block
+  }
+  if (!point) return;
+  const double curvature = (1.0 + 1.0 / (Jbar * Jbar)) / compressibility - ws.kappa; // U''(Jbar) - kappa
+  const double f         = Vi * curvature * omega * omega;
+  for (std::size_t r = 0; r < N; ++r) {
+    const double vr = f * ws.v[r];
+    if (vr == 0.0) continue;
+    for (std::size_t c = 0; c < N; ++c) ws.H[r * N + c] += vr * ws.v[c];
+  }
+}
+
+} // namespace detail
+
 // The Hessian of W_i (above) into ws.H, (m + 1) D square; returns the number of
 // bonds whose law failed at a perturbed F (their tangent left out: the caller reports
 // it). y: current positions of every local point; c33 the plane-stress warm starts (1
@@ -149,136 +300,35 @@ std::size_t point_tangent(const Model &model, const PointCloud &ref, const doubl
                           const BondGeometry<D> &geo, const BondState &state, const double *c33, std::size_t i,
                           TangentWorkspace<D> &ws)
 {
-  constexpr int     DD = D * D;
-  const std::size_t o = fam.offsets[i], m = fam.size(i), n = m + 1, W = fam.mask_words;
-  const std::size_t N = n * D;
+  constexpr int        DD = D * D;
+  const std::size_t    m = fam.size(i), N = (m + 1) * D;
   const std::uint64_t *intact = state.intact_mask(i);
   const PointTotals<D> totals = gather_point<D>(ref, y, fam, i, intact, ws.point);
   const bool           point  = ws.volumetric == Volumetric::point;
   // The law's exact tangent, formed in the first pass (one C33 solve a bond).
-  const bool exact = detail::has_law_tangent<Model>::value && D == 2 && ws.law_tangent && !point;
-  const double         Dc     = point ? detail::compressibility(model, 0) : 0.0;
+  const bool   exact = detail::has_law_tangent<Model>::value && D == 2 && ws.law_tangent && !point;
+  const double Dc    = point ? detail::compressibility(model, 0) : 0.0;
   std::fill(ws.H.begin(), ws.H.begin() + N * N, 0.0);
-  // Pass 1: which bonds carry energy, their F, K^{-1}, J and volume sums (omega_i, Jbar_i).
-  double                       volume = 0.0, dilatation = 0.0;
-  std::vector<Mat<D>>         &Fq = ws.deformation;
-  for (std::size_t q = 0; q < m; ++q) {
-    ws.energetic[q] = 0;
-    if (!state.is_intact(i, q) || !geo.is_usable(i, q)) continue;
-    const BondKinematics<D> k = bond_kinematics<D>(fam.ba(o + q), intact, W, ws.point, totals);
-    if (!k.usable) continue;
-    double c = c33 ? c33[o + q] : 0.0;
-    if (exact) { // the law's tangent decides (its C33 solve is the stress's) and is kept
-      if (detail::tangent_of<D>(model, k.F, c, false, 1.0, 0.0, 0.0, true, &ws.law_A[DD * DD * q]) != StressStatus::ok) continue;
-    } else {
-      Mat<D> P;
-      if (detail::stress_of<D>(model, k.F, c, P, 0) != StressStatus::ok) continue;
-    }
-    ws.energetic[q] = 1;
-    Fq[q]           = k.F;
-    ws.c33[q]       = c;
-    for (int s = 0; s < sym_size<D>; ++s) ws.kinv[sym_size<D> * q + s] = k.shape_tensor_inv[s];
-    const double vq = ws.point.member[q][Member<D>::volume];
-    volume += vq;
-    if (point) {
-      ws.dilatation[q] = det<D>(k.F);
-      dilatation += vq * ws.dilatation[q];
-    }
-  }
-  if (!(volume > 0.0)) return 0;
-  const double omega = 1.0 / volume, Jbar = point ? dilatation * omega : 1.0;
+  const detail::EnergeticSums sums = detail::energetic_bonds<D>(model, fam, geo, state, c33, i, totals, exact, point, ws);
+  if (!(sums.volume > 0.0)) return 0;
+  const double omega = 1.0 / sums.volume, Jbar = point ? sums.dilatation * omega : 1.0;
   if (point) std::fill(ws.v.begin(), ws.v.begin() + N, 0.0);
   std::size_t failed = 0;
   double      A[DD * DD];
   for (std::size_t q = 0; q < m; ++q) {
     if (!ws.energetic[q]) continue;
     if (exact) std::copy_n(&ws.law_A[DD * DD * q], DD * DD, A);
-    else if (detail::tangent_of<D>(model, Fq[q], ws.c33[q], point, Jbar, Dc, ws.kappa, ws.law_tangent, A) != StressStatus::ok) {
+    else if (detail::tangent_of<D>(model, ws.deformation[q], ws.c33[q], point, Jbar, Dc, ws.kappa, ws.law_tangent, A) !=
+             StressStatus::ok) {
       ++failed;
       continue;
     }
-    // The points of the bond: i (local 0), then the intact members p of B_iq (local 1 + p,
-    // by a sweep over the mask words, increasing), with a_p = K^{-1} (x_p - x_i) V_p and
-    // a_i = -sum_p a_p side by side in ws.a.
-    const std::uint64_t *ba   = fam.ba(o + q);
-    const double        *kinv = &ws.kinv[sym_size<D> * q];
-    std::size_t         *local = ws.local.data();
-    double              *g     = ws.a.data();
-    std::size_t          nb    = 1;
-    double               ai[D] = {};
-    local[0]                   = 0;
-    for (std::size_t w = 0; w < W; ++w) {
-      std::uint64_t bits = ba[w] & intact[w];
-      while (bits) {
-        const std::size_t p = 64 * w + static_cast<std::size_t>(__builtin_ctzll(bits));
-        bits &= bits - 1;
-        const double *d  = &ws.point.offset[D * p];
-        const double  vp = ws.point.member[p][Member<D>::volume];
-        for (int r = 0; r < D; ++r) {
-          double t = 0.0;
-          for (int c2 = 0; c2 < D; ++c2) t += kinv[sym_index<D>(r, c2)] * d[c2];
-          g[D * nb + r] = t * vp;
-          ai[r] -= t * vp;
-        }
-        local[nb++] = 1 + p;
-      }
-    }
-    for (int r = 0; r < D; ++r) g[r] = ai[r];
-    const double vq = ws.point.member[q][Member<D>::volume];
-    // T_k[r][s][n] = vq sum_m A[r m][s n] a_k[m] (k: the bond's k-th point)
-    for (std::size_t k = 0; k < nb; ++k) {
-      const double *gk = &g[D * k];
-      double       *T  = &ws.T[DD * D * k];
-      for (int r = 0; r < D; ++r)
-        for (int s2 = 0; s2 < D; ++s2)
-          for (int nn = 0; nn < D; ++nn) {
-            double t = 0.0;
-            for (int mm = 0; mm < D; ++mm) t += A[DD * (D * r + mm) + D * s2 + nn] * gk[mm];
-            T[DD * r + D * s2 + nn] = vq * t;
-          }
-    }
-    // H_ab[r][s] += sum_n T_a[r][s][n] a_b[n] over the pairs with b >= a (local is increasing)
-    for (std::size_t k1 = 0; k1 < nb; ++k1) {
-      double Tk[DD * D];
-      for (int e = 0; e < DD * D; ++e) Tk[e] = ws.T[DD * D * k1 + e];
-      double *row = &ws.H[D * local[k1] * N];
-      for (std::size_t k2 = k1; k2 < nb; ++k2) {
-        const double *gb  = &g[D * k2];
-        double       *out = row + D * local[k2];
-        for (int r = 0; r < D; ++r)
-          for (int s2 = 0; s2 < D; ++s2) {
-            double h = 0.0;
-            for (int nn = 0; nn < D; ++nn) h += Tk[DD * r + D * s2 + nn] * gb[nn];
-            out[r * N + s2] += h;
-          }
-      }
-    }
-    if (point) { // v += V_q cof F_iq : dF_iq/dy (omega_i applied below)
-      const Mat<D> cof = detail::cofactor_of<D>(Fq[q]);
-      for (std::size_t k = 0; k < nb; ++k) {
-        const double *gk = &g[D * k];
-        for (int r = 0; r < D; ++r) {
-          double t = 0.0;
-          for (int nn = 0; nn < D; ++nn) t += cof[D * r + nn] * gk[nn];
-          ws.v[D * local[k] + r] += vq * t;
-        }
-      }
-    }
+    const std::size_t nb = detail::bond_points<D>(fam, i, q, intact, ws);
+    const double      vq = ws.point.member[q][Member<D>::volume];
+    detail::add_bond_blocks<D>(A, vq, nb, N, ws);
+    if (point) detail::add_dilatation_gradient<D>(ws.deformation[q], vq, nb, ws);
   }
-  const double Vi = ref.volume[i], scale = Vi * omega;
-  for (std::size_t r = 0; r < N; ++r) {
-    for (std::size_t c = D * (r / D + 1); c < N; ++c) ws.H[c * N + r] = ws.H[r * N + c] *= scale; // lower blocks from the upper
-    for (std::size_t c = D * (r / D); c < D * (r / D + 1); ++c) ws.H[r * N + c] *= scale;            // the diagonal block
-  }
-  if (point) {
-    const double curvature = (1.0 + 1.0 / (Jbar * Jbar)) / Dc - ws.kappa; // U''(Jbar) - kappa
-    const double f         = Vi * curvature * omega * omega;
-    for (std::size_t r = 0; r < N; ++r) {
-      const double vr = f * ws.v[r];
-      if (vr == 0.0) continue;
-      for (std::size_t c = 0; c < N; ++c) ws.H[r * N + c] += vr * ws.v[c];
-    }
-  }
+  detail::finish_tangent<D>(ref.volume[i], omega, Jbar, Dc, point, N, ws);
   return failed;
 }
 

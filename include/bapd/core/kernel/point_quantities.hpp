@@ -227,19 +227,12 @@ void point_quantities(const Model &model, const PointCloud &cloud, const double 
   for (std::size_t i = 0; i < n_points; ++i) out.strain_energy_density[i] /= cloud.volume[i]; // V_i W_i -> W_i
 }
 
-// The same for the run-time model (with_model, models.hpp).
-void point_quantities(ModelKind kind, Formulation formulation, const MaterialParameters &material,
-                      const PointCloud &cloud, const double *y, const Families &families,
-                      const nd::BondGeometry<2> &geometry,
-                      const BondState &state, const double *c33, std::size_t n_points, StressWeights weights,
-                      PointQuantities &out, Volumetric volumetric = Volumetric::bond,
-                      double stabilisation = 0.0);
-// A 3D body: the law's 3D form (with_model_3d, models.hpp); the formulation is not used.
-void point_quantities(ModelKind kind, Formulation formulation, const MaterialParameters &material,
-                      const PointCloud &cloud, const double *y, const Families &families,
-                      const nd::BondGeometry<3> &geometry,
-                      const BondState &state, const double *c33, std::size_t n_points, StressWeights weights,
-                      PointQuantities &out, Volumetric volumetric = Volumetric::bond,
-                      double stabilisation = 0.0);
+// The same for the run-time model: in 2D the law in its formulation (with_model), in 3D
+// the law's 3D form (with_model_3d; the formulation is not used). models.hpp.
+template <int D>
+void point_quantities(ModelKind kind, Formulation formulation, const MaterialParameters &material, const PointCloud &cloud,
+                      const double *y, const Families &families, const nd::BondGeometry<D> &geometry, const BondState &state,
+                      const double *c33, std::size_t n_points, StressWeights weights, PointQuantities &out,
+                      Volumetric volumetric = Volumetric::bond, double stabilisation = 0.0);
 
 } // namespace bapd

@@ -20,6 +20,7 @@
 
 #include "bapd/core/materials/hyperelastic_numerics.hpp"
 #include "bapd/core/materials/law.hpp"
+#include "bapd/core/materials/stress_status.hpp"
 #include "bapd/core/kernel/tensor.hpp"
 
 namespace bapd {
@@ -34,7 +35,7 @@ template <class Law> struct Compressible3D {
   StressStatus stress(const Mat3 &F, Mat3 &P) const
   {
     const double J = det(F);
-    if (!(J > 0.0)) return fail(P, StressStatus::inverted);
+    if (!(J > 0.0)) return stress_failed(P, StressStatus::inverted);
     const double trC = frobenius_squared(F);
     const double q   = 1.0 / std::cbrt(J * J); // J^{-2/3}
     Modulus      G;
@@ -42,7 +43,7 @@ template <class Law> struct Compressible3D {
       Mat3 FC{}; // F C = F F^T F
       const double I2 = invariant_I2(F, FC);
       const Invariants inv{trC * q, I2 * q * q};
-      if (!Law::modulus(p, inv, G)) return fail(P, StressStatus::chain_limit);
+      if (!Law::modulus(p, inv, G)) return stress_failed(P, StressStatus::chain_limit);
       const Mat3   Finv_t = inverse_transpose(F);
       Modulus      H;
       Law::modulus_I2bar(p, inv, H);
@@ -52,7 +53,7 @@ template <class Law> struct Compressible3D {
       for (int i = 0; i < 9; ++i) P[i] = a * F[i] - h * FC[i] + b * Finv_t[i];
       return StressStatus::ok;
     } else {
-      if (!Law::modulus(p, Invariants{trC * q}, G)) return fail(P, StressStatus::chain_limit);
+      if (!Law::modulus(p, Invariants{trC * q}, G)) return stress_failed(P, StressStatus::chain_limit);
       const Mat3   Finv_t = inverse_transpose(F);
       const double a      = G[0] * q;
       const double b      = (J * J - 1.0) / p.D - a * trC / 3.0;
@@ -96,12 +97,6 @@ private:
     for (int i = 0; i < 9; ++i) trC2 += C[i] * C[i];
     return 0.5 * (trC * trC - trC2);
   }
-
-  static StressStatus fail(Mat3 &P, StressStatus s)
-  {
-    P = {};
-    return s;
-  }
 };
 
 // ---------------------------------------------------------------------------------
@@ -116,10 +111,7 @@ template <class Law> struct PlaneStrain {
   {
     c33            = 1.0;
     const double J = det(F);
-    if (!(J > 0.0)) {
-      P = {};
-      return StressStatus::inverted;
-    }
+    if (!(J > 0.0)) return stress_failed(P, StressStatus::inverted);
     const double trC = F[0] * F[0] + F[1] * F[1] + F[2] * F[2] + F[3] * F[3] + 1.0;
     const double q   = 1.0 / std::cbrt(J * J);
     Modulus      G;
@@ -127,10 +119,7 @@ template <class Law> struct PlaneStrain {
       // C = diag(C~, 1): I2 = det C~ + tr C~ = J^2 + tr C - 1; F C = diag(F~ C~, 1)
       const double     I2 = J * J + trC - 1.0;
       const Invariants inv{trC * q, I2 * q * q};
-      if (!Law::modulus(p, inv, G)) {
-        P = {};
-        return StressStatus::chain_limit;
-      }
+      if (!Law::modulus(p, inv, G)) return stress_failed(P, StressStatus::chain_limit);
       const Mat2   FC = F * right_cauchy_green(F);
       Modulus      H;
       Law::modulus_I2bar(p, inv, H);
@@ -141,10 +130,7 @@ template <class Law> struct PlaneStrain {
            a * F[3] - h * FC[3] + b * F[0]};
       return StressStatus::ok;
     }
-    if (!Law::modulus(p, Invariants{trC * q}, G)) {
-      P = {};
-      return StressStatus::chain_limit;
-    }
+    if (!Law::modulus(p, Invariants{trC * q}, G)) return stress_failed(P, StressStatus::chain_limit);
     const double a = G[0] * q;
     const double b = ((J * J - 1.0) / p.D - a * trC / 3.0) / J; // F^{-T} = cof(F)/J
     P              = {a * F[0] + b * F[3], a * F[1] - b * F[2], a * F[2] - b * F[1], a * F[3] + b * F[0]};

@@ -160,10 +160,7 @@ struct OgdenPlaneStrain {
   {
     c33            = 1.0;
     const double J = det(F);
-    if (!(J > 0.0)) {
-      P = {};
-      return StressStatus::inverted;
-    }
+    if (!(J > 0.0)) return stress_failed(P, StressStatus::inverted);
     double c[2], N[2][2], tau[3];
     ogden_detail::eigen2(right_cauchy_green(F), c, N);
     const double ln_l[3] = {0.5 * std::log(c[0]), 0.5 * std::log(c[1]), 0.0};
@@ -230,10 +227,7 @@ struct OgdenPlaneStress {
   StressStatus stress(const Mat2 &F, double &c33, Mat2 &P) const
   {
     const double Jt = det(F);
-    if (!(Jt > 0.0)) {
-      P = {};
-      return StressStatus::inverted;
-    }
+    if (!(Jt > 0.0)) return stress_failed(P, StressStatus::inverted);
     double c[2], N[2][2], tau[3], lambda3 = 1.0;
     ogden_detail::eigen2(right_cauchy_green(F), c, N);
     const double l1 = std::sqrt(c[0]), l2 = std::sqrt(c[1]);
@@ -314,10 +308,7 @@ struct Ogden3D {
   StressStatus stress(const Mat3 &F, Mat3 &P) const
   {
     const double J = det(F);
-    if (!(J > 0.0)) {
-      P = {};
-      return StressStatus::inverted;
-    }
+    if (!(J > 0.0)) return stress_failed(P, StressStatus::inverted);
     double c[3], tau[3];
     Mat3   V;
     eigen3(right_cauchy_green3(F), c, V);

@@ -10,6 +10,12 @@ enum class StressStatus : int {
   inverted       = 2, // det F <= 0
   no_convergence = 3  // the plane-stress C33 solve did not converge
 };
+// A stress the law cannot give: P zeroed (no bond force from it), s returned.
+template <class Stress> StressStatus stress_failed(Stress &P, StressStatus s)
+{
+  P = {};
+  return s;
+}
 // Short name ("ok", "chain_limit", ...), for logs and CSV.
 const char *to_string(StressStatus s);
 // One sentence for a run that must stop: what happened and which option changes it.

@@ -53,6 +53,24 @@ template <class Read> std::string WithGmshFile(const std::string &file, Read rea
   }
 }
 
+// Each element type of dimension dim in entity tag (-1: every entity) of the open model:
+// visit(type, name, nodes per element, node tags of its elements); returns the first
+// message a visit returns ("" when none does).
+template <class Visit> std::string ForEachElementType(int dim, int tag, Visit visit)
+{
+  std::vector<int>                      types;
+  std::vector<std::vector<std::size_t>> tags, nodes;
+  gmsh::model::mesh::getElements(types, tags, nodes, dim, tag);
+  for (std::size_t t = 0; t < types.size(); ++t) {
+    std::string         name;
+    int                 type_dim, order, per, primary;
+    std::vector<double> local;
+    gmsh::model::mesh::getElementProperties(types[t], name, type_dim, order, per, local, primary);
+    if (std::string why = visit(types[t], name, static_cast<std::size_t>(per), nodes[t]); !why.empty()) return why;
+  }
+  return "";
+}
+
 // Meshes the open model in `dim` dimensions. The mesh only tells which lattice points
 // lie inside the body, so a mesh far finer than any lattice costs time and nothing else:
 // a .geo whose mesh size is 1e-9 m meshed for hours. Element sizes are held at or above

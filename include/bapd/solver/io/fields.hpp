@@ -68,24 +68,37 @@ struct FieldSeries {
   std::vector<double>     reference; // this rank's natural block, D per point (set on the first write)
 };
 
+// The point arrays of a field file, after natural_id, rank, reference_position and
+// position, in the order of the file and of fields.xdmf: X(name, shape), shape the
+// numbers a point holds (scalar 1, vector D, tensor D x D, triple 3 in 2D and 3D). The
+// name is the dataset's and PointFields' member's. A new output field is one row here
+// plus its computation where the driver fills PointFields (simulation_output.cpp); its
+// dataset, its exchange to natural order and its XDMF attribute follow from the row.
+//   thickness_stretch: lambda_3, 2D only (no dataset in 3D)
+//   load_set: 0 free, k held by the scene's k-th load set
+#define BAPD_POINT_FIELDS(X)       \
+  X(displacement, vector)          \
+  X(velocity, vector)              \
+  X(volume, scalar)                \
+  X(force_density, vector)         \
+  X(damage, scalar)                \
+  X(max_bond_stretch, scalar)      \
+  X(nominal_stress, tensor)        \
+  X(cauchy_stress, tensor)         \
+  X(deformation_gradient, tensor)  \
+  X(thickness_stretch, scalar)     \
+  X(strain_energy_density, scalar) \
+  X(von_mises_stress, scalar)      \
+  X(principal_stretch, triple)     \
+  X(load_set, scalar)
+
 // The fields of the owned points, in local order; a D-vector has D numbers a point, a
 // tensor D x D (row-major: xx, xy, yx, yy in 2D), as point_quantities.hpp forms them.
 struct PointFields {
-  const double *reference             = nullptr; // D per point
-  const double *displacement          = nullptr; // D per point
-  const double *velocity              = nullptr; // D per point
-  const double *damage                = nullptr; // 1 per point
-  const double *max_bond_stretch      = nullptr; // 1 per point
-  const double *volume                = nullptr; // 1 per point
-  const double *force_density         = nullptr; // D per point
-  const double *nominal_stress        = nullptr; // D x D per point
-  const double *cauchy_stress         = nullptr; // D x D per point
-  const double *deformation_gradient  = nullptr; // D x D per point
-  const double *thickness_stretch     = nullptr; // 1 per point, 2D only (lambda_3)
-  const double *strain_energy_density = nullptr; // 1 per point
-  const double *von_mises_stress      = nullptr; // 1 per point
-  const double *principal_stretch     = nullptr; // 3 per point, in 2D and 3D
-  const double *load_set              = nullptr; // 1 per point: 0 free, k held by the scene's k-th load set
+  const double *reference = nullptr; // D per point
+#define BAPD_POINT_FIELD_MEMBER(name, shape) const double *name = nullptr;
+  BAPD_POINT_FIELDS(BAPD_POINT_FIELD_MEMBER)
+#undef BAPD_POINT_FIELD_MEMBER
 };
 
 // Largest stretch over the intact bonds of points [0, n) (y: current positions of

@@ -1,6 +1,8 @@
 #pragma once
 // A point's reference data as the set-up ships it between ranks (layout.cpp,
 // distributed_body.cpp): a fixed count of reals a point.
+#include <petscsys.h>
+
 #include <vector>
 
 #include "bapd/core/geometry/body.hpp"
@@ -47,5 +49,20 @@ template <int D> struct PointReals {
     }
   }
 };
+
+// The global cloud's size *n and the reals a point has (its own horizons, the patch
+// correction's numbers), from rank 0, which holds the cloud, to every rank.
+template <int D> PetscErrorCode BroadcastCloudShape(MPI_Comm comm, const PointCloud &global_cloud, PetscInt *n, PointReals<D> *reals)
+{
+  PetscFunctionBegin;
+  *n = (PetscInt)global_cloud.size();
+  PetscCallMPI(MPI_Bcast(n, 1, MPIU_INT, 0, comm));
+  int R = global_cloud.horizon.empty() ? D + 2 : D + 3,
+      L = global_cloud.patch_correction.empty() ? 0 : (int)nd::patch_stride<D>(global_cloud.patch_virial);
+  PetscCallMPI(MPI_Bcast(&R, 1, MPI_INT, 0, comm));
+  PetscCallMPI(MPI_Bcast(&L, 1, MPI_INT, 0, comm));
+  *reals = PointReals<D>{R + L, L, R, R == D + 3};
+  PetscFunctionReturn(0);
+}
 
 } // namespace bapd
