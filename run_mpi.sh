@@ -87,14 +87,25 @@ if [ "$(ulimit -S -n)" != unlimited ] && (($(ulimit -S -n) < files_needed)); the
 fi
 signal_file="$(mktemp "$tmp/bapd_signal.XXXXXX")"
 trap 'rm -f "$signal_file"' EXIT
+# A SIGKILL runs no trap: a watcher (its own session, so that a Ctrl-C to this script's
+# group leaves it; no terminal or pipe held open) removes the file once this script is gone.
+setsid bash -c 'tail --pid="$1" -f /dev/null; rm -f "$2"' bapd_signal_cleanup $$ "$signal_file" < /dev/null > /dev/null 2>&1 &
 export BAPD_SIGNAL_FILE="$signal_file"
 # mpiexec gets SIGTERM should this script die without passing a signal on (kill -9):
 # it then stops the ranks, instead of running on without anyone waiting for it.
 launch=(setsid)
 command -v setpriv > /dev/null && launch+=(setpriv --pdeathsig TERM)
-"${launch[@]}" mpiexec -q -x BAPD_SIGNAL_FILE -n "$ranks" --oversubscribe --bind-to none "$BAPD_EXE" "${scene_args[@]}" "${args[@]}" &
+run=("${launch[@]}" mpiexec -q -x BAPD_SIGNAL_FILE -n "$ranks" --oversubscribe --bind-to none "$BAPD_EXE" "${scene_args[@]}" "${args[@]}")
+if [ -p /dev/stdout ]; then
+  # Output into a pipe whose reader may end first (| head): mpiexec would abort the ranks
+  # with SIGTERM at its SIGPIPE. A relay takes the output instead; when the reader is
+  # gone it asks this script for a stop as for SIGTERM, named SIGPIPE, and drains the rest.
+  "${run[@]}" > >(cat || { kill -PIPE $$; exec cat > /dev/null; }) &
+else
+  "${run[@]}" &
+fi
 child=$!
-for sig in TERM INT; do trap "echo SIG$sig > '$signal_file'; kill -USR2 $child 2> /dev/null" "$sig"; done
+for sig in TERM INT PIPE; do trap "echo SIG$sig > '$signal_file'; kill -USR2 $child 2> /dev/null" "$sig"; done
 for sig in USR1 HUP; do trap "kill -$sig $child 2> /dev/null" "$sig"; done
 status=0
 while :; do

@@ -3,6 +3,8 @@
 # SIGTERM and kill the ranks 1 s later; run_mpi.sh passes it on as SIGUSR2 (at once)
 # and names it. The run writes a checkpoint, says "interrupted by SIGINT" in one line,
 # exits non-zero (not by a signal), and the checkpoint continues the run.
+# Output into a pipe whose reader ends (| head): mpiexec would abort the ranks with
+# SIGTERM; run_mpi.sh stops the run as for SIGTERM and names SIGPIPE.
 #   sigint.sh RANKS
 source "$BAPD_SOURCE_DIR/tests/faults/common.sh"
 source "$BAPD_SOURCE_DIR/tests/faults/long_scene.sh"
@@ -24,6 +26,13 @@ for sig in INT TERM; do
   whole_rows "$work/$sig/history.csv"
   ok "SIG$sig on $ranks rank(s), stopped ${SECONDS_LEFT} s later"
 done
+# (the first lines to head, stderr to the log: as a user would run it)
+timeout 60 "$BAPD_SOURCE_DIR/run_mpi.sh" -n "$ranks" "${LONG[@]}" -output_dir "$work/PIPE" 2> "$work/PIPE.log" | head -n 3 > /dev/null
+STATUS=${PIPESTATUS[0]}
+log="$work/PIPE.log"
+stopped_cleanly "interrupted by SIGPIPE at step" "-restart $work/PIPE/checkpoint.h5"
+whole_rows "$work/PIPE/history.csv"
+ok "the reader of the output (head) ended on $ranks rank(s)"
 step=$(sed -n 's/^Checkpoint (interrupted): step \([0-9]*\),.*/\1/p' "$work/INT.log")
 bounded "$work/continued.log" "$ranks" -restart "$work/INT/checkpoint.h5" -end_step $((step + 20)) -output_dir "$work/continued"
 ((STATUS == 0)) || fail "the checkpoint written on SIGINT does not continue"
