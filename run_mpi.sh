@@ -63,8 +63,8 @@ scene_args=()
 # itself) still gets one line; the signals a user or a batch system sends to this
 # script (SIGTERM, SIGINT: checkpoint and stop; SIGUSR1: checkpoint and go on) are
 # passed on to mpiexec, which passes them on to the ranks. Open MPI 4's mpiexec
-# passes SIGINT on as SIGTERM, and kills the ranks 1 s after a SIGTERM; SIGUSR2 it
-# passes on at once and leaves alone. So SIGINT and SIGTERM go on as SIGUSR2 (bapd:
+# passes SIGINT (and SIGHUP) on as SIGTERM, and kills the ranks 1 s after a SIGTERM; SIGUSR2 it
+# passes on at once and leaves alone. So SIGINT, SIGTERM and SIGHUP go on as SIGUSR2 (bapd:
 # checkpoint and stop), and the signal's real name goes to $BAPD_SIGNAL_FILE, which
 # bapd reads for its message. mpiexec runs in a session of its own (setsid): a Ctrl-C
 # in a terminal reaches this script only, not the ranks as well.
@@ -105,14 +105,18 @@ else
   "${run[@]}" &
 fi
 child=$!
-for sig in TERM INT PIPE; do trap "echo SIG$sig > '$signal_file'; kill -USR2 $child 2> /dev/null" "$sig"; done
-for sig in USR1 HUP; do trap "kill -$sig $child 2> /dev/null" "$sig"; done
+for sig in TERM INT HUP PIPE; do trap "echo SIG$sig > '$signal_file'; kill -USR2 $child 2> /dev/null" "$sig"; done
+trap "kill -USR1 $child 2> /dev/null" USR1
 status=0
 while :; do
   wait "$child" && status=0 || status=$?
   kill -0 "$child" 2> /dev/null || break # a trapped signal ends wait early: wait again
 done
-if ((status > 128)); then
+if ((status == 128 + $(kill -l USR2))) && [ -s "$signal_file" ]; then
+  # (this script's own SIGUSR2 reached mpiexec before it could pass it on)
+  echo "bapd: error: interrupted by $(cat "$signal_file") before the run had started: nothing was written; run it again to start over" >&2
+  status=1 # (as bapd's own interrupted exit)
+elif ((status > 128)); then
   signal="$(kill -l $((status - 128)) 2> /dev/null || echo $((status - 128)))"
   echo "bapd: error: a bapd process was killed by SIG$signal (exit status $status) before it could report anything" \
        "(SIGKILL is how the out-of-memory killer and batch time limits stop a run): the output directory keeps what" \
