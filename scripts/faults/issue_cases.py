@@ -326,10 +326,12 @@ def issue_cases(Case, ref, environment):
          keys=["another"])
     case("a 2D checkpoint on a 3D scene", [BLOCK_3D, "-restart", os.path.join(ref, "checkpoint.h5"), "-end_step", "15"],
          keys=["2D", "3D"])
-    for name in ("step", "time_s", "stretch", "time_step_s", "format", "geometry/dx_m", "geometry/points",
-                 "time_step/lambda_per_s2"):
+    for name in ("step", "time_s", "time_step_s", "format", "geometry/dx_m", "geometry/points", "time_step/lambda_per_s2"):
         case(f"a bit of checkpoint attribute {name} flipped", ["-restart", "{dir}/flipped.h5", "-end_step", "15"],
-             keys=["Checkpoint", "flipped.h5"], forbid=["another body"], setup=flipped_attribute(ref, name))
+             keys=["flipped.h5"], forbid=["another body"], setup=flipped_attribute(ref, name))
+    # (the stretch at the checkpoint is written for the reader and never read back: the run goes on)
+    case("a bit of checkpoint attribute stretch flipped", ["-restart", "{dir}/flipped.h5", "-end_step", "15"], want="fits",
+         setup=flipped_attribute(ref, "stretch"))
     case("Ctrl-C in the first second", LONG, keys=["SIGINT"], action=signal_launcher("INT", when=None, delay=0.5))
     case("SIGINT to run_mpi.sh", LONG, keys=["interrupted by SIGINT"], action=signal_launcher("INT"))
     case("SIGHUP to run_mpi.sh", LONG, keys=["SIGHUP"], action=signal_launcher("HUP"))
