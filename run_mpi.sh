@@ -13,6 +13,10 @@
 # needs (scripts/install-deps.sh) and builds bapd and bapd-fit alone (scripts/build.sh
 # --run); scripts/test.sh adds the test suite.
 set -euo pipefail
+# A stop before the run has started (a Ctrl-C while the checks below run): one line.
+for sig in INT TERM HUP; do
+  trap "echo 'bapd: error: interrupted by SIG$sig before the run had started: nothing was written; run it again to start over' >&2; exit 1" "$sig"
+done
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 ranks=2
 scene=""
@@ -109,7 +113,7 @@ for sig in TERM INT HUP PIPE; do trap "echo SIG$sig > '$signal_file'; kill -USR2
 trap "kill -USR1 $child 2> /dev/null" USR1
 status=0
 while :; do
-  wait "$child" && status=0 || status=$?
+  wait "$child" 2> /dev/null && status=0 || status=$? # (bash's own "User defined signal 2" line: reported below)
   kill -0 "$child" 2> /dev/null || break # a trapped signal ends wait early: wait again
 done
 if ((status == 128 + $(kill -l USR2))) && [ -s "$signal_file" ]; then
