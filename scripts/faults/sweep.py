@@ -32,12 +32,8 @@ import sys
 import time
 
 import issue_cases
+from issue_cases import CLOUD_SCENE, RUN_MPI, SOURCE, TINY  # (the paths, defined once)
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-SOURCE = os.path.dirname(os.path.dirname(HERE))
-RUN_MPI = os.path.join(SOURCE, "run_mpi.sh")
-TINY = os.path.join(SOURCE, "tests", "data", "scenes", "tiny.yaml")
-CLOUD_SCENE = os.path.join(SOURCE, "tests", "data", "scenes", "cloud.yaml")
 GEOMETRY = os.path.join(SOURCE, "tests", "data", "geometry", "l_shape.geo")
 TIMEOUT = 60  # s: a run of these scenes takes a few; more is a hang
 STACK = re.compile(r"PETSC ERROR|HDF5-DIAG|Segmentation|core dumped|Caught signal|MPI_ABORT|Traceback|"

@@ -133,6 +133,9 @@ expect_error negative_thickness "-body_thickness -0.001: the sheet thickness mus
 expect_error zero_output_interval "-output_interval 0" "$scene" -output_interval 0
 expect_error critical_stretch_inf "-failure_critical_stretch 'inf' is not a finite number: give one value in SI units, e.g. -failure_critical_stretch 7.2" "$scene" -failure_critical_stretch inf
 expect_error huge_modulus "-material_mu 1e+308 Pa is too large" "$scene" -material_mu 1e308
+expect_error monitor_reference_negative "-time_step_monitor_reference -1: give the force evaluations" "$scene" -time_step_monitor_reference -1
+expect_error grip_depth_huge "-load_top_depth 1e+30 m is 1000000000 row(s), 500000 m deep, more than ten times the body's height (0.01 m)" \
+  "$scene" -load_top_depth 1e30
 expect_error tiny_modulus "-material_mu 1e-300 Pa is far below any solid's shear modulus" "$scene" -material_mu 1e-300
 expect_error huge_bulk_ratio "-material_bulk_ratio 1e+30 is beyond what double precision resolves" "$scene" -material_bulk_ratio 1e30
 expect_error end_time_huge "-end_time 1e+300 s needs at least" "$scene" -end_time 1e300
