@@ -13,6 +13,10 @@
 # needs (scripts/install-deps.sh) and builds bapd and bapd-fit alone (scripts/build.sh
 # --run); scripts/test.sh adds the test suite.
 set -euo pipefail
+# A stop before the run has started (a Ctrl-C while the checks below run): one line.
+for sig in INT TERM HUP; do
+  trap "echo 'bapd: error: interrupted by SIG$sig before the run had started: nothing was written; run it again to start over' >&2; exit 1" "$sig"
+done
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 ranks=2
 scene=""
@@ -63,8 +67,8 @@ scene_args=()
 # itself) still gets one line; the signals a user or a batch system sends to this
 # script (SIGTERM, SIGINT: checkpoint and stop; SIGUSR1: checkpoint and go on) are
 # passed on to mpiexec, which passes them on to the ranks. Open MPI 4's mpiexec
-# passes SIGINT on as SIGTERM, and kills the ranks 1 s after a SIGTERM; SIGUSR2 it
-# passes on at once and leaves alone. So SIGINT and SIGTERM go on as SIGUSR2 (bapd:
+# passes SIGINT (and SIGHUP) on as SIGTERM, and kills the ranks 1 s after a SIGTERM; SIGUSR2 it
+# passes on at once and leaves alone. So SIGINT, SIGTERM and SIGHUP go on as SIGUSR2 (bapd:
 # checkpoint and stop), and the signal's real name goes to $BAPD_SIGNAL_FILE, which
 # bapd reads for its message. mpiexec runs in a session of its own (setsid): a Ctrl-C
 # in a terminal reaches this script only, not the ranks as well.
@@ -87,21 +91,36 @@ if [ "$(ulimit -S -n)" != unlimited ] && (($(ulimit -S -n) < files_needed)); the
 fi
 signal_file="$(mktemp "$tmp/bapd_signal.XXXXXX")"
 trap 'rm -f "$signal_file"' EXIT
+# A SIGKILL runs no trap: a watcher (its own session, so that a Ctrl-C to this script's
+# group leaves it; no terminal or pipe held open) removes the file once this script is gone.
+setsid bash -c 'tail --pid="$1" -f /dev/null; rm -f "$2"' bapd_signal_cleanup $$ "$signal_file" < /dev/null > /dev/null 2>&1 &
 export BAPD_SIGNAL_FILE="$signal_file"
 # mpiexec gets SIGTERM should this script die without passing a signal on (kill -9):
 # it then stops the ranks, instead of running on without anyone waiting for it.
 launch=(setsid)
 command -v setpriv > /dev/null && launch+=(setpriv --pdeathsig TERM)
-"${launch[@]}" mpiexec -q -x BAPD_SIGNAL_FILE -n "$ranks" --oversubscribe --bind-to none "$BAPD_EXE" "${scene_args[@]}" "${args[@]}" &
+run=("${launch[@]}" mpiexec -q -x BAPD_SIGNAL_FILE -n "$ranks" --oversubscribe --bind-to none "$BAPD_EXE" "${scene_args[@]}" "${args[@]}")
+if [ -p /dev/stdout ]; then
+  # Output into a pipe whose reader may end first (| head): mpiexec would abort the ranks
+  # with SIGTERM at its SIGPIPE. A relay takes the output instead; when the reader is
+  # gone it asks this script for a stop as for SIGTERM, named SIGPIPE, and drains the rest.
+  "${run[@]}" > >(cat || { kill -PIPE $$; exec cat > /dev/null; }) &
+else
+  "${run[@]}" &
+fi
 child=$!
-for sig in TERM INT; do trap "echo SIG$sig > '$signal_file'; kill -USR2 $child 2> /dev/null" "$sig"; done
-for sig in USR1 HUP; do trap "kill -$sig $child 2> /dev/null" "$sig"; done
+for sig in TERM INT HUP PIPE; do trap "echo SIG$sig > '$signal_file'; kill -USR2 $child 2> /dev/null" "$sig"; done
+trap "kill -USR1 $child 2> /dev/null" USR1
 status=0
 while :; do
-  wait "$child" && status=0 || status=$?
+  wait "$child" 2> /dev/null && status=0 || status=$? # (bash's own "User defined signal 2" line: reported below)
   kill -0 "$child" 2> /dev/null || break # a trapped signal ends wait early: wait again
 done
-if ((status > 128)); then
+if ((status == 128 + $(kill -l USR2))) && [ -s "$signal_file" ]; then
+  # (this script's own SIGUSR2 reached mpiexec before it could pass it on)
+  echo "bapd: error: interrupted by $(cat "$signal_file") before the run had started: nothing was written; run it again to start over" >&2
+  status=1 # (as bapd's own interrupted exit)
+elif ((status > 128)); then
   signal="$(kill -l $((status - 128)) 2> /dev/null || echo $((status - 128)))"
   echo "bapd: error: a bapd process was killed by SIG$signal (exit status $status) before it could report anything" \
        "(SIGKILL is how the out-of-memory killer and batch time limits stop a run): the output directory keeps what" \

@@ -8,6 +8,7 @@
 #include <petscsys.h>
 
 #include <algorithm>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -15,6 +16,7 @@
 #include <string>
 #include <utility>
 
+#include <pthread.h>
 #include <unistd.h>
 
 #include "bapd/solver/driver/errors.hpp"
@@ -118,8 +120,16 @@ int main(int argc, char **argv)
     if (!rank || std::atoi(rank) == 0) std::fprintf(stderr, "bapd: error: %s\n", problem.c_str());
     return 1;
   }
+  // A stop signal before bapd's handlers are in place (a Ctrl-C in the first second,
+  // which run_mpi.sh passes on as SIGUSR2, ended the process by its default action)
+  // waits, blocked through MPI's and PETSc's start, and reaches the handlers once set.
+  sigset_t stops;
+  sigemptyset(&stops);
+  for (int s : {SIGTERM, SIGINT, SIGQUIT, SIGHUP, SIGUSR1, SIGUSR2}) sigaddset(&stops, s);
+  pthread_sigmask(SIG_BLOCK, &stops, nullptr);
   PetscCall(PetscInitialize(&argc, &argv, nullptr, help));
   PetscCall(bapd::PushUserErrorHandler());
+  pthread_sigmask(SIG_UNBLOCK, &stops, nullptr);
   std::set_new_handler(OutOfMemory);
   PetscCall(bapd::BeginHelp(PETSC_COMM_WORLD));
   const PetscErrorCode ierr = RunScene();

@@ -10,11 +10,14 @@ Kinds of fault (--only):
            to one rank, during the set-up or at a random step
   disk     a small disk (tmpfs, root only) that fills at a random point of a run that
            writes field files, checkpoints, final_state.csv or a history row every step
+  issue    the faults a user met and reported (issue_cases.py), each on 1 and 2 ranks and
+           each with the class it must get and the words its error line must hold
 Classes: clean (exit != 0, exactly one `bapd: error:` line, no stack), fits (a full-disk
 case whose files all fitted: exit 0, everything whole), crash (a signal, a segfault, a
 PETSc or HDF5 stack, a Python trace), hang (no end within the timeout), silent (exit 0
 where the run should have failed), unclear (exit != 0 without exactly one error line),
-data loss (a file there before the run, or one the run wrote whole, is damaged).
+data loss (a file there before the run, or one the run wrote whole, is damaged);
+killed (the issue kind's kill -9 of run_mpi.sh: nothing of the run left running).
 Each run is short (-end_step, the 400-point scene) and the cases run one at a time.
 """
 import argparse
@@ -28,11 +31,9 @@ import subprocess
 import sys
 import time
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-SOURCE = os.path.dirname(os.path.dirname(HERE))
-RUN_MPI = os.path.join(SOURCE, "run_mpi.sh")
-TINY = os.path.join(SOURCE, "tests", "data", "scenes", "tiny.yaml")
-CLOUD_SCENE = os.path.join(SOURCE, "tests", "data", "scenes", "cloud.yaml")
+import issue_cases
+from issue_cases import CLOUD_SCENE, RUN_MPI, SOURCE, TINY  # (the paths, defined once)
+
 GEOMETRY = os.path.join(SOURCE, "tests", "data", "geometry", "l_shape.geo")
 TIMEOUT = 60  # s: a run of these scenes takes a few; more is a hang
 STACK = re.compile(r"PETSC ERROR|HDF5-DIAG|Segmentation|core dumped|Caught signal|MPI_ABORT|Traceback|"
@@ -107,10 +108,16 @@ def output_damage(out):
 
 
 class Case:
-    def __init__(self, kind, name, ranks, args, expect="fail", setup=None, check=None, env=None, action=None):
+    def __init__(self, kind, name, ranks, args, expect="fail", setup=None, check=None, env=None, action=None,
+                 own_output=False, long_path=False, out_on=None, pipe=None):
         self.kind, self.name, self.ranks, self.args = kind, name, ranks, args
         self.expect = expect  # "fail": the run must fail; "either": failing cleanly or running whole are both right
         self.setup, self.check, self.env, self.action = setup, check, env or {}, action
+        # The issue kind's (issue_cases.py): the class it must get, the words its error line
+        # must hold, a check of its outcome, process limits; where its output goes (the
+        # checkpoint's own directory, a 4200-character path, a small disk), a pipe for stdout.
+        self.want, self.keys, self.judge, self.preexec = None, [], None, None
+        self.own_output, self.long_path, self.out_on, self.pipe = own_output, long_path, out_on, pipe
 
 
 def classify(case, status, seconds, log, out, before):
@@ -138,38 +145,81 @@ def classify(case, status, seconds, log, out, before):
     return "clean", first
 
 
+def output_of(case, folder):
+    """Where the case's run writes: its folder's out, on the disk its setup mounts, or
+    under a path of 4200 characters (each name 200: past PATH_MAX, not NAME_MAX)."""
+    if case.long_path:
+        return os.path.join(folder, *(["d" * 200] * 21))
+    return os.path.join(folder, case.out_on, "out") if case.out_on else os.path.join(folder, "out")
+
+
+def command(case, folder, out):
+    args = [RUN_MPI, "-n", str(case.ranks)] + [a.replace("{dir}", folder).replace("{out}", out) for a in case.args]
+    if not case.own_output or case.long_path:
+        args += ["-output_dir", out]
+    if case.pipe:  # stdout through a pipe, stderr to the log; the exit status run_mpi.sh's
+        quoted = " ".join("'" + a.replace("'", "'\\''") + "'" for a in args)
+        args = ["bash", "-c", f"{quoted} 2>> run.log | {case.pipe} > /dev/null; exit ${{PIPESTATUS[0]}}"]
+    return args
+
+
 def run_case(case, work, index):
     folder = os.path.join(work, f"{index:03d}")
     shutil.rmtree(folder, ignore_errors=True)
     os.makedirs(folder)
-    out = os.path.join(folder, "out")
+    out = output_of(case, folder)
     before = {}
     extra_env = dict(case.env)
-    if case.setup:
-        before = case.setup(folder, out, extra_env) or {}
-    args = [RUN_MPI, "-n", str(case.ranks)] + [a.replace("{dir}", folder) for a in case.args] + ["-output_dir", out]
-    start = time.monotonic()
-    with open(os.path.join(folder, "run.log"), "w") as log:
-        process = subprocess.Popen(args, cwd=folder, stdout=log, stderr=subprocess.STDOUT, env=environment(extra_env),
-                                   start_new_session=True, preexec_fn=default_signals)
-        status = None
-        try:
-            if case.action:
-                case.action(process, folder)
-            status = process.wait(timeout=max(1.0, TIMEOUT - (time.monotonic() - start)))
-        except subprocess.TimeoutExpired:
+    try:
+        if case.setup:
+            before = case.setup(folder, out, extra_env) or {}
+
+        def preexec():
+            default_signals()
+            if case.preexec:
+                case.preexec()
+        start = time.monotonic()
+        with open(os.path.join(folder, "run.log"), "w") as log:
+            process = subprocess.Popen(command(case, folder, out), cwd=folder, stdout=log, stderr=subprocess.STDOUT,
+                                       env=environment(extra_env), start_new_session=True, preexec_fn=preexec)
             status = None
-        finally:
-            if process.poll() is None:
-                os.killpg(process.pid, signal.SIGKILL)  # this case's own session: run_mpi.sh, mpiexec, ranks
-                process.wait()
-    seconds = time.monotonic() - start
-    text = open(os.path.join(folder, "run.log"), errors="replace").read()
-    verdict, note = classify(case, status, seconds, text, out, before)
-    if case.check and verdict in ("clean", "fits"):
-        problem = case.check(folder, out)
-        if problem:
-            verdict, note = "data loss", problem
+            try:
+                if case.action:
+                    case.action(process, folder)
+                status = process.wait(timeout=max(1.0, TIMEOUT - (time.monotonic() - start)))
+            except subprocess.TimeoutExpired:
+                status = None
+            finally:
+                if process.poll() is None:
+                    os.killpg(process.pid, signal.SIGKILL)  # this case's own session: run_mpi.sh, mpiexec, ranks
+                    process.wait()
+        seconds = time.monotonic() - start
+        text = open(os.path.join(folder, "run.log"), errors="replace").read()
+        if case.want == "killed":  # run_mpi.sh killed on purpose: what counts is what is left
+            verdict, note = ("killed", "nothing of the run left running") if status is not None else ("hang", "")
+        else:
+            verdict, note = classify(case, status, seconds, text, out, before)
+        if case.check and verdict in ("clean", "fits"):
+            problem = case.check(folder, out)
+            if problem:
+                verdict, note = "data loss", problem
+        if getattr(case, "full_disk", False) and verdict == "clean" and "No space left on device" not in note \
+                and "File too large" not in note:
+            verdict, note = "unclear", "the error line does not name the full disk: " + note
+        missing = [k for k in case.keys if k not in note]
+        wrong = [k for k in getattr(case, "forbid", []) if k in note]
+        if verdict == "clean" and (missing or wrong):
+            verdict, note = "unclear", (f"the error line lacks '{missing[0]}': " if missing else
+                                        f"the error line says '{wrong[0]}': ") + note
+        if case.judge and verdict in ("clean", "fits", "killed"):
+            problem = case.judge(folder, out, text, extra_env.get("TMPDIR"))
+            if problem:
+                verdict, note = problem[0], problem[1] + (f" ({note})" if note else "")
+    finally:
+        if case.out_on:
+            subprocess.run(["umount", os.path.join(folder, case.out_on)], stderr=subprocess.DEVNULL)
+        if "TMPDIR" in extra_env and extra_env["TMPDIR"].startswith(folder):
+            subprocess.run(["umount", extra_env["TMPDIR"]], stderr=subprocess.DEVNULL)
     return verdict, note, seconds
 
 
@@ -362,40 +412,51 @@ def make_cases(count, rng, env, work, only):
             case = Case("disk", f"{what} on {kb} KB{' (no reservation)' if late else ''}", 0,
                         [TINY, "-load_grip_placement", "inside", "-end_step", "30"] + writes[what], expect="either",
                         setup=setup)
-            case.out_on_disk = True
+            case.out_on, case.full_disk = "disk", True
             disk_cases.append(case)
 
-    # The share of each kind: every file, signal and disk case, the rest options.
-    chosen = {"file": file_cases, "signal": signal_cases, "disk": disk_cases}
-    fixed = sum(len(v) for k, v in chosen.items() if k in only)
+    # The issue's cases, each on 1 and on 2 ranks.
+    issue = []
+    for n in (1, 2):
+        for case in issue_cases.issue_cases(Case, ref, environment):
+            case.fixed_ranks = n
+            issue.append(case)
+    # The share of each kind: every file, signal and disk case, the rest options (the
+    # issue's cases on top).
+    chosen = {"file": file_cases, "signal": signal_cases, "disk": disk_cases, "issue": issue}
+    fixed = sum(len(v) for k, v in chosen.items() if k in only and k != "issue")
     chosen["option"] = option_cases[:max(0, count - fixed)] if "option" in only else []
-    for kind in ("option", "file", "signal", "disk"):
+    for kind in ("option", "file", "signal", "disk", "issue"):
         if kind in only:
             cases += chosen[kind]
     for case in cases:
-        case.ranks = ranks()
+        drawn = ranks()  # (for every case, the issue's last: the other kinds' draws are those of a sweep without them)
+        case.ranks = getattr(case, "fixed_ranks", drawn)
     return cases
 
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--cases", type=int, default=240, help="cases in all (the options fill what the other kinds leave)")
+    parser.add_argument("--cases", type=int, default=240, help="cases of the random kinds (the options fill what the file, signal and disk cases leave); the issue's "
+                        "cases come on top")
     parser.add_argument("--seed", type=int, default=1, help="the random choices' seed (a sweep is repeatable)")
-    parser.add_argument("--only", default="option,file,signal,disk", help="kinds of fault, comma-separated")
+    parser.add_argument("--only", default="option,file,signal,disk,issue", help="kinds of fault, comma-separated")
     parser.add_argument("--work", default="faults_sweep", help="the directory of the runs (one folder a case)")
+    parser.add_argument("--match", default="", help="only the cases whose name holds this text")
     parser.add_argument("--smoke", action="store_true", help="a short subset: one case of each kind (about 30 s)")
     args = parser.parse_args()
     env = environment()
     if not os.access(env["BAPD_EXE"], os.X_OK):
         sys.exit(f"sweep.sh: error: no bapd at {env['BAPD_EXE']}: build it (scripts/build.sh) or set BAPD_EXE")
     only = set(args.only.split(","))
-    unknown = only - {"option", "file", "signal", "disk"}
+    unknown = only - {"option", "file", "signal", "disk", "issue"}
     if unknown:
-        sys.exit(f"sweep.sh: error: --only {','.join(sorted(unknown))}: give option, file, signal or disk")
+        sys.exit(f"sweep.sh: error: --only {','.join(sorted(unknown))}: give option, file, signal, disk or issue")
     work = os.path.abspath(args.work)
     os.makedirs(work, exist_ok=True)
     rng = random.Random(args.seed)
     cases = make_cases(args.cases, rng, env, work, only)
+    cases = [case for case in cases if args.match in case.name]
     if args.smoke:
         picked = {}
         for case in cases:
@@ -405,12 +466,9 @@ def main():
     bad = []
     print(f"{'#':>3}  {'kind':6}  {'np':>2}  {'class':9}  {'s':>5}  case: note")
     for index, case in enumerate(cases):
-        if getattr(case, "out_on_disk", False):
-            verdict, note, seconds = run_disk_case(case, work, index)
-        else:
-            verdict, note, seconds = run_case(case, work, index)
+        verdict, note, seconds = run_case(case, work, index)
         counts[verdict] = counts.get(verdict, 0) + 1
-        if verdict not in ("clean", "fits"):
+        if verdict not in ("clean", "fits") if case.want is None else verdict != case.want:
             bad.append((index, case, verdict, note))
         print(f"{index:3d}  {case.kind:6}  {case.ranks:2d}  {verdict:9}  {seconds:5.1f}  {case.name}: {note[:150]}", flush=True)
     print()
@@ -419,42 +477,6 @@ def main():
         print(f"  not clean: #{index} {case.kind} '{case.name}' on {case.ranks} rank(s): {verdict}: {note[:300]} "
               f"({os.path.join(work, f'{index:03d}', 'run.log')})")
     return 1 if bad else 0
-
-
-def run_disk_case(case, work, index):
-    """A full-disk case: its output directory on the small disk its setup mounts."""
-    return run_case_on(case, work, index, os.path.join(work, f"{index:03d}", "disk", "out"))
-
-
-def run_case_on(case, work, index, out):
-    folder = os.path.join(work, f"{index:03d}")
-    shutil.rmtree(folder, ignore_errors=True)
-    os.makedirs(folder)
-    extra_env = dict(case.env)
-    case.setup(folder, out, extra_env)
-    args = [RUN_MPI, "-n", str(case.ranks)] + case.args + ["-output_dir", out]
-    start = time.monotonic()
-    status = None
-    try:
-        with open(os.path.join(folder, "run.log"), "w") as log:
-            process = subprocess.Popen(args, cwd=folder, stdout=log, stderr=subprocess.STDOUT, env=environment(extra_env),
-                                       start_new_session=True, preexec_fn=default_signals)
-            try:
-                status = process.wait(timeout=TIMEOUT)
-            except subprocess.TimeoutExpired:
-                status = None
-            finally:
-                if process.poll() is None:
-                    os.killpg(process.pid, signal.SIGKILL)
-                    process.wait()
-        seconds = time.monotonic() - start
-        text = open(os.path.join(folder, "run.log"), errors="replace").read()
-        verdict, note = classify(case, status, seconds, text, out, {})
-        if verdict == "clean" and "No space left on device" not in note and "File too large" not in note:
-            verdict, note = "unclear", "the error line does not name the full disk: " + note
-        return verdict, note, seconds
-    finally:
-        subprocess.run(["umount", os.path.join(folder, "disk")], stderr=subprocess.DEVNULL)
 
 
 if __name__ == "__main__":

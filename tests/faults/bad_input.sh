@@ -39,7 +39,7 @@ parallel_sample=" no_scene yaml_syntax yaml_alias_bomb unknown_option petsc_real
   body_3d_patch dx_needs_more_memory empty_load_set output_dir_proc output_dir_under_file restart_missing
   restart_truncated restart_other_body shape_cuts_apart mesh_not_gmsh
   group_missing curve_selects_nothing cloud_unreadable cloud_duplicate cloud_two_pieces probe_block_many
-  cloud_needs_more_memory patch_correction_energy "
+  cloud_needs_more_memory patch_correction_energy restart_other_dimension compression_folds mesh_size_max width_huge "
 in_sample() { ((ranks == 1)) || [[ " $(echo $parallel_sample) " == *" $1 "* ]]; }
 # (A name in the sample that no case below has would leave its path untried: refused.)
 for name in $parallel_sample; do
@@ -133,9 +133,14 @@ expect_error negative_thickness "-body_thickness -0.001: the sheet thickness mus
 expect_error zero_output_interval "-output_interval 0" "$scene" -output_interval 0
 expect_error critical_stretch_inf "-failure_critical_stretch 'inf' is not a finite number: give one value in SI units, e.g. -failure_critical_stretch 7.2" "$scene" -failure_critical_stretch inf
 expect_error huge_modulus "-material_mu 1e+308 Pa is too large" "$scene" -material_mu 1e308
+expect_error monitor_reference_negative "-time_step_monitor_reference -1: give the force evaluations" "$scene" -time_step_monitor_reference -1
+expect_error grip_depth_huge "-load_top_depth 1e+30 m is 1000000000 row(s), 500000 m deep, more than ten times the body's height (0.01 m)" \
+  "$scene" -load_top_depth 1e30
+expect_error tiny_modulus "-material_mu 1e-300 Pa is far below any solid's shear modulus" "$scene" -material_mu 1e-300
 expect_error huge_bulk_ratio "-material_bulk_ratio 1e+30 is beyond what double precision resolves" "$scene" -material_bulk_ratio 1e30
 expect_error end_time_huge "-end_time 1e+300 s needs at least" "$scene" -end_time 1e300
 expect_error end_time_huge_step "-end_time 1e+06 s needs 1e+15 time steps with -time_step 1e-09 s" "$scene" -end_time 1e6 -time_step 1e-9
+expect_error compression_folds "Cause: the compression (applied stretch" "$scene" -load_schedule 0,1,0.01,0.1
 expect_error critical_stretch_one "-failure_critical_stretch 1: a bond breaks once stretched past s_c, so s_c must be > 1" "$scene" -failure_critical_stretch 1
 expect_error critical_stretch_below "-failure_critical_stretch 0.5" "$scene" -failure_critical_stretch 0.5
 expect_error fracture_energy_zero "-failure_fracture_energy 0: the fracture energy Gamma must be > 0 J/m^2" "$scene" -failure_fracture_energy 0
@@ -159,11 +164,18 @@ expect_error hole_misses_body "-body_holes: hole 1 (centre (0.02, 0.02) m, radiu
 expect_error notch_outside "-body_notches: notch 1 ends at (0.02, 0.005) m, outside the body" "$scene" -body_notches 0.02,0.005,0.008,0.005
 # 1e5 x 1e5 cells of the sheet and 2 x 6 rows of 1e5 of the grips outside it (two horizons deep)
 expect_error dx_needs_more_memory "-body_dx 1e-07 m asks for about 10001200000 material points" "$scene" -body_dx 1e-7
+expect_error width_huge "-body_width 1e+308 m and -body_height 0.01 m at -body_dx 0.0005 m make a lattice of inf points" \
+  "$scene" -body_width 1e308
+expect_error dx_tiny "-body_width 0.01 m and -body_height 0.01 m at -body_dx 1e-300 m make a lattice of inf points" \
+  "$scene" -body_dx 1e-300
 expect_error dx_above_body "-body_dx 0.02 m is larger than the body" "$scene" -body_dx 0.02
 expect_error empty_load_set "-load_mid_box 0.001,0.001,0.0011,0.0011 selects no material point for load set 'mid'" \
   "$scene" -load_sets top,bottom,mid -load_mid_region box -load_mid_box 0.001,0.001,0.0011,0.0011 -load_mid_x fixed
 
 # Output that cannot be written
+long_dir="$PWD/$(printf 'd%.0s' $(seq 200))"
+for _ in $(seq 20); do long_dir="$long_dir/$(printf 'd%.0s' $(seq 200))"; done
+expect_error output_dir_too_long "characters) (File name too long): choose a writable directory" "$scene" -output_dir "$long_dir"
 expect_error output_dir_proc "-output_dir /proc/forbidden" "$scene" -output_dir /proc/forbidden
 expect_error output_dir_under_file "-output_dir $fixtures/tiny.yaml/out cannot be created or written: '$fixtures/tiny.yaml' is a file" \
   "$scene" -output_dir "$fixtures/tiny.yaml/out"
@@ -177,6 +189,17 @@ if [ -f "$source_dir/include/bapd/solver/io/checkpoint.hpp" ]; then
     head -c 20000 good/checkpoint.h5 > truncated.h5
     expect_error restart_truncated "Checkpoint 'truncated.h5' cannot be read" "$scene" -restart truncated.h5 -output_dir truncated
     expect_error restart_not_hdf5 "Checkpoint '$scene' cannot be read" "$scene" -restart "$scene" -output_dir not_hdf5
+    expect_error restart_other_dimension "Checkpoint 'good/checkpoint.h5' holds a 2D body and this scene is 3D (-body_dimension 3)" \
+      "$fixtures/block_3d.yaml" -restart good/checkpoint.h5 -output_dir other_dimension
+    if /usr/bin/python3 -c "import h5py" 2> /dev/null; then # one bit of an attribute no checksum covers
+      cp good/checkpoint.h5 flipped_dx.h5
+      /usr/bin/python3 -c "
+import h5py, numpy
+with h5py.File('flipped_dx.h5', 'r+') as f:
+    a = numpy.array([f['geometry'].attrs['dx_m']]); a.view(numpy.uint8)[0] ^= 1; f['geometry'].attrs['dx_m'] = a[0]"
+      expect_error restart_flipped_dx "Checkpoint 'flipped_dx.h5' holds this body's points and bonds, but its attributes say dx" \
+        "$scene" -restart flipped_dx.h5 -output_dir flipped_dx
+    fi
     expect_error restart_other_body "Checkpoint 'good/checkpoint.h5' belongs to another body" \
       "$scene" -restart good/checkpoint.h5 -body_dx 0.001 -end_time 0.02 -output_dir other
   else
@@ -210,6 +233,8 @@ expect_error mesh_missing_file "-body_cut_file: cannot open 'no_such.geo'" "$sce
 expect_error mesh_device "-body_cut_file: '/dev/zero' is a device" "$scene" "${sh[@]}" -body_cut_type mesh -body_cut_file /dev/zero
 expect_error mesh_tiny_size "-body_cut: the mesh holds no lattice point of the sheet" "$scene" "${sh[@]}" -body_cut_type mesh \
   -body_cut_file "$source_dir/tests/data/geometry/tiny_mesh_size.geo"
+expect_error mesh_size_max "-body_cut: the mesh holds no lattice point of the sheet" "$scene" "${sh[@]}" -body_cut_type mesh \
+  -body_cut_file "$source_dir/tests/data/geometry/tiny_mesh_size_max.geo"
 expect_error mesh_no_surface "-body_cut_file: '$source_dir/tests/data/geometry/lines_only.geo' holds no surface" "$scene" "${sh[@]}" \
   -body_cut_type mesh -body_cut_file "$source_dir/tests/data/geometry/lines_only.geo"
 expect_error mesh_not_gmsh "-body_cut_file: Gmsh cannot read" "$scene" "${sh[@]}" -body_cut_type mesh -body_cut_file "$source_dir/tests/data/geometry/broken.geo"

@@ -71,6 +71,30 @@ TEST(Damage, StretchedBondBreaksForBothCopiesAndStaysBrokenAfterUnloading)
   }
 }
 
+// A step in which every bond fails (a sheet past the chain limit at once): 2 end points
+// a bond, n * family size of them, far more than the n + 2 n entries the solver reserves
+// (failure.cpp) for the points touched. The list stays in its reserve (no allocation in
+// a time step) and ends as every point once, sorted; an unreserved one grows as needed.
+TEST(Damage, EveryBondFailingInOneStepStaysInTheTouchedListsReserve)
+{
+  for (const bool reserved : {true, false}) {
+    test::Discretisation    d(test::plate(12, 12, 1.0));
+    std::vector<FailedBond> failed;
+    for (std::size_t i = 0; i < d.size(); ++i)
+      for (std::size_t q = 0; q < d.families.size(i); ++q) failed.push_back({i, q, StressStatus::chain_limit});
+    ASSERT_GT(failed.size(), 3 * d.size()); // 2 entries a pair: more than the reserve holds unmerged
+    std::vector<std::size_t> touched;
+    if (reserved) touched.reserve(3 * d.size());
+    const std::size_t *const storage = touched.data();
+    const std::size_t        broken  = break_failed_bonds(d.families, d.state, failed, touched);
+    EXPECT_EQ(2 * broken, d.families.n_bonds()) << "reserved " << reserved; // a pair counts once
+    if (reserved) EXPECT_EQ(touched.data(), storage) << "the touched list outgrew its reserve";
+    ASSERT_EQ(touched.size(), d.size()) << "reserved " << reserved;
+    for (std::size_t i = 0; i < d.size(); ++i) EXPECT_EQ(touched[i], i);
+    EXPECT_EQ(d.state.count_broken(d.families, d.size()), d.families.n_bonds());
+  }
+}
+
 TEST(Damage, PointDamageIsTheBrokenFractionOfTheFamilyVolume)
 {
   test::Discretisation d(test::plate(7, 7, 0.5e-3)); // the centre has the whole 28-point family

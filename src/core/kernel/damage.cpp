@@ -44,11 +44,24 @@ std::size_t break_intact_bonds(const Families &families, BondState &state, std::
 }
 } // namespace detail
 
+// Each failed bond appends its two end points, so a step in which many bonds fail
+// (a whole sheet at the chain limit: up to n_family * family size of them) would
+// outgrow any reserve sized by points before the list is made unique. It is made
+// unique whenever it is full instead: it then holds each point at most once, plus the
+// next bond's two, so a reserve of the points touched plus two is never outgrown (no
+// allocation in a time step; the solver reserves n_local + 2 n_family). Only a list
+// reserved for fewer points than the step touches grows, by doubling.
 std::size_t break_failed_bonds(const Families &families, BondState &state, const std::vector<FailedBond> &failed,
                                std::vector<std::size_t> &touched_points)
 {
   std::size_t broken = 0;
-  for (const FailedBond &f : failed) broken += break_bond(families, state, f.point, f.position, &touched_points);
+  for (const FailedBond &f : failed) {
+    if (touched_points.capacity() - touched_points.size() < 2) {
+      sort_unique(touched_points);
+      if (2 * touched_points.size() > touched_points.capacity()) touched_points.reserve(2 * touched_points.capacity() + 2);
+    }
+    broken += break_bond(families, state, f.point, f.position, &touched_points);
+  }
   sort_unique(touched_points);
   return broken;
 }

@@ -203,6 +203,9 @@ void InstallInterruptHandlers()
   // which bapd reports naming the file, instead of killing the process unexplained.
   action.sa_handler = SIG_IGN;
   sigaction(SIGXFSZ, &action, &previous_xfsz);
+  // A stop run_mpi.sh took before this process had started (mpiexec had no rank to
+  // pass the SIGUSR2 on to): its name is in the file already. It acts as if just sent.
+  if (signal_file[0] && InterruptName(SIGUSR2) != "SIGUSR2") OnInterrupt(SIGUSR2);
 }
 
 void RestoreInterruptHandlers()

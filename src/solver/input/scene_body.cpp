@@ -343,6 +343,10 @@ PetscErrorCode CheckSheetSize(MPI_Comm comm, const SceneInput &in, const Body2D 
   SceneCheck(b.dx <= b.width && b.dx <= b.height, comm,
              "-body_dx %g m is larger than the body (%g m x %g m): choose a spacing well below the smaller side, e.g. -body_dx %g", b.dx,
              b.width, b.height, std::min(b.width, b.height) / 20);
+  // Past 1e15 points (-body_width 1e308, -body_dx 1e-300) the 64-bit count overflows.
+  SceneCheck(given || (b.width / b.dx) * (b.height / b.dx) <= 1e15, comm, "-body_width %g m and -body_height %g m at -body_dx %g m make a "
+             "lattice of %g points, beyond any machine: give the sizes in metres and a -body_dx of about a hundredth of the smaller side",
+             b.width, b.height, b.dx, (b.width / b.dx) * (b.height / b.dx));
   PetscFunctionReturn(0);
 }
 

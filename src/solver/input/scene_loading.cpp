@@ -388,8 +388,9 @@ std::string LoadingText(const Scene &s)
 int GripRows(double depth, double dx)
 {
   // Row j's centre lies (j + 1/2) dx from the edge; 1e-9: a depth of whole rows given
-  // in metres (6 x 0.5 mm) keeps its rows despite round-off.
-  return std::max(1, static_cast<int>(std::ceil(depth / dx - 0.5 - 1e-9)));
+  // in metres (6 x 0.5 mm) keeps its rows despite round-off. Held below 1e9 rows: past
+  // an int the cast wrapped, and -load_top_depth 1e30 ran as a grip of one row.
+  return std::max(1, static_cast<int>(std::min(1e9, std::ceil(depth / dx - 0.5 - 1e-9))));
 }
 
 const char *to_string(GripPlacement placement) { return placement == GripPlacement::outside ? "outside" : "inside"; }

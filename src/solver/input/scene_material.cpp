@@ -263,6 +263,11 @@ PetscErrorCode CheckCompressibility(MPI_Comm comm, const SceneInput &in, Scene *
   } else if (!in.D_set) m.D = 2.0 / (1000.0 * m.mu); // K = 1000 mu, see ReadMaterial
   // A modulus so large that D = 2/(ratio mu) underflows would be reported below as a
   // -material_D 0 nobody gave: name the modulus instead.
+  // A modulus far below any solid's (1e-300: one step of 1e148 s, forces and energies
+  // near underflow, exit 0) is a unit mistake: the softest gels are about 10 Pa.
+  SceneCheck(!(m.mu > 0 && m.mu < 1e-3), comm,
+             "-material_mu %g Pa is far below any solid's shear modulus (the softest gels: about 10 Pa): give it in Pa, e.g. "
+             "-material_mu 4.55e3 (the paper's gel)", m.mu);
   if (!in.D_set && m.mu > 0 && std::isfinite(m.mu))
     SceneCheck(std::isnormal(m.D), comm,
                "-material_mu %g Pa is too large: the compressibility D = 2/(%g mu) it implies underflows to %g; give the shear modulus in "

@@ -15,6 +15,7 @@
 
 #include "bapd/solver/input/options_reader.hpp"
 #include "bapd/solver/input/scene_input.hpp"
+#include "bapd/solver/io/output_directory.hpp"
 
 namespace bapd {
 
@@ -65,12 +66,14 @@ const OptionTable<CheckpointOptions, SceneInput> kCheckpointOptionRows = {
 std::string OutputDirProblem(const std::string &dir)
 {
   std::filesystem::path path = dir;
+  if (struct stat info; ::stat(path.c_str(), &info) != 0 && errno == ENAMETOOLONG)
+    return Format("its path is %zu characters, more than the system allows (%s)", dir.size(), std::strerror(ENAMETOOLONG));
   while (true) {
     struct stat info;
     if (::stat(path.c_str(), &info) == 0) {
-      if (!S_ISDIR(info.st_mode)) return "'" + path.string() + "' is a file, not a directory";
+      if (!S_ISDIR(info.st_mode)) return "'" + ShortenedPath(path.string()) + "' is a file, not a directory";
       if (::access(path.c_str(), W_OK | X_OK) != 0)
-        return "'" + path.string() + "' is not writable (" + std::strerror(errno) + ")";
+        return "'" + ShortenedPath(path.string()) + "' is not writable (" + std::strerror(errno) + ")";
       return "";
     }
     if (!path.has_relative_path() || path.parent_path() == path) return "";
@@ -164,7 +167,7 @@ PetscErrorCode CheckOutput(MPI_Comm comm, const SceneInput &in, Scene *scene)
     problem.resize(static_cast<std::size_t>(length));
     PetscCallMPI(MPI_Bcast(problem.data(), length, MPI_CHAR, 0, comm));
     SceneCheck(problem.empty(), comm, "-output_dir %s cannot be created or written: %s; choose a writable directory, e.g. -output_dir output",
-               scene->output_dir.c_str(), problem.c_str());
+               ShortenedPath(scene->output_dir).c_str(), problem.c_str());
   }
   SceneCheck(scene->output_interval >= 1, comm,
              "-output_interval %" PetscInt_FMT ": history rows are written every N >= 1 time steps (default 100)", scene->output_interval);

@@ -134,6 +134,9 @@ PetscErrorCode CheckReestimate(MPI_Comm comm, TimeStepOptions *reestimate)
   PetscCheck(options.iterations >= 1, comm, PETSC_ERR_USER,
              "-time_step_reestimate_iterations %" PetscInt_FMT ": give at least 1 power iteration per re-estimate (default 1)",
              options.iterations);
+  PetscCheck(options.reference >= 0, comm, PETSC_ERR_USER,
+             "-time_step_monitor_reference %" PetscInt_FMT ": give the force evaluations of the reference estimate (e.g. 60), or 0 for none",
+             options.reference);
   PetscCheck(options.floor == -1 || (options.floor > 0 && options.floor <= 1), comm, PETSC_ERR_USER,
              "-time_step_floor %g: give a fraction of the base step in (0, 1], or -1 for the solver's choice", options.floor);
   PetscCheck(options.shift >= 0 && options.shift <= 0.5, comm, PETSC_ERR_USER,

@@ -227,6 +227,15 @@ PetscErrorCode ReadCheckpointState(MPI_Comm comm, const std::string &path, const
              "Restart with the scene that wrote it: its options are stored in the checkpoint and apply unless the command line overrides them",
              path.c_str(), (long long)header.dimension, D);
   const GeometryFingerprint &g = header.geometry;
+  // The hash covers the positions and every family: equal, the body is this one, and a
+  // dx or horizon that differs is a damaged attribute (no checksum covers them) or a
+  // scene that changed only the number (a bit flip read as "another body").
+  PetscCheck(g.hash != geometry.hash || g.points != geometry.points || g.bonds != geometry.bonds || SameGeometry(g, geometry), comm,
+             PETSC_ERR_USER,
+             "Checkpoint '%s' holds this body's points and bonds, but its attributes say dx %.17g m and horizon %.17g m where this "
+             "scene has %.17g m and %.17g m: an attribute damaged (restart from an earlier checkpoint), or a scene that changed "
+             "the horizon without changing a family (restart with the scene that wrote it)",
+             path.c_str(), g.dx, g.horizon, geometry.dx, geometry.horizon);
   PetscCheck(SameGeometry(g, geometry), comm, PETSC_ERR_USER,
              "Checkpoint '%s' belongs to another body: it holds %lld points and %lld bonds (dx %g m, horizon %g m), this scene "
              "%lld points and %lld bonds (dx %g m, horizon %g m)%s. Restart with the scene that wrote it: its options are "

@@ -123,6 +123,12 @@ std::string OutputPaths::FieldName(long long step)
   return name;
 }
 
+std::string ShortenedPath(const std::string &path)
+{
+  if (path.size() <= 400) return path;
+  return path.substr(0, 150) + "..." + path.substr(path.size() - 150) + " (" + std::to_string(path.size()) + " characters)";
+}
+
 long long HistoryRowStep(const std::string &line)
 {
   if (line.empty() || line[0] < '0' || line[0] > '9') return -1;
@@ -166,7 +172,7 @@ PetscErrorCode OutputDirectoryLock::Acquire(MPI_Comm comm, const std::string &di
   PetscCallMPI(MPI_Bcast(&outcome, 1, MPI_INT, 0, comm));
   PetscCall(BcastText(comm, &text));
   PetscCheck(outcome != 2, comm, PETSC_ERR_FILE_OPEN, "-output_dir %s: cannot write %s (%s): choose a writable directory, e.g. -output_dir output",
-             dir.c_str(), path.c_str(), text.c_str());
+             ShortenedPath(dir).c_str(), ShortenedPath(path).c_str(), text.c_str());
   PetscCheck(outcome != 1, comm, PETSC_ERR_USER,
              "-output_dir %s is in use by another run (%s holds %s): two runs in one directory would overwrite each other's files. "
              "Give this run another directory (e.g. -output_dir %s_2) or wait until that run ends",

@@ -377,6 +377,16 @@ void FormOrStepCause(const DivergenceFacts &f, char *text)
                   "damping (pure shear with the grips outside: stretch 4.7 to 6.6, docs/stability.md section 8): use "
                   "-force_form energy_consistent, which has no such mode.",
                   f.dt / f.stable, f.stiffening, f.damping);
+  // A load that compresses (the tiny sheet to stretch 0.1 in 0.01 s, faster than its
+  // shear waves cross it) inverts bonds at the grips with the step sound: lowering the
+  // safety failed the same way. Points then pass through each other (no contact).
+  else if (f.applied_stretch < 1)
+    std::snprintf(text, kAdviceSize,
+                  " Cause: the compression (applied stretch %.4g). With the step (%.3g x the stable one of the state reached) and "
+                  "the material sound, the sheet squeezed this far or this fast folds near the grips and points pass through their "
+                  "neighbours (bapd models no contact); a shorter step does not help: end the load above stretch %.4g, or apply it "
+                  "more slowly (a later time in -load_schedule).",
+                  f.applied_stretch, f.dt / f.stable, f.applied_stretch);
   else
     std::snprintf(text, kAdviceSize,
                   " Cause: not found. The step (%.3g x the stable one of the state reached) and the material look sound: lower "

@@ -76,15 +76,20 @@ template <class Visit> std::string ForEachElementType(int dim, int tag, Visit vi
 // a .geo whose mesh size is 1e-9 m meshed for hours. Element sizes are held at or above
 // 1/300 of the model's bounding-box diagonal in 2D (about 1e5 triangles at most;
 // a chord strays from a circle of radius R by at most diagonal^2 / (7e5 R)) and 1/50
-// in 3D (about 1e5 tetrahedra); a file's own larger Mesh.MeshSizeMin is kept.
+// in 3D (about 1e5 tetrahedra); a file's own larger Mesh.MeshSizeMin is kept. Gmsh
+// applies Mesh.MeshSizeMax after the minimum, so a file's smaller maximum (1e-7 m:
+// meshed for ever) is raised to the floor too.
 inline void GenerateOutlineMesh(int dim)
 {
   double x0, y0, z0, x1, y1, z1;
   gmsh::model::getBoundingBox(-1, -1, x0, y0, z0, x1, y1, z1);
   const double diagonal = std::sqrt((x1 - x0) * (x1 - x0) + (y1 - y0) * (y1 - y0) + (z1 - z0) * (z1 - z0));
-  double       size_min = 0;
+  const double floor    = diagonal / (dim == 3 ? 50.0 : 300.0);
+  double       size_min = 0, size_max = 0;
   gmsh::option::getNumber("Mesh.MeshSizeMin", size_min);
-  gmsh::option::setNumber("Mesh.MeshSizeMin", std::max(size_min, diagonal / (dim == 3 ? 50.0 : 300.0)));
+  gmsh::option::getNumber("Mesh.MeshSizeMax", size_max);
+  gmsh::option::setNumber("Mesh.MeshSizeMin", std::max(size_min, floor));
+  gmsh::option::setNumber("Mesh.MeshSizeMax", std::max(size_max, floor));
   gmsh::model::mesh::generate(dim);
 }
 

@@ -86,6 +86,11 @@ PetscErrorCode CheckNewerResults(MPI_Comm comm, const std::string &dir, const st
 // The step of a history.csv row ("step,time,..."); -1 for the header or a cut row.
 long long HistoryRowStep(const std::string &line);
 
+// A path as an error line shows it: whole up to 400 characters, else its first and last
+// 150 and its length (PETSc cuts a message at 2048 characters, which would drop the
+// cause after a path of thousands).
+std::string ShortenedPath(const std::string &path);
+
 // Rank 0: writes the file `path` whole or not at all, as checkpoints and fields.xdmf
 // are written: `write` fills `path`.tmp, which is flushed, synced and renamed over
 // `path` only when every write succeeded; otherwise it is removed and a previous

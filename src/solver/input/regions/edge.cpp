@@ -65,6 +65,13 @@ PetscErrorCode CheckEdge2D(const RegionInput &r, LoadSet *set, EdgeRows *grip_ro
              "-load_%s_layers %d (placement inside) is %g m deep, the whole body %s (%g m): use fewer rows, or place the grip "
              "outside (-load_%s_placement outside)",
              n, set->layers, set->layers * b.dx, vertical ? "height" : "width", across, n);
+  // Outside, ten times deeper than the body or its default grip (-load_top_depth 1e30):
+  // rows without end, reported as a memory shortfall of -body_dx.
+  const double deepest = 10.0 * std::max(across, 2.0 * r.scene.horizon());
+  SceneCheck(!outside || set->layers * b.dx <= deepest, r.comm,
+             "-load_%s_%s is %d row(s), %g m deep, more than ten times the body's %s (%g m): a grip outside needs about two "
+             "horizons (%g m, the default): give less", n, li.depth_set ? Format("depth %g m", li.depth).c_str() : "layers",
+             set->layers, set->layers * b.dx, vertical ? "height" : "width", across, 2.0 * r.scene.horizon());
   PetscCall(WarnShallowGrip(r.comm, li, set->layers, b.dx, r.scene.horizon()));
   if (outside) {
     int64_t &rows = set->region == LoadSet::Region::top      ? grip_rows->top
