@@ -10,14 +10,14 @@ Kinds of fault (--only):
            to one rank, during the set-up or at a random step
   disk     a small disk (tmpfs, root only) that fills at a random point of a run that
            writes field files, checkpoints, final_state.csv or a history row every step
-  issue    the faults a user met and reported (issue_cases.py), each on 1 and 2 ranks and
+  reported the faults a user met and reported (reported_cases.py), each on 1 and 2 ranks and
            each with the class it must get and the words its error line must hold
 Classes: clean (exit != 0, exactly one `bapd: error:` line, no stack), fits (a full-disk
 case whose files all fitted: exit 0, everything whole), crash (a signal, a segfault, a
 PETSc or HDF5 stack, a Python trace), hang (no end within the timeout), silent (exit 0
 where the run should have failed), unclear (exit != 0 without exactly one error line),
 data loss (a file there before the run, or one the run wrote whole, is damaged);
-killed (the issue kind's kill -9 of run_mpi.sh: nothing of the run left running).
+killed (the reported kind's kill -9 of run_mpi.sh: nothing of the run left running).
 Each run is short (-end_step, the 400-point scene) and the cases run one at a time.
 """
 import argparse
@@ -31,8 +31,8 @@ import subprocess
 import sys
 import time
 
-import issue_cases
-from issue_cases import CLOUD_SCENE, RUN_MPI, SOURCE, TINY  # (the paths, defined once)
+import reported_cases
+from reported_cases import CLOUD_SCENE, RUN_MPI, SOURCE, TINY  # (the paths, defined once)
 
 GEOMETRY = os.path.join(SOURCE, "tests", "data", "geometry", "l_shape.geo")
 TIMEOUT = 60  # s: a run of these scenes takes a few; more is a hang
@@ -113,7 +113,7 @@ class Case:
         self.kind, self.name, self.ranks, self.args = kind, name, ranks, args
         self.expect = expect  # "fail": the run must fail; "either": failing cleanly or running whole are both right
         self.setup, self.check, self.env, self.action = setup, check, env or {}, action
-        # The issue kind's (issue_cases.py): the class it must get, the words its error line
+        # The reported kind's (reported_cases.py): the class it must get, the words its error line
         # must hold, a check of its outcome, process limits; where its output goes (the
         # checkpoint's own directory, a 4200-character path, a small disk), a pipe for stdout.
         self.want, self.keys, self.judge, self.preexec = None, [], None, None
@@ -415,32 +415,32 @@ def make_cases(count, rng, env, work, only):
             case.out_on, case.full_disk = "disk", True
             disk_cases.append(case)
 
-    # The issue's cases, each on 1 and on 2 ranks.
-    issue = []
+    # The reported cases, each on 1 and on 2 ranks.
+    reported = []
     for n in (1, 2):
-        for case in issue_cases.issue_cases(Case, ref, environment):
+        for case in reported_cases.reported_cases(Case, ref, environment):
             case.fixed_ranks = n
-            issue.append(case)
+            reported.append(case)
     # The share of each kind: every file, signal and disk case, the rest options (the
-    # issue's cases on top).
-    chosen = {"file": file_cases, "signal": signal_cases, "disk": disk_cases, "issue": issue}
-    fixed = sum(len(v) for k, v in chosen.items() if k in only and k != "issue")
+    # reported cases on top).
+    chosen = {"file": file_cases, "signal": signal_cases, "disk": disk_cases, "reported": reported}
+    fixed = sum(len(v) for k, v in chosen.items() if k in only and k != "reported")
     chosen["option"] = option_cases[:max(0, count - fixed)] if "option" in only else []
-    for kind in ("option", "file", "signal", "disk", "issue"):
+    for kind in ("option", "file", "signal", "disk", "reported"):
         if kind in only:
             cases += chosen[kind]
     for case in cases:
-        drawn = ranks()  # (for every case, the issue's last: the other kinds' draws are those of a sweep without them)
+        drawn = ranks()  # (for every case, the reported ones last: the other kinds' draws are those of a sweep without them)
         case.ranks = getattr(case, "fixed_ranks", drawn)
     return cases
 
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--cases", type=int, default=240, help="cases of the random kinds (the options fill what the file, signal and disk cases leave); the issue's "
+    parser.add_argument("--cases", type=int, default=240, help="cases of the random kinds (the options fill what the file, signal and disk cases leave); the reported "
                         "cases come on top")
     parser.add_argument("--seed", type=int, default=1, help="the random choices' seed (a sweep is repeatable)")
-    parser.add_argument("--only", default="option,file,signal,disk,issue", help="kinds of fault, comma-separated")
+    parser.add_argument("--only", default="option,file,signal,disk,reported", help="kinds of fault, comma-separated")
     parser.add_argument("--work", default="faults_sweep", help="the directory of the runs (one folder a case)")
     parser.add_argument("--match", default="", help="only the cases whose name holds this text")
     parser.add_argument("--smoke", action="store_true", help="a short subset: one case of each kind (about 30 s)")
@@ -449,9 +449,9 @@ def main():
     if not os.access(env["BAPD_EXE"], os.X_OK):
         sys.exit(f"sweep.sh: error: no bapd at {env['BAPD_EXE']}: build it (scripts/build.sh) or set BAPD_EXE")
     only = set(args.only.split(","))
-    unknown = only - {"option", "file", "signal", "disk", "issue"}
+    unknown = only - {"option", "file", "signal", "disk", "reported"}
     if unknown:
-        sys.exit(f"sweep.sh: error: --only {','.join(sorted(unknown))}: give option, file, signal, disk or issue")
+        sys.exit(f"sweep.sh: error: --only {','.join(sorted(unknown))}: give option, file, signal, disk or reported")
     work = os.path.abspath(args.work)
     os.makedirs(work, exist_ok=True)
     rng = random.Random(args.seed)

@@ -1,4 +1,4 @@
-"""The sweep's `issue` kind: the faults a hostile but ordinary user met (docs/faults.md,
+"""The sweep's `reported` kind: the faults a hostile but ordinary user met (docs/faults.md,
 "The fault sweep"), each replayed on the tiny scene and each with the class it must get.
 
 A case here may carry, besides what every case has (sweep.Case):
@@ -257,8 +257,8 @@ def flipped_attribute(ref, name):
     return setup
 
 
-def issue_cases(Case, ref, environment):
-    """Every case of the issue the sweep can script, each with the class it must get
+def reported_cases(Case, ref, environment):
+    """Every reported case the sweep can script, each with the class it must get
     (Case, environment: the sweep's; ref: the sweep's reference run, its checkpoint)."""
     global ENVIRONMENT
     ENVIRONMENT = environment
@@ -267,7 +267,7 @@ def issue_cases(Case, ref, environment):
     def case(name, args, want="clean", keys=(), **more):
         judge, forbid = more.pop("judge", None), more.pop("forbid", [])
         preexec = more.pop("preexec", None)
-        c = Case("issue", name, 0, args, expect="fail" if want == "clean" else "either", **more)
+        c = Case("reported", name, 0, args, expect="fail" if want == "clean" else "either", **more)
         c.want, c.keys, c.judge, c.preexec, c.forbid = want, list(keys), judge, preexec, forbid
         cases.append(c)
 
