@@ -94,6 +94,7 @@ struct CheckpointHeader {
   std::int64_t        format_version = kCheckpointFormatVersion;
   std::int64_t        dimension = 2;  // D of the body (version 6; 2 in older files)
   bool                has_c33   = true; // the file has /bonds/c33 (always in 2D)
+  bool                has_damage = false; // the file has /bonds/damage (a run with -failure_softening)
   PetscInt            step = 0;
   double              time = 0, time_step = 0, stretch = 1;
   std::string         reason; // "interval", "interrupted", "last good state", "end"
