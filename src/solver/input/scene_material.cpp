@@ -328,6 +328,10 @@ PetscErrorCode CheckFailure(MPI_Comm comm, const SceneInput &in, Scene *scene)
              "-failure_softening %s: softening starts at the fracture-energy criterion's onset, kappa Gamma, and dissipates "
              "Gamma: give -failure_fracture_energy with -failure_tip_concentration below 1",
              to_string(scene->softening));
+  SceneCheck(scene->softening == Softening::none || scene->solver != SolverKind::static_newton, comm,
+             "-failure_softening %s: the static solver's tangent does not know the bonds' damage; use the dynamic solver "
+             "(-solver dynamic)",
+             to_string(scene->softening));
   SceneCheck(scene->softening == Softening::none || scene->volumetric != Volumetric::point, comm,
              "-failure_softening %s: the point volumetric energy is not softened; use -material_volumetric bond",
              to_string(scene->softening));
