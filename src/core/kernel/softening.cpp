@@ -31,7 +31,7 @@ std::size_t soften_bonds(Softening law, const PointCloud &cloud, const Families 
   for (std::size_t i = 0; i < families.n_family; ++i) {
     const std::size_t o = families.offsets[i], m = families.size(i);
     bool              any = false;
-    double            taken = 0.0, volume = 0.0; // sum_j V_j Psi_ij (d_new - d_old) over the bonds that stay; sum_j V_j (omega_i)
+    double            taken = 0.0, volume = 0.0; // sum_j V_j Psi_ij (d_new - d_old); sum_j V_j over the bonds with energy (1 / omega_i)
     for (std::size_t q = 0; q < m; ++q) {
       const std::size_t b  = o + q;
       const auto        j  = static_cast<std::size_t>(families.neighbour[b]);

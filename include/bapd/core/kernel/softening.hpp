@@ -2,11 +2,11 @@
 // Softening bonds (-failure_softening; docs/method.md section 5.4): with the
 // fracture-energy criterion a bond fails gradually instead of at once. Its damage
 // d_ij in [0, 1] scales the pair's force and energy by (1 - d_ij); d is a function of
-// the pair's release r_ij = e_ij c̄_ij [J/m^2] (e_ij its undamaged pair energy density,
-// c̄_ij the mean crossing density, (5.2)), taken at the largest r_ij it has reached, so
-// it never decreases. Onset at r_0 = kappa Gamma (today's criterion), and the law's
-// work to d = 1, the integral of r dd, is Gamma: the pair dissipates Gamma / c̄_ij per
-// unit V_i V_j, Gamma per unit crack area by (5.1).
+// the pair's release r_ij = e_ij (c_i + c_j) / 2 [J/m^2] (e_ij its undamaged pair energy
+// density, c_i the crossing density; (5.2)), taken at the largest r_ij it has reached, so
+// it never decreases. Onset at r_0 = kappa Gamma (the criterion of breaking at once), and
+// the law's work to d = 1, the integral of r dd, is Gamma: the pair dissipates
+// Gamma / ((c_i + c_j) / 2) per unit V_i V_j, Gamma per unit crack area by (5.1).
 #include <cstddef>
 #include <vector>
 

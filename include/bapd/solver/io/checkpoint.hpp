@@ -20,6 +20,8 @@
 //                          then the natural order of its neighbours)
 //   /bonds/c33             (bonds): plane-stress warm start C33 of every bond; always
 //                          in 2D, absent in 3D when the run has no warm start
+//   /bonds/damage          (bonds): d of every bond with -failure_softening (softening.hpp),
+//                          absent otherwise (and in older files: they read as before)
 //   /run/options           text: the options database (PetscOptionsGetAll)
 //   /run/history           text: history.csv up to this step
 //   /run/field_frames      (frames, 2): step and time of the field files so far
