@@ -181,6 +181,7 @@ template <int D> PetscErrorCode SimulationD<D>::BuildBody()
   if (scene_.failure)
     PetscCall(failure_.Setup(comm_, layout_, families_, scene_.critical_stretch,
                              scene_.tip_concentration * scene_.fracture_energy, D, scene_.horizon(), scene_.body.thickness));
+  if (scene_.failure) PetscCall(failure_.SetupSoftening(scene_.softening, scene_.fracture_energy, bond_state_));
   force_density_.assign(D * layout_.n_owned, 0.0);
   per_point_.assign(2 * layout_.n_owned, 0.0);
   point_energy_.assign(layout_.n_owned, 0.0);

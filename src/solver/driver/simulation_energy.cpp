@@ -21,6 +21,9 @@ template <int D> PetscErrorCode SimulationD<D>::ReleasedEnergy(bool broke, doubl
 {
   PetscFunctionBegin;
   *released = 0;
+  // Softening bonds: what the step's passes took from the bonds' (1 - d) Psi before any
+  // broke (softening.hpp), every step (a bond softens in steps that break none).
+  if (failure_.softening()) PetscCall(ReproducibleSum(comm_, 1, layout_.n_owned, failure_.softened(), released));
   if (!broke) PetscFunctionReturn(0);
   std::vector<std::size_t> &points = released_points_;
   points.clear();
@@ -38,7 +41,9 @@ template <int D> PetscErrorCode SimulationD<D>::ReleasedEnergy(bool broke, doubl
   std::swap_ranges(intact.begin(), intact.end(), intact_before_.begin());
   nd::compute_bond_geometry<D>(layout_.cloud, families_, bond_state_, geometry_, points);
   for (std::size_t k = 0; k < count; ++k) after[k] = before[k] - after[k];
-  PetscCall(ReproducibleSum(comm_, 1, (PetscInt)count, after, released));
+  double broken_release = 0;
+  PetscCall(ReproducibleSum(comm_, 1, (PetscInt)count, after, &broken_release));
+  *released += broken_release;
   PetscFunctionReturn(0);
 }
 

@@ -124,6 +124,13 @@ const OptionTable<Scene, SceneInput> kFailureOptions = {
      "step, the earlier behaviour; docs/method.md 5.2)",
      &Scene::failure_passes},
 };
+const OptionTable<SceneInput> kFailureChoiceOptions = {
+    {"-failure_softening",
+     "With -failure_fracture_energy: none (the default: a bond breaks at once at the critical pair "
+     "energy) | linear | exponential (it softens from there, its force and energy scaled by 1 - d, and "
+     "breaks once its work reaches its share of Gamma; docs/method.md 5.4)",
+     &SceneInput::softening},
+};
 
 } // namespace
 
@@ -159,7 +166,11 @@ PetscErrorCode ReadMaterial(MPI_Comm comm, Scene *scene, SceneInput *in)
     PetscCall(r.Real("-material_density", "Mass density [kg/m^3]", &scene->density));
     return 0;
   }));
-  PetscCall(ReadOptionTable(comm, "Failure (no option: bonds never break; give one of the two)", kFailureOptions, scene, in));
+  // (the softening law is a choice, kept as given until CheckFailure names it)
+  PetscCall(ReadOptionBlock(comm, nullptr, "Failure (no option: bonds never break; give one of the two)", [&](OptionReader &r) -> PetscErrorCode {
+    PetscCall(ReadOptionRows(r, kFailureOptions, scene, in));
+    return ReadOptionRows(r, kFailureChoiceOptions, in);
+  }));
   PetscFunctionReturn(0);
 }
 
@@ -330,6 +341,24 @@ PetscErrorCode CheckFailure(MPI_Comm comm, const SceneInput &in, Scene *scene)
              "-failure_tip_concentration %g: kappa is a fraction in (0, 1] (default 0.43, measured for the BA force; 1: the "
              "crossing-bond count alone)",
              scene->tip_concentration);
+  const std::string softening = Lower(in.softening);
+  if (softening == "linear") scene->softening = Softening::linear;
+  else if (softening == "exponential") scene->softening = Softening::exponential;
+  else
+    SceneCheck(softening == "none", comm,
+               "-failure_softening '%s' is not a softening law: choose none (the default), linear or exponential",
+               in.softening.c_str());
+  SceneCheck(scene->softening == Softening::none || (in.fracture_energy_set && scene->tip_concentration < 1), comm,
+             "-failure_softening %s: softening starts at the fracture-energy criterion's onset, kappa Gamma, and dissipates "
+             "Gamma: give -failure_fracture_energy with -failure_tip_concentration below 1",
+             to_string(scene->softening));
+  SceneCheck(scene->softening == Softening::none || scene->solver != SolverKind::static_newton, comm,
+             "-failure_softening %s: the static solver's tangent does not know the bonds' damage; use the dynamic solver "
+             "(-solver dynamic)",
+             to_string(scene->softening));
+  SceneCheck(scene->softening == Softening::none || scene->volumetric != Volumetric::point, comm,
+             "-failure_softening %s: the point volumetric energy is not softened; use -material_volumetric bond",
+             to_string(scene->softening));
   SceneCheck(scene->failure_passes >= 0, comm,
              "-failure_passes %" PetscInt_FMT ": give the most breaking passes a step, >= 1, or 0 (the default) for passes until "
              "no bond meets the criterion",
@@ -354,8 +383,9 @@ std::string MaterialText(const Scene &s)
     text += Format(", volumetric energy per point (mean dilatation), stabilisation %g mu", s.volumetric_stabilisation);
   text += "\n";
   if (s.failure && s.fracture_energy > 0)
-    text += Format("  failure   bonds break at the critical pair energy of Gamma = %g J/m^2 (tip concentration %g)\n",
-                   s.fracture_energy, s.tip_concentration);
+    text += Format("  failure   bonds break at the critical pair energy of Gamma = %g J/m^2 (tip concentration %g)%s%s\n",
+                   s.fracture_energy, s.tip_concentration, s.softening == Softening::none ? "" : ", softening ",
+                   s.softening == Softening::none ? "" : to_string(s.softening));
   else if (s.failure) text += Format("  failure   bonds break past stretch s_c = %g\n", s.critical_stretch);
   else text += "  failure   none\n";
   return text;

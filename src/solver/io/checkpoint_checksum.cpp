@@ -46,13 +46,15 @@ PetscErrorCode BlockHash(MPI_Comm comm, const NaturalOrder &order, const Checkpo
 {
   PetscFunctionBegin;
   // Tags: 1 u, 2 v, 3 family sizes, 4 bond states, 5 C33, 9 and 10 the relaxation's
-  // displacement and acceleration, 12 the eigenvector (6 to 8, 11 and 13 HeaderHash's).
+  // displacement and acceleration, 12 the eigenvector, 15 the bonds' damage (6 to 8, 11,
+  // 13 and 14 HeaderHash's).
   std::uint64_t h = VectorsHash<D>(1, order, block.u) + VectorsHash<D>(2, order, block.v);
   for (PetscInt k = 0; k < order.point_count; ++k) h += Entry(3, (std::uint64_t)(order.point_start + k), (std::uint64_t)block.family_size[k]);
   for (PetscInt b = 0; b < order.bond_count; ++b) {
     const std::uint64_t g = (std::uint64_t)(order.bond_start + b);
     h += Entry(4, g, block.intact[b]);
     if (!block.c33.empty()) h += Entry(5, g, Bits(block.c33[b]));
+    if (!block.damage.empty()) h += Entry(15, g, Bits(block.damage[b]));
   }
   if (!block.relaxation_u.empty()) h += VectorsHash<D>(9, order, block.relaxation_u) + VectorsHash<D>(10, order, block.relaxation_a);
   if (!block.eigenvector.empty()) h += VectorsHash<D>(12, order, block.eigenvector);

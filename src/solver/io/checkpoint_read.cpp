@@ -62,6 +62,9 @@ void ReadRunSections(hid_t file, const std::string &path, CheckpointHeader *h, s
   const hsize_t P = (hsize_t)h->geometry.points, B = (hsize_t)h->geometry.bonds, D = (hsize_t)h->dimension;
   // /bonds/c33 may be absent from a 3D file only (a run without the warm start).
   h->has_c33 = D == 2 || H5Lexists(file, "/bonds", H5P_DEFAULT) <= 0 || H5Lexists(file, "/bonds/c33", H5P_DEFAULT) > 0;
+  // /bonds/damage: a run with -failure_softening (absent from every other file, and older ones).
+  h->has_damage = H5Lexists(file, "/bonds", H5P_DEFAULT) > 0 && H5Lexists(file, "/bonds/damage", H5P_DEFAULT) > 0;
+  if (h->has_damage && H5DatasetShape(file, "/bonds/damage") != std::vector<hsize_t>{B}) damaged("dataset /bonds/damage has the wrong shape");
   const struct {
     const char          *name;
     std::vector<hsize_t> shape;
@@ -160,19 +163,19 @@ PetscErrorCode ReadCheckpointHeader(MPI_Comm comm, const std::string &path, Chec
   if (rank == 0) problem = ReadHeaderSerial(path, header);
   PetscCall(Bcast(comm, MPI_CHAR, &problem));
   PetscCheck(problem.empty(), comm, PETSC_ERR_FILE_UNEXPECTED, "%s", problem.c_str());
-  long long     ints[13]  = {(long long)header->step,            (long long)header->ranks,
+  long long     ints[14]  = {(long long)header->step,            (long long)header->ranks,
                              (long long)header->geometry.points, (long long)header->geometry.bonds,
                              (long long)header->format_version,  (long long)header->static_hold_done,
                              (long long)header->relaxation_records, (long long)header->step_next_estimate,
                              (long long)header->step_by_stiffness,  (long long)header->step_by_travel,
                              (long long)header->step_interval_now,  (long long)header->dimension,
-                             (long long)header->has_c33};
+                             (long long)header->has_c33,         (long long)header->has_damage};
   double        reals[13] = {header->time,        header->time_step,         header->stretch, header->geometry.dx,
                              header->geometry.horizon, header->end_time_original, header->end_time,
                              header->step_lambda, header->step_stiffness_dt, header->step_shortest, header->step_stretch,
                              header->step_stretch_increment, header->step_indicator};
   std::uint64_t hashes[2] = {header->content_hash, header->geometry.hash};
-  PetscCallMPI(MPI_Bcast(ints, 13, MPI_LONG_LONG, 0, comm));
+  PetscCallMPI(MPI_Bcast(ints, 14, MPI_LONG_LONG, 0, comm));
   PetscCallMPI(MPI_Bcast(reals, 13, MPI_DOUBLE, 0, comm));
   PetscCallMPI(MPI_Bcast(hashes, 2, MPI_UINT64_T, 0, comm));
   header->step             = (PetscInt)ints[0];
@@ -188,6 +191,7 @@ PetscErrorCode ReadCheckpointHeader(MPI_Comm comm, const std::string &path, Chec
   header->step_interval_now  = ints[10];
   header->dimension          = ints[11];
   header->has_c33            = ints[12] != 0;
+  header->has_damage         = ints[13] != 0;
   header->step_lambda        = reals[7];
   header->step_stiffness_dt  = reals[8];
   header->step_shortest      = reals[9];
@@ -252,6 +256,7 @@ PetscErrorCode ReadCheckpointState(MPI_Comm comm, const std::string &path, const
   block.family_size.resize(order.point_count);
   block.intact.resize(order.bond_count);
   if (header.has_c33) block.c33.resize(order.bond_count);
+  if (header.has_damage) block.damage.resize(order.bond_count);
   if (header.relaxation_records > 0) block.relaxation_u.resize(vectors), block.relaxation_a.resize(vectors);
   if (header.step_lambda > 0) block.eigenvector.resize(vectors);
   {
@@ -263,6 +268,8 @@ PetscErrorCode ReadCheckpointState(MPI_Comm comm, const std::string &path, const
     PetscCall(f.ReadBlock("/points/family_size", H5T_NATIVE_INT32, P, 0, order.point_start, order.point_count, block.family_size.data()));
     PetscCall(f.ReadBlock("/bonds/intact", H5T_NATIVE_UCHAR, B, 0, order.bond_start, order.bond_count, block.intact.data()));
     if (header.has_c33) PetscCall(f.ReadBlock("/bonds/c33", H5T_NATIVE_DOUBLE, B, 0, order.bond_start, order.bond_count, block.c33.data()));
+    if (header.has_damage)
+      PetscCall(f.ReadBlock("/bonds/damage", H5T_NATIVE_DOUBLE, B, 0, order.bond_start, order.bond_count, block.damage.data()));
     if (header.relaxation_records > 0) {
       PetscCall(f.ReadBlock("/relaxation/displacement", H5T_NATIVE_DOUBLE, P, D, order.point_start, order.point_count, block.relaxation_u.data()));
       PetscCall(f.ReadBlock("/relaxation/acceleration", H5T_NATIVE_DOUBLE, P, D, order.point_start, order.point_count, block.relaxation_a.data()));
@@ -293,6 +300,11 @@ PetscErrorCode ReadCheckpointState(MPI_Comm comm, const std::string &path, const
   if (state.c33 && header.has_c33) PetscCall(FromNaturalOrder(order.family_bonds, MPI_DOUBLE, block.c33.data(), state.c33));
   else if (state.c33) std::fill(state.c33, state.c33 + family_bonds, 0.0); // none stored: the cold start
   BondState        &bs = *state.bonds;
+  PetscCheck(header.has_damage == !bs.damage.empty(), comm, PETSC_ERR_USER,
+             "Checkpoint '%s' was written %s -failure_softening and this run is %s it: restart with the run's own "
+             "-failure_softening (its bonds' damage is part of the state)",
+             path.c_str(), header.has_damage ? "with" : "without", bs.damage.empty() ? "without" : "with");
+  if (header.has_damage) PetscCall(FromNaturalOrder(order.family_bonds, MPI_DOUBLE, block.damage.data(), bs.damage.data()));
   const std::size_t W  = bs.mask_words;
   for (std::size_t i = 0; i < families.n_family; ++i) {
     std::uint64_t *mask = bs.intact.data() + i * W;

@@ -40,7 +40,7 @@ PetscErrorCode WriteCheckpointFile(MPI_Comm comm, PetscMPIInt rank, const std::s
   // Its size: the arrays (with the re-estimate's eigenvector), the texts and tables
   // (rank 0's, which writes them), and about 30 datasets, groups and attributes.
   const std::uint64_t points = (std::uint64_t)order.n_points, bonds = (std::uint64_t)order.n_bonds, vector = 8 * D;
-  std::uint64_t       data = points * (2 * vector + 4) + bonds * (1 + (header.has_c33 ? 8 : 0)) +
+  std::uint64_t       data = points * (2 * vector + 4) + bonds * (1 + (header.has_c33 ? 8 : 0) + (header.has_damage ? 8 : 0)) +
                        (header.relaxation_records > 0 ? 2 * vector * points : 0) + (has_eigenvector ? vector * points : 0);
   std::uint64_t       text = header.options.size() + header.history.size() + header.static_states.size() +
                        8 * (header.field_frames.size() + header.schedule_original.size() + header.schedule_current.size() +
@@ -66,6 +66,8 @@ PetscErrorCode WriteCheckpointFile(MPI_Comm comm, PetscMPIInt rank, const std::s
   PetscCall(f.CreateGroup("/bonds"));
   PetscCall(f.WriteBlock("/bonds/intact", H5T_NATIVE_UCHAR, B, 0, order.bond_start, order.bond_count, block.intact.data()));
   if (header.has_c33) PetscCall(f.WriteBlock("/bonds/c33", H5T_NATIVE_DOUBLE, B, 0, order.bond_start, order.bond_count, block.c33.data()));
+  if (header.has_damage)
+    PetscCall(f.WriteBlock("/bonds/damage", H5T_NATIVE_DOUBLE, B, 0, order.bond_start, order.bond_count, block.damage.data()));
   PetscCall(f.CreateGroup("/run"));
   PetscCall(f.WriteText("/run/options", header.options));
   PetscCall(f.WriteText("/run/history", header.history));
@@ -128,6 +130,11 @@ PetscErrorCode WriteCheckpoint(MPI_Comm comm, const std::string &path, const Nat
   if (header->has_c33) {
     block.c33.resize(order.bond_count);
     PetscCall(ToNaturalOrder(order.owned_bonds, MPI_DOUBLE, state.c33, block.c33.data()));
+  }
+  header->has_damage = !state.bonds->damage.empty();
+  if (header->has_damage) {
+    block.damage.resize(order.bond_count);
+    PetscCall(ToNaturalOrder(order.owned_bonds, MPI_DOUBLE, state.bonds->damage.data(), block.damage.data()));
   }
   block.family_size.assign(order.family_size.begin(), order.family_size.end());
   if (header->relaxation_records > 0) {

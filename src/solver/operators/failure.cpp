@@ -11,6 +11,58 @@ Failure::~Failure()
 {
   PetscSFDestroy(&sf_);
   if (mask_ != MPI_DATATYPE_NULL) MPI_Type_free(&mask_);
+  if (damage_type_ != MPI_DATATYPE_NULL) MPI_Type_free(&damage_type_);
+}
+
+PetscErrorCode Failure::SetupSoftening(Softening law, double fracture_energy, BondState &state)
+{
+  PetscFunctionBegin;
+  softening_       = law;
+  fracture_energy_ = fracture_energy;
+  if (law == Softening::none) PetscFunctionReturn(0);
+  PetscCheck(by_energy() && critical_release_ < fracture_energy, comm_, PETSC_ERR_ARG_WRONG,
+             "softening needs the fracture-energy criterion with kappa < 1");
+  const Families &f = *families_;
+  state.damage.assign(f.neighbour.size(), 0.0);
+  unsigned long long largest = 0;
+  for (std::size_t i = 0; i < f.n_family; ++i) largest = std::max<unsigned long long>(largest, f.size(i));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &largest, 1, MPI_UNSIGNED_LONG_LONG, MPI_MAX, comm_));
+  stride_ = (std::size_t)std::max<unsigned long long>(largest, 1);
+  PetscCallMPI(MPI_Type_contiguous((int)stride_, MPI_DOUBLE, &damage_type_));
+  PetscCallMPI(MPI_Type_commit(&damage_type_));
+  owned_damage_.assign((std::size_t)layout_->n_owned * stride_, 0.0);
+  ghost_damage_.assign((std::size_t)layout_->n_ring1 * stride_, 0.0);
+  softened_.assign((std::size_t)layout_->n_owned, 0.0);
+  PetscFunctionReturn(0);
+}
+
+// As the masks (SynchroniseGhosts): a ring-1 ghost's bond towards a ring-2 ghost is the
+// owner's to soften, and the ghost's d enters the forces t_ji of its owned neighbours.
+PetscErrorCode Failure::SynchroniseDamage(BondState &state)
+{
+  const Families &f = *families_;
+
+  PetscFunctionBegin;
+  for (PetscInt i = 0; i < layout_->n_owned; ++i)
+    std::copy(state.damage.begin() + (std::ptrdiff_t)f.offsets[i], state.damage.begin() + (std::ptrdiff_t)f.offsets[i + 1],
+              owned_damage_.begin() + (std::ptrdiff_t)(i * stride_));
+  PetscCall(PetscSFBcastBegin(sf_, damage_type_, owned_damage_.data(), ghost_damage_.data(), MPI_REPLACE));
+  PetscCall(PetscSFBcastEnd(sf_, damage_type_, owned_damage_.data(), ghost_damage_.data(), MPI_REPLACE));
+  for (PetscInt g = 0; g < layout_->n_ring1; ++g) {
+    const std::size_t p = (std::size_t)(layout_->n_owned + g);
+    std::copy(ghost_damage_.begin() + (std::ptrdiff_t)(g * stride_), ghost_damage_.begin() + (std::ptrdiff_t)(g * stride_ + f.size(p)),
+              state.damage.begin() + (std::ptrdiff_t)f.offsets[p]);
+  }
+  PetscFunctionReturn(0);
+}
+
+void Failure::EnergyPass(BondState &state)
+{
+  if (softening_ == Softening::none)
+    break_bonds_by_energy(layout_->cloud, *families_, psi_.data(), crossing_.data(), critical_release_, state, stretched_);
+  else
+    soften_bonds(softening_, layout_->cloud, *families_, psi_.data(), crossing_.data(), critical_release_, fracture_energy_, state,
+                 stretched_, softened_.data(), softened_.size());
 }
 
 // The owner of a point evaluates every bond of it and every bond towards it, so its
@@ -108,10 +160,12 @@ PetscErrorCode Failure::Break(const double *y, std::vector<FailedBond> &failed, 
   // owned point and the stale bit never enters an owned force (see README).
   break_failed_bonds(*families_, state, failed, touched_);
   failed.clear();
-  if (by_energy()) break_bonds_by_energy(layout_->cloud, *families_, psi_.data(), crossing_.data(), critical_release_, state, stretched_);
+  std::fill(softened_.begin(), softened_.end(), 0.0);
+  if (by_energy()) EnergyPass(state);
   else nd::break_bonds<D>(layout_->cloud, y, *families_, critical_stretch_, state, stretched_);
   touched_.insert(touched_.end(), stretched_.begin(), stretched_.end());
   PetscCall(SynchroniseGhosts(state));
+  if (softening()) PetscCall(SynchroniseDamage(state));
   if (!touched_.empty()) nd::compute_bond_geometry<D>(layout_->cloud, *families_, state, geometry, touched_);
   TouchedOnce();
   PetscFunctionReturn(0);
@@ -121,9 +175,10 @@ template <int D> PetscErrorCode Failure::Cascade(BondState &state, nd::BondGeome
 {
   PetscFunctionBegin;
   const std::size_t first = touched_.size();
-  break_bonds_by_energy(layout_->cloud, *families_, psi_.data(), crossing_.data(), critical_release_, state, stretched_);
+  EnergyPass(state);
   touched_.insert(touched_.end(), stretched_.begin(), stretched_.end());
   PetscCall(SynchroniseGhosts(state));
+  if (softening()) PetscCall(SynchroniseDamage(state));
   int any = touched_.size() > first ? 1 : 0;
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &any, 1, MPI_INT, MPI_LOR, comm_));
   *more = any != 0;

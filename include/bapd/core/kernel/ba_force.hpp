@@ -108,7 +108,8 @@ void bond_only_range(const Model &model, const PointCloud &ref, const double *y,
                                     lambda ? lambda + stride * i : nullptr,
                                     lambda,
                                     fam.neighbour.data() + fam.offsets[i],
-                                    ref.patch_virial};
+                                    ref.patch_virial,
+                                    state.damage_from(fam.offsets[i])};
     stress_pass<D, Words>(model, fam, geo, state, i, totals, c33, ws, form, evaluated, unusable, largest_trC, stats);
   }
   stats.evaluated += evaluated;
@@ -162,7 +163,8 @@ void energy_consistent_range(const Model &model, const PointCloud &ref, const do
                                  ws.point.member.data(),     ws.bond_stress_total.data(),
                                  0.0,
                                  point ? ws.bond_cofactor.data() : nullptr,
-                                 point ? ws.bond_dilatation.data() : nullptr};
+                                 point ? ws.bond_dilatation.data() : nullptr,
+                                 state.damage_from(o)};
     stress_pass<D, Words>(model, fam, geo, state, i, totals, c33, ws, form, evaluated, unusable, largest_trC, stats);
     if (point && form.volume != 0.0) point_volumetric<D>(ws, ws.point.member.data(), m, form.volume, compressibility,
                                                          ws.volumetric_stabilisation);
@@ -295,6 +297,7 @@ double point_strain_energy(const Model &model, const PointCloud &ref, const doub
   const bool        point = ws.volumetric == Volumetric::point;
   const double      Dc    = point ? compressibility(model, 0) : 0.0;
   const std::size_t m     = families.size(i);
+  const double     *d     = state.damage_from(o); // softening: Psi scaled by 1 - d (softening.hpp)
   double            num = 0.0, den = 0.0, dilatation = 0.0;
   if (point) std::fill(ws.bond_dilatation.begin(), ws.bond_dilatation.begin() + m, 0.0);
   point_bond_energies<D>(model, ref, y, families, geometry, state, c33, i, ws, stats,
@@ -305,7 +308,7 @@ double point_strain_energy(const Model &model, const PointCloud &ref, const doub
                              num += (psi - volumetric_energy(J, Dc)) * vj;
                              dilatation += J * vj;
                              ws.bond_dilatation[q] = J;
-                           } else num += psi * vj;
+                           } else num += (d ? (1.0 - d[q]) * psi : psi) * vj;
                            den += vj;
                          });
   if (!(den > 0)) return 0.0;

@@ -26,6 +26,7 @@ template <int D, bool Corrected> struct BondOnlyForm {
   const double                *lambda_i = nullptr, *lambda = nullptr;
   const std::int32_t          *nb       = nullptr;
   bool                         virial   = false;
+  const double                *damage   = nullptr; // d of the point's bonds (softening.hpp): t scaled by 1 - d; nullptr: none
 
   void none(std::size_t q)
   {
@@ -65,10 +66,17 @@ template <int D, bool Corrected> struct BondOnlyForm {
   {
     const std::array<double, D> f = product(slot, P);
     for (int r = 0; r < D; ++r) t[D * q + r] = f[r];
+    if (damage) soften(q);
   }
   template <class T> void store(std::size_t, std::size_t q, const std::array<T, D> &f, std::size_t l)
   {
     for (int r = 0; r < D; ++r) t[D * q + r] = f[r][l];
+    if (damage) soften(q);
+  }
+  void soften(std::size_t q)
+  {
+    const double g = 1.0 - damage[q];
+    for (int r = 0; r < D; ++r) t[D * q + r] *= g;
   }
 };
 
@@ -87,6 +95,9 @@ template <int D> struct EnergyConsistentForm {
   // J_iq (ws.bond_cofactor, ws.bond_dilatation); nullptr: bond (nothing kept).
   StressRecord<D>             *cofactor   = nullptr;
   double                      *dilatation = nullptr;
+  // Softening (softening.hpp): d of the point's bonds, M_iq scaled by 1 - d (the energy
+  // is sum V_q (1 - d_iq) Psi(F_iq), omega_i unchanged); nullptr: none.
+  const double                *damage = nullptr;
 
   void none(std::size_t) {} // no energy: M_iq is not read (its bit stays clear)
   void collect(std::size_t slot, std::size_t q, const BondKinematics<D> &k)
@@ -126,8 +137,10 @@ template <int D> struct EnergyConsistentForm {
       }
     return m;
   }
-  void keep(std::size_t slot, std::size_t q, const double *m_iq)
+  void keep(std::size_t slot, std::size_t q, double *m_iq)
   {
+    if (damage)
+      for (int k = 0; k < D * D; ++k) m_iq[k] *= 1.0 - damage[q];
     const StressRecord<D> mq = StressRecord<D>::from(m_iq); // in registers (Packed::from)
     M[q]                     = mq;
     stress_total[q / 64] += mq;

@@ -14,12 +14,17 @@ namespace bapd {
 struct BondState {
   std::size_t                mask_words = 1;
   std::vector<std::uint64_t> intact; // mask_words per family point; bit q: the q-th bond is intact
+  // Softening bonds (softening.hpp): d_ij of every bond in family order, its force and
+  // energy scaled by 1 - d_ij; empty without softening (nothing scaled).
+  std::vector<double> damage;
 
   BondState() = default;
   // Every bond of every family point intact (bits beyond a point's family size are 0).
   explicit BondState(const Families &families);
 
   const std::uint64_t *intact_mask(std::size_t i) const { return intact.data() + i * mask_words; }
+  // d of the bonds from family offset o on, or nullptr without softening.
+  const double        *damage_from(std::size_t o) const { return damage.empty() ? nullptr : damage.data() + o; }
   bool                 is_intact(std::size_t i, std::size_t q) const
   {
     return (intact[i * mask_words + q / 64] >> (q % 64)) & 1u;

@@ -24,6 +24,7 @@
 #include "bapd/solver/input/scene_schedule.hpp"
 #include "bapd/solver/input/scene_time_stepping.hpp"
 #include "bapd/core/kernel/force_form.hpp"
+#include "bapd/core/kernel/softening_law.hpp"
 #include "bapd/core/kernel/volumetric.hpp"
 #include "bapd/core/kernel/stress_correction.hpp"
 
@@ -127,6 +128,7 @@ struct Scene {
   double critical_stretch = 0.0; // -failure_critical_stretch (eq 7), or 0
   double fracture_energy  = 0.0; // -failure_fracture_energy Gamma [J/m^2] (docs/method.md 5.2), or 0
   double tip_concentration = 0.43; // -failure_tip_concentration kappa: w_c = kappa Gamma / c (docs/method.md 5.2)
+  Softening softening    = Softening::none; // -failure_softening: bonds fail gradually (softening.hpp; docs/method.md 5.4)
   PetscInt failure_passes = 0;     // -failure_passes: breaking passes a step with Gamma (0: until none breaks; docs/method.md 5.2)
 
   std::vector<LoadSet> loads;

@@ -20,6 +20,8 @@
 //                          then the natural order of its neighbours)
 //   /bonds/c33             (bonds): plane-stress warm start C33 of every bond; always
 //                          in 2D, absent in 3D when the run has no warm start
+//   /bonds/damage          (bonds): d of every bond with -failure_softening (softening.hpp),
+//                          absent otherwise (and in older files: they read as before)
 //   /run/options           text: the options database (PetscOptionsGetAll)
 //   /run/history           text: history.csv up to this step
 //   /run/field_frames      (frames, 2): step and time of the field files so far
@@ -83,6 +85,7 @@ struct CheckpointHeader {
   std::int64_t        format_version = kCheckpointFormatVersion;
   std::int64_t        dimension = 2;  // D of the body (version 6; 2 in older files)
   bool                has_c33   = true; // the file has /bonds/c33 (always in 2D)
+  bool                has_damage = false; // the file has /bonds/damage (a run with -failure_softening)
   PetscInt            step = 0;
   double              time = 0, time_step = 0, stretch = 1;
   std::string         reason; // "interval", "interrupted", "last good state", "end"

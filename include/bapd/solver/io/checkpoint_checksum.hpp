@@ -27,6 +27,7 @@ struct CheckpointBlock {
   std::vector<std::int32_t>  family_size;
   std::vector<unsigned char> intact;                     // a bond
   std::vector<double>        c33;                        // a bond (empty: no /bonds/c33)
+  std::vector<double>        damage;                     // a bond, -failure_softening (empty: no /bonds/damage)
   std::vector<double>        relaxation_u, relaxation_a; // -relaxation adaptive
   std::vector<double>        eigenvector;                // the re-estimated step
 };

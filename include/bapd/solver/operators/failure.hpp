@@ -16,6 +16,7 @@
 #include "bapd/core/geometry/family.hpp"
 #include "bapd/solver/parallel/layout.hpp"
 #include "bapd/core/kernel/ba_force.hpp"
+#include "bapd/core/kernel/softening.hpp"
 
 namespace bapd {
 
@@ -33,6 +34,14 @@ public:
   // thickness).
   PetscErrorCode Setup(MPI_Comm comm, const Layout &layout, const Families &families, double critical_stretch,
                        double critical_release, int dimension, double horizon, double thickness);
+  // -failure_softening (softening.hpp; after Setup, with the fracture-energy criterion):
+  // bonds soften from the criterion's onset and break at d = 1; sizes state.damage (0:
+  // intact) and what the owners' damage copies to their ring-1 ghosts. Collective.
+  PetscErrorCode SetupSoftening(Softening law, double fracture_energy, BondState &state);
+  bool           softening() const { return softening_ != Softening::none; }
+  // The energy the softening of the last Break and its Cascades took, a value an owned
+  // point (softening.hpp's dissipated; 0 without softening): summed reproducibly by the caller.
+  const double  *softened() const { return softened_.data(); }
   // The fracture-energy criterion weighs Psi(F_ij): the caller fills bond_energies()
   // (ForceOperator::BondEnergies) at the positions Break is given, before it.
   bool    by_energy() const { return critical_release_ > 0; }
@@ -59,6 +68,9 @@ public:
 
 private:
   PetscErrorCode SynchroniseGhosts(BondState &state);
+  PetscErrorCode SynchroniseDamage(BondState &state);
+  // The criterion's pass: breaking at once, or softening (softening.hpp).
+  void           EnergyPass(BondState &state);
   void           TouchedOnce(); // touched_ sorted, one entry a point (Setup's reserve counts on it)
 
   MPI_Comm                 comm_     = MPI_COMM_NULL;
@@ -70,6 +82,11 @@ private:
   MPI_Datatype             mask_ = MPI_DATATYPE_NULL; // one point's intact mask
   std::vector<std::uint64_t> ghost_masks_;
   std::vector<std::size_t> touched_, stretched_, pass_; // reserved at set-up
+  Softening                softening_       = Softening::none;
+  double                   fracture_energy_ = 0;
+  std::size_t              stride_          = 0;          // the largest family over the ranks: one point's damage in the exchange
+  MPI_Datatype             damage_type_     = MPI_DATATYPE_NULL; // stride_ doubles
+  std::vector<double>      owned_damage_, ghost_damage_, softened_; // stride_ an owned point, a ring-1 ghost; 1 an owned point
 };
 
 } // namespace bapd
