@@ -157,7 +157,7 @@ TEST(RegionRegistry, ChoicesAndHelpNameEveryRegisteredRegion)
       EXPECT_TRUE(word_in(solid, std::string(r.word) + " or " + r.alias)) << r.word << " / " << solid;
     }
   }
-  EXPECT_EQ(sheet, "top, bottom, left, right, box, polygon, curve, group or block");
+  EXPECT_EQ(sheet.rfind("top, bottom, left, right, box, ", 0), 0u) << sheet; // the registry's order
 }
 
 TEST(LoadSetSelect, TakesWholePointLayersFromTheEdges)
