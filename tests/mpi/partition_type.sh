@@ -44,7 +44,8 @@ cloud)
          -body_cloud "$BAPD_SOURCE_DIR/examples/geometry/graded_sheet.csv"
          -load_schedule 0,1,0.05,1.2 -end_step 100 -output_interval 50 -progress_interval 100000 -output_final_state) ;;
 refused)
-  if "$BAPD_EXE" -partition_type parmetis -body_width 0.01 -body_height 0.01 -body_dx 0.001 > "$work/log" 2>&1; then
+  if "$BAPD_EXE" -partition_type parmetis -body_width 0.01 -body_height 0.01 -body_thickness 0.001 -body_dx 0.001 \
+       -output_dir "$work/out" > "$work/log" 2>&1; then
     fail "-partition_type parmetis was accepted"
   fi
   grep -q "bapd: error: -partition_type 'parmetis' is not a partitioner: choose metis (the default) or ptscotch" "$work/log" ||
