@@ -1,10 +1,12 @@
 #!/usr/bin/env bash
-# Bad input: each mistake, run through run_mpi.sh on RANKS ranks, must stop
-# with a non-zero exit code within 60 s, print exactly one error line that contains the
-# expected text (the option and the fix), and print no PETSc error stack, no crash.
+# Bad input: each mistake, run on RANKS ranks, must stop with a non-zero exit code
+# within 60 s, print exactly one error line that contains the expected text (the option
+# and the fix), and print no PETSc error stack, no crash. On more ranks every case runs
+# through run_mpi.sh; on 1 rank only the cases about run_mpi.sh's own command line do
+# (see the launch below), the rest run bapd alone.
 #   bad_input.sh RANKS [PART]   (ctest sets BAPD_EXE and BAPD_SOURCE_DIR)
 # PART (options, geometry, sets; default all) runs one part of the cases, so that ctest
-# can run the parts side by side: each case starts an MPI job, about 3 s.
+# can run the parts side by side: each case starts bapd, and MPI and PETSc with it.
 # On 1 rank every case runs; on more ranks the parallel sample below: every rank builds
 # the scene and checks it alike, so most cases take the 1-rank path on each rank and
 # another rank count proves nothing new about them.
@@ -50,14 +52,28 @@ done
 part() { current_part="$1"; }
 in_part() { [ "$only" = all ] || [ "$only" = "$current_part" ]; }
 
-# expect_error NAME TEXT ARGS...: run_mpi.sh -n RANKS ARGS... must fail as described
-# (with BAPD_DIRECT=1: mpiexec -n RANKS bapd ARGS..., for what run_mpi.sh would not pass on).
+# The launch on 1 rank: bapd alone, an MPI singleton, its first argument (a .yaml file)
+# the scene, as run_mpi.sh would pass it. On 1 rank run_mpi.sh reaches the same bapd with
+# the same arguments and adds its own checks and mpiexec's start: the options part took
+# 42 s of CPU through it, 27 s alone. run_mpi.sh's own part is its command line, which
+# the cases named here try (as every case on more ranks does). Isolated: no orted is
+# forked for the singleton, which needs none.
+through_run_mpi=" missing_scene device_scene missing_second_scene stray_argument bad_rank_count "
+for name in $through_run_mpi; do
+  grep -qE "expect_error $name( |$)" "${BASH_SOURCE[0]}" || { echo "FAIL: through_run_mpi names '$name', which is no case"; exit 1; }
+done
+# expect_error NAME TEXT ARGS...: run_mpi.sh -n RANKS ARGS... (on 1 rank: bapd alone, but
+# for the cases through_run_mpi names) must fail as described (with BAPD_DIRECT=1:
+# mpiexec -n RANKS bapd ARGS..., for what run_mpi.sh would not pass on).
 expect_error() {
   local name="$1" text="$2" rc problems=""
   shift 2
   in_part && in_sample "$name" || return 0
   cases=$((cases + 1))
   local launch=("$run_mpi" -n "$ranks")
+  if ((ranks == 1)) && [[ "$through_run_mpi" != *" $name "* ]] && [[ "${1:-}" == *.yaml ]]; then
+    launch=(env OMPI_MCA_ess_singleton_isolated=1 "$BAPD_EXE" -options_file_yaml)
+  fi
   [ -n "${BAPD_DIRECT:-}" ] && launch=(mpiexec -q -n "$ranks" --oversubscribe "$BAPD_EXE")
   timeout 60 "${launch[@]}" "$@" > "$name.log" 2>&1
   rc=$?
