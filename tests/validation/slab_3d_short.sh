@@ -36,12 +36,18 @@ else
 fi
 common=(-body_dx $dx -material_bulk_ratio 10 -material_volumetric bond -load_top_depth $grip -load_bottom_depth $grip
         -load_schedule 0,1.0,0.025,1.25,1.025,1.25 -output_interval 200 -progress_interval 1000000)
+# Both runs at once: the test holds two cores (PROCESSORS 2), and one after the other
+# the 1-rank run left one of them idle. (run exits its subshell on a failure.)
 run 1 "$work/2d" -options_file_yaml "$BAPD_SOURCE_DIR/examples/slab_plane_strain.yaml" "${common[@]}" \
-    -body_thickness $t -probe_side_mid_at $side -probe_ligament_at $ligament -probe_crown_at $crown
+    -body_thickness $t -probe_side_mid_at $side -probe_ligament_at $ligament -probe_crown_at $crown &
+pid1=$!
 run 2 "$work/3d" -options_file_yaml "$BAPD_SOURCE_DIR/examples/slab_3d.yaml" "${common[@]}" \
     -body_slab_box 0,$ymin,0,0.010,$ymax,$t -body_hole_axis 0.005,0.010,-0.001,0.005,0.010,0.005 \
     -load_back_layers 2 -load_front_layers 2 \
-    -probe_side_mid_at $side,$z -probe_ligament_at $ligament,$z -probe_crown_at $crown,$z
+    -probe_side_mid_at $side,$z -probe_ligament_at $ligament,$z -probe_crown_at $crown,$z &
+pid2=$!
+wait $pid1 || { wait $pid2; exit 1; }
+wait $pid2 || exit 1
 $PYTHON - "$work" "$t" <<'PY2'
 import csv, sys
 def last(d):
