@@ -59,8 +59,8 @@ elif [ "$case" = fracture ] || [ "$case" = fracture_corrected ]; then
   # tip along y = 6 mm, where 3 and 4 ranks have a boundary; on 2 ranks the boundary is
   # at x = 15 mm, across the crack's path, which the crack has crossed by step 580 (24
   # bonds across it; none at step 520). (From a notch to x = 20 mm, as in the other
-  # cases, the crack crossed it near step 650: every step after the crack starts costs
-  # the crack-tip search's force evaluations.) fracture_corrected: the corrected form
+  # cases, the crack would reach it near step 650, and every step after the crack starts
+  # costs the crack-tip search's force evaluations.) fracture_corrected: the corrected form
   # breaks its first bonds near step 1250 (the crack crosses by step 1300, stretch 1.38).
   scene+=(-load_schedule 0,1,0.15,1.45 -failure_critical_stretch 2.0)
   if [ "$case" = fracture_corrected ]; then

@@ -25,8 +25,9 @@ scene=(-options_file_yaml "$BAPD_SOURCE_DIR/examples/notched_block_3d.yaml"
        -material_bulk_ratio 10 -failure_critical_stretch 1.5 -load_schedule 0,1,0.2,2.5
        -end_step $steps -output_interval 20 -progress_interval 1000000 -output_final_state
        -output_fields -output_fields_interval $steps)
-# Both runs at once: the test holds two cores (PROCESSORS 2), and one after the other
-# the 1-rank run left one of them idle. (run exits its subshell on a failure.)
+# Both runs at once, so that the two cores the test holds (PROCESSORS 2) are busy for
+# its whole length, not one of them idle while the 1-rank run goes alone. (run exits
+# its subshell on a failure.)
 run 1 "$work/np1" "${scene[@]}" &
 pid1=$!
 run 2 "$work/np2" "${scene[@]}" &

@@ -17,8 +17,8 @@ scene=(-options_file_yaml "$BAPD_SOURCE_DIR/examples/notched_pure_shear.yaml"
        -probe_notch_mouth_top_at 0.035,0.0052 -probe_notch_mouth_bottom_at 0.035,0.0048
        -load_schedule 0,1,0.35,3.1 -output_interval 10 -progress_interval 1000000 -output_final_state)
 status=0
-# Both runs at once: the test holds two cores (PROCESSORS 2), and one after the other
-# the 1-rank run left one of them idle.
+# Both runs at once, so that the two cores the test holds (PROCESSORS 2) are busy for
+# its whole length, not one of them idle while the 1-rank run goes alone.
 pids=()
 for n in 1 2; do
   timeout 600 mpiexec -n $n --oversubscribe --bind-to none "$BAPD_EXE" "${scene[@]}" -output_dir "$work/np$n" \

@@ -36,8 +36,9 @@ else
 fi
 common=(-body_dx $dx -material_bulk_ratio 10 -material_volumetric bond -load_top_depth $grip -load_bottom_depth $grip
         -load_schedule 0,1.0,0.025,1.25,1.025,1.25 -output_interval 200 -progress_interval 1000000)
-# Both runs at once: the test holds two cores (PROCESSORS 2), and one after the other
-# the 1-rank run left one of them idle. (run exits its subshell on a failure.)
+# Both runs at once, so that the two cores the test holds (PROCESSORS 2) are busy for
+# its whole length, not one of them idle while the 1-rank run goes alone. (run exits
+# its subshell on a failure.)
 run 1 "$work/2d" -options_file_yaml "$BAPD_SOURCE_DIR/examples/slab_plane_strain.yaml" "${common[@]}" \
     -body_thickness $t -probe_side_mid_at $side -probe_ligament_at $ligament -probe_crown_at $crown &
 pid1=$!
