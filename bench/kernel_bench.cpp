@@ -43,6 +43,10 @@
 //   assemble    assemble_force_density, f_i = sum_j (t_ij - t_ji) V_j
 //   energy_warm the energy-consistent form (ForceForm::energy_consistent) as gent_warm:
 //               the energy-consistent form, assembled by the same assemble_force_density
+//   incompressible, energy_incompressible  gent_warm and energy_warm with Gent in
+//               incompressible plane stress (plane_stress_incompressible.hpp: C33 =
+//               1/J~^2, no solve), and incompressible_lanes its stress_lanes alone;
+//               the ratio to the compressible solve is printed beside them
 // "bond evaluation" = one intact bond with a usable K handed to the model (eq 23),
 // KernelStats::evaluated; a full force evaluation is gent_warm + assemble.
 //
@@ -66,6 +70,7 @@
 #include "bapd/core/kernel/ba_force.hpp"
 #include "bapd/core/materials/gent.hpp"
 #include "bapd/core/materials/material.hpp"
+#include "bapd/core/materials/plane_stress_incompressible.hpp"
 #include "bapd/core/geometry/lattice.hpp"
 
 #if defined(BAPD_BENCH_CALLGRIND) && __has_include(<valgrind/callgrind.h>)
@@ -252,6 +257,7 @@ int main(int argc, char **argv)
   p["-material_Jm"] = 162.6;
   p.D  = 2.0 / (1000.0 * p.mu);
   const GentPlaneStress gent{p};
+  const PlaneStressIncompressible<Gent> gel{p}; // the same gel at J = 1 exactly
 
   std::vector<double> c33(fam.n_bonds(), 0.0), t(2 * fam.n_bonds()), f(2 * cloud.size());
   nd::Workspace<2> ws;
@@ -341,6 +347,22 @@ int main(int argc, char **argv)
       sink += P[0][0];
     }
   };
+  std::vector<double> c33_gel(fam.n_bonds(), 0.0); // written (1/J~^2), never read
+  auto incompressible_run = [&](int r) {
+    nd::compute_bond_forces<2>(ForceForm::bond_only, gel, cloud, ys[r % 2], fam, geo, state, c33_gel.data(), t.data(), ws);
+  };
+  auto energy_incompressible_run = [&](int r) {
+    nd::compute_bond_forces<2>(ForceForm::energy_consistent, gel, cloud, ys[r % 2], fam, geo, state, c33_gel.data(), t.data(), ws);
+  };
+  auto incompressible_lanes_run = [&](int r) {
+    const std::vector<std::array<Lanes, 4>> &F = F_lanes[r % 2];
+    std::array<Lanes, 4>                     P;
+    Lanes                                    c{};
+    for (std::size_t b = 0; b < F.size(); ++b) {
+      gel.stress_lanes(F[b], c, P);
+      sink += P[0][0];
+    }
+  };
   auto assemble_run = [&](int) { nd::assemble_force_density<2>(fam, cloud, t.data(), cloud.size(), f.data()); };
 
   if (o.callgrind) {
@@ -366,14 +388,15 @@ int main(int argc, char **argv)
     const std::pair<const char *, std::function<void(int)>> regions[] = {
         {"gent_warm", gent_run}, {"energy_warm", energy_run}, {"gent_dynamics", dynamics_run},
         {"identity", identity_run}, {"energy_identity", energy_identity_run}, {"model_lanes", model_lanes_run},
-        {"assemble", assemble_run}};
+        {"assemble", assemble_run}, {"incompressible", incompressible_run}, {"energy_incompressible", energy_incompressible_run},
+        {"incompressible_lanes", incompressible_lanes_run}};
     for (const auto &[name, run] : regions)
       if (o.only == name) {
         const Timing tm = time_min(o.reps, run);
         std::printf("%s: %.2f ns/bond (thread CPU, minimum of %d)\n", name, 1e9 * tm.cpu / evaluated, o.reps);
         return 0;
       }
-    std::fprintf(stderr, "kernel_bench: --only %s: not a region (gent_warm energy_warm gent_dynamics identity energy_identity model_lanes assemble)\n",
+    std::fprintf(stderr, "kernel_bench: --only %s: not a region (gent_warm energy_warm gent_dynamics identity energy_identity model_lanes assemble incompressible energy_incompressible incompressible_lanes)\n",
                  o.only.c_str());
     return 2;
   }
@@ -386,6 +409,9 @@ int main(int argc, char **argv)
   const Timing model_t           = time_min(o.reps, model_run);
   const Timing model_lanes_t     = time_min(o.reps, model_lanes_run);
   const Timing assemble_t        = time_min(o.reps, assemble_run);
+  const Timing incompressible_t  = time_min(o.reps, incompressible_run);
+  const Timing energy_inc_t      = time_min(o.reps, energy_incompressible_run);
+  const Timing inc_lanes_t       = time_min(o.reps, incompressible_lanes_run);
   const double nm                = static_cast<double>(Fs[0].size());
 
   auto line = [&](const char *name, const Timing &tm, double count, const char *unit) {
@@ -402,6 +428,11 @@ int main(int argc, char **argv)
   line("GentPlaneStress::stress alone, warm", model_t, nm, "call");
   line("  stress_lanes alone, warm", model_lanes_t, nm, "bond");
   line("assemble_force_density", assemble_t, nb, "bond");
+  line("Gent incompressible plane stress (kernel)", incompressible_t, evaluated, "bond");
+  line("  energy-consistent", energy_inc_t, evaluated, "bond");
+  line("  stress_lanes alone", inc_lanes_t, nm, "bond");
+  std::printf("  incompressible / compressible (warm): kernel %.3f, energy-consistent %.3f, stress_lanes %.3f\n",
+              incompressible_t.cpu / gent_t.cpu, energy_inc_t.cpu / energy_t.cpu, inc_lanes_t.cpu / model_lanes_t.cpu);
   std::printf("  residual evaluations per bond: %.3f warm, %.3f dynamics, %.3f cold\n", evals_warm, evals_dyn, evals_cold);
   const double force_cpu = gent_t.cpu + assemble_t.cpu;
   std::printf("  full force evaluation (warm kernel + assembly): %.2f ns/bond, %.2f M bonds/s\n",
@@ -433,11 +464,13 @@ int main(int argc, char **argv)
     std::printf("RESULT side=%d factor=%.3f points=%zu bonds=%zu evaluated=%zu bonds_per_point=%.3f setup_s=%.3f "
                 "gent_warm_ns=%.3f gent_cold_ns=%.3f identity_ns=%.3f model_ns=%.3f assemble_ns=%.3f "
                 "gent_warm_wall_ns=%.3f evals_warm=%.4f evals_cold=%.4f kernel_bytes_per_point=%.1f energy_warm_ns=%.3f "
-                "gent_dynamics_ns=%.3f evals_dynamics=%.4f energy_identity_ns=%.3f model_lanes_ns=%.3f\n",
+                "gent_dynamics_ns=%.3f evals_dynamics=%.4f energy_identity_ns=%.3f model_lanes_ns=%.3f "
+                "incompressible_ns=%.3f energy_incompressible_ns=%.3f incompressible_lanes_ns=%.3f\n",
                 o.side, o.factor, cloud.size(), fam.n_bonds(), stats.evaluated, nb / np, setup,
                 1e9 * gent_t.cpu / evaluated, 1e9 * cold_t.cpu / evaluated, 1e9 * identity_t.cpu / evaluated,
                 1e9 * model_t.cpu / nm, 1e9 * assemble_t.cpu / nb, 1e9 * gent_t.wall / evaluated, evals_warm,
                 evals_cold, total / np, 1e9 * energy_t.cpu / evaluated, 1e9 * dyn_t.cpu / evaluated, evals_dyn,
-                1e9 * energy_identity_t.cpu / evaluated, 1e9 * model_lanes_t.cpu / nm);
+                1e9 * energy_identity_t.cpu / evaluated, 1e9 * model_lanes_t.cpu / nm,
+                1e9 * incompressible_t.cpu / evaluated, 1e9 * energy_inc_t.cpu / evaluated, 1e9 * inc_lanes_t.cpu / nm);
   return sink == 12345.0;
 }

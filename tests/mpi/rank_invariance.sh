@@ -1,13 +1,15 @@
 #!/usr/bin/env bash
 # The same scene on 1, 2, 3 and 4 ranks: the same history, final displacement field
 # (bit for bit: tolerance 0) and set of broken bonds.
-#   rank_invariance.sh elastic|fracture|fracture_energy|fracture_corrected|shapes|waisted_sheet|dogbone|double_edge_notched|cloud|volumetric_point
+#   rank_invariance.sh elastic|fracture|fracture_energy|fracture_corrected|fracture_incompressible|shapes|waisted_sheet|dogbone|double_edge_notched|cloud|volumetric_point
 # (dogbone, double_edge_notched: the examples from Gmsh files, gripped by physical group,
 # pulled a little; on 1, 2 and 3 ranks)
 # (fracture_corrected: fracture with the bond-only form and -force_stress_correction tensor, whose per-point
 # correction is built once from the unbroken families on every rank, ghosts included)
 # (volumetric_point: elastic in plane strain at K = 1000 mu with -material_volumetric point, whose
 # per-point mean dilatation is formed from the point's own bonds on every rank)
+# (fracture_incompressible: fracture in -material_formulation plane_stress_incompressible,
+# C33 = 1/J~^2 per bond, no solve and no warm start; on 1, 2 and 3 ranks)
 # (fracture_energy: fracture by -failure_fracture_energy, whose pair energies need both
 # directed copies of a bond: a ring-1 ghost's from its own family on this rank)
 set -euo pipefail
@@ -53,7 +55,7 @@ elif [ "$case" = cloud ]; then
   scene=(-options_file_yaml "$BAPD_SOURCE_DIR/examples/point_cloud.yaml"
          -body_cloud "$BAPD_SOURCE_DIR/examples/geometry/graded_sheet.csv"
          -force_form bond_only -load_schedule 0,1,0.05,1.2 -output_interval 50 -progress_interval 100000 -output_final_state)
-elif [ "$case" = fracture ] || [ "$case" = fracture_corrected ]; then
+elif [ "$case" = fracture ] || [ "$case" = fracture_corrected ] || [ "$case" = fracture_incompressible ]; then
   # Stretch the sheet fast enough that the notch opens and bonds break within the run.
   # fracture: a notch to x = 17 mm; bonds break from step 280 and the crack runs from its
   # tip along y = 6 mm, where 3 and 4 ranks have a boundary; on 2 ranks the boundary is
@@ -65,6 +67,8 @@ elif [ "$case" = fracture ] || [ "$case" = fracture_corrected ]; then
   scene+=(-load_schedule 0,1,0.15,1.45 -failure_critical_stretch 2.0)
   if [ "$case" = fracture_corrected ]; then
     scene+=(-force_form bond_only -force_stress_correction tensor -end_step 1350)
+  elif [ "$case" = fracture_incompressible ]; then
+    scene+=(-material_formulation plane_stress_incompressible -end_step 750)
   else
     scene+=(-body_notches 0.017,0.006,0.03,0.006 -end_step 600)
   fi
@@ -81,7 +85,7 @@ fi
 ranks=(1 2 3 4)
 # The crack's cases on 1 and 3 ranks only (the elastic ones cover 2 and 4): a running
 # crack costs five force evaluations a step for the crack-tip search.
-case "$case" in dogbone|double_edge_notched|waisted_sheet) ranks=(1 2 3) ;; fracture_corrected|fracture_energy) ranks=(1 3) ;; esac
+case "$case" in dogbone|double_edge_notched|waisted_sheet|fracture_incompressible) ranks=(1 2 3) ;; fracture_corrected|fracture_energy) ranks=(1 3) ;; esac
 # (The crack's cases write the fields at the start and the end: the owner of each point.)
 case "$case" in fracture*) scene+=(-output_fields -output_fields_interval 100000) ;; esac
 for n in "${ranks[@]}"; do

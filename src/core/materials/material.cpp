@@ -39,7 +39,15 @@ const char *describe(StressStatus s)
 }
 
 const char *to_string(ModelKind k) { return law_entry(k).name; }
-const char *to_string(Formulation f) { return f == Formulation::plane_strain ? "plane_strain" : "plane_stress"; }
+const char *to_string(Formulation f)
+{
+  switch (f) {
+  case Formulation::plane_stress: return "plane_stress";
+  case Formulation::plane_strain: return "plane_strain";
+  case Formulation::plane_stress_incompressible: return "plane_stress_incompressible";
+  }
+  return "unknown formulation";
+}
 
 bool parse(const std::string &name, ModelKind &k)
 {
@@ -55,6 +63,7 @@ bool parse(const std::string &name, Formulation &f)
 {
   if (name == "plane_stress") f = Formulation::plane_stress;
   else if (name == "plane_strain") f = Formulation::plane_strain;
+  else if (name == "plane_stress_incompressible") f = Formulation::plane_stress_incompressible;
   else return false;
   return true;
 }

@@ -497,7 +497,7 @@ TEST_F(SceneOptions, RejectsEachInvalidInputNamingItsOption)
     {"depth zero", {{"-load_top_depth", "0"}}, "-load_top_depth", "> 0"},
     // material
     {"unknown model", {{"-material_model", "mooney"}}, "-material_model", "choose gent, neo_hookean, "},
-    {"unknown formulation", {{"-material_formulation", "3d"}}, "-material_formulation", "plane_stress or plane_strain"},
+    {"unknown formulation", {{"-material_formulation", "3d"}}, "-material_formulation", "plane_stress, plane_strain or plane_stress_incompressible"},
     {"mu zero", {{"-material_mu", "0"}}, "-material_mu"},
     {"mu negative", {{"-material_mu", "-4550"}}, "-material_mu"},
     {"Jm zero", {{"-material_Jm", "0"}}, "-material_Jm"},

@@ -138,6 +138,13 @@ template <class Law> inline constexpr bool has_own_formulations = HasOwnFormulat
 template <class Law> std::string formulation_refusal(Formulation f)
 {
   const std::string law = Law::name;
+  // Incompressible plane stress (plane_stress_incompressible.hpp) takes C33 = 1/J~^2 and
+  // the invariants I1, I2 from it: any law of invariants, and none of principal stretches.
+  if (f == Formulation::plane_stress_incompressible && Law::variables != LawVariables::invariants)
+    return "-material_model " + law +
+           " with -material_formulation plane_stress_incompressible: the incompressible plane stress is written for "
+           "laws of the invariants I1, I2, and this law is written in principal stretches; use -material_formulation "
+           "plane_stress with a large -material_bulk_ratio (e.g. 1e4)";
   if constexpr (has_own_formulations<Law>) return "";
   if (Law::variables != LawVariables::invariants)
     return "-material_model " + law +

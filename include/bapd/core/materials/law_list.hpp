@@ -24,7 +24,8 @@ enum class ModelKind {
 #undef BAPD_LAW_ID
 };
 
-// The 2D reduction of a law (a 3D body uses the law's full 3D form).
-enum class Formulation { plane_stress, plane_strain };
+// The 2D reduction of a law (a 3D body uses the law's full 3D form); the last is plane
+// stress at J = 1 exactly (plane_stress_incompressible.hpp).
+enum class Formulation { plane_stress, plane_strain, plane_stress_incompressible };
 
 } // namespace bapd

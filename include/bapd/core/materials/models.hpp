@@ -18,6 +18,7 @@
 #include "bapd/core/materials/material.hpp"
 #include "bapd/core/materials/compressible_lanes.hpp"
 #include "bapd/core/materials/plane_stress.hpp"
+#include "bapd/core/materials/plane_stress_incompressible.hpp"
 
 namespace bapd {
 
@@ -30,8 +31,10 @@ decltype(auto) with_law(ModelKind kind, Formulation formulation, const MaterialP
     if (kind != static_cast<ModelKind>(I)) return with_law<I + 1>(kind, formulation, p, fn);
   if constexpr (has_own_formulations<Law>) { // a law of principal stretches (law.hpp)
     if (formulation == Formulation::plane_stress) return fn(typename Law::PlaneStressModel{p});
+    if (formulation != Formulation::plane_strain) throw std::invalid_argument(formulation_refusal<Law>(formulation));
     return fn(typename Law::PlaneStrainModel{p});
   } else {
+    if (formulation == Formulation::plane_stress_incompressible) return fn(PlaneStressIncompressible<Law>{p});
     if constexpr (accepts_plane_stress<Law>)
       if (formulation == Formulation::plane_stress) return fn(PlaneStress<Law>{p});
     if (formulation != Formulation::plane_strain) throw std::invalid_argument(formulation_refusal<Law>(formulation));
