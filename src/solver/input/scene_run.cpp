@@ -23,11 +23,11 @@ const OptionTable<SceneInput> kSolverChoiceOptions = {
      &SceneInput::partition_type},
 };
 
-const OptionTable<Scene> kSetupReportOptions = {
+const OptionTable<RunSection> kSetupReportOptions = {
     {"-log_setup_memory",
      "Print the set-up's wall time and peak memory (VmHWM) of the largest rank, the mean rank and rank 0 once the "
      "body is distributed",
-     &Scene::log_setup_memory},
+     &RunSection::log_setup_memory},
 };
 
 const OptionTable<StaticOptions> kStaticSolverOptions = {
@@ -54,8 +54,8 @@ PetscErrorCode ReadRun(MPI_Comm comm, Scene *scene, SceneInput *in)
   PetscFunctionBeginUser;
   PetscCall(ReadOptionBlock(comm, nullptr, "Solver", [&](OptionReader &r) -> PetscErrorCode {
     PetscCall(ReadOptionRows(r, kSolverChoiceOptions, in));
-    PetscCall(ReadOptionRows(r, kSetupReportOptions, scene));
-    return ReadOptionRows(r, kStaticSolverOptions, &scene->static_options);
+    PetscCall(ReadOptionRows(r, kSetupReportOptions, &scene->run));
+    return ReadOptionRows(r, kStaticSolverOptions, &scene->run.static_options);
   }));
   PetscFunctionReturn(0);
 }
@@ -66,11 +66,11 @@ PetscErrorCode CheckRun(MPI_Comm comm, const SceneInput &in, Scene *scene)
   SceneCheck(in.solver == "dynamic" || in.solver == "static", comm,
              "-solver '%s' is not a solver: choose dynamic (explicit dynamics, the default) or static (static states by Newton)",
              in.solver.c_str());
-  scene->solver = in.solver == "static" ? SolverKind::static_newton : SolverKind::dynamic;
+  scene->run.solver = in.solver == "static" ? SolverKind::static_newton : SolverKind::dynamic;
   SceneCheck(in.partition_type == "metis" || in.partition_type == "ptscotch", comm,
              "-partition_type '%s' is not a partitioner: choose metis (the default) or ptscotch (in parallel)", in.partition_type.c_str());
-  scene->partition_type = in.partition_type == "ptscotch" ? PartitionType::ptscotch : PartitionType::metis;
-  const StaticOptions &s = scene->static_options;
+  scene->run.partition_type = in.partition_type == "ptscotch" ? PartitionType::ptscotch : PartitionType::metis;
+  const StaticOptions &s = scene->run.static_options;
   SceneCheck(s.stretch_step > 0 && s.stretch_step_max > 0 && s.stretch_step_min > 0 && s.stretch_step_min <= s.stretch_step &&
                  s.stretch_step <= s.stretch_step_max,
              comm,

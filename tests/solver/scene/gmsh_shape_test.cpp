@@ -85,12 +85,12 @@ TEST(GmshGroup, DogboneEndLinesGripTheSameRowsAsEdgeGrips)
   // and bottom_end: on its 0.5 mm lattice, exactly the 4 edge rows inside the sheet
   // that its earlier edge grips held (-load_S_region top|bottom, layers 4, inside).
   bapd::Scene scene;
-  scene.body.width = 0.02, scene.body.height = 0.06, scene.body.thickness = 0.002, scene.body.dx = 0.0005;
+  scene.body.sheet.width = 0.02, scene.body.sheet.height = 0.06, scene.body.sheet.thickness = 0.002, scene.body.sheet.dx = 0.0005;
   bapd::Shape outline;
   outline.kind = bapd::Shape::Kind::mesh, outline.op = bapd::Shape::Op::intersect;
   ASSERT_EQ(bapd::ReadGmshTriangles(examples + "dogbone.geo", &outline.triangles), "");
-  scene.body.shapes = {outline};
-  const bapd::PointCloud cloud = bapd::make_lattice(scene.body);
+  scene.body.sheet.shapes = {outline};
+  const bapd::PointCloud cloud = bapd::make_lattice(scene.body.sheet);
   for (const auto &[name, region] : {std::pair{"top_end", bapd::LoadSet::Region::top}, {"bottom_end", bapd::LoadSet::Region::bottom}}) {
     bapd::GmshGroup group;
     ASSERT_EQ(bapd::ReadGmshGroup(examples + "dogbone.geo", name, &group), "");

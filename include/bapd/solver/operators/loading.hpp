@@ -46,7 +46,7 @@ public:
   PetscErrorCode Reactions(const double *force_density, double *reaction);
 
   const std::vector<ConstrainedDof> &constrained() const { return constrained_; }
-  const std::vector<LoadSetPoints>  &load_set_points() const { return load_points_; } // scene.loads' order
+  const std::vector<LoadSetPoints>  &load_set_points() const { return load_points_; } // scene.loading.sets' order
   std::vector<PetscInt>              held_dofs() const;
   const Schedule                    &schedule() const { return schedule_; }
   double                             end_time() const { return end_time_; }

@@ -15,8 +15,8 @@ PetscErrorCode ReadBlock(const RegionInput &r, LoadSet *set)
   const LoadInput &li    = r.li;
   const char      *n     = li.name.c_str();
   const bool       three = r.scene.dimension == 3;
-  const Body2D    &b2    = r.scene.body;
-  const Body3D    &b3    = r.scene.body3d;
+  const Body2D    &b2    = r.scene.body.sheet;
+  const Body3D    &b3    = r.scene.body.solid;
   PetscFunctionBeginUser;
   SceneCheck(li.block_set, r.comm, "-load_%s_block is required with -load_%s_region block: give a block id of the point cloud%s", n, n,
              MisspeltHint("-load_" + li.name + "_block").c_str());

@@ -12,7 +12,7 @@ namespace {
 PetscErrorCode CheckBox2D(const RegionInput &r, LoadSet *set, EdgeRows *)
 {
   const LoadInput &li = r.li;
-  const Body2D    &b  = r.scene.body;
+  const Body2D    &b  = r.scene.body.sheet;
   const char      *n  = li.name.c_str();
   PetscFunctionBeginUser;
   PetscCall(CheckOwnPoints2D(r, set));
@@ -32,7 +32,7 @@ PetscErrorCode CheckBox2D(const RegionInput &r, LoadSet *set, EdgeRows *)
 PetscErrorCode CheckBox3D(const RegionInput &r, LoadSet *set)
 {
   const LoadInput &li = r.li;
-  const Body3D    &b  = r.scene.body3d;
+  const Body3D    &b  = r.scene.body.solid;
   const char      *n  = li.name.c_str();
   PetscFunctionBeginUser;
   SceneCheck(li.box_set, r.comm, "-load_%s_box is required with -load_%s_region box: give xmin,ymin,zmin,xmax,ymax,zmax in m%s", n, n,
@@ -78,10 +78,10 @@ std::string BoxEmpty(const Scene &s, const LoadSet &set)
   if (s.dimension == 3)
     return Format("-load_%s_box %g,%g,%g,%g,%g,%g selects no material point for load set '%s': widen it to hold a lattice point "
                   "(points sit at ((i + 1/2) dx, (j + 1/2) dx, (k + 1/2) dx), dx = %g m)",
-                  n, x[0], x[1], x[2], x[3], x[4], x[5], n, s.body3d.solid.dx);
+                  n, x[0], x[1], x[2], x[3], x[4], x[5], n, s.body.solid.solid.dx);
   return Format("-load_%s_box %g,%g,%g,%g selects no material point for load set '%s': widen it to hold a lattice point "
                 "(points sit at ((i + 1/2) dx, (j + 1/2) dx), dx = %g m)",
-                n, x[0], x[1], x[2], x[3], n, s.body.dx);
+                n, x[0], x[1], x[2], x[3], n, s.body.sheet.dx);
 }
 
 } // namespace

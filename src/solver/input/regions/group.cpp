@@ -23,7 +23,7 @@ PetscErrorCode CheckGroup2D(const RegionInput &r, LoadSet *set, EdgeRows *)
   PetscCall(CheckOwnPoints2D(r, set));
   SceneCheck(!li.group.empty(), r.comm, "-load_%s_group is required with -load_%s_region group: give the name of a physical group of the Gmsh file%s",
              n, n, MisspeltHint("-load_" + li.name + "_group").c_str());
-  PetscCall(GroupGmshFile(r.comm, li.file, BodyGmshFiles(r.scene.body), "load", "load set", li.name, "mesh shapes", li.group, &set->file));
+  PetscCall(GroupGmshFile(r.comm, li.file, BodyGmshFiles(r.scene.body.sheet), "load", "load set", li.name, "mesh shapes", li.group, &set->file));
   set->group = li.group;
   GmshGroup         group;
   const std::string problem = ReadGmshGroup(set->file, li.group, &group);
@@ -49,10 +49,10 @@ PetscErrorCode CheckGroup3D(const RegionInput &r, LoadSet *set)
              "-load_%s_group is required with -load_%s_region group: give the name of a physical group of the Gmsh file (a Physical "
              "Surface for a face)%s",
              n, n, MisspeltHint("-load_" + li.name + "_group").c_str());
-  PetscCall(GroupGmshFile(r.comm, li.file, BodyGmshFiles(r.scene.body3d), "load", "load set", li.name, "mesh solids", li.group, &set->file));
+  PetscCall(GroupGmshFile(r.comm, li.file, BodyGmshFiles(r.scene.body.solid), "load", "load set", li.name, "mesh solids", li.group, &set->file));
   set->group = li.group;
   PetscCall(CheckLayersDepth(r, "set", "layer"));
-  set->depth                = li.depth_set ? li.depth : static_cast<double>(li.layers) * r.scene.body3d.solid.dx;
+  set->depth                = li.depth_set ? li.depth : static_cast<double>(li.layers) * r.scene.body.solid.solid.dx;
   const std::string problem = ReadGmshGroup3D(set->file, li.group, set->depth, &set->elements);
   SceneCheck(problem.empty(), r.comm, "-load_%s_group %s: %s", n, li.group.c_str(), problem.c_str());
   SceneCheck(set->elements.dim < 3 || !(li.layers_set || li.depth_set), r.comm,

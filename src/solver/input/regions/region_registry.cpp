@@ -144,7 +144,7 @@ PetscErrorCode CheckOwnPoints2D(const RegionInput &r, LoadSet *set)
              "top, bottom, left and right add grip rows outside the body: remove it, or set it to inside",
              n, li.placement.c_str(), n, to_string(set->region));
   PetscCall(CheckLayersDepth(r, "set", "row"));
-  set->depth = li.depth_set ? li.depth : static_cast<double>(li.layers) * r.scene.body.dx;
+  set->depth = li.depth_set ? li.depth : static_cast<double>(li.layers) * r.scene.body.sheet.dx;
   PetscFunctionReturn(0);
 }
 
@@ -164,7 +164,7 @@ PetscErrorCode CheckVertices2D(const RegionInput &r, const LoadSet &set, std::si
 PetscErrorCode CheckVerticesOnBody2D(const RegionInput &r, const LoadSet &set, double grow)
 {
   const LoadInput &li = r.li;
-  const Body2D    &b  = r.scene.body;
+  const Body2D    &b  = r.scene.body.sheet;
   const char      *n  = li.name.c_str();
   PetscFunctionBeginUser;
   double lo[2] = {li.points[0], li.points[1]}, hi[2] = {li.points[0], li.points[1]};
@@ -180,7 +180,7 @@ std::string VerticesEmpty2D(const Scene &s, const LoadSet &set, const std::strin
   const char *n = set.name.c_str();
   return Format("-load_%s_points: the %s selects no material point for load set '%s': %s (points sit at ((i + 1/2) dx, (j + "
                 "1/2) dx), dx = %g m)",
-                n, to_string(set.region), n, advice.c_str(), s.body.dx);
+                n, to_string(set.region), n, advice.c_str(), s.body.sheet.dx);
 }
 
 } // namespace bapd
