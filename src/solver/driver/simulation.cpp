@@ -87,11 +87,11 @@ template <int D> PetscErrorCode SimulationD<D>::Setup(Scene scene)
     PetscFunctionReturn(0);
   }
   PetscCall(CheckOptionsEarly());
-  PetscCall(StaticSolverCheckScene(comm_, scene_, output_.checkpoint)); // -solver static: what it refuses
+  PetscCall(StaticSolverCheckScene(comm_, scene_.run, scene_.failure, scene_.material.force_form, scene_.loading.schedule, output_.checkpoint)); // -solver static: what it refuses
   PetscCall(SceneView(comm_, scene_));
   PetscCall(ClaimOutputDirectory()); // before anything is written: locked; a restart's newer results
   PetscCall(BuildBody());
-  PetscCall(loading_.Setup(comm_, scene_, layout_));
+  PetscCall(loading_.Setup(comm_, scene_.loading, scene_.time_stepping.end_time, BodyExtentOf(scene_), layout_));
   PetscCall(BuildProbes());
   last_reaction_.assign(D * scene_.loading.sets.size(), 0.0);
   last_probe_u_.assign(D * scene_.loading.probes.size(), 0.0);
@@ -122,7 +122,7 @@ template <int D> PetscErrorCode SimulationD<D>::Setup(Scene scene)
   // continuation writes the rows the uninterrupted run writes.
   const double history_end = loading_.end_time_original() > 0 ? loading_.end_time_original() : loading_.schedule().end_time();
   const double history_period = scene_.output.history_rows > 0 ? history_end / (double)scene_.output.history_rows : 0.0;
-  history_.Setup(scene_, paths_);
+  history_.Setup(scene_.loading, scene_.failure, scene_.output, BodyExtentOf(scene_), paths_);
   history_.StartRowsByLoad(history_period, 0.0); // (HistoryReport::Restore reads its period)
   PetscCall(OpenHistory());
   PetscCall(SetupOutput()); // restores the state with -restart

@@ -289,11 +289,11 @@ template <int D> PetscErrorCode SimulationD<D>::Summary()
   for (std::size_t s = 0; s < scene_.loading.sets.size(); ++s)
     if (D == 2)
       PetscCall(PetscPrintf(comm_, "load set %-12s reaction y = %+.6e N  nominal stress = %+.6e Pa\n", scene_.loading.sets[s].name.c_str(),
-                            reaction[D * s + 1], reaction[D * s + 1] / NominalArea(scene_)));
+                            reaction[D * s + 1], reaction[D * s + 1] / NominalArea(BodyExtentOf(scene_))));
     else
       PetscCall(PetscPrintf(comm_, "load set %-12s reaction x, y, z = %+.6e, %+.6e, %+.6e N  nominal stress (y) = %+.6e Pa\n",
                             scene_.loading.sets[s].name.c_str(), reaction[D * s], reaction[D * s + 1], reaction[D * s + 2],
-                            reaction[D * s + 1] / NominalArea(scene_)));
+                            reaction[D * s + 1] / NominalArea(BodyExtentOf(scene_))));
   PetscInt broken;
   PetscCall(BrokenBondCount(&broken));
   if (scene_.failure.enabled) PetscCall(PetscPrintf(comm_, "broken bonds: %" PetscInt_FMT "\n", broken));

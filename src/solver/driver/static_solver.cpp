@@ -11,20 +11,20 @@
 
 namespace bapd {
 
-PetscErrorCode StaticSolverCheckScene(MPI_Comm comm, const Scene &scene, const CheckpointOptions &checkpoint)
+PetscErrorCode StaticSolverCheckScene(MPI_Comm comm, const RunSection &run, const FailureSection &failure, ForceForm force_form,
+                                      const Schedule &s, const CheckpointOptions &checkpoint)
 {
   PetscFunctionBegin;
-  if (scene.run.solver != SolverKind::static_newton) PetscFunctionReturn(0);
-  PetscCheck(!scene.failure.enabled, comm, PETSC_ERR_USER,
+  if (run.solver != SolverKind::static_newton) PetscFunctionReturn(0);
+  PetscCheck(!failure.enabled, comm, PETSC_ERR_USER,
              "-solver static does not break bonds yet: remove the -failure_* options, or use -solver dynamic (the default) for a "
              "run with failure");
   PetscCheck(checkpoint.restart.empty() && !checkpoint.periodic(), comm, PETSC_ERR_USER,
              "-solver static writes no checkpoints and does not restart yet (a whole static run takes seconds to minutes): remove "
              "-checkpoint_interval, -checkpoint_wall_interval and -restart, or use -solver dynamic");
-  PetscCheck(scene.material.force_form == ForceForm::energy_consistent, comm, PETSC_ERR_USER,
+  PetscCheck(force_form == ForceForm::energy_consistent, comm, PETSC_ERR_USER,
              "-solver static needs -force_form energy_consistent (the default): the bond-only force is not the gradient of an "
              "energy, so there is no energy to minimise and no symmetric tangent");
-  const Schedule &s = scene.loading.schedule;
   PetscCheck(!s.time.empty() && s.time.size() >= 2, comm, PETSC_ERR_USER,
              "-solver static follows -load_schedule: give one with at least two knots (time, stretch), e.g. -load_schedule 0,1,1,1.5");
   PetscCheck(s.stretch.front() == 1.0, comm, PETSC_ERR_USER,

@@ -156,7 +156,7 @@ PetscErrorCode CheckRegion(const RegionInput &r, LoadSet *set, EdgeRows *grip_ro
 {
   const LoadInput &li    = r.li;
   const char      *n     = li.name.c_str();
-  const bool       three = r.scene.dimension == 3;
+  const bool       three = r.dimension == 3;
   const char      *choices = RegionChoices(three);
   PetscFunctionBeginUser;
   SceneCheck(li.region_set, r.comm, "-load_%s_region is required for load set '%s': choose %s%s", n, n, choices,
@@ -357,7 +357,7 @@ PetscErrorCode CheckLoading(MPI_Comm comm, const SceneInput &in, Scene *scene, E
   for (const LoadInput &li : in.loads) {
     LoadSet set;
     set.name = li.name;
-    PetscCall(CheckRegion({comm, li, in, *scene, default_placement}, &set, grip_rows));
+    PetscCall(CheckRegion({comm, li, in, scene->body, scene->dimension, default_placement}, &set, grip_rows));
     PetscCall(CheckComponents(comm, li, *scene, &set));
     scene->loading.sets.push_back(set);
   }
@@ -368,13 +368,14 @@ PetscErrorCode CheckLoading(MPI_Comm comm, const SceneInput &in, Scene *scene, E
 
 std::string LoadingText(const Scene &s)
 {
-  const bool  three = s.dimension == 3;
-  std::string text;
+  const bool       three  = s.dimension == 3;
+  const BodyExtent extent = BodyExtentOf(s);
+  std::string      text;
   auto        component = [](ComponentLoad c, double scale) {
     return c == ComponentLoad::stretch ? Format("stretch (scale %g)", scale) : std::string(to_string(c));
   };
   for (const LoadSet &l : s.loading.sets)
-    text += Format("  load set  %s: %s; x %s, y %s%s\n", l.name.c_str(), RegionText(s, l).c_str(), component(l.x, l.x_scale).c_str(),
+    text += Format("  load set  %s: %s; x %s, y %s%s\n", l.name.c_str(), RegionText(extent, l).c_str(), component(l.x, l.x_scale).c_str(),
                    component(l.y, l.y_scale).c_str(), three ? (", z " + component(l.z, l.z_scale)).c_str() : "");
   if (s.loading.sets.empty()) text += "  load set  none\n";
   if (!s.loading.schedule.time.empty()) {

@@ -94,7 +94,7 @@ protected:
 std::vector<PetscInt> Select(const Scene &scene, const LoadSet &set, const PointCloud &points)
 {
   std::vector<PetscInt> selected;
-  EXPECT_EQ(LoadSetSelect(scene, set, points.x.data(), static_cast<PetscInt>(points.size()), &selected), 0);
+  EXPECT_EQ(LoadSetSelect(BodyExtentOf(scene), set, points.x.data(), static_cast<PetscInt>(points.size()), &selected), 0);
   return selected;
 }
 

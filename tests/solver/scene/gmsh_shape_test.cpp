@@ -101,8 +101,8 @@ TEST(GmshGroup, DogboneEndLinesGripTheSameRowsAsEdgeGrips)
     bapd::LoadSet by_edge;
     by_edge.region = region, by_edge.layers = 4, by_edge.placement = bapd::GripPlacement::inside;
     std::vector<PetscInt> a, b;
-    ASSERT_EQ(bapd::LoadSetSelect(scene, by_name, cloud.x.data(), (PetscInt)cloud.size(), &a), 0);
-    ASSERT_EQ(bapd::LoadSetSelect(scene, by_edge, cloud.x.data(), (PetscInt)cloud.size(), &b), 0);
+    ASSERT_EQ(bapd::LoadSetSelect(bapd::BodyExtentOf(scene), by_name, cloud.x.data(), (PetscInt)cloud.size(), &a), 0);
+    ASSERT_EQ(bapd::LoadSetSelect(bapd::BodyExtentOf(scene), by_edge, cloud.x.data(), (PetscInt)cloud.size(), &b), 0);
     EXPECT_EQ(a, b) << name;
     EXPECT_EQ(a.size(), 4u * 40u) << name; // the tabs are the sheet's full 20 mm width
   }

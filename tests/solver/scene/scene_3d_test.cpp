@@ -194,7 +194,7 @@ TEST_F(Scene3D, LoadSetsPickExactlyTheBruteForcePoints)
     set.layers = c.layers;
     std::copy(c.box.begin(), c.box.end(), set.box);
     std::vector<PetscInt> selected;
-    ASSERT_EQ(bapd::LoadSetSelect(scene, set, points.x.data(), (PetscInt)points.size(), &selected), 0);
+    ASSERT_EQ(bapd::LoadSetSelect(bapd::BodyExtentOf(scene), set, points.x.data(), (PetscInt)points.size(), &selected), 0);
     std::vector<PetscInt> expected;
     for (std::size_t p = 0; p < points.size(); ++p)
       if (c.expected(index[p])) expected.push_back((PetscInt)p);
@@ -247,7 +247,7 @@ TEST_F(Scene3D, GripsHoldThreeDofsAPointAndReactInThree)
   layout.cloud   = bapd::nd::make_solid_points(scene.body.solid.solid);
   layout.n_owned = (PetscInt)layout.cloud.size();
   bapd::Loading loading;
-  ASSERT_EQ(loading.Setup(PETSC_COMM_SELF, scene, layout), 0) << bapd::test::UserErrorText();
+  ASSERT_EQ(loading.Setup(PETSC_COMM_SELF, scene.loading, scene.time_stepping.end_time, bapd::BodyExtentOf(scene), layout), 0) << bapd::test::UserErrorText();
   EXPECT_EQ(loading.dimension(), 3);
   // left: x, y, z of the 6 x 8 = 48 points of i = 0 (no cell of i = 0 is in the sphere);
   // right: x and z of the 2 x 48 points of i = 8, 9.
@@ -319,7 +319,7 @@ TEST_F(Scene3D, AffineGripFieldContinuesTheStretchIntoFaceAndBoxGrips)
     layout.cloud   = bapd::nd::make_solid_points(scene.body.solid.solid);
     layout.n_owned = (PetscInt)layout.cloud.size();
     bapd::Loading loading;
-    ASSERT_EQ(loading.Setup(PETSC_COMM_SELF, scene, layout), 0) << bapd::test::UserErrorText();
+    ASSERT_EQ(loading.Setup(PETSC_COMM_SELF, scene.loading, scene.time_stepping.end_time, bapd::BodyExtentOf(scene), layout), 0) << bapd::test::UserErrorText();
     std::vector<double> u(3 * layout.cloud.size(), -1.0);
     loading.Apply(1.0, u.data(), nullptr); // stretch 1.1
     std::size_t top = 0, bottom = 0;

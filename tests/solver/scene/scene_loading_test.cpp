@@ -129,7 +129,7 @@ Share TakeShare(const bapd::PointCloud &cloud)
 PetscInt GlobalCount(const Scene &scene, const LoadSet &set, const Share &share)
 {
   std::vector<PetscInt> selected;
-  EXPECT_EQ(bapd::LoadSetSelect(scene, set, share.x.data(), share.n(), &selected), 0);
+  EXPECT_EQ(bapd::LoadSetSelect(bapd::BodyExtentOf(scene), set, share.x.data(), share.n(), &selected), 0);
   PetscInt local = static_cast<PetscInt>(selected.size()), global = 0;
   MPI_Allreduce(&local, &global, 1, MPIU_INT, MPI_SUM, PETSC_COMM_WORLD);
   return global;
@@ -225,8 +225,8 @@ TEST(LoadSetSelect, CurveAlongAnEdgeTakesTheEdgeRowsOfItsDepth)
     curve.depth    = layers * scene.body.sheet.dx;
     bapd::SetCurveReach(&curve);
     std::vector<PetscInt> from_edge, from_curve;
-    ASSERT_EQ(bapd::LoadSetSelect(scene, edge, cloud.x.data(), (PetscInt)cloud.size(), &from_edge), 0);
-    ASSERT_EQ(bapd::LoadSetSelect(scene, curve, cloud.x.data(), (PetscInt)cloud.size(), &from_curve), 0);
+    ASSERT_EQ(bapd::LoadSetSelect(bapd::BodyExtentOf(scene), edge, cloud.x.data(), (PetscInt)cloud.size(), &from_edge), 0);
+    ASSERT_EQ(bapd::LoadSetSelect(bapd::BodyExtentOf(scene), curve, cloud.x.data(), (PetscInt)cloud.size(), &from_curve), 0);
     EXPECT_EQ(from_curve, from_edge) << layers << " layer(s)";
     EXPECT_EQ(from_curve.size(), 80u * layers);
   }
@@ -265,7 +265,7 @@ TEST(LoadSetSelect, ReturnsIncreasingLocalIndices)
   const double          x[]   = {0.0005, 0.1595, 0.04, 0.08, 0.0795, 0.1595, 0.0005, 0.0005};
   LoadSet               set;
   std::vector<PetscInt> selected = {42}; // cleared first
-  ASSERT_EQ(bapd::LoadSetSelect(scene, set, x, 4, &selected), 0);
+  ASSERT_EQ(bapd::LoadSetSelect(bapd::BodyExtentOf(scene), set, x, 4, &selected), 0);
   EXPECT_EQ(selected, (std::vector<PetscInt>{0, 2}));
 }
 
@@ -404,7 +404,7 @@ TEST(GripField, AffineGripsContinueTheMeanStretch)
     layout.cloud   = bapd::make_lattice(scene.body.sheet);
     layout.n_owned = static_cast<PetscInt>(layout.cloud.size());
     bapd::Loading loading;
-    ASSERT_EQ(loading.Setup(PETSC_COMM_SELF, scene, layout), 0);
+    ASSERT_EQ(loading.Setup(PETSC_COMM_SELF, scene.loading, scene.time_stepping.end_time, bapd::BodyExtentOf(scene), layout), 0);
     const double        t = 2.5, lambda = scene.loading.schedule.stretch_at(t), y_centre = -bottom_scale * scene.body.sheet.height;
     std::vector<double> u(2 * layout.cloud.size(), 7.0), v(u.size(), 7.0);
     loading.Apply(t, u.data(), v.data());

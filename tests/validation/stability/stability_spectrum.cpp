@@ -170,7 +170,7 @@ PetscErrorCode AlongTheRun(const std::vector<double> &stretches, FILE *summary, 
   std::vector<char>   held(2 * n_owned, 0);
   for (const bapd::LoadSet &set : scene.loading.sets) {
     std::vector<PetscInt> points;
-    PetscCall(bapd::LoadSetSelect(scene, set, layout.cloud.x.data(), n_owned, &points));
+    PetscCall(bapd::LoadSetSelect(bapd::BodyExtentOf(scene), set, layout.cloud.x.data(), n_owned, &points));
     for (PetscInt p : points) {
       if (set.x != bapd::ComponentLoad::free) held[2 * p] = 1;
       if (set.y != bapd::ComponentLoad::free) held[2 * p + 1] = 1;

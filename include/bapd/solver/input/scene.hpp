@@ -200,6 +200,9 @@ PetscErrorCode SceneView(MPI_Comm comm, const Scene &scene);
 // components), schedule, probes, time stepping and output.
 std::string SceneText(const Scene &scene);
 
+// What the load regions read of the checked scene's body (scene_selection.cpp).
+BodyExtent BodyExtentOf(const Scene &scene);
+
 // Warnings issued by the last SceneFromOptions (also printed on rank 0, to stderr).
 const std::vector<std::string> &SceneWarnings();
 
