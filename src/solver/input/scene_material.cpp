@@ -105,7 +105,8 @@ const OptionTable<SceneInput> &MaterialChoiceOptions()
   return table;
 }
 
-// Failure: the values in the Scene, whether a criterion was given in the SceneInput.
+// Failure: the values in the section, whether a criterion was given and the softening
+// law as given (a choice, kept until CheckFailure names it) in the SceneInput.
 const OptionTable<FailureSection, SceneInput> kFailureOptions = {
     {"-failure_critical_stretch", "Critical bond stretch s_c [-], > 1 (paper: 7.2); absent: no failure", &FailureSection::critical_stretch,
      &SceneInput::critical_stretch_set, "7.2"},
@@ -123,13 +124,11 @@ const OptionTable<FailureSection, SceneInput> kFailureOptions = {
      "until no bond meets the criterion, the bonds that a pass loads past it break at once; 1: one pass a "
      "step, the earlier behaviour; docs/method.md 5.2)",
      &FailureSection::passes},
-};
-const OptionTable<SceneInput> kFailureChoiceOptions = {
     {"-failure_softening",
      "With -failure_fracture_energy: none (the default: a bond breaks at once at the critical pair "
      "energy) | linear | exponential (it softens from there, its force and energy scaled by 1 - d, and "
      "breaks once its work reaches its share of Gamma; docs/method.md 5.4)",
-     &SceneInput::softening},
+     GivenText<SceneInput>{&SceneInput::softening}},
 };
 
 } // namespace
@@ -166,11 +165,7 @@ PetscErrorCode ReadMaterial(MPI_Comm comm, Scene *scene, SceneInput *in)
     PetscCall(r.Real("-material_density", "Mass density [kg/m^3]", &scene->material.density));
     return 0;
   }));
-  // (the softening law is a choice, kept as given until CheckFailure names it)
-  PetscCall(ReadOptionBlock(comm, nullptr, "Failure (no option: bonds never break; give one of the two)", [&](OptionReader &r) -> PetscErrorCode {
-    PetscCall(ReadOptionRows(r, kFailureOptions, &scene->failure, in));
-    return ReadOptionRows(r, kFailureChoiceOptions, in);
-  }));
+  PetscCall(ReadOptionTable(comm, "Failure (no option: bonds never break; give one of the two)", kFailureOptions, &scene->failure, in));
   PetscFunctionReturn(0);
 }
 

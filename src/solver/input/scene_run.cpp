@@ -11,19 +11,17 @@ namespace bapd {
 
 namespace {
 
-const OptionTable<SceneInput> kSolverChoiceOptions = {
+// The solver and partition as given (CheckRun parses them), and the set-up's report.
+const OptionTable<RunSection, SceneInput> kRunOptions = {
     {"-solver",
      "How the run reaches its states: dynamic (explicit dynamics, PETSc TS) or static (static states by Newton, "
      "PETSc SNES, load steps along -load_schedule)",
-     &SceneInput::solver},
+     GivenText<SceneInput>{&SceneInput::solver}},
     {"-partition_type",
      "Who splits the body over the ranks: metis (rank 0 builds the whole body and bond graph, METIS splits it) or "
      "ptscotch (PT-Scotch on every rank; a lattice body is built in slabs, one a rank, and no rank holds it whole; "
      "given points and -force_patch_correction are still built on rank 0)",
-     &SceneInput::partition_type},
-};
-
-const OptionTable<RunSection> kSetupReportOptions = {
+     GivenText<SceneInput>{&SceneInput::partition_type}},
     {"-log_setup_memory",
      "Print the set-up's wall time and peak memory (VmHWM) of the largest rank, the mean rank and rank 0 once the "
      "body is distributed",
@@ -53,8 +51,7 @@ PetscErrorCode ReadRun(MPI_Comm comm, Scene *scene, SceneInput *in)
 {
   PetscFunctionBeginUser;
   PetscCall(ReadOptionBlock(comm, nullptr, "Solver", [&](OptionReader &r) -> PetscErrorCode {
-    PetscCall(ReadOptionRows(r, kSolverChoiceOptions, in));
-    PetscCall(ReadOptionRows(r, kSetupReportOptions, &scene->run));
+    PetscCall(ReadOptionRows(r, kRunOptions, &scene->run, in));
     return ReadOptionRows(r, kStaticSolverOptions, &scene->run.static_options);
   }));
   PetscFunctionReturn(0);
