@@ -68,13 +68,13 @@ PetscErrorCode SceneFromOptions(MPI_Comm comm, Scene *scene)
   PetscFunctionBeginUser;
   *scene = Scene();
   ClearWarnings();
-  PetscCall(ReadBody(comm, scene, &in));
-  PetscCall(ReadMaterial(comm, scene, &in));
-  PetscCall(ReadLoading(comm, scene, &in));
+  PetscCall(ReadBody(comm, &scene->body, &in));
+  PetscCall(ReadMaterial(comm, &scene->material, &scene->failure, &in));
+  PetscCall(ReadLoading(comm, &scene->loading, &in));
   PetscCall(ReadProbes(comm, &in));
-  PetscCall(ReadOutput(comm, scene, &in));
-  PetscCall(ReadRun(comm, scene, &in));
-  PetscCall(ReadTimeStepping(comm, scene, &in));
+  PetscCall(ReadOutput(comm, &scene->output, &in));
+  PetscCall(ReadRun(comm, &scene->run, &in));
+  PetscCall(ReadTimeStepping(comm, &scene->time_stepping, &in));
 
   PetscCall(PetscOptionsHasHelp(nullptr, &help));
   if (help) {
@@ -199,7 +199,7 @@ std::string SceneText(const Scene &s)
   // section's lines from the section (scene_input.hpp)
   std::string text = "Scene\n";
   text += s.dimension == 3 ? BodyText3D(s) : BodyText2D(s);
-  return text + MaterialText(s) + LoadingText(s) + ProbesText(s) + TimeSteppingText(s) + OutputText(s);
+  return text + MaterialText(s) + LoadingText(s) + ProbesText(s) + TimeSteppingText(s) + OutputText(s.output);
 }
 
 PetscErrorCode SceneView(MPI_Comm comm, const Scene &s)

@@ -205,11 +205,11 @@ const OptionTable<BodySection> kHorizonOptions = {
 
 SetFamily ShapeFamily() { return {"-body_", "-body_shapes", OptionRowSuffixes(kShapeOptions)}; }
 
-PetscErrorCode ReadBody(MPI_Comm comm, Scene *scene, SceneInput *in)
+PetscErrorCode ReadBody(MPI_Comm comm, BodySection *body, SceneInput *in)
 {
   PetscFunctionBeginUser;
   PetscCall(ReadOptionBlock(comm, nullptr, "Body: a plane sheet [0, width] x [0, height] cut by holes, shapes and notches", [&](OptionReader &r) -> PetscErrorCode {
-    PetscCall(ReadOptionRows(r, kSheetOptions, &scene->body.sheet, in));
+    PetscCall(ReadOptionRows(r, kSheetOptions, &body->sheet, in));
     return ReadOptionRows(r, kBodyInputOptions, in);
   }));
   PetscCall(CheckNames(comm, in->shape_names, "-body_shapes", "shape"));
@@ -220,7 +220,7 @@ PetscErrorCode ReadBody(MPI_Comm comm, Scene *scene, SceneInput *in)
     PetscCall(ReadOptionBlock(comm, prefix.c_str(), title.c_str(), [&](OptionReader &r) { return ReadOptionRows(r, kShapeOptions, &shape); }));
     in->shapes.push_back(shape);
   }
-  PetscCall(ReadOptionTable(comm, "Horizon", kHorizonOptions, &scene->body));
+  PetscCall(ReadOptionTable(comm, "Horizon", kHorizonOptions, body));
   PetscFunctionReturn(0);
 }
 

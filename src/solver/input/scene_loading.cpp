@@ -305,14 +305,14 @@ PetscErrorCode CheckGripField(MPI_Comm comm, const SceneInput &in, Scene *scene)
 
 SetFamily LoadSetFamily() { return {"-load_", "-load_sets", OptionRowSuffixes(kLoadSetOptions)}; }
 
-PetscErrorCode ReadLoading(MPI_Comm comm, Scene *scene, SceneInput *in)
+PetscErrorCode ReadLoading(MPI_Comm comm, LoadingSection *loading, SceneInput *in)
 {
   PetscFunctionBeginUser;
   PetscCall(ReadOptionBlock(comm, nullptr, "Loading: grips (load sets) following a stretch schedule", [&](OptionReader &r) -> PetscErrorCode {
     PetscCall(r.StringArray("-load_sets", "Names of the load sets name1,name2,... (each set S is configured by -load_S_...)", &in->load_names));
     PetscCall(r.RealArray("-load_schedule", "Stretch schedule t0,lambda0,t1,lambda1,... [s, -], piecewise linear (default: none)", &in->schedule,
                           &in->schedule_set));
-    PetscCall(r.Real("-load_reference_length", "Length L in u = scale (lambda - 1) L [m] (default: body height)", &scene->loading.reference_length,
+    PetscCall(r.Real("-load_reference_length", "Length L in u = scale (lambda - 1) L [m] (default: body height)", &loading->reference_length,
                      &in->reference_length_set));
     PetscCall(r.String("-load_grip_placement",
                        "Where edge grips are, unless a set says: outside (clamps added beyond the specimen, which is the free "

@@ -133,16 +133,16 @@ const OptionTable<FailureSection, SceneInput> kFailureOptions = {
 
 } // namespace
 
-PetscErrorCode ReadMaterial(MPI_Comm comm, Scene *scene, SceneInput *in)
+PetscErrorCode ReadMaterial(MPI_Comm comm, MaterialSection *material, FailureSection *failure, SceneInput *in)
 {
-  MaterialParameters &m = scene->material.parameters;
+  MaterialParameters &m = material->parameters;
   PetscFunctionBeginUser;
   PetscCall(ReadOptionBlock(comm, nullptr, "Material", [&](OptionReader &r) -> PetscErrorCode {
     PetscCall(ReadOptionRows(r, MaterialChoiceOptions(), in));
     PetscCall(r.Real("-material_volumetric_stabilisation",
                      "With -material_volumetric point: kappa / mu [-], the modulus that holds each bond's J_ij near its "
                      "point's mean (the odd-even mode; a few mu: not K, which would lock again; docs/method.md section 8)",
-                     &scene->material.volumetric_stabilisation));
+                     &material->volumetric_stabilisation));
     PetscCall(r.Real("-material_mu", "Shear modulus mu [Pa] (paper: 4.55e3)", &m.mu));
     // every law's own parameters (defaults: the members' initialisers), listed for all
     // laws so that -help shows them and a file may carry them whatever the model (those
@@ -162,10 +162,10 @@ PetscErrorCode ReadMaterial(MPI_Comm comm, Scene *scene, SceneInput *in)
     PetscCall(r.Real("-material_D", "Compressibility D [1/Pa]; bulk modulus K = 2/D (default 2/(1000 mu), i.e. K = 1000 mu)", &m.D, &in->D_set));
     PetscCall(r.Real("-material_bulk_ratio", "Bulk to shear modulus ratio K/mu [-]; sets D = 2/(ratio mu) (give this or -material_D)",
                      &in->bulk_ratio, &in->bulk_ratio_set));
-    PetscCall(r.Real("-material_density", "Mass density [kg/m^3]", &scene->material.density));
+    PetscCall(r.Real("-material_density", "Mass density [kg/m^3]", &material->density));
     return 0;
   }));
-  PetscCall(ReadOptionTable(comm, "Failure (no option: bonds never break; give one of the two)", kFailureOptions, &scene->failure, in));
+  PetscCall(ReadOptionTable(comm, "Failure (no option: bonds never break; give one of the two)", kFailureOptions, failure, in));
   PetscFunctionReturn(0);
 }
 

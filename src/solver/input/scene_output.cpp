@@ -133,22 +133,22 @@ PetscErrorCode CheckCheckpoints(MPI_Comm comm, const SceneInput &in, CheckpointO
 
 } // namespace
 
-std::string OutputText(const Scene &s)
+std::string OutputText(const OutputSection &o)
 {
-  std::string text = Format("  output    %s/, history every %ld steps", s.output.dir.c_str(), (long)s.output.interval);
-  if (s.output.history_rows > 0) text += Format(" and at each 1/%ld of the end time", (long)s.output.history_rows);
+  std::string text = Format("  output    %s/, history every %ld steps", o.dir.c_str(), (long)o.interval);
+  if (o.history_rows > 0) text += Format(" and at each 1/%ld of the end time", (long)o.history_rows);
   return text + "\n";
 }
 
-PetscErrorCode ReadOutput(MPI_Comm comm, Scene *scene, SceneInput *in)
+PetscErrorCode ReadOutput(MPI_Comm comm, OutputSection *output, SceneInput *in)
 {
   PetscFunctionBeginUser;
-  PetscCall(ReadOptionTable(comm, "Output", kOutputOptions, &scene->output));
+  PetscCall(ReadOptionTable(comm, "Output", kOutputOptions, output));
   PetscCall(ReadOptionBlock(comm, nullptr, "Field output (HDF5 + XDMF for ParaView)", [&](OptionReader &r) -> PetscErrorCode {
-    PetscCall(ReadOptionRows(r, kFieldFileOptions, &scene->output.fields));
+    PetscCall(ReadOptionRows(r, kFieldFileOptions, &output->fields));
     return ReadOptionRows(r, kFieldGeometryOptions, in);
   }));
-  PetscCall(ReadOptionTable(comm, "Checkpoints and restart", kCheckpointOptionRows, &scene->output.checkpoint, in));
+  PetscCall(ReadOptionTable(comm, "Checkpoints and restart", kCheckpointOptionRows, &output->checkpoint, in));
   PetscFunctionReturn(0);
 }
 

@@ -47,12 +47,12 @@ const OptionTable<StaticOptions> kStaticSolverOptions = {
 
 } // namespace
 
-PetscErrorCode ReadRun(MPI_Comm comm, Scene *scene, SceneInput *in)
+PetscErrorCode ReadRun(MPI_Comm comm, RunSection *run, SceneInput *in)
 {
   PetscFunctionBeginUser;
   PetscCall(ReadOptionBlock(comm, nullptr, "Solver", [&](OptionReader &r) -> PetscErrorCode {
-    PetscCall(ReadOptionRows(r, kRunOptions, &scene->run, in));
-    return ReadOptionRows(r, kStaticSolverOptions, &scene->run.static_options);
+    PetscCall(ReadOptionRows(r, kRunOptions, run, in));
+    return ReadOptionRows(r, kStaticSolverOptions, &run->static_options);
   }));
   PetscFunctionReturn(0);
 }

@@ -204,12 +204,12 @@ std::string TimeSteppingText(const Scene &s)
   return text;
 }
 
-PetscErrorCode ReadTimeStepping(MPI_Comm comm, Scene *scene, SceneInput *in)
+PetscErrorCode ReadTimeStepping(MPI_Comm comm, TimeSteppingSection *time_stepping, SceneInput *in)
 {
   PetscFunctionBeginUser;
-  PetscCall(ReadOptionTable(comm, "Time stepping (explicit dynamics)", kStepOptions, &scene->time_stepping, in));
+  PetscCall(ReadOptionTable(comm, "Time stepping (explicit dynamics)", kStepOptions, time_stepping, in));
   PetscCall(ReadOptionTable(comm, "Static states (relaxation)", kRelaxationOptions, in));
-  PetscCall(ReadOptionTable(comm, "Time step that follows the material", kReestimateOptions, &scene->time_stepping.reestimate));
+  PetscCall(ReadOptionTable(comm, "Time step that follows the material", kReestimateOptions, &time_stepping->reestimate));
   PetscFunctionReturn(0);
 }
 
