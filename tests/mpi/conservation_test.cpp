@@ -37,7 +37,7 @@ void Momentum(Simulation &sim, double p[2])
   std::vector<double> terms(2 * n);
   VecGetArrayRead(sim.state(), &x);
   for (PetscInt i = 0; i < n; ++i)
-    for (int c = 0; c < 2; ++c) terms[2 * i + c] = sim.scene().density * layout.cloud.volume[i] * x[2 * n + 2 * i + c];
+    for (int c = 0; c < 2; ++c) terms[2 * i + c] = sim.scene().material.density * layout.cloud.volume[i] * x[2 * n + 2 * i + c];
   VecRestoreArrayRead(sim.state(), &x);
   ReproducibleSum(PETSC_COMM_WORLD, 2, n, terms.data(), p);
 }

@@ -90,8 +90,8 @@ TEST(HaloDependency, ExactlyTheDependencyRangeSeesAPerturbation)
   }
   ASSERT_EQ(sim.ComputeForceDensity(u.data(), f0.data()), 0);
 
-  const PointCloud global   = make_lattice(sim.scene().body);
-  const Families   families = build_families(global, global.size(), sim.scene().horizon(), sim.scene().body.notches);
+  const PointCloud global   = make_lattice(sim.scene().body.sheet);
+  const Families   families = build_families(global, global.size(), sim.scene().body.horizon(), sim.scene().body.sheet.notches);
   // An interior point, one at the notch tip, one on the hole's rim, one in a corner.
   auto nearest = [&](double px, double py) {
     int64_t best = 0;

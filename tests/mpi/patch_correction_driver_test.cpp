@@ -138,7 +138,7 @@ TEST(PatchCorrectionDriver, AffineMotionOnAJitteredCloud)
     // P(I + A), the stress every bond carries.
     const Scene &scene = sim.scene();
     Mat2         P{};
-    with_model(scene.model, scene.formulation, scene.material, [&](const auto &model) {
+    with_model(scene.material.model, scene.material.formulation, scene.material.parameters, [&](const auto &model) {
       double c33 = 0.0;
       return model.stress(Mat2{1.0 + kA[0], kA[1], kA[2], 1.0 + kA[3]}, c33, P);
     });

@@ -90,8 +90,8 @@ TEST(Allocation, TimeStepsWithFailureAndHistoryAllocateNothing)
     ASSERT_EQ(bapd_test::SetOptions(LoadedSheet(form)), 0);
     bapd::Simulation sim(PETSC_COMM_WORLD);
     ASSERT_EQ(sim.Setup(), 0);
-    ASSERT_TRUE(sim.scene().failure);
-    ASSERT_EQ(sim.scene().output_interval, 1); // a history row every step
+    ASSERT_TRUE(sim.scene().failure.enabled);
+    ASSERT_EQ(sim.scene().output.interval, 1); // a history row every step
     ASSERT_EQ(sim.Advance(5), 0);              // warm-up: the TS's first step sets up its work
     PetscErrorCode ierr  = 0;
     const long     count = CountAllocations([&] { ierr = sim.Advance(20); });

@@ -114,10 +114,9 @@ std::string Joined(const std::vector<std::string> &names)
 
 } // namespace
 
-double NominalArea(const Scene &scene)
+double NominalArea(const BodyExtent &b)
 {
-  const Body3D &b = scene.body3d;
-  return scene.dimension == 3 ? (b.hi[0] - b.lo[0]) * (b.hi[2] - b.lo[2]) : scene.body.width * scene.body.thickness;
+  return b.dimension == 3 ? (b.hi[0] - b.lo[0]) * (b.hi[2] - b.lo[2]) : (b.hi[0] - b.lo[0]) * b.thickness;
 }
 
 HistoryReport::~HistoryReport()
@@ -126,11 +125,15 @@ HistoryReport::~HistoryReport()
   if (static_states_) std::fclose(static_states_);
 }
 
-void HistoryReport::Setup(const Scene &scene, const OutputPaths &paths)
+void HistoryReport::Setup(const LoadingSection &loading, const FailureSection &failure, const OutputSection &output,
+                          const BodyExtent &body, const OutputPaths &paths)
 {
-  scene_ = &scene;
-  paths_ = paths;
-  dim_   = scene.dimension;
+  loading_  = &loading;
+  failure_  = failure.enabled;
+  interval_ = output.interval;
+  area_     = NominalArea(body);
+  paths_    = paths;
+  dim_      = body.dimension;
 }
 
 // The header of history.csv: its columns for this scene's load sets, probes,
@@ -139,27 +142,27 @@ std::string HistoryReport::Header() const
 {
   std::string h = "step,time_s,stretch";
   // (z columns in 3D only: a 2D history keeps its columns)
-  for (const LoadSet &s : scene_->loads) {
+  for (const LoadSet &s : loading_->sets) {
     h += Format(",%s_reaction_x_N,%s_reaction_y_N", s.name.c_str(), s.name.c_str());
     if (dim_ == 3) h += Format(",%s_reaction_z_N", s.name.c_str());
     h += Format(",%s_nominal_stress_Pa", s.name.c_str());
   }
-  for (const Probe &p : scene_->probes) {
+  for (const Probe &p : loading_->probes) {
     h += Format(",%s_ux_m,%s_uy_m", p.name.c_str(), p.name.c_str());
     if (dim_ == 3) h += Format(",%s_uz_m", p.name.c_str());
   }
   h += ",kinetic_energy_J,internal_energy_J,broken_bonds,dt_s"; // dt_s: the next step (time_step_control.hpp)
   // The energy budget (energy_budget.hpp), the crack's columns only with failure.
-  for (const LoadSet &s : scene_->loads) h += Format(",%s_work_J", s.name.c_str());
+  for (const LoadSet &s : loading_->sets) h += Format(",%s_work_J", s.name.c_str());
   h += ",damping_dissipation_J,fracture_dissipation_J,energy_balance_residual_J";
-  if (scene_->failure) {
+  if (failure_) {
     h += ",crack_area_m2,effective_fracture_energy_J_m2,crack_length_m,crack_tip_x_m,crack_tip_y_m";
     if (dim_ == 3) h += ",crack_tip_z_m";
   }
   // The grips' displacement, the mean over each load set's points along each component
   // it holds (fixed or stretched): with <set>_reaction_*_N a force-displacement curve.
   // Last, so that the columns before keep their places.
-  for (const LoadSet &s : scene_->loads)
+  for (const LoadSet &s : loading_->sets)
     for (int c = 0; c < dim_; ++c)
       if (s.component(c) != ComponentLoad::free) h += Format(",%s_displacement_%c_m", s.name.c_str(), "xyz"[c]);
   return h;
@@ -169,11 +172,11 @@ std::string HistoryReport::Header() const
 std::string HistoryReport::StaticStatesHeader() const
 {
   std::string h = "stretch,time_s,step,kinetic_over_internal";
-  for (const Probe &p : scene_->probes) {
+  for (const Probe &p : loading_->probes) {
     h += Format(",%s_ux_m,%s_uy_m", p.name.c_str(), p.name.c_str());
     if (dim_ == 3) h += Format(",%s_uz_m", p.name.c_str());
   }
-  for (const LoadSet &l : scene_->loads) h += Format(",%s_reaction_y_N", l.name.c_str());
+  for (const LoadSet &l : loading_->sets) h += Format(",%s_reaction_y_N", l.name.c_str());
   return h;
 }
 
@@ -202,14 +205,13 @@ PetscErrorCode HistoryReport::Open(MPI_Comm comm)
 
 bool HistoryReport::Due(PetscInt step, double t, bool *interval_row)
 {
-  *interval_row       = step % scene_->output_interval == 0;
+  *interval_row       = step % interval_ == 0;
   const bool load_row = by_load_.Due(t); // (every step: it counts the steps it passes)
   return *interval_row || load_row;
 }
 
 PetscErrorCode HistoryReport::WriteRow(MPI_Comm comm, const HistoryRow &row)
 {
-  const Scene &scene = *scene_;
   const int    D     = dim_;
   PetscMPIInt  rank;
   int          error = 0;
@@ -219,25 +221,25 @@ PetscErrorCode HistoryReport::WriteRow(MPI_Comm comm, const HistoryRow &row)
   if (rank == 0) {
     const EnergyBudget &budget    = *row.budget;
     const long          row_start = std::ftell(history_);
-    const double        area      = NominalArea(scene);
+    const double        area      = area_;
     std::fprintf(history_, "%" PetscInt_FMT ",%.17g,%.17g", row.step, row.time, row.stretch);
-    for (std::size_t s = 0; s < scene.loads.size(); ++s) {
+    for (std::size_t s = 0; s < loading_->sets.size(); ++s) {
       for (int c = 0; c < D; ++c) std::fprintf(history_, ",%.17g", row.reaction[D * s + c]);
       std::fprintf(history_, ",%.17g", row.reaction[D * s + 1] / area);
     }
-    for (std::size_t p = 0; p < scene.probes.size(); ++p)
+    for (std::size_t p = 0; p < loading_->probes.size(); ++p)
       for (int c = 0; c < D; ++c) std::fprintf(history_, ",%.17g", row.probe_u[D * p + c]);
     std::fprintf(history_, ",%.17g,%.17g,%" PetscInt_FMT ",%.17g", row.kinetic, row.internal, row.broken_bonds, row.next_dt);
     for (std::size_t s = 0; s < budget.load_sets(); ++s) std::fprintf(history_, ",%.17g", budget.grip_work(s));
     std::fprintf(history_, ",%.17g,%.17g,%.17g", budget.damped(), budget.released(), row.residual);
-    if (scene.failure) {
+    if (failure_) {
       const double nan = std::numeric_limits<double>::quiet_NaN();
       std::fprintf(history_, ",%.17g,%.17g", row.crack_area, row.crack_area > 0 ? budget.released() / row.crack_area : nan);
       for (int c = 0; c <= D; ++c) std::fprintf(history_, ",%.17g", row.crack_tip[c]);
     }
-    for (std::size_t s = 0; s < scene.loads.size(); ++s)
+    for (std::size_t s = 0; s < loading_->sets.size(); ++s)
       for (int c = 0; c < D; ++c)
-        if (scene.loads[s].component(c) != ComponentLoad::free) std::fprintf(history_, ",%.17g", row.grip_u[D * s + c]);
+        if (loading_->sets[s].component(c) != ComponentLoad::free) std::fprintf(history_, ",%.17g", row.grip_u[D * s + c]);
     std::fprintf(history_, "\n");
     error = FinishRows(history_, row_start);
   }
@@ -264,9 +266,9 @@ PetscErrorCode HistoryReport::WriteStaticState(MPI_Comm comm, double stretch, do
     const long row_start = std::ftell(static_states_);
     if (row_start == 0) std::fprintf(static_states_, "%s\n", StaticStatesHeader().c_str());
     std::fprintf(static_states_, "%.17g,%.17g,%" PetscInt_FMT ",%.6e", stretch, t, step, ratio);
-    for (std::size_t p = 0; p < scene_->probes.size(); ++p)
+    for (std::size_t p = 0; p < loading_->probes.size(); ++p)
       for (int c = 0; c < D; ++c) std::fprintf(static_states_, ",%.17g", probe_u[D * p + c]);
-    for (std::size_t l = 0; l < scene_->loads.size(); ++l) std::fprintf(static_states_, ",%.17g", reaction[D * l + 1]);
+    for (std::size_t l = 0; l < loading_->sets.size(); ++l) std::fprintf(static_states_, ",%.17g", reaction[D * l + 1]);
     std::fprintf(static_states_, "\n");
     error = FinishRows(static_states_, row_start);
   }
@@ -323,7 +325,7 @@ PetscErrorCode HistoryReport::Restore(MPI_Comm comm, const CheckpointHeader &hea
       std::vector<std::string> lines;
       std::istringstream       in(t.stored);
       for (std::string line; std::getline(in, line);) lines.push_back(line);
-      if (t.history && lines.size() > 1 && HistoryRowStep(lines.back()) == header.step && header.step % scene_->output_interval != 0) {
+      if (t.history && lines.size() > 1 && HistoryRowStep(lines.back()) == header.step && header.step % interval_ != 0) {
         // A row by load (-output_history_rows) stays: the step was the first at or past a
         // multiple of the period, i.e. past the first due time after the row before it
         // (every step in between was not due, or it would have written a row).

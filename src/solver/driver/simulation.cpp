@@ -72,7 +72,7 @@ template <int D> PetscErrorCode SimulationD<D>::Setup(Scene scene)
 
   PetscCall(PetscLogStagePush(stage_setup_));
   scene_ = std::move(scene);
-  paths_ = OutputPaths(scene_.output_dir);
+  paths_ = OutputPaths(scene_.output.dir);
   PetscCheck(scene_.help_only || scene_.dimension == D, comm_, PETSC_ERR_PLIB,
              "SimulationD<%d> was given a scene of dimension %d: build the driver of the scene's dimension (main.cpp)", D, scene_.dimension);
   PetscCall(TakeOutputOptions()); // the scene's -output_fields..., -checkpoint_..., -restart
@@ -87,15 +87,15 @@ template <int D> PetscErrorCode SimulationD<D>::Setup(Scene scene)
     PetscFunctionReturn(0);
   }
   PetscCall(CheckOptionsEarly());
-  PetscCall(StaticSolverCheckScene(comm_, scene_, output_.checkpoint)); // -solver static: what it refuses
+  PetscCall(StaticSolverCheckScene(comm_, scene_.run, scene_.failure, scene_.material.force_form, scene_.loading.schedule, output_.checkpoint)); // -solver static: what it refuses
   PetscCall(SceneView(comm_, scene_));
   PetscCall(ClaimOutputDirectory()); // before anything is written: locked; a restart's newer results
   PetscCall(BuildBody());
-  PetscCall(loading_.Setup(comm_, scene_, layout_));
+  PetscCall(loading_.Setup(comm_, scene_.loading, scene_.time_stepping.end_time, BodyExtentOf(scene_), layout_));
   PetscCall(BuildProbes());
-  last_reaction_.assign(D * scene_.loads.size(), 0.0);
-  last_probe_u_.assign(D * scene_.probes.size(), 0.0);
-  grip_u_.assign(D * scene_.loads.size(), 0.0);
+  last_reaction_.assign(D * scene_.loading.sets.size(), 0.0);
+  last_probe_u_.assign(D * scene_.loading.probes.size(), 0.0);
+  grip_u_.assign(D * scene_.loading.sets.size(), 0.0);
   {
     std::size_t most = 0;
     for (const LoadSetPoints &set : loading_.load_set_points()) most = std::max(most, set.points.size());
@@ -104,12 +104,13 @@ template <int D> PetscErrorCode SimulationD<D>::Setup(Scene scene)
   // -solver static takes no time step: the stable-step estimate (a Krylov search of 10-60
   // force evaluations) and the relaxation are the dynamic route's alone. The TS is still
   // made (it holds the state and the time that the output reads) but never stepped.
-  if (scene_.solver != SolverKind::static_newton) {
-    PetscCall(step_control_.EstimateStable(comm_, scene_.time_stepping(), layout_, loading_, force_));
+  if (scene_.run.solver != SolverKind::static_newton) {
+    PetscCall(step_control_.EstimateStable(comm_, scene_.time_stepping, scene_.material, scene_.failure.enabled, scene_.body.sheet.dx, layout_,
+                                          loading_, force_));
     PetscCall(SetupRelaxation());
   }
   PetscCall(SetupTimeStepper());
-  PetscCall(budget_.Setup(loading_, layout_, scene_.density, scene_.loads.size()));
+  PetscCall(budget_.Setup(loading_, layout_, scene_.material.density, scene_.loading.sets.size()));
   {
     const double *x;
     PetscCall(VecGetArrayRead(X_, &x));
@@ -120,8 +121,8 @@ template <int D> PetscErrorCode SimulationD<D>::Setup(Scene scene)
   // time as the scene gives it (before a restart or an ended hold moves it), so that a
   // continuation writes the rows the uninterrupted run writes.
   const double history_end = loading_.end_time_original() > 0 ? loading_.end_time_original() : loading_.schedule().end_time();
-  const double history_period = scene_.output_history_rows > 0 ? history_end / (double)scene_.output_history_rows : 0.0;
-  history_.Setup(scene_, paths_);
+  const double history_period = scene_.output.history_rows > 0 ? history_end / (double)scene_.output.history_rows : 0.0;
+  history_.Setup(scene_.loading, scene_.failure, scene_.output, BodyExtentOf(scene_), paths_);
   history_.StartRowsByLoad(history_period, 0.0); // (HistoryReport::Restore reads its period)
   PetscCall(OpenHistory());
   PetscCall(SetupOutput()); // restores the state with -restart
@@ -180,10 +181,10 @@ template <int D> PetscErrorCode SimulationD<D>::CheckOptionsEarly()
 template <int D> PetscErrorCode SimulationD<D>::BuildProbes()
 {
   PetscFunctionBegin;
-  probes_.assign(scene_.probes.size(), {});
-  for (std::size_t p = 0; p < scene_.probes.size(); ++p) {
+  probes_.assign(scene_.loading.probes.size(), {});
+  for (std::size_t p = 0; p < scene_.loading.probes.size(); ++p) {
     ProbeLocation where;
-    PetscCall(ProbeLocate<D>(comm_, scene_.probes[p], layout_.cloud.x.data(), layout_.cloud.natural_id.data(), layout_.n_owned, &where));
+    PetscCall(ProbeLocate<D>(comm_, scene_.loading.probes[p], layout_.cloud.x.data(), layout_.cloud.natural_id.data(), layout_.n_owned, &where));
     ProbePoint &pp = probes_[p];
     pp.natural_id  = where.natural_id;
     pp.owner_rank  = where.owner;
@@ -194,9 +195,9 @@ template <int D> PetscErrorCode SimulationD<D>::BuildProbes()
     PetscCallMPI(MPI_Bcast(xyz, D, MPI_DOUBLE, where.owner, comm_));
     pp.x = xyz[0], pp.y = xyz[1], pp.z = xyz[2];
     if (D == 2)
-      PetscCall(PetscPrintf(comm_, "Probe %s: point %lld at (%g, %g) m\n", scene_.probes[p].name.c_str(), (long long)pp.natural_id, pp.x, pp.y));
+      PetscCall(PetscPrintf(comm_, "Probe %s: point %lld at (%g, %g) m\n", scene_.loading.probes[p].name.c_str(), (long long)pp.natural_id, pp.x, pp.y));
     else
-      PetscCall(PetscPrintf(comm_, "Probe %s: point %lld at (%g, %g, %g) m\n", scene_.probes[p].name.c_str(), (long long)pp.natural_id, pp.x, pp.y,
+      PetscCall(PetscPrintf(comm_, "Probe %s: point %lld at (%g, %g, %g) m\n", scene_.loading.probes[p].name.c_str(), (long long)pp.natural_id, pp.x, pp.y,
                             pp.z));
   }
   PetscFunctionReturn(0);
@@ -207,15 +208,15 @@ template <int D> PetscErrorCode SimulationD<D>::SetupRelaxation()
 {
   PetscFunctionBegin;
   const double stable_dt = step_control_.stable();
-  relaxation_.Setup(scene_.relaxation, (std::size_t)layout_.n_owned, layout_.cloud.volume.data(), loading_.held_dofs(), scene_.damping,
+  relaxation_.Setup(scene_.time_stepping.relaxation, (std::size_t)layout_.n_owned, layout_.cloud.volume.data(), loading_.held_dofs(), scene_.time_stepping.damping,
                     stable_dt);
   if (relaxation_.active()) {
     char range[96]; // PETSc's %g would print "50."
-    std::snprintf(range, sizeof range, "between %g (-damping) and %.4g 1/s", scene_.damping, 4.0 / stable_dt);
+    std::snprintf(range, sizeof range, "between %g (-damping) and %.4g 1/s", scene_.time_stepping.damping, 4.0 / stable_dt);
     PetscCall(PetscPrintf(comm_, "Relaxation: adaptive, damping c = 2 omega every step (Rayleigh quotient of the latest increment), %s\n", range));
     // With bonds breaking, the state depends on the loading path and on the dynamics:
     // a route that shortcuts both answers another question.
-    if (scene_.failure)
+    if (scene_.failure.enabled)
       PetscCall(PetscFPrintf(comm_, PETSC_STDERR,
                              "bapd: warning: -relaxation adaptive with failure (-failure_critical_stretch): the fast route assumes a "
                              "static state that does not depend on the loading path, which breaking bonds make false; use it "
@@ -239,7 +240,7 @@ template <int D> PetscErrorCode SimulationD<D>::PostStep(TS ts)
   PetscCall(TSGetSolution(ts, &X));
   const PetscInt n = D * sim->layout_.n_owned;
   PetscCall(VecGetArray(X, &x));
-  double damping = sim->scene_.damping;
+  double damping = sim->scene_.time_stepping.damping;
   PetscCall(sim->relaxation_.Damping(sim->comm_, &damping)); // -relaxation adaptive: recomputed every step
   // Mass-proportional damping, integrated exactly over the step (operator split):
   // works with every TS type and never destabilises the step. The grips' speeds
@@ -280,7 +281,7 @@ template <int D> PetscErrorCode SimulationD<D>::PostStep(TS ts)
     PetscFunctionReturn(0);
   }
   bool broke = false; // bonds broke on some rank in this step (BreakFurther)
-  if (sim->scene_.failure) {
+  if (sim->scene_.failure.enabled) {
     PetscCall(VecGetArray(X, &x));
     PetscCall(sim->force_.UpdatePositions(x));
     PetscCall(VecRestoreArray(X, &x));
@@ -298,7 +299,7 @@ template <int D> PetscErrorCode SimulationD<D>::PostStep(TS ts)
     const double *xr;
     PetscCall(VecGetArrayRead(X, &xr));
     PetscCall(sim->step_control_.AfterStep(sim->comm_, step, sim->loading_.stretch_at(t), sim->layout_, sim->families_, sim->bond_state_, sim->force_, xr + n,
-                                           sim->scene_.failure ? &sim->failure_.touched() : nullptr, broke, ts));
+                                           sim->scene_.failure.enabled ? &sim->failure_.touched() : nullptr, broke, ts));
     PetscCall(VecRestoreArrayRead(X, &xr));
     sim->relaxation_.FollowStableStep(sim->step_control_.stable_now()); // its cap, 2 omega_max
   }
@@ -313,7 +314,7 @@ template <int D> PetscErrorCode SimulationD<D>::Run()
 {
   PetscFunctionBegin;
   if (scene_.help_only) PetscFunctionReturn(0);
-  if (scene_.solver == SolverKind::static_newton) { // static states by Newton (static_solver.hpp)
+  if (scene_.run.solver == SolverKind::static_newton) { // static states by Newton (static_solver.hpp)
     StaticSolver<D> solver(*this);
     PetscCall(solver.Setup());
     PetscCall(solver.Run());
@@ -330,7 +331,7 @@ template <int D> PetscErrorCode SimulationD<D>::Run()
   if (!stopped_on_error_) PetscCall(StoppedShort(step, t, &cut_short));
   if (history_.last_step() != step && !stopped_on_error_) PetscCall(WriteHistoryRow(step, t)); // the end-of-run row
   PetscCall(OutputAtEnd(step, t)); // the last field file (and checkpoint)
-  if (scene_.output_final_state) PetscCall(WriteFinalState());
+  if (scene_.output.final_state) PetscCall(WriteFinalState());
   // Stopped short of the end time by a PETSc limit: everything a normal end writes is
   // written (above), and then the run fails (below), so that no script takes it for whole.
   if (!cut_short.empty()) stop_reason_ = cut_short, stopped_on_error_ = true;
@@ -355,7 +356,7 @@ template <int D> PetscErrorCode SimulationD<D>::StoppedShort(PetscInt step, doub
   PetscCall(TSGetMaxTime(ts_, &end));
   PetscCall(TSGetMaxSteps(ts_, &max_steps));
   if (reason != TS_CONVERGED_ITS || !(end - t > 1e-9 * end)) PetscFunctionReturn(0);
-  if (scene_.end_step >= 0 && step >= scene_.end_step) {
+  if (scene_.time_stepping.end_step >= 0 && step >= scene_.time_stepping.end_step) {
     PetscCall(PetscPrintf(comm_, "\nStopped after step %" PetscInt_FMT " (-end_step), at t = %.6e s of the end time %.6e s%s\n", step, t, end,
                           output_.checkpoint.periodic() ? ": continue with -restart and a later -end_step (or -end_step -1)" : ""));
     PetscFunctionReturn(0);

@@ -52,8 +52,8 @@ template <int D> void DescribePieces(const PointCloud &cloud, const Families &fa
 // body's planar polygon notches, as the cut.
 template <int D> Families BodyFamilies(const Scene &scene, const PointCloud &cloud, std::size_t n)
 {
-  if constexpr (D == 2) return build_families(cloud, n, scene.horizon(), scene.body.notches);
-  else return nd::build_families<3>(cloud, n, scene.horizon(), nd::polygon_notches(scene.body3d.solid.notches));
+  if constexpr (D == 2) return build_families(cloud, n, scene.body.horizon(), scene.body.sheet.notches);
+  else return nd::build_families<3>(cloud, n, scene.body.horizon(), nd::polygon_notches(scene.body.solid.solid.notches));
 }
 
 // The body's points (rank 0): the geometry stage's in 2D (geometry.hpp); in 3D the
@@ -62,11 +62,11 @@ template <int D> Families BodyFamilies(const Scene &scene, const PointCloud &clo
 // given points get theirs (set_point_horizons, geometry.hpp).
 template <int D> PointCloud BodyPoints(const Scene &scene)
 {
-  if constexpr (D == 2) return make_points(scene.body, scene.horizon_factor);
+  if constexpr (D == 2) return make_points(scene.body.sheet, scene.body.horizon_factor);
   else {
-    if (!scene.body3d.given_points) return nd::make_solid_points(scene.body3d.solid);
-    PointCloud points = *scene.body3d.given_points;
-    set_point_horizons(&points, D, scene.horizon_factor, scene.body.thickness);
+    if (!scene.body.solid.given_points) return nd::make_solid_points(scene.body.solid.solid);
+    PointCloud points = *scene.body.solid.given_points;
+    set_point_horizons(&points, D, scene.body.horizon_factor, scene.body.sheet.thickness);
     return points;
   }
 }
@@ -94,14 +94,14 @@ PetscErrorCode WholeBodyOnRankZero(MPI_Comm comm, const Scene &scene, PointCloud
     Families all         = BodyFamilies<D>(scene, global, global.size());
     compute_family_volumes(global, all);
     // (a 3D lattice body in pieces was refused by the scene: make_solid_points)
-    if (D == 2 && scene.body.given_points) DescribePieces<D>(global, all, scene.body.given_points->source, pieces, sizeof pieces);
-    if (D == 3 && scene.body3d.given_points) DescribePieces<D>(global, all, scene.body3d.source, pieces, sizeof pieces);
-    if (scene.patch_correction != PatchCorrection::off && !pieces[0]) { // per point, shipped with the points (patch_correction.hpp, layout.cpp)
-      const bool            virial = scene.patch_correction == PatchCorrection::virial;
+    if (D == 2 && scene.body.sheet.given_points) DescribePieces<D>(global, all, scene.body.sheet.given_points->source, pieces, sizeof pieces);
+    if (D == 3 && scene.body.solid.given_points) DescribePieces<D>(global, all, scene.body.solid.source, pieces, sizeof pieces);
+    if (scene.material.patch_correction != PatchCorrection::off && !pieces[0]) { // per point, shipped with the points (patch_correction.hpp, layout.cpp)
+      const bool            virial = scene.material.patch_correction == PatchCorrection::virial;
       PatchCorrectionReport report;
       try {
-        global.patch_correction = virial ? compute_virial_patch_correction<D>(global, all, scene.stress_correction, &report)
-                                         : compute_patch_correction<D>(global, all, scene.stress_correction, &report);
+        global.patch_correction = virial ? compute_virial_patch_correction<D>(global, all, scene.material.stress_correction, &report)
+                                         : compute_patch_correction<D>(global, all, scene.material.stress_correction, &report);
         global.patch_virial     = virial;
         PetscCall(PetscPrintf(PETSC_COMM_SELF, "%s", describe_patch_correction(report, virial).c_str()));
       } catch (const std::exception &e) {
@@ -121,7 +121,7 @@ PetscErrorCode WholeBodyOnRankZero(MPI_Comm comm, const Scene &scene, PointCloud
   PetscCallMPI(MPI_Bcast(&patch_failed, 1, MPI_INT, 0, comm)); // every rank stops together
   PetscCheck(!patch_failed, comm, PETSC_ERR_USER,
              "-force_patch_correction %s: the affine patch correction could not be solved on these points (above); run "
-             "with -force_patch_correction off", to_string(scene.patch_correction));
+             "with -force_patch_correction off", to_string(scene.material.patch_correction));
   PetscFunctionReturn(0);
 }
 
@@ -132,17 +132,17 @@ template <int D> PetscErrorCode SimulationD<D>::BuildBody()
 {
   PointCloud         global;
   std::vector<int>   offsets, neighbours;
-  const bool         parallel     = scene_.partition_type == PartitionType::ptscotch;
-  const bool         given        = D == 2 ? (bool)scene_.body.given_points : (bool)scene_.body3d.given_points;
+  const bool         parallel     = scene_.run.partition_type == PartitionType::ptscotch;
+  const bool         given        = D == 2 ? (bool)scene_.body.sheet.given_points : (bool)scene_.body.solid.given_points;
   const FamilyBuilder families_of = [this](const PointCloud &cloud, std::size_t n) { return BodyFamilies<D>(scene_, cloud, n); };
 
   PetscFunctionBegin;
   PetscCall(PetscLogStagePush(stage_partition_));
-  if (parallel && !given && scene_.patch_correction == PatchCorrection::off) {
+  if (parallel && !given && scene_.material.patch_correction == PatchCorrection::off) {
     // -partition_type ptscotch on a lattice: every rank builds a slab of it, and no
     // rank holds the whole body or bond graph (distributed_body.hpp).
     BodyBlock block;
-    PetscCall(LatticeBlock<D>(comm_, scene_.body, scene_.body3d.solid, scene_.horizon(), families_of, &block));
+    PetscCall(LatticeBlock<D>(comm_, scene_.body.sheet, scene_.body.solid.solid, scene_.body.horizon(), families_of, &block));
     int64_t counts[2] = {static_cast<int64_t>(block.size()), static_cast<int64_t>(block.neighbours.size())};
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, counts, 2, MPI_INT64_T, MPI_SUM, comm_));
     PetscCall(CheckBodyMemory(comm_, scene_, counts[0], counts[1]));
@@ -165,7 +165,7 @@ template <int D> PetscErrorCode SimulationD<D>::BuildBody()
   // did: their whole neighbourhood lies in the two rings it holds.
   families_ = BodyFamilies<D>(scene_, layout_.cloud, (std::size_t)layout_.n_family());
   bond_state_ = BondState(families_);
-  if (scene_.failure) {
+  if (scene_.failure.enabled) {
     intact_before_ = bond_state_.intact; // sized once: a breaking pass copies into it
     released_points_.reserve((std::size_t)layout_.n_owned);
     released_terms_.assign((std::size_t)layout_.n_owned, 0.0);
@@ -174,14 +174,14 @@ template <int D> PetscErrorCode SimulationD<D>::BuildBody()
   // -force_stress_correction: C_i per family point, for the bond-only kernel only (the
   // energy-consistent form is stress-consistent as it is: stress_correction.hpp)
   geometry_.stress_correction =
-      scene_.force_form == ForceForm::bond_only ? scene_.stress_correction : StressCorrection::none;
+      scene_.material.force_form == ForceForm::bond_only ? scene_.material.stress_correction : StressCorrection::none;
   nd::compute_bond_geometry<D>(layout_.cloud, families_, bond_state_, geometry_);
 
-  PetscCall(force_.Setup<D>(comm_, scene_.force_model(), layout_, families_, geometry_, bond_state_, stage_ghost_, stage_force_));
-  if (scene_.failure)
-    PetscCall(failure_.Setup(comm_, layout_, families_, scene_.critical_stretch,
-                             scene_.tip_concentration * scene_.fracture_energy, D, scene_.horizon(), scene_.body.thickness));
-  if (scene_.failure) PetscCall(failure_.SetupSoftening(scene_.softening, scene_.fracture_energy, bond_state_));
+  PetscCall(force_.Setup<D>(comm_, scene_.material, layout_, families_, geometry_, bond_state_, stage_ghost_, stage_force_));
+  if (scene_.failure.enabled)
+    PetscCall(failure_.Setup(comm_, layout_, families_, scene_.failure.critical_stretch,
+                             scene_.failure.tip_concentration * scene_.failure.fracture_energy, D, scene_.body.horizon(), scene_.body.sheet.thickness));
+  if (scene_.failure.enabled) PetscCall(failure_.SetupSoftening(scene_.failure.softening, scene_.failure.fracture_energy, bond_state_));
   force_density_.assign(D * layout_.n_owned, 0.0);
   per_point_.assign(2 * layout_.n_owned, 0.0);
   point_energy_.assign(layout_.n_owned, 0.0);
@@ -192,7 +192,7 @@ template <int D> PetscErrorCode SimulationD<D>::BuildBody()
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &owned_min, 1, MPIU_INT, MPI_MIN, comm_));
   PetscCall(PetscPrintf(comm_, "Body: %" PetscInt_FMT " points, %" PetscInt_FMT " bonds, %d rank(s); edge cut %" PetscInt_FMT ", fewest owned %" PetscInt_FMT ", most ghosts %" PetscInt_FMT "\n",
                         layout_.n_global, bonds_global, size_, layout_.edge_cut, owned_min, ghost_max));
-  if (scene_.log_setup_memory) { // -log_setup_memory: the set-up's cost, every rank's peak so far
+  if (scene_.run.log_setup_memory) { // -log_setup_memory: the set-up's cost, every rank's peak so far
     double mine[2] = {MPI_Wtime() - wall_start_, PeakResidentBytes() / 1048576.0}, most[2], total;
     PetscCallMPI(MPI_Allreduce(mine, most, 2, MPI_DOUBLE, MPI_MAX, comm_));
     PetscCallMPI(MPI_Allreduce(&mine[1], &total, 1, MPI_DOUBLE, MPI_SUM, comm_));
@@ -208,7 +208,7 @@ template <int D> PetscErrorCode SimulationD<D>::BuildBody()
   // collinear: no bond carries force, and the stable-step estimate would fail with a
   // misleading message (docs/stability.md, section 6).
   char factor[32];
-  std::snprintf(factor, sizeof factor, "%g", scene_.horizon_factor); // PETSc's %g would print "1."
+  std::snprintf(factor, sizeof factor, "%g", scene_.body.horizon_factor); // PETSc's %g would print "1."
   PetscCheck(bonds_global == 0 || unusable < bonds_global, comm_, PETSC_ERR_USER,
              "-horizon_factor %s: every bond's shape tensor is singular (its bond-associated family is collinear), so no bond "
              "carries force: raise -horizon_factor (at least 1.5; the paper uses 3.015)",

@@ -23,7 +23,7 @@ template <int D> PetscErrorCode SimulationD<D>::Acceleration(const double *u_own
   PetscFunctionBegin;
   PetscCall(force_.Evaluate(u_owned, a_owned, ForceOperator::WarmStart::commit));
   budget_.RecordForce(a_owned); // the body's pull on the grips (energy_budget.hpp)
-  const double inv_rho = 1.0 / scene_.density;
+  const double inv_rho = 1.0 / scene_.material.density;
   for (PetscInt k = 0; k < D * layout_.n_owned; ++k) a_owned[k] *= inv_rho;
   for (const ConstrainedDof &d : loading_.constrained()) a_owned[d.dof] = 0.0; // the grip moves them
   relaxation_.Record(u_owned, a_owned); // -relaxation adaptive: the last two evaluations
@@ -125,12 +125,12 @@ template <int D> PetscErrorCode SimulationD<D>::SetupTimeStepper()
   PetscCall(TSSetFromOptions(ts_));
   // -end_step: the run stops after that step on purpose (Run tells it from a stop by
   // PETSc's -ts_max_steps, which is an error short of the end time).
-  if (scene_.end_step >= 0) {
+  if (scene_.time_stepping.end_step >= 0) {
     PetscInt max_steps;
     PetscCall(TSGetMaxSteps(ts_, &max_steps));
-    if (scene_.end_step < max_steps) PetscCall(TSSetMaxSteps(ts_, scene_.end_step));
+    if (scene_.time_stepping.end_step < max_steps) PetscCall(TSSetMaxSteps(ts_, scene_.time_stepping.end_step));
   }
-  if (scene_.solver != SolverKind::static_newton) { // (a static run has no time step)
+  if (scene_.run.solver != SolverKind::static_newton) { // (a static run has no time step)
     TSType type;
     PetscCall(TSGetType(ts_, &type));
     PetscReal dt;

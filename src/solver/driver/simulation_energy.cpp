@@ -68,7 +68,7 @@ template <int D> PetscErrorCode SimulationD<D>::BreakFurther(bool *broke)
   *broke = any != 0;
   if (!failure_.by_energy()) PetscFunctionReturn(0);
   bool more = *broke;
-  for (PetscInt pass = 1; more && (scene_.failure_passes == 0 || pass < scene_.failure_passes); ++pass) {
+  for (PetscInt pass = 1; more && (scene_.failure.passes == 0 || pass < scene_.failure.passes); ++pass) {
     force_.BondEnergies(failure_.bond_energies());
     PetscCall(failure_.Cascade<D>(bond_state_, geometry_, &more));
   }
@@ -92,8 +92,8 @@ template <int D> PetscErrorCode SimulationD<D>::SetupCrackAxis()
   std::fill(crack_axis_, crack_axis_ + 6, 0.0);
   crack_axis_[0] = lo[0], crack_axis_[3] = 1.0; // +x from the smallest x
   if constexpr (D == 2) {
-    if (!scene_.body.notches.empty()) {
-      const Segment &s = scene_.body.notches.front();
+    if (!scene_.body.sheet.notches.empty()) {
+      const Segment &s = scene_.body.sheet.notches.front();
       auto inset = [&](double x, double y) { return std::min({x - lo[0], hi[0] - x, y - lo[1], hi[1] - y}); };
       const bool   first_is_mouth = inset(s.x0, s.y0) <= inset(s.x1, s.y1);
       const double mx = first_is_mouth ? s.x0 : s.x1, my = first_is_mouth ? s.y0 : s.y1;

@@ -45,7 +45,7 @@ template <int D> PetscErrorCode SimulationD<D>::CheckHealth(PetscInt step, doubl
   if (first < size_ && D == 2) std::snprintf(at, sizeof at, " First at point %.0f, reference position (%.6g, %.6g) m.", where[0], where[1], where[2]);
   else if (first < size_) std::snprintf(at, sizeof at, " First at point %.0f, reference position (%.6g, %.6g, %.6g) m.", where[0], where[1], where[2], where[3]);
   *diverged = PETSC_FALSE;
-  if (global[0] || ((global[1] || global[2]) && !scene_.failure)) {
+  if (global[0] || ((global[1] || global[2]) && !scene_.failure.enabled)) {
     *diverged = PETSC_TRUE;
     char msg[512];
     // What happened; the cause and its fix follow (DiagnoseDivergence).
@@ -68,7 +68,7 @@ template <int D> PetscErrorCode SimulationD<D>::CheckHealth(PetscInt step, doubl
 // law with a limit. Once, when the run stops: the slow per-bond path. Collective.
 template <int D> PetscErrorCode SimulationD<D>::ChainReach(const double *state_u, const std::vector<double> &state_c33, double span, double reach[2])
 {
-  const bool plane_strain = scene_.formulation == Formulation::plane_strain;
+  const bool plane_strain = scene_.material.formulation == Formulation::plane_strain;
 
   PetscFunctionBegin;
   reach[0] = 0.0, reach[1] = 1.0;
@@ -146,7 +146,7 @@ template <int D> PetscErrorCode SimulationD<D>::DiagnoseEarlierState(std::size_t
   PetscCall(force_.EvaluateWithWarmStart(ue.data(), unused.data(), c33_earlier));
   PetscCall(step_control_.SharpEstimate(comm_, force_, ue.data(), c33_earlier, 40, &f->stable_earlier));
   if (!std::isfinite(f->stable_earlier) || f->stable_earlier <= 0) f->stable_earlier = 0;
-  if (law_entry(scene_.model).limit) {
+  if (law_entry(scene_.material.model).limit) {
     double reach[2];
     PetscCall(ChainReach(ue.data(), c33_earlier, span, reach));
     f->chain_reach_earlier     = reach[0];
@@ -189,20 +189,20 @@ template <int D> PetscErrorCode SimulationD<D>::DiagnoseDivergence()
   f.dt          = step_control_.current();
   f.base        = step_control_.base();
   f.stable_rest = step_control_.stable();
-  f.step_given  = scene_.time_step > 0 || step_control_.base() != scene_.time_step_safety * step_control_.stable();
-  f.safety      = scene_.time_step_safety;
-  f.plane_strain = scene_.formulation == Formulation::plane_strain;
-  f.bond_only    = scene_.force_form == ForceForm::bond_only;
-  f.bulk_ratio   = 2.0 / (scene_.material.D * scene_.material.mu);
-  f.damping      = scene_.damping;
-  f.critical_stretch = scene_.failure ? scene_.critical_stretch : 0.0;
+  f.step_given  = scene_.time_stepping.step > 0 || step_control_.base() != scene_.time_stepping.safety * step_control_.stable();
+  f.safety      = scene_.time_stepping.safety;
+  f.plane_strain = scene_.material.formulation == Formulation::plane_strain;
+  f.bond_only    = scene_.material.force_form == ForceForm::bond_only;
+  f.bulk_ratio   = 2.0 / (scene_.material.parameters.D * scene_.material.parameters.mu);
+  f.damping      = scene_.time_stepping.damping;
+  f.critical_stretch = scene_.failure.enabled ? scene_.failure.critical_stretch : 0.0;
   f.reestimating = step_control_.reestimating();
-  f.horizon_factor = scene_.horizon_factor;
+  f.horizon_factor = scene_.body.horizon_factor;
   f.stiffening     = step_control_.largest_lambda() / step_control_.lambda_rest();
   f.applied_stretch = loading_.stretch_at(t);
   // The chain reach only for a law with a limit (ChainReach).
-  const LawEntry &law  = law_entry(scene_.model);
-  const double    span = law.limit ? law.I1bar_limit(scene_.material) - 3.0 : 0.0;
+  const LawEntry &law  = law_entry(scene_.material.model);
+  const double    span = law.limit ? law.I1bar_limit(scene_.material.parameters) - 3.0 : 0.0;
   if (good) PetscCall(DiagnoseEarlierState(c33.size(), span, &f));
   PetscCall(step_control_.SharpEstimate(comm_, force_, u.data(), c33, 40, &f.stable));
   if (!std::isfinite(f.stable) || f.stable <= 0) f.stable = step_control_.stable_now();
@@ -214,9 +214,9 @@ template <int D> PetscErrorCode SimulationD<D>::DiagnoseDivergence()
     f.limit        = law.limit;
     f.limit_option = law.limit_option;
     for (const LawOptionEntry &o : law.options)
-      if (std::string(o.name) == law.limit_option) f.limit_value = scene_.material.values[o.index];
+      if (std::string(o.name) == law.limit_option) f.limit_value = scene_.material.parameters.values[o.index];
   }
-  if (scene_.time_step_control.monitor)
+  if (scene_.time_stepping.reestimate.monitor)
     PetscCall(PetscPrintf(comm_, "Diagnosis at the last good state: dt %.4e s, stable %.4e s (at rest %.4e s), chain reach %.4g (bond stretch %.4g), applied stretch %.4g; %" PetscInt_FMT " steps before: stable %.4e s, chain reach %.4g\n",
                           f.dt, f.stable, f.stable_rest, f.chain_reach, f.bond_stretch, f.applied_stretch, f.earlier_steps, f.stable_earlier, f.chain_reach_earlier));
   stop_reason_ += DivergenceAdvice(f);
@@ -248,9 +248,9 @@ template <int D> PetscErrorCode SimulationD<D>::CheckLawValidity(PetscInt step, 
 {
   PetscFunctionBegin;
   message->clear();
-  const LawEntry &law = law_entry(scene_.model);
-  if (scene_.failure || !law.limit) PetscFunctionReturn(0);
-  const double limit = law.I1bar_limit(scene_.material);
+  const LawEntry &law = law_entry(scene_.material.model);
+  if (scene_.failure.enabled || !law.limit) PetscFunctionReturn(0);
+  const double limit = law.I1bar_limit(scene_.material.parameters);
   double       top   = force_.stats().largest_trC;
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &top, 1, MPI_DOUBLE, MPI_MAX, comm_));
   if (!(top >= limit)) {
@@ -258,7 +258,7 @@ template <int D> PetscErrorCode SimulationD<D>::CheckLawValidity(PetscInt step, 
     PetscFunctionReturn(0);
   }
 
-  const bool     plane_strain = scene_.formulation == Formulation::plane_strain;
+  const bool     plane_strain = scene_.material.formulation == Formulation::plane_strain;
   const double  *x;
   PetscCall(VecGetArrayRead(X_, &x)); // (u: the first D n_owned entries)
   PetscCall(force_.UpdatePositions(x));
@@ -309,7 +309,7 @@ template <int D> PetscErrorCode SimulationD<D>::CheckLawValidity(PetscInt step, 
   PetscCallMPI(MPI_Bcast(where, 7, MPI_DOUBLE, best.rank, comm_));
   double option_value = 0;
   for (const LawOptionEntry &o : law.options)
-    if (std::string(o.name) == law.limit_option) option_value = scene_.material.values[o.index];
+    if (std::string(o.name) == law.limit_option) option_value = scene_.material.parameters.values[o.index];
   char at[128];
   if (D == 2) std::snprintf(at, sizeof at, "(%.6g, %.6g) m", where[4], where[5]);
   else std::snprintf(at, sizeof at, "(%.6g, %.6g, %.6g) m", where[4], where[5], where[6]);
@@ -323,7 +323,7 @@ template <int D> PetscErrorCode SimulationD<D>::CheckLawValidity(PetscInt step, 
                 "(-material_bulk_ratio %g) does not make: past this point the stress is not the material's. Cause: %s. Raise %s "
                 "(now %g), or end the load below stretch %.4g, or enable failure (-failure_critical_stretch) so that such bonds break.",
                 count, step, t, stretch, past_limit_since_, past_limit_stretch_, where[3], at, where[0] - 3.0, limit - 3.0, law.limit_option, option_value, where[1], where[2],
-                2.0 / (scene_.material.D * scene_.material.mu), law.limit, law.limit_option, option_value, past_limit_stretch_);
+                2.0 / (scene_.material.parameters.D * scene_.material.parameters.mu), law.limit, law.limit_option, option_value, past_limit_stretch_);
   *message = text;
   PetscFunctionReturn(0);
 }
@@ -337,10 +337,10 @@ template <int D> PetscErrorCode SimulationD<D>::CheckRunaway(PetscInt step, doub
   PetscCall(TSGetTimeStep(ts_, &dt));
   RunawayInputs inputs;
   inputs.comm      = comm_;
-  inputs.density          = scene_.density;
-  inputs.dx               = scene_.body.dx;
-  inputs.loads            = &scene_.loads;
-  inputs.reference_length = scene_.reference_length;
+  inputs.density          = scene_.material.density;
+  inputs.dx               = scene_.body.sheet.dx;
+  inputs.loads            = &scene_.loading.sets;
+  inputs.reference_length = scene_.loading.reference_length;
   inputs.schedule         = &loading_.schedule();
   inputs.layout    = &layout_;
   inputs.state     = X_;

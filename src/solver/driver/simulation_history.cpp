@@ -69,7 +69,7 @@ template <int D> PetscErrorCode SimulationD<D>::Energies(double *kinetic, double
   PetscCall(force_.PointEnergies(x, point_energy_.data()));
   const double *v = x + D * n;
   for (PetscInt i = 0; i < n; ++i) {
-    const double m     = scene_.density * layout_.cloud.volume[i];
+    const double m     = scene_.material.density * layout_.cloud.volume[i];
     per_point_[2 * i]     = PointKineticEnergy<D>(m, v + D * i); // 1/2 m v.v (relaxation.hpp)
     per_point_[2 * i + 1] = point_energy_[i];
   }
@@ -136,7 +136,7 @@ template <int D> PetscErrorCode SimulationD<D>::WriteHistoryRow(PetscInt step, d
   PetscInt broken;
   PetscCall(BrokenBondCount(&broken));
   double crack_area = 0, crack_tip[4] = {0, 0, 0, 0};
-  if (scene_.failure) PetscCall(CrackExtent(&crack_area, crack_tip));
+  if (scene_.failure.enabled) PetscCall(CrackExtent(&crack_area, crack_tip));
   // Every rank holds the same sums (reproducible), so every rank decides alike.
   const double work     = budget_.grip_work_total();
   const double residual = work - (last_internal_ + last_kinetic_ + budget_.damped() + budget_.released());
@@ -170,7 +170,7 @@ template <int D> PetscErrorCode SimulationD<D>::WriteHistoryRow(PetscInt step, d
 template <int D> PetscErrorCode SimulationD<D>::WarnEnergyBalance(PetscInt step, double t, double work, double residual)
 {
   PetscFunctionBegin;
-  if (warned_balance_ || scene_.force_form != ForceForm::energy_consistent) PetscFunctionReturn(0);
+  if (warned_balance_ || scene_.material.force_form != ForceForm::energy_consistent) PetscFunctionReturn(0);
   if (!(work > 0) || !(std::fabs(residual) > 0.01 * work)) PetscFunctionReturn(0);
   warned_balance_ = true;
   // Held by the travel limit far below the stiffness step, the step is not the cause
@@ -198,14 +198,14 @@ template <int D> PetscErrorCode SimulationD<D>::WarnEnergyBalance(PetscInt step,
 template <int D> PetscErrorCode SimulationD<D>::CheckStaticHold(PetscInt step, double t)
 {
   PetscFunctionBegin;
-  if (scene_.static_tolerance <= 0) PetscFunctionReturn(0);
+  if (scene_.time_stepping.static_tolerance <= 0) PetscFunctionReturn(0);
   const PetscInt k = loading_.HoldAt(t); // a hold that has not ended yet, or -1
-  if (k < 0 || !(last_kinetic_ < scene_.static_tolerance * last_internal_)) PetscFunctionReturn(0);
+  if (k < 0 || !(last_kinetic_ < scene_.time_stepping.static_tolerance * last_internal_)) PetscFunctionReturn(0);
   const double lambda = loading_.stretch_at(t);
   PetscCall(PetscPrintf(comm_, "Static at stretch %.5f: t = %.6e s, step %" PetscInt_FMT ", kinetic/internal energy %.3e < %.3e", lambda, t, step,
-                        last_kinetic_ / last_internal_, scene_.static_tolerance));
+                        last_kinetic_ / last_internal_, scene_.time_stepping.static_tolerance));
   for (std::size_t p = 0; p < probes_.size(); ++p)
-    PetscCall(PetscPrintf(comm_, "; %s ux = %.6e m", scene_.probes[p].name.c_str(), last_probe_u_[D * p]));
+    PetscCall(PetscPrintf(comm_, "; %s ux = %.6e m", scene_.loading.probes[p].name.c_str(), last_probe_u_[D * p]));
   if (relaxation_.active()) PetscCall(PetscPrintf(comm_, "; damping %.4g 1/s", relaxation_.last()));
   PetscCall(PetscPrintf(comm_, "\n"));
   PetscCall(history_.WriteStaticState(comm_, lambda, t, step, last_kinetic_ / last_internal_, last_probe_u_.data(), last_reaction_.data()));
@@ -222,7 +222,7 @@ template <int D> PetscErrorCode SimulationD<D>::ProgressLine(PetscInt step, doub
 {
   PetscFunctionBegin;
   const double end_time = loading_.end_time();
-  if (scene_.failure) PetscCall(BrokenBondCount(&total_broken_));
+  if (scene_.failure.enabled) PetscCall(BrokenBondCount(&total_broken_));
   double kinetic, internal;
   PetscCall(Energies(&kinetic, &internal));
   const double left     = t > 0 ? std::max(0.0, wall * (end_time - t) / t) : 0.0;
@@ -255,7 +255,7 @@ template <int D> PetscErrorCode SimulationD<D>::TimeStepSummary(PetscInt steps)
     char travel[96] = "";
     if (c.shortened_by_travel() > 0)
       PetscCall(PetscSNPrintf(travel, sizeof travel, ", %" PetscInt_FMT " by the travel limit (%.3g dx%s, fast points)", c.shortened_by_travel(),
-                              c.travel() / scene_.body.dx, c.travel_automatic() ? ", chosen with failure" : ""));
+                              c.travel() / scene_.body.sheet.dx, c.travel_automatic() ? ", chosen with failure" : ""));
     PetscCall(PetscPrintf(comm_, "time step: %" PetscInt_FMT " of %" PetscInt_FMT " step(s) shorter than the full %.4e s: %" PetscInt_FMT " by stiffness (the material stiffened)%s; the shortest %.4e s = %.3g x\n",
                           c.shortened_steps(), steps, c.base(), c.shortened_by_stiffness(), travel, c.shortest(), c.shortest() / c.base()));
   }
@@ -271,7 +271,7 @@ template <int D> PetscErrorCode SimulationD<D>::Summary()
   PetscCall(TSGetStepNumber(ts_, &step));
   PetscCall(TSGetTime(ts_, &t));
   const double *x;
-  std::vector<double> probe_u(D * probes_.size(), 0.0), reaction(D * scene_.loads.size(), 0.0);
+  std::vector<double> probe_u(D * probes_.size(), 0.0), reaction(D * scene_.loading.sets.size(), 0.0);
   PetscCall(VecGetArrayRead(X_, &x));
   PetscCall(ReadProbes(x, probe_u.data()));
   PetscCall(ComputeForceDensity(x, force_density_.data()));
@@ -282,21 +282,21 @@ template <int D> PetscErrorCode SimulationD<D>::Summary()
                         MPI_Wtime() - wall_start_));
   for (std::size_t p = 0; p < probes_.size(); ++p)
     if (D == 2)
-      PetscCall(PetscPrintf(comm_, "probe %-16s ux = %+.6e m  uy = %+.6e m\n", scene_.probes[p].name.c_str(), probe_u[2 * p], probe_u[2 * p + 1]));
+      PetscCall(PetscPrintf(comm_, "probe %-16s ux = %+.6e m  uy = %+.6e m\n", scene_.loading.probes[p].name.c_str(), probe_u[2 * p], probe_u[2 * p + 1]));
     else
-      PetscCall(PetscPrintf(comm_, "probe %-16s ux = %+.6e m  uy = %+.6e m  uz = %+.6e m\n", scene_.probes[p].name.c_str(), probe_u[D * p],
+      PetscCall(PetscPrintf(comm_, "probe %-16s ux = %+.6e m  uy = %+.6e m  uz = %+.6e m\n", scene_.loading.probes[p].name.c_str(), probe_u[D * p],
                             probe_u[D * p + 1], probe_u[D * p + 2]));
-  for (std::size_t s = 0; s < scene_.loads.size(); ++s)
+  for (std::size_t s = 0; s < scene_.loading.sets.size(); ++s)
     if (D == 2)
-      PetscCall(PetscPrintf(comm_, "load set %-12s reaction y = %+.6e N  nominal stress = %+.6e Pa\n", scene_.loads[s].name.c_str(),
-                            reaction[D * s + 1], reaction[D * s + 1] / NominalArea(scene_)));
+      PetscCall(PetscPrintf(comm_, "load set %-12s reaction y = %+.6e N  nominal stress = %+.6e Pa\n", scene_.loading.sets[s].name.c_str(),
+                            reaction[D * s + 1], reaction[D * s + 1] / NominalArea(BodyExtentOf(scene_))));
     else
       PetscCall(PetscPrintf(comm_, "load set %-12s reaction x, y, z = %+.6e, %+.6e, %+.6e N  nominal stress (y) = %+.6e Pa\n",
-                            scene_.loads[s].name.c_str(), reaction[D * s], reaction[D * s + 1], reaction[D * s + 2],
-                            reaction[D * s + 1] / NominalArea(scene_)));
+                            scene_.loading.sets[s].name.c_str(), reaction[D * s], reaction[D * s + 1], reaction[D * s + 2],
+                            reaction[D * s + 1] / NominalArea(BodyExtentOf(scene_))));
   PetscInt broken;
   PetscCall(BrokenBondCount(&broken));
-  if (scene_.failure) PetscCall(PetscPrintf(comm_, "broken bonds: %" PetscInt_FMT "\n", broken));
+  if (scene_.failure.enabled) PetscCall(PetscPrintf(comm_, "broken bonds: %" PetscInt_FMT "\n", broken));
   if (!stopped_on_error_) { // (a diverged run's state is the last good one, its budget the step that failed)
     double kinetic, internal;
     PetscCall(Energies(&kinetic, &internal));
@@ -305,7 +305,7 @@ template <int D> PetscErrorCode SimulationD<D>::Summary()
                           "energy: the grips' work %.4e J = internal %.4e + kinetic %.4e + damping %.4e + fracture %.4e J, residual "
                           "%.2g %% of the work\n",
                           work, internal, kinetic, budget_.damped(), budget_.released(), work > 0 ? 100 * residual / work : 0.0));
-    if (scene_.failure) {
+    if (scene_.failure.enabled) {
       double area, tip[4];
       PetscCall(CrackExtent(&area, tip));
       if (area > 0)
@@ -369,7 +369,7 @@ template <int D> PetscErrorCode SimulationD<D>::ListOutputFiles()
   }
   if (output_.last_checkpoint_step >= 0)
     line("checkpoint.h5", Format("step %" PetscInt_FMT ": continue with -restart %s", output_.last_checkpoint_step, paths_.checkpoint().c_str()));
-  if (scene_.output_final_state) {
+  if (scene_.output.final_state) {
     line("final_state.csv", "every point's displacement, natural order");
     line("broken_bonds.csv", "broken bonds as pairs of natural ids");
   }
@@ -415,7 +415,7 @@ template <int D> PetscErrorCode SimulationD<D>::WriteFinalState()
   PetscCheck(!error[0], comm_, PETSC_ERR_FILE_WRITE,
              "Cannot write %s/%s: %s; it is not written (no partial file is left; a previous one stays as it was): free some space or "
              "choose another -output_dir",
-             scene_.output_dir.c_str(), error[1] ? "broken_bonds.csv" : "final_state.csv", std::strerror(error[0]));
+             scene_.output.dir.c_str(), error[1] ? "broken_bonds.csv" : "final_state.csv", std::strerror(error[0]));
   PetscFunctionReturn(0);
 }
 

@@ -46,8 +46,8 @@ PetscErrorCode RegisterEvents()
 template <int D> PetscErrorCode SimulationD<D>::TakeOutputOptions()
 {
   PetscFunctionBegin;
-  output_.fields     = scene_.fields;
-  output_.checkpoint = scene_.checkpoint;
+  output_.fields     = scene_.output.fields;
+  output_.checkpoint = scene_.output.checkpoint;
   if (!output_.handlers) InstallInterruptHandlers(); // a signal during the set-up acts at the first step
   output_.handlers = true;
   PetscFunctionReturn(0);
@@ -59,11 +59,11 @@ template <int D> PetscErrorCode SimulationD<D>::TakeOutputOptions()
 template <int D> PetscErrorCode SimulationD<D>::ClaimOutputDirectory()
 {
   PetscFunctionBegin;
-  PetscCall(output_.lock.Acquire(comm_, scene_.output_dir));
+  PetscCall(output_.lock.Acquire(comm_, scene_.output.dir));
   if (!output_.checkpoint.restart.empty()) {
     CheckpointHeader header; // (read again by RestoreCheckpoint, after the body is built)
     PetscCall(ReadCheckpointHeader(comm_, output_.checkpoint.restart, &header));
-    PetscCall(CheckNewerResults(comm_, scene_.output_dir, output_.checkpoint.restart, header.step, header.time,
+    PetscCall(CheckNewerResults(comm_, scene_.output.dir, output_.checkpoint.restart, header.step, header.time,
                                 output_.checkpoint.discard_newer));
   }
   PetscFunctionReturn(0);
@@ -73,7 +73,7 @@ template <int D> PetscErrorCode SimulationD<D>::SetupOutput()
 {
   PetscFunctionBegin;
   PetscCall(RegisterEvents());
-  output_.series.output_dir = scene_.output_dir;
+  output_.series.output_dir = scene_.output.dir;
   output_.series.geometry   = output_.fields.geometry; // -output_fields_geometry (fields.hpp)
   // The end time as the scene gives it (before a restart or an ended hold moves it), so
   // that a continuation writes the field files the uninterrupted run writes.
@@ -103,7 +103,7 @@ template <int D> PetscErrorCode SimulationD<D>::CreateNaturalOrder()
   PetscFunctionBegin;
   if (output_.order.created()) PetscFunctionReturn(0);
   PetscCall(NaturalOrderCreate(comm_, layout_, families_, &output_.order));
-  PetscCall(ComputeGeometryFingerprint<D>(comm_, layout_, families_, scene_.body.dx, scene_.horizon(), &output_.geometry));
+  PetscCall(ComputeGeometryFingerprint<D>(comm_, layout_, families_, scene_.body.sheet.dx, scene_.body.horizon(), &output_.geometry));
   PetscFunctionReturn(0);
 }
 
@@ -219,11 +219,11 @@ template <int D> PetscErrorCode SimulationD<D>::ComputePointQuantities(const dou
 {
   PetscFunctionBegin;
   PetscCall(ComputeForceDensity(u_owned, force_density)); // sets the positions, ghosts included
-  point_quantities(scene_.model, scene_.formulation, scene_.material, layout_.cloud, force_.positions(), families_, geometry_,
+  point_quantities(scene_.material.model, scene_.material.formulation, scene_.material.parameters, layout_.cloud, force_.positions(), families_, geometry_,
                    bond_state_, force_.warm_start().data(), (std::size_t)layout_.n_owned,
-                   scene_.force_form == ForceForm::energy_consistent ? StressWeights::bond_energy : StressWeights::bond_force,
-                   *quantities, scene_.volumetric,
-                   scene_.volumetric_stabilisation * scene_.material.mu);
+                   scene_.material.force_form == ForceForm::energy_consistent ? StressWeights::bond_energy : StressWeights::bond_force,
+                   *quantities, scene_.material.volumetric,
+                   scene_.material.volumetric_stabilisation * scene_.material.parameters.mu);
   PetscFunctionReturn(0);
 }
 
@@ -388,7 +388,7 @@ template <int D> PetscErrorCode SimulationD<D>::RestoreCheckpoint()
   {
     PetscInt max_steps;
     PetscCall(TSGetMaxSteps(ts_, &max_steps));
-    const char *limit = scene_.end_step >= 0 && scene_.end_step == max_steps ? "-end_step" : "-ts_max_steps";
+    const char *limit = scene_.time_stepping.end_step >= 0 && scene_.time_stepping.end_step == max_steps ? "-end_step" : "-ts_max_steps";
     if (max_steps <= header.step)
       PetscCall(PetscPrintf(comm_, "\n*** WARNING: the checkpoint is at step %" PetscInt_FMT ", already at %s %" PetscInt_FMT
                                    " (the options stored in the checkpoint count): this run takes no step. Give a larger %s.\n\n",

@@ -109,7 +109,7 @@ public:
   PetscErrorCode Observe(SimulationD &sim, PetscInt step, double t, const StepEvents &events) override
   {
     PetscFunctionBegin;
-    const PetscInt interval = sim.scene_.progress_interval;
+    const PetscInt interval = sim.scene_.time_stepping.progress_interval;
     const bool     by_steps = interval > 0 ? step % interval == 0 : times_.Due(t);
     if (!by_steps && !events.progress_wall) PetscFunctionReturn(0);
     last_wall_ = MPI_Wtime() - sim.wall_start_;
@@ -119,7 +119,7 @@ public:
   // Rank 0: is the wall-clock interval since the last line over?
   bool WallDue(double now) const
   {
-    const double interval = this->sim_.scene_.progress_wall_interval;
+    const double interval = this->sim_.scene_.time_stepping.progress_wall_interval;
     return interval > 0 && now - this->sim_.wall_start_ - last_wall_ >= interval;
   }
 

@@ -11,20 +11,20 @@
 
 namespace bapd {
 
-PetscErrorCode StaticSolverCheckScene(MPI_Comm comm, const Scene &scene, const CheckpointOptions &checkpoint)
+PetscErrorCode StaticSolverCheckScene(MPI_Comm comm, const RunSection &run, const FailureSection &failure, ForceForm force_form,
+                                      const Schedule &s, const CheckpointOptions &checkpoint)
 {
   PetscFunctionBegin;
-  if (scene.solver != SolverKind::static_newton) PetscFunctionReturn(0);
-  PetscCheck(!scene.failure, comm, PETSC_ERR_USER,
+  if (run.solver != SolverKind::static_newton) PetscFunctionReturn(0);
+  PetscCheck(!failure.enabled, comm, PETSC_ERR_USER,
              "-solver static does not break bonds yet: remove the -failure_* options, or use -solver dynamic (the default) for a "
              "run with failure");
   PetscCheck(checkpoint.restart.empty() && !checkpoint.periodic(), comm, PETSC_ERR_USER,
              "-solver static writes no checkpoints and does not restart yet (a whole static run takes seconds to minutes): remove "
              "-checkpoint_interval, -checkpoint_wall_interval and -restart, or use -solver dynamic");
-  PetscCheck(scene.force_form == ForceForm::energy_consistent, comm, PETSC_ERR_USER,
+  PetscCheck(force_form == ForceForm::energy_consistent, comm, PETSC_ERR_USER,
              "-solver static needs -force_form energy_consistent (the default): the bond-only force is not the gradient of an "
              "energy, so there is no energy to minimise and no symmetric tangent");
-  const Schedule &s = scene.schedule;
   PetscCheck(!s.time.empty() && s.time.size() >= 2, comm, PETSC_ERR_USER,
              "-solver static follows -load_schedule: give one with at least two knots (time, stretch), e.g. -load_schedule 0,1,1,1.5");
   PetscCheck(s.stretch.front() == 1.0, comm, PETSC_ERR_USER,
@@ -99,7 +99,7 @@ template <int D> PetscErrorCode StaticSolver<D>::Setup()
   PC             pc;
 
   PetscFunctionBegin;
-  PetscCall(tangent_.Setup<D>(sim_.comm_, sim_.scene_.force_model(), layout, sim_.families_, sim_.geometry_, sim_.bond_state_));
+  PetscCall(tangent_.Setup<D>(sim_.comm_, sim_.scene_.material, layout, sim_.families_, sim_.geometry_, sim_.bond_state_));
   PetscCall(tangent_.CreateMatrix(&H_));
   {
     // The preconditioner's copy in AIJ (GAMG, hypre and the factorisations take it), by
@@ -174,7 +174,7 @@ template <int D> PetscErrorCode StaticSolver<D>::Setup()
   PetscCall(KSPGetPC(ksp, &pc));
   PetscCall(PCSetType(pc, PCGAMG));
   PetscCall(SNESSetFromOptions(snes_));
-  use_secant_ = sim_.scene_.static_options.secant_predictor;
+  use_secant_ = sim_.scene_.run.static_options.secant_predictor;
   PetscFunctionReturn(0);
 }
 
@@ -326,7 +326,7 @@ PetscErrorCode StaticSolver<D>::ConvergenceTest(SNES snes, PetscInt it, PetscRea
   const double previous = self->last_fnorm_;
   self->last_fnorm_      = fnorm;
   PetscCall(SNESConvergedDefault(snes, it, xnorm, step, fnorm, reason, nullptr));
-  if (*reason == SNES_CONVERGED_ITERATING && fnorm <= self->sim_.scene_.static_options.residual_tolerance * self->reaction_norm_)
+  if (*reason == SNES_CONVERGED_ITERATING && fnorm <= self->sim_.scene_.run.static_options.residual_tolerance * self->reaction_norm_)
     *reason = SNES_CONVERGED_FNORM_ABS;
   // Modified Newton (Setup): the kept tangent is rebuilt at the next iteration once an
   // iteration with it reduces |R| by less than reuse_rate (linear convergence too slow to
@@ -425,7 +425,7 @@ template <int D> PetscErrorCode StaticSolver<D>::LoadStep(double t, PetscBool *c
 // fast one; a history row after each.
 template <int D> PetscErrorCode StaticSolver<D>::SolveTo(double t, PetscBool *converged)
 {
-  const StaticOptions &o    = sim_.scene_.static_options;
+  const StaticOptions &o    = sim_.scene_.run.static_options;
   const Loading       &load = sim_.loading_;
   double              &step = step_; // the load step in stretch, kept from ramp to ramp
 
@@ -463,7 +463,7 @@ template <int D> PetscErrorCode StaticSolver<D>::SolveTo(double t, PetscBool *co
     // Fast: converged on its first tangent (modified Newton), or in at most
     // -static_fast_iterations iterations (full Newton, -snes_lag_jacobian 1).
     if (reuse_tangent_ ? step_tangents_ <= 1 : its <= o.fast_iterations) step = std::min(o.stretch_step_max, step * o.growth);
-    if (sim_.scene_.end_step >= 0 && load_steps_ >= sim_.scene_.end_step) break;
+    if (sim_.scene_.time_stepping.end_step >= 0 && load_steps_ >= sim_.scene_.time_stepping.end_step) break;
   }
   PetscFunctionReturn(0);
 }
@@ -496,7 +496,7 @@ template <int D> PetscErrorCode StaticSolver<D>::WriteStaticState(double t)
   const double lambda = s.loading_.stretch_at(t);
   PetscCall(PetscPrintf(s.comm_, "Static at stretch %.5f: load step %" PetscInt_FMT, lambda, load_steps_));
   for (std::size_t p = 0; p < s.probes_.size(); ++p)
-    PetscCall(PetscPrintf(s.comm_, "; %s ux = %.6e m", s.scene_.probes[p].name.c_str(), s.last_probe_u_[D * p]));
+    PetscCall(PetscPrintf(s.comm_, "; %s ux = %.6e m", s.scene_.loading.probes[p].name.c_str(), s.last_probe_u_[D * p]));
   PetscCall(PetscPrintf(s.comm_, "\n"));
   PetscCall(s.history_.WriteStaticState(s.comm_, lambda, t, load_steps_, 0.0, s.last_probe_u_.data(), s.last_reaction_.data()));
   if (s.output_.fields.enabled) PetscCall(s.WriteFields(load_steps_, t));
@@ -528,13 +528,13 @@ template <int D> PetscErrorCode StaticSolver<D>::Run()
                 " cutbacks, the load step below -static_stretch_step_min %g). What was written is kept (history.csv up to load step %" PetscInt_FMT
                 ")%s. Try a smaller -static_stretch_step_min, more Newton iterations (-snes_max_it 100), another line search "
                 "(-snes_linesearch_type l2), or -solver dynamic (a body past its law's limit or buckling has no static state here)",
-                from, to, SNESConvergedReasons[last_reason_], cutbacks_, sim_.scene_.static_options.stretch_step_min, load_steps_,
+                from, to, SNESConvergedReasons[last_reason_], cutbacks_, sim_.scene_.run.static_options.stretch_step_min, load_steps_,
                 last_reason_ == SNES_DIVERGED_LINEAR_SOLVE
                   ? ". The linear solver failed (CG with GAMG: a nearly incompressible plane-strain or 3D body can defeat it): use "
                     "the direct solver, -ksp_type preonly -pc_type lu (-pc_factor_mat_solver_type mumps on several ranks)"
                   : "");
       }
-      if (sim_.scene_.end_step >= 0 && load_steps_ >= sim_.scene_.end_step && t_ < schedule.time[k + 1]) {
+      if (sim_.scene_.time_stepping.end_step >= 0 && load_steps_ >= sim_.scene_.time_stepping.end_step && t_ < schedule.time[k + 1]) {
         PetscCall(PetscPrintf(sim_.comm_, "\nStopped after load step %" PetscInt_FMT " (-end_step), at stretch %.5f\n", load_steps_,
                               sim_.loading_.stretch_at(t_)));
         stopped = true;
@@ -548,7 +548,7 @@ template <int D> PetscErrorCode StaticSolver<D>::Run()
   PetscCall(PetscLogStagePop());
   if (sim_.history_.last_step() != load_steps_) PetscCall(sim_.WriteHistoryRow(load_steps_, t_, false));
   PetscCall(sim_.OutputAtEnd(load_steps_, t_));
-  if (sim_.scene_.output_final_state) PetscCall(sim_.WriteFinalState());
+  if (sim_.scene_.output.final_state) PetscCall(sim_.WriteFinalState());
   PetscCall(Summary((double)(std::clock() - start) / CLOCKS_PER_SEC));
   PetscFunctionReturn(0);
 }
@@ -572,8 +572,8 @@ template <int D> PetscErrorCode StaticSolver<D>::Summary(double cpu)
                         " static states, %" PetscInt_FMT " Newton iterations, %" PetscInt_FMT " Krylov iterations (%s, %s), %" PetscInt_FMT
                         " tangents assembled; CPU time of the load steps %.3f s (all ranks)\n",
                         load_steps_, cutbacks_, static_states_, newton_iterations_, krylov_iterations_, ksp_type, pc_type, jacobians_, total));
-  for (std::size_t l = 0; l < sim_.scene_.loads.size(); ++l)
-    PetscCall(PetscPrintf(sim_.comm_, "  %s reaction y at stretch %.5f: %.6e N\n", sim_.scene_.loads[l].name.c_str(), sim_.loading_.stretch_at(t_),
+  for (std::size_t l = 0; l < sim_.scene_.loading.sets.size(); ++l)
+    PetscCall(PetscPrintf(sim_.comm_, "  %s reaction y at stretch %.5f: %.6e N\n", sim_.scene_.loading.sets[l].name.c_str(), sim_.loading_.stretch_at(t_),
                           sim_.last_reaction_[D * l + 1]));
   PetscCall(sim_.ListOutputFiles());
   PetscFunctionReturn(0);

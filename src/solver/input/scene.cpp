@@ -68,13 +68,13 @@ PetscErrorCode SceneFromOptions(MPI_Comm comm, Scene *scene)
   PetscFunctionBeginUser;
   *scene = Scene();
   ClearWarnings();
-  PetscCall(ReadBody(comm, scene, &in));
-  PetscCall(ReadMaterial(comm, scene, &in));
-  PetscCall(ReadLoading(comm, scene, &in));
+  PetscCall(ReadBody(comm, &scene->body, &in));
+  PetscCall(ReadMaterial(comm, &scene->material, &scene->failure, &in));
+  PetscCall(ReadLoading(comm, &scene->loading, &in));
   PetscCall(ReadProbes(comm, &in));
-  PetscCall(ReadOutput(comm, scene, &in));
-  PetscCall(ReadRun(comm, scene, &in));
-  PetscCall(ReadTimeStepping(comm, scene, &in));
+  PetscCall(ReadOutput(comm, &scene->output, &in));
+  PetscCall(ReadRun(comm, &scene->run, &in));
+  PetscCall(ReadTimeStepping(comm, &scene->time_stepping, &in));
 
   PetscCall(PetscOptionsHasHelp(nullptr, &help));
   if (help) {
@@ -86,7 +86,7 @@ PetscErrorCode SceneFromOptions(MPI_Comm comm, Scene *scene)
   PetscCall(CheckMaterial(comm, in, scene));
   EdgeRows grip_rows; // the rows the grips outside the sheet add to the body, which CheckBodyFits counts
   PetscCall(CheckLoading(comm, in, scene, &grip_rows));
-  scene->body.grip_rows = grip_rows;
+  scene->body.sheet.grip_rows = grip_rows;
   PetscCall(CheckBodyFits(comm, *scene));
   PetscCall(CheckProbes(comm, in, scene));
   PetscCall(CheckOutput(comm, in, scene));
@@ -98,21 +98,21 @@ PetscErrorCode SceneFromOptions(MPI_Comm comm, Scene *scene)
 namespace {
 
 // The horizon line: the lattice's one horizon, or given points' own (geometry.hpp:
-// delta_i = factor h_i, h_i = `spacing`; s.horizon() is the smallest, of the smallest
+// delta_i = factor h_i, h_i = `spacing`; s.body.horizon() is the smallest, of the smallest
 // spacing, Body2D::dx).
 std::string HorizonText(const Scene &s, bool given_points, const char *spacing)
 {
   if (given_points)
-    return Format("  horizon   delta_i = %g h_i, h_i = %s (at least %g m); a bond where either reaches\n", s.horizon_factor, spacing,
-                  s.horizon());
-  return Format("  horizon   delta = %g dx = %g m\n", s.horizon_factor, s.horizon());
+    return Format("  horizon   delta_i = %g h_i, h_i = %s (at least %g m); a bond where either reaches\n", s.body.horizon_factor, spacing,
+                  s.body.horizon());
+  return Format("  horizon   delta = %g dx = %g m\n", s.body.horizon_factor, s.body.horizon());
 }
 
 // The body and horizon lines of a 2D sheet: its size, lattice (or given points), holes,
 // shapes and notches.
 std::string BodyText2D(const Scene &s)
 {
-  const Body2D   &b = s.body;
+  const Body2D   &b = s.body.sheet;
   const EdgeRows &g = b.grip_rows;
   std::string     text;
   if (b.given_points) // (geometry.hpp: points with their own volumes and horizons)
@@ -150,7 +150,7 @@ std::string BodyText2D(const Scene &s)
 // points' cells (the faces the load sets hold), each solid and notch by name.
 std::string BodyText3D(const Scene &s)
 {
-  const Body3D &b = s.body3d;
+  const Body3D &b = s.body.solid;
   std::string   text;
   const std::string extent =
       Format("[%g, %g] x [%g, %g] x [%g, %g] m", b.lo[0], b.hi[0], b.lo[1], b.hi[1], b.lo[2], b.hi[2]);
@@ -199,7 +199,7 @@ std::string SceneText(const Scene &s)
   // section's lines from the section (scene_input.hpp)
   std::string text = "Scene\n";
   text += s.dimension == 3 ? BodyText3D(s) : BodyText2D(s);
-  return text + MaterialText(s) + LoadingText(s) + ProbesText(s) + TimeSteppingText(s) + OutputText(s);
+  return text + MaterialText(s) + LoadingText(s) + ProbesText(s) + TimeSteppingText(s) + OutputText(s.output);
 }
 
 PetscErrorCode SceneView(MPI_Comm comm, const Scene &s)

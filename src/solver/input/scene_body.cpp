@@ -127,14 +127,14 @@ std::string FindCut(const Body2D &b)
 PetscErrorCode CheckHorizonFactor(MPI_Comm comm, const Scene &scene)
 {
   PetscFunctionBeginUser;
-  SceneCheck(scene.horizon_factor >= 1, comm,
+  SceneCheck(scene.body.horizon_factor >= 1, comm,
              "-horizon_factor %g is below 1: the horizon delta = factor x dx must reach the nearest neighbours; use 3.015 (the paper's "
              "value), or a value in [2, 5]",
-             scene.horizon_factor);
-  if (scene.horizon_factor < 2 || scene.horizon_factor > 5)
+             scene.body.horizon_factor);
+  if (scene.body.horizon_factor < 2 || scene.body.horizon_factor > 5)
     PetscCall(Warn(comm, Format("-horizon_factor %g is outside [2, 5]: too few neighbours make the shape tensor fragile, too many "
                                 "smooth the solution and cost time; the paper uses 3.015",
-                                scene.horizon_factor)));
+                                scene.body.horizon_factor)));
   PetscFunctionReturn(0);
 }
 
@@ -194,22 +194,22 @@ const OptionTable<SceneInput> kBodyInputOptions = {
     {"-body_shapes", "Shapes applied in order to the sheet, name1,name2,... (each shape S is set by -body_S_...)", &SceneInput::shape_names},
 };
 
-const OptionTable<Scene> kHorizonOptions = {
+const OptionTable<BodySection> kHorizonOptions = {
     {"-horizon_factor",
      "Horizon over lattice spacing, delta/dx [-] (given points: over each one's spacing sqrt(V/t), 3D cbrt(V)) (paper: "
      "3.015; 2.515 and 3.515 also studied)",
-     &Scene::horizon_factor, nullptr, "3.015"},
+     &BodySection::horizon_factor, nullptr, "3.015"},
 };
 
 } // namespace
 
 SetFamily ShapeFamily() { return {"-body_", "-body_shapes", OptionRowSuffixes(kShapeOptions)}; }
 
-PetscErrorCode ReadBody(MPI_Comm comm, Scene *scene, SceneInput *in)
+PetscErrorCode ReadBody(MPI_Comm comm, BodySection *body, SceneInput *in)
 {
   PetscFunctionBeginUser;
   PetscCall(ReadOptionBlock(comm, nullptr, "Body: a plane sheet [0, width] x [0, height] cut by holes, shapes and notches", [&](OptionReader &r) -> PetscErrorCode {
-    PetscCall(ReadOptionRows(r, kSheetOptions, &scene->body, in));
+    PetscCall(ReadOptionRows(r, kSheetOptions, &body->sheet, in));
     return ReadOptionRows(r, kBodyInputOptions, in);
   }));
   PetscCall(CheckNames(comm, in->shape_names, "-body_shapes", "shape"));
@@ -220,7 +220,7 @@ PetscErrorCode ReadBody(MPI_Comm comm, Scene *scene, SceneInput *in)
     PetscCall(ReadOptionBlock(comm, prefix.c_str(), title.c_str(), [&](OptionReader &r) { return ReadOptionRows(r, kShapeOptions, &shape); }));
     in->shapes.push_back(shape);
   }
-  PetscCall(ReadOptionTable(comm, "Horizon", kHorizonOptions, scene));
+  PetscCall(ReadOptionTable(comm, "Horizon", kHorizonOptions, body));
   PetscFunctionReturn(0);
 }
 
@@ -429,7 +429,7 @@ PetscErrorCode CheckSceneGiven(MPI_Comm comm, const SceneInput &in)
 
 PetscErrorCode CheckBody(MPI_Comm comm, const SceneInput &in, Scene *scene)
 {
-  Body2D &b = scene->body;
+  Body2D &b = scene->body.sheet;
   PetscFunctionBeginUser;
   PetscCall(CheckSceneGiven(comm, in));
   PetscCall(CheckDimension(comm, in, &scene->dimension));
@@ -471,6 +471,6 @@ PetscErrorCode CheckBody(MPI_Comm comm, const SceneInput &in, Scene *scene)
   PetscFunctionReturn(0);
 }
 
-int64_t ScenePointEstimate(const Scene &scene) { return scene.dimension == 3 ? scene.body3d.points : body_point_count(scene.body); }
+int64_t ScenePointEstimate(const Scene &scene) { return scene.dimension == 3 ? scene.body.solid.points : body_point_count(scene.body.sheet); }
 
 } // namespace bapd

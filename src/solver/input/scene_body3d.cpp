@@ -220,7 +220,7 @@ PetscErrorCode GivenPoints3D(MPI_Comm comm, const SceneInput &in, std::size_t ce
   PetscFunctionReturn(0);
 }
 
-// The solids' points on the lattice of spacing -body_dx (given as scene->body.dx).
+// The solids' points on the lattice of spacing -body_dx (given as scene->body.sheet.dx).
 PetscErrorCode LatticePoints3D(MPI_Comm comm, const SceneInput &in, double dx, Body3D *body, PointCloud *points)
 {
   Body3D &b = *body;
@@ -264,7 +264,7 @@ void SetExtent(const PointCloud &points, Body3D *body)
 // check; about 40 bytes a point, against the run's ~6 KB: CheckBodyFits follows).
 PetscErrorCode CheckBody3D(MPI_Comm comm, const SceneInput &in, Scene *scene)
 {
-  Body3D &b = scene->body3d;
+  Body3D &b = scene->body.solid;
   PetscFunctionBeginUser;
   PetscCall(CheckNoSheetOptions(comm, in));
   b = Body3D();
@@ -274,10 +274,10 @@ PetscErrorCode CheckBody3D(MPI_Comm comm, const SceneInput &in, Scene *scene)
   const bool centroids = centroid_solid < b.solid.solids.size();
   PointCloud points;
   if (!in.cloud.empty() || centroids) PetscCall(GivenPoints3D(comm, in, centroid_solid, &b, &points));
-  else PetscCall(LatticePoints3D(comm, in, scene->body.dx, &b, &points));
+  else PetscCall(LatticePoints3D(comm, in, scene->body.sheet.dx, &b, &points));
   SetExtent(points, &b);
-  scene->body    = Body2D();
-  scene->body.dx = b.solid.dx; // (the spacing every section reads: the time-step bound, the (smallest) horizon)
+  scene->body.sheet    = Body2D();
+  scene->body.sheet.dx = b.solid.dx; // (the spacing every section reads: the time-step bound, the (smallest) horizon)
   PetscCall(CheckHorizonFactor(comm, *scene));
   PetscFunctionReturn(0);
 }

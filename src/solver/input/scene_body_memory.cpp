@@ -91,29 +91,29 @@ PetscErrorCode CheckMemory(MPI_Comm comm, const Scene &scene, int64_t points, do
              "%lld material points need about %.3g GB on each of %d rank(s), %.3g times what a rank's process limit leaves it (ulimit -v "
              "or -d, RLIMIT_AS/RLIMIT_DATA; %.3g GB left on rank 0): raise the limit, run on more ranks, or use a coarser %s",
              static_cast<long long>(points), per_rank / gb, size, worst, rank == 0 ? room / gb : 0.0,
-             scene.dimension == 3 && (scene.body3d.given_points || scene.body3d.centroids) ? "point set" : "-body_dx");
+             scene.dimension == 3 && (scene.body.solid.given_points || scene.body.solid.centroids) ? "point set" : "-body_dx");
   if (available <= 0 || needed <= available) PetscFunctionReturn(0);
   // Points go as 1/dx^2 (3D: 1/dx^3): the spacing at which the estimate just fits.
-  const double      dx_fit = scene.body.dx * (scene.dimension == 3 ? std::cbrt(needed / available) : std::sqrt(needed / available));
+  const double      dx_fit = scene.body.sheet.dx * (scene.dimension == 3 ? std::cbrt(needed / available) : std::sqrt(needed / available));
   const std::string what   = Format("%lld material points and %.3g bonds, about %.3g GB (%.3g GB on each of %d rank(s); %.2g KB a point "
                                     "at delta = %g x spacing), but this machine has %.3g GB available (MemAvailable, /proc/meminfo)",
                                     static_cast<long long>(points), static_cast<double>(points) * bonds_per_point,
                                     static_cast<double>(points) * bytes_per_point / gb, per_rank / gb, size, bytes_per_point / 1e3,
-                                    scene.horizon_factor, available / gb);
+                                    scene.body.horizon_factor, available / gb);
   // Given points have no -body_dx (it is refused with them): the fix is fewer points at
   // their source, about needed / available times fewer (a spacing that much coarser).
-  const Body2D &b = scene.body;
-  if (scene.body3d.centroids)
+  const Body2D &b = scene.body.sheet;
+  if (scene.body.solid.centroids)
     SETERRQ(comm, PETSC_ERR_USER, "%s",
             Format("-body_%s_discretisation centroids: the tetrahedra of '%s' give %s: mesh it about %.2g times coarser, use the "
                    "lattice (-body_dx) instead, or run on more machines",
-                   scene.body3d.solid_names[0].c_str(), scene.body3d.source.c_str(), what.c_str(), 1.05 * std::cbrt(needed / available))
+                   scene.body.solid.solid_names[0].c_str(), scene.body.solid.source.c_str(), what.c_str(), 1.05 * std::cbrt(needed / available))
                 .c_str());
-  if (scene.body3d.given_points)
+  if (scene.body.solid.given_points)
     SETERRQ(comm, PETSC_ERR_USER, "%s",
             Format("-body_cloud '%s' gives %s: give a cloud about %.2g times coarser in spacing, a smaller -horizon_factor (bonds go as "
                    "its cube in 3D), or run on more machines",
-                   scene.body3d.source.c_str(), what.c_str(), 1.05 * std::cbrt(needed / available))
+                   scene.body.solid.source.c_str(), what.c_str(), 1.05 * std::cbrt(needed / available))
                 .c_str());
   if (b.given_points) {
     const Shape *mesh = nullptr;
@@ -144,7 +144,7 @@ PetscErrorCode CheckMemory(MPI_Comm comm, const Scene &scene, int64_t points, do
 PetscErrorCode CheckBodyFits(MPI_Comm comm, const Scene &scene)
 {
   PetscFunctionBeginUser;
-  const double f = scene.horizon_factor; // bonds a point on the lattice: the horizon's area (2D) or volume (3D) in cells
+  const double f = scene.body.horizon_factor; // bonds a point on the lattice: the horizon's area (2D) or volume (3D) in cells
   PetscCall(CheckMemory(comm, scene, ScenePointEstimate(scene), scene.dimension == 3 ? 4.0 / 3.0 * M_PI * f * f * f : M_PI * f * f));
   PetscFunctionReturn(0);
 }

@@ -156,7 +156,7 @@ PetscErrorCode CheckRegion(const RegionInput &r, LoadSet *set, EdgeRows *grip_ro
 {
   const LoadInput &li    = r.li;
   const char      *n     = li.name.c_str();
-  const bool       three = r.scene.dimension == 3;
+  const bool       three = r.dimension == 3;
   const char      *choices = RegionChoices(three);
   PetscFunctionBeginUser;
   SceneCheck(li.region_set, r.comm, "-load_%s_region is required for load set '%s': choose %s%s", n, n, choices,
@@ -205,7 +205,7 @@ PetscErrorCode CheckComponents(MPI_Comm comm, const LoadInput &li, const Scene &
                "-load_%s_%c stretch",
                n, axis, n, axis, to_string(load), n, axis);
     if (load != ComponentLoad::stretch) continue;
-    SceneCheck(!scene.schedule.time.empty(), comm,
+    SceneCheck(!scene.loading.schedule.time.empty(), comm,
                "-load_%s_%c stretch needs a stretch schedule: give -load_schedule t0,lambda0,t1,lambda1,... (e.g. 0,1,10,2 ramps lambda "
                "from 1 to 2 over 10 s)%s",
                n, axis, MisspeltHint("-load_schedule").c_str());
@@ -245,9 +245,9 @@ PetscErrorCode CheckGripsSeparate(MPI_Comm comm, const Scene &scene)
   };
   PetscFunctionBeginUser;
   for (int c = 0; c < scene.dimension; ++c)
-    for (const LoadSet &lo : scene.loads) {
+    for (const LoadSet &lo : scene.loading.sets) {
       if (lo.region != lower[c] || lo.component(c) == ComponentLoad::free) continue;
-      for (const LoadSet &up : scene.loads) {
+      for (const LoadSet &up : scene.loading.sets) {
         if (up.region != upper[c] || up.component(c) == ComponentLoad::free) continue;
         const double s_lo = lo.component(c) == ComponentLoad::stretch ? scale(lo, c) : 0.0;
         const double s_up = up.component(c) == ComponentLoad::stretch ? scale(up, c) : 0.0;
@@ -270,7 +270,7 @@ PetscErrorCode CheckGripField(MPI_Comm comm, const SceneInput &in, Scene *scene)
 {
   int top = 0, bottom = 0, outside = 0, edges = 0, regions = 0;
   PetscFunctionBeginUser;
-  for (const LoadSet &l : scene->loads) {
+  for (const LoadSet &l : scene->loading.sets) {
     if (l.y == ComponentLoad::free) continue;
     const bool is_edge = region_type(l.region).edge; // (an edge of a sheet, a face of a 3D body)
     edges += is_edge;
@@ -283,11 +283,11 @@ PetscErrorCode CheckGripField(MPI_Comm comm, const SceneInput &in, Scene *scene)
   // The default: affine where it applies, to a top and a bottom grip outside (a 3D
   // body's grips are its own points: rigid unless asked, as region grips in 2D).
   if (field == "auto")
-    scene->grip_field = top == 1 && bottom == 1 && outside == 2 ? GripField::affine : GripField::rigid;
-  else if (field == "rigid") scene->grip_field = GripField::rigid;
-  else if (field == "affine") scene->grip_field = GripField::affine;
+    scene->loading.grip_field = top == 1 && bottom == 1 && outside == 2 ? GripField::affine : GripField::rigid;
+  else if (field == "rigid") scene->loading.grip_field = GripField::rigid;
+  else if (field == "affine") scene->loading.grip_field = GripField::affine;
   else SETERRQ(comm, PETSC_ERR_USER, "%s", Format("-load_grip_field '%s' is not a choice: choose rigid, affine or auto", in.grip_field.c_str()).c_str());
-  if (scene->grip_field == GripField::affine) {
+  if (scene->loading.grip_field == GripField::affine) {
     // Edge grips: one top and one bottom. Region grips (any shape: the outside
     // treatment's equivalent, Loading::SetAffineLevers): exactly two sets hold y, and
     // no edge set does; which is the top one is found from their points at setup.
@@ -305,14 +305,14 @@ PetscErrorCode CheckGripField(MPI_Comm comm, const SceneInput &in, Scene *scene)
 
 SetFamily LoadSetFamily() { return {"-load_", "-load_sets", OptionRowSuffixes(kLoadSetOptions)}; }
 
-PetscErrorCode ReadLoading(MPI_Comm comm, Scene *scene, SceneInput *in)
+PetscErrorCode ReadLoading(MPI_Comm comm, LoadingSection *loading, SceneInput *in)
 {
   PetscFunctionBeginUser;
   PetscCall(ReadOptionBlock(comm, nullptr, "Loading: grips (load sets) following a stretch schedule", [&](OptionReader &r) -> PetscErrorCode {
     PetscCall(r.StringArray("-load_sets", "Names of the load sets name1,name2,... (each set S is configured by -load_S_...)", &in->load_names));
     PetscCall(r.RealArray("-load_schedule", "Stretch schedule t0,lambda0,t1,lambda1,... [s, -], piecewise linear (default: none)", &in->schedule,
                           &in->schedule_set));
-    PetscCall(r.Real("-load_reference_length", "Length L in u = scale (lambda - 1) L [m] (default: body height)", &scene->reference_length,
+    PetscCall(r.Real("-load_reference_length", "Length L in u = scale (lambda - 1) L [m] (default: body height)", &loading->reference_length,
                      &in->reference_length_set));
     PetscCall(r.String("-load_grip_placement",
                        "Where edge grips are, unless a set says: outside (clamps added beyond the specimen, which is the free "
@@ -338,14 +338,14 @@ PetscErrorCode ReadLoading(MPI_Comm comm, Scene *scene, SceneInput *in)
 PetscErrorCode CheckLoading(MPI_Comm comm, const SceneInput &in, Scene *scene, EdgeRows *grip_rows)
 {
   PetscFunctionBeginUser;
-  PetscCall(CheckSchedule(comm, in, &scene->schedule));
+  PetscCall(CheckSchedule(comm, in, &scene->loading.schedule));
   // The free length: the specimen's height between grips outside it; the whole
   // height (grip rows included) for the paper's grips inside it.
   if (in.reference_length_set)
-    SceneCheck(scene->reference_length > 0, comm,
+    SceneCheck(scene->loading.reference_length > 0, comm,
                "-load_reference_length %g: the length that turns stretch into displacement must be > 0 m (default: the body height)",
-               scene->reference_length);
-  else scene->reference_length = scene->dimension == 3 ? scene->body3d.hi[1] - scene->body3d.lo[1] : scene->body.height; // (3D: the extent along y)
+               scene->loading.reference_length);
+  else scene->loading.reference_length = scene->dimension == 3 ? scene->body.solid.hi[1] - scene->body.solid.lo[1] : scene->body.sheet.height; // (3D: the extent along y)
 
   GripPlacement     default_placement = GripPlacement::outside;
   const std::string placement_all     = Lower(in.grip_placement);
@@ -353,13 +353,13 @@ PetscErrorCode CheckLoading(MPI_Comm comm, const SceneInput &in, Scene *scene, E
   else SceneCheck(placement_all == "outside", comm, "-load_grip_placement '%s' is not a choice: choose outside or inside",
                   in.grip_placement.c_str());
   *grip_rows = {};
-  scene->loads.clear();
+  scene->loading.sets.clear();
   for (const LoadInput &li : in.loads) {
     LoadSet set;
     set.name = li.name;
-    PetscCall(CheckRegion({comm, li, in, *scene, default_placement}, &set, grip_rows));
+    PetscCall(CheckRegion({comm, li, in, scene->body, scene->dimension, default_placement}, &set, grip_rows));
     PetscCall(CheckComponents(comm, li, *scene, &set));
-    scene->loads.push_back(set);
+    scene->loading.sets.push_back(set);
   }
   PetscCall(CheckGripsSeparate(comm, *scene));
   PetscCall(CheckGripField(comm, in, scene));
@@ -368,19 +368,20 @@ PetscErrorCode CheckLoading(MPI_Comm comm, const SceneInput &in, Scene *scene, E
 
 std::string LoadingText(const Scene &s)
 {
-  const bool  three = s.dimension == 3;
-  std::string text;
+  const bool       three  = s.dimension == 3;
+  const BodyExtent extent = BodyExtentOf(s);
+  std::string      text;
   auto        component = [](ComponentLoad c, double scale) {
     return c == ComponentLoad::stretch ? Format("stretch (scale %g)", scale) : std::string(to_string(c));
   };
-  for (const LoadSet &l : s.loads)
-    text += Format("  load set  %s: %s; x %s, y %s%s\n", l.name.c_str(), RegionText(s, l).c_str(), component(l.x, l.x_scale).c_str(),
+  for (const LoadSet &l : s.loading.sets)
+    text += Format("  load set  %s: %s; x %s, y %s%s\n", l.name.c_str(), RegionText(extent, l).c_str(), component(l.x, l.x_scale).c_str(),
                    component(l.y, l.y_scale).c_str(), three ? (", z " + component(l.z, l.z_scale)).c_str() : "");
-  if (s.loads.empty()) text += "  load set  none\n";
-  if (!s.schedule.time.empty()) {
+  if (s.loading.sets.empty()) text += "  load set  none\n";
+  if (!s.loading.schedule.time.empty()) {
     text += "  schedule  (t, lambda):";
-    for (std::size_t k = 0; k < s.schedule.time.size(); ++k) text += Format(" (%g s, %g)", s.schedule.time[k], s.schedule.stretch[k]);
-    text += Format("; u = scale (lambda - 1) %g m; grip field %s\n", s.reference_length, to_string(s.grip_field));
+    for (std::size_t k = 0; k < s.loading.schedule.time.size(); ++k) text += Format(" (%g s, %g)", s.loading.schedule.time[k], s.loading.schedule.stretch[k]);
+    text += Format("; u = scale (lambda - 1) %g m; grip field %s\n", s.loading.reference_length, to_string(s.loading.grip_field));
   }
   return text;
 }

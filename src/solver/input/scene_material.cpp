@@ -105,45 +105,44 @@ const OptionTable<SceneInput> &MaterialChoiceOptions()
   return table;
 }
 
-// Failure: the values in the Scene, whether a criterion was given in the SceneInput.
-const OptionTable<Scene, SceneInput> kFailureOptions = {
-    {"-failure_critical_stretch", "Critical bond stretch s_c [-], > 1 (paper: 7.2); absent: no failure", &Scene::critical_stretch,
+// Failure: the values in the section, whether a criterion was given and the softening
+// law as given (a choice, kept until CheckFailure names it) in the SceneInput.
+const OptionTable<FailureSection, SceneInput> kFailureOptions = {
+    {"-failure_critical_stretch", "Critical bond stretch s_c [-], > 1 (paper: 7.2); absent: no failure", &FailureSection::critical_stretch,
      &SceneInput::critical_stretch_set, "7.2"},
     {"-failure_fracture_energy",
      "Fracture energy Gamma [J/m^2], > 0: a bond breaks once its pair energy reaches the critical one that "
      "Gamma and the horizon set, so that a crack starts where G = Gamma on any grid (docs/method.md 5.2)",
-     &Scene::fracture_energy, &SceneInput::fracture_energy_set, "165"},
+     &FailureSection::fracture_energy, &SceneInput::fracture_energy_set, "165"},
     {"-failure_tip_concentration",
      "With -failure_fracture_energy: kappa [-], the pair energy of the first bond to break at a crack tip over "
      "its crossing-bond share of the energy release rate; critical pair energy kappa Gamma / c (1: the "
      "crossing-bond count alone; docs/method.md 5.2)",
-     &Scene::tip_concentration},
+     &FailureSection::tip_concentration},
     {"-failure_passes",
      "With -failure_fracture_energy: breaking passes a step at the same positions [-], >= 0 (0, the default: "
      "until no bond meets the criterion, the bonds that a pass loads past it break at once; 1: one pass a "
      "step, the earlier behaviour; docs/method.md 5.2)",
-     &Scene::failure_passes},
-};
-const OptionTable<SceneInput> kFailureChoiceOptions = {
+     &FailureSection::passes},
     {"-failure_softening",
      "With -failure_fracture_energy: none (the default: a bond breaks at once at the critical pair "
      "energy) | linear | exponential (it softens from there, its force and energy scaled by 1 - d, and "
      "breaks once its work reaches its share of Gamma; docs/method.md 5.4)",
-     &SceneInput::softening},
+     GivenText<SceneInput>{&SceneInput::softening}},
 };
 
 } // namespace
 
-PetscErrorCode ReadMaterial(MPI_Comm comm, Scene *scene, SceneInput *in)
+PetscErrorCode ReadMaterial(MPI_Comm comm, MaterialSection *material, FailureSection *failure, SceneInput *in)
 {
-  MaterialParameters &m = scene->material;
+  MaterialParameters &m = material->parameters;
   PetscFunctionBeginUser;
   PetscCall(ReadOptionBlock(comm, nullptr, "Material", [&](OptionReader &r) -> PetscErrorCode {
     PetscCall(ReadOptionRows(r, MaterialChoiceOptions(), in));
     PetscCall(r.Real("-material_volumetric_stabilisation",
                      "With -material_volumetric point: kappa / mu [-], the modulus that holds each bond's J_ij near its "
                      "point's mean (the odd-even mode; a few mu: not K, which would lock again; docs/method.md section 8)",
-                     &scene->volumetric_stabilisation));
+                     &material->volumetric_stabilisation));
     PetscCall(r.Real("-material_mu", "Shear modulus mu [Pa] (paper: 4.55e3)", &m.mu));
     // every law's own parameters (defaults: the members' initialisers), listed for all
     // laws so that -help shows them and a file may carry them whatever the model (those
@@ -163,14 +162,10 @@ PetscErrorCode ReadMaterial(MPI_Comm comm, Scene *scene, SceneInput *in)
     PetscCall(r.Real("-material_D", "Compressibility D [1/Pa]; bulk modulus K = 2/D (default 2/(1000 mu), i.e. K = 1000 mu)", &m.D, &in->D_set));
     PetscCall(r.Real("-material_bulk_ratio", "Bulk to shear modulus ratio K/mu [-]; sets D = 2/(ratio mu) (give this or -material_D)",
                      &in->bulk_ratio, &in->bulk_ratio_set));
-    PetscCall(r.Real("-material_density", "Mass density [kg/m^3]", &scene->density));
+    PetscCall(r.Real("-material_density", "Mass density [kg/m^3]", &material->density));
     return 0;
   }));
-  // (the softening law is a choice, kept as given until CheckFailure names it)
-  PetscCall(ReadOptionBlock(comm, nullptr, "Failure (no option: bonds never break; give one of the two)", [&](OptionReader &r) -> PetscErrorCode {
-    PetscCall(ReadOptionRows(r, kFailureOptions, scene, in));
-    return ReadOptionRows(r, kFailureChoiceOptions, in);
-  }));
+  PetscCall(ReadOptionTable(comm, "Failure (no option: bonds never break; give one of the two)", kFailureOptions, failure, in));
   PetscFunctionReturn(0);
 }
 
@@ -182,10 +177,10 @@ PetscErrorCode CheckLawChoice(MPI_Comm comm, const SceneInput &in, Scene *scene)
   PetscFunctionBeginUser;
   std::string model = Lower(in.model);
   std::replace(model.begin(), model.end(), '-', '_'); // "neo-hookean" as the paper writes it
-  if (!parse(model, scene->model))
+  if (!parse(model, scene->material.model))
     SETERRQ(comm, PETSC_ERR_USER, "%s",
             Format("-material_model '%s' is not a model: choose %s", in.model.c_str(), ModelChoices().c_str()).c_str());
-  if (!parse(Lower(in.formulation), scene->formulation))
+  if (!parse(Lower(in.formulation), scene->material.formulation))
     SETERRQ(comm, PETSC_ERR_USER, "%s",
             Format("-material_formulation '%s' is not a formulation: choose plane_stress, plane_strain or plane_stress_incompressible", in.formulation.c_str()).c_str());
   const bool three = scene->dimension == 3;
@@ -203,31 +198,31 @@ PetscErrorCode CheckForce(MPI_Comm comm, const SceneInput &in, Scene *scene)
   PetscFunctionBeginUser;
   std::string form = Lower(in.force_form);
   std::replace(form.begin(), form.end(), '-', '_');
-  if (form == "bond_only") scene->force_form = ForceForm::bond_only;
-  else if (form == "energy_consistent") scene->force_form = ForceForm::energy_consistent;
+  if (form == "bond_only") scene->material.force_form = ForceForm::bond_only;
+  else if (form == "energy_consistent") scene->material.force_form = ForceForm::energy_consistent;
   else
     SETERRQ(comm, PETSC_ERR_USER, "%s",
             Format("-force_form '%s' is not a force form: choose bond_only (the paper's) or energy_consistent", in.force_form.c_str()).c_str());
   const std::string volumetric = Lower(in.volumetric);
-  if (volumetric == "bond" || volumetric == "point") scene->volumetric = volumetric == "point" ? Volumetric::point : Volumetric::bond;
+  if (volumetric == "bond" || volumetric == "point") scene->material.volumetric = volumetric == "point" ? Volumetric::point : Volumetric::bond;
   else
     SETERRQ(comm, PETSC_ERR_USER, "%s",
             Format("-material_volumetric '%s' is not a choice: choose bond (the paper's) or point (no volumetric locking)",
                    in.volumetric.c_str()).c_str());
-  SceneCheck(scene->volumetric_stabilisation >= 0.0, comm,
-             "-material_volumetric_stabilisation %g is negative: give kappa / mu >= 0 (default 10)", scene->volumetric_stabilisation);
-  SceneCheck(!(scene->volumetric == Volumetric::point && scene->force_form != ForceForm::energy_consistent), comm,
+  SceneCheck(scene->material.volumetric_stabilisation >= 0.0, comm,
+             "-material_volumetric_stabilisation %g is negative: give kappa / mu >= 0 (default 10)", scene->material.volumetric_stabilisation);
+  SceneCheck(!(scene->material.volumetric == Volumetric::point && scene->material.force_form != ForceForm::energy_consistent), comm,
              "-material_volumetric point is written for the energy-consistent force: remove -force_form bond_only, or use "
              "-material_volumetric bond");
-  SceneCheck(!(scene->volumetric == Volumetric::point && !three && scene->formulation != Formulation::plane_strain), comm,
+  SceneCheck(!(scene->material.volumetric == Volumetric::point && !three && scene->material.formulation != Formulation::plane_strain), comm,
              "-material_volumetric point relaxes the volumetric constraint of plane strain and 3D; plane stress has none (C33 "
              "takes it): add -material_formulation plane_strain, or use -material_volumetric bond");
   // auto: the bond-only force corrected (its bulk is 4.2 % soft without); the
   // energy-consistent form (the default force form: the bond-only one folds the free
   // corners next to grips outside, docs/stress_consistency.md) is stress-consistent as it is.
   if (Lower(in.stress_correction) == "auto")
-    scene->stress_correction = scene->force_form == ForceForm::bond_only ? StressCorrection::tensor : StressCorrection::none;
-  else if (!parse(Lower(in.stress_correction), scene->stress_correction))
+    scene->material.stress_correction = scene->material.force_form == ForceForm::bond_only ? StressCorrection::tensor : StressCorrection::none;
+  else if (!parse(Lower(in.stress_correction), scene->material.stress_correction))
     SETERRQ(comm, PETSC_ERR_USER, "%s",
             Format("-force_stress_correction '%s' is not a correction: choose none (the paper's force), tensor, scalar or auto",
                    in.stress_correction.c_str()).c_str());
@@ -237,29 +232,29 @@ PetscErrorCode CheckForce(MPI_Comm comm, const SceneInput &in, Scene *scene)
   // bit for bit (patch_correction.hpp). The same in 3D (a -body_cloud or a mesh's
   // centroids: body3d.given_points).
   const std::string patch = Lower(in.patch_correction);
-  const bool        given = three ? scene->body3d.given_points != nullptr : scene->body.given_points != nullptr;
+  const bool        given = three ? scene->body.solid.given_points != nullptr : scene->body.sheet.given_points != nullptr;
   if (patch == "auto")
-    scene->patch_correction = scene->force_form == ForceForm::bond_only && given ? PatchCorrection::virial : PatchCorrection::off;
-  else if (patch == "virial") scene->patch_correction = PatchCorrection::virial;
-  else if (patch == "on" || patch == "off") scene->patch_correction = patch == "on" ? PatchCorrection::lambda : PatchCorrection::off;
+    scene->material.patch_correction = scene->material.force_form == ForceForm::bond_only && given ? PatchCorrection::virial : PatchCorrection::off;
+  else if (patch == "virial") scene->material.patch_correction = PatchCorrection::virial;
+  else if (patch == "on" || patch == "off") scene->material.patch_correction = patch == "on" ? PatchCorrection::lambda : PatchCorrection::off;
   else
     SETERRQ(comm, PETSC_ERR_USER, "%s",
             Format("-force_patch_correction '%s' is not a choice: choose virial, on, off or auto (virial for a point cloud or "
                    "element centroids)",
                    in.patch_correction.c_str()).c_str());
-  SceneCheck(!(scene->patch_correction != PatchCorrection::off && scene->force_form != ForceForm::bond_only), comm,
+  SceneCheck(!(scene->material.patch_correction != PatchCorrection::off && scene->material.force_form != ForceForm::bond_only), comm,
              "-force_patch_correction %s corrects the bond-only force only: add -force_form bond_only, or leave the option at auto",
-             to_string(scene->patch_correction));
+             to_string(scene->material.patch_correction));
   PetscFunctionReturn(0);
 }
 
 // -material_D or -material_bulk_ratio (default K = 1000 mu): D.
 PetscErrorCode CheckCompressibility(MPI_Comm comm, const SceneInput &in, Scene *scene)
 {
-  MaterialParameters &m = scene->material;
+  MaterialParameters &m = scene->material.parameters;
   PetscFunctionBeginUser;
   // (kept, not refused: a scene file's K may meet this formulation on the command line)
-  if (scene->formulation == Formulation::plane_stress_incompressible && (in.D_set || in.bulk_ratio_set))
+  if (scene->material.formulation == Formulation::plane_stress_incompressible && (in.D_set || in.bulk_ratio_set))
     PetscCall(Warn(comm, Format("%s is not used: -material_formulation plane_stress_incompressible holds J = 1 exactly; use "
                                 "-material_formulation plane_stress for a finite bulk modulus",
                                 in.D_set ? "-material_D" : "-material_bulk_ratio")));
@@ -295,29 +290,29 @@ PetscErrorCode CheckCompressibility(MPI_Comm comm, const SceneInput &in, Scene *
 // The law's parameters, the density, and the volumetric-locking warning.
 PetscErrorCode CheckLawParameters(MPI_Comm comm, const SceneInput &in, Scene *scene)
 {
-  const MaterialParameters &m     = scene->material;
+  const MaterialParameters &m     = scene->material.parameters;
   const bool                three = scene->dimension == 3;
   PetscFunctionBeginUser;
   // -material_mu, the law's own (-material_Jm), -material_D; then whether the law runs in
   // the formulation (the plane-stress solve refuses laws it cannot solve)
   // (3D: the parameters as plane strain checks them, which accepts every law; each has
   // a 3D form: with_model_3d, models.hpp)
-  std::string problems = check_model(scene->model, three ? Formulation::plane_strain : scene->formulation, m);
+  std::string problems = check_model(scene->material.model, three ? Formulation::plane_strain : scene->material.formulation, m);
   if (!problems.empty() && problems.back() == '\n') problems.pop_back();
   PetscCheck(problems.empty(), comm, PETSC_ERR_USER, "%s", problems.c_str());
-  PetscCall(WarnOtherLawsOptions(comm, in, scene->model));
-  SceneCheck(scene->density > 0, comm, "-material_density %g: the density must be > 0 kg/m^3 (a hydrogel: about 1000)",
-             scene->density);
+  PetscCall(WarnOtherLawsOptions(comm, in, scene->material.model));
+  SceneCheck(scene->material.density > 0, comm, "-material_density %g: the density must be > 0 kg/m^3 (a hydrogel: about 1000)",
+             scene->material.density);
   // Volumetric locking (docs/validation_3d.md 7.4): with U(J_ij) per bond a nearly
   // incompressible body in plane strain or 3D is too stiff: +9 % against the point form at
   // K = 100 mu (Poisson's ratio 0.495), +47 to +94 % against the FE at 1000 mu; at 10 mu
   // (0.45) it is not (7.2). 100 mu is where the error outgrows the discretisation's.
   const double bulk_ratio = 2.0 / (m.D * m.mu);
-  if ((three || scene->formulation == Formulation::plane_strain) && scene->volumetric == Volumetric::bond && bulk_ratio >= 100.0)
+  if ((three || scene->material.formulation == Formulation::plane_strain) && scene->material.volumetric == Volumetric::bond && bulk_ratio >= 100.0)
     PetscCall(Warn(comm, Format("K = %g mu in %s with -material_volumetric bond (the paper's) locks: the body comes out too stiff "
                                 "(+9 %% at K = 100 mu, +47 to +94 %% at 1000 mu, docs/validation_3d.md 7.4); add -material_volumetric point%s",
                                 bulk_ratio, three ? "3D" : "plane strain",
-                                scene->force_form == ForceForm::energy_consistent ? "" : " with the energy-consistent force")));
+                                scene->material.force_form == ForceForm::energy_consistent ? "" : " with the energy-consistent force")));
   PetscFunctionReturn(0);
 }
 
@@ -326,49 +321,49 @@ PetscErrorCode CheckLawParameters(MPI_Comm comm, const SceneInput &in, Scene *sc
 PetscErrorCode CheckFailure(MPI_Comm comm, const SceneInput &in, Scene *scene)
 {
   PetscFunctionBeginUser;
-  scene->failure = in.critical_stretch_set || in.fracture_energy_set;
+  scene->failure.enabled = in.critical_stretch_set || in.fracture_energy_set;
   SceneCheck(!(in.critical_stretch_set && in.fracture_energy_set), comm,
              "-failure_critical_stretch %g and -failure_fracture_energy %g: give one failure criterion (the critical stretch is "
              "the paper's and belongs to one grid; the fracture energy is the gel's and holds on any grid)",
-             scene->critical_stretch, scene->fracture_energy);
+             scene->failure.critical_stretch, scene->failure.fracture_energy);
   if (in.critical_stretch_set)
-    SceneCheck(scene->critical_stretch > 1, comm,
+    SceneCheck(scene->failure.critical_stretch > 1, comm,
                "-failure_critical_stretch %g: a bond breaks once stretched past s_c, so s_c must be > 1 (paper: 7.2); leave the option "
                "out for no failure",
-               scene->critical_stretch);
-  else scene->critical_stretch = 0.0;
+               scene->failure.critical_stretch);
+  else scene->failure.critical_stretch = 0.0;
   if (in.fracture_energy_set)
-    SceneCheck(scene->fracture_energy > 0 && std::isfinite(scene->fracture_energy), comm,
+    SceneCheck(scene->failure.fracture_energy > 0 && std::isfinite(scene->failure.fracture_energy), comm,
                "-failure_fracture_energy %g: the fracture energy Gamma must be > 0 J/m^2 (hydrogels: 10 to 1000 J/m^2); leave "
                "the option out for no failure",
-               scene->fracture_energy);
-  else scene->fracture_energy = 0.0;
-  SceneCheck(scene->tip_concentration > 0 && scene->tip_concentration <= 1, comm,
+               scene->failure.fracture_energy);
+  else scene->failure.fracture_energy = 0.0;
+  SceneCheck(scene->failure.tip_concentration > 0 && scene->failure.tip_concentration <= 1, comm,
              "-failure_tip_concentration %g: kappa is a fraction in (0, 1] (default 0.43, measured for the BA force; 1: the "
              "crossing-bond count alone)",
-             scene->tip_concentration);
+             scene->failure.tip_concentration);
   const std::string softening = Lower(in.softening);
-  if (softening == "linear") scene->softening = Softening::linear;
-  else if (softening == "exponential") scene->softening = Softening::exponential;
+  if (softening == "linear") scene->failure.softening = Softening::linear;
+  else if (softening == "exponential") scene->failure.softening = Softening::exponential;
   else
     SceneCheck(softening == "none", comm,
                "-failure_softening '%s' is not a softening law: choose none (the default), linear or exponential",
                in.softening.c_str());
-  SceneCheck(scene->softening == Softening::none || (in.fracture_energy_set && scene->tip_concentration < 1), comm,
+  SceneCheck(scene->failure.softening == Softening::none || (in.fracture_energy_set && scene->failure.tip_concentration < 1), comm,
              "-failure_softening %s: softening starts at the fracture-energy criterion's onset, kappa Gamma, and dissipates "
              "Gamma: give -failure_fracture_energy with -failure_tip_concentration below 1",
-             to_string(scene->softening));
-  SceneCheck(scene->softening == Softening::none || scene->solver != SolverKind::static_newton, comm,
+             to_string(scene->failure.softening));
+  SceneCheck(scene->failure.softening == Softening::none || scene->run.solver != SolverKind::static_newton, comm,
              "-failure_softening %s: the static solver's tangent does not know the bonds' damage; use the dynamic solver "
              "(-solver dynamic)",
-             to_string(scene->softening));
-  SceneCheck(scene->softening == Softening::none || scene->volumetric != Volumetric::point, comm,
+             to_string(scene->failure.softening));
+  SceneCheck(scene->failure.softening == Softening::none || scene->material.volumetric != Volumetric::point, comm,
              "-failure_softening %s: the point volumetric energy is not softened; use -material_volumetric bond",
-             to_string(scene->softening));
-  SceneCheck(scene->failure_passes >= 0, comm,
+             to_string(scene->failure.softening));
+  SceneCheck(scene->failure.passes >= 0, comm,
              "-failure_passes %" PetscInt_FMT ": give the most breaking passes a step, >= 1, or 0 (the default) for passes until "
              "no bond meets the criterion",
-             scene->failure_passes);
+             scene->failure.passes);
   PetscFunctionReturn(0);
 }
 
@@ -376,26 +371,26 @@ PetscErrorCode CheckFailure(MPI_Comm comm, const SceneInput &in, Scene *scene)
 
 std::string MaterialText(const Scene &s)
 {
-  const double K    = 2.0 / s.material.D;
-  std::string  text = Format("  material  %s, %s: mu %g Pa", to_string(s.model), s.dimension == 3 ? "3D" : to_string(s.formulation), s.material.mu);
-  text += parameter_summary(s.model, s.material); // (every law's own: the registry's summary)
-  if (s.dimension == 2 && s.formulation == Formulation::plane_stress_incompressible)
-    text += Format(", incompressible (J = 1, C33 = 1/det C~; D not used), density %g kg/m^3\n", s.density);
+  const double K    = 2.0 / s.material.parameters.D;
+  std::string  text = Format("  material  %s, %s: mu %g Pa", to_string(s.material.model), s.dimension == 3 ? "3D" : to_string(s.material.formulation), s.material.parameters.mu);
+  text += parameter_summary(s.material.model, s.material.parameters); // (every law's own: the registry's summary)
+  if (s.dimension == 2 && s.material.formulation == Formulation::plane_stress_incompressible)
+    text += Format(", incompressible (J = 1, C33 = 1/det C~; D not used), density %g kg/m^3\n", s.material.density);
   else
-    text += Format(", D %g 1/Pa (bulk modulus K = 2/D = %g Pa = %g mu), density %g kg/m^3\n", s.material.D, K, K / s.material.mu, s.density);
-  text += Format("  force     %s", to_string(s.force_form));
-  if (s.stress_correction != StressCorrection::none) // (absent by default: the summary stays as it was)
-    text += Format(", stress correction %s%s", to_string(s.stress_correction),
-                   s.force_form == ForceForm::energy_consistent ? " (the identity for this form)" : "");
-  if (s.patch_correction != PatchCorrection::off) text += Format(", patch correction %s", to_string(s.patch_correction));
-  if (s.volumetric == Volumetric::point)
-    text += Format(", volumetric energy per point (mean dilatation), stabilisation %g mu", s.volumetric_stabilisation);
+    text += Format(", D %g 1/Pa (bulk modulus K = 2/D = %g Pa = %g mu), density %g kg/m^3\n", s.material.parameters.D, K, K / s.material.parameters.mu, s.material.density);
+  text += Format("  force     %s", to_string(s.material.force_form));
+  if (s.material.stress_correction != StressCorrection::none) // (absent by default: the summary stays as it was)
+    text += Format(", stress correction %s%s", to_string(s.material.stress_correction),
+                   s.material.force_form == ForceForm::energy_consistent ? " (the identity for this form)" : "");
+  if (s.material.patch_correction != PatchCorrection::off) text += Format(", patch correction %s", to_string(s.material.patch_correction));
+  if (s.material.volumetric == Volumetric::point)
+    text += Format(", volumetric energy per point (mean dilatation), stabilisation %g mu", s.material.volumetric_stabilisation);
   text += "\n";
-  if (s.failure && s.fracture_energy > 0)
+  if (s.failure.enabled && s.failure.fracture_energy > 0)
     text += Format("  failure   bonds break at the critical pair energy of Gamma = %g J/m^2 (tip concentration %g)%s%s\n",
-                   s.fracture_energy, s.tip_concentration, s.softening == Softening::none ? "" : ", softening ",
-                   s.softening == Softening::none ? "" : to_string(s.softening));
-  else if (s.failure) text += Format("  failure   bonds break past stretch s_c = %g\n", s.critical_stretch);
+                   s.failure.fracture_energy, s.failure.tip_concentration, s.failure.softening == Softening::none ? "" : ", softening ",
+                   s.failure.softening == Softening::none ? "" : to_string(s.failure.softening));
+  else if (s.failure.enabled) text += Format("  failure   bonds break past stretch s_c = %g\n", s.failure.critical_stretch);
   else text += "  failure   none\n";
   return text;
 }

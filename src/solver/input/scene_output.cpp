@@ -21,16 +21,16 @@ namespace bapd {
 
 namespace {
 
-const OptionTable<Scene> kOutputOptions = {
-    {"-output_dir", "Directory for history and fields", &Scene::output_dir},
+const OptionTable<OutputSection> kOutputOptions = {
+    {"-output_dir", "Directory for history and fields", &OutputSection::dir},
     {"-output_interval", "Time steps between history rows [-], >= 1; the static test (-static_tolerance) runs at these rows",
-     &Scene::output_interval},
+     &OutputSection::interval},
     {"-output_history_rows",
      "History rows by load [-]: also a row at the first step at or past each end time / N of simulated time, so that "
      "a run has at least N rows whatever its step (0: only the -output_interval rows)",
-     &Scene::output_history_rows},
+     &OutputSection::history_rows},
     {"-output_final_state", "Also write final_state.csv (every point's displacement) and broken_bonds.csv at the end",
-     &Scene::output_final_state},
+     &OutputSection::final_state},
 };
 
 // Field files (fields.hpp): whether and how often; where the XDMF draws the points is
@@ -133,50 +133,50 @@ PetscErrorCode CheckCheckpoints(MPI_Comm comm, const SceneInput &in, CheckpointO
 
 } // namespace
 
-std::string OutputText(const Scene &s)
+std::string OutputText(const OutputSection &o)
 {
-  std::string text = Format("  output    %s/, history every %ld steps", s.output_dir.c_str(), (long)s.output_interval);
-  if (s.output_history_rows > 0) text += Format(" and at each 1/%ld of the end time", (long)s.output_history_rows);
+  std::string text = Format("  output    %s/, history every %ld steps", o.dir.c_str(), (long)o.interval);
+  if (o.history_rows > 0) text += Format(" and at each 1/%ld of the end time", (long)o.history_rows);
   return text + "\n";
 }
 
-PetscErrorCode ReadOutput(MPI_Comm comm, Scene *scene, SceneInput *in)
+PetscErrorCode ReadOutput(MPI_Comm comm, OutputSection *output, SceneInput *in)
 {
   PetscFunctionBeginUser;
-  PetscCall(ReadOptionTable(comm, "Output", kOutputOptions, scene));
+  PetscCall(ReadOptionTable(comm, "Output", kOutputOptions, output));
   PetscCall(ReadOptionBlock(comm, nullptr, "Field output (HDF5 + XDMF for ParaView)", [&](OptionReader &r) -> PetscErrorCode {
-    PetscCall(ReadOptionRows(r, kFieldFileOptions, &scene->fields));
+    PetscCall(ReadOptionRows(r, kFieldFileOptions, &output->fields));
     return ReadOptionRows(r, kFieldGeometryOptions, in);
   }));
-  PetscCall(ReadOptionTable(comm, "Checkpoints and restart", kCheckpointOptionRows, &scene->checkpoint, in));
+  PetscCall(ReadOptionTable(comm, "Checkpoints and restart", kCheckpointOptionRows, &output->checkpoint, in));
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode CheckOutput(MPI_Comm comm, const SceneInput &in, Scene *scene)
 {
   PetscFunctionBeginUser;
-  SceneCheck(!scene->output_dir.empty(), comm, "-output_dir is empty: give a directory, e.g. -output_dir output");
+  SceneCheck(!scene->output.dir.empty(), comm, "-output_dir is empty: give a directory, e.g. -output_dir output");
   {
     // Rank 0 writes the output: it checks, every rank hears its verdict.
     PetscMPIInt rank;
     std::string problem;
     PetscCallMPI(MPI_Comm_rank(comm, &rank));
-    if (rank == 0) problem = OutputDirProblem(scene->output_dir);
+    if (rank == 0) problem = OutputDirProblem(scene->output.dir);
     int length = static_cast<int>(problem.size());
     PetscCallMPI(MPI_Bcast(&length, 1, MPI_INT, 0, comm));
     problem.resize(static_cast<std::size_t>(length));
     PetscCallMPI(MPI_Bcast(problem.data(), length, MPI_CHAR, 0, comm));
     SceneCheck(problem.empty(), comm, "-output_dir %s cannot be created or written: %s; choose a writable directory, e.g. -output_dir output",
-               ShortenedPath(scene->output_dir).c_str(), problem.c_str());
+               ShortenedPath(scene->output.dir).c_str(), problem.c_str());
   }
-  SceneCheck(scene->output_interval >= 1, comm,
-             "-output_interval %" PetscInt_FMT ": history rows are written every N >= 1 time steps (default 100)", scene->output_interval);
-  SceneCheck(scene->output_history_rows >= 0, comm,
+  SceneCheck(scene->output.interval >= 1, comm,
+             "-output_interval %" PetscInt_FMT ": history rows are written every N >= 1 time steps (default 100)", scene->output.interval);
+  SceneCheck(scene->output.history_rows >= 0, comm,
              "-output_history_rows %" PetscInt_FMT ": give the number of history rows over the end time, N >= 1 (default 100), or 0 "
              "for the -output_interval rows only",
-             scene->output_history_rows);
-  PetscCall(CheckFields(comm, in, &scene->fields));
-  PetscCall(CheckCheckpoints(comm, in, &scene->checkpoint));
+             scene->output.history_rows);
+  PetscCall(CheckFields(comm, in, &scene->output.fields));
+  PetscCall(CheckCheckpoints(comm, in, &scene->output.checkpoint));
   PetscFunctionReturn(0);
 }
 

@@ -31,7 +31,7 @@ const OptionTable<ProbeInput> kProbeOptions = {
 std::string ProbesText(const Scene &s)
 {
   std::string text;
-  for (const Probe &p : s.probes)
+  for (const Probe &p : s.loading.probes)
     text += s.dimension == 3 ? Format("  probe     %s at (%g, %g, %g) m\n", p.name.c_str(), p.x, p.y, p.z)
                              : Format("  probe     %s at (%g, %g) m\n", p.name.c_str(), p.x, p.y);
   return text;
@@ -161,10 +161,10 @@ PetscErrorCode CheckProbe3D(MPI_Comm comm, const ProbeInput &pi, const Body3D &b
 
 PetscErrorCode CheckProbes(MPI_Comm comm, const SceneInput &in, Scene *scene)
 {
-  const Body2D &b = scene->body;
+  const Body2D &b = scene->body.sheet;
   PetscFunctionBeginUser;
   const double tol = 1e-12 * std::max(b.width, b.height);
-  scene->probes.clear();
+  scene->loading.probes.clear();
   for (const ProbeInput &pi : in.probes) {
     const char *n = pi.name.c_str();
     SceneCheck(!(pi.at_set && !pi.group.empty()), comm, "probe '%s' has both -probe_%s_at and -probe_%s_group: give one of them", n, n, n);
@@ -172,8 +172,8 @@ PetscErrorCode CheckProbes(MPI_Comm comm, const SceneInput &in, Scene *scene)
                n, n, n, pi.at_set ? "at" : "group");
     Probe p = {pi.name, 0, 0};
     if (scene->dimension == 3) {
-      PetscCall(CheckProbe3D(comm, pi, scene->body3d, &p));
-      scene->probes.push_back(p);
+      PetscCall(CheckProbe3D(comm, pi, scene->body.solid, &p));
+      scene->loading.probes.push_back(p);
       continue;
     }
     if (!pi.group.empty()) PetscCall(ProbeAtGroup(comm, pi, b, &p));
@@ -197,7 +197,7 @@ PetscErrorCode CheckProbes(MPI_Comm comm, const SceneInput &in, Scene *scene)
     const int shape = b.shapes.empty() ? -1 : shape_removing(b.shapes, p.x, p.y);
     SceneCheck(shape < 0, comm, "%s (%g, %g) m lies where shape '%s' (%s) removed the material: move it onto the body", w, p.x,
                p.y, shape < 0 ? "" : b.shapes[shape].name.c_str(), shape < 0 ? "" : to_string(b.shapes[shape].op));
-    scene->probes.push_back(p);
+    scene->loading.probes.push_back(p);
   }
   PetscFunctionReturn(0);
 }

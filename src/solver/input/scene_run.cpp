@@ -11,23 +11,21 @@ namespace bapd {
 
 namespace {
 
-const OptionTable<SceneInput> kSolverChoiceOptions = {
+// The solver and partition as given (CheckRun parses them), and the set-up's report.
+const OptionTable<RunSection, SceneInput> kRunOptions = {
     {"-solver",
      "How the run reaches its states: dynamic (explicit dynamics, PETSc TS) or static (static states by Newton, "
      "PETSc SNES, load steps along -load_schedule)",
-     &SceneInput::solver},
+     GivenText<SceneInput>{&SceneInput::solver}},
     {"-partition_type",
      "Who splits the body over the ranks: metis (rank 0 builds the whole body and bond graph, METIS splits it) or "
      "ptscotch (PT-Scotch on every rank; a lattice body is built in slabs, one a rank, and no rank holds it whole; "
      "given points and -force_patch_correction are still built on rank 0)",
-     &SceneInput::partition_type},
-};
-
-const OptionTable<Scene> kSetupReportOptions = {
+     GivenText<SceneInput>{&SceneInput::partition_type}},
     {"-log_setup_memory",
      "Print the set-up's wall time and peak memory (VmHWM) of the largest rank, the mean rank and rank 0 once the "
      "body is distributed",
-     &Scene::log_setup_memory},
+     &RunSection::log_setup_memory},
 };
 
 const OptionTable<StaticOptions> kStaticSolverOptions = {
@@ -49,13 +47,12 @@ const OptionTable<StaticOptions> kStaticSolverOptions = {
 
 } // namespace
 
-PetscErrorCode ReadRun(MPI_Comm comm, Scene *scene, SceneInput *in)
+PetscErrorCode ReadRun(MPI_Comm comm, RunSection *run, SceneInput *in)
 {
   PetscFunctionBeginUser;
   PetscCall(ReadOptionBlock(comm, nullptr, "Solver", [&](OptionReader &r) -> PetscErrorCode {
-    PetscCall(ReadOptionRows(r, kSolverChoiceOptions, in));
-    PetscCall(ReadOptionRows(r, kSetupReportOptions, scene));
-    return ReadOptionRows(r, kStaticSolverOptions, &scene->static_options);
+    PetscCall(ReadOptionRows(r, kRunOptions, run, in));
+    return ReadOptionRows(r, kStaticSolverOptions, &run->static_options);
   }));
   PetscFunctionReturn(0);
 }
@@ -66,11 +63,11 @@ PetscErrorCode CheckRun(MPI_Comm comm, const SceneInput &in, Scene *scene)
   SceneCheck(in.solver == "dynamic" || in.solver == "static", comm,
              "-solver '%s' is not a solver: choose dynamic (explicit dynamics, the default) or static (static states by Newton)",
              in.solver.c_str());
-  scene->solver = in.solver == "static" ? SolverKind::static_newton : SolverKind::dynamic;
+  scene->run.solver = in.solver == "static" ? SolverKind::static_newton : SolverKind::dynamic;
   SceneCheck(in.partition_type == "metis" || in.partition_type == "ptscotch", comm,
              "-partition_type '%s' is not a partitioner: choose metis (the default) or ptscotch (in parallel)", in.partition_type.c_str());
-  scene->partition_type = in.partition_type == "ptscotch" ? PartitionType::ptscotch : PartitionType::metis;
-  const StaticOptions &s = scene->static_options;
+  scene->run.partition_type = in.partition_type == "ptscotch" ? PartitionType::ptscotch : PartitionType::metis;
+  const StaticOptions &s = scene->run.static_options;
   SceneCheck(s.stretch_step > 0 && s.stretch_step_max > 0 && s.stretch_step_min > 0 && s.stretch_step_min <= s.stretch_step &&
                  s.stretch_step <= s.stretch_step_max,
              comm,

@@ -54,20 +54,34 @@ std::vector<double> BlockPoints3D(const std::vector<double> &x, const std::vecto
 }
 
 namespace {
-template <int D> void Select(const Scene &scene, const LoadSet &set, const double *x, PetscInt n, std::vector<PetscInt> *selected)
+template <int D> void Select(const BodyExtent &body, const LoadSet &set, const double *x, PetscInt n, std::vector<PetscInt> *selected)
 {
   selected->clear();
   for (PetscInt i = 0; i < n; ++i)
-    if (LoadSetContains<D>(scene, set, x + D * i)) selected->push_back(i);
+    if (LoadSetContains<D>(body, set, x + D * i)) selected->push_back(i);
 }
 } // namespace
 
-PetscErrorCode LoadSetSelect(const Scene &scene, const LoadSet &set, const double *x, PetscInt n, std::vector<PetscInt> *selected)
+PetscErrorCode LoadSetSelect(const BodyExtent &body, const LoadSet &set, const double *x, PetscInt n, std::vector<PetscInt> *selected)
 {
   PetscFunctionBeginUser;
-  if (scene.dimension == 3) Select<3>(scene, set, x, n, selected);
-  else Select<2>(scene, set, x, n, selected);
+  if (body.dimension == 3) Select<3>(body, set, x, n, selected);
+  else Select<2>(body, set, x, n, selected);
   PetscFunctionReturn(0);
+}
+
+// 2D: the sheet from the origin; 3D: the extent of the points' cells and the solid's
+// lattice spacing (the same as the sheet's dx once the scene is checked).
+BodyExtent BodyExtentOf(const Scene &scene)
+{
+  const Body2D &sheet = scene.body.sheet;
+  const Body3D &solid = scene.body.solid;
+  BodyExtent    e;
+  e.dimension = scene.dimension;
+  e.thickness = sheet.thickness;
+  if (scene.dimension == 3) e.lo = solid.lo, e.hi = solid.hi, e.dx = solid.solid.dx;
+  else e.hi = {sheet.width, sheet.height, 0.0}, e.dx = sheet.dx;
+  return e;
 }
 
 template <int D>

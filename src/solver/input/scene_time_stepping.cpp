@@ -16,24 +16,24 @@ namespace {
 
 // The step, damping, the run's end and progress: values in the Scene, whether -end_time
 // was given in the SceneInput.
-const OptionTable<Scene, SceneInput> kStepOptions = {
-    {"-time_step", "Time step [s]; 0: time_step_safety x the estimated stable step", &Scene::time_step},
-    {"-time_step_safety", "Fraction of the estimated stable step [-], in (0, 1]", &Scene::time_step_safety},
+const OptionTable<TimeSteppingSection, SceneInput> kStepOptions = {
+    {"-time_step", "Time step [s]; 0: time_step_safety x the estimated stable step", &TimeSteppingSection::step},
+    {"-time_step_safety", "Fraction of the estimated stable step [-], in (0, 1]", &TimeSteppingSection::safety},
     {"-time_step_travel",
      "Largest distance a point with bonds may move in one step [dx]; the step shrinks while points move fast (snapping "
      "bonds), 0: never, -1 (default): 0.1 with failure, off without",
-     &Scene::time_step_travel},
-    {"-damping", "Mass-proportional damping coefficient [1/s], >= 0", &Scene::damping},
+     &TimeSteppingSection::travel},
+    {"-damping", "Mass-proportional damping coefficient [1/s], >= 0", &TimeSteppingSection::damping},
     {"-static_tolerance", "A hold of the load schedule ends once kinetic/internal energy < this [-] (0: holds run their full length)",
-     &Scene::static_tolerance},
-    {"-end_time", "End of the run [s] (default: the schedule's last time)", &Scene::end_time, &SceneInput::end_time_set},
+     &TimeSteppingSection::static_tolerance},
+    {"-end_time", "End of the run [s] (default: the schedule's last time)", &TimeSteppingSection::end_time, &SceneInput::end_time_set},
     {"-end_step",
      "Stop after this time step [-] (a step number: a restart goes on counting), before -end_time, on purpose: a run in "
      "parts, a test, a benchmark (-1: run to -end_time)",
-     &Scene::end_step},
-    {"-progress_interval", "Time steps between progress lines [-] (0: every end time / 20 of simulated time)", &Scene::progress_interval},
+     &TimeSteppingSection::end_step},
+    {"-progress_interval", "Time steps between progress lines [-] (0: every end time / 20 of simulated time)", &TimeSteppingSection::progress_interval},
     {"-progress_wall_interval", "Also a progress line once this much wall time has passed since the last one [s] (0: off)",
-     &Scene::progress_wall_interval},
+     &TimeSteppingSection::progress_wall_interval},
 };
 
 const OptionTable<SceneInput> kRelaxationOptions = {
@@ -170,16 +170,16 @@ PetscErrorCode CheckStepCount(MPI_Comm comm, const Scene &scene, bool end_time_s
 {
   PetscFunctionBeginUser;
   const double      max_steps  = static_cast<double>(std::numeric_limits<PetscInt>::max());
-  const double      shear_wave = std::sqrt(scene.material.mu / scene.density);
-  const bool        given      = scene.time_step > 0;
-  const double      step_bound = given ? scene.time_step : 3.0 * scene.time_step_safety * scene.body.dx / shear_wave;
-  const double      steps      = scene.end_time / step_bound;
-  const std::string how        = given ? Format("-time_step %g s", scene.time_step)
+  const double      shear_wave = std::sqrt(scene.material.parameters.mu / scene.material.density);
+  const bool        given      = scene.time_stepping.step > 0;
+  const double      step_bound = given ? scene.time_stepping.step : 3.0 * scene.time_stepping.safety * scene.body.sheet.dx / shear_wave;
+  const double      steps      = scene.time_stepping.end_time / step_bound;
+  const std::string how        = given ? Format("-time_step %g s", scene.time_stepping.step)
                                        : Format("the step, at most about %g s here (3 x %g x dx / sqrt(mu / rho))", step_bound,
-                                                scene.time_step_safety);
+                                                scene.time_stepping.safety);
   const double      longest    = max_steps * step_bound;
-  const std::string head       = end_time_set ? Format("-end_time %g s", scene.end_time)
-                                              : Format("-load_schedule ends at %g s, which", scene.end_time);
+  const std::string head       = end_time_set ? Format("-end_time %g s", scene.time_stepping.end_time)
+                                              : Format("-load_schedule ends at %g s, which", scene.time_stepping.end_time);
   SceneCheck(steps <= max_steps, comm,
              "%s needs %s%.3g time steps with %s, more than a run can count (%.0f): end the run by %.3g s, e.g. -end_time %g",
              head.c_str(), given ? "" : "at least ", steps, how.c_str(), max_steps, longest, std::min(1.0, 0.5 * longest));
@@ -191,79 +191,79 @@ PetscErrorCode CheckStepCount(MPI_Comm comm, const Scene &scene, bool end_time_s
 std::string TimeSteppingText(const Scene &s)
 {
   std::string text;
-  if (s.time_step > 0) text += Format("  time      step %g s", s.time_step);
-  else text += Format("  time      step %g x the stable step", s.time_step_safety);
-  if (s.time_step_travel > 0) text += Format(" (shorter while a point with bonds would move > %g dx a step)", s.time_step_travel);
-  else if (s.time_step_travel < 0 && s.failure) text += " (shorter while a point with bonds would move > 0.1 dx a step)";
-  text += Format(", damping %g 1/s, end %g s", s.damping, s.end_time);
-  if (s.end_step >= 0) text += Format(" or after step %ld (-end_step), whichever comes first", (long)s.end_step);
+  if (s.time_stepping.step > 0) text += Format("  time      step %g s", s.time_stepping.step);
+  else text += Format("  time      step %g x the stable step", s.time_stepping.safety);
+  if (s.time_stepping.travel > 0) text += Format(" (shorter while a point with bonds would move > %g dx a step)", s.time_stepping.travel);
+  else if (s.time_stepping.travel < 0 && s.failure.enabled) text += " (shorter while a point with bonds would move > 0.1 dx a step)";
+  text += Format(", damping %g 1/s, end %g s", s.time_stepping.damping, s.time_stepping.end_time);
+  if (s.time_stepping.end_step >= 0) text += Format(" or after step %ld (-end_step), whichever comes first", (long)s.time_stepping.end_step);
   text += "\n";
-  if (s.static_tolerance > 0)
-    text += Format("  static    a hold ends once kinetic energy < %g x internal energy (checked every %ld steps, at the -output_interval rows)\n", s.static_tolerance,
-                   (long)s.output_interval);
+  if (s.time_stepping.static_tolerance > 0)
+    text += Format("  static    a hold ends once kinetic energy < %g x internal energy (checked every %ld steps, at the -output_interval rows)\n", s.time_stepping.static_tolerance,
+                   (long)s.output.interval);
   return text;
 }
 
-PetscErrorCode ReadTimeStepping(MPI_Comm comm, Scene *scene, SceneInput *in)
+PetscErrorCode ReadTimeStepping(MPI_Comm comm, TimeSteppingSection *time_stepping, SceneInput *in)
 {
   PetscFunctionBeginUser;
-  PetscCall(ReadOptionTable(comm, "Time stepping (explicit dynamics)", kStepOptions, scene, in));
+  PetscCall(ReadOptionTable(comm, "Time stepping (explicit dynamics)", kStepOptions, time_stepping, in));
   PetscCall(ReadOptionTable(comm, "Static states (relaxation)", kRelaxationOptions, in));
-  PetscCall(ReadOptionTable(comm, "Time step that follows the material", kReestimateOptions, &scene->time_step_control));
+  PetscCall(ReadOptionTable(comm, "Time step that follows the material", kReestimateOptions, &time_stepping->reestimate));
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode CheckTimeStepping(MPI_Comm comm, const SceneInput &in, Scene *scene)
 {
   PetscFunctionBeginUser;
-  SceneCheck(scene->time_step >= 0, comm,
-             "-time_step %g: the time step must be > 0 s, or 0 for the automatic choice (safety x stable step)", scene->time_step);
-  SceneCheck(scene->time_step_safety > 0, comm,
+  SceneCheck(scene->time_stepping.step >= 0, comm,
+             "-time_step %g: the time step must be > 0 s, or 0 for the automatic choice (safety x stable step)", scene->time_stepping.step);
+  SceneCheck(scene->time_stepping.safety > 0, comm,
              "-time_step_safety %g must be > 0: it is the fraction of the estimated stable step that is taken (default 0.8)",
-             scene->time_step_safety);
-  if (scene->time_step_safety > 1)
+             scene->time_stepping.safety);
+  if (scene->time_stepping.safety > 1)
     PetscCall(Warn(comm,
                    Format("-time_step_safety %g is above 1: the time step exceeds the estimated stable step and the explicit scheme "
                           "may blow up; use a value in (0, 1] (default 0.8)",
-                          scene->time_step_safety),
+                          scene->time_stepping.safety),
                    true));
-  SceneCheck(scene->time_step_travel >= 0 || scene->time_step_travel == -1, comm,
+  SceneCheck(scene->time_stepping.travel >= 0 || scene->time_stepping.travel == -1, comm,
              "-time_step_travel %g must be >= 0: it is the largest distance, in dx, that a point with bonds may move in one step (0: off; -1, the default: 0.1 with failure, off without)",
-             scene->time_step_travel);
-  SceneCheck(scene->damping >= 0, comm, "-damping %g: the damping coefficient must be >= 0 1/s (0: undamped)", scene->damping);
+             scene->time_stepping.travel);
+  SceneCheck(scene->time_stepping.damping >= 0, comm, "-damping %g: the damping coefficient must be >= 0 1/s (0: undamped)", scene->time_stepping.damping);
   const std::string relaxation = Lower(in.relaxation);
   SceneCheck(relaxation == "none" || relaxation == "adaptive", comm,
              "-relaxation '%s' is not a relaxation route: choose none (fixed -damping) or adaptive (adaptive dynamic relaxation)",
              in.relaxation.c_str());
-  scene->relaxation = relaxation == "adaptive" ? RelaxationKind::adaptive : RelaxationKind::none;
-  SceneCheck(scene->static_tolerance >= 0 && scene->static_tolerance < 1, comm,
-             "-static_tolerance %g: use a small positive ratio such as 1e-6 (0: holds run their full length)", scene->static_tolerance);
-  SceneCheck(scene->progress_interval >= 0, comm,
+  scene->time_stepping.relaxation = relaxation == "adaptive" ? RelaxationKind::adaptive : RelaxationKind::none;
+  SceneCheck(scene->time_stepping.static_tolerance >= 0 && scene->time_stepping.static_tolerance < 1, comm,
+             "-static_tolerance %g: use a small positive ratio such as 1e-6 (0: holds run their full length)", scene->time_stepping.static_tolerance);
+  SceneCheck(scene->time_stepping.progress_interval >= 0, comm,
              "-progress_interval %" PetscInt_FMT ": give N >= 1 time steps between progress lines, or 0 for about 20 lines a run",
-             scene->progress_interval);
-  SceneCheck(scene->progress_wall_interval >= 0, comm,
+             scene->time_stepping.progress_interval);
+  SceneCheck(scene->time_stepping.progress_wall_interval >= 0, comm,
              "-progress_wall_interval %g: give the wall time between progress lines in seconds, > 0 (default 10), or 0 for lines by "
              "simulated time (or -progress_interval) only",
-             scene->progress_wall_interval);
-  SceneCheck(scene->end_step >= -1, comm,
+             scene->time_stepping.progress_wall_interval);
+  SceneCheck(scene->time_stepping.end_step >= -1, comm,
              "-end_step %" PetscInt_FMT ": give the step number after which the run stops (>= 0), or -1 to run to -end_time",
-             scene->end_step);
-  const double schedule_end = scene->schedule.end_time();
+             scene->time_stepping.end_step);
+  const double schedule_end = scene->loading.schedule.end_time();
   if (in.end_time_set) {
-    SceneCheck(scene->end_time > 0, comm, "-end_time %g: the run must end after t = 0 s", scene->end_time);
-    if (scene->end_time < schedule_end)
-      PetscCall(Warn(comm, Format("-end_time %g s stops the run before the end of -load_schedule (%g s)", scene->end_time, schedule_end)));
+    SceneCheck(scene->time_stepping.end_time > 0, comm, "-end_time %g: the run must end after t = 0 s", scene->time_stepping.end_time);
+    if (scene->time_stepping.end_time < schedule_end)
+      PetscCall(Warn(comm, Format("-end_time %g s stops the run before the end of -load_schedule (%g s)", scene->time_stepping.end_time, schedule_end)));
   } else {
     SceneCheck(schedule_end > 0, comm,
                "-end_time is required when -load_schedule does not end after t = 0: give the run's end in s, e.g. -end_time 1%s",
                (MisspeltHint("-end_time") + MisspeltHint("-load_schedule")).c_str());
-    scene->end_time = schedule_end;
+    scene->time_stepping.end_time = schedule_end;
   }
   PetscCall(CheckStepCount(comm, *scene, in.end_time_set));
-  PetscCall(CheckReestimate(comm, &scene->time_step_control));
+  PetscCall(CheckReestimate(comm, &scene->time_stepping.reestimate));
   // The points' indicator forms F~ and the plane-stress I1bar of a 2D point (the dynamics'
   // re-estimate only: the static solver takes no time step).
-  SceneCheck(scene->dimension == 2 || !scene->time_step_control.indicator || scene->solver == SolverKind::static_newton, comm,
+  SceneCheck(scene->dimension == 2 || !scene->time_stepping.reestimate.indicator || scene->run.solver == SolverKind::static_newton, comm,
              "-time_step_reestimate_indicator is a 2D measurement (the points' plane-stress I1bar): leave it out for a 3D body, or use "
              "-time_step_reestimate_bonds");
   PetscFunctionReturn(0);

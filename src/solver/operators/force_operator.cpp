@@ -8,7 +8,7 @@
 namespace bapd {
 
 template <int D>
-PetscErrorCode ForceOperator::Setup(MPI_Comm comm, const ForceModel &force, const Layout &layout, const Families &families,
+PetscErrorCode ForceOperator::Setup(MPI_Comm comm, const MaterialSection &force, const Layout &layout, const Families &families,
                                     const nd::BondGeometry<D> &geometry, const BondState &state,
                                     PetscLogStage stage_ghost, PetscLogStage stage_force)
 {
@@ -25,7 +25,7 @@ PetscErrorCode ForceOperator::Setup(MPI_Comm comm, const ForceModel &force, cons
   }();
   failed_          = &workspace.failed;
   workspace.volumetric               = force.volumetric; // -material_volumetric (volumetric.hpp)
-  workspace.volumetric_stabilisation = force.volumetric_stabilisation * force.material.mu; // kappa [Pa]
+  workspace.volumetric_stabilisation = force.volumetric_stabilisation * force.parameters.mu; // kappa [Pa]
   keep_warm_start_ = &workspace.keep_warm_start;
   const std::size_t nbonds = families.neighbour.size();
   c33_.assign(D == 2 ? nbonds : 0, 0.0); // the 2D models' C33 warm starts; a 3D model has none (c33 nullptr)
@@ -59,15 +59,15 @@ PetscErrorCode ForceOperator::Setup(MPI_Comm comm, const ForceModel &force, cons
       nd::listed_strain_energies<D>(m, *cloud, y, *f, *g, *s, c33_.data(), points, count, *ws, energy);
     };
   };
-  if constexpr (D == 2) with_model(force.model, force.formulation, force.material, choose);
-  else with_model_3d(force.model, force.material, choose);
+  if constexpr (D == 2) with_model(force.model, force.formulation, force.parameters, choose);
+  else with_model_3d(force.model, force.parameters, choose);
   PetscCall(CreateGhostedVector<D>(comm, layout, &u_ghosted_));
   PetscFunctionReturn(0);
 }
 
-template PetscErrorCode ForceOperator::Setup<2>(MPI_Comm, const ForceModel &, const Layout &, const Families &, const nd::BondGeometry<2> &,
+template PetscErrorCode ForceOperator::Setup<2>(MPI_Comm, const MaterialSection &, const Layout &, const Families &, const nd::BondGeometry<2> &,
                                                 const BondState &, PetscLogStage, PetscLogStage);
-template PetscErrorCode ForceOperator::Setup<3>(MPI_Comm, const ForceModel &, const Layout &, const Families &, const nd::BondGeometry<3> &,
+template PetscErrorCode ForceOperator::Setup<3>(MPI_Comm, const MaterialSection &, const Layout &, const Families &, const nd::BondGeometry<3> &,
                                                 const BondState &, PetscLogStage, PetscLogStage);
 
 PetscErrorCode ForceOperator::UpdatePositions(const double *u_owned)

@@ -11,30 +11,30 @@
 
 namespace bapd {
 
-PetscErrorCode Loading::Setup(MPI_Comm comm, const Scene &scene, const Layout &layout)
+PetscErrorCode Loading::Setup(MPI_Comm comm, const LoadingSection &loading, double end_time, const BodyExtent &body, const Layout &layout)
 {
   PetscFunctionBegin;
   comm_              = comm;
   layout_            = &layout;
-  dimension_         = scene.dimension;
-  reference_length_  = scene.reference_length;
-  schedule_          = scene.schedule;
-  end_time_          = scene.end_time;
-  schedule_original_ = scene.schedule.time;
-  end_time_original_ = scene.end_time;
-  load_points_.assign(scene.loads.size(), {});
+  dimension_         = body.dimension;
+  reference_length_  = loading.reference_length;
+  schedule_          = loading.schedule;
+  end_time_          = end_time;
+  schedule_original_ = loading.schedule.time;
+  end_time_original_ = end_time;
+  load_points_.assign(loading.sets.size(), {});
   constrained_.clear();
   std::size_t most = 0;
-  for (std::size_t s = 0; s < scene.loads.size(); ++s) {
-    const LoadSet        &set = scene.loads[s];
+  for (std::size_t s = 0; s < loading.sets.size(); ++s) {
+    const LoadSet        &set = loading.sets[s];
     std::vector<PetscInt> selected;
-    PetscCall(LoadSetSelect(scene, set, layout.cloud.x.data(), layout.n_owned, &selected));
+    PetscCall(LoadSetSelect(body, set, layout.cloud.x.data(), layout.n_owned, &selected));
     PetscInt count = (PetscInt)selected.size();
     PetscCallMPI(MPI_Allreduce(&count, &load_points_[s].global_count, 1, MPIU_INT, MPI_SUM, comm));
     if (load_points_[s].global_count == 0) {
       // (A thin box can miss every lattice point, a hole can empty an edge layer: the
       // region type's message says which option to change. At most 767 characters.)
-      const std::string msg = LoadSetEmptyMessage(scene, set).substr(0, 767);
+      const std::string msg = LoadSetEmptyMessage(body, set).substr(0, 767);
       SETERRQ(comm, PETSC_ERR_USER, "%s", msg.c_str());
     }
     most                   = std::max(most, selected.size());
@@ -54,7 +54,7 @@ PetscErrorCode Loading::Setup(MPI_Comm comm, const Scene &scene, const Layout &l
     else *it = d;
   }
   constrained_ = std::move(unique);
-  if (scene.grip_field == GripField::affine) PetscCall(SetAffineLevers(scene, layout));
+  if (loading.grip_field == GripField::affine) PetscCall(SetAffineLevers(loading.sets, body, layout));
   terms_.assign(static_cast<std::size_t>(dimension_) * most, 0.0);
   PetscFunctionReturn(0);
 }
@@ -97,15 +97,14 @@ void Loading::Apply(double t, double *u, double *v) const
 // is the top grip, and the two must not overlap in y. That is the outside treatment's
 // equivalent for grips on the body's own points (docs/options.md, "The outside
 // treatment for region grips"); in 3D the half spacing is cbrt(V) / 2.
-PetscErrorCode Loading::SetAffineLevers(const Scene &scene, const Layout &layout)
+PetscErrorCode Loading::SetAffineLevers(const std::vector<LoadSet> &sets, const BodyExtent &body, const Layout &layout)
 {
-  const bool   three = dimension_ == 3;
-  const double face_lo = three ? scene.body3d.lo[1] : 0.0, face_hi = three ? scene.body3d.hi[1] : scene.body.height;
-  const double dx = scene.body.dx; // (a 3D body's lattice spacing too: scene_body3d.cpp)
+  const double face_lo = body.lo[1], face_hi = body.hi[1]; // (2D: 0 and the sheet's height)
+  const double dx      = body.dx;
   double       y_top = 0, y_bottom = 0;
   bool         edge  = false;
   PetscFunctionBegin;
-  for (const LoadSet &l : scene.loads) {
+  for (const LoadSet &l : sets) {
     if (l.y == ComponentLoad::free) continue;
     const bool inside = l.placement == GripPlacement::inside;
     if (l.region == LoadSet::Region::top) y_top = inside ? face_hi - l.layers * dx : face_hi, edge = true;
@@ -115,16 +114,16 @@ PetscErrorCode Loading::SetAffineLevers(const Scene &scene, const Layout &layout
     double      lo[2], hi[2]; // per set: lowest y - h/2, -(highest y + h/2)
     std::size_t k = 0;
     const char *names[2] = {"", ""};
-    for (std::size_t s = 0; s < scene.loads.size(); ++s) {
-      if (scene.loads[s].y == ComponentLoad::free) continue;
+    for (std::size_t s = 0; s < sets.size(); ++s) {
+      if (sets[s].y == ComponentLoad::free) continue;
       lo[k] = hi[k] = std::numeric_limits<double>::max();
       for (PetscInt p : load_points_[s].points) {
         const double V = layout.cloud.volume[p];
-        const double y = layout.cloud.x[dimension_ * p + 1], h = point_spacing(dimension_, V, scene.body.thickness);
+        const double y = layout.cloud.x[dimension_ * p + 1], h = point_spacing(dimension_, V, body.thickness);
         lo[k]          = std::min(lo[k], y - 0.5 * h);
         hi[k]          = std::min(hi[k], -(y + 0.5 * h));
       }
-      names[k++] = scene.loads[s].name.c_str();
+      names[k++] = sets[s].name.c_str();
     }
     PetscCheck(k == 2, comm_, PETSC_ERR_PLIB, "SetAffineLevers: %zu region grips hold y, not 2", k);
     double ext[4] = {lo[0], hi[0], lo[1], hi[1]};

@@ -11,7 +11,7 @@
 namespace bapd {
 
 template <int D>
-PetscErrorCode TangentOperator::Setup(MPI_Comm comm, const ForceModel &force, const Layout &layout, const Families &families,
+PetscErrorCode TangentOperator::Setup(MPI_Comm comm, const MaterialSection &force, const Layout &layout, const Families &families,
                                       const nd::BondGeometry<D> &geometry, const BondState &state)
 {
   PetscFunctionBegin;
@@ -24,7 +24,7 @@ PetscErrorCode TangentOperator::Setup(MPI_Comm comm, const ForceModel &force, co
   dimension_ = D;
   auto ws        = std::make_shared<nd::TangentWorkspace<D>>();
   ws->volumetric = force.volumetric;
-  ws->kappa      = force.volumetric_stabilisation * force.material.mu;
+  ws->kappa      = force.volumetric_stabilisation * force.parameters.mu;
   ws->reserve(families);
   // Per point: its block's points by increasing PETSc index (the order PETSc's row search
   // is fastest in), and the block permuted to that order.
@@ -63,14 +63,14 @@ PetscErrorCode TangentOperator::Setup(MPI_Comm comm, const ForceModel &force, co
       PetscFunctionReturn(0);
     };
   };
-  if constexpr (D == 2) with_model(force.model, force.formulation, force.material, choose);
-  else with_model_3d(force.model, force.material, choose);
+  if constexpr (D == 2) with_model(force.model, force.formulation, force.parameters, choose);
+  else with_model_3d(force.model, force.parameters, choose);
   PetscFunctionReturn(0);
 }
 
-template PetscErrorCode TangentOperator::Setup<2>(MPI_Comm, const ForceModel &, const Layout &, const Families &, const nd::BondGeometry<2> &,
+template PetscErrorCode TangentOperator::Setup<2>(MPI_Comm, const MaterialSection &, const Layout &, const Families &, const nd::BondGeometry<2> &,
                                                   const BondState &);
-template PetscErrorCode TangentOperator::Setup<3>(MPI_Comm, const ForceModel &, const Layout &, const Families &, const nd::BondGeometry<3> &,
+template PetscErrorCode TangentOperator::Setup<3>(MPI_Comm, const MaterialSection &, const Layout &, const Families &, const nd::BondGeometry<3> &,
                                                   const BondState &);
 
 // The pattern: owned point i adds S_i x S_i blocks, S_i = {i} and its family, so the

@@ -21,17 +21,18 @@ namespace bapd {
 // settles (StartupKrylov), or 60 power iterations (-time_step_estimate power, the
 // estimate before the search; it gives the same bits as then). Norms are reproducible
 // sums: dt is the same on any number of ranks.
-PetscErrorCode TimeStepControl::EstimateStable(MPI_Comm comm, const TimeStepping &stepping, const Layout &layout,
-                                               const Loading &loading, ForceOperator &force)
+PetscErrorCode TimeStepControl::EstimateStable(MPI_Comm comm, const TimeSteppingSection &stepping, const MaterialSection &material,
+                                               bool failure, double dx, const Layout &layout, const Loading &loading,
+                                               ForceOperator &force)
 {
   const int      D = loading.dimension(); // dofs a point (2 or 3)
   const PetscInt n = D * layout.n_owned;
 
   PetscFunctionBegin;
   dimension_ = D;
-  options_ = stepping.options;
-  inv_rho_ = 1.0 / stepping.density;
-  eps_     = 1e-7 * stepping.dx;
+  options_ = stepping.reestimate;
+  inv_rho_ = 1.0 / material.density;
+  eps_     = 1e-7 * dx;
   // -time_step_travel: given, or chosen here. With failure on, bonds that snap fling
   // their points at many times the wave speed at rest (docs/stability.md, section 5):
   // 0.1 dx a step is what the torn sheets need (0.3 is not enough). A step that the
@@ -41,14 +42,14 @@ PetscErrorCode TimeStepControl::EstimateStable(MPI_Comm comm, const TimeStepping
   // above half the base step: the search is what tells a stiff mode at the tip
   // from the forces of bonds that broke after the base point's evaluation (which once
   // read as 1e6 x lambda_rest on the notched sheet; Reestimate and Kink explain).
-  const bool tip_search = stepping.failure && options_.tip > 0 && options_.interval > 0 && options_.krylov;
-  floor_        = options_.floor > 0 ? options_.floor : (stepping.failure && !tip_search ? 0.5 : 0.1);
-  const LawEntry &law = law_entry(stepping.model);
-  span_         = law.limit ? law.I1bar_limit(stepping.material) - 3.0 : 0.0;
-  plane_strain_ = stepping.formulation == Formulation::plane_strain;
-  failure_      = stepping.failure;
-  travel_auto_  = stepping.time_step_travel < 0;
-  travel_given_ = (travel_auto_ ? (stepping.failure ? 0.1 : 0.0) : stepping.time_step_travel) * stepping.dx;
+  const bool tip_search = failure && options_.tip > 0 && options_.interval > 0 && options_.krylov;
+  floor_        = options_.floor > 0 ? options_.floor : (failure && !tip_search ? 0.5 : 0.1);
+  const LawEntry &law = law_entry(material.model);
+  span_         = law.limit ? law.I1bar_limit(material.parameters) - 3.0 : 0.0;
+  plane_strain_ = material.formulation == Formulation::plane_strain;
+  failure_      = failure;
+  travel_auto_  = stepping.travel < 0;
+  travel_given_ = (travel_auto_ ? (failure ? 0.1 : 0.0) : stepping.travel) * dx;
   held_.assign(n, 0);
   for (const ConstrainedDof &d : loading.constrained()) held_[d.dof] = 1;
   v_.assign(n, 0.0);
@@ -92,12 +93,12 @@ PetscErrorCode TimeStepControl::EstimateStable(MPI_Comm comm, const TimeStepping
   // The Rayleigh quotient approaches lambda_max from below: pad it by 10 %.
   lambda_rest_ = lambda_ = lambda_largest_ = lambda;
   stable_dt_ = stable_now_ = 2.0 / std::sqrt(1.1 * lambda);
-  SetBaseStep(stepping.time_step > 0 ? stepping.time_step : stepping.time_step_safety * stable_dt_);
+  SetBaseStep(stepping.step > 0 ? stepping.step : stepping.safety * stable_dt_);
   next_estimate_    = options_.interval;
   interval_now_     = options_.interval;
   stretch_now_      = options_.stretch;
   estimate_stretch_ = loading.stretch_at(0.0);
-  PetscCall(ReportStartup(comm, stepping.time_step > 0, lambda));
+  PetscCall(ReportStartup(comm, stepping.step > 0, lambda));
   PetscFunctionReturn(0);
 }
 

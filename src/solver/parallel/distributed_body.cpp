@@ -229,14 +229,13 @@ template <int D>
 PetscErrorCode ScatterBody(MPI_Comm comm, const PointCloud &global_cloud, const std::vector<int> &offsets,
                            const std::vector<int> &neighbours, BodyBlock *block)
 {
-  PetscMPIInt rank, size;
+  CloudShape<D> shape;
 
   PetscFunctionBegin;
-  PetscCallMPI(MPI_Comm_rank(comm, &rank));
-  PetscCallMPI(MPI_Comm_size(comm, &size));
-  PetscInt      n;
-  PointReals<D> reals;
-  PetscCall(BroadcastCloudShape<D>(comm, global_cloud, &n, &reals));
+  PetscCall(BroadcastCloudShape<D>(comm, global_cloud, &shape));
+  const PetscMPIInt    rank = shape.rank, size = shape.size;
+  const PetscInt       n     = shape.n;
+  const PointReals<D> &reals = shape.reals;
   auto                first_of = [&](int r) { return (PetscInt)(n / size * r + std::min<PetscInt>(r, n % size)); };
   std::vector<std::vector<PetscInt>> out_int(size);
   std::vector<std::vector<double>>   out_real(size);

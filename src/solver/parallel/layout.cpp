@@ -54,15 +54,15 @@ template <int D>
 PetscErrorCode DistributePoints(MPI_Comm comm, const PointCloud &global_cloud, const std::vector<int> &offsets,
                                 const std::vector<int> &neighbours, Layout *layout)
 {
-  PetscMPIInt rank, size;
+  CloudShape<D> shape;
+  PetscInt      edge_cut = 0;
 
   PetscFunctionBegin;
-  PetscCallMPI(MPI_Comm_rank(comm, &rank));
-  PetscCallMPI(MPI_Comm_size(comm, &size));
-  PetscInt      n_global, edge_cut = 0;
-  PointReals<D> reals;
-  PetscCall(BroadcastCloudShape<D>(comm, global_cloud, &n_global, &reals));
-  const int R = reals.R;
+  PetscCall(BroadcastCloudShape<D>(comm, global_cloud, &shape));
+  const PetscMPIInt    rank = shape.rank, size = shape.size;
+  const PetscInt       n_global = shape.n;
+  const PointReals<D> &reals    = shape.reals;
+  const int            R        = reals.R;
   PetscCheck(n_global >= size, comm, PETSC_ERR_USER, "The body has %" PetscInt_FMT " points, fewer than the %d ranks: run on fewer ranks or refine -body_dx", n_global, size);
 
   std::vector<int>      my_ids;

@@ -94,7 +94,7 @@ protected:
 std::vector<PetscInt> Select(const Scene &scene, const LoadSet &set, const PointCloud &points)
 {
   std::vector<PetscInt> selected;
-  EXPECT_EQ(LoadSetSelect(scene, set, points.x.data(), static_cast<PetscInt>(points.size()), &selected), 0);
+  EXPECT_EQ(LoadSetSelect(BodyExtentOf(scene), set, points.x.data(), static_cast<PetscInt>(points.size()), &selected), 0);
   return selected;
 }
 
@@ -112,19 +112,19 @@ TEST_F(Groups3D, AGripOnANamedFaceHoldsThePointsOfABoxOverTheSameLayers)
                  &scene),
             0)
       << ErrorText();
-  const PointCloud points = nd::make_solid_points(scene.body3d.solid);
+  const PointCloud points = nd::make_solid_points(scene.body.solid.solid);
   ASSERT_EQ(points.size(), 72u); // 6 x 4 x 3 cells
-  const auto gl = Select(scene, scene.loads[0], points), bl = Select(scene, scene.loads[1], points);
+  const auto gl = Select(scene, scene.loading.sets[0], points), bl = Select(scene, scene.loading.sets[1], points);
   EXPECT_EQ(gl.size(), 24u); // two layers of 4 x 3
   EXPECT_EQ(gl, bl);
-  const auto gt = Select(scene, scene.loads[2], points), ft = Select(scene, scene.loads[3], points);
+  const auto gt = Select(scene, scene.loading.sets[2], points), ft = Select(scene, scene.loading.sets[3], points);
   EXPECT_EQ(gt.size(), 18u); // one layer of 6 x 3
   EXPECT_EQ(gt, ft);
-  EXPECT_EQ(Select(scene, scene.loads[4], points).size(), 72u); // the volume holds every point
-  EXPECT_EQ(Select(scene, scene.loads[5], points).size(), 4u);   // within 1 mm of the edge x = z = 0: (0.5, y, 0.5) mm
-  EXPECT_EQ(scene.probes[0].x, 6 * kMm);
-  EXPECT_EQ(scene.probes[0].y, 4 * kMm);
-  EXPECT_EQ(scene.probes[0].z, 0.0);
+  EXPECT_EQ(Select(scene, scene.loading.sets[4], points).size(), 72u); // the volume holds every point
+  EXPECT_EQ(Select(scene, scene.loading.sets[5], points).size(), 4u);   // within 1 mm of the edge x = z = 0: (0.5, y, 0.5) mm
+  EXPECT_EQ(scene.loading.probes[0].x, 6 * kMm);
+  EXPECT_EQ(scene.loading.probes[0].y, 4 * kMm);
+  EXPECT_EQ(scene.loading.probes[0].z, 0.0);
   const std::string text = SceneText(scene);
   EXPECT_NE(text.find("load set  gl: within 0.002 m of physical surface 'left' of " + kGeo), std::string::npos) << text;
   EXPECT_NE(text.find("load set  all: physical volume 'body' of " + kGeo), std::string::npos) << text;
@@ -188,16 +188,16 @@ TEST_F(Groups3D, TheCentroidsOfTheGmshBoxAreItsPoints)
   ASSERT_EQ(Read(centroids, &scene), 0) << ErrorText();
   nd::TetrahedronSet mesh;
   ASSERT_EQ(ReadGmshTetrahedra(kGeo, &mesh), "");
-  ASSERT_TRUE(scene.body3d.given_points);
-  const PointCloud &points = *scene.body3d.given_points;
-  EXPECT_TRUE(scene.body3d.centroids);
+  ASSERT_TRUE(scene.body.solid.given_points);
+  const PointCloud &points = *scene.body.solid.given_points;
+  EXPECT_TRUE(scene.body.solid.centroids);
   ASSERT_EQ(points.size(), mesh.size());
-  EXPECT_EQ(scene.body3d.points, static_cast<int64_t>(mesh.size()));
+  EXPECT_EQ(scene.body.solid.points, static_cast<int64_t>(mesh.size()));
   double volume = 0;
   for (double vp : points.volume) volume += vp;
   EXPECT_NEAR(volume, 72 * kMm * kMm * kMm, 1e-12 * 72 * kMm * kMm * kMm); // the tetrahedra fill the box
   // The grip holds the centroids closer than 1 mm to the face x = 0, and no other.
-  const auto held = Select(scene, scene.loads[0], points);
+  const auto held = Select(scene, scene.loading.sets[0], points);
   std::size_t near = 0;
   for (std::size_t p = 0; p < points.size(); ++p) near += points.x[3 * p] < kMm;
   EXPECT_GT(held.size(), 0u);
@@ -212,7 +212,7 @@ TEST_F(Groups3D, TheCentroidsOfTheGmshBoxAreItsPoints)
   ASSERT_EQ(Read(cut, &scene), 0) << ErrorText();
   std::size_t left = 0;
   for (std::size_t p = 0; p < points.size(); ++p) left += !(points.x[3 * p] >= 3 * kMm);
-  EXPECT_EQ(scene.body3d.points, static_cast<int64_t>(left));
+  EXPECT_EQ(scene.body.solid.points, static_cast<int64_t>(left));
   Options dx = centroids;
   dx.emplace_back("-body_dx", "0.001");
   EXPECT_EQ(Read(dx, &scene), PETSC_ERR_USER);

@@ -85,12 +85,12 @@ TEST(GmshGroup, DogboneEndLinesGripTheSameRowsAsEdgeGrips)
   // and bottom_end: on its 0.5 mm lattice, exactly the 4 edge rows inside the sheet
   // that its earlier edge grips held (-load_S_region top|bottom, layers 4, inside).
   bapd::Scene scene;
-  scene.body.width = 0.02, scene.body.height = 0.06, scene.body.thickness = 0.002, scene.body.dx = 0.0005;
+  scene.body.sheet.width = 0.02, scene.body.sheet.height = 0.06, scene.body.sheet.thickness = 0.002, scene.body.sheet.dx = 0.0005;
   bapd::Shape outline;
   outline.kind = bapd::Shape::Kind::mesh, outline.op = bapd::Shape::Op::intersect;
   ASSERT_EQ(bapd::ReadGmshTriangles(examples + "dogbone.geo", &outline.triangles), "");
-  scene.body.shapes = {outline};
-  const bapd::PointCloud cloud = bapd::make_lattice(scene.body);
+  scene.body.sheet.shapes = {outline};
+  const bapd::PointCloud cloud = bapd::make_lattice(scene.body.sheet);
   for (const auto &[name, region] : {std::pair{"top_end", bapd::LoadSet::Region::top}, {"bottom_end", bapd::LoadSet::Region::bottom}}) {
     bapd::GmshGroup group;
     ASSERT_EQ(bapd::ReadGmshGroup(examples + "dogbone.geo", name, &group), "");
@@ -101,8 +101,8 @@ TEST(GmshGroup, DogboneEndLinesGripTheSameRowsAsEdgeGrips)
     bapd::LoadSet by_edge;
     by_edge.region = region, by_edge.layers = 4, by_edge.placement = bapd::GripPlacement::inside;
     std::vector<PetscInt> a, b;
-    ASSERT_EQ(bapd::LoadSetSelect(scene, by_name, cloud.x.data(), (PetscInt)cloud.size(), &a), 0);
-    ASSERT_EQ(bapd::LoadSetSelect(scene, by_edge, cloud.x.data(), (PetscInt)cloud.size(), &b), 0);
+    ASSERT_EQ(bapd::LoadSetSelect(bapd::BodyExtentOf(scene), by_name, cloud.x.data(), (PetscInt)cloud.size(), &a), 0);
+    ASSERT_EQ(bapd::LoadSetSelect(bapd::BodyExtentOf(scene), by_edge, cloud.x.data(), (PetscInt)cloud.size(), &b), 0);
     EXPECT_EQ(a, b) << name;
     EXPECT_EQ(a.size(), 4u * 40u) << name; // the tabs are the sheet's full 20 mm width
   }

@@ -101,21 +101,21 @@ TEST_F(Scene3D, ReadsTheBodyItsExtentAndItsPointCount)
     for (int j = 0; j < 8; ++j)
       for (int i = 0; i < 10; ++i) count += Material(i, j, k);
   EXPECT_LT(count, 480); // the sphere removed some
-  EXPECT_EQ(scene.body3d.points, count);
+  EXPECT_EQ(scene.body.solid.points, count);
   const double hi[3] = {0.01, 0.008, 0.006};
   for (int r = 0; r < 3; ++r) {
-    EXPECT_NEAR(scene.body3d.lo[r], 0.0, 1e-15);
-    EXPECT_NEAR(scene.body3d.hi[r], hi[r], 1e-15);
+    EXPECT_NEAR(scene.body.solid.lo[r], 0.0, 1e-15);
+    EXPECT_NEAR(scene.body.solid.hi[r], hi[r], 1e-15);
   }
-  ASSERT_EQ(scene.body3d.solid.solids.size(), 2u);
-  EXPECT_EQ(scene.body3d.solid.solids[0].op, bapd::nd::Solid::Op::add);      // the first solid starts the body
-  EXPECT_EQ(scene.body3d.solid.solids[1].op, bapd::nd::Solid::Op::subtract); // the next cuts it
-  EXPECT_EQ(scene.body3d.solid.notches.size(), 1u);
-  EXPECT_DOUBLE_EQ(scene.reference_length, 0.008); // the extent along y
-  ASSERT_EQ(scene.loads.size(), 2u);
-  EXPECT_EQ(scene.loads[0].region, LoadSet::Region::left);
-  EXPECT_EQ(scene.loads[1].region, LoadSet::Region::right);
-  EXPECT_EQ(scene.loads[1].z, bapd::ComponentLoad::fixed);
+  ASSERT_EQ(scene.body.solid.solid.solids.size(), 2u);
+  EXPECT_EQ(scene.body.solid.solid.solids[0].op, bapd::nd::Solid::Op::add);      // the first solid starts the body
+  EXPECT_EQ(scene.body.solid.solid.solids[1].op, bapd::nd::Solid::Op::subtract); // the next cuts it
+  EXPECT_EQ(scene.body.solid.solid.notches.size(), 1u);
+  EXPECT_DOUBLE_EQ(scene.loading.reference_length, 0.008); // the extent along y
+  ASSERT_EQ(scene.loading.sets.size(), 2u);
+  EXPECT_EQ(scene.loading.sets[0].region, LoadSet::Region::left);
+  EXPECT_EQ(scene.loading.sets[1].region, LoadSet::Region::right);
+  EXPECT_EQ(scene.loading.sets[1].z, bapd::ComponentLoad::fixed);
   // The driver's D (main.cpp builds SimulationD<3> for it); a scene without 3D options is 2D.
   EXPECT_EQ(scene.dimension, 3);
   Scene flat;
@@ -132,7 +132,7 @@ TEST_F(Scene3D, ViewNamesTheSolidsNotchesFacesAndProbes)
   const std::string text = bapd::SceneText(scene);
   const std::string expected[] = {
     bapd::Format("  body      3D, dx 0.001 m: %lld points, cells in [0, 0.01] x [0, 0.008] x [0, 0.006] m, 2 solid(s), 1 notch(es)\n",
-                 static_cast<long long>(scene.body3d.points)),
+                 static_cast<long long>(scene.body.solid.points)),
     "            solid block: add a box, [0, 0.01] x [0, 0.008] x [0, 0.006] m\n",
     "            solid hole: subtract a sphere, centre (0.005, 0.004, 0.003) m, radius 0.0016 m\n",
     "            notch crack: a planar polygon of 4 vertices, (0.001, 0.004, -0.001) (0.0026, 0.004, -0.001) (0.0026, 0.004, 0.007) "
@@ -164,8 +164,8 @@ TEST_F(Scene3D, LoadSetsPickExactlyTheBruteForcePoints)
 {
   Scene scene;
   ASSERT_EQ(Read(Block(), &scene), 0) << bapd::test::UserErrorText();
-  const bapd::PointCloud points = bapd::nd::make_solid_points(scene.body3d.solid);
-  ASSERT_EQ(static_cast<int64_t>(points.size()), scene.body3d.points);
+  const bapd::PointCloud points = bapd::nd::make_solid_points(scene.body.solid.solid);
+  ASSERT_EQ(static_cast<int64_t>(points.size()), scene.body.solid.points);
   // Index (i, j, k) of each point, from its position.
   std::vector<std::array<int, 3>> index(points.size());
   for (std::size_t p = 0; p < points.size(); ++p)
@@ -194,7 +194,7 @@ TEST_F(Scene3D, LoadSetsPickExactlyTheBruteForcePoints)
     set.layers = c.layers;
     std::copy(c.box.begin(), c.box.end(), set.box);
     std::vector<PetscInt> selected;
-    ASSERT_EQ(bapd::LoadSetSelect(scene, set, points.x.data(), (PetscInt)points.size(), &selected), 0);
+    ASSERT_EQ(bapd::LoadSetSelect(bapd::BodyExtentOf(scene), set, points.x.data(), (PetscInt)points.size(), &selected), 0);
     std::vector<PetscInt> expected;
     for (std::size_t p = 0; p < points.size(); ++p)
       if (c.expected(index[p])) expected.push_back((PetscInt)p);
@@ -209,7 +209,7 @@ TEST_F(Scene3D, ProbeFindsTheNearestPointInThreeDimensions)
 {
   Scene scene;
   ASSERT_EQ(Read(Block(), &scene), 0) << bapd::test::UserErrorText();
-  const bapd::PointCloud points = bapd::nd::make_solid_points(scene.body3d.solid);
+  const bapd::PointCloud points = bapd::nd::make_solid_points(scene.body.solid.solid);
   PetscMPIInt            rank, size;
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
   MPI_Comm_size(PETSC_COMM_WORLD, &size);
@@ -219,7 +219,7 @@ TEST_F(Scene3D, ProbeFindsTheNearestPointInThreeDimensions)
     x.insert(x.end(), &points.x[3 * p], &points.x[3 * p + 3]);
     id.push_back(points.natural_id[p]);
   }
-  const bapd::Probe &probe = scene.probes.at(0);
+  const bapd::Probe &probe = scene.loading.probes.at(0);
   EXPECT_DOUBLE_EQ(probe.z, 0.0049);
   // By brute force: (9.1, 1.3, 4.9) mm is nearest to the centre (9.5, 1.5, 4.5) mm.
   int64_t best = -1;
@@ -244,10 +244,10 @@ TEST_F(Scene3D, GripsHoldThreeDofsAPointAndReactInThree)
   ASSERT_EQ(Read(Block(), &scene), 0) << bapd::test::UserErrorText();
   // Every rank holds the whole body here, so the loading works on PETSC_COMM_SELF.
   bapd::Layout layout;
-  layout.cloud   = bapd::nd::make_solid_points(scene.body3d.solid);
+  layout.cloud   = bapd::nd::make_solid_points(scene.body.solid.solid);
   layout.n_owned = (PetscInt)layout.cloud.size();
   bapd::Loading loading;
-  ASSERT_EQ(loading.Setup(PETSC_COMM_SELF, scene, layout), 0) << bapd::test::UserErrorText();
+  ASSERT_EQ(loading.Setup(PETSC_COMM_SELF, scene.loading, scene.time_stepping.end_time, bapd::BodyExtentOf(scene), layout), 0) << bapd::test::UserErrorText();
   EXPECT_EQ(loading.dimension(), 3);
   // left: x, y, z of the 6 x 8 = 48 points of i = 0 (no cell of i = 0 is in the sphere);
   // right: x and z of the 2 x 48 points of i = 8, 9.
@@ -273,7 +273,7 @@ TEST_F(Scene3D, GripsHoldThreeDofsAPointAndReactInThree)
   std::vector<double> f(3 * layout.cloud.size());
   for (std::size_t p = 0; p < layout.cloud.size(); ++p)
     for (int c = 0; c < 3; ++c) f[3 * p + c] = c + 1.0;
-  std::vector<double> reaction(3 * scene.loads.size(), 0.0);
+  std::vector<double> reaction(3 * scene.loading.sets.size(), 0.0);
   ASSERT_EQ(loading.Reactions(f.data(), reaction.data()), 0);
   const double V = kDx * kDx * kDx;
   for (int c = 0; c < 3; ++c) {
@@ -314,12 +314,12 @@ TEST_F(Scene3D, AffineGripFieldContinuesTheStretchIntoFaceAndBoxGrips)
     Scene scene;
     ASSERT_EQ(Read(With(options, {{"-load_grip_field", field}}), &scene), 0) << bapd::test::UserErrorText();
     const bool affine = std::string(field) == "affine";
-    EXPECT_EQ(scene.grip_field, affine ? bapd::GripField::affine : bapd::GripField::rigid) << field;
+    EXPECT_EQ(scene.loading.grip_field, affine ? bapd::GripField::affine : bapd::GripField::rigid) << field;
     bapd::Layout layout;
-    layout.cloud   = bapd::nd::make_solid_points(scene.body3d.solid);
+    layout.cloud   = bapd::nd::make_solid_points(scene.body.solid.solid);
     layout.n_owned = (PetscInt)layout.cloud.size();
     bapd::Loading loading;
-    ASSERT_EQ(loading.Setup(PETSC_COMM_SELF, scene, layout), 0) << bapd::test::UserErrorText();
+    ASSERT_EQ(loading.Setup(PETSC_COMM_SELF, scene.loading, scene.time_stepping.end_time, bapd::BodyExtentOf(scene), layout), 0) << bapd::test::UserErrorText();
     std::vector<double> u(3 * layout.cloud.size(), -1.0);
     loading.Apply(1.0, u.data(), nullptr); // stretch 1.1
     std::size_t top = 0, bottom = 0;
@@ -395,22 +395,22 @@ TEST_F(Scene3D, MaterialOptionsOfASolidBody)
 {
   Scene scene;
   ASSERT_EQ(Read(Block(), &scene), 0) << bapd::test::UserErrorText();
-  EXPECT_EQ(scene.force_form, bapd::ForceForm::energy_consistent);
-  EXPECT_EQ(scene.stress_correction, bapd::StressCorrection::none);
-  EXPECT_EQ(scene.patch_correction, bapd::PatchCorrection::off);
+  EXPECT_EQ(scene.material.force_form, bapd::ForceForm::energy_consistent);
+  EXPECT_EQ(scene.material.stress_correction, bapd::StressCorrection::none);
+  EXPECT_EQ(scene.material.patch_correction, bapd::PatchCorrection::off);
   Scene bond_only;
   ASSERT_EQ(Read(With(Block(), {{"-force_form", "bond_only"}}), &bond_only), 0) << bapd::test::UserErrorText();
-  EXPECT_EQ(bond_only.stress_correction, bapd::StressCorrection::tensor);
-  EXPECT_EQ(bond_only.patch_correction, bapd::PatchCorrection::off); // (auto: off on the lattice, which passes as it is)
+  EXPECT_EQ(bond_only.material.stress_correction, bapd::StressCorrection::tensor);
+  EXPECT_EQ(bond_only.material.patch_correction, bapd::PatchCorrection::off); // (auto: off on the lattice, which passes as it is)
   for (const char *patch : {"on", "virial"}) { // given, it runs in 3D (patch_correction.hpp at D = 3)
     Scene corrected;
     ASSERT_EQ(Read(With(Block(), {{"-force_form", "bond_only"}, {"-force_patch_correction", patch}}), &corrected), 0)
         << patch << ": " << bapd::test::UserErrorText();
-    EXPECT_EQ(corrected.patch_correction, patch[0] == 'o' ? bapd::PatchCorrection::lambda : bapd::PatchCorrection::virial);
+    EXPECT_EQ(corrected.material.patch_correction, patch[0] == 'o' ? bapd::PatchCorrection::lambda : bapd::PatchCorrection::virial);
   }
   Scene paper;
   ASSERT_EQ(Read(With(Block(), {{"-force_form", "bond_only"}, {"-force_stress_correction", "none"}}), &paper), 0) << bapd::test::UserErrorText();
-  EXPECT_EQ(paper.stress_correction, bapd::StressCorrection::none); // the paper's force stays reachable
+  EXPECT_EQ(paper.material.stress_correction, bapd::StressCorrection::none); // the paper's force stays reachable
   for (const char *law : {"neo_hookean", "mooney_rivlin", "yeoh", "arruda_boyce", "ogden"}) {
     Scene other;
     EXPECT_EQ(Read(With(Block(), {{"-material_model", law}}), &other), 0) << law << ": " << bapd::test::UserErrorText();
@@ -467,13 +467,13 @@ TEST_F(Scene3D, ACloudIsClippedByItsSolidsAndItsBlocksAreLoadSets)
                          {"-end_time", "1"}};
   Scene scene;
   ASSERT_EQ(Read(cloud, &scene), 0) << bapd::test::UserErrorText();
-  EXPECT_EQ(scene.body3d.points, 64 - 4); // the cut took i, j in {2, 3}, k = 0
-  EXPECT_EQ(scene.loads[0].block_points.size(), 3u * 16);
-  EXPECT_NEAR(scene.probes[0].z, 3.5e-3, 1e-18);
-  EXPECT_EQ(scene.patch_correction, bapd::PatchCorrection::off); // auto: the energy-consistent form is not corrected
+  EXPECT_EQ(scene.body.solid.points, 64 - 4); // the cut took i, j in {2, 3}, k = 0
+  EXPECT_EQ(scene.loading.sets[0].block_points.size(), 3u * 16);
+  EXPECT_NEAR(scene.loading.probes[0].z, 3.5e-3, 1e-18);
+  EXPECT_EQ(scene.material.patch_correction, bapd::PatchCorrection::off); // auto: the energy-consistent form is not corrected
   Scene bond_only;
   ASSERT_EQ(Read(With(cloud, {{"-force_form", "bond_only"}}), &bond_only), 0) << bapd::test::UserErrorText();
-  EXPECT_EQ(bond_only.patch_correction, bapd::PatchCorrection::virial); // auto: virial for given points, as in 2D
+  EXPECT_EQ(bond_only.material.patch_correction, bapd::PatchCorrection::virial); // auto: virial for given points, as in 2D
   const std::string text = bapd::SceneText(scene);
   // (the cells' extent: x -+ cbrt(1e-9) / 2, to round-off)
   for (const std::string &line : std::vector<std::string>{

@@ -84,23 +84,23 @@ TEST(Schedule, EmptyMeansNoStretch)
 TEST(Scene, GripDisplacementFollowsTheSchedule)
 {
   Scene scene;
-  scene.schedule         = RampHoldRamp();
-  scene.reference_length = 0.16;
+  scene.loading.schedule         = RampHoldRamp();
+  scene.loading.reference_length = 0.16;
   // u = scale (lambda - 1) L: the top grip of the plate (scale 1/2) at lambda = 1.25.
-  EXPECT_DOUBLE_EQ(scene.grip_displacement(0.5, 0.5), 0.5 * 0.25 * 0.16);
-  EXPECT_DOUBLE_EQ(scene.grip_velocity(-0.5, 0.5), -0.5 * 0.5 * 0.16);
-  EXPECT_EQ(scene.grip_displacement(1.0, 0.0), 0.0);
+  EXPECT_DOUBLE_EQ(scene.loading.grip_displacement(0.5, 0.5), 0.5 * 0.25 * 0.16);
+  EXPECT_DOUBLE_EQ(scene.loading.grip_velocity(-0.5, 0.5), -0.5 * 0.5 * 0.16);
+  EXPECT_EQ(scene.loading.grip_displacement(1.0, 0.0), 0.0);
 }
 
 // The plate with a hole (docs/method.md section 7.1): 80 x 160 points, dx = 1 mm.
 Scene Plate()
 {
   Scene scene;
-  scene.body.width     = 0.08;
-  scene.body.height    = 0.16;
-  scene.body.thickness = 0.001;
-  scene.body.dx        = 0.001;
-  scene.body.holes     = {{0.04, 0.08, 0.01}};
+  scene.body.sheet.width     = 0.08;
+  scene.body.sheet.height    = 0.16;
+  scene.body.sheet.thickness = 0.001;
+  scene.body.sheet.dx        = 0.001;
+  scene.body.sheet.holes     = {{0.04, 0.08, 0.01}};
   return scene;
 }
 
@@ -129,7 +129,7 @@ Share TakeShare(const bapd::PointCloud &cloud)
 PetscInt GlobalCount(const Scene &scene, const LoadSet &set, const Share &share)
 {
   std::vector<PetscInt> selected;
-  EXPECT_EQ(bapd::LoadSetSelect(scene, set, share.x.data(), share.n(), &selected), 0);
+  EXPECT_EQ(bapd::LoadSetSelect(bapd::BodyExtentOf(scene), set, share.x.data(), share.n(), &selected), 0);
   PetscInt local = static_cast<PetscInt>(selected.size()), global = 0;
   MPI_Allreduce(&local, &global, 1, MPIU_INT, MPI_SUM, PETSC_COMM_WORLD);
   return global;
@@ -163,7 +163,7 @@ TEST(RegionRegistry, ChoicesAndHelpNameEveryRegisteredRegion)
 TEST(LoadSetSelect, TakesWholePointLayersFromTheEdges)
 {
   const Scene scene = Plate();
-  const Share share = TakeShare(bapd::make_lattice(scene.body));
+  const Share share = TakeShare(bapd::make_lattice(scene.body.sheet));
   LoadSet     set;
   for (int layers : {1, 3}) {
     set.layers = layers;
@@ -181,7 +181,7 @@ TEST(LoadSetSelect, TakesWholePointLayersFromTheEdges)
 TEST(LoadSetSelect, TakesThePointsInsideABox)
 {
   const Scene scene = Plate();
-  const Share share = TakeShare(bapd::make_lattice(scene.body));
+  const Share share = TakeShare(bapd::make_lattice(scene.body.sheet));
   LoadSet     set;
   set.region = LoadSet::Region::box;
   // Points at 0.5, 1.5, ..., 9.5 mm in x and y: 10 x 10 of them.
@@ -199,7 +199,7 @@ TEST(LoadSetSelect, TakesThePointsInsideABox)
 TEST(LoadSetSelect, PolygonTakesThePointsInsideItEdgesIncluded)
 {
   const Scene scene = Plate();
-  const Share share = TakeShare(bapd::make_lattice(scene.body));
+  const Share share = TakeShare(bapd::make_lattice(scene.body.sheet));
   LoadSet     set;
   set.region         = LoadSet::Region::polygon;
   set.area.kind      = bapd::Shape::Kind::polygon;
@@ -215,18 +215,18 @@ TEST(LoadSetSelect, PolygonTakesThePointsInsideItEdgesIncluded)
 TEST(LoadSetSelect, CurveAlongAnEdgeTakesTheEdgeRowsOfItsDepth)
 {
   const Scene            scene = Plate();
-  const bapd::PointCloud cloud = bapd::make_lattice(scene.body);
+  const bapd::PointCloud cloud = bapd::make_lattice(scene.body.sheet);
   for (int layers : {1, 3}) {
     LoadSet edge;
     edge.region = LoadSet::Region::top, edge.layers = layers;
     LoadSet curve;
     curve.region   = LoadSet::Region::curve;
     curve.segments = {0.08, 0.16, 0.0, 0.16}; // the top edge, right to left
-    curve.depth    = layers * scene.body.dx;
+    curve.depth    = layers * scene.body.sheet.dx;
     bapd::SetCurveReach(&curve);
     std::vector<PetscInt> from_edge, from_curve;
-    ASSERT_EQ(bapd::LoadSetSelect(scene, edge, cloud.x.data(), (PetscInt)cloud.size(), &from_edge), 0);
-    ASSERT_EQ(bapd::LoadSetSelect(scene, curve, cloud.x.data(), (PetscInt)cloud.size(), &from_curve), 0);
+    ASSERT_EQ(bapd::LoadSetSelect(bapd::BodyExtentOf(scene), edge, cloud.x.data(), (PetscInt)cloud.size(), &from_edge), 0);
+    ASSERT_EQ(bapd::LoadSetSelect(bapd::BodyExtentOf(scene), curve, cloud.x.data(), (PetscInt)cloud.size(), &from_curve), 0);
     EXPECT_EQ(from_curve, from_edge) << layers << " layer(s)";
     EXPECT_EQ(from_curve.size(), 80u * layers);
   }
@@ -235,7 +235,7 @@ TEST(LoadSetSelect, CurveAlongAnEdgeTakesTheEdgeRowsOfItsDepth)
 TEST(LoadSetSelect, CurveTakesThePointsCloserThanItsDepthToAnyOfItsSegments)
 {
   const Scene            scene = Plate();
-  const bapd::PointCloud cloud = bapd::make_lattice(scene.body);
+  const bapd::PointCloud cloud = bapd::make_lattice(scene.body.sheet);
   const Share            share = TakeShare(cloud);
   LoadSet                set;
   set.region = LoadSet::Region::curve;
@@ -265,14 +265,14 @@ TEST(LoadSetSelect, ReturnsIncreasingLocalIndices)
   const double          x[]   = {0.0005, 0.1595, 0.04, 0.08, 0.0795, 0.1595, 0.0005, 0.0005};
   LoadSet               set;
   std::vector<PetscInt> selected = {42}; // cleared first
-  ASSERT_EQ(bapd::LoadSetSelect(scene, set, x, 4, &selected), 0);
+  ASSERT_EQ(bapd::LoadSetSelect(bapd::BodyExtentOf(scene), set, x, 4, &selected), 0);
   EXPECT_EQ(selected, (std::vector<PetscInt>{0, 2}));
 }
 
 TEST(ProbeLocate, FindsTheSamePointOnAnyNumberOfRanks)
 {
   const Scene               scene = Plate();
-  const bapd::PointCloud    cloud = bapd::make_lattice(scene.body);
+  const bapd::PointCloud    cloud = bapd::make_lattice(scene.body.sheet);
   const Share               share = TakeShare(cloud);
   PetscMPIInt               rank;
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
@@ -325,11 +325,11 @@ TEST(ProbeLocate, BreaksExactTiesByLowestNaturalId)
 TEST(ScenePointEstimate, CountsWhatTheLatticeBuilds)
 {
   Scene scene = Plate();
-  EXPECT_EQ(bapd::ScenePointEstimate(scene), (PetscInt)bapd::make_lattice(scene.body).size());
-  scene.body.holes.push_back({0.02, 0.02, 0.0153});
-  scene.body.width = 0.0804; // not a whole number of spacings
-  EXPECT_EQ(bapd::ScenePointEstimate(scene), (PetscInt)bapd::make_lattice(scene.body).size());
-  scene.body.holes.clear();
+  EXPECT_EQ(bapd::ScenePointEstimate(scene), (PetscInt)bapd::make_lattice(scene.body.sheet).size());
+  scene.body.sheet.holes.push_back({0.02, 0.02, 0.0153});
+  scene.body.sheet.width = 0.0804; // not a whole number of spacings
+  EXPECT_EQ(bapd::ScenePointEstimate(scene), (PetscInt)bapd::make_lattice(scene.body.sheet).size());
+  scene.body.sheet.holes.clear();
   EXPECT_EQ(bapd::ScenePointEstimate(scene), 80 * 160);
 }
 
@@ -338,9 +338,9 @@ TEST(ScenePointEstimate, CountsWhatTheLatticeBuilds)
 TEST(GripRows, ExtrudeTheEdgeRowsAndAreCountedAsBuilt)
 {
   Scene scene = Plate();
-  scene.body.holes.push_back({0.02, 0.16, 0.0052}); // cuts the top edge row: 10 of its points
-  scene.body.grip_rows = {2, 3, 6, 6};              // left, right, bottom, top
-  const bapd::PointCloud cloud = bapd::make_lattice(scene.body);
+  scene.body.sheet.holes.push_back({0.02, 0.16, 0.0052}); // cuts the top edge row: 10 of its points
+  scene.body.sheet.grip_rows = {2, 3, 6, 6};              // left, right, bottom, top
+  const bapd::PointCloud cloud = bapd::make_lattice(scene.body.sheet);
   EXPECT_EQ(bapd::ScenePointEstimate(scene), (PetscInt)cloud.size());
   std::vector<double> top_edge, top_strip; // x of the sheet's top row, and of each row above it
   int                 strip_rows_seen = 0;
@@ -354,17 +354,17 @@ TEST(GripRows, ExtrudeTheEdgeRowsAndAreCountedAsBuilt)
   EXPECT_EQ(top_strip, top_edge);
   EXPECT_EQ(strip_rows_seen, 0);
   // Shapes: the same count rule.
-  scene.body.holes.clear();
+  scene.body.sheet.holes.clear();
   bapd::Shape disc;
   disc.kind = bapd::Shape::Kind::circle, disc.op = bapd::Shape::Op::subtract, disc.cx = 0.08, disc.cy = 0.0, disc.a = disc.b = 0.0105;
-  scene.body.shapes.push_back(disc);
-  EXPECT_EQ(bapd::ScenePointEstimate(scene), (PetscInt)bapd::make_lattice(scene.body).size());
+  scene.body.sheet.shapes.push_back(disc);
+  EXPECT_EQ(bapd::ScenePointEstimate(scene), (PetscInt)bapd::make_lattice(scene.body.sheet).size());
 
   // Selection: an outside top grip of 6 rows holds the 6 x 80 points above the sheet
   // (the sheet's x-extent: no side grips here); an inside one the sheet's own rows.
   Scene plate = Plate();
-  plate.body.grip_rows.top = plate.body.grip_rows.bottom = 6;
-  const Share share = TakeShare(bapd::make_lattice(plate.body));
+  plate.body.sheet.grip_rows.top = plate.body.sheet.grip_rows.bottom = 6;
+  const Share share = TakeShare(bapd::make_lattice(plate.body.sheet));
   LoadSet     set;
   set.placement = bapd::GripPlacement::outside;
   set.layers    = 6;
@@ -387,10 +387,10 @@ TEST(GripField, AffineGripsContinueTheMeanStretch)
 {
   for (const double bottom_scale : {0.0, -0.5}) {
     Scene scene = Plate();
-    scene.body.grip_rows.top = scene.body.grip_rows.bottom = 6;
-    scene.reference_length = scene.body.height;
-    scene.schedule         = RampHoldRamp();
-    scene.grip_field       = bapd::GripField::affine;
+    scene.body.sheet.grip_rows.top = scene.body.sheet.grip_rows.bottom = 6;
+    scene.loading.reference_length = scene.body.sheet.height;
+    scene.loading.schedule         = RampHoldRamp();
+    scene.loading.grip_field       = bapd::GripField::affine;
     LoadSet top, bottom;
     top.name = "top", bottom.name = "bottom";
     top.region = LoadSet::Region::top, bottom.region = LoadSet::Region::bottom;
@@ -399,26 +399,26 @@ TEST(GripField, AffineGripsContinueTheMeanStretch)
     top.x = bottom.x = bapd::ComponentLoad::fixed;
     top.y = bapd::ComponentLoad::stretch, top.y_scale = 1.0 + bottom_scale;
     bottom.y = bottom_scale == 0 ? bapd::ComponentLoad::fixed : bapd::ComponentLoad::stretch, bottom.y_scale = bottom_scale;
-    scene.loads = {top, bottom};
+    scene.loading.sets = {top, bottom};
     bapd::Layout layout;
-    layout.cloud   = bapd::make_lattice(scene.body);
+    layout.cloud   = bapd::make_lattice(scene.body.sheet);
     layout.n_owned = static_cast<PetscInt>(layout.cloud.size());
     bapd::Loading loading;
-    ASSERT_EQ(loading.Setup(PETSC_COMM_SELF, scene, layout), 0);
-    const double        t = 2.5, lambda = scene.schedule.stretch_at(t), y_centre = -bottom_scale * scene.body.height;
+    ASSERT_EQ(loading.Setup(PETSC_COMM_SELF, scene.loading, scene.time_stepping.end_time, bapd::BodyExtentOf(scene), layout), 0);
+    const double        t = 2.5, lambda = scene.loading.schedule.stretch_at(t), y_centre = -bottom_scale * scene.body.sheet.height;
     std::vector<double> u(2 * layout.cloud.size(), 7.0), v(u.size(), 7.0);
     loading.Apply(t, u.data(), v.data());
     std::size_t held = 0;
     for (std::size_t i = 0; i < layout.cloud.size(); ++i) {
       const double y = layout.cloud.x[2 * i + 1];
-      if (y > 0 && y < scene.body.height) { // free: untouched
+      if (y > 0 && y < scene.body.sheet.height) { // free: untouched
         EXPECT_EQ(u[2 * i + 1], 7.0);
         continue;
       }
       ++held;
       EXPECT_EQ(u[2 * i], 0.0);
       EXPECT_NEAR(u[2 * i + 1], (lambda - 1) * (y - y_centre), 1e-15);
-      EXPECT_NEAR(v[2 * i + 1], scene.schedule.rate_at(t) * (y - y_centre), 1e-15);
+      EXPECT_NEAR(v[2 * i + 1], scene.loading.schedule.rate_at(t) * (y - y_centre), 1e-15);
     }
     EXPECT_EQ(held, 2u * 6 * 80);
   }

@@ -89,7 +89,7 @@ TEST_F(SceneMaterial, IncompressiblePlaneStressIsReadAndWhatContradictsItIsNamed
   const Options incompressible = With(Sheet(), {{"-material_formulation", "plane_stress_incompressible"}});
   Scene         scene;
   ASSERT_EQ(Read(incompressible, &scene), 0) << bapd::test::UserErrorText();
-  EXPECT_EQ(scene.formulation, bapd::Formulation::plane_stress_incompressible);
+  EXPECT_EQ(scene.material.formulation, bapd::Formulation::plane_stress_incompressible);
   // a bulk modulus it does not use: read, and named in one warning
   for (const char *option : {"-material_bulk_ratio", "-material_D"}) {
     const Options o = With(incompressible, {{option, option[10] == 'b' ? "1000" : "4.4e-7"}});

@@ -113,52 +113,52 @@ protected:
 
 void ExpectSameScene(const Scene &a, const Scene &b)
 {
-  EXPECT_EQ(a.body.width, b.body.width);
-  EXPECT_EQ(a.body.height, b.body.height);
-  EXPECT_EQ(a.body.thickness, b.body.thickness);
-  EXPECT_EQ(a.body.dx, b.body.dx);
-  ASSERT_EQ(a.body.holes.size(), b.body.holes.size());
-  for (std::size_t h = 0; h < a.body.holes.size(); ++h) {
-    EXPECT_EQ(a.body.holes[h].cx, b.body.holes[h].cx);
-    EXPECT_EQ(a.body.holes[h].cy, b.body.holes[h].cy);
-    EXPECT_EQ(a.body.holes[h].radius, b.body.holes[h].radius);
+  EXPECT_EQ(a.body.sheet.width, b.body.sheet.width);
+  EXPECT_EQ(a.body.sheet.height, b.body.sheet.height);
+  EXPECT_EQ(a.body.sheet.thickness, b.body.sheet.thickness);
+  EXPECT_EQ(a.body.sheet.dx, b.body.sheet.dx);
+  ASSERT_EQ(a.body.sheet.holes.size(), b.body.sheet.holes.size());
+  for (std::size_t h = 0; h < a.body.sheet.holes.size(); ++h) {
+    EXPECT_EQ(a.body.sheet.holes[h].cx, b.body.sheet.holes[h].cx);
+    EXPECT_EQ(a.body.sheet.holes[h].cy, b.body.sheet.holes[h].cy);
+    EXPECT_EQ(a.body.sheet.holes[h].radius, b.body.sheet.holes[h].radius);
   }
-  EXPECT_EQ(a.body.notches.size(), b.body.notches.size());
-  EXPECT_EQ(a.horizon_factor, b.horizon_factor);
-  EXPECT_EQ(a.model, b.model);
-  EXPECT_EQ(a.formulation, b.formulation);
-  EXPECT_EQ(a.material.mu, b.material.mu);
-  EXPECT_EQ(a.material["-material_Jm"], b.material["-material_Jm"]);
-  EXPECT_EQ(a.material.D, b.material.D);
-  EXPECT_EQ(a.density, b.density);
-  EXPECT_EQ(a.failure, b.failure);
-  EXPECT_EQ(a.critical_stretch, b.critical_stretch);
-  ASSERT_EQ(a.loads.size(), b.loads.size());
-  for (std::size_t s = 0; s < a.loads.size(); ++s) {
-    EXPECT_EQ(a.loads[s].name, b.loads[s].name);
-    EXPECT_EQ(a.loads[s].region, b.loads[s].region);
-    EXPECT_EQ(a.loads[s].layers, b.loads[s].layers);
-    EXPECT_EQ(a.loads[s].x, b.loads[s].x);
-    EXPECT_EQ(a.loads[s].y, b.loads[s].y);
-    EXPECT_EQ(a.loads[s].x_scale, b.loads[s].x_scale);
-    EXPECT_EQ(a.loads[s].y_scale, b.loads[s].y_scale);
+  EXPECT_EQ(a.body.sheet.notches.size(), b.body.sheet.notches.size());
+  EXPECT_EQ(a.body.horizon_factor, b.body.horizon_factor);
+  EXPECT_EQ(a.material.model, b.material.model);
+  EXPECT_EQ(a.material.formulation, b.material.formulation);
+  EXPECT_EQ(a.material.parameters.mu, b.material.parameters.mu);
+  EXPECT_EQ(a.material.parameters["-material_Jm"], b.material.parameters["-material_Jm"]);
+  EXPECT_EQ(a.material.parameters.D, b.material.parameters.D);
+  EXPECT_EQ(a.material.density, b.material.density);
+  EXPECT_EQ(a.failure.enabled, b.failure.enabled);
+  EXPECT_EQ(a.failure.critical_stretch, b.failure.critical_stretch);
+  ASSERT_EQ(a.loading.sets.size(), b.loading.sets.size());
+  for (std::size_t s = 0; s < a.loading.sets.size(); ++s) {
+    EXPECT_EQ(a.loading.sets[s].name, b.loading.sets[s].name);
+    EXPECT_EQ(a.loading.sets[s].region, b.loading.sets[s].region);
+    EXPECT_EQ(a.loading.sets[s].layers, b.loading.sets[s].layers);
+    EXPECT_EQ(a.loading.sets[s].x, b.loading.sets[s].x);
+    EXPECT_EQ(a.loading.sets[s].y, b.loading.sets[s].y);
+    EXPECT_EQ(a.loading.sets[s].x_scale, b.loading.sets[s].x_scale);
+    EXPECT_EQ(a.loading.sets[s].y_scale, b.loading.sets[s].y_scale);
   }
-  EXPECT_EQ(a.schedule.time, b.schedule.time);
-  EXPECT_EQ(a.schedule.stretch, b.schedule.stretch);
-  EXPECT_EQ(a.reference_length, b.reference_length);
-  ASSERT_EQ(a.probes.size(), b.probes.size());
-  for (std::size_t p = 0; p < a.probes.size(); ++p) {
-    EXPECT_EQ(a.probes[p].name, b.probes[p].name);
-    EXPECT_EQ(a.probes[p].x, b.probes[p].x);
-    EXPECT_EQ(a.probes[p].y, b.probes[p].y);
+  EXPECT_EQ(a.loading.schedule.time, b.loading.schedule.time);
+  EXPECT_EQ(a.loading.schedule.stretch, b.loading.schedule.stretch);
+  EXPECT_EQ(a.loading.reference_length, b.loading.reference_length);
+  ASSERT_EQ(a.loading.probes.size(), b.loading.probes.size());
+  for (std::size_t p = 0; p < a.loading.probes.size(); ++p) {
+    EXPECT_EQ(a.loading.probes[p].name, b.loading.probes[p].name);
+    EXPECT_EQ(a.loading.probes[p].x, b.loading.probes[p].x);
+    EXPECT_EQ(a.loading.probes[p].y, b.loading.probes[p].y);
   }
-  EXPECT_EQ(a.output_dir, b.output_dir);
-  EXPECT_EQ(a.output_interval, b.output_interval);
-  EXPECT_EQ(a.time_step, b.time_step);
-  EXPECT_EQ(a.time_step_safety, b.time_step_safety);
-  EXPECT_EQ(a.damping, b.damping);
-  EXPECT_EQ(a.end_time, b.end_time);
-  EXPECT_EQ(a.progress_interval, b.progress_interval);
+  EXPECT_EQ(a.output.dir, b.output.dir);
+  EXPECT_EQ(a.output.interval, b.output.interval);
+  EXPECT_EQ(a.time_stepping.step, b.time_stepping.step);
+  EXPECT_EQ(a.time_stepping.safety, b.time_stepping.safety);
+  EXPECT_EQ(a.time_stepping.damping, b.time_stepping.damping);
+  EXPECT_EQ(a.time_stepping.end_time, b.time_stepping.end_time);
+  EXPECT_EQ(a.time_stepping.progress_interval, b.time_stepping.progress_interval);
 }
 
 // -help lists the options of every component even without a scene, and validates
@@ -183,33 +183,33 @@ TEST_F(SceneOptions, ReadsThePlateWithAHoleWithItsDefaults)
   Scene scene;
   ASSERT_EQ(Read(PlateWithHole(), &scene), 0) << bapd::test::UserErrorText();
   EXPECT_FALSE(scene.help_only);
-  EXPECT_EQ(scene.body.width, 0.08);
-  EXPECT_EQ(scene.body.height, 0.16);
-  EXPECT_EQ(scene.body.thickness, 0.001);
-  EXPECT_EQ(scene.body.dx, 0.001);
-  ASSERT_EQ(scene.body.holes.size(), 1u);
-  EXPECT_EQ(scene.body.holes[0].cx, 0.04);
-  EXPECT_EQ(scene.body.holes[0].cy, 0.08);
-  EXPECT_EQ(scene.body.holes[0].radius, 0.01);
-  EXPECT_TRUE(scene.body.notches.empty());
+  EXPECT_EQ(scene.body.sheet.width, 0.08);
+  EXPECT_EQ(scene.body.sheet.height, 0.16);
+  EXPECT_EQ(scene.body.sheet.thickness, 0.001);
+  EXPECT_EQ(scene.body.sheet.dx, 0.001);
+  ASSERT_EQ(scene.body.sheet.holes.size(), 1u);
+  EXPECT_EQ(scene.body.sheet.holes[0].cx, 0.04);
+  EXPECT_EQ(scene.body.sheet.holes[0].cy, 0.08);
+  EXPECT_EQ(scene.body.sheet.holes[0].radius, 0.01);
+  EXPECT_TRUE(scene.body.sheet.notches.empty());
 
   // Defaults (docs/options.md).
-  EXPECT_EQ(scene.horizon_factor, 3.015);
-  EXPECT_EQ(scene.model, bapd::ModelKind::gent);
-  EXPECT_EQ(scene.formulation, bapd::Formulation::plane_stress);
-  EXPECT_EQ(scene.material.mu, 4.55e3);
-  EXPECT_EQ(scene.material["-material_Jm"], 162.6);
-  EXPECT_EQ(scene.material.D, 2.0 / (100.0 * 4.55e3)); // the scene's K = 2/D = 100 mu, same expression: exact
-  EXPECT_EQ(scene.density, 1000.0);
-  EXPECT_FALSE(scene.failure);
-  EXPECT_EQ(scene.reference_length, 0.16); // the body height
-  EXPECT_EQ(scene.time_step, 0.0);
-  EXPECT_EQ(scene.time_step_safety, 0.8);
-  EXPECT_EQ(scene.end_time, 2.0); // the schedule's last knot
-  EXPECT_EQ(scene.progress_interval, 0);
+  EXPECT_EQ(scene.body.horizon_factor, 3.015);
+  EXPECT_EQ(scene.material.model, bapd::ModelKind::gent);
+  EXPECT_EQ(scene.material.formulation, bapd::Formulation::plane_stress);
+  EXPECT_EQ(scene.material.parameters.mu, 4.55e3);
+  EXPECT_EQ(scene.material.parameters["-material_Jm"], 162.6);
+  EXPECT_EQ(scene.material.parameters.D, 2.0 / (100.0 * 4.55e3)); // the scene's K = 2/D = 100 mu, same expression: exact
+  EXPECT_EQ(scene.material.density, 1000.0);
+  EXPECT_FALSE(scene.failure.enabled);
+  EXPECT_EQ(scene.loading.reference_length, 0.16); // the body height
+  EXPECT_EQ(scene.time_stepping.step, 0.0);
+  EXPECT_EQ(scene.time_stepping.safety, 0.8);
+  EXPECT_EQ(scene.time_stepping.end_time, 2.0); // the schedule's last knot
+  EXPECT_EQ(scene.time_stepping.progress_interval, 0);
 
-  ASSERT_EQ(scene.loads.size(), 2u);
-  const LoadSet &top = scene.loads[0], &bottom = scene.loads[1];
+  ASSERT_EQ(scene.loading.sets.size(), 2u);
+  const LoadSet &top = scene.loading.sets[0], &bottom = scene.loading.sets[1];
   EXPECT_EQ(top.name, "top");
   EXPECT_EQ(top.region, LoadSet::Region::top);
   // Grips outside the specimen, two horizons deep (2 x 3.015 dx: the 6 rows whose
@@ -217,28 +217,28 @@ TEST_F(SceneOptions, ReadsThePlateWithAHoleWithItsDefaults)
   // needs no stress correction: auto is none for it).
   EXPECT_EQ(top.placement, bapd::GripPlacement::outside);
   EXPECT_EQ(top.layers, 6);
-  EXPECT_EQ(scene.body.grip_rows.top, 6);
-  EXPECT_EQ(scene.body.grip_rows.bottom, 6);
-  EXPECT_EQ(scene.body.grip_rows.left + scene.body.grip_rows.right, 0);
-  EXPECT_EQ(scene.grip_field, bapd::GripField::affine);
-  EXPECT_EQ(scene.force_form, bapd::ForceForm::energy_consistent);
-  EXPECT_EQ(scene.stress_correction, bapd::StressCorrection::none);
+  EXPECT_EQ(scene.body.sheet.grip_rows.top, 6);
+  EXPECT_EQ(scene.body.sheet.grip_rows.bottom, 6);
+  EXPECT_EQ(scene.body.sheet.grip_rows.left + scene.body.sheet.grip_rows.right, 0);
+  EXPECT_EQ(scene.loading.grip_field, bapd::GripField::affine);
+  EXPECT_EQ(scene.material.force_form, bapd::ForceForm::energy_consistent);
+  EXPECT_EQ(scene.material.stress_correction, bapd::StressCorrection::none);
   EXPECT_EQ(top.x, ComponentLoad::fixed);
   EXPECT_EQ(top.y, ComponentLoad::stretch);
   EXPECT_EQ(top.y_scale, 0.5);
   EXPECT_EQ(bottom.name, "bottom");
   EXPECT_EQ(bottom.region, LoadSet::Region::bottom);
   EXPECT_EQ(bottom.y_scale, -0.5);
-  EXPECT_EQ(scene.schedule.time, (std::vector<double>{0, 1, 2}));
-  EXPECT_EQ(scene.schedule.stretch, (std::vector<double>{1, 1.5, 1.5}));
+  EXPECT_EQ(scene.loading.schedule.time, (std::vector<double>{0, 1, 2}));
+  EXPECT_EQ(scene.loading.schedule.stretch, (std::vector<double>{1, 1.5, 1.5}));
 
-  ASSERT_EQ(scene.probes.size(), 1u);
-  EXPECT_EQ(scene.probes[0].name, "left_mid");
-  EXPECT_EQ(scene.probes[0].x, 0.0);
-  EXPECT_EQ(scene.probes[0].y, 0.08);
-  EXPECT_EQ(scene.damping, 20.0);
-  EXPECT_EQ(scene.output_dir, "out/plate");
-  EXPECT_EQ(scene.output_interval, 200);
+  ASSERT_EQ(scene.loading.probes.size(), 1u);
+  EXPECT_EQ(scene.loading.probes[0].name, "left_mid");
+  EXPECT_EQ(scene.loading.probes[0].x, 0.0);
+  EXPECT_EQ(scene.loading.probes[0].y, 0.08);
+  EXPECT_EQ(scene.time_stepping.damping, 20.0);
+  EXPECT_EQ(scene.output.dir, "out/plate");
+  EXPECT_EQ(scene.output.interval, 200);
   EXPECT_TRUE(bapd::SceneWarnings().empty());
   EXPECT_EQ(bapd::SceneView(PETSC_COMM_WORLD, scene), 0);
 }
@@ -251,7 +251,7 @@ TEST_F(SceneOptions, DefaultsToABulkModulusOfAThousandShearModuli)
   o.erase("-material_bulk_ratio");
   Scene scene;
   ASSERT_EQ(Read(o, &scene), 0) << bapd::test::UserErrorText();
-  EXPECT_EQ(scene.material.D, 2.0 / (1000.0 * 4.55e3)); // same expression as the default: exact
+  EXPECT_EQ(scene.material.parameters.D, 2.0 / (1000.0 * 4.55e3)); // same expression as the default: exact
 }
 
 TEST_F(SceneOptions, ReadsEveryOtherChoice)
@@ -280,37 +280,37 @@ TEST_F(SceneOptions, ReadsEveryOtherChoice)
   o["-load_grip_field"]          = "affine";
   Scene scene;
   ASSERT_EQ(Read(o, &scene), 0) << bapd::test::UserErrorText();
-  EXPECT_EQ(scene.stress_correction, bapd::StressCorrection::tensor);
-  EXPECT_EQ(scene.grip_field, bapd::GripField::affine);
-  EXPECT_EQ(scene.model, bapd::ModelKind::neo_hookean);
-  EXPECT_EQ(scene.formulation, bapd::Formulation::plane_strain);
-  EXPECT_EQ(scene.material.mu, 1e4);
-  EXPECT_EQ(scene.material.D, 2e-6);
-  EXPECT_EQ(scene.density, 1100.0);
-  EXPECT_TRUE(scene.failure);
-  EXPECT_EQ(scene.critical_stretch, 7.2);
-  EXPECT_EQ(scene.horizon_factor, 2.515);
-  ASSERT_EQ(scene.body.notches.size(), 1u);
-  EXPECT_EQ(scene.body.notches[0].x1, 0.08);
-  EXPECT_EQ(scene.loads[1].layers, 3);
-  ASSERT_EQ(scene.loads.size(), 3u);
-  EXPECT_EQ(scene.loads[2].region, LoadSet::Region::box);
-  EXPECT_EQ(scene.loads[2].box[1], 0.06);
-  EXPECT_EQ(scene.loads[2].box[2], 0.005);
-  EXPECT_EQ(scene.loads[2].y, ComponentLoad::free);
-  EXPECT_EQ(scene.reference_length, 0.1);
-  EXPECT_EQ(scene.time_step, 1e-5);
-  EXPECT_EQ(scene.time_step_safety, 0.5);
-  EXPECT_EQ(scene.end_time, 3.0);
-  EXPECT_EQ(scene.progress_interval, 50);
+  EXPECT_EQ(scene.material.stress_correction, bapd::StressCorrection::tensor);
+  EXPECT_EQ(scene.loading.grip_field, bapd::GripField::affine);
+  EXPECT_EQ(scene.material.model, bapd::ModelKind::neo_hookean);
+  EXPECT_EQ(scene.material.formulation, bapd::Formulation::plane_strain);
+  EXPECT_EQ(scene.material.parameters.mu, 1e4);
+  EXPECT_EQ(scene.material.parameters.D, 2e-6);
+  EXPECT_EQ(scene.material.density, 1100.0);
+  EXPECT_TRUE(scene.failure.enabled);
+  EXPECT_EQ(scene.failure.critical_stretch, 7.2);
+  EXPECT_EQ(scene.body.horizon_factor, 2.515);
+  ASSERT_EQ(scene.body.sheet.notches.size(), 1u);
+  EXPECT_EQ(scene.body.sheet.notches[0].x1, 0.08);
+  EXPECT_EQ(scene.loading.sets[1].layers, 3);
+  ASSERT_EQ(scene.loading.sets.size(), 3u);
+  EXPECT_EQ(scene.loading.sets[2].region, LoadSet::Region::box);
+  EXPECT_EQ(scene.loading.sets[2].box[1], 0.06);
+  EXPECT_EQ(scene.loading.sets[2].box[2], 0.005);
+  EXPECT_EQ(scene.loading.sets[2].y, ComponentLoad::free);
+  EXPECT_EQ(scene.loading.reference_length, 0.1);
+  EXPECT_EQ(scene.time_stepping.step, 1e-5);
+  EXPECT_EQ(scene.time_stepping.safety, 0.5);
+  EXPECT_EQ(scene.time_stepping.end_time, 3.0);
+  EXPECT_EQ(scene.time_stepping.progress_interval, 50);
   // A stretch grip without a scale moves by (lambda - 1) L.
   o.erase("-load_top_y_scale");
   ASSERT_EQ(Read(o, &scene), 0) << bapd::test::UserErrorText();
-  EXPECT_EQ(scene.loads[0].y_scale, 1.0);
+  EXPECT_EQ(scene.loading.sets[0].y_scale, 1.0);
   // The underscore spelling of the model name is accepted too.
   o["-material_model"] = "neo_hookean";
   ASSERT_EQ(Read(o, &scene), 0) << bapd::test::UserErrorText();
-  EXPECT_EQ(scene.model, bapd::ModelKind::neo_hookean);
+  EXPECT_EQ(scene.material.model, bapd::ModelKind::neo_hookean);
 }
 
 TEST_F(SceneOptions, YAMLFileGivesTheSameSceneAsFlatOptions)
@@ -337,14 +337,14 @@ TEST_F(SceneOptions, OptionsAfterTheFileOverrideIt)
   ASSERT_EQ(PetscOptionsInsertString(nullptr, "-material_mu 5000 -load_top_y_scale 0.25 -load_schedule 0,1,4,2 -body_holes 0.04,0.08,0.02"), 0);
   Scene scene;
   ASSERT_EQ(bapd::SceneFromOptions(PETSC_COMM_WORLD, &scene), 0) << bapd::test::UserErrorText();
-  EXPECT_EQ(scene.material.mu, 5000.0);
-  EXPECT_EQ(scene.material.D, 2.0 / (100.0 * 5000.0)); // the file's bulk ratio, the new mu
-  EXPECT_EQ(scene.loads[0].y_scale, 0.25);
-  EXPECT_EQ(scene.loads[1].y_scale, -0.5); // untouched
-  EXPECT_EQ(scene.schedule.time, (std::vector<double>{0, 4}));
-  EXPECT_EQ(scene.end_time, 4.0);
-  EXPECT_EQ(scene.body.holes[0].radius, 0.02);
-  EXPECT_EQ(scene.body.width, 0.08); // from the file
+  EXPECT_EQ(scene.material.parameters.mu, 5000.0);
+  EXPECT_EQ(scene.material.parameters.D, 2.0 / (100.0 * 5000.0)); // the file's bulk ratio, the new mu
+  EXPECT_EQ(scene.loading.sets[0].y_scale, 0.25);
+  EXPECT_EQ(scene.loading.sets[1].y_scale, -0.5); // untouched
+  EXPECT_EQ(scene.loading.schedule.time, (std::vector<double>{0, 4}));
+  EXPECT_EQ(scene.time_stepping.end_time, 4.0);
+  EXPECT_EQ(scene.body.sheet.holes[0].radius, 0.02);
+  EXPECT_EQ(scene.body.sheet.width, 0.08); // from the file
 }
 
 TEST_F(SceneOptions, WarnsAboutDoubtfulButUsableValues)
@@ -420,20 +420,20 @@ TEST_F(SceneOptions, PaperGripsAreOneRigidRowInsideTheSpecimen)
   o["-force_form"] = "bond_only";
   Scene corrected; // auto: the bond-only form is tensor-corrected unless told otherwise
   ASSERT_EQ(Read(o, &corrected), 0) << bapd::test::UserErrorText();
-  EXPECT_EQ(corrected.stress_correction, bapd::StressCorrection::tensor);
+  EXPECT_EQ(corrected.material.stress_correction, bapd::StressCorrection::tensor);
   o["-load_grip_placement"] = "inside";
   o["-force_stress_correction"] = "none";
   Scene scene;
   ASSERT_EQ(Read(o, &scene), 0) << bapd::test::UserErrorText();
-  EXPECT_EQ(scene.force_form, bapd::ForceForm::bond_only);
-  for (const LoadSet &l : scene.loads) {
+  EXPECT_EQ(scene.material.force_form, bapd::ForceForm::bond_only);
+  for (const LoadSet &l : scene.loading.sets) {
     EXPECT_EQ(l.placement, bapd::GripPlacement::inside);
     EXPECT_EQ(l.layers, 1);
   }
-  EXPECT_FALSE(scene.body.grip_rows.any());
-  EXPECT_EQ(scene.grip_field, bapd::GripField::rigid);
-  EXPECT_EQ(scene.stress_correction, bapd::StressCorrection::none);
-  EXPECT_EQ(scene.reference_length, 0.16); // the whole height, as the paper measures it
+  EXPECT_FALSE(scene.body.sheet.grip_rows.any());
+  EXPECT_EQ(scene.loading.grip_field, bapd::GripField::rigid);
+  EXPECT_EQ(scene.material.stress_correction, bapd::StressCorrection::none);
+  EXPECT_EQ(scene.loading.reference_length, 0.16); // the whole height, as the paper measures it
 }
 
 TEST_F(SceneOptions, GripDepthInRowsOrMetresAndPerSetPlacement)
@@ -445,20 +445,20 @@ TEST_F(SceneOptions, GripDepthInRowsOrMetresAndPerSetPlacement)
   o["-horizon_factor"] = "2.515";
   Scene scene;
   ASSERT_EQ(Read(o, &scene), 0) << bapd::test::UserErrorText();
-  EXPECT_EQ(scene.loads[0].placement, bapd::GripPlacement::outside);
-  EXPECT_EQ(scene.loads[0].layers, 4);
-  EXPECT_EQ(scene.loads[1].placement, bapd::GripPlacement::inside);
-  EXPECT_EQ(scene.loads[1].layers, 2);
-  EXPECT_EQ(scene.body.grip_rows.top, 4);
-  EXPECT_EQ(scene.body.grip_rows.bottom, 0);
-  EXPECT_EQ(scene.grip_field, bapd::GripField::rigid); // affine by default only with both grips outside
+  EXPECT_EQ(scene.loading.sets[0].placement, bapd::GripPlacement::outside);
+  EXPECT_EQ(scene.loading.sets[0].layers, 4);
+  EXPECT_EQ(scene.loading.sets[1].placement, bapd::GripPlacement::inside);
+  EXPECT_EQ(scene.loading.sets[1].layers, 2);
+  EXPECT_EQ(scene.body.sheet.grip_rows.top, 4);
+  EXPECT_EQ(scene.body.sheet.grip_rows.bottom, 0);
+  EXPECT_EQ(scene.loading.grip_field, bapd::GripField::rigid); // affine by default only with both grips outside
   // The default depth is two horizons: 2 x 2.515 dx holds 5 row centres, 2 x 3.515 dx 7.
   for (const auto &[factor, rows] : {std::pair{"2.515", 5}, {"3.015", 6}, {"3.515", 7}}) {
     Options d = PlateWithHole();
     d["-horizon_factor"] = factor;
     ASSERT_EQ(Read(d, &scene), 0) << bapd::test::UserErrorText();
-    EXPECT_EQ(scene.loads[0].layers, rows) << factor;
-    EXPECT_EQ(scene.body.grip_rows.bottom, rows) << factor;
+    EXPECT_EQ(scene.loading.sets[0].layers, rows) << factor;
+    EXPECT_EQ(scene.body.sheet.grip_rows.bottom, rows) << factor;
   }
   EXPECT_EQ(bapd::GripRows(6 * 0.0005, 0.0005), 6); // whole rows given in metres keep their count
   EXPECT_EQ(bapd::GripRows(0.1e-3, 1e-3), 1);       // at least one row

@@ -66,13 +66,13 @@ TEST_F(SceneSections, ReadsFieldsCheckpointsRelaxationAndTheReestimateIntoTheSce
 {
   Scene scene;
   ASSERT_EQ(Read(Sheet(), &scene), 0) << bapd::test::UserErrorText();
-  EXPECT_FALSE(scene.fields.enabled); // the defaults
-  EXPECT_EQ(scene.fields.geometry, bapd::FieldGeometry::current);
-  EXPECT_FALSE(scene.checkpoint.periodic());
-  EXPECT_TRUE(scene.checkpoint.on_error);
-  EXPECT_EQ(scene.relaxation, bapd::RelaxationKind::none);
-  EXPECT_EQ(scene.time_step_control.interval, 50);
-  EXPECT_TRUE(scene.time_step_control.startup_krylov);
+  EXPECT_FALSE(scene.output.fields.enabled); // the defaults
+  EXPECT_EQ(scene.output.fields.geometry, bapd::FieldGeometry::current);
+  EXPECT_FALSE(scene.output.checkpoint.periodic());
+  EXPECT_TRUE(scene.output.checkpoint.on_error);
+  EXPECT_EQ(scene.time_stepping.relaxation, bapd::RelaxationKind::none);
+  EXPECT_EQ(scene.time_stepping.reestimate.interval, 50);
+  EXPECT_TRUE(scene.time_stepping.reestimate.startup_krylov);
 
   const Options given = With(Sheet(), {{"-output_fields", ""},
                                        {"-output_fields_interval", "25"},
@@ -85,39 +85,36 @@ TEST_F(SceneSections, ReadsFieldsCheckpointsRelaxationAndTheReestimateIntoTheSce
                                        {"-time_step_estimate", "power"},
                                        {"-time_step_crack_tip", "0"}});
   ASSERT_EQ(Read(given, &scene), 0) << bapd::test::UserErrorText();
-  EXPECT_TRUE(scene.fields.enabled);
-  EXPECT_EQ(scene.fields.interval, 25);
-  EXPECT_EQ(scene.fields.geometry, bapd::FieldGeometry::reference);
-  EXPECT_EQ(scene.checkpoint.step_interval, 0);
-  EXPECT_EQ(scene.checkpoint.wall_interval, 600.0);
-  EXPECT_FALSE(scene.checkpoint.on_error);
-  EXPECT_TRUE(scene.checkpoint.discard_newer);
-  EXPECT_EQ(scene.checkpoint.restart, "");
-  EXPECT_EQ(scene.relaxation, bapd::RelaxationKind::adaptive);
-  EXPECT_EQ(scene.time_step_control.interval, 7);
-  EXPECT_FALSE(scene.time_step_control.startup_krylov);
-  EXPECT_EQ(scene.time_step_control.tip, 0);
+  EXPECT_TRUE(scene.output.fields.enabled);
+  EXPECT_EQ(scene.output.fields.interval, 25);
+  EXPECT_EQ(scene.output.fields.geometry, bapd::FieldGeometry::reference);
+  EXPECT_EQ(scene.output.checkpoint.step_interval, 0);
+  EXPECT_EQ(scene.output.checkpoint.wall_interval, 600.0);
+  EXPECT_FALSE(scene.output.checkpoint.on_error);
+  EXPECT_TRUE(scene.output.checkpoint.discard_newer);
+  EXPECT_EQ(scene.output.checkpoint.restart, "");
+  EXPECT_EQ(scene.time_stepping.relaxation, bapd::RelaxationKind::adaptive);
+  EXPECT_EQ(scene.time_stepping.reestimate.interval, 7);
+  EXPECT_FALSE(scene.time_stepping.reestimate.startup_krylov);
+  EXPECT_EQ(scene.time_stepping.reestimate.tip, 0);
   EXPECT_EQ(bapd::CheckUnusedOptions(PETSC_COMM_WORLD), 0) << bapd::test::UserErrorText();
 }
 
-// The parts the components read come from the scene's values (ForceOperator and
-// TangentOperator: force_model; TimeStepControl: time_stepping).
-TEST_F(SceneSections, ComponentsTakeThePartsTheyReadFromTheScene)
+// Each option lands in its section, which is what the component that reads it takes
+// (ForceOperator and TangentOperator: the material; TimeStepControl: the time stepping).
+TEST_F(SceneSections, EachOptionLandsInItsSection)
 {
   Scene scene;
   ASSERT_EQ(Read(With(Sheet(), {{"-material_volumetric_stabilisation", "4"}, {"-time_step_travel", "0.2"}, {"-time_step_band", "0.1"}}), &scene),
             0)
     << bapd::test::UserErrorText();
-  const bapd::ForceModel force = scene.force_model();
-  EXPECT_EQ(force.model, scene.model);
-  EXPECT_EQ(force.force_form, scene.force_form);
-  EXPECT_EQ(force.volumetric_stabilisation, 4.0);
-  EXPECT_EQ(&force.material, &scene.material);
-  const bapd::TimeStepping stepping = scene.time_stepping();
-  EXPECT_EQ(stepping.time_step_travel, 0.2);
-  EXPECT_EQ(stepping.options.band, 0.1);
-  EXPECT_EQ(stepping.dx, 0.002);
-  EXPECT_EQ(stepping.density, scene.density);
+  const bapd::MaterialSection &material = scene.material;
+  EXPECT_EQ(material.volumetric_stabilisation, 4.0);
+  EXPECT_EQ(material.force_form, bapd::ForceForm::energy_consistent);
+  const bapd::TimeSteppingSection &stepping = scene.time_stepping;
+  EXPECT_EQ(stepping.travel, 0.2);
+  EXPECT_EQ(stepping.reestimate.band, 0.1);
+  EXPECT_EQ(scene.body.sheet.dx, 0.002);
 }
 
 TEST_F(SceneSections, RejectsEachBadSectionValueNamingItsOption)

@@ -168,9 +168,9 @@ PetscErrorCode AlongTheRun(const std::vector<double> &stretches, FILE *summary, 
   const bapd::Layout &layout = sim.layout();
   const PetscInt      n_owned = layout.n_owned;
   std::vector<char>   held(2 * n_owned, 0);
-  for (const bapd::LoadSet &set : scene.loads) {
+  for (const bapd::LoadSet &set : scene.loading.sets) {
     std::vector<PetscInt> points;
-    PetscCall(bapd::LoadSetSelect(scene, set, layout.cloud.x.data(), n_owned, &points));
+    PetscCall(bapd::LoadSetSelect(bapd::BodyExtentOf(scene), set, layout.cloud.x.data(), n_owned, &points));
     for (PetscInt p : points) {
       if (set.x != bapd::ComponentLoad::free) held[2 * p] = 1;
       if (set.y != bapd::ComponentLoad::free) held[2 * p + 1] = 1;
@@ -184,7 +184,7 @@ PetscErrorCode AlongTheRun(const std::vector<double> &stretches, FILE *summary, 
     return sim.ComputeForceDensity(u.data(), f.data());
   };
   PetscCall(TSGetTimeStep(sim.ts(), &dt));
-  const bapd::Schedule &s = scene.schedule;
+  const bapd::Schedule &s = scene.loading.schedule;
   for (double target : stretches) {
     // The first time the schedule reaches the stretch (linear between knots).
     double t_target = -1;
@@ -220,12 +220,12 @@ PetscErrorCode AlongTheRun(const std::vector<double> &stretches, FILE *summary, 
       std::fclose(out);
     }
     std::vector<double> A;
-    PetscCall(BuildOperator(forces, u, free_dofs, scene.density, 1e-5 * scene.body.dx, &A));
+    PetscCall(BuildOperator(forces, u, free_dofs, scene.material.density, 1e-5 * scene.body.sheet.dx, &A));
     Spectrum sp;
     PetscCall(Analyse(A, free_dofs.size(), free_dofs, layout.cloud.x.data(), &sp));
     char label[64];
     std::snprintf(label, sizeof label, "stretch%.3g", target);
-    const char *form = bapd::to_string(scene.force_form);
+    const char *form = bapd::to_string(scene.material.force_form);
     PetscCall(WriteState(summary, dir, label, lambda, 0.0, form, free_dofs.size(), sim.stable_time_step(), 0, sp));
     PetscCall(PetscPrintf(PETSC_COMM_SELF,
                           "stretch %.4f: lambda_max %.4e 1/s^2 (stable step %.4e s; solver's estimate at rest %.4e s), "
@@ -244,8 +244,8 @@ PetscErrorCode BrokenBonds(const std::vector<double> &fractions, FILE *summary, 
   PetscFunctionBegin;
   PetscCall(bapd::SceneFromOptions(PETSC_COMM_SELF, &scene));
   PetscCall(bapd::CheckUnusedOptions(PETSC_COMM_SELF));
-  bapd::PointCloud cloud    = bapd::make_lattice(scene.body);
-  bapd::Families   families = bapd::build_families(cloud, cloud.size(), scene.horizon(), scene.body.notches);
+  bapd::PointCloud cloud    = bapd::make_lattice(scene.body.sheet);
+  bapd::Families   families = bapd::build_families(cloud, cloud.size(), scene.body.horizon(), scene.body.sheet.notches);
   bapd::compute_family_volumes(cloud, families);
   const std::size_t     n = cloud.size();
   std::vector<PetscInt> free_dofs(2 * n);
@@ -270,7 +270,7 @@ PetscErrorCode BrokenBonds(const std::vector<double> &fractions, FILE *summary, 
       Forces                 forces = [&](const std::vector<double> &u, std::vector<double> &f) {
         std::vector<double> y(cloud.x);
         for (std::size_t k = 0; k < y.size(); ++k) y[k] += u[k];
-        bapd::with_model(scene.model, scene.formulation, scene.material, [&](const auto &model) {
+        bapd::with_model(scene.material.model, scene.material.formulation, scene.material.parameters, [&](const auto &model) {
           bapd::nd::compute_bond_forces<2>(form == 1 ? bapd::ForceForm::energy_consistent : bapd::ForceForm::bond_only, model,
                                            cloud, y.data(), families, geometry, state, nullptr, bond_force.data(), ws);
         });
@@ -278,7 +278,7 @@ PetscErrorCode BrokenBonds(const std::vector<double> &fractions, FILE *summary, 
         bapd::nd::assemble_force_density<2>(families, cloud, bond_force.data(), n, f.data());
         return PetscErrorCode(0);
       };
-      PetscCall(BuildOperator(forces, std::vector<double>(2 * n, 0.0), free_dofs, scene.density, 1e-5 * scene.body.dx, &A));
+      PetscCall(BuildOperator(forces, std::vector<double>(2 * n, 0.0), free_dofs, scene.material.density, 1e-5 * scene.body.sheet.dx, &A));
       Spectrum sp;
       PetscCall(Analyse(A, free_dofs.size(), free_dofs, cloud.x.data(), &sp));
       const char *name = form ? "energy_consistent" : "bond_only";

@@ -1,7 +1,7 @@
 #pragma once
 // The run-time choice of constitutive model, made once outside the hot loops:
 //
-//   with_model(scene.model, scene.formulation, scene.material, [&](const auto &model) {
+//   with_model(scene.material.model, scene.material.formulation, scene.material.parameters, [&](const auto &model) {
 //     ... loop over bonds calling model.stress(F, c33, P) ...
 //   });
 //

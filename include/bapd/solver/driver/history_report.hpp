@@ -23,7 +23,7 @@ namespace bapd {
 
 // The area the nominal stress of a load set divides its y reaction by: the sheet's
 // width x thickness (2D), the x-z section of the body's extent (3D).
-double NominalArea(const Scene &scene);
+double NominalArea(const BodyExtent &body);
 
 // One row of history.csv, as measured on every rank (reproducible sums: the same
 // values everywhere). D = the scene's dimension.
@@ -49,9 +49,13 @@ public:
   HistoryReport(const HistoryReport &)            = delete;
   HistoryReport &operator=(const HistoryReport &) = delete;
 
-  // The scene's columns; rows by load every `load_period` of simulated time from t0
-  // (0: none). Called again at a restart's time (the period stays).
-  void Setup(const Scene &scene, const OutputPaths &paths);
+  // The columns of the load sets and probes (loading), of the crack (failure) and of
+  // the body's dimension; the rows every -output_interval steps (output); the nominal
+  // stress over the body's NominalArea. Kept: `loading` outlives the report.
+  void Setup(const LoadingSection &loading, const FailureSection &failure, const OutputSection &output, const BodyExtent &body,
+             const OutputPaths &paths);
+  // Rows by load every `load_period` of simulated time from t0 (0: none). Called again
+  // at a restart's time (the period stays).
   void StartRowsByLoad(double load_period, double t0) { by_load_.Start(load_period, t0); }
 
   std::string Header() const;             // history.csv's columns for this scene
@@ -79,9 +83,12 @@ public:
   bool     has_static_states() const { return static_states_ != nullptr; }
 
 private:
-  const Scene *scene_ = nullptr;
-  OutputPaths  paths_;
-  int          dim_ = 2;
+  const LoadingSection *loading_ = nullptr;
+  bool                  failure_  = false;
+  PetscInt              interval_ = 1;   // -output_interval
+  double                area_     = 0.0; // NominalArea
+  OutputPaths           paths_;
+  int                   dim_ = 2;
   Cadence      by_load_;           // the rows by load
   PetscInt     last_step_ = -1;    // the end-of-run row is not written twice
   FILE        *history_ = nullptr, *static_states_ = nullptr; // rank 0

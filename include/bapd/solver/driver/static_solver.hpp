@@ -26,8 +26,10 @@
 namespace bapd {
 
 // What the static solver cannot do yet, refused before any work with the option to
-// change: failure (-failure_*), checkpoints and restart. Collective.
-PetscErrorCode StaticSolverCheckScene(MPI_Comm comm, const Scene &scene, const CheckpointOptions &checkpoint);
+// change: failure (-failure_*), checkpoints and restart, the bond-only force (no energy),
+// a schedule that does not start undeformed. Nothing with -solver dynamic (run). Collective.
+PetscErrorCode StaticSolverCheckScene(MPI_Comm comm, const RunSection &run, const FailureSection &failure, ForceForm force_form,
+                                      const Schedule &schedule, const CheckpointOptions &checkpoint);
 
 template <int D> class StaticSolver {
 public:

@@ -76,10 +76,17 @@ private:
   std::string       problem_;
 };
 
+// A row's text kept as given in `Flags`, the record of what was given: a choice that the
+// section's check parses and names in its message (-solver, -failure_softening).
+template <class Flags> struct GivenText {
+  std::string Flags::*text;
+};
+
 // One row of an option table: the option's name (after the set's prefix for a named
 // set: "-region" of -load_NAME_region), its help, where its value goes in the section's
-// input record and, if it has one, the flag (in `Flags`, the record of what was given)
-// that says it was given; `example`: a valid value for the message on a malformed real.
+// record (or, GivenText, as given in the record of what was given) and, if it has one,
+// the flag (in `Flags`) that says it was given; `example`: a valid value for the message
+// on a malformed real. A section's block is one table whatever record a row fills.
 // A block of options is read from tables of rows, the top-level sections' (kStepOptions,
 // kOutputOptions, ... in scene_*.cpp) as the named sets' (kLoadSetOptions,
 // kProbeOptions, kShapeOptions): ReadOptionRows reads one in order, so that -help lists
@@ -89,7 +96,7 @@ template <class Input, class Flags = Input> struct OptionRow {
   const char *name;
   const char *help;
   std::variant<std::string Input::*, double Input::*, PetscInt Input::*, std::vector<double> Input::*, bool Input::*,
-               std::vector<std::string> Input::*, PetscBool Input::*>
+               std::vector<std::string> Input::*, PetscBool Input::*, GivenText<Flags>>
               value;
   bool Flags::*given   = nullptr;
   const char *example = "0.01";
@@ -110,6 +117,7 @@ PetscErrorCode ReadOptionRows(OptionReader &r, const OptionTable<Input, Flags> &
     else if (auto names = std::get_if<std::vector<std::string> Input::*>(&o.value))
       PetscCall(r.StringArray(o.name, o.help, &(input->**names), &given));
     else if (auto flag = std::get_if<bool Input::*>(&o.value)) PetscCall(r.Bool(o.name, o.help, &(input->**flag)));
+    else if (auto kept = std::get_if<GivenText<Flags>>(&o.value)) PetscCall(r.String(o.name, o.help, &(flags->*(kept->text)), &given));
     else {
       PetscBool &petsc = input->*std::get<PetscBool Input::*>(o.value);
       bool       value = petsc;

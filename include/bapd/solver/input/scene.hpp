@@ -74,39 +74,20 @@ struct Body3D {
   std::array<double, 3>              lo{}, hi{};   // the extent of the points' cells [m]: lattice point +- dx/2
 };
 
-// What the force (ForceOperator, TangentOperator) reads of the scene: the law, its 2D
-// reduction and parameters, and how the bond force is formed (Scene::force_model).
-struct ForceModel {
-  ModelKind                 model;
-  Formulation               formulation;
-  ForceForm                 force_form;
-  Volumetric                volumetric;
-  double                    volumetric_stabilisation; // kappa / mu
-  const MaterialParameters &material;
-};
-
-// What the time-step control (TimeStepControl::EstimateStable) reads of the scene: the
-// step asked for, the re-estimate's options, and of the body and law what sets the
-// probes' size, the mass, the travel limit and the law's stiffening span
-// (Scene::time_stepping).
-struct TimeStepping {
-  double                    time_step, time_step_safety, time_step_travel; // -time_step, -time_step_safety, -time_step_travel
-  const TimeStepOptions    &options;                                       // -time_step_reestimate ...
-  double                    density, dx;                                   // [kg/m^3], the spacing [m]
-  bool                      failure;
-  ModelKind                 model;
-  Formulation               formulation;
-  const MaterialParameters &material;
-};
-
-struct Scene {
-  // 2 (the plane sheet `body`) or 3 (`body3d`): the driver's D (SimulationD<D>,
-  // chosen once by main.cpp from the scene).
-  int    dimension = 2;
-  Body2D body;
-  Body3D body3d;
+// The body (-body_*, -horizon_factor; scene_body.cpp, scene_body3d.cpp): the plane
+// sheet (dimension 2) or the solid (dimension 3), and the horizon.
+struct BodySection {
+  Body2D sheet;                  // dx: the spacing of either (given points: their smallest)
+  Body3D solid;
   double horizon_factor = 3.015; // delta / dx (given points: delta_i / h_i, geometry.hpp)
 
+  double horizon() const { return horizon_factor * sheet.dx; } // (given points: the smallest delta_i)
+};
+
+// The material (-material_*, -force_*; scene_material.cpp): the law, its 2D reduction and
+// parameters, and how the bond force is formed. The force (ForceOperator,
+// TangentOperator) takes this section.
+struct MaterialSection {
   ModelKind          model       = ModelKind::gent;
   Formulation        formulation = Formulation::plane_stress;
   ForceForm          force_form  = ForceForm::energy_consistent;
@@ -121,58 +102,29 @@ struct Scene {
   // affine patch test on given points (lambda per point, formed at setup), and with
   // virial to keep each point's virial as well ((mu, S) per point).
   PatchCorrection    patch_correction = PatchCorrection::off;
-  MaterialParameters material;
+  MaterialParameters parameters;
   double             density = 1000.0; // kg/m^3
+};
 
-  bool   failure          = false; // no failure section: no bond-state work at all
-  double critical_stretch = 0.0; // -failure_critical_stretch (eq 7), or 0
-  double fracture_energy  = 0.0; // -failure_fracture_energy Gamma [J/m^2] (docs/method.md 5.2), or 0
-  double tip_concentration = 0.43; // -failure_tip_concentration kappa: w_c = kappa Gamma / c (docs/method.md 5.2)
-  Softening softening    = Softening::none; // -failure_softening: bonds fail gradually (softening.hpp; docs/method.md 5.4)
-  PetscInt failure_passes = 0;     // -failure_passes: breaking passes a step with Gamma (0: until none breaks; docs/method.md 5.2)
+// Failure (-failure_*; scene_material.cpp): none unless the section is given.
+struct FailureSection {
+  bool     enabled           = false; // no failure section: no bond-state work at all
+  double   critical_stretch  = 0.0;   // -failure_critical_stretch (eq 7), or 0
+  double   fracture_energy   = 0.0;   // -failure_fracture_energy Gamma [J/m^2] (docs/method.md 5.2), or 0
+  double   tip_concentration = 0.43;  // -failure_tip_concentration kappa: w_c = kappa Gamma / c (docs/method.md 5.2)
+  Softening softening        = Softening::none; // -failure_softening: bonds fail gradually (softening.hpp; docs/method.md 5.4)
+  PetscInt passes            = 0;     // -failure_passes: breaking passes a step with Gamma (0: until none breaks; docs/method.md 5.2)
+};
 
-  std::vector<LoadSet> loads;
+// The loading (-load_*, -probes, -probe_*; scene_loading.cpp, scene_probes.cpp): the
+// load sets (grips), the stretch schedule and the probes that watch them.
+struct LoadingSection {
+  std::vector<LoadSet> sets;
   Schedule             schedule;
   double               reference_length = 0.0; // default: body height
   GripField            grip_field       = GripField::rigid;
+  std::vector<Probe>   probes;
 
-  std::vector<Probe> probes;
-
-  std::string output_dir      = "output";
-  PetscInt    output_interval = 100; // steps between history rows; the static test runs at these rows
-  PetscInt    output_history_rows = 100; // history rows by load: one at each end time / N of simulated time too (0: off)
-  bool        output_final_state = false; // final_state.csv and broken_bonds.csv at the end
-  FieldOptions      fields;     // -output_fields* (fields.hpp)
-  CheckpointOptions checkpoint; // -checkpoint_*, -restart* (checkpoint.hpp)
-
-  SolverKind    solver = SolverKind::dynamic; // -solver
-  PartitionType partition_type   = PartitionType::metis; // -partition_type
-  bool          log_setup_memory = false;                // -log_setup_memory: every rank's peak memory after the set-up
-  StaticOptions static_options;             // -static_* (the static solver only)
-
-  double   time_step        = 0.0;  // 0: use safety * stable step
-  double   time_step_safety = 0.8;  // fraction of the computed stable step
-  double   time_step_travel = -1.0; // a step moves no bonded point more than this x dx (0: off; -1: the solver's choice, 0.1 with failure)
-  double   damping          = 0.0;  // mass-proportional damping coefficient [1/s]
-  double   static_tolerance = 0.0;  // hold ends once kinetic / internal energy < this (0: holds run out)
-  double   end_time         = 0.0;  // default: the schedule's last knot
-  PetscInt end_step         = -1;   // stop after this step, before end_time, on purpose (split runs, tests; -1: run to end_time)
-  PetscInt progress_interval = 0;   // steps between progress lines (0: about 20 lines a run)
-  double   progress_wall_interval = 10.0; // also a progress line after this much wall time [s] since the last (0: off)
-  RelaxationKind  relaxation = RelaxationKind::none; // -relaxation (relaxation.hpp)
-  TimeStepOptions time_step_control;                 // the stable step's re-estimate, -time_step_reestimate ... (time_step_control.hpp)
-
-  // -help was given: every option was listed, nothing was validated and the scene
-  // holds defaults only. The driver stops (with -help all, after PETSc's time stepper
-  // has listed its options).
-  bool help_only = false;
-
-  double horizon() const { return horizon_factor * body.dx; } // (given points: the smallest delta_i)
-  ForceModel force_model() const { return {model, formulation, force_form, volumetric, volumetric_stabilisation, material}; }
-  TimeStepping time_stepping() const
-  {
-    return {time_step, time_step_safety, time_step_travel, time_step_control, density, body.dx, failure, model, formulation, material};
-  }
   // Prescribed displacement of a stretch component with the given scale at time t,
   // u = scale * (lambda(t) - 1) * reference_length, and its rate du/dt.
   double grip_displacement(double scale, double t) const
@@ -180,6 +132,59 @@ struct Scene {
     return scale * (schedule.stretch_at(t) - 1.0) * reference_length;
   }
   double grip_velocity(double scale, double t) const { return scale * schedule.rate_at(t) * reference_length; }
+};
+
+// The output (-output_*, -checkpoint_*, -restart*; scene_output.cpp).
+struct OutputSection {
+  std::string       dir          = "output";
+  PetscInt          interval     = 100;   // steps between history rows; the static test runs at these rows
+  PetscInt          history_rows = 100;   // history rows by load: one at each end time / N of simulated time too (0: off)
+  bool              final_state  = false; // final_state.csv and broken_bonds.csv at the end
+  FieldOptions      fields;               // -output_fields* (fields.hpp)
+  CheckpointOptions checkpoint;           // -checkpoint_*, -restart* (checkpoint.hpp)
+};
+
+// The run (-solver, -partition_type, -log_setup_memory, -static_*; scene_run.cpp).
+struct RunSection {
+  SolverKind    solver           = SolverKind::dynamic;
+  PartitionType partition_type   = PartitionType::metis;
+  bool          log_setup_memory = false; // every rank's peak memory after the set-up
+  StaticOptions static_options;           // the static solver only
+};
+
+// Time stepping (-time_step*, -damping, -relaxation, -static_tolerance, -end_*,
+// -progress_*; scene_time_stepping.cpp). The time-step control (TimeStepControl::
+// EstimateStable) takes this section.
+struct TimeSteppingSection {
+  double   step    = 0.0;  // -time_step (0: use safety * stable step)
+  double   safety  = 0.8;  // -time_step_safety: fraction of the computed stable step
+  double   travel  = -1.0; // -time_step_travel: a step moves no bonded point more than this x dx (0: off; -1: the solver's choice, 0.1 with failure)
+  double   damping = 0.0;  // mass-proportional damping coefficient [1/s]
+  double   static_tolerance = 0.0; // hold ends once kinetic / internal energy < this (0: holds run out)
+  double   end_time = 0.0; // default: the schedule's last knot
+  PetscInt end_step = -1;  // stop after this step, before end_time, on purpose (split runs, tests; -1: run to end_time)
+  PetscInt progress_interval = 0;         // steps between progress lines (0: about 20 lines a run)
+  double   progress_wall_interval = 10.0; // also a progress line after this much wall time [s] since the last (0: off)
+  RelaxationKind  relaxation = RelaxationKind::none; // -relaxation (relaxation.hpp)
+  TimeStepOptions reestimate;                        // the stable step's re-estimate, -time_step_reestimate ... (time_step_control.hpp)
+};
+
+struct Scene {
+  // 2 (the plane sheet, body.sheet) or 3 (the solid, body.solid): the driver's D
+  // (SimulationD<D>, chosen once by main.cpp from the scene).
+  int                 dimension = 2;
+  BodySection         body;
+  MaterialSection     material;
+  FailureSection      failure;
+  LoadingSection      loading;
+  OutputSection       output;
+  RunSection          run;
+  TimeSteppingSection time_stepping;
+
+  // -help was given: every option was listed, nothing was validated and the scene
+  // holds defaults only. The driver stops (with -help all, after PETSc's time stepper
+  // has listed its options).
+  bool help_only = false;
 };
 
 // Reads and validates the scene. Every rejected value is reported once, naming the
@@ -194,6 +199,9 @@ PetscErrorCode SceneView(MPI_Comm comm, const Scene &scene);
 // notch by name), horizon, material, force, failure, load sets (3D: faces by axis, z
 // components), schedule, probes, time stepping and output.
 std::string SceneText(const Scene &scene);
+
+// What the load regions read of the checked scene's body (scene_selection.cpp).
+BodyExtent BodyExtentOf(const Scene &scene);
 
 // Warnings issued by the last SceneFromOptions (also printed on rank 0, to stderr).
 const std::vector<std::string> &SceneWarnings();

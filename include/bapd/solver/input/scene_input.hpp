@@ -87,7 +87,7 @@ SetFamily ShapeFamily();
 std::vector<SetFamily> SetFamilies();
 
 // Body (scene_body.cpp): -body_* and -horizon_factor.
-PetscErrorCode ReadBody(MPI_Comm comm, Scene *scene, SceneInput *in);
+PetscErrorCode ReadBody(MPI_Comm comm, BodySection *body, SceneInput *in);
 PetscErrorCode CheckBody(MPI_Comm comm, const SceneInput &in, Scene *scene);
 // The parts of the body's check shared with the 3D body (scene_body3d.cpp).
 PetscErrorCode CheckHorizonFactor(MPI_Comm comm, const Scene &scene);
@@ -100,7 +100,7 @@ PetscErrorCode CheckBody3D(MPI_Comm comm, const SceneInput &in, Scene *scene);
 // of the grips outside the sheet.
 PetscErrorCode CheckBodyFits(MPI_Comm comm, const Scene &scene);
 // Material and failure (scene_material.cpp): -material_*, -force_form, -failure_*.
-PetscErrorCode ReadMaterial(MPI_Comm comm, Scene *scene, SceneInput *in);
+PetscErrorCode ReadMaterial(MPI_Comm comm, MaterialSection *material, FailureSection *failure, SceneInput *in);
 PetscErrorCode CheckMaterial(MPI_Comm comm, const SceneInput &in, Scene *scene);
 // Each section's lines of SceneText: the material, force and failure; the load sets and
 // the schedule (scene_loading.cpp); the probes (scene_probes.cpp); the time step, the
@@ -109,9 +109,9 @@ std::string MaterialText(const Scene &scene);
 std::string LoadingText(const Scene &scene);
 std::string ProbesText(const Scene &scene);
 std::string TimeSteppingText(const Scene &scene);
-std::string OutputText(const Scene &scene);
+std::string OutputText(const OutputSection &output);
 // Loading (scene_loading.cpp): -load_sets, -load_schedule, -load_NAME_*.
-PetscErrorCode ReadLoading(MPI_Comm comm, Scene *scene, SceneInput *in);
+PetscErrorCode ReadLoading(MPI_Comm comm, LoadingSection *loading, SceneInput *in);
 // grip_rows: the rows the edge grips placed outside the sheet add beyond it, for the
 // body (Body2D::grip_rows) before CheckBodyFits counts its points.
 PetscErrorCode CheckLoading(MPI_Comm comm, const SceneInput &in, Scene *scene, EdgeRows *grip_rows);
@@ -128,15 +128,15 @@ PetscErrorCode GroupGmshFile(MPI_Comm comm, const std::string &given, const std:
 PetscErrorCode ReadProbes(MPI_Comm comm, SceneInput *in);
 PetscErrorCode CheckProbes(MPI_Comm comm, const SceneInput &in, Scene *scene);
 // Output (scene_output.cpp): -output_*, -checkpoint_*, -restart*.
-PetscErrorCode ReadOutput(MPI_Comm comm, Scene *scene, SceneInput *in);
+PetscErrorCode ReadOutput(MPI_Comm comm, OutputSection *output, SceneInput *in);
 PetscErrorCode CheckOutput(MPI_Comm comm, const SceneInput &in, Scene *scene);
 // The run (scene_run.cpp): -solver, -partition_type, -log_setup_memory, -static_*.
-PetscErrorCode ReadRun(MPI_Comm comm, Scene *scene, SceneInput *in);
+PetscErrorCode ReadRun(MPI_Comm comm, RunSection *run, SceneInput *in);
 PetscErrorCode CheckRun(MPI_Comm comm, const SceneInput &in, Scene *scene);
 // Time stepping (scene_time_stepping.cpp): -time_step*, -damping, -relaxation,
 // -static_tolerance, -end_time, -end_step, -progress_*. Checked after the loading (the
 // end time defaults to the schedule's).
-PetscErrorCode ReadTimeStepping(MPI_Comm comm, Scene *scene, SceneInput *in);
+PetscErrorCode ReadTimeStepping(MPI_Comm comm, TimeSteppingSection *time_stepping, SceneInput *in);
 PetscErrorCode CheckTimeStepping(MPI_Comm comm, const SceneInput &in, Scene *scene);
 
 } // namespace bapd

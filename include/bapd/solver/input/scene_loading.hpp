@@ -2,6 +2,7 @@
 // Grips (load sets, -load_sets): which points a grip holds and how each component
 // moves. Included by scene.hpp.
 #include <petscsys.h>
+#include <array>
 #include <string>
 #include <vector>
 
@@ -11,7 +12,14 @@
 
 namespace bapd {
 
-struct Scene;
+// What the load regions read of the body once it is checked (BodyExtentOf, scene.hpp):
+// its dimension, its extent, the spacing and the sheet's thickness.
+struct BodyExtent {
+  int                   dimension = 2;
+  std::array<double, 3> lo{}, hi{};    // 2D: the sheet, [0, width] x [0, height]; 3D: the points' cells (Body3D::lo, hi) [m]
+  double                dx        = 0; // the lattice spacing (given points: the smallest) [m]
+  double                thickness = 0; // the sheet's [m]
+};
 
 enum class ComponentLoad { free, fixed, stretch };
 
@@ -92,13 +100,13 @@ std::string BlockIdList(const Body2D &body);
 std::vector<double> BlockPoints3D(const std::vector<double> &x, const std::vector<int64_t> &block, int64_t id);
 std::string         BlockIdList(const std::vector<int64_t> &block);
 
-// Whether the point at reference position p (D coordinates; D = scene.dimension)
+// Whether the point at reference position p (D coordinates; D = body.dimension)
 // belongs to `set` (the predicate LoadSetSelect applies to every owned point).
-template <int D> bool LoadSetContains(const Scene &scene, const LoadSet &set, const double *p);
-inline bool LoadSetContains(const Scene &scene, const LoadSet &set, double px, double py)
+template <int D> bool LoadSetContains(const BodyExtent &body, const LoadSet &set, const double *p);
+inline bool LoadSetContains(const BodyExtent &body, const LoadSet &set, double px, double py)
 {
   const double p[2] = {px, py};
-  return LoadSetContains<2>(scene, set, p);
+  return LoadSetContains<2>(body, set, p);
 }
 
 // Sets set->reach from its segments and depth (call after changing either).
@@ -110,7 +118,7 @@ void SetCurveReach(LoadSet *set);
 // neighbour whose family reaches the grip's outer edge.
 int GripRows(double depth, double dx);
 
-// The local points (reference positions x, D = scene.dimension per point, n points) that a load set
+// The local points (reference positions x, D = body.dimension per point, n points) that a load set
 // holds: inside, within `layers` rows of its edge (top: y > height - layers*dx,
 // bottom: y < layers*dx, left: x < layers*dx, right: x > width - layers*dx); outside,
 // its `layers` rows beyond the edge (top: height < y < height + layers*dx, ...); or
@@ -118,13 +126,13 @@ int GripRows(double depth, double dx);
 // only; whether a set holds any point at all is for the caller to check over the
 // communicator. 3D faces: within `layers` rows of the body's extent, inside (x-:
 // x < lo_x + layers dx, ...).
-PetscErrorCode LoadSetSelect(const Scene &scene, const LoadSet &set, const double *x, PetscInt n,
+PetscErrorCode LoadSetSelect(const BodyExtent &body, const LoadSet &set, const double *x, PetscInt n,
                              std::vector<PetscInt> *selected);
 
 // The summary's words for where a load set is (SceneText), and the message when it
 // holds no material point anywhere (Loading::Setup): its region type's (regions/).
-std::string RegionText(const Scene &scene, const LoadSet &set);
-std::string LoadSetEmptyMessage(const Scene &scene, const LoadSet &set);
+std::string RegionText(const BodyExtent &body, const LoadSet &set);
+std::string LoadSetEmptyMessage(const BodyExtent &body, const LoadSet &set);
 
 const char *to_string(LoadSet::Region region);
 const char *to_string(GripPlacement placement);

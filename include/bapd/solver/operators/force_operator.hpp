@@ -43,7 +43,7 @@ public:
   // stage_ghost and stage_force: the -log_view stages of the exchange and the bond loop.
   // D = 2: the scene's 2D formulation (with_model); D = 3: the law's 3D form (with_model_3d).
   template <int D>
-  PetscErrorCode Setup(MPI_Comm comm, const ForceModel &force, const Layout &layout, const Families &families,
+  PetscErrorCode Setup(MPI_Comm comm, const MaterialSection &force, const Layout &layout, const Families &families,
                        const nd::BondGeometry<D> &geometry, const BondState &state, PetscLogStage stage_ghost,
                        PetscLogStage stage_force);
 

@@ -32,9 +32,10 @@ struct LoadSetPoints {
 
 class Loading {
 public:
-  // Selects the points of every load set (LoadSetSelect); a set that holds no point
-  // anywhere is an error naming its option. Collective.
-  PetscErrorCode Setup(MPI_Comm comm, const Scene &scene, const Layout &layout);
+  // Selects the points of every load set (LoadSetSelect) of the body `body`; a set that
+  // holds no point anywhere is an error naming its option. end_time: the run's
+  // (-end_time), which the static holds move. Collective.
+  PetscErrorCode Setup(MPI_Comm comm, const LoadingSection &loading, double end_time, const BodyExtent &body, const Layout &layout);
 
   // Holds the loaded components at their prescribed values (v may be nullptr): exact
   // for any TS type.
@@ -46,7 +47,7 @@ public:
   PetscErrorCode Reactions(const double *force_density, double *reaction);
 
   const std::vector<ConstrainedDof> &constrained() const { return constrained_; }
-  const std::vector<LoadSetPoints>  &load_set_points() const { return load_points_; } // scene.loads' order
+  const std::vector<LoadSetPoints>  &load_set_points() const { return load_points_; } // the load sets' order
   std::vector<PetscInt>              held_dofs() const;
   const Schedule                    &schedule() const { return schedule_; }
   double                             end_time() const { return end_time_; }
@@ -68,7 +69,7 @@ public:
                          double end_current, double t, PetscInt hold_done);
 
 private:
-  PetscErrorCode SetAffineLevers(const Scene &scene, const Layout &layout); // collective
+  PetscErrorCode SetAffineLevers(const std::vector<LoadSet> &sets, const BodyExtent &body, const Layout &layout); // collective
 
   MPI_Comm                    comm_   = MPI_COMM_NULL;
   const Layout               *layout_ = nullptr;

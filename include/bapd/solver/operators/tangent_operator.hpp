@@ -25,7 +25,7 @@ namespace bapd {
 class TangentOperator {
 public:
   template <int D>
-  PetscErrorCode Setup(MPI_Comm comm, const ForceModel &force, const Layout &layout, const Families &families,
+  PetscErrorCode Setup(MPI_Comm comm, const MaterialSection &force, const Layout &layout, const Families &families,
                        const nd::BondGeometry<D> &geometry, const BondState &state);
   // A matrix of block size D over the owned dofs, its pattern preallocated (the
   // caller destroys it). -mat_type chooses its type (default baij).

@@ -64,8 +64,11 @@ public:
   // search until its largest Ritz value settles, or 60 power iterations), then the step
   // -time_step or -time_step_safety x stable. Leaves the operator as it was (the
   // estimate reads or carries its own warm starts). Collective; prints the steps.
-  PetscErrorCode EstimateStable(MPI_Comm comm, const TimeStepping &scene, const Layout &layout, const Loading &loading,
-                                ForceOperator &force);
+  // From the scene: the step asked for and the re-estimate's options (stepping), the
+  // law's stiffening span and the mass (material), whether bonds break (failure: the
+  // travel limit and the step's floor) and the spacing dx [m] (the probes' size).
+  PetscErrorCode EstimateStable(MPI_Comm comm, const TimeSteppingSection &stepping, const MaterialSection &material,
+                                bool failure, double dx, const Layout &layout, const Loading &loading, ForceOperator &force);
   // A new base step (and step in use); the TS takes it with the next step.
   // The solver's travel limit is off for a step above the stable one.
   void SetBaseStep(double dt);

@@ -50,18 +50,29 @@ template <int D> struct PointReals {
   }
 };
 
-// The global cloud's size *n and the reals a point has (its own horizons, the patch
-// correction's numbers), from rank 0, which holds the cloud, to every rank.
-template <int D> PetscErrorCode BroadcastCloudShape(MPI_Comm comm, const PointCloud &global_cloud, PetscInt *n, PointReals<D> *reals)
+// What every rank knows before rank 0, which holds the whole cloud, sends it out: its
+// rank, the rank count, the cloud's size and the reals a point has.
+template <int D> struct CloudShape {
+  PetscMPIInt   rank = 0, size = 1;
+  PetscInt      n = 0;
+  PointReals<D> reals;
+};
+
+// The cloud's shape (its size, its points' own horizons, the patch correction's
+// numbers) from rank 0 to every rank, with this rank and the rank count.
+template <int D> PetscErrorCode BroadcastCloudShape(MPI_Comm comm, const PointCloud &global_cloud, CloudShape<D> *shape)
 {
+  PetscInt *n = &shape->n;
   PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_rank(comm, &shape->rank));
+  PetscCallMPI(MPI_Comm_size(comm, &shape->size));
   *n = (PetscInt)global_cloud.size();
   PetscCallMPI(MPI_Bcast(n, 1, MPIU_INT, 0, comm));
   int R = global_cloud.horizon.empty() ? D + 2 : D + 3,
       L = global_cloud.patch_correction.empty() ? 0 : (int)nd::patch_stride<D>(global_cloud.patch_virial);
   PetscCallMPI(MPI_Bcast(&R, 1, MPI_INT, 0, comm));
   PetscCallMPI(MPI_Bcast(&L, 1, MPI_INT, 0, comm));
-  *reals = PointReals<D>{R + L, L, R, R == D + 3};
+  shape->reals = PointReals<D>{R + L, L, R, R == D + 3};
   PetscFunctionReturn(0);
 }
 

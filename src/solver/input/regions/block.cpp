@@ -14,9 +14,9 @@ PetscErrorCode ReadBlock(const RegionInput &r, LoadSet *set)
 {
   const LoadInput &li    = r.li;
   const char      *n     = li.name.c_str();
-  const bool       three = r.scene.dimension == 3;
-  const Body2D    &b2    = r.scene.body;
-  const Body3D    &b3    = r.scene.body3d;
+  const bool       three = r.dimension == 3;
+  const Body2D    &b2    = r.body.sheet;
+  const Body3D    &b3    = r.body.solid;
   PetscFunctionBeginUser;
   SceneCheck(li.block_set, r.comm, "-load_%s_block is required with -load_%s_region block: give a block id of the point cloud%s", n, n,
              MisspeltHint("-load_" + li.name + "_block").c_str());
@@ -44,7 +44,7 @@ PetscErrorCode CheckBlock2D(const RegionInput &r, LoadSet *set, EdgeRows *)
 
 // Whether p (D coordinates) is one of the sorted D-tuples of `points`: a binary search,
 // exact comparison (BlockPoints).
-template <int D> bool AmongSorted(const Scene &, const LoadSet &set, const double *p)
+template <int D> bool AmongSorted(const BodyExtent &, const LoadSet &set, const double *p)
 {
   const std::vector<double> &points = set.block_points;
   const auto less = [](const double *a, const double *b) { return std::lexicographical_compare(a, a + D, b, b + D); };
@@ -58,13 +58,13 @@ template <int D> bool AmongSorted(const Scene &, const LoadSet &set, const doubl
   return lo < n && std::equal(p, p + D, &points[D * lo]);
 }
 
-std::string BlockText(const Scene &s, const LoadSet &l)
+std::string BlockText(const BodyExtent &s, const LoadSet &l)
 {
   return Format("block %lld of the cloud (%zu points)", static_cast<long long>(l.block), l.block_points.size() / (s.dimension == 3 ? 3 : 2));
 }
 
 // The body's shapes or holes can cut a block's points away.
-std::string BlockEmpty(const Scene &s, const LoadSet &set)
+std::string BlockEmpty(const BodyExtent &s, const LoadSet &set)
 {
   const char *n = set.name.c_str();
   return Format("-load_%s_block %lld selects no material point for load set '%s': the body's shapes or holes cut away "

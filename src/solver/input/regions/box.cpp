@@ -12,7 +12,7 @@ namespace {
 PetscErrorCode CheckBox2D(const RegionInput &r, LoadSet *set, EdgeRows *)
 {
   const LoadInput &li = r.li;
-  const Body2D    &b  = r.scene.body;
+  const Body2D    &b  = r.body.sheet;
   const char      *n  = li.name.c_str();
   PetscFunctionBeginUser;
   PetscCall(CheckOwnPoints2D(r, set));
@@ -32,7 +32,7 @@ PetscErrorCode CheckBox2D(const RegionInput &r, LoadSet *set, EdgeRows *)
 PetscErrorCode CheckBox3D(const RegionInput &r, LoadSet *set)
 {
   const LoadInput &li = r.li;
-  const Body3D    &b  = r.scene.body3d;
+  const Body3D    &b  = r.body.solid;
   const char      *n  = li.name.c_str();
   PetscFunctionBeginUser;
   SceneCheck(li.box_set, r.comm, "-load_%s_box is required with -load_%s_region box: give xmin,ymin,zmin,xmax,ymax,zmax in m%s", n, n,
@@ -51,19 +51,19 @@ PetscErrorCode CheckBox3D(const RegionInput &r, LoadSet *set)
   PetscFunctionReturn(0);
 }
 
-bool BoxContains2D(const Scene &, const LoadSet &set, const double *p)
+bool BoxContains2D(const BodyExtent &, const LoadSet &set, const double *p)
 {
   return p[0] >= set.box[0] && p[0] <= set.box[2] && p[1] >= set.box[1] && p[1] <= set.box[3];
 }
 
-bool BoxContains3D(const Scene &, const LoadSet &set, const double *p)
+bool BoxContains3D(const BodyExtent &, const LoadSet &set, const double *p)
 {
   for (int k = 0; k < 3; ++k)
     if (!(p[k] >= set.box[k] && p[k] <= set.box[3 + k])) return false;
   return true;
 }
 
-std::string BoxText(const Scene &s, const LoadSet &l)
+std::string BoxText(const BodyExtent &s, const LoadSet &l)
 {
   const double *x = l.box;
   return s.dimension == 3 ? Format("box [%g, %g] x [%g, %g] x [%g, %g] m", x[0], x[3], x[1], x[4], x[2], x[5])
@@ -71,17 +71,17 @@ std::string BoxText(const Scene &s, const LoadSet &l)
 }
 
 // Points sit at cell centres ((i + 1/2) dx, ...): a thin box can miss them all.
-std::string BoxEmpty(const Scene &s, const LoadSet &set)
+std::string BoxEmpty(const BodyExtent &s, const LoadSet &set)
 {
   const char   *n = set.name.c_str();
   const double *x = set.box;
   if (s.dimension == 3)
     return Format("-load_%s_box %g,%g,%g,%g,%g,%g selects no material point for load set '%s': widen it to hold a lattice point "
                   "(points sit at ((i + 1/2) dx, (j + 1/2) dx, (k + 1/2) dx), dx = %g m)",
-                  n, x[0], x[1], x[2], x[3], x[4], x[5], n, s.body3d.solid.dx);
+                  n, x[0], x[1], x[2], x[3], x[4], x[5], n, s.dx);
   return Format("-load_%s_box %g,%g,%g,%g selects no material point for load set '%s': widen it to hold a lattice point "
                 "(points sit at ((i + 1/2) dx, (j + 1/2) dx), dx = %g m)",
-                n, x[0], x[1], x[2], x[3], n, s.body.dx);
+                n, x[0], x[1], x[2], x[3], n, s.dx);
 }
 
 } // namespace

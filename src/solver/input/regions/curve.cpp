@@ -31,14 +31,14 @@ PetscErrorCode CheckCurve2D(const RegionInput &r, LoadSet *set, EdgeRows *)
   PetscFunctionReturn(0);
 }
 
-bool CurveContains2D(const Scene &, const LoadSet &set, const double *p) { return NearSegments(set, p[0], p[1]); }
+bool CurveContains2D(const BodyExtent &, const LoadSet &set, const double *p) { return NearSegments(set, p[0], p[1]); }
 
-std::string CurveText(const Scene &, const LoadSet &l)
+std::string CurveText(const BodyExtent &, const LoadSet &l)
 {
   return Format("within %g m of a polyline of %zu segments", l.depth, l.segments.size() / 4);
 }
 
-std::string CurveEmpty(const Scene &s, const LoadSet &set)
+std::string CurveEmpty(const BodyExtent &s, const LoadSet &set)
 {
   return VerticesEmpty2D(s, set, "raise -load_" + set.name + "_depth or move it onto the body");
 }

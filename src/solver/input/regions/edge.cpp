@@ -41,7 +41,7 @@ PetscErrorCode WarnShallowGrip(MPI_Comm comm, const LoadInput &li, int layers, d
 PetscErrorCode CheckEdge2D(const RegionInput &r, LoadSet *set, EdgeRows *grip_rows)
 {
   const LoadInput &li = r.li;
-  const Body2D    &b  = r.scene.body;
+  const Body2D    &b  = r.body.sheet;
   const char      *n  = li.name.c_str();
   PetscFunctionBeginUser;
   const std::string placement = Lower(li.placement) == "auto" ? to_string(r.default_placement) : Lower(li.placement);
@@ -58,7 +58,7 @@ PetscErrorCode CheckEdge2D(const RegionInput &r, LoadSet *set, EdgeRows *grip_ro
   const bool outside = set->placement == GripPlacement::outside;
   if (li.depth_set) set->layers = GripRows(li.depth, b.dx);
   else if (li.layers_set || !outside) set->layers = static_cast<int>(li.layers);
-  else set->layers = GripRows(2.0 * r.scene.horizon(), b.dx);
+  else set->layers = GripRows(2.0 * r.body.horizon(), b.dx);
   const bool   vertical = EdgeAxis(set->region) == 1;
   const double across   = vertical ? b.height : b.width;
   SceneCheck(outside || set->layers * b.dx < across, r.comm,
@@ -67,12 +67,12 @@ PetscErrorCode CheckEdge2D(const RegionInput &r, LoadSet *set, EdgeRows *grip_ro
              n, set->layers, set->layers * b.dx, vertical ? "height" : "width", across, n);
   // Outside, ten times deeper than the body or its default grip (-load_top_depth 1e30):
   // rows without end, reported as a memory shortfall of -body_dx.
-  const double deepest = 10.0 * std::max(across, 2.0 * r.scene.horizon());
+  const double deepest = 10.0 * std::max(across, 2.0 * r.body.horizon());
   SceneCheck(!outside || set->layers * b.dx <= deepest, r.comm,
              "-load_%s_%s is %d row(s), %g m deep, more than ten times the body's %s (%g m): a grip outside needs about two "
              "horizons (%g m, the default): give less", n, li.depth_set ? Format("depth %g m", li.depth).c_str() : "layers",
-             set->layers, set->layers * b.dx, vertical ? "height" : "width", across, 2.0 * r.scene.horizon());
-  PetscCall(WarnShallowGrip(r.comm, li, set->layers, b.dx, r.scene.horizon()));
+             set->layers, set->layers * b.dx, vertical ? "height" : "width", across, 2.0 * r.body.horizon());
+  PetscCall(WarnShallowGrip(r.comm, li, set->layers, b.dx, r.body.horizon()));
   if (outside) {
     int64_t &rows = set->region == LoadSet::Region::top      ? grip_rows->top
                     : set->region == LoadSet::Region::bottom ? grip_rows->bottom
@@ -86,7 +86,7 @@ PetscErrorCode CheckEdge2D(const RegionInput &r, LoadSet *set, EdgeRows *grip_ro
 PetscErrorCode CheckFace3D(const RegionInput &r, LoadSet *set)
 {
   const LoadInput &li = r.li;
-  const Body3D    &b  = r.scene.body3d;
+  const Body3D    &b  = r.body.solid;
   const double     dx = b.solid.dx;
   PetscFunctionBeginUser;
   PetscCall(CheckLayersDepth(r, "grip", "row"));
@@ -95,41 +95,39 @@ PetscErrorCode CheckFace3D(const RegionInput &r, LoadSet *set)
   const double across = b.hi[axis] - b.lo[axis];
   SceneCheck(set->layers * dx < across, r.comm, "-load_%s_layers %d is %g m deep, the whole body along %c (%g m): use fewer rows",
              li.name.c_str(), set->layers, set->layers * dx, "xyz"[axis], across);
-  PetscCall(WarnShallowGrip(r.comm, li, set->layers, dx, r.scene.horizon_factor * dx));
+  PetscCall(WarnShallowGrip(r.comm, li, set->layers, dx, r.body.horizon_factor * dx));
   PetscFunctionReturn(0);
 }
 
 // 2D: within `layers` rows of the edge, inside (between the edge and layers dx in; not
 // the rows of other grips placed outside the sheet) or outside (beyond it). Layer
 // boundaries fall half-way between lattice rows.
-bool EdgeContains2D(const Scene &scene, const LoadSet &set, const double *p)
+bool EdgeContains2D(const BodyExtent &b, const LoadSet &set, const double *p)
 {
-  const Body2D &b     = scene.body;
-  const double  depth = set.layers * b.dx;
-  const int     axis  = EdgeAxis(set.region);
-  const double q = p[axis], edge = EdgeUpper(set.region) ? (axis == 0 ? b.width : b.height) : 0.0;
+  const double depth = set.layers * b.dx;
+  const int    axis  = EdgeAxis(set.region);
+  const double q = p[axis], edge = EdgeUpper(set.region) ? b.hi[axis] : 0.0;
   if (set.placement == GripPlacement::outside) return EdgeUpper(set.region) ? q > edge && q < edge + depth : q < 0 && q > -depth;
   return EdgeUpper(set.region) ? q > edge - depth && q < edge : q < depth && q > 0;
 }
 
 // 3D: within `layers` rows of the body's extent (Body3D::lo, hi: lattice points sit
 // (i + 1/2) dx inside it), as the 2D edges inside.
-bool FaceContains3D(const Scene &scene, const LoadSet &set, const double *p)
+bool FaceContains3D(const BodyExtent &b, const LoadSet &set, const double *p)
 {
-  const Body3D &b     = scene.body3d;
-  const double  depth = set.layers * b.solid.dx;
-  const int     axis  = EdgeAxis(set.region);
+  const double depth = set.layers * b.dx;
+  const int    axis  = EdgeAxis(set.region);
   return EdgeUpper(set.region) ? p[axis] > b.hi[axis] - depth : p[axis] < b.lo[axis] + depth;
 }
 
-std::string EdgeText(const Scene &s, const LoadSet &l)
+std::string EdgeText(const BodyExtent &s, const LoadSet &l)
 {
   if (s.dimension != 3) return Format("%s edge, %d row(s) %s", to_string(l.region), l.layers, to_string(l.placement));
   const RegionType &r = region_type(l.region);
   return Format("%s face (%s), %d row(s) inside", r.alias, r.word, l.layers);
 }
 
-std::string EdgeEmpty(const Scene &, const LoadSet &set)
+std::string EdgeEmpty(const BodyExtent &, const LoadSet &set)
 {
   const char *n = set.name.c_str();
   return Format("-load_%s_region %s selects no material point for load set '%s' (its %d edge layer(s) hold none, e.g. cut away "

@@ -23,7 +23,7 @@ PetscErrorCode CheckGroup2D(const RegionInput &r, LoadSet *set, EdgeRows *)
   PetscCall(CheckOwnPoints2D(r, set));
   SceneCheck(!li.group.empty(), r.comm, "-load_%s_group is required with -load_%s_region group: give the name of a physical group of the Gmsh file%s",
              n, n, MisspeltHint("-load_" + li.name + "_group").c_str());
-  PetscCall(GroupGmshFile(r.comm, li.file, BodyGmshFiles(r.scene.body), "load", "load set", li.name, "mesh shapes", li.group, &set->file));
+  PetscCall(GroupGmshFile(r.comm, li.file, BodyGmshFiles(r.body.sheet), "load", "load set", li.name, "mesh shapes", li.group, &set->file));
   set->group = li.group;
   GmshGroup         group;
   const std::string problem = ReadGmshGroup(set->file, li.group, &group);
@@ -49,10 +49,10 @@ PetscErrorCode CheckGroup3D(const RegionInput &r, LoadSet *set)
              "-load_%s_group is required with -load_%s_region group: give the name of a physical group of the Gmsh file (a Physical "
              "Surface for a face)%s",
              n, n, MisspeltHint("-load_" + li.name + "_group").c_str());
-  PetscCall(GroupGmshFile(r.comm, li.file, BodyGmshFiles(r.scene.body3d), "load", "load set", li.name, "mesh solids", li.group, &set->file));
+  PetscCall(GroupGmshFile(r.comm, li.file, BodyGmshFiles(r.body.solid), "load", "load set", li.name, "mesh solids", li.group, &set->file));
   set->group = li.group;
   PetscCall(CheckLayersDepth(r, "set", "layer"));
-  set->depth                = li.depth_set ? li.depth : static_cast<double>(li.layers) * r.scene.body3d.solid.dx;
+  set->depth                = li.depth_set ? li.depth : static_cast<double>(li.layers) * r.body.solid.solid.dx;
   const std::string problem = ReadGmshGroup3D(set->file, li.group, set->depth, &set->elements);
   SceneCheck(problem.empty(), r.comm, "-load_%s_group %s: %s", n, li.group.c_str(), problem.c_str());
   SceneCheck(set->elements.dim < 3 || !(li.layers_set || li.depth_set), r.comm,
@@ -62,14 +62,14 @@ PetscErrorCode CheckGroup3D(const RegionInput &r, LoadSet *set)
   PetscFunctionReturn(0);
 }
 
-bool GroupContains2D(const Scene &, const LoadSet &set, const double *p)
+bool GroupContains2D(const BodyExtent &, const LoadSet &set, const double *p)
 {
   return set.segments.empty() ? shape_contains(set.area, p[0], p[1]) : NearSegments(set, p[0], p[1]);
 }
 
-bool GroupContains3D(const Scene &, const LoadSet &set, const double *p) { return nd::region_contains(set.elements, p); }
+bool GroupContains3D(const BodyExtent &, const LoadSet &set, const double *p) { return nd::region_contains(set.elements, p); }
 
-std::string GroupText(const Scene &s, const LoadSet &l)
+std::string GroupText(const BodyExtent &s, const LoadSet &l)
 {
   const char *g = l.group.c_str(), *f = l.file.c_str();
   if (s.dimension == 3)
@@ -79,7 +79,7 @@ std::string GroupText(const Scene &s, const LoadSet &l)
   return l.segments.empty() ? Format("physical surface '%s' of %s", g, f) : Format("within %g m of physical group '%s' of %s", l.depth, g, f);
 }
 
-std::string GroupEmpty(const Scene &, const LoadSet &set)
+std::string GroupEmpty(const BodyExtent &, const LoadSet &set)
 {
   const char *n = set.name.c_str();
   return Format("-load_%s_group %s (of %s) selects no material point for load set '%s': %s", n, set.group.c_str(), set.file.c_str(), n,

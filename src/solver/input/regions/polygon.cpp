@@ -22,11 +22,11 @@ PetscErrorCode CheckPolygon2D(const RegionInput &r, LoadSet *set, EdgeRows *)
   PetscFunctionReturn(0);
 }
 
-bool PolygonContains2D(const Scene &, const LoadSet &set, const double *p) { return shape_contains(set.area, p[0], p[1]); }
+bool PolygonContains2D(const BodyExtent &, const LoadSet &set, const double *p) { return shape_contains(set.area, p[0], p[1]); }
 
-std::string PolygonText(const Scene &, const LoadSet &l) { return Format("polygon of %zu vertices", l.area.vertices.size() / 2); }
+std::string PolygonText(const BodyExtent &, const LoadSet &l) { return Format("polygon of %zu vertices", l.area.vertices.size() / 2); }
 
-std::string PolygonEmpty(const Scene &s, const LoadSet &set) { return VerticesEmpty2D(s, set, "enlarge it or move it onto the body"); }
+std::string PolygonEmpty(const BodyExtent &s, const LoadSet &set) { return VerticesEmpty2D(s, set, "enlarge it or move it onto the body"); }
 
 } // namespace
 

@@ -105,18 +105,18 @@ const char *RegionHelp()
   return help.c_str();
 }
 
-template <int D> bool LoadSetContains(const Scene &scene, const LoadSet &set, const double *p)
+template <int D> bool LoadSetContains(const BodyExtent &body, const LoadSet &set, const double *p)
 {
   const RegionType &r        = region_type(set.region);
   const auto        contains = D == 3 ? r.contains3d : r.contains2d;
-  return contains && contains(scene, set, p); // (none: a region of the other dimension, refused by CheckLoading)
+  return contains && contains(body, set, p); // (none: a region of the other dimension, refused by CheckLoading)
 }
-template bool LoadSetContains<2>(const Scene &, const LoadSet &, const double *);
-template bool LoadSetContains<3>(const Scene &, const LoadSet &, const double *);
+template bool LoadSetContains<2>(const BodyExtent &, const LoadSet &, const double *);
+template bool LoadSetContains<3>(const BodyExtent &, const LoadSet &, const double *);
 
-std::string RegionText(const Scene &scene, const LoadSet &set) { return region_type(set.region).text(scene, set); }
+std::string RegionText(const BodyExtent &body, const LoadSet &set) { return region_type(set.region).text(body, set); }
 
-std::string LoadSetEmptyMessage(const Scene &scene, const LoadSet &set) { return region_type(set.region).empty_message(scene, set); }
+std::string LoadSetEmptyMessage(const BodyExtent &body, const LoadSet &set) { return region_type(set.region).empty_message(body, set); }
 
 PetscErrorCode CheckLayersDepth(const RegionInput &r, const char *whose, const char *unit)
 {
@@ -144,7 +144,7 @@ PetscErrorCode CheckOwnPoints2D(const RegionInput &r, LoadSet *set)
              "top, bottom, left and right add grip rows outside the body: remove it, or set it to inside",
              n, li.placement.c_str(), n, to_string(set->region));
   PetscCall(CheckLayersDepth(r, "set", "row"));
-  set->depth = li.depth_set ? li.depth : static_cast<double>(li.layers) * r.scene.body.dx;
+  set->depth = li.depth_set ? li.depth : static_cast<double>(li.layers) * r.body.sheet.dx;
   PetscFunctionReturn(0);
 }
 
@@ -164,7 +164,7 @@ PetscErrorCode CheckVertices2D(const RegionInput &r, const LoadSet &set, std::si
 PetscErrorCode CheckVerticesOnBody2D(const RegionInput &r, const LoadSet &set, double grow)
 {
   const LoadInput &li = r.li;
-  const Body2D    &b  = r.scene.body;
+  const Body2D    &b  = r.body.sheet;
   const char      *n  = li.name.c_str();
   PetscFunctionBeginUser;
   double lo[2] = {li.points[0], li.points[1]}, hi[2] = {li.points[0], li.points[1]};
@@ -175,12 +175,12 @@ PetscErrorCode CheckVerticesOnBody2D(const RegionInput &r, const LoadSet &set, d
   PetscFunctionReturn(0);
 }
 
-std::string VerticesEmpty2D(const Scene &s, const LoadSet &set, const std::string &advice)
+std::string VerticesEmpty2D(const BodyExtent &s, const LoadSet &set, const std::string &advice)
 {
   const char *n = set.name.c_str();
   return Format("-load_%s_points: the %s selects no material point for load set '%s': %s (points sit at ((i + 1/2) dx, (j + "
                 "1/2) dx), dx = %g m)",
-                n, to_string(set.region), n, advice.c_str(), s.body.dx);
+                n, to_string(set.region), n, advice.c_str(), s.dx);
 }
 
 } // namespace bapd

@@ -19,6 +19,7 @@
 
 namespace bapd {
 
+struct BodySection;
 struct LoadInput;
 struct SceneInput;
 
@@ -36,14 +37,15 @@ enum RegionOption : unsigned {
   uses_layers = 1u << 5, uses_depth = 1u << 6
 };
 
-// What a region's check reads: the set's options, the whole input, the scene as the
-// sections before the loading left it (body, horizon), and the placement of edge grips
+// What a region's check reads: the set's options, the whole input, the checked body
+// section (its sheet or solid, the horizon) and dimension, and the placement of edge grips
 // that no set overrides (-load_grip_placement).
 struct RegionInput {
   MPI_Comm          comm;
   const LoadInput  &li;
   const SceneInput &in;
-  const Scene      &scene;
+  const BodySection &body;
+  int               dimension; // the scene's (2 or 3)
   GripPlacement     default_placement;
 };
 
@@ -59,12 +61,12 @@ struct RegionType {
   PetscErrorCode (*check2d)(const RegionInput &, LoadSet *set, EdgeRows *grip_rows) = nullptr;
   PetscErrorCode (*check3d)(const RegionInput &, LoadSet *set)                       = nullptr;
   // Whether the point at reference position p (2 or 3 coordinates) is held.
-  bool (*contains2d)(const Scene &, const LoadSet &, const double *p) = nullptr;
-  bool (*contains3d)(const Scene &, const LoadSet &, const double *p) = nullptr;
+  bool (*contains2d)(const BodyExtent &, const LoadSet &, const double *p) = nullptr;
+  bool (*contains3d)(const BodyExtent &, const LoadSet &, const double *p) = nullptr;
   // The summary's words for where the set is (SceneText), and the message when the set
   // holds no material point (Loading::Setup).
-  std::string (*text)(const Scene &, const LoadSet &)          = nullptr;
-  std::string (*empty_message)(const Scene &, const LoadSet &) = nullptr;
+  std::string (*text)(const BodyExtent &, const LoadSet &)          = nullptr;
+  std::string (*empty_message)(const BodyExtent &, const LoadSet &) = nullptr;
   // A few words after the word in -help and the 3D choices ("points near a polyline"), or
   // nullptr (the edges: their gloss is made from the list, RegionHelp).
   const char *gloss = nullptr;
@@ -92,7 +94,7 @@ PetscErrorCode CheckLayersDepth(const RegionInput &r, const char *whose, const c
 PetscErrorCode CheckVertices2D(const RegionInput &r, const LoadSet &set, std::size_t fewest);
 PetscErrorCode CheckVerticesOnBody2D(const RegionInput &r, const LoadSet &set, double grow);
 // Their message when they hold no point, with the advice.
-std::string VerticesEmpty2D(const Scene &s, const LoadSet &set, const std::string &advice);
+std::string VerticesEmpty2D(const BodyExtent &s, const LoadSet &set, const std::string &advice);
 // Whether (px, py) lies closer than set.depth to one of set.segments (curve, group).
 bool NearSegments(const LoadSet &set, double px, double py);
 
