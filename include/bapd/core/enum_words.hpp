@@ -10,7 +10,7 @@
 namespace bapd {
 
 template <auto Last> struct EnumWords {
-  using Enum                      = decltype(Last);
+  using Enum                        = decltype(Last);
   static constexpr std::size_t size = static_cast<std::size_t>(Last) + 1;
 
   template <class... Words> constexpr EnumWords(Words... w) : words{w...}
