@@ -51,9 +51,10 @@
 // KernelStats::evaluated; a full force evaluation is gent_warm + assemble.
 //
 // Build: the `kernel_bench` target (bench/CMakeLists.txt), or standalone from the
-// repository root:
-//   g++ -std=c++17 -O3 -march=native -DNDEBUG -ffp-contract=off -Iinclude bench/kernel_bench.cpp
-//       src/core/*.cpp -o /tmp/kernel_bench
+// repository root once CMake has configured build/ (it writes the law headers' list,
+// build/generated/core):
+//   g++ -std=c++17 -O3 -march=native -DNDEBUG -ffp-contract=off -Iinclude -Ibuild/generated/core
+//       bench/kernel_bench.cpp src/core/*/*.cpp -o /tmp/kernel_bench
 #include <algorithm>
 #include <chrono>
 #include <cstdio>

@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
-"""Checks the size limits of the source tree: no file under src/ or include/ over
-MAX_FILE_LINES lines, no C++ function body over MAX_FUNCTION_LINES lines.
+"""Checks the size limits of the source tree: no C++ file under src/, include/ or
+tests/ over MAX_FILE_LINES lines, no C++ function body over MAX_FUNCTION_LINES lines
+(a test's body, TEST(...) { ... }, counts as a function).
 
     check_layout.py [ROOT] [--files F ...]
 
@@ -18,6 +19,7 @@ import sys
 MAX_FILE_LINES = 600
 MAX_FUNCTION_LINES = 100
 SOURCE_ENDINGS = ('.cpp', '.hpp', '.h', '.cc', '.cxx', '.hxx', '.in')
+SOURCE_FOLDERS = ('src', 'include', 'tests')
 SCOPE_WORDS = re.compile(r'\b(namespace|class|struct|union|enum)\b')
 
 
@@ -164,7 +166,7 @@ def long_functions(path, text, limit):
 
 
 def source_files(root):
-    for top in ('src', 'include'):
+    for top in SOURCE_FOLDERS:
         for folder, _, names in os.walk(os.path.join(root, top)):
             for name in sorted(names):
                 if name.endswith(SOURCE_ENDINGS):

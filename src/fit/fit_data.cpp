@@ -261,12 +261,7 @@ bool parse_mode(const std::string &text, LoadMode &mode)
   std::string t = lower(trim(text));
   std::replace(t.begin(), t.end(), '-', '_');
   std::replace(t.begin(), t.end(), ' ', '_');
-  for (LoadMode m : {LoadMode::uniaxial, LoadMode::pure_shear, LoadMode::equibiaxial})
-    if (t == to_string(m)) {
-      mode = m;
-      return true;
-    }
-  return false;
+  return load_mode_words.parse(t, mode);
 }
 
 Curve read_curve(const std::string &path, const std::string &mode_tag, const Specimen &specimen)

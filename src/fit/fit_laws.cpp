@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <tuple>
+#include <type_traits>
 
 #include "bapd/core/materials/law_registry.hpp"
 #include "bapd/core/materials/material.hpp"
@@ -13,43 +15,72 @@
 namespace bapd::fit {
 namespace {
 
-// A registry law from the fitted values: set(m, p) puts them into MaterialParameters.
-template <class Law>
-FitLaw registry_law(std::vector<std::string> names, std::vector<std::string> units, std::vector<double> scale,
-                    void (*set)(MaterialParameters &, const std::vector<double> &),
-                    std::function<std::vector<std::vector<double>>(double, double)> starts)
+// The law's values from fitted values p (Law::fit_values, law.hpp), in the scene's store.
+template <class Law> void set_fitted(MaterialParameters &m, const std::vector<double> &p)
+{
+  typename Law::Parameters own;
+  Law::fit_values(p.data(), m, own);
+  const std::size_t first = law_value_offset<Law>();
+  for (std::size_t i = 0; i < Law::options.size(); ++i) m.values[first + i] = own.*(Law::options[i].value);
+}
+
+// A registry law's fit from its header's recipe (fit_parameters, fit_values, fit_starts).
+template <class Law> FitLaw registry_law()
 {
   FitLaw f;
-  f.name       = Law::name;
-  f.parameters = std::move(names);
-  f.units      = std::move(units);
-  f.scale      = std::move(scale);
-  f.starts     = std::move(starts);
-  f.stress     = [set](const std::vector<double> &p, LoadMode mode, double lambda, double &P) {
+  f.name = Law::name;
+  for (const FitParameter &q : Law::fit_parameters) {
+    f.parameters.push_back(q.name);
+    f.units.push_back(q.unit);
+    f.scale.push_back(1.0); // (Pa parameters: scaled by mu0 in fit_law_to_data)
+  }
+  f.starts = &Law::fit_starts;
+  f.stress = [](const std::vector<double> &p, LoadMode mode, double lambda, double &P) {
     MaterialParameters m;
-    set(m, p);
+    set_fitted<Law>(m, p);
     return incompressible_nominal_stress<Law>(ParametersOf<Law>(m), mode, lambda, P) && std::isfinite(P);
   };
-  f.check = [set](const std::vector<double> &p) {
+  f.check = [](const std::vector<double> &p) {
     MaterialParameters m;
-    set(m, p);
+    set_fitted<Law>(m, p);
     m.D = 2.0 / (1000.0 * m.mu); // (the scene's default; the fit is incompressible)
-    ModelKind kind{};
-    parse(Law::name, kind);
-    return check_parameters(kind, m);
+    return check_parameters(law_kind<Law>(), m);
   };
-  f.yaml = [set](const std::vector<double> &p) {
+  f.yaml = [](const std::vector<double> &p) {
     MaterialParameters m;
-    set(m, p);
-    ModelKind kind{};
-    parse(Law::name, kind);
+    set_fitted<Law>(m, p);
     std::ostringstream y;
     y << "material:\n  model: " << Law::name << "\n  mu: " << number_text(m.mu, 10) << "\n";
-    for (const LawOptionEntry &o : law_entry(kind).options)
+    for (const LawOptionEntry &o : law_entry(law_kind<Law>()).options)
       y << "  " << std::string(o.name).substr(std::string("-material_").size()) << ": " << number_text(m.values[o.index], 10) << "\n";
     return y.str();
   };
   return f;
+}
+
+// Whether Law's header carries a fit recipe (law.hpp: fit_parameters).
+template <class Law, class = void> struct HasFitRecipe : std::false_type {};
+template <class Law> struct HasFitRecipe<Law, std::void_t<decltype(Law::fit_parameters)>> : std::true_type {};
+
+// Every registered law has its fit: its header's recipe, or (Ogden) one below.
+template <class... Laws> constexpr bool every_law_has_a_fit(std::tuple<Laws...> *)
+{
+  return ((HasFitRecipe<Laws>::value || std::is_same_v<Laws, Ogden>) && ...);
+}
+static_assert(every_law_has_a_fit(static_cast<RegisteredLaws *>(nullptr)),
+              "a registered law needs a fit recipe in its header: fit_parameters, fit_values, fit_starts (law.hpp)");
+
+// The fit of the registered law called name; false if there is none.
+template <class... Laws> bool registry_fit(const std::string &name, FitLaw &f, std::tuple<Laws...> *)
+{
+  bool found = false;
+  auto try_law = [&](auto *law) {
+    using Law = std::remove_pointer_t<decltype(law)>;
+    if constexpr (HasFitRecipe<Law>::value)
+      if (!found && name == Law::name) f = registry_law<Law>(), found = true;
+  };
+  (try_law(static_cast<Laws *>(nullptr)), ...);
+  return found;
 }
 
 // Ogden with n terms: p = (mu_1, alpha_1, ..., mu_n, alpha_n); mu = sum mu_k alpha_k / 2.
@@ -141,39 +172,9 @@ std::vector<std::string> fit_law_names()
 
 FitLaw fit_law(const std::string &name, int ogden_terms)
 {
-  // starting points: mu0 from the data, limits beyond the data's largest I1
-  if (name == "neo_hookean")
-    return registry_law<NeoHookean>({"mu"}, {"Pa"}, {1.0}, [](MaterialParameters &m, const std::vector<double> &p) { m.mu = p[0]; },
-                                    [](double mu0, double) { return std::vector<std::vector<double>>{{mu0}}; });
-  if (name == "gent")
-    return registry_law<Gent>({"mu", "Jm"}, {"Pa", "-"}, {1.0, 1.0},
-                              [](MaterialParameters &m, const std::vector<double> &p) { m.mu = p[0], m["-material_Jm"] = p[1]; },
-                              [](double mu0, double I1max) {
-                                const double x = I1max - 3.0;
-                                return std::vector<std::vector<double>>{{mu0, 1.5 * x + 1.0}, {mu0, 4.0 * x + 1.0}, {mu0, 20.0 * x + 10.0}};
-                              });
-  if (name == "mooney_rivlin")
-    return registry_law<MooneyRivlin>({"C10", "C01"}, {"Pa", "Pa"}, {1.0, 1.0},
-                                      [](MaterialParameters &m, const std::vector<double> &p) {
-                                        m["-material_C10"] = p[0], m["-material_C01"] = p[1], m.mu = 2.0 * (p[0] + p[1]);
-                                      },
-                                      [](double mu0, double) {
-                                        return std::vector<std::vector<double>>{{0.4 * mu0, 0.1 * mu0}, {0.25 * mu0, 0.25 * mu0}};
-                                      });
-  if (name == "yeoh")
-    return registry_law<Yeoh>({"C1", "C2", "C3"}, {"Pa", "Pa", "Pa"}, {1.0, 1.0, 1.0},
-                              [](MaterialParameters &m, const std::vector<double> &p) {
-                                m["-material_C1"] = p[0], m["-material_C2"] = p[1], m["-material_C3"] = p[2], m.mu = 2.0 * p[0];
-                              },
-                              [](double mu0, double) { return std::vector<std::vector<double>>{{0.5 * mu0, 0.0, 0.0}}; });
-  if (name == "arruda_boyce")
-    return registry_law<ArrudaBoyce>({"mu", "lambda_m"}, {"Pa", "-"}, {1.0, 1.0},
-                                     [](MaterialParameters &m, const std::vector<double> &p) { m.mu = p[0], m["-material_lambda_m"] = p[1]; },
-                                     [](double mu0, double I1max) {
-                                       const double lc = std::sqrt(I1max / 3.0);
-                                       return std::vector<std::vector<double>>{{mu0, 1.5 * lc}, {mu0, 3.0 * lc}, {mu0, 10.0 * lc}};
-                                     });
-  if (name == "ogden") return ogden(ogden_terms);
+  if (name == Ogden::name) return ogden(ogden_terms);
+  FitLaw f;
+  if (registry_fit(name, f, static_cast<RegisteredLaws *>(nullptr))) return f;
   std::string all;
   for (const std::string &n : fit_law_names()) all += (all.empty() ? "" : ", ") + n;
   throw FitError("-law " + name + ": not a law bapd-fit knows; choose from " + all);

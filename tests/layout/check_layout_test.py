@@ -2,7 +2,7 @@
 """scripts/check_layout.py finds what it must and nothing else: a file one line over
 the limit, a function body one line over it (with braces in comments, strings and a
 constructor's initialiser list that must not count, nor hide the body), and passes the same file at the
-limits. Usage: check_layout_test.py SOURCE_DIR"""
+limits, and walks src/, include/ and tests/. Usage: check_layout_test.py SOURCE_DIR"""
 import os
 import subprocess
 import sys
@@ -57,6 +57,17 @@ if code != 1 or 'long_one' not in out or 'Demo::Demo' not in out or f'{FUNCTION_
 code, out = run(source(FUNCTION_LIMIT, FILE_LIMIT + 1))
 if code != 1 or f'{FILE_LIMIT + 1} lines' not in out or 'function' in out:
     failures.append(f'a file one line over the limit passed or was misreported: {code} {out}')
+# The tree's walk reaches every source folder, the tests' included: a test one line
+# over the limit in each of them fails the tree.
+with tempfile.TemporaryDirectory() as root:
+    for folder in ('src', 'include', 'tests/unit'):
+        os.makedirs(os.path.join(root, folder))
+        with open(os.path.join(root, folder, 'long_test.cpp'), 'w') as f:
+            f.write(source(FUNCTION_LIMIT, FILE_LIMIT + 1))
+    done = subprocess.run([sys.executable, script, root], capture_output=True, text=True)
+    for folder in ('src', 'include', 'tests/unit'):
+        if done.returncode != 1 or f'{folder}/long_test.cpp: {FILE_LIMIT + 1} lines' not in done.stdout:
+            failures.append(f'the tree\'s walk missed {folder}/: {done.returncode} {done.stdout}')
 for failure in failures:
     print('FAIL:', failure)
 sys.exit(1 if failures else 0)

@@ -38,6 +38,25 @@ std::vector<double> ReadDataset(hid_t file, const char *name, std::vector<hsize_
   return values;
 }
 
+// The XDMF of the frame written in output_dir: XYZ geometry from the (points, 3)
+// positions, 3-vectors and 3 x 3 tensors, and no thickness stretch.
+void ExpectXdmfDrawsXYZ(const std::string &output_dir)
+{
+  std::ifstream      in(output_dir + "/fields.xdmf");
+  std::ostringstream text;
+  text << in.rdbuf();
+  const std::string xdmf = text.str();
+  EXPECT_NE(xdmf.find("<Geometry GeometryType=\"XYZ\">\n     <DataItem Dimensions=\"120 3\" NumberType=\"Float\" Precision=\"8\" "
+                      "Format=\"HDF\">fields/step_00000005.h5:/position</DataItem>"),
+            std::string::npos)
+      << xdmf;
+  EXPECT_NE(xdmf.find("<Attribute Name=\"displacement\" AttributeType=\"Vector\" Center=\"Node\">\n     <DataItem Dimensions=\"120 3\""),
+            std::string::npos);
+  EXPECT_NE(xdmf.find("<Attribute Name=\"deformation_gradient\" AttributeType=\"Tensor\" Center=\"Node\">\n     <DataItem Dimensions=\"120 9\""),
+            std::string::npos);
+  EXPECT_EQ(xdmf.find("thickness_stretch"), std::string::npos);
+}
+
 TEST(Fields3D, VectorsAndTensorsHoldAllThreeComponentsAndTheXdmfDrawsXYZ)
 {
   PetscMPIInt rank, size;
@@ -128,20 +147,7 @@ TEST(Fields3D, VectorsAndTensorsHoldAllThreeComponentsAndTheXdmfDrawsXYZ)
   }
   H5Fclose(file);
 
-  // The XDMF: XYZ geometry from the (points, 3) positions, 3-vectors and 3 x 3 tensors.
-  std::ifstream      in(series.output_dir + "/fields.xdmf");
-  std::ostringstream text;
-  text << in.rdbuf();
-  const std::string xdmf = text.str();
-  EXPECT_NE(xdmf.find("<Geometry GeometryType=\"XYZ\">\n     <DataItem Dimensions=\"120 3\" NumberType=\"Float\" Precision=\"8\" "
-                      "Format=\"HDF\">fields/step_00000005.h5:/position</DataItem>"),
-            std::string::npos)
-      << xdmf;
-  EXPECT_NE(xdmf.find("<Attribute Name=\"displacement\" AttributeType=\"Vector\" Center=\"Node\">\n     <DataItem Dimensions=\"120 3\""),
-            std::string::npos);
-  EXPECT_NE(xdmf.find("<Attribute Name=\"deformation_gradient\" AttributeType=\"Tensor\" Center=\"Node\">\n     <DataItem Dimensions=\"120 9\""),
-            std::string::npos);
-  EXPECT_EQ(xdmf.find("thickness_stretch"), std::string::npos);
+  ExpectXdmfDrawsXYZ(series.output_dir);
 }
 
 TEST(Fields3D, LargestBondStretchOfAnAffineStretchIsItsLargestPrincipalStretch)

@@ -1,5 +1,7 @@
-// The BA bond-force kernel: patch tests, objectivity, momentum, small-strain modulus,
-// zero-energy modes, failure reporting, rank-layout independence (docs/method.md 2-3).
+// The BA bond-force kernel: patch tests, objectivity, momentum, zero-energy modes,
+// energy, failure reporting, rank-layout independence (docs/method.md 2-3). The
+// small-strain modulus and the stress correction: ba_force_modulus_test.cpp and
+// ba_force_correction_test.cpp.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -19,11 +21,10 @@ namespace bapd {
 namespace {
 
 constexpr double kDx = 0.5e-3;
+using test::boundary_distance;
 using test::force_terms;
+using test::kLargeAffine;
 using test::rotation;
-
-// A large affine map: stretch 3, shear, rotation by 40 degrees.
-const Mat2 kLargeAffine = rotation(40.0) * Mat2{3.0, 0.5, 0.0, 1.1};
 
 // sum_j (|g_ij| + |g_ji|) V_j times a modulus: the force density a unit strain makes.
 double unit_strain_force(const test::Discretisation &d, std::size_t i, double modulus)
@@ -37,19 +38,6 @@ double unit_strain_force(const test::Discretisation &d, std::size_t i, double mo
     s += (std::hypot(g[0], g[1]) + std::hypot(h[0], h[1])) * d.cloud.volume[j];
   }
   return modulus * s;
-}
-
-double max_abs_force(const std::vector<double> &t)
-{
-  double m = 0;
-  for (std::size_t b = 0; 2 * b < t.size(); ++b) m = std::max(m, std::hypot(t[2 * b], t[2 * b + 1]));
-  return m;
-}
-
-double boundary_distance(const test::Discretisation &d, std::size_t i, double width, double height)
-{
-  const double x = d.cloud.x[2 * i], y = d.cloud.x[2 * i + 1];
-  return std::min(std::min(x, width - x), std::min(y, height - y));
 }
 
 TEST(BaForce, AffineMotionGivesExactDeformationGradientOnEveryUsableBond)
@@ -73,20 +61,12 @@ template <class Model> void expect_zero_interior_force_under_affine_motion(const
   const KernelStats    s = d.forces(model, d.affine(kLargeAffine, 3.7e-3, -1.2e-2), t, f);
   EXPECT_TRUE(s.ok());
   EXPECT_EQ(s.evaluated, d.families.n_bonds());
-  std::size_t interior = 0;
-  double      worst = 0, boundary_max = 0;
-  for (std::size_t i = 0; i < d.size(); ++i) {
-    const double rel = std::hypot(f[2 * i], f[2 * i + 1]) / force_terms(d, t, i);
-    if (boundary_distance(d, i, 20 * kDx, 20 * kDx) >= 2 * d.horizon) {
-      ++interior;
-      worst = std::max(worst, rel);
-    } else boundary_max = std::max(boundary_max, rel);
-  }
-  EXPECT_EQ(interior, 64u);
+  const test::InteriorForce r = test::interior_force(d, t, f, 20 * kDx, 2 * d.horizon);
+  EXPECT_EQ(r.interior, 64u);
   // 56 terms with relative round-off ~1e-15 each (F = A + O(1e-15), and the plane-
   // stress solve converges to 1e-12 of S33 but to the same C33 for equal F).
-  EXPECT_LT(worst, 1e-13);
-  EXPECT_GT(boundary_max, 1e-2); // not vacuous: the free surface is not in equilibrium
+  EXPECT_LT(r.worst, 1e-13);
+  EXPECT_GT(r.boundary_max, 1e-2); // not vacuous: the free surface is not in equilibrium
 }
 
 TEST(BaForce, AffineMotionGivesZeroNetForceTwoHorizonsFromTheBoundary)
@@ -261,198 +241,6 @@ TEST(BaForce, ConservesLinearMomentumWithNotchHoleAndBrokenBonds)
   // Each pair enters as +(t_ij - t_ji) V_i V_j and -(...): exact cancellation up to the
   // round-off of ~2e4 summands (random-walk ~ sqrt(n) eps ~ 3e-14).
   EXPECT_LT(std::hypot(sum0, sum1), 1e-13 * scale);
-}
-
-// M = sum_j g_j (x) xi_j V_j of an interior point, from the lattice offsets alone (in
-// units of dx, where it is dimensionless): the interior BA stress is P M.
-double interior_stiffness_factor(double horizon_factor)
-{
-  std::vector<std::array<int, 2>> offsets;
-  for (int a = -6; a <= 6; ++a)
-    for (int b = -6; b <= 6; ++b)
-      if ((a || b) && a * a + b * b <= horizon_factor * horizon_factor) offsets.push_back({a, b});
-  double m_xx = 0;
-  for (const auto &xi : offsets) {
-    double k00 = 0, k01 = 0, k11 = 0, members = 0;
-    for (const auto &k : offsets) {
-      const int da = k[0] - xi[0], db = k[1] - xi[1];
-      if (da * da + db * db > horizon_factor * horizon_factor) continue;
-      k00 += k[0] * k[0];
-      k01 += k[0] * k[1];
-      k11 += k[1] * k[1];
-      members += 1;
-    }
-    const double det = k00 * k11 - k01 * k01;
-    const double phi_xi = members / static_cast<double>(offsets.size()); // phi = 1/2 cancels the 1/2
-    m_xx += phi_xi * (k11 * xi[0] - k01 * xi[1]) / det * xi[0];
-  }
-  return m_xx;
-}
-
-// The geometry of d recomputed with a stress correction (-force_stress_correction).
-void set_correction(test::Discretisation &d, StressCorrection c)
-{
-  d.geometry.stress_correction = c;
-  nd::compute_bond_geometry<2>(d.cloud, d.families, d.state, d.geometry);
-}
-
-enum class Form { bond_only, energy_consistent };
-
-// Interior stress across the cut x = 13 dx of a 26 x 26 plate under the affine field
-// y = x + eps x e_x - nu eps y e_y: the force that the left half exerts on the right
-// half through the rows 9..16, per unit cut area. Every bond across the cut there has
-// both ends at least 3 delta (delta <= 3.515 dx: 9 rows) from the boundary, so their
-// K, phi, V(H) and the correction C (which reads V(H) of the neighbours' neighbours)
-// are the interior ones. For uniform P it equals (P M)_xx exactly for the paper's
-// force (see interior_stiffness_factor): its ratio to the modulus times eps is the BA
-// discretisation's effective stiffness.
-template <class Model>
-double cut_stress(const Model &model, double eps, double nu, double horizon_factor = 3.015,
-                  StressCorrection correction = StressCorrection::none, Form form = Form::bond_only)
-{
-  test::Discretisation d(test::plate(26, 26, kDx), horizon_factor);
-  set_correction(d, correction);
-  std::vector<double>  t, f;
-  const std::vector<double> y = d.affine({1.0 + eps, 0.0, 0.0, 1.0 - nu * eps});
-  const KernelStats s = form == Form::bond_only ? d.forces(model, y, t, f) : d.energy_consistent_forces(model, y, t, f);
-  EXPECT_TRUE(s.ok());
-  double force = 0;
-  for (std::size_t i = 0; i < d.size(); ++i) {
-    const int ix = d.ix(i, kDx), iy = d.iy(i, kDx);
-    if (ix < 13 || iy < 9 || iy > 16) continue;
-    for (std::size_t b = d.families.offsets[i]; b < d.families.offsets[i + 1]; ++b) {
-      const std::size_t j = static_cast<std::size_t>(d.families.neighbour[b]), r = static_cast<std::size_t>(d.families.reverse[b]);
-      if (d.ix(j, kDx) >= 13) continue;
-      force += (t[2 * b] - t[2 * r]) * d.cloud.volume[i] * d.cloud.volume[j];
-    }
-  }
-  return -force / (8 * kDx * 3.0e-3); // 8 rows of height dx, thickness 3 mm
-}
-
-// The paper's hydrogel nearly incompressible (K = 1000 mu), its small-strain Young's
-// modulus E and Poisson's ratio nu.
-struct SmallStrainGent {
-  MaterialParameters p;
-  double             E = 0, nu = 0;
-  SmallStrainGent()
-  {
-    p.mu = 4.55e3;
-    p["-material_Jm"] = 162.6;
-    p.D  = 2.0 / (1000.0 * p.mu);
-    const double K = 2.0 / p.D;
-    E  = 9.0 * K * p.mu / (3.0 * K + p.mu);
-    nu = (3.0 * K - 2.0 * p.mu) / (2.0 * (3.0 * K + p.mu));
-  }
-};
-
-TEST(BaForce, SmallStrainInteriorStressMatchesLinearModulus)
-{
-  // The bond-only BA form is softer than the continuum: M = 0.984 I at 2.515 dx,
-  // 0.958 I at 3.015 dx, 0.977 I at 3.515 dx: a property of the scheme.
-  EXPECT_NEAR(interior_stiffness_factor(2.515), 0.984, 5e-4);
-  EXPECT_NEAR(interior_stiffness_factor(3.015), 0.9580616581584818, 1e-12);
-  EXPECT_NEAR(interior_stiffness_factor(3.515), 0.977, 5e-4);
-  const double eps = 1e-4;
-  for (double h : {2.515, 3.015, 3.515}) {
-    const double m_xx = interior_stiffness_factor(h);
-    {
-      test::SaintVenantKirchhoff2D svk;
-      const double ratio = cut_stress(svk, eps, svk.poisson_ratio(), h) / (svk.young_modulus() * eps);
-      // Identity (P M)_xx up to the O(eps) = 1e-4 nonlinearity of SVK.
-      EXPECT_NEAR(ratio, m_xx, 3e-4) << "delta = " << h << " dx";
-      EXPECT_NEAR(ratio, 1.0, 0.05);
-    }
-    {
-      const SmallStrainGent g;
-      EXPECT_NEAR(g.E / (3.0 * g.p.mu), 1.0, 1e-3); // the incompressible limit E = 3 mu
-      const double ratio = cut_stress(GentPlaneStress{g.p}, eps, g.nu, h) / (g.E * eps);
-      EXPECT_NEAR(ratio, m_xx, 3e-4) << "delta = " << h << " dx"; // O(eps) nonlinearity again
-    }
-  }
-}
-
-TEST(BaForce, StressCorrectionMakesTheInteriorModulusTheContinuumOne)
-{
-  // -force_stress_correction tensor | scalar: C_i = M_i^{-1} (= I / m_i in the
-  // interior, where M_i is isotropic), so a uniform P gives (P M^{-1} M)_xx = P_xx:
-  // the continuum modulus, up to the O(eps) = 1e-4 nonlinearity of the model (well
-  // inside 0.2 %). Without it the cut sees M (the test above).
-  const double eps = 1e-4;
-  for (StressCorrection c : {StressCorrection::tensor, StressCorrection::scalar})
-    for (double h : {2.515, 3.015, 3.515}) {
-      test::SaintVenantKirchhoff2D svk;
-      const double svk_ratio = cut_stress(svk, eps, svk.poisson_ratio(), h, c) / (svk.young_modulus() * eps);
-      EXPECT_NEAR(svk_ratio, 1.0, 3e-4) << to_string(c) << ", delta = " << h << " dx";
-      const SmallStrainGent g;
-      const double gent_ratio = cut_stress(GentPlaneStress{g.p}, eps, g.nu, h, c) / (g.E * eps);
-      EXPECT_NEAR(gent_ratio, 1.0, 3e-4) << to_string(c) << ", delta = " << h << " dx";
-    }
-}
-
-TEST(BaForce, EnergyConsistentFormHasTheContinuumModulusWithoutACorrection)
-{
-  // sum_p t_ip (x) xi_ip V_p = omega_i sum_q V_q P_iq K_iq^{-1} K_iq = the mean of the
-  // bond stresses (ba_force.hpp): the energy-consistent form is stress-
-  // consistent as it is, which is why -force_stress_correction leaves it alone.
-  const double eps = 1e-4;
-  for (double h : {2.515, 3.015, 3.515}) {
-    test::SaintVenantKirchhoff2D svk;
-    const double ratio = cut_stress(svk, eps, svk.poisson_ratio(), h, StressCorrection::none, Form::energy_consistent) /
-                         (svk.young_modulus() * eps);
-    EXPECT_NEAR(ratio, 1.0, 3e-4) << "delta = " << h << " dx"; // O(eps) nonlinearity
-    // The default form with the paper's gel (within 0.2 %; held here to 3e-4).
-    const SmallStrainGent g;
-    const double gent_ratio = cut_stress(GentPlaneStress{g.p}, eps, g.nu, h, StressCorrection::none, Form::energy_consistent) / (g.E * eps);
-    EXPECT_NEAR(gent_ratio, 1.0, 3e-4) << "delta = " << h << " dx";
-  }
-}
-
-TEST(BaForce, InteriorVirialTensorIsTheLatticeFigureAndItsCorrectionItsInverse)
-{
-  for (double h : {2.515, 3.015, 3.515}) {
-    test::Discretisation d(test::plate(26, 26, kDx), h);
-    set_correction(d, StressCorrection::tensor);
-    const std::size_t i = 13 * 26 + 13; // 13 rows from every edge: 3.7 horizons
-    const Mat2        M = nd::virial_tensor<2>(d.cloud, d.families, d.state, i), C = d.geometry.correction_of(i);
-    const double      m = interior_stiffness_factor(h);
-    // The same sums in another order: round-off of ~40 terms of size 1.
-    EXPECT_NEAR(M[0], m, 1e-13);
-    EXPECT_NEAR(M[3], m, 1e-13);
-    EXPECT_NEAR(M[1], 0.0, 1e-13);
-    EXPECT_NEAR(M[2], 0.0, 1e-13);
-    const Mat2 CM = C * M;
-    EXPECT_NEAR(CM[0], 1.0, 1e-14);
-    EXPECT_NEAR(CM[3], 1.0, 1e-14);
-    EXPECT_NEAR(CM[1], 0.0, 1e-14);
-    EXPECT_NEAR(CM[2], 0.0, 1e-14);
-  }
-}
-
-TEST(BaForce, TensorCorrectionGivesUniformStressAsTheVirialAtEveryPoint)
-{
-  // sum_j t_ij (x) xi_ij V_j = P C_i M_i = P at every point with a regular M_i,
-  // boundary, corner and hole edge included (the scalar correction: only where M_i is
-  // isotropic, so it leaves more than round-off somewhere at the boundary).
-  Body2D body = test::plate(20, 20, kDx);
-  body.holes.push_back({10.3 * kDx, 9.6 * kDx, 3.4 * kDx});
-  test::Discretisation d(body);
-  const Mat2           A = {1.2, 0.1, -0.05, 0.9}; // finite: F round-off is small against F - I
-  const std::vector<double> y = d.affine(A);
-  test::SaintVenantKirchhoff2D svk;
-  double                       c33 = 0;
-  Mat2                         P;
-  ASSERT_EQ(svk.stress(A, c33, P), StressStatus::ok);
-  for (StressCorrection c : {StressCorrection::tensor, StressCorrection::scalar}) {
-    set_correction(d, c);
-    std::vector<double> t, f;
-    d.forces(svk, y, t, f);
-    double worst = 0;
-    for (std::size_t i = 0; i < d.size(); ++i) {
-      worst = std::max(worst, test::norm(test::bond_force_virial(d, t, i) - P) / test::norm(P));
-    }
-    if (c == StressCorrection::tensor) EXPECT_LT(worst, 1e-12); // round-off of ~30 terms, cond(K) <= ~30
-    else EXPECT_GT(worst, 1e-2); // not the identity at the edges
-  }
 }
 
 // Conventional point-associated NOSB force (paper eqs 2, 4, 5), for comparison only.
@@ -654,196 +442,6 @@ TEST(BaForce, RankLocalCloudReproducesOneRankForcesBitForBit)
                                                        double *t, nd::Workspace<2> &ws) {
     return nd::compute_bond_forces<2>(ForceForm::bond_only, svk, cloud, y, f, g, s, c33, t, ws);
   });
-}
-
-// A plate with a hole and a notch, the correction set, deformed non-affinely, with
-// every 7th bond broken after the geometry was computed (the run's path: the touched
-// points' geometry, their C_i included, recomputed).
-struct CorrectedCutPlate {
-  Body2D               body;
-  test::Discretisation d;
-  std::vector<double>  y;
-  explicit CorrectedCutPlate(StressCorrection c) : body(make_body()), d(body)
-  {
-    set_correction(d, c);
-    std::mt19937 rng(42);
-    y = d.affine({1.3, 0.2, -0.1, 0.9});
-    for (double &v : y) v += test::random_between(rng, -0.2, 0.2) * kDx;
-    std::vector<std::size_t> touched;
-    for (std::size_t i = 0; i < d.size(); ++i)
-      for (std::size_t q = 0; q < d.families.size(i); q += 7) break_bond(d.families, d.state, i, q, &touched);
-    nd::compute_bond_geometry<2>(d.cloud, d.families, d.state, d.geometry, touched);
-  }
-  static Body2D make_body()
-  {
-    Body2D b = test::plate(20, 20, kDx);
-    b.holes.push_back({6.0 * kDx, 12.0 * kDx, 2.5 * kDx});
-    b.notches.push_back({20 * kDx, 10.0 * kDx, 11.0 * kDx, 10.0 * kDx});
-    return b;
-  }
-};
-
-TEST(BaForce, StressCorrectionIsThatOfTheReferenceFamiliesAfterBreakingAndFromScratch)
-{
-  for (StressCorrection c : {StressCorrection::tensor, StressCorrection::scalar}) {
-    CorrectedCutPlate p(c);
-    ASSERT_GT(p.d.state.count_broken(p.d.families, p.d.size()), 1000u);
-    nd::BondGeometry<2> fresh;
-    fresh.stress_correction = c;
-    nd::compute_bond_geometry<2>(p.d.cloud, p.d.families, p.d.state, fresh);
-    ASSERT_EQ(fresh.correction.size(), 4 * p.d.size());
-    EXPECT_EQ(p.d.geometry.correction, fresh.correction); // bit for bit
-    EXPECT_EQ(p.d.geometry.usable, fresh.usable);
-    // C_i is that of the reference families (breaking is damage, not a change of the
-    // discretisation), so the unbroken plate has the same, while its usable bits differ.
-    test::Discretisation whole(p.body);
-    set_correction(whole, c);
-    EXPECT_EQ(whole.geometry.correction, fresh.correction);
-    EXPECT_NE(whole.geometry.usable, fresh.usable);
-    std::size_t off_identity = 0; // not vacuous: C_i is not I
-    for (std::size_t i = 0; i < p.d.size(); ++i) off_identity += fresh.correction[4 * i] != 1.0;
-    EXPECT_EQ(off_identity, p.d.size());
-  }
-}
-
-TEST(BaForce, StressCorrectionConservesLinearMomentumWithNotchHoleAndBrokenBonds)
-{
-  // C_i changes t_ij, not the pairing: f_i = sum_j (t_ij - t_ji) V_j still cancels
-  // pair by pair.
-  for (StressCorrection c : {StressCorrection::tensor, StressCorrection::scalar}) {
-    CorrectedCutPlate            p(c);
-    test::SaintVenantKirchhoff2D svk;
-    std::vector<double>          t, f;
-    p.d.forces(svk, p.y, t, f);
-    double sum0 = 0, sum1 = 0, scale = 0;
-    for (std::size_t i = 0; i < p.d.size(); ++i) {
-      sum0 += f[2 * i] * p.d.cloud.volume[i];
-      sum1 += f[2 * i + 1] * p.d.cloud.volume[i];
-      scale += force_terms(p.d, t, i) * p.d.cloud.volume[i];
-    }
-    ASSERT_GT(scale, 0);
-    EXPECT_LT(std::hypot(sum0, sum1), 1e-13 * scale) << to_string(c); // as without it
-  }
-}
-
-TEST(BaForce, StressCorrectionIsObjective)
-{
-  // C_i is a reference quantity and P(R F) = R P(F): rotating a deformed state
-  // rotates every bond force, t_ij(R y + c) = R t_ij(y).
-  for (StressCorrection c : {StressCorrection::tensor, StressCorrection::scalar}) {
-    CorrectedCutPlate            p(c);
-    test::SaintVenantKirchhoff2D svk;
-    const Mat2                   R = rotation(37.0);
-    std::vector<double>          yr(p.y.size());
-    for (std::size_t i = 0; i < p.d.size(); ++i) {
-      const Vec2 r     = R * Vec2{p.y[2 * i], p.y[2 * i + 1]};
-      yr[2 * i]        = r[0] + 2.0e-3;
-      yr[2 * i + 1]    = r[1] - 1.0e-3;
-    }
-    std::vector<double> t, f, tr, fr;
-    p.d.forces(svk, p.y, t, f);
-    p.d.forces(svk, yr, tr, fr);
-    double worst = 0, size = max_abs_force(t);
-    for (std::size_t b = 0; b < p.d.families.n_bonds(); ++b) {
-      const Vec2 rt = R * Vec2{t[2 * b], t[2 * b + 1]};
-      worst         = std::max(worst, std::hypot(tr[2 * b] - rt[0], tr[2 * b + 1] - rt[1]));
-    }
-    ASSERT_GT(size, 0);
-    // F = R F0 + round-off of the translated positions (|y| / dx ~ 1e2 eps), times cond(K)
-    EXPECT_LT(worst, 1e-11 * size) << to_string(c);
-  }
-}
-
-template <class Model> void expect_zero_interior_force_with_correction(const Model &model, StressCorrection c)
-{
-  // C_j of every neighbour j of i must be the interior one, and C_j reads V(H) two
-  // horizons from j: i three horizons from the boundary (a 26 x 26 plate: 64 points).
-  test::Discretisation d(test::plate(26, 26, kDx));
-  set_correction(d, c);
-  std::vector<double> t, f;
-  EXPECT_TRUE(d.forces(model, d.affine(kLargeAffine, 3.7e-3, -1.2e-2), t, f).ok());
-  std::size_t interior = 0;
-  double      worst = 0, boundary_max = 0;
-  for (std::size_t i = 0; i < d.size(); ++i) {
-    const double rel = std::hypot(f[2 * i], f[2 * i + 1]) / force_terms(d, t, i);
-    if (boundary_distance(d, i, 26 * kDx, 26 * kDx) >= 3 * d.horizon) {
-      ++interior;
-      worst = std::max(worst, rel);
-    } else boundary_max = std::max(boundary_max, rel);
-  }
-  EXPECT_EQ(interior, 64u);
-  EXPECT_LT(worst, 1e-13) << to_string(c); // as without a correction
-  EXPECT_GT(boundary_max, 1e-2);           // not vacuous
-}
-
-TEST(BaForce, StressCorrectionPassesThePatchTestThreeHorizonsFromTheBoundary)
-{
-  for (StressCorrection c : {StressCorrection::tensor, StressCorrection::scalar}) {
-    expect_zero_interior_force_with_correction(test::SaintVenantKirchhoff2D{}, c);
-    expect_zero_interior_force_with_correction(test::hydrogel(), c);
-  }
-}
-
-TEST(BaForce, StressCorrectedRankLocalCloudReproducesOneRankForcesBitForBit)
-{
-  const test::SaintVenantKirchhoff2D svk;
-  for (StressCorrection c : {StressCorrection::tensor, StressCorrection::scalar})
-    test::expect_rank_local_views_reproduce_one_rank(
-        [&](const PointCloud &cloud, const double *y, const Families &f, const nd::BondGeometry<2> &g, const BondState &s,
-            double *c33, double *t, nd::Workspace<2> &ws) { return nd::compute_bond_forces<2>(ForceForm::bond_only, svk, cloud, y, f, g, s, c33, t, ws); },
-        c);
-}
-
-TEST(BaForce, TensorCorrectedPointStressIsTheVirialOfTheForce)
-{
-  // point_quantities with a correction: P_i = sum_j t_ij (x) xi_ij V_j, the virial of
-  // the corrected force (docs/stress_consistency.md), formed from the kernel's t_ij
-  // here; under an affine motion it is P(A) at every point, edges and hole included.
-  Body2D body = test::plate(20, 20, kDx);
-  body.holes.push_back({10.3 * kDx, 9.6 * kDx, 3.4 * kDx});
-  test::Discretisation d(body);
-  set_correction(d, StressCorrection::tensor);
-  const GentPlaneStress model = test::hydrogel();
-  std::mt19937          rng(5);
-  const std::vector<double> affine = d.affine({1.3, 0.1, -0.05, 0.9});
-  std::vector<double>       noisy  = affine;
-  for (double &v : noisy) v += test::random_between(rng, -0.05, 0.05) * kDx;
-  for (const std::vector<double> *state : {&affine, static_cast<const std::vector<double> *>(&noisy)}) {
-    PointQuantities out;
-    point_quantities(model, d.cloud, state->data(), d.families, test::nd_geometry(d), d.state, nullptr, d.size(),
-                     StressWeights::bond_force, out);
-    std::vector<double> t, f;
-    d.forces(model, *state, t, f);
-    double worst = 0, size = 0;
-    for (std::size_t i = 0; i < d.size(); ++i) {
-      const Mat2 V = test::bond_force_virial(d, t, i);
-      const Mat2 P = {out.nominal_stress[4 * i], out.nominal_stress[4 * i + 1], out.nominal_stress[4 * i + 2],
-                      out.nominal_stress[4 * i + 3]};
-      worst = std::max(worst, test::norm(P - V));
-      size  = std::max(size, test::norm(V));
-    }
-    // the same terms summed in another order (and the plane-stress solve converged to
-    // 1e-12 of S33 from another warm start)
-    EXPECT_LT(worst, 1e-10 * size);
-    if (state == &affine) {
-      double c33 = 0;
-      Mat2   PA;
-      ASSERT_EQ(model.stress({1.3, 0.1, -0.05, 0.9}, c33, PA), StressStatus::ok);
-      for (std::size_t i = 0; i < d.size(); ++i)
-        for (int c = 0; c < 4; ++c) EXPECT_NEAR(out.nominal_stress[4 * i + c], PA[c], 1e-9 * test::norm(PA));
-    }
-  }
-}
-
-TEST(BaForce, WithoutACorrectionTheGeometryHoldsNoneAndTheForceIsThePapers)
-{
-  // -force_stress_correction none: no C_i stored, and the kernel's t_ij is eq 23 (the
-  // straightforward implementation above), so that default runs are unchanged.
-  test::Discretisation d(test::plate(12, 12, kDx));
-  EXPECT_FALSE(d.geometry.corrected());
-  EXPECT_TRUE(d.geometry.correction.empty());
-  const Mat2 I = d.geometry.correction_of(5);
-  EXPECT_EQ(I, (Mat2{1.0, 0.0, 0.0, 1.0}));
 }
 
 TEST(BaForce, AssemblyRejectsOwnedPointsWithoutGhostFamilies)

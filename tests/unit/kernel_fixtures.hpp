@@ -1,8 +1,8 @@
 #pragma once
-// Scaffolding shared by the bond-kernel tests (ba_force_test.cpp,
-// ba_force_energy_test.cpp, ba_force_lanes_test.cpp): a cut and deformed plate, the
-// sizes that round-off is measured against, a finite-difference stiffness, and one
-// rank's scrambled local view of a plate for the rank-layout tests.
+// Scaffolding shared by the bond-kernel tests (ba_force*_test.cpp): a cut and deformed
+// plate, the sizes that round-off is measured against, a finite-difference stiffness,
+// a geometry with a stress correction, and one rank's scrambled local view of a plate
+// for the rank-layout tests.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -25,6 +25,9 @@ inline Mat2 rotation(double deg)
   const double a = deg * 3.141592653589793 / 180.0;
   return {std::cos(a), -std::sin(a), std::sin(a), std::cos(a)};
 }
+
+// A large affine map: stretch 3, shear, rotation by 40 degrees.
+inline const Mat2 kLargeAffine = rotation(40.0) * Mat2{3.0, 0.5, 0.0, 1.1};
 
 // The paper's hydrogel with K = 100 mu (Gent, plane stress).
 inline GentPlaneStress hydrogel()
@@ -108,6 +111,49 @@ inline double max_abs(const std::vector<double> &v)
   double m = 0;
   for (double a : v) m = std::max(m, std::abs(a));
   return m;
+}
+
+// The largest |t_b| over the bonds of a bond-force array t.
+inline double max_abs_force(const std::vector<double> &t)
+{
+  double m = 0;
+  for (std::size_t b = 0; 2 * b < t.size(); ++b) m = std::max(m, std::hypot(t[2 * b], t[2 * b + 1]));
+  return m;
+}
+
+// The distance of point i of d from the edges of a width x height plate.
+inline double boundary_distance(const Discretisation &d, std::size_t i, double width, double height)
+{
+  const double x = d.cloud.x[2 * i], y = d.cloud.x[2 * i + 1];
+  return std::min(std::min(x, width - x), std::min(y, height - y));
+}
+
+// The net force of the points of a side x side plate at least `reach` from its edges
+// (the interior), relative to the size of their terms, against the boundary's.
+struct InteriorForce {
+  std::size_t interior     = 0; // how many points are interior
+  double      worst        = 0; // the largest |f_i| / force_terms there
+  double      boundary_max = 0; // the same over the other points
+};
+inline InteriorForce interior_force(const Discretisation &d, const std::vector<double> &t, const std::vector<double> &f, double side,
+                                    double reach)
+{
+  InteriorForce r;
+  for (std::size_t i = 0; i < d.size(); ++i) {
+    const double rel = std::hypot(f[2 * i], f[2 * i + 1]) / force_terms(d, t, i);
+    if (boundary_distance(d, i, side, side) >= reach) {
+      ++r.interior;
+      r.worst = std::max(r.worst, rel);
+    } else r.boundary_max = std::max(r.boundary_max, rel);
+  }
+  return r;
+}
+
+// The geometry of d recomputed with a stress correction (-force_stress_correction).
+inline void set_correction(Discretisation &d, StressCorrection c)
+{
+  d.geometry.stress_correction = c;
+  nd::compute_bond_geometry<2>(d.cloud, d.families, d.state, d.geometry);
 }
 
 // Largest |K_rs - K_sr| / max |K| over the stiffness entries K_rs = -d f_r / d u_s of

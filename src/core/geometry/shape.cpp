@@ -3,7 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <iterator>
+
+#include "bapd/core/enum_words.hpp"
 
 namespace bapd {
 
@@ -207,21 +208,13 @@ std::string polygon_problem(const std::vector<double> &v)
 namespace {
 
 // The enumerators' names, in their order in shape.hpp.
-constexpr const char *kKindNames[] = {"rectangle", "circle", "ellipse", "polygon", "mesh"};
-constexpr const char *kOpNames[]   = {"subtract", "add", "intersect"};
-static_assert(static_cast<std::size_t>(Shape::Kind::mesh) + 1 == std::size(kKindNames), "a name for every Shape::Kind");
-static_assert(static_cast<std::size_t>(Shape::Op::intersect) + 1 == std::size(kOpNames), "a name for every Shape::Op");
-
-template <class Enum, std::size_t N> const char *name_of(Enum value, const char *const (&names)[N])
-{
-  const auto k = static_cast<std::size_t>(value);
-  return k < N ? names[k] : "unknown";
-}
+constexpr EnumWords<Shape::Kind::mesh>    kind_words{"rectangle", "circle", "ellipse", "polygon", "mesh"};
+constexpr EnumWords<Shape::Op::intersect> op_words{"subtract", "add", "intersect"};
 
 } // namespace
 
-const char *to_string(Shape::Kind kind) { return name_of(kind, kKindNames); }
+const char *to_string(Shape::Kind kind) { return kind_words(kind); }
 
-const char *to_string(Shape::Op op) { return name_of(op, kOpNames); }
+const char *to_string(Shape::Op op) { return op_words(op); }
 
 } // namespace bapd

@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include "bapd/core/enum_words.hpp"
+
 namespace bapd::nd {
 
 namespace {
@@ -541,13 +543,8 @@ PointCloud tetrahedron_centroids(const TetrahedronSet &mesh)
 
 const char *to_string(Solid::Kind kind)
 {
-  switch (kind) {
-  case Solid::Kind::box: return "box";
-  case Solid::Kind::cylinder: return "cylinder";
-  case Solid::Kind::sphere: return "sphere";
-  case Solid::Kind::mesh: return "mesh";
-  }
-  return "unknown";
+  static constexpr EnumWords<Solid::Kind::mesh> words{"box", "cylinder", "sphere", "mesh"};
+  return words(kind);
 }
 
 } // namespace bapd::nd

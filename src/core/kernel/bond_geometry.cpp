@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "bapd/core/enum_words.hpp"
+
 namespace bapd::nd {
 
 namespace {
@@ -209,24 +211,12 @@ template Mat<3> virial_tensor<3>(const PointCloud &, const Families &, const Bon
 
 namespace bapd {
 
-const char *to_string(StressCorrection c)
-{
-  switch (c) {
-  case StressCorrection::none: return "none";
-  case StressCorrection::tensor: return "tensor";
-  case StressCorrection::scalar: return "scalar";
-  }
-  return "?";
-}
+namespace {
+constexpr EnumWords<StressCorrection::scalar> stress_correction_words{"none", "tensor", "scalar"};
+} // namespace
 
-bool parse(const std::string &name, StressCorrection &c)
-{
-  for (StressCorrection k : {StressCorrection::none, StressCorrection::tensor, StressCorrection::scalar})
-    if (name == to_string(k)) {
-      c = k;
-      return true;
-    }
-  return false;
-}
+const char *to_string(StressCorrection c) { return stress_correction_words(c); }
+
+bool parse(const std::string &name, StressCorrection &c) { return stress_correction_words.parse(name, c); }
 
 } // namespace bapd

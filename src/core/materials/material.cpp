@@ -1,6 +1,7 @@
 // Names, messages and parameter checks for the constitutive models (material.hpp).
 #include "bapd/core/materials/material.hpp"
 
+#include "bapd/core/enum_words.hpp"
 #include "bapd/core/materials/law_registry.hpp"
 
 #include <cmath>
@@ -8,16 +9,11 @@
 
 namespace bapd {
 
-const char *to_string(StressStatus s)
-{
-  switch (s) {
-  case StressStatus::ok: return "ok";
-  case StressStatus::chain_limit: return "chain_limit";
-  case StressStatus::inverted: return "inverted";
-  case StressStatus::no_convergence: return "no_convergence";
-  }
-  return "unknown";
-}
+namespace {
+constexpr EnumWords<StressStatus::no_convergence> stress_status_words{"ok", "chain_limit", "inverted", "no_convergence"};
+} // namespace
+
+const char *to_string(StressStatus s) { return stress_status_words(s); }
 
 const char *describe(StressStatus s)
 {

@@ -13,6 +13,7 @@
 
 #include "fit_data.hpp"
 #include "fit_run.hpp"
+#include "number_text.hpp"
 #include "bapd/core/materials/law_registry.hpp"
 
 namespace bapd::fit {
@@ -77,6 +78,23 @@ TEST(FitLaws, EveryRegisteredLawHasAFit)
     EXPECT_TRUE(law.stress(starts[0], LoadMode::uniaxial, 1.5, P)) << name;
     EXPECT_GT(P, 0.0) << name; // a stretched rubber pulls back
     EXPECT_NE(law.yaml(starts[0]).find("model: " + name), std::string::npos) << law.yaml(starts[0]);
+  }
+}
+
+// A law's fit recipe (law.hpp: fit_parameters, fit_values) puts each fitted value into
+// the scene option of its name: the YAML written from the starting point carries it
+// there, digit for digit. Ogden's terms are numbered in the scene (ogden_mu1) and have
+// their own recipe; every other law is checked.
+TEST(FitLaws, EveryFittedParameterGoesToTheSceneOptionOfItsName)
+{
+  for (const std::string &name : fit_law_names()) {
+    if (name == "ogden") continue;
+    const FitLaw              law  = fit_law(name, 2);
+    const std::vector<double> p    = law.starts(4550.0, 30.0)[0];
+    const std::string         yaml = law.yaml(p);
+    for (std::size_t k = 0; k < law.parameters.size(); ++k)
+      EXPECT_NE(yaml.find("\n  " + law.parameters[k] + ": " + number_text(p[k], 10) + "\n"), std::string::npos)
+          << name << " " << law.parameters[k] << ":\n" << yaml;
   }
 }
 

@@ -5,18 +5,14 @@
 // where the bond-only form's grows near free surfaces (flutter). One enum for the
 // scene and the kernel, for every D.
 
+#include "bapd/core/enum_words.hpp"
+
 namespace bapd {
 
 enum class ForceForm { bond_only, energy_consistent };
-
 // "bond_only", "energy_consistent" (the -force_form values).
-inline const char *to_string(ForceForm form)
-{
-  switch (form) {
-  case ForceForm::bond_only: return "bond_only";
-  case ForceForm::energy_consistent: return "energy_consistent";
-  }
-  return "unknown";
-}
+inline constexpr EnumWords<ForceForm::energy_consistent> force_form_words{"bond_only", "energy_consistent"};
+
+inline const char *to_string(ForceForm form) { return force_form_words(form); }
 
 } // namespace bapd

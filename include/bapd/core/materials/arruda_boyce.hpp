@@ -101,6 +101,17 @@ struct ArrudaBoyce {
     return msg.str();
   }
 
+  // bapd-fit (law.hpp: fit_parameters): mu and lambda_m; lambda_m starts beyond the
+  // chain stretch sqrt(I1 / 3) of the data's largest I1, so that the first iterate is
+  // not locked.
+  static constexpr std::array<FitParameter, 2> fit_parameters = {{{"mu", "Pa"}, {"lambda_m", "-"}}};
+  static void fit_values(const double *p, ElasticConstants &c, Parameters &own) { c.mu = p[0], own.lambda_m = p[1]; }
+  static std::vector<std::vector<double>> fit_starts(double mu0, double I1max)
+  {
+    const double lc = std::sqrt(I1max / 3.0);
+    return {{mu0, 1.5 * lc}, {mu0, 3.0 * lc}, {mu0, 10.0 * lc}};
+  }
+
   static constexpr LawVariables variables         = LawVariables::invariants;
   static constexpr bool         uses_I2bar        = false;
   static constexpr bool         convex_increasing = true; // see the top of this file

@@ -25,6 +25,16 @@ struct Gent {
     return msg.str();
   }
 
+  // bapd-fit (law.hpp: fit_parameters): mu and Jm; Jm starts beyond the data's largest
+  // I1 - 3, so that the first iterate is not locked.
+  static constexpr std::array<FitParameter, 2> fit_parameters = {{{"mu", "Pa"}, {"Jm", "-"}}};
+  static void fit_values(const double *p, ElasticConstants &c, Parameters &own) { c.mu = p[0], own.Jm = p[1]; }
+  static std::vector<std::vector<double>> fit_starts(double mu0, double I1max)
+  {
+    const double x = I1max - 3.0;
+    return {{mu0, 1.5 * x + 1.0}, {mu0, 4.0 * x + 1.0}, {mu0, 20.0 * x + 10.0}};
+  }
+
   static constexpr LawVariables variables         = LawVariables::invariants;
   static constexpr bool         uses_I2bar        = false;
   static constexpr bool         convex_increasing = true; // G > 0 and G' = G / gap > 0 below the limit

@@ -25,21 +25,15 @@
 #include <cmath>
 #include <cstddef>
 
+#include "bapd/core/enum_words.hpp"
 #include "bapd/core/materials/law.hpp"
 
 namespace bapd {
 
 enum class LoadMode { uniaxial, pure_shear, equibiaxial };
+inline constexpr EnumWords<LoadMode::equibiaxial> load_mode_words{"uniaxial", "pure_shear", "equibiaxial"};
 
-inline const char *to_string(LoadMode m)
-{
-  switch (m) {
-  case LoadMode::uniaxial: return "uniaxial";
-  case LoadMode::pure_shear: return "pure_shear";
-  case LoadMode::equibiaxial: return "equibiaxial";
-  }
-  return "?";
-}
+inline const char *to_string(LoadMode m) { return load_mode_words(m); }
 
 // The principal stretches of the incompressible test at stretch lambda.
 inline void principal_stretches(LoadMode m, double lambda, double s[3])

@@ -16,6 +16,16 @@
 //   static constexpr std::array<LawOption<Parameters>, N> options; // option name,
 //                                             // help with units, member (its default)
 //   static std::string check(const ParametersOf<Law> &); // one line per bad value
+//   static constexpr std::array<FitParameter, N> fit_parameters; // what bapd-fit fits:
+//                                             // name and unit (FitParameter below)
+//   static void fit_values(const double *p, ElasticConstants &, Parameters &);
+//                          // the law's values from fitted values p (fit_parameters'
+//                          // order): mu and the own ones; the rest keep their defaults
+//   static std::vector<std::vector<double>> fit_starts(double mu0, double I1max);
+//                          // bapd-fit's starting points from the data: mu0 of a
+//                          // neo-Hookean fit, I1max the largest I1 of the curves
+//                          // (Ogden has none: its fitted terms are a count the user
+//                          // picks, and bapd-fit writes its recipe itself)
 //   static constexpr LawVariables variables = LawVariables::invariants;
 //   static constexpr bool uses_I2bar;         // Psi_iso depends on I2bar
 //   static constexpr bool convex_increasing;  // Psi_iso convex and increasing in I1bar
@@ -59,6 +69,7 @@
 #include <cstring>
 #include <string>
 #include <type_traits>
+#include <vector>
 
 #include "bapd/core/kernel/lanes.hpp"
 #include "bapd/core/materials/law_list.hpp"
@@ -87,6 +98,13 @@ template <class Parameters> struct LawOption {
   const char *name;
   const char *help;
   double Parameters::*value;
+};
+
+// One parameter bapd-fit fits (fit_parameters): its name in the report and its unit,
+// "Pa" or "-" (the fit scales a Pa parameter by the data's modulus, a "-" one by 1).
+struct FitParameter {
+  const char *name;
+  const char *unit;
 };
 
 // The law's own parameters for the scene summary, appended to "mu 4.55e3 Pa": by default

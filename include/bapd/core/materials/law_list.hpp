@@ -4,16 +4,20 @@
 // that a scene names its law without every law header; the law types themselves come
 // together in law_registry.hpp, which generates everything else from this list.
 //
-// X(type, id): the law's struct (its header: bapd/core/materials/<id>.hpp, included by
-// law_registry.hpp) and its -material_model name (static_asserted equal to type::name).
-// One line per law; the order is the order of -help, docs and the tests.
+// X(type, id): the law's struct (its header: bapd/core/materials/<id>.hpp, whose
+// #include the build generates from this line: cmake/law_headers.cmake) and its
+// -material_model name (static_asserted equal to type::name).
+// One line per law; the order is the order of -help, docs and the tests. Every line
+// ends in a backslash (the blank line after the list ends it), so that a new law is
+// one added line.
 #define BAPD_REGISTERED_LAWS(X)  \
   X(Gent, gent)                  \
   X(NeoHookean, neo_hookean)     \
   X(MooneyRivlin, mooney_rivlin) \
   X(Yeoh, yeoh)                  \
   X(ArrudaBoyce, arruda_boyce)   \
-  X(Ogden, ogden)
+  X(Ogden, ogden)                \
+
 
 namespace bapd {
 

@@ -65,6 +65,15 @@ struct MooneyRivlin {
     return msg.str();
   }
 
+  // bapd-fit (law.hpp: fit_parameters): C10 and C01, mu = 2 (C10 + C01) from them; the
+  // starts split the neo-Hookean modulus between the two terms.
+  static constexpr std::array<FitParameter, 2> fit_parameters = {{{"C10", "Pa"}, {"C01", "Pa"}}};
+  static void fit_values(const double *p, ElasticConstants &c, Parameters &own)
+  {
+    own.C10 = p[0], own.C01 = p[1], c.mu = 2.0 * (p[0] + p[1]);
+  }
+  static std::vector<std::vector<double>> fit_starts(double mu0, double) { return {{0.4 * mu0, 0.1 * mu0}, {0.25 * mu0, 0.25 * mu0}}; }
+
   static constexpr LawVariables variables         = LawVariables::invariants;
   static constexpr bool         uses_I2bar        = true;
   static constexpr bool         convex_increasing = true; // linear in each invariant, C10, C01 >= 0

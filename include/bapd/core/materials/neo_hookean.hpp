@@ -14,6 +14,11 @@ struct NeoHookean {
   static constexpr std::array<LawOption<Parameters>, 0> options = {};
   static std::string check(const ParametersOf<NeoHookean> &) { return ""; }
 
+  // bapd-fit (law.hpp: fit_parameters): mu alone, which the neo-Hookean start already is.
+  static constexpr std::array<FitParameter, 1> fit_parameters = {{{"mu", "Pa"}}};
+  static void fit_values(const double *p, ElasticConstants &c, Parameters &) { c.mu = p[0]; }
+  static std::vector<std::vector<double>> fit_starts(double mu0, double) { return {{mu0}}; }
+
   static constexpr LawVariables variables         = LawVariables::invariants;
   static constexpr bool         uses_I2bar        = false;
   static constexpr bool         convex_increasing = true; // linear in I1bar with G = mu > 0

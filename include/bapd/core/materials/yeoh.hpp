@@ -39,6 +39,15 @@ struct Yeoh {
     return msg.str();
   }
 
+  // bapd-fit (law.hpp: fit_parameters): C1, C2, C3, mu = 2 C1 from them; the start is
+  // the neo-Hookean fit.
+  static constexpr std::array<FitParameter, 3> fit_parameters = {{{"C1", "Pa"}, {"C2", "Pa"}, {"C3", "Pa"}}};
+  static void fit_values(const double *p, ElasticConstants &c, Parameters &own)
+  {
+    own.C1 = p[0], own.C2 = p[1], own.C3 = p[2], c.mu = 2.0 * p[0];
+  }
+  static std::vector<std::vector<double>> fit_starts(double mu0, double) { return {{0.5 * mu0, 0.0, 0.0}}; }
+
   static constexpr LawVariables variables         = LawVariables::invariants;
   static constexpr bool         uses_I2bar        = false;
   static constexpr bool         convex_increasing = true; // C1 > 0, C2, C3 >= 0 and I1bar >= 3
