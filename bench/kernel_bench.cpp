@@ -219,7 +219,7 @@ int main(int argc, char **argv)
   }
 #endif
   const double dx = 1e-3;
-  Body2D       body;
+  Body<2>       body;
   body.width = body.height = o.side * dx;
   body.thickness           = 1e-3;
   body.dx                  = dx;

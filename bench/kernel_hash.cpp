@@ -103,7 +103,7 @@ int main()
   for (double factor : {2.015, 3.015, 4.5})
     for (double brk : {0.0, 0.1}) {
       const double dx = 1e-3;
-      Body2D body;
+      Body<2> body;
       body.width = 40 * dx; body.height = 30 * dx; body.thickness = 1e-3; body.dx = dx;
       PointCloud cloud = make_lattice(body);
       const Families fam = build_families(cloud, cloud.size(), factor * dx, body.notches);

@@ -173,7 +173,7 @@ int main(int argc, char **argv)
              "--graph must be families or stencil, not %s", graph.c_str());
 
   const int side = static_cast<int>(std::lround(std::sqrt(points)));
-  Body2D    body;
+  Body<2>    body;
   body.dx        = 1e-3;
   body.width     = side * body.dx;
   body.height    = side * body.dx;

@@ -31,7 +31,7 @@ using test::set_correction;
 // every 7th bond broken after the geometry was computed (the run's path: the touched
 // points' geometry, their C_i included, recomputed).
 struct CorrectedCutPlate {
-  Body2D               body;
+  Body<2>               body;
   test::Discretisation d;
   std::vector<double>  y;
   explicit CorrectedCutPlate(StressCorrection c) : body(make_body()), d(body)
@@ -45,9 +45,9 @@ struct CorrectedCutPlate {
       for (std::size_t q = 0; q < d.families.size(i); q += 7) break_bond(d.families, d.state, i, q, &touched);
     nd::compute_bond_geometry<2>(d.cloud, d.families, d.state, d.geometry, touched);
   }
-  static Body2D make_body()
+  static Body<2> make_body()
   {
-    Body2D b = test::plate(20, 20, kDx);
+    Body<2> b = test::plate(20, 20, kDx);
     b.holes.push_back({6.0 * kDx, 12.0 * kDx, 2.5 * kDx});
     b.notches.push_back({20 * kDx, 10.0 * kDx, 11.0 * kDx, 10.0 * kDx});
     return b;
@@ -162,7 +162,7 @@ TEST(BaForce, TensorCorrectedPointStressIsTheVirialOfTheForce)
   // point_quantities with a correction: P_i = sum_j t_ij (x) xi_ij V_j, the virial of
   // the corrected force (docs/stress_consistency.md), formed from the kernel's t_ij
   // here; under an affine motion it is P(A) at every point, edges and hole included.
-  Body2D body = test::plate(20, 20, kDx);
+  Body<2> body = test::plate(20, 20, kDx);
   body.holes.push_back({10.3 * kDx, 9.6 * kDx, 3.4 * kDx});
   test::Discretisation d(body);
   set_correction(d, StressCorrection::tensor);

@@ -267,7 +267,7 @@ TEST(BaForceEnergy, AffineMotionGivesZeroNetForceTwoHorizonsFromTheBoundary)
 
 TEST(BaForceEnergy, StiffnessIsSymmetricAtFreeEdgesCornersAndNotchTipsWhereBondOnlyIsNot)
 {
-  Body2D body = test::plate(20, 20, 1.0);
+  Body<2> body = test::plate(20, 20, 1.0);
   body.notches.push_back({20.0, 10.0, 12.0, 10.0});
   test::Discretisation         d(body);
   test::SaintVenantKirchhoff2D svk;

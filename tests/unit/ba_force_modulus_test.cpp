@@ -186,7 +186,7 @@ TEST(BaForce, TensorCorrectionGivesUniformStressAsTheVirialAtEveryPoint)
   // sum_j t_ij (x) xi_ij V_j = P C_i M_i = P at every point with a regular M_i,
   // boundary, corner and hole edge included (the scalar correction: only where M_i is
   // isotropic, so it leaves more than round-off somewhere at the boundary).
-  Body2D body = test::plate(20, 20, kDx);
+  Body<2> body = test::plate(20, 20, kDx);
   body.holes.push_back({10.3 * kDx, 9.6 * kDx, 3.4 * kDx});
   test::Discretisation d(body);
   const Mat2           A = {1.2, 0.1, -0.05, 0.9}; // finite: F round-off is small against F - I

@@ -42,7 +42,7 @@ double unit_strain_force(const test::Discretisation &d, std::size_t i, double mo
 
 TEST(BaForce, AffineMotionGivesExactDeformationGradientOnEveryUsableBond)
 {
-  Body2D body = test::plate(20, 20, kDx);
+  Body<2> body = test::plate(20, 20, kDx);
   body.holes.push_back({10.3 * kDx, 9.6 * kDx, 3.4 * kDx});
   test::Discretisation d(body);
   const std::vector<double> y = d.affine(kLargeAffine, 3.7e-3, -1.2e-2);
@@ -114,7 +114,7 @@ Vec2 reference_bond_force(const test::Discretisation &d, const Model &model, con
 
 TEST(BaForce, BondForcesMatchAStraightforwardImplementationOfEq23)
 {
-  Body2D body = test::plate(20, 20, kDx);
+  Body<2> body = test::plate(20, 20, kDx);
   body.holes.push_back({6.0 * kDx, 12.0 * kDx, 2.5 * kDx});
   body.notches.push_back({20 * kDx, 10.0 * kDx, 11.0 * kDx, 10.0 * kDx});
   test::Discretisation d(body);
@@ -196,7 +196,7 @@ TEST(BaForce, WideHorizonWithTwoMaskWordsPassesThePatchTest)
 
 TEST(BaForce, RigidRotationGivesZeroForceEverywhere)
 {
-  Body2D body = test::plate(20, 20, kDx);
+  Body<2> body = test::plate(20, 20, kDx);
   body.holes.push_back({10.3 * kDx, 9.6 * kDx, 3.4 * kDx});
   body.notches.push_back({20 * kDx, 4.0 * kDx, 14.0 * kDx, 4.0 * kDx});
   test::Discretisation        d(body);
@@ -214,7 +214,7 @@ TEST(BaForce, RigidRotationGivesZeroForceEverywhere)
 
 TEST(BaForce, ConservesLinearMomentumWithNotchHoleAndBrokenBonds)
 {
-  Body2D body = test::plate(20, 20, kDx);
+  Body<2> body = test::plate(20, 20, kDx);
   body.holes.push_back({6.0 * kDx, 12.0 * kDx, 2.5 * kDx});
   body.notches.push_back({20 * kDx, 10.0 * kDx, 11.0 * kDx, 10.0 * kDx});
   test::Discretisation d(body);
@@ -321,7 +321,7 @@ TEST(BaForce, CheckerboardModeMeetsRestoringForceWherePointAssociatedFDoesNot)
 
 TEST(BaForce, StrainEnergyOfAffineMotionIsTheContinuumEnergy)
 {
-  Body2D body = test::plate(20, 20, kDx);
+  Body<2> body = test::plate(20, 20, kDx);
   body.holes.push_back({10.3 * kDx, 9.6 * kDx, 3.4 * kDx});
   test::Discretisation        d(body);
   test::SaintVenantKirchhoff2D svk;

@@ -12,7 +12,7 @@ namespace {
 
 TEST(BondGeometry, ShapeTensorInverseInvertsTheBondAssociatedShapeTensor)
 {
-  Body2D body = test::plate(16, 16, 0.5e-3);
+  Body<2> body = test::plate(16, 16, 0.5e-3);
   body.holes.push_back({8 * 0.5e-3, 8 * 0.5e-3, 2.2 * 0.5e-3});
   test::Discretisation d(body);
   const Families      &f = d.families;

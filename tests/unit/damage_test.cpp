@@ -204,7 +204,7 @@ TEST(Damage, BondWithSingularShapeTensorCarriesNoForceAndIsCounted)
 
 TEST(Damage, NotchBondsAreNotDamage)
 {
-  Body2D body = test::plate(20, 20, 1.0);
+  Body<2> body = test::plate(20, 20, 1.0);
   body.notches.push_back({20.0, 10.0, 10.0, 10.0});
   test::Discretisation d(body);
   std::vector<double>  damage(d.size());

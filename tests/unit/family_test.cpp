@@ -38,7 +38,7 @@ TEST(Families, InteriorCountEqualsLatticePointsInTheHorizon)
 
 TEST(Families, AreSymmetricSortedAndReverseIndexIsConsistent)
 {
-  Body2D body = test::plate(20, 20, 1.0);
+  Body<2> body = test::plate(20, 20, 1.0);
   body.holes.push_back({8.0, 11.0, 3.2});
   test::Discretisation d(body);
   const Families &f = d.families;
@@ -128,7 +128,7 @@ TEST(Families, WideHorizonUsesSeveralMaskWords)
 TEST(Families, NotchRemovesEveryCrossingBondAndShrinksNearbyFamilies)
 {
   const double dx   = 1.0;
-  Body2D       body = test::plate(20, 20, dx);
+  Body<2>       body = test::plate(20, 20, dx);
   // Horizontal notch entering from the right edge to the middle, between rows 9 and 10.
   body.notches.push_back({20.0, 10.0, 10.0, 10.0});
   test::Discretisation d(body);

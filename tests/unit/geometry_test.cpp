@@ -23,9 +23,9 @@ constexpr double kDx = 0.5e-3, kThickness = 3.0e-3, kFactor = 3.015;
 
 // An n x n lattice of spacing kDx, each point moved by up to `jitter` x kDx in x and y
 // and given a volume kDx^2 t (1 +- spread): unequal volumes, irregular positions.
-Body2D jittered_body(int n, double jitter, double spread = 0.3, unsigned seed = 7)
+Body<2> jittered_body(int n, double jitter, double spread = 0.3, unsigned seed = 7)
 {
-  Body2D       body = test::plate(n, n, kDx, kThickness);
+  Body<2>       body = test::plate(n, n, kDx, kThickness);
   GivenPoints  g;
   std::mt19937 rng(seed);
   for (int iy = 0; iy < n; ++iy)
@@ -41,12 +41,12 @@ Body2D jittered_body(int n, double jitter, double spread = 0.3, unsigned seed = 
 // A graded grid: x = X(s), y = X(t) at the cell centres of a uniform n x n grid in (s, t)
 // in [0, 1]^2, X(s) = L (s + a s^2) / (1 + a): the spacing grows (1 + 2a) / 1 = 3 times
 // from one side to the other (a = 1). Volume = the cell's image, X'(s) X'(t) ds^2 t.
-Body2D graded_body(int n, double a = 1.0)
+Body<2> graded_body(int n, double a = 1.0)
 {
   const double L = n * kDx, ds = 1.0 / n;
   auto         X  = [&](double s) { return L * (s + a * s * s) / (1.0 + a); };
   auto         dX = [&](double s) { return L * (1.0 + 2.0 * a * s) / (1.0 + a); };
-  Body2D       body = test::plate(n, n, kDx, kThickness);
+  Body<2>       body = test::plate(n, n, kDx, kThickness);
   GivenPoints  g;
   for (int iy = 0; iy < n; ++iy)
     for (int ix = 0; ix < n; ++ix) {
@@ -73,7 +73,7 @@ Mat2 affine_forces(test::Discretisation &d, const Mat2 &A, std::vector<double> &
 
 TEST(GeometryStage, LatticeProducerIsMakeLatticeBitForBit)
 {
-  Body2D body = test::plate(17, 11, kDx, kThickness);
+  Body<2> body = test::plate(17, 11, kDx, kThickness);
   body.holes.push_back({8.3 * kDx, 5.1 * kDx, 2.6 * kDx});
   const PointCloud a = make_points(body, kFactor), b = make_lattice(body);
   EXPECT_EQ(a.x, b.x);
@@ -85,7 +85,7 @@ TEST(GeometryStage, LatticeProducerIsMakeLatticeBitForBit)
 
 TEST(GeometryStage, GivenPointsKeepTheirOrderVolumesAndOwnHorizons)
 {
-  Body2D      body = test::plate(10, 10, kDx, kThickness);
+  Body<2>      body = test::plate(10, 10, kDx, kThickness);
   GivenPoints g;
   g.x      = {1e-3, 1e-3, 2.5e-3, 2.5e-3, 4e-3, 1e-3, 2e-3, 4e-3};
   g.volume = {1e-9, 2e-9, 3e-9, 4e-9};
@@ -125,7 +125,7 @@ TEST(ElementCentroids, QuadrangleIsOnePointAtItsAreaCentroid)
 
 TEST(NonUniformFamilies, BondWhereEitherHorizonReachesAndBaFamiliesAreTheOverlap)
 {
-  const Body2D     body  = graded_body(16);
+  const Body<2>     body  = graded_body(16);
   const PointCloud cloud = make_points(body, kFactor);
   const Families   fam   = build_families(cloud, cloud.size(), 1.0, {});
   const std::size_t n    = cloud.size();
@@ -159,7 +159,7 @@ TEST(NonUniformFamilies, BondWhereEitherHorizonReachesAndBaFamiliesAreTheOverlap
 
 class NonUniformCloud : public ::testing::TestWithParam<const char *> {
 protected:
-  Body2D body() const { return std::string(GetParam()) == "jittered" ? jittered_body(20, 0.25) : graded_body(20); }
+  Body<2> body() const { return std::string(GetParam()) == "jittered" ? jittered_body(20, 0.25) : graded_body(20); }
 };
 
 TEST_P(NonUniformCloud, AffineMotionGivesExactDeformationGradientOnEveryUsableBond)
@@ -261,7 +261,7 @@ namespace {
 // horizons from the sheet's edge: C_j of a neighbour j reads V(H_k) of j's neighbours), over the force a unit strain makes
 // there (sum_j (|t_ij| + |t_ji|) V_j / |P|): 0 up to round-off where the discrete
 // divergence of a constant stress vanishes.
-double interior_affine_residual(const Body2D &body, StressCorrection correction, bool energy_consistent,
+double interior_affine_residual(const Body<2> &body, StressCorrection correction, bool energy_consistent,
                                 bool patch = false, PatchCorrectionReport *report = nullptr)
 {
   test::Discretisation d(make_points(body, kFactor), correction);
@@ -293,7 +293,7 @@ TEST(NonUniformPatch, AffineMotionLeavesNoInteriorForceOnARegularCloudGivenAsPoi
 // The irregular clouds of the patch tests (docs/discretisations.md's tables).
 struct NamedCloud {
   const char *name;
-  Body2D      body;
+  Body<2>      body;
 };
 std::vector<NamedCloud> irregular_clouds()
 {
@@ -340,7 +340,7 @@ struct VirialPatchFigures {
   PatchCorrectionReport report;
 };
 
-VirialPatchFigures virial_patch_figures(const Body2D &body, StressCorrection correction)
+VirialPatchFigures virial_patch_figures(const Body<2> &body, StressCorrection correction)
 {
   VirialPatchFigures   out;
   test::Discretisation d(make_points(body, kFactor), correction);

@@ -40,7 +40,7 @@ inline GentPlaneStress hydrogel()
 // A plate with a hole and a notch, deformed non-affinely (stretch, shear and noise of
 // `noise` dx), with every 5th bond of every third point broken.
 struct CutPlate {
-  Body2D              body;
+  Body<2>              body;
   Discretisation      d;
   std::vector<double> y;
 
@@ -55,9 +55,9 @@ struct CutPlate {
       for (std::size_t q = 1; q < d.families.size(i); q += 5) break_bond(d.families, d.state, i, q, &touched);
     nd::compute_bond_geometry<2>(d.cloud, d.families, d.state, d.geometry, touched);
   }
-  static Body2D make_body(int n)
+  static Body<2> make_body(int n)
   {
-    Body2D b = plate(n, n, kPlateDx);
+    Body<2> b = plate(n, n, kPlateDx);
     b.holes.push_back({0.3 * n * kPlateDx, 0.6 * n * kPlateDx, 2.5 * kPlateDx});
     b.notches.push_back({n * kPlateDx, 0.5 * n * kPlateDx, 0.55 * n * kPlateDx, 0.5 * n * kPlateDx});
     return b;
@@ -230,7 +230,7 @@ template <class Kernel>
 void expect_rank_local_views_reproduce_one_rank(Kernel kernel, StressCorrection correction = StressCorrection::none)
 {
   const double dx   = kPlateDx;
-  Body2D       body = plate(24, 24, dx);
+  Body<2>       body = plate(24, 24, dx);
   body.holes.push_back({7.0 * dx, 15.0 * dx, 2.5 * dx});
   body.notches.push_back({24 * dx, 12.0 * dx, 14.0 * dx, 12.0 * dx});
   Discretisation      d(body);

@@ -11,7 +11,7 @@ namespace {
 
 TEST(Lattice, PointsSitAtCellCentresRowByRow)
 {
-  const Body2D     body  = test::plate(7, 4, 0.25, 2.0);
+  const Body<2>     body  = test::plate(7, 4, 0.25, 2.0);
   const PointCloud cloud = make_lattice(body);
   ASSERT_EQ(cloud.size(), 28u);
   for (std::size_t i = 0; i < cloud.size(); ++i) {
@@ -26,7 +26,7 @@ TEST(Lattice, PointsSitAtCellCentresRowByRow)
 
 TEST(Lattice, GridSizeRoundsWidthOverDx)
 {
-  Body2D body = test::plate(1, 1, 1.0, 1.0);
+  Body<2> body = test::plate(1, 1, 1.0, 1.0);
   body.width  = 10.4; // 10.4 cells -> 10
   body.height = 2.6;  // 2.6 cells -> 3
   EXPECT_EQ(make_lattice(body).size(), 30u);
@@ -34,7 +34,7 @@ TEST(Lattice, GridSizeRoundsWidthOverDx)
 
 TEST(Lattice, HoleRemovesPointsAndNaturalIdsStayCompact)
 {
-  Body2D body = test::plate(20, 20, 1.0, 1.0);
+  Body<2> body = test::plate(20, 20, 1.0, 1.0);
   body.holes.push_back({10.0, 10.0, 3.0});
   const PointCloud cloud = make_lattice(body);
   std::size_t      removed = 0;
@@ -50,7 +50,7 @@ TEST(Lattice, HoleRemovesPointsAndNaturalIdsStayCompact)
 
 TEST(Lattice, PointOnAHoleRimIsMaterial)
 {
-  Body2D body = test::plate(4, 4, 1.0, 1.0);
+  Body<2> body = test::plate(4, 4, 1.0, 1.0);
   body.holes.push_back({2.0, 2.0, 1.0});
   body.holes.push_back({2.0, 2.0, 1.5}); // overlaps the first: the first one is named
   EXPECT_EQ(hole_containing(body, 2.5, 2.0), 0);
@@ -61,7 +61,7 @@ TEST(Lattice, PointOnAHoleRimIsMaterial)
 
 TEST(Lattice, PointCountMatchesWhatIsBuilt)
 {
-  Body2D body = test::plate(20, 20, 1.0, 1.0);
+  Body<2> body = test::plate(20, 20, 1.0, 1.0);
   EXPECT_EQ(lattice_point_count(body), 400);
   body.holes.push_back({10.0, 10.0, 3.0});
   body.holes.push_back({4.0, 15.0, 2.5});
@@ -74,7 +74,7 @@ TEST(Lattice, PointCountMatchesWithOverlappingHolesOnCellCentres)
   // Radii that put cell centres exactly on rims (distance == radius keeps the point),
   // overlapping holes and holes touching the edges: the row-by-row count must agree
   // with the cell-by-cell rule to the last point.
-  Body2D body = test::plate(37, 23, 0.5, 1.0);
+  Body<2> body = test::plate(37, 23, 0.5, 1.0);
   body.holes  = {{5.0, 5.0, 2.5}, {6.25, 5.25, 1.5}, {12.0, 8.0, 3.5}, {2.25, 9.25, 2.25}, {17.0, 2.0, 1.0}, {9.0, 6.0, 0.1}};
   EXPECT_EQ(lattice_point_count(body), static_cast<int64_t>(make_lattice(body).size()));
 }
@@ -82,7 +82,7 @@ TEST(Lattice, PointCountMatchesWithOverlappingHolesOnCellCentres)
 TEST(Lattice, CellCountsAre64Bit)
 {
   // 1e5 x 1e5 cells: 1e10 points, beyond int32; counted, never built.
-  Body2D body = test::plate(1, 1, 1.0, 1.0);
+  Body<2> body = test::plate(1, 1, 1.0, 1.0);
   body.width = body.height = 1.0;
   body.dx                  = 1e-5;
   const LatticeCells cells = lattice_cells(body);
@@ -93,7 +93,7 @@ TEST(Lattice, CellCountsAre64Bit)
 
 TEST(Lattice, RejectsNonPositiveSpacing)
 {
-  Body2D body = test::plate(4, 4);
+  Body<2> body = test::plate(4, 4);
   body.dx     = 0.0;
   EXPECT_THROW(make_lattice(body), std::invalid_argument);
 }

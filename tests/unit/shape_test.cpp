@@ -24,9 +24,9 @@ Shape Circle(double cx, double cy, double r, Shape::Op op = Shape::Op::subtract)
   s.kind = Shape::Kind::circle, s.op = op, s.cx = cx, s.cy = cy, s.a = s.b = r;
   return s;
 }
-Body2D Sheet(double w, double h, double dx)
+Body<2> Sheet(double w, double h, double dx)
 {
-  Body2D b;
+  Body<2> b;
   b.width = w, b.height = h, b.thickness = 1, b.dx = dx;
   return b;
 }
@@ -74,7 +74,7 @@ TEST(Shape, PolygonProblems)
 TEST(ShapedLattice, CountMatchesTheLatticeAndTheArea)
 {
   // A waisted sheet: two discs that reach outside the sides.
-  Body2D b = Sheet(0.02, 0.06, 0.0005);
+  Body<2> b = Sheet(0.02, 0.06, 0.0005);
   b.shapes = {Circle(-0.008, 0.03, 0.012), Circle(0.028, 0.03, 0.012)};
   const PointCloud cloud = make_lattice(b);
   EXPECT_EQ(lattice_point_count(b), (int64_t)cloud.size());
@@ -89,7 +89,7 @@ TEST(ShapedLattice, CountMatchesTheLatticeAndTheArea)
 
 TEST(ShapedLattice, PiecesFindACutAndAStrayIsland)
 {
-  Body2D b = Sheet(0.01, 0.01, 0.001);
+  Body<2> b = Sheet(0.01, 0.01, 0.001);
   b.shapes = {Rectangle(-1, 0.004, 1, 0.006)}; // a band across the whole width
   LatticePieces pieces = lattice_pieces(b);
   EXPECT_EQ(pieces.count, 2);
@@ -109,7 +109,7 @@ TEST(ShapedLattice, PiecesFindACutAndAStrayIsland)
 
 TEST(ShapedLattice, WithoutShapesNothingChanges)
 {
-  Body2D b = Sheet(0.01, 0.01, 0.0005);
+  Body<2> b = Sheet(0.01, 0.01, 0.0005);
   b.holes  = {{0.005, 0.005, 0.002}};
   const PointCloud cloud = make_lattice(b);
   EXPECT_EQ(lattice_point_count(b), (int64_t)cloud.size());

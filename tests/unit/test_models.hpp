@@ -74,9 +74,9 @@ struct LimitedModel {
 
 // A square-ish plate of nx x ny cells, dx = 0.5 mm, thickness 3 mm (so that volumes
 // differ from dx^2 and unit slips show).
-inline Body2D plate(int nx, int ny, double dx = 0.5e-3, double thickness = 3.0e-3)
+inline Body<2> plate(int nx, int ny, double dx = 0.5e-3, double thickness = 3.0e-3)
 {
-  Body2D b;
+  Body<2> b;
   b.dx        = dx;
   b.width     = nx * dx;
   b.height    = ny * dx;
@@ -92,7 +92,7 @@ struct Discretisation {
   nd::BondGeometry<2> geometry;
   double       horizon = 0;
 
-  explicit Discretisation(const Body2D &body, double horizon_factor = 3.015)
+  explicit Discretisation(const Body<2> &body, double horizon_factor = 3.015)
       : cloud(make_lattice(body)), horizon(horizon_factor * body.dx)
   {
     families = build_families(cloud, cloud.size(), horizon, body.notches);

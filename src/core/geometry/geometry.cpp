@@ -15,7 +15,7 @@ double smallest_spacing(const GivenPoints &points, double thickness)
   return smallest;
 }
 
-PointCloud make_points(const Body2D &body, double horizon_factor)
+PointCloud make_points(const Body<2> &body, double horizon_factor)
 {
   if (!body.given_points) return make_lattice(body);
   const GivenPoints &given = *body.given_points;
@@ -68,7 +68,7 @@ GivenPoints element_centroids(const TriangleSet &triangles, double thickness)
   return out;
 }
 
-int64_t body_point_count(const Body2D &body)
+int64_t body_point_count(const Body<2> &body)
 {
   if (!body.given_points) return lattice_point_count(body);
   const GivenPoints &given = *body.given_points;

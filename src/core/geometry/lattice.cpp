@@ -9,19 +9,19 @@
 
 namespace bapd {
 
-int hole_containing(const Body2D &body, double x, double y)
+int hole_containing(const Body<2> &body, double x, double y)
 {
   for (std::size_t h = 0; h < body.holes.size(); ++h)
     if (std::hypot(x - body.holes[h].cx, y - body.holes[h].cy) < body.holes[h].radius) return static_cast<int>(h);
   return -1;
 }
 
-bool is_material(const Body2D &body, double x, double y)
+bool is_material(const Body<2> &body, double x, double y)
 {
   return hole_containing(body, x, y) < 0 && (body.shapes.empty() || shape_removing(body.shapes, x, y) < 0);
 }
 
-LatticeCells lattice_cells(const Body2D &body)
+LatticeCells lattice_cells(const Body<2> &body)
 {
   if (!(body.dx > 0) || !(body.width > 0) || !(body.height > 0)) return {};
   // llround of a ratio too large for int64 is unspecified: such a body is refused
@@ -35,13 +35,13 @@ LatticeCells lattice_cells(const Body2D &body)
 static double cell_centre(int64_t i, double dx) { return (static_cast<double>(i) + 0.5) * dx; }
 
 // The cells of the whole lattice, the grips' rows outside the sheet included:
-// ix in [x0, x1), iy in [y0, y1) (Body2D::grip_rows; x0, y0 <= 0).
+// ix in [x0, x1), iy in [y0, y1) (Body<2>::grip_rows; x0, y0 <= 0).
 struct CellRange {
   int64_t x0, x1, y0, y1;
   int64_t nx() const { return x1 - x0; }
   int64_t ny() const { return y1 - y0; }
 };
-static CellRange cell_range(const Body2D &body, const LatticeCells &cells)
+static CellRange cell_range(const Body<2> &body, const LatticeCells &cells)
 {
   const EdgeRows &g = body.grip_rows;
   return {-g.left, cells.nx + g.right, -g.bottom, cells.ny + g.top};
@@ -49,7 +49,7 @@ static CellRange cell_range(const Body2D &body, const LatticeCells &cells)
 
 // Whether cell (ix, iy) is material: a cell of a grip outside the sheet is its edge
 // row's (column's) cell extruded, so the sheet's cell it is clamped onto decides.
-static bool material_cell(const Body2D &body, const LatticeCells &cells, int64_t ix, int64_t iy)
+static bool material_cell(const Body<2> &body, const LatticeCells &cells, int64_t ix, int64_t iy)
 {
   const int64_t cx = std::clamp<int64_t>(ix, 0, cells.nx - 1), cy = std::clamp<int64_t>(iy, 0, cells.ny - 1);
   return is_material(body, cell_centre(cx, body.dx), cell_centre(cy, body.dx));
@@ -59,7 +59,7 @@ static bool material_cell(const Body2D &body, const LatticeCells &cells, int64_t
 // lo > hi): the chord of the circle gives the range to within round-off, and the
 // hole rule itself settles both ends, so the count agrees with make_lattice point
 // for point. A disk's chord is one interval, so the cells between the ends are in.
-static void hole_row_cells(const Body2D &body, const Circle &h, int64_t nx, double py, int64_t *lo, int64_t *hi)
+static void hole_row_cells(const Body<2> &body, const Circle &h, int64_t nx, double py, int64_t *lo, int64_t *hi)
 {
   const double dy    = py - h.cy;
   const double chord = std::sqrt(std::max(0.0, h.radius * h.radius - dy * dy));
@@ -73,7 +73,7 @@ static void hole_row_cells(const Body2D &body, const Circle &h, int64_t nx, doub
 }
 
 // Bodies with shapes: every cell tested, or a regular sample of them scaled up.
-static int64_t shaped_point_count(const Body2D &body, const LatticeCells &cells)
+static int64_t shaped_point_count(const Body<2> &body, const LatticeCells &cells)
 {
   const CellRange r      = cell_range(body, cells);
   const double    total  = static_cast<double>(r.nx()) * static_cast<double>(r.ny());
@@ -86,7 +86,7 @@ static int64_t shaped_point_count(const Body2D &body, const LatticeCells &cells)
   return static_cast<int64_t>(total * static_cast<double>(kept) / static_cast<double>(tested));
 }
 
-int64_t lattice_point_count(const Body2D &body)
+int64_t lattice_point_count(const Body<2> &body)
 {
   const LatticeCells cells = lattice_cells(body);
   if (cells.nx < 1 || cells.ny < 1) return 0;
@@ -130,7 +130,7 @@ int64_t lattice_point_count(const Body2D &body)
 
 // Whether the link between the centres (ax, ay) and (bx, by) of two neighbouring
 // cells crosses a notch (then no bond joins them either).
-static bool notch_cuts(const Body2D &body, double ax, double ay, double bx, double by)
+static bool notch_cuts(const Body<2> &body, double ax, double ay, double bx, double by)
 {
   for (const Segment &g : body.notches) {
     auto side = [](double px, double py, double qx, double qy, double rx, double ry) {
@@ -143,7 +143,7 @@ static bool notch_cuts(const Body2D &body, double ax, double ay, double bx, doub
   return false;
 }
 
-LatticePieces lattice_pieces(const Body2D &body)
+LatticePieces lattice_pieces(const Body<2> &body)
 {
   LatticePieces      pieces;
   const LatticeCells cells = lattice_cells(body);
@@ -189,14 +189,14 @@ LatticePieces lattice_pieces(const Body2D &body)
   return pieces;
 }
 
-int64_t lattice_rows(const Body2D &body)
+int64_t lattice_rows(const Body<2> &body)
 {
   const LatticeCells cells = lattice_cells(body);
   if (cells.nx < 1 || cells.ny < 1) return 0;
   return cell_range(body, cells).ny();
 }
 
-void append_lattice_rows(const Body2D &body, int64_t row_begin, int64_t row_end, PointCloud *cloud, std::vector<int64_t> *row_counts)
+void append_lattice_rows(const Body<2> &body, int64_t row_begin, int64_t row_end, PointCloud *cloud, std::vector<int64_t> *row_counts)
 {
   const LatticeCells cells = lattice_cells(body);
   if (cells.nx < 1 || cells.ny < 1) return;
@@ -224,7 +224,7 @@ void append_lattice_rows(const Body2D &body, int64_t row_begin, int64_t row_end,
   }
 }
 
-PointCloud make_lattice(const Body2D &body)
+PointCloud make_lattice(const Body<2> &body)
 {
   if (!(body.dx > 0) || !(body.width > 0) || !(body.height > 0) || !(body.thickness > 0))
     throw std::invalid_argument("make_lattice: dx, width, height and thickness must be > 0 (got dx = " +

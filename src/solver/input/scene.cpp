@@ -99,7 +99,7 @@ namespace {
 
 // The horizon line: the lattice's one horizon, or given points' own (geometry.hpp:
 // delta_i = factor h_i, h_i = `spacing`; s.body.horizon() is the smallest, of the smallest
-// spacing, Body2D::dx).
+// spacing, Body<2>::dx).
 std::string HorizonText(const Scene &s, bool given_points, const char *spacing)
 {
   if (given_points)
@@ -112,7 +112,7 @@ std::string HorizonText(const Scene &s, bool given_points, const char *spacing)
 // shapes and notches.
 std::string BodyText2D(const Scene &s)
 {
-  const Body2D   &b = s.body.sheet;
+  const Body<2>   &b = s.body.sheet;
   const EdgeRows &g = b.grip_rows;
   std::string     text;
   if (b.given_points) // (geometry.hpp: points with their own volumes and horizons)

@@ -63,7 +63,7 @@ struct UnionFind {
 // closer than half a spacing (a gap that narrow holds no column of lattice points, so
 // every bond across it is cut). Two edges in one connected group mean the body falls
 // apart. Returns "" or the message for the first such pair.
-std::string FindCut(const Body2D &b)
+std::string FindCut(const Body<2> &b)
 {
   const int   n_holes = static_cast<int>(b.holes.size()), n_notches = static_cast<int>(b.notches.size());
   const int   first_hole = 4, first_notch = 4 + n_holes;
@@ -170,13 +170,13 @@ const OptionTable<ShapeInput> kShapeOptions = {
      &ShapeInput::discretisation},
 };
 
-// The sheet's size and spacing: values in the Body2D, whether each was given in the
+// The sheet's size and spacing: values in the Body<2>, whether each was given in the
 // SceneInput (each is required).
-const OptionTable<Body2D, SceneInput> kSheetOptions = {
-    {"-body_width", "Sheet width along x [m] (required)", &Body2D::width, &SceneInput::width_set},
-    {"-body_height", "Sheet height along y [m] (required)", &Body2D::height, &SceneInput::height_set},
-    {"-body_thickness", "Sheet thickness [m] (required)", &Body2D::thickness, &SceneInput::thickness_set},
-    {"-body_dx", "Lattice spacing of the material points [m] (required)", &Body2D::dx, &SceneInput::dx_set},
+const OptionTable<Body<2>, SceneInput> kSheetOptions = {
+    {"-body_width", "Sheet width along x [m] (required)", &Body<2>::width, &SceneInput::width_set},
+    {"-body_height", "Sheet height along y [m] (required)", &Body<2>::height, &SceneInput::height_set},
+    {"-body_thickness", "Sheet thickness [m] (required)", &Body<2>::thickness, &SceneInput::thickness_set},
+    {"-body_dx", "Lattice spacing of the material points [m] (required)", &Body<2>::dx, &SceneInput::dx_set},
 };
 
 // What cuts the sheet, or replaces its lattice, and the dimension, as given (CheckBody).
@@ -274,9 +274,9 @@ PetscErrorCode FindCentroidShape(MPI_Comm comm, const SceneInput &in, const Shap
 // centroids of one mesh shape (its mesh read into *centroid_mesh). They fix the spacing
 // (dx: the smallest), and the sheet's size unless it is given (the points' extent, half
 // a spacing beyond them).
-PetscErrorCode GivenPoints2D(MPI_Comm comm, const SceneInput &in, const ShapeInput *centroid_shape, Body2D *body, TriangleSet *centroid_mesh)
+PetscErrorCode GivenPoints2D(MPI_Comm comm, const SceneInput &in, const ShapeInput *centroid_shape, Body<2> *body, TriangleSet *centroid_mesh)
 {
-  Body2D &b = *body;
+  Body<2> &b = *body;
   PetscFunctionBeginUser;
   const std::string source = centroid_shape ? "-body_" + centroid_shape->name + "_discretisation centroids" : "-body_cloud";
   SceneCheck(in.thickness_set && b.thickness > 0, comm,
@@ -322,7 +322,7 @@ PetscErrorCode GivenPoints2D(MPI_Comm comm, const SceneInput &in, const ShapeInp
 }
 
 // The sheet's size and spacing: each given (or set by given points) and > 0.
-PetscErrorCode CheckSheetSize(MPI_Comm comm, const SceneInput &in, const Body2D &b)
+PetscErrorCode CheckSheetSize(MPI_Comm comm, const SceneInput &in, const Body<2> &b)
 {
   PetscFunctionBeginUser;
   const bool given = b.given_points != nullptr;
@@ -350,9 +350,9 @@ PetscErrorCode CheckSheetSize(MPI_Comm comm, const SceneInput &in, const Body2D 
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode CheckHoles(MPI_Comm comm, const SceneInput &in, Body2D *body)
+PetscErrorCode CheckHoles(MPI_Comm comm, const SceneInput &in, Body<2> *body)
 {
-  Body2D &b = *body;
+  Body<2> &b = *body;
   PetscFunctionBeginUser;
   SceneCheck(in.holes.size() % 3 == 0, comm,
              "-body_holes holds %zu numbers, not a multiple of 3: give each hole as cx,cy,r (e.g. -body_holes 0.04,0.08,0.01)", in.holes.size());
@@ -378,9 +378,9 @@ PetscErrorCode CheckHoles(MPI_Comm comm, const SceneInput &in, Body2D *body)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode CheckNotches(MPI_Comm comm, const SceneInput &in, Body2D *body)
+PetscErrorCode CheckNotches(MPI_Comm comm, const SceneInput &in, Body<2> *body)
 {
-  Body2D      &b   = *body;
+  Body<2>      &b   = *body;
   const double tol = 1e-12 * std::max(b.width, b.height); // round-off in the input numbers
   PetscFunctionBeginUser;
   SceneCheck(in.notches.size() % 4 == 0, comm,
@@ -429,7 +429,7 @@ PetscErrorCode CheckSceneGiven(MPI_Comm comm, const SceneInput &in)
 
 PetscErrorCode CheckBody(MPI_Comm comm, const SceneInput &in, Scene *scene)
 {
-  Body2D &b = scene->body.sheet;
+  Body<2> &b = scene->body.sheet;
   PetscFunctionBeginUser;
   PetscCall(CheckSceneGiven(comm, in));
   PetscCall(CheckDimension(comm, in, &scene->dimension));

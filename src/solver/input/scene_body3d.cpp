@@ -276,7 +276,7 @@ PetscErrorCode CheckBody3D(MPI_Comm comm, const SceneInput &in, Scene *scene)
   if (!in.cloud.empty() || centroids) PetscCall(GivenPoints3D(comm, in, centroid_solid, &b, &points));
   else PetscCall(LatticePoints3D(comm, in, scene->body.sheet.dx, &b, &points));
   SetExtent(points, &b);
-  scene->body.sheet    = Body2D();
+  scene->body.sheet    = Body<2>();
   scene->body.sheet.dx = b.solid.dx; // (the spacing every section reads: the time-step bound, the (smallest) horizon)
   PetscCall(CheckHorizonFactor(comm, *scene));
   PetscFunctionReturn(0);

@@ -102,7 +102,7 @@ PetscErrorCode CheckMemory(MPI_Comm comm, const Scene &scene, int64_t points, do
                                     scene.body.horizon_factor, available / gb);
   // Given points have no -body_dx (it is refused with them): the fix is fewer points at
   // their source, about needed / available times fewer (a spacing that much coarser).
-  const Body2D &b = scene.body.sheet;
+  const Body<2> &b = scene.body.sheet;
   if (scene.body.solid.centroids)
     SETERRQ(comm, PETSC_ERR_USER, "%s",
             Format("-body_%s_discretisation centroids: the tetrahedra of '%s' give %s: mesh it about %.2g times coarser, use the "
@@ -140,7 +140,7 @@ PetscErrorCode CheckMemory(MPI_Comm comm, const Scene &scene, int64_t points, do
 
 } // namespace
 
-// After CheckLoading: the grips outside the sheet (Body2D::grip_rows) are points too.
+// After CheckLoading: the grips outside the sheet (Body<2>::grip_rows) are points too.
 PetscErrorCode CheckBodyFits(MPI_Comm comm, const Scene &scene)
 {
   PetscFunctionBeginUser;

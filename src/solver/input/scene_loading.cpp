@@ -404,7 +404,7 @@ const char *to_string(ComponentLoad load)
   return words[static_cast<int>(load)];
 }
 
-std::vector<std::string> BodyGmshFiles(const Body2D &body)
+std::vector<std::string> BodyGmshFiles(const Body<2> &body)
 {
   std::vector<std::string> files;
   for (const Shape &s : body.shapes)

@@ -61,7 +61,7 @@ PetscErrorCode ReadProbes(MPI_Comm comm, SceneInput *in)
 namespace {
 
 // -probe_NAME_group: the position of a physical point (one node) of the Gmsh file.
-PetscErrorCode ProbeAtGroup(MPI_Comm comm, const ProbeInput &pi, const Body2D &body, Probe *p)
+PetscErrorCode ProbeAtGroup(MPI_Comm comm, const ProbeInput &pi, const Body<2> &body, Probe *p)
 {
   const char *n = pi.name.c_str();
   PetscFunctionBeginUser;
@@ -80,7 +80,7 @@ PetscErrorCode ProbeAtGroup(MPI_Comm comm, const ProbeInput &pi, const Body2D &b
 }
 
 // -probe_NAME_block: the position of the one given point with that block id.
-PetscErrorCode ProbeAtBlock(MPI_Comm comm, const ProbeInput &pi, const Body2D &body, Probe *p)
+PetscErrorCode ProbeAtBlock(MPI_Comm comm, const ProbeInput &pi, const Body<2> &body, Probe *p)
 {
   const char *n = pi.name.c_str();
   PetscFunctionBeginUser;
@@ -161,7 +161,7 @@ PetscErrorCode CheckProbe3D(MPI_Comm comm, const ProbeInput &pi, const Body3D &b
 
 PetscErrorCode CheckProbes(MPI_Comm comm, const SceneInput &in, Scene *scene)
 {
-  const Body2D &b = scene->body.sheet;
+  const Body<2> &b = scene->body.sheet;
   PetscFunctionBeginUser;
   const double tol = 1e-12 * std::max(b.width, b.height);
   scene->loading.probes.clear();

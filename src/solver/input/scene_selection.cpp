@@ -16,7 +16,7 @@
 
 namespace bapd {
 
-std::vector<double> BlockPoints(const Body2D &body, int64_t block)
+std::vector<double> BlockPoints(const Body<2> &body, int64_t block)
 {
   std::vector<std::pair<double, double>> found;
   if (body.given_points)
@@ -39,7 +39,7 @@ std::string BlockIdList(const std::vector<int64_t> &block)
   return ids.size() > 20 ? list + ", ..." : list;
 }
 
-std::string BlockIdList(const Body2D &body) { return body.given_points ? BlockIdList(body.given_points->block) : ""; }
+std::string BlockIdList(const Body<2> &body) { return body.given_points ? BlockIdList(body.given_points->block) : ""; }
 
 std::vector<double> BlockPoints3D(const std::vector<double> &x, const std::vector<int64_t> &block, int64_t id)
 {
@@ -74,7 +74,7 @@ PetscErrorCode LoadSetSelect(const BodyExtent &body, const LoadSet &set, const d
 // lattice spacing (the same as the sheet's dx once the scene is checked).
 BodyExtent BodyExtentOf(const Scene &scene)
 {
-  const Body2D &sheet = scene.body.sheet;
+  const Body<2> &sheet = scene.body.sheet;
   const Body3D &solid = scene.body.solid;
   BodyExtent    e;
   e.dimension = scene.dimension;

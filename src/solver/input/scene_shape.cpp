@@ -103,7 +103,7 @@ PetscErrorCode CheckShapeParameters(MPI_Comm comm, const ShapeInput &in, Triangl
 }
 
 // A shape that does not touch the sheet does nothing: surely a mistake in a number.
-PetscErrorCode CheckShapeTouchesBody(MPI_Comm comm, const Shape &s, const Body2D &b)
+PetscErrorCode CheckShapeTouchesBody(MPI_Comm comm, const Shape &s, const Body<2> &b)
 {
   const char *n = s.name.c_str();
   PetscFunctionBeginUser;
@@ -128,7 +128,7 @@ PetscErrorCode CheckShapeTouchesBody(MPI_Comm comm, const Shape &s, const Body2D
 
 } // namespace
 
-PetscErrorCode CheckShape(MPI_Comm comm, const ShapeInput &in, const Body2D &b, TriangleSet *read_mesh, std::vector<Shape> *shapes)
+PetscErrorCode CheckShape(MPI_Comm comm, const ShapeInput &in, const Body<2> &b, TriangleSet *read_mesh, std::vector<Shape> *shapes)
 {
   Shape       s;
   const char *n = in.name.c_str();

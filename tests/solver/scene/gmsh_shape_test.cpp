@@ -27,7 +27,7 @@ TEST(GmshShape, LShapeClipsTheLatticeAsItsPolygonDoes)
   polygon.vertices = {0.0001, 0.0001, 0.0079, 0.0001, 0.0079, 0.0031, 0.0031, 0.0031, 0.0031, 0.0079, 0.0001, 0.0079};
   EXPECT_NEAR(bapd::shape_area(mesh), bapd::shape_area(polygon), 1e-12 * bapd::shape_area(polygon));
 
-  bapd::Body2D body;
+  bapd::Body<2> body;
   body.width = body.height = 0.008, body.thickness = 0.001, body.dx = 0.0005;
   body.shapes = {mesh};
   const bapd::PointCloud from_mesh = bapd::make_lattice(body);

@@ -333,7 +333,7 @@ TEST(ScenePointEstimate, CountsWhatTheLatticeBuilds)
   EXPECT_EQ(bapd::ScenePointEstimate(scene), 80 * 160);
 }
 
-// Grips outside the specimen (Body2D::grip_rows): whole rows beyond each edge, each
+// Grips outside the specimen (Body<2>::grip_rows): whole rows beyond each edge, each
 // the edge row extruded, counted as built, held by the outside sets alone.
 TEST(GripRows, ExtrudeTheEdgeRowsAndAreCountedAsBuilt)
 {

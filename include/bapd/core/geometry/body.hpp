@@ -9,6 +9,10 @@
 
 namespace bapd {
 
+// The body of dimension D: Body<2> the plane sheet (below), Body<3> the solid
+// (shape3d.hpp). Each holds its own spacing dx.
+template <int D> struct Body;
+
 struct Circle {
   double cx, cy, radius;
 };
@@ -42,7 +46,7 @@ struct GivenPoints {
 // there is material where the edge row's point at the same x, or the edge column's at
 // the same y, is). Coordinates stay those of the sheet: a bottom grip's points have
 // y < 0, a top grip's y > height.
-struct Body2D {
+template <> struct Body<2> {
   double width = 0, height = 0, thickness = 0, dx = 0;
   std::vector<Circle>  holes;
   std::vector<Shape>   shapes;  // subtract / add / intersect, in order

@@ -4,7 +4,7 @@
 // checks, load sets, probes, output, checkpoints). Two producers:
 //   - the uniform lattice (lattice.hpp): spacing dx, volume dx^2 t, one horizon
 //     delta = horizon_factor dx for every point; natural id = lattice order;
-//   - given points (Body2D::given_points: a point cloud file, or the centroids of a
+//   - given points (Body<2>::given_points: a point cloud file, or the centroids of a
 //     Gmsh mesh's 2D elements), kept where the body is material (holes, shapes);
 //     natural id = their order in the source among the kept points.
 //
@@ -47,14 +47,14 @@ inline double point_spacing(int dimension, double volume, double thickness)
 void set_point_horizons(PointCloud *cloud, int dimension, double horizon_factor, double thickness);
 
 // The smallest point_spacing of the given points: the body's characteristic spacing
-// (Body2D::dx), which the stable-step bound and the travel limit scale with.
+// (Body<2>::dx), which the stable-step bound and the travel limit scale with.
 double smallest_spacing(const GivenPoints &points, double thickness);
 
 // The body's points: make_lattice(body) when there are no given points (horizon left
 // empty: build_families' one horizon, horizon_factor x dx), else the given points
 // that are material (is_material, lattice.hpp) with V_i and delta_i as above.
 // family_volume is left empty (compute_family_volumes fills it).
-PointCloud make_points(const Body2D &body, double horizon_factor);
+PointCloud make_points(const Body<2> &body, double horizon_factor);
 
 // One point per 2D element of a mesh (a Gmsh shape, -body_S_discretisation
 // centroids): at the element's centroid (a quadrangle's from its two triangles,
@@ -63,6 +63,6 @@ GivenPoints element_centroids(const TriangleSet &triangles, double thickness);
 
 // How many points make_points keeps, without building them where it can
 // (lattice_point_count for the lattice; given points are tested one by one).
-int64_t body_point_count(const Body2D &body);
+int64_t body_point_count(const Body<2> &body);
 
 } // namespace bapd

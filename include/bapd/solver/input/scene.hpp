@@ -77,7 +77,7 @@ struct Body3D {
 // The body (-body_*, -horizon_factor; scene_body.cpp, scene_body3d.cpp): the plane
 // sheet (dimension 2) or the solid (dimension 3), and the horizon.
 struct BodySection {
-  Body2D sheet;                  // dx: the spacing of either (given points: their smallest)
+  Body<2> sheet;                  // dx: the spacing of either (given points: their smallest)
   Body3D solid;
   double horizon_factor = 3.015; // delta / dx (given points: delta_i / h_i, geometry.hpp)
 

@@ -94,7 +94,7 @@ PetscErrorCode CheckHorizonFactor(MPI_Comm comm, const Scene &scene);
 bool           IsShape3D(const std::string &type); // box, cylinder, sphere, notch
 // One shape of -body_shapes of the 2D sheet, checked and appended to *shapes
 // (scene_shape.cpp); `read_mesh`: its Gmsh mesh if already read (else null).
-PetscErrorCode CheckShape(MPI_Comm comm, const ShapeInput &in, const Body2D &b, TriangleSet *read_mesh, std::vector<Shape> *shapes);
+PetscErrorCode CheckShape(MPI_Comm comm, const ShapeInput &in, const Body<2> &b, TriangleSet *read_mesh, std::vector<Shape> *shapes);
 PetscErrorCode CheckBody3D(MPI_Comm comm, const SceneInput &in, Scene *scene);
 // Refuses a lattice that cannot fit in memory; after CheckLoading, which adds the rows
 // of the grips outside the sheet.
@@ -113,11 +113,11 @@ std::string OutputText(const OutputSection &output);
 // Loading (scene_loading.cpp): -load_sets, -load_schedule, -load_NAME_*.
 PetscErrorCode ReadLoading(MPI_Comm comm, LoadingSection *loading, SceneInput *in);
 // grip_rows: the rows the edge grips placed outside the sheet add beyond it, for the
-// body (Body2D::grip_rows) before CheckBodyFits counts its points.
+// body (Body<2>::grip_rows) before CheckBodyFits counts its points.
 PetscErrorCode CheckLoading(MPI_Comm comm, const SceneInput &in, Scene *scene, EdgeRows *grip_rows);
 // The Gmsh files the body reads (its mesh shapes): where a physical group's file
 // defaults to (load sets and probes by group).
-std::vector<std::string> BodyGmshFiles(const Body2D &body);
+std::vector<std::string> BodyGmshFiles(const Body<2> &body);
 std::vector<std::string> BodyGmshFiles(const Body3D &body); // (its mesh solids)
 // The file of physical group `group` of -PREFIX_NAME_group (owner: "load set", "probe"):
 // `given` (-PREFIX_NAME_file), else the body's one Gmsh file (`files`, its `kinds`:

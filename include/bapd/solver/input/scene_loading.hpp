@@ -35,7 +35,7 @@ enum class ComponentLoad { free, fixed, stretch };
 enum class GripField { rigid, affine };
 
 // Where an edge grip's points are (-load_grip_placement, -load_NAME_placement):
-// outside, added beyond the specimen's edge (Body2D::grip_rows), so the specimen is
+// outside, added beyond the specimen's edge (Body<2>::grip_rows), so the specimen is
 // the free region; or inside, the specimen's own edge rows (the paper's grips).
 enum class GripPlacement { outside, inside };
 
@@ -92,9 +92,9 @@ struct LoadSet {
 
 // The (x, y) of the given points of block id `block`, sorted (LoadSet::block_points).
 // Empty when there are no given points or no point has that id.
-std::vector<double> BlockPoints(const Body2D &body, int64_t block);
+std::vector<double> BlockPoints(const Body<2> &body, int64_t block);
 // The block ids the given points have, "1, 2, 5" (for messages; at most 20 shown).
-std::string BlockIdList(const Body2D &body);
+std::string BlockIdList(const Body<2> &body);
 // The same for the points of a 3D cloud (x: 3 a point, block: one id a point): the
 // (x, y, z) of block `block`, sorted; the ids.
 std::vector<double> BlockPoints3D(const std::vector<double> &x, const std::vector<int64_t> &block, int64_t id);

@@ -43,14 +43,14 @@ PetscErrorCode ScatterBody(MPI_Comm comm, const PointCloud &global_cloud, const 
 // them (the scene's horizon and notches): the one family code for every build.
 using FamilyBuilder = std::function<Families(const PointCloud &cloud, std::size_t n_family)>;
 
-// A lattice body's slab on this rank: rows (2D: Body2D's lattice rows, grips'
+// A lattice body's slab on this rank: rows (2D: Body<2>'s lattice rows, grips'
 // included) or layers (3D: the solids' lattice, z) [rows * rank / size, rows * (rank
 // + 1) / size), natural ids exactly the serial lattice's (each rank's row counts
 // gathered: O(rows) numbers), its families built with the rows within a horizon on
 // either side generated here, and family volumes. Not with given points or the patch
 // correction (ScatterBody).
 template <int D>
-PetscErrorCode LatticeBlock(MPI_Comm comm, const Body2D &body2d, const nd::SolidBody &body3d, double horizon,
+PetscErrorCode LatticeBlock(MPI_Comm comm, const Body<2> &body2d, const nd::SolidBody &body3d, double horizon,
                             const FamilyBuilder &build_families, BodyBlock *block);
 
 // The Layout of every rank from the blocks: PT-Scotch's partition (vertex weight =

@@ -15,7 +15,7 @@ PetscErrorCode ReadBlock(const RegionInput &r, LoadSet *set)
   const LoadInput &li    = r.li;
   const char      *n     = li.name.c_str();
   const bool       three = r.dimension == 3;
-  const Body2D    &b2    = r.body.sheet;
+  const Body<2>    &b2    = r.body.sheet;
   const Body3D    &b3    = r.body.solid;
   PetscFunctionBeginUser;
   SceneCheck(li.block_set, r.comm, "-load_%s_block is required with -load_%s_region block: give a block id of the point cloud%s", n, n,

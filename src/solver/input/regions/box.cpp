@@ -12,7 +12,7 @@ namespace {
 PetscErrorCode CheckBox2D(const RegionInput &r, LoadSet *set, EdgeRows *)
 {
   const LoadInput &li = r.li;
-  const Body2D    &b  = r.body.sheet;
+  const Body<2>    &b  = r.body.sheet;
   const char      *n  = li.name.c_str();
   PetscFunctionBeginUser;
   PetscCall(CheckOwnPoints2D(r, set));

@@ -1,7 +1,7 @@
 // Region top, bottom, left, right (a 2D sheet's edges; a 3D body's faces y+, y-, x-,
 // x+) and front, back (3D only: z+, z-): the point rows within `layers` rows of the
 // edge. A 2D edge grip sits inside (the sheet's own edge rows, the paper's grips) or
-// outside (rows added beyond the edge, Body2D::grip_rows: the sheet is then the free
+// outside (rows added beyond the edge, Body<2>::grip_rows: the sheet is then the free
 // region); a 3D face holds the body's own points, within `layers` rows of its extent.
 #include <algorithm>
 #include <cmath>
@@ -41,7 +41,7 @@ PetscErrorCode WarnShallowGrip(MPI_Comm comm, const LoadInput &li, int layers, d
 PetscErrorCode CheckEdge2D(const RegionInput &r, LoadSet *set, EdgeRows *grip_rows)
 {
   const LoadInput &li = r.li;
-  const Body2D    &b  = r.body.sheet;
+  const Body<2>    &b  = r.body.sheet;
   const char      *n  = li.name.c_str();
   PetscFunctionBeginUser;
   const std::string placement = Lower(li.placement) == "auto" ? to_string(r.default_placement) : Lower(li.placement);

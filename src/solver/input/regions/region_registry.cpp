@@ -164,7 +164,7 @@ PetscErrorCode CheckVertices2D(const RegionInput &r, const LoadSet &set, std::si
 PetscErrorCode CheckVerticesOnBody2D(const RegionInput &r, const LoadSet &set, double grow)
 {
   const LoadInput &li = r.li;
-  const Body2D    &b  = r.body.sheet;
+  const Body<2>    &b  = r.body.sheet;
   const char      *n  = li.name.c_str();
   PetscFunctionBeginUser;
   double lo[2] = {li.points[0], li.points[1]}, hi[2] = {li.points[0], li.points[1]};
