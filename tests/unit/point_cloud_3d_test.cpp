@@ -75,7 +75,7 @@ TEST(PointCloud3D, BadFilesNameTheLineAndTheFix)
 TEST(PointCloud3D, AClippedLatticeReadBackGivesTheSameFamilies)
 {
   const double  dx = 1e-3;
-  nd::SolidBody body;
+  Body<3> body;
   body.dx     = dx;
   body.solids = {nd::make_box({0, 0, 0}, {8 * dx, 7 * dx, 6 * dx}),
                  nd::make_sphere({4 * dx, 3.5 * dx, 3 * dx}, 2.2 * dx, nd::Solid::Op::subtract)};

@@ -24,7 +24,7 @@ constexpr double kDx = 1e-3;
 
 PointCloud points_of(std::vector<Solid> solids, double dx = kDx, std::vector<nd::PlanarPolygon> notches = {})
 {
-  nd::SolidBody body;
+  Body<3> body;
   body.dx      = dx;
   body.solids  = std::move(solids);
   body.notches = std::move(notches);
@@ -32,7 +32,7 @@ PointCloud points_of(std::vector<Solid> solids, double dx = kDx, std::vector<nd:
 }
 
 // The message of the std::invalid_argument that make_solid_points throws ("" if none).
-std::string error_of(const nd::SolidBody &body)
+std::string error_of(const Body<3> &body)
 {
   try {
     nd::make_solid_points(body);
@@ -65,7 +65,7 @@ TEST(Shape3D, BoxIsTheBoxLatticeBitForBit)
   EXPECT_DOUBLE_EQ(c.volume[0], kDx * kDx * kDx);
 
   // Shifted by the origin: the same count, a box of any corner on the grid.
-  nd::SolidBody body;
+  Body<3> body;
   body.dx     = kDx;
   body.origin = {0.3 * kDx, -2.7 * kDx, 5.1 * kDx};
   body.solids = {nd::make_box(body.origin, {body.origin[0] + 7 * kDx, body.origin[1] + 3 * kDx, body.origin[2] + 5 * kDx})};
@@ -297,7 +297,7 @@ TEST(Shape3D, NotchRuleForBondsThatTouchOrLieInThePlane)
 
 TEST(Shape3D, NotchThatSplitsTheBodyIsAnError)
 {
-  nd::SolidBody body;
+  Body<3> body;
   body.dx     = kDx;
   body.solids = {nd::make_box({0, 0, 0}, {8 * kDx, 6 * kDx, 3 * kDx})};
   // A notch across the whole section (beyond every face) leaves two pieces.
@@ -312,7 +312,7 @@ TEST(Shape3D, NotchThatSplitsTheBodyIsAnError)
 TEST(Shape3D, BadInputNamesTheProblem)
 {
   auto error = [](std::vector<Solid> solids, double dx = kDx, std::vector<nd::PlanarPolygon> notches = {}) {
-    nd::SolidBody body;
+    Body<3> body;
     body.dx = dx, body.solids = std::move(solids), body.notches = std::move(notches);
     return error_of(body);
   };

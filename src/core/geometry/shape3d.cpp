@@ -137,7 +137,7 @@ struct Grid {
   int64_t                cells() const { return count[0] * count[1] * count[2]; }
 };
 
-Grid body_grid(const SolidBody &body)
+Grid body_grid(const Body<3> &body)
 {
   P3   lo{}, hi{};
   bool any = false;
@@ -400,7 +400,7 @@ BondCut polygon_notches(const std::vector<PlanarPolygon> &polygons)
   };
 }
 
-SolidPieces body_pieces(const SolidBody &body, const PointCloud &points)
+SolidPieces body_pieces(const Body<3> &body, const PointCloud &points)
 {
   SolidPieces       pieces;
   const std::size_t n = points.size();
@@ -452,14 +452,14 @@ SolidPieces body_pieces(const SolidBody &body, const PointCloud &points)
   return pieces;
 }
 
-int64_t solid_layers(const SolidBody &body)
+int64_t solid_layers(const Body<3> &body)
 {
   bool adds = false;
   for (const Solid &s : body.solids) adds = adds || solid_adds(s);
   return adds && body.dx > 0 ? body_grid(body).count[2] : 0;
 }
 
-void append_solid_layers(const SolidBody &body, int64_t layer_begin, int64_t layer_end, PointCloud *cloud,
+void append_solid_layers(const Body<3> &body, int64_t layer_begin, int64_t layer_end, PointCloud *cloud,
                          std::vector<int64_t> *layer_counts)
 {
   const Grid g = body_grid(body);
@@ -482,7 +482,7 @@ void append_solid_layers(const SolidBody &body, int64_t layer_begin, int64_t lay
   }
 }
 
-PointCloud make_solid_points(const SolidBody &body)
+PointCloud make_solid_points(const Body<3> &body)
 {
   if (!(body.dx > 0) || !std::isfinite(body.dx))
     throw std::invalid_argument(format("3D body: the lattice spacing dx must be > 0 (got %g)", body.dx));

@@ -269,7 +269,7 @@ PetscErrorCode ScatterBody(MPI_Comm comm, const PointCloud &global_cloud, const 
 }
 
 template <int D>
-PetscErrorCode LatticeBlock(MPI_Comm comm, const Body<2> &body2d, const nd::SolidBody &body3d, double horizon,
+PetscErrorCode LatticeBlock(MPI_Comm comm, const Body<2> &body2d, const Body<3> &body3d, double horizon,
                             const FamilyBuilder &build_families, BodyBlock *block)
 {
   PetscMPIInt rank, size;
@@ -422,8 +422,8 @@ double PeakResidentBytes()
 
 template PetscErrorCode ScatterBody<2>(MPI_Comm, const PointCloud &, const std::vector<int> &, const std::vector<int> &, BodyBlock *);
 template PetscErrorCode ScatterBody<3>(MPI_Comm, const PointCloud &, const std::vector<int> &, const std::vector<int> &, BodyBlock *);
-template PetscErrorCode LatticeBlock<2>(MPI_Comm, const Body<2> &, const nd::SolidBody &, double, const FamilyBuilder &, BodyBlock *);
-template PetscErrorCode LatticeBlock<3>(MPI_Comm, const Body<2> &, const nd::SolidBody &, double, const FamilyBuilder &, BodyBlock *);
+template PetscErrorCode LatticeBlock<2>(MPI_Comm, const Body<2> &, const Body<3> &, double, const FamilyBuilder &, BodyBlock *);
+template PetscErrorCode LatticeBlock<3>(MPI_Comm, const Body<2> &, const Body<3> &, double, const FamilyBuilder &, BodyBlock *);
 template PetscErrorCode DistributeBlocks<2>(MPI_Comm, const BodyBlock &, Layout *);
 template PetscErrorCode DistributeBlocks<3>(MPI_Comm, const BodyBlock &, Layout *);
 

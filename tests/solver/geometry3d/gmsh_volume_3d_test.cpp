@@ -25,7 +25,7 @@ TEST(GmshVolume3D, AnExtrudedLClipsTheLatticeLikeTheSameLFromBoxes)
   // The tetrahedra fill the L: 39 mm^2 x 4 mm, to round-off.
   EXPECT_NEAR(nd::solid_volume(nd::make_mesh(mesh)), 39 * 4 * kMm * kMm * kMm, 1e-12 * 156 * kMm * kMm * kMm);
 
-  nd::SolidBody from_mesh, from_boxes;
+  Body<3> from_mesh, from_boxes;
   from_mesh.dx = from_boxes.dx = kMm;
   from_mesh.solids             = {nd::make_mesh(mesh)};
   from_boxes.solids            = {nd::make_box({0, 0, 0}, {8 * kMm, 8 * kMm, 4 * kMm}),
@@ -50,7 +50,7 @@ TEST(GmshVolume3D, FilesWithoutAVolumeAreErrors)
   const std::string e = ReadGmshTetrahedra(std::string(BAPD_TEST_SOURCE_DIR) + "/data/geometry/l_shape.geo", &set);
   EXPECT_NE(e.find("holds no volume and no 3D element"), std::string::npos) << e;
   // A mesh solid with no tetrahedra is a bad solid.
-  nd::SolidBody body;
+  Body<3> body;
   body.dx     = kMm;
   body.solids = {nd::make_mesh(std::make_shared<nd::TetrahedronSet>())};
   EXPECT_THROW(nd::make_solid_points(body), std::invalid_argument);

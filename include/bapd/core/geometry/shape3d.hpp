@@ -66,12 +66,22 @@ struct PlanarPolygon {
   std::vector<double> vertices;
 };
 
-struct SolidBody {
-  double                dx = 0;        // lattice spacing [m]
-  std::array<double, 3> origin{};      // the grid's anchor: points at origin + (i + 0.5) dx [m]
-  std::vector<Solid>    solids;        // applied in order to an empty start
-  std::vector<PlanarPolygon> notches;  // pre-notches (cut bonds; also split the connectivity check)
+} // namespace bapd::nd
+
+namespace bapd {
+
+// The 3D body (the 3D specialisation of Body<D>, body.hpp): solids applied in order to
+// an empty start on the lattice above, cut by planar notches.
+template <> struct Body<3> {
+  double                         dx = 0;   // lattice spacing [m]
+  std::array<double, 3>          origin{}; // the grid's anchor: points at origin + (i + 0.5) dx [m]
+  std::vector<nd::Solid>         solids;   // applied in order to an empty start
+  std::vector<nd::PlanarPolygon> notches;  // pre-notches (cut bonds; also split the connectivity check)
 };
+
+} // namespace bapd
+
+namespace bapd::nd {
 
 // Whether the point lies inside the solid (boundary rule above).
 bool solid_contains(const Solid &solid, const double *p);
@@ -116,7 +126,7 @@ struct SolidPieces {
   int64_t               smallest_points = 0;
   std::array<double, 3> smallest_at{}; // a point of the smallest piece [m]
 };
-SolidPieces body_pieces(const SolidBody &body, const PointCloud &points);
+SolidPieces body_pieces(const Body<3> &body, const PointCloud &points);
 
 // The body's points (order and volumes above; horizon and family_volume left empty).
 // Throws std::invalid_argument with a message that names the problem and the fix for:
@@ -124,15 +134,15 @@ SolidPieces body_pieces(const SolidBody &body, const PointCloud &points);
 // (planar_polygon_problem); no solid that adds; a lattice of more than 2^31 cells
 // around the added solids; a body that holds no lattice point; a body in more than
 // one piece (body_pieces).
-PointCloud make_solid_points(const SolidBody &body);
+PointCloud make_solid_points(const Body<3> &body);
 
 // The lattice layer by layer (z cells), for a body built in slabs of layers (one a
 // rank), with no check (make_solid_points's are the scene's): solid_layers(body)
 // layers (0 without a solid that adds), append_solid_layers appends the points of
 // layers [layer_begin, layer_end) to *cloud in make_solid_points's order, natural_id =
 // the point's index in *cloud, and each layer's count to layer_counts when given.
-int64_t solid_layers(const SolidBody &body);
-void    append_solid_layers(const SolidBody &body, int64_t layer_begin, int64_t layer_end, PointCloud *cloud,
+int64_t solid_layers(const Body<3> &body);
+void    append_solid_layers(const Body<3> &body, int64_t layer_begin, int64_t layer_end, PointCloud *cloud,
                             std::vector<int64_t> *layer_counts);
 
 const char *to_string(Solid::Kind kind);

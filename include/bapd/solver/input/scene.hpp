@@ -63,7 +63,7 @@ struct StaticOptions {
 // (scene_body.cpp): the points are built once there, for their count, their extent (the
 // faces of the load sets) and the one-piece check.
 struct Body3D {
-  nd::SolidBody                      solid;        // dx, origin (0, 0, 0), solids in order, notches
+  Body<3>                      solid;        // dx, origin (0, 0, 0), solids in order, notches
   std::vector<std::string>           solid_names;  // -body_shapes name of each solid, for messages
   std::vector<std::string>           notch_names;  // -body_shapes name of each notch (solid.notches)
   std::shared_ptr<const PointCloud>  given_points; // -body_cloud in 3D (x: 3 a point), clipped; null: the lattice

@@ -50,7 +50,7 @@ using FamilyBuilder = std::function<Families(const PointCloud &cloud, std::size_
 // either side generated here, and family volumes. Not with given points or the patch
 // correction (ScatterBody).
 template <int D>
-PetscErrorCode LatticeBlock(MPI_Comm comm, const Body<2> &body2d, const nd::SolidBody &body3d, double horizon,
+PetscErrorCode LatticeBlock(MPI_Comm comm, const Body<2> &body2d, const Body<3> &body3d, double horizon,
                             const FamilyBuilder &build_families, BodyBlock *block);
 
 // The Layout of every rank from the blocks: PT-Scotch's partition (vertex weight =
