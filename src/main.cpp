@@ -96,7 +96,7 @@ static PetscErrorCode RunScene()
     PetscCall(PetscPrintf(PETSC_COMM_WORLD, "bapd %s, PETSc %s, %s, %d rank(s)\n", bapd::VersionText().c_str(), PetscLibrary().c_str(),
                           mpi.substr(0, mpi.find(',')).c_str(), ranks));
   }
-  if (scene.dimension == 3) PetscCall(RunDriver<3>(std::move(scene)));
+  if (scene.body.dimension == 3) PetscCall(RunDriver<3>(std::move(scene)));
   else PetscCall(RunDriver<2>(std::move(scene)));
   PetscFunctionReturn(0);
 }

@@ -73,8 +73,8 @@ template <int D> PetscErrorCode SimulationD<D>::Setup(Scene scene)
   PetscCall(PetscLogStagePush(stage_setup_));
   scene_ = std::move(scene);
   paths_ = OutputPaths(scene_.output.dir);
-  PetscCheck(scene_.help_only || scene_.dimension == D, comm_, PETSC_ERR_PLIB,
-             "SimulationD<%d> was given a scene of dimension %d: build the driver of the scene's dimension (main.cpp)", D, scene_.dimension);
+  PetscCheck(scene_.help_only || scene_.body.dimension == D, comm_, PETSC_ERR_PLIB,
+             "SimulationD<%d> was given a scene of dimension %d: build the driver of the scene's dimension (main.cpp)", D, scene_.body.dimension);
   PetscCall(TakeOutputOptions()); // the scene's -output_fields..., -checkpoint_..., -restart
   if (scene_.help_only) {
     // -help all: list the time stepper's options too (PETSc's), and stop.
@@ -105,7 +105,7 @@ template <int D> PetscErrorCode SimulationD<D>::Setup(Scene scene)
   // force evaluations) and the relaxation are the dynamic route's alone. The TS is still
   // made (it holds the state and the time that the output reads) but never stepped.
   if (scene_.run.solver != SolverKind::static_newton) {
-    PetscCall(step_control_.EstimateStable(comm_, scene_.time_stepping, scene_.material, scene_.failure.enabled, scene_.body.sheet.dx, layout_,
+    PetscCall(step_control_.EstimateStable(comm_, scene_.time_stepping, scene_.material, scene_.failure.enabled, scene_.body.dx(), layout_,
                                           loading_, force_));
     PetscCall(SetupRelaxation());
   }

@@ -53,7 +53,7 @@ template <int D> void DescribePieces(const PointCloud &cloud, const Families &fa
 template <int D> Families BodyFamilies(const Scene &scene, const PointCloud &cloud, std::size_t n)
 {
   if constexpr (D == 2) return build_families(cloud, n, scene.body.horizon(), scene.body.sheet.notches);
-  else return nd::build_families<3>(cloud, n, scene.body.horizon(), nd::polygon_notches(scene.body.solid.solid.notches));
+  else return nd::build_families<3>(cloud, n, scene.body.horizon(), nd::polygon_notches(scene.body.solid.notches));
 }
 
 // The body's points (rank 0): the geometry stage's in 2D (geometry.hpp); in 3D the
@@ -64,7 +64,7 @@ template <int D> PointCloud BodyPoints(const Scene &scene)
 {
   if constexpr (D == 2) return make_points(scene.body.sheet, scene.body.horizon_factor);
   else {
-    if (!scene.body.solid.given_points) return nd::make_solid_points(scene.body.solid.solid);
+    if (!scene.body.solid.given_points) return nd::make_solid_points(scene.body.solid);
     PointCloud points = *scene.body.solid.given_points;
     set_point_horizons(&points, D, scene.body.horizon_factor, scene.body.sheet.thickness);
     return points;
@@ -142,7 +142,7 @@ template <int D> PetscErrorCode SimulationD<D>::BuildBody()
     // -partition_type ptscotch on a lattice: every rank builds a slab of it, and no
     // rank holds the whole body or bond graph (distributed_body.hpp).
     BodyBlock block;
-    PetscCall(LatticeBlock<D>(comm_, scene_.body.sheet, scene_.body.solid.solid, scene_.body.horizon(), families_of, &block));
+    PetscCall(LatticeBlock<D>(comm_, scene_.body.sheet, scene_.body.solid, scene_.body.horizon(), families_of, &block));
     int64_t counts[2] = {static_cast<int64_t>(block.size()), static_cast<int64_t>(block.neighbours.size())};
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, counts, 2, MPI_INT64_T, MPI_SUM, comm_));
     PetscCall(CheckBodyMemory(comm_, scene_, counts[0], counts[1]));

@@ -338,7 +338,7 @@ template <int D> PetscErrorCode SimulationD<D>::CheckRunaway(PetscInt step, doub
   RunawayInputs inputs;
   inputs.comm      = comm_;
   inputs.density          = scene_.material.density;
-  inputs.dx               = scene_.body.sheet.dx;
+  inputs.dx               = scene_.body.dx();
   inputs.loads            = &scene_.loading.sets;
   inputs.reference_length = scene_.loading.reference_length;
   inputs.schedule         = &loading_.schedule();

@@ -255,7 +255,7 @@ template <int D> PetscErrorCode SimulationD<D>::TimeStepSummary(PetscInt steps)
     char travel[96] = "";
     if (c.shortened_by_travel() > 0)
       PetscCall(PetscSNPrintf(travel, sizeof travel, ", %" PetscInt_FMT " by the travel limit (%.3g dx%s, fast points)", c.shortened_by_travel(),
-                              c.travel() / scene_.body.sheet.dx, c.travel_automatic() ? ", chosen with failure" : ""));
+                              c.travel() / scene_.body.dx(), c.travel_automatic() ? ", chosen with failure" : ""));
     PetscCall(PetscPrintf(comm_, "time step: %" PetscInt_FMT " of %" PetscInt_FMT " step(s) shorter than the full %.4e s: %" PetscInt_FMT " by stiffness (the material stiffened)%s; the shortest %.4e s = %.3g x\n",
                           c.shortened_steps(), steps, c.base(), c.shortened_by_stiffness(), travel, c.shortest(), c.shortest() / c.base()));
   }

@@ -103,7 +103,7 @@ template <int D> PetscErrorCode SimulationD<D>::CreateNaturalOrder()
   PetscFunctionBegin;
   if (output_.order.created()) PetscFunctionReturn(0);
   PetscCall(NaturalOrderCreate(comm_, layout_, families_, &output_.order));
-  PetscCall(ComputeGeometryFingerprint<D>(comm_, layout_, families_, scene_.body.sheet.dx, scene_.body.horizon(), &output_.geometry));
+  PetscCall(ComputeGeometryFingerprint<D>(comm_, layout_, families_, scene_.body.dx(), scene_.body.horizon(), &output_.geometry));
   PetscFunctionReturn(0);
 }
 

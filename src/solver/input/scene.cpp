@@ -150,20 +150,21 @@ std::string BodyText2D(const Scene &s)
 // points' cells (the faces the load sets hold), each solid and notch by name.
 std::string BodyText3D(const Scene &s)
 {
-  const Body3D &b = s.body.solid;
-  std::string   text;
+  const Body<3>      &b = s.body.solid;
+  const SolidSummary &m = s.body.solid_summary;
+  std::string         text;
   const std::string extent =
-      Format("[%g, %g] x [%g, %g] x [%g, %g] m", b.lo[0], b.hi[0], b.lo[1], b.hi[1], b.lo[2], b.hi[2]);
+      Format("[%g, %g] x [%g, %g] x [%g, %g] m", m.lo[0], m.hi[0], m.lo[1], m.hi[1], m.lo[2], m.hi[2]);
   if (b.given_points)
     text += Format("  body      3D: %lld %s of %s (spacing cbrt(V), the smallest %g m), cells in %s, %zu solid(s) cutting them, %zu "
                    "notch(es)\n",
-                   static_cast<long long>(b.points), b.centroids ? "tetrahedron centroids" : "points", b.source.c_str(), b.solid.dx,
-                   extent.c_str(), b.solid.solids.size() - (b.centroids ? 1 : 0), b.solid.notches.size());
+                   static_cast<long long>(m.points), b.centroids ? "tetrahedron centroids" : "points", b.source.c_str(), b.dx,
+                   extent.c_str(), b.solids.size() - (b.centroids ? 1 : 0), b.notches.size());
   else
-    text += Format("  body      3D, dx %g m: %lld points, cells in %s, %zu solid(s), %zu notch(es)\n", b.solid.dx,
-                   static_cast<long long>(b.points), extent.c_str(), b.solid.solids.size(), b.solid.notches.size());
-  for (std::size_t k = 0; k < b.solid.solids.size(); ++k) {
-    const nd::Solid &solid = b.solid.solids[k];
+    text += Format("  body      3D, dx %g m: %lld points, cells in %s, %zu solid(s), %zu notch(es)\n", b.dx,
+                   static_cast<long long>(m.points), extent.c_str(), b.solids.size(), b.notches.size());
+  for (std::size_t k = 0; k < b.solids.size(); ++k) {
+    const nd::Solid &solid = b.solids[k];
     std::string      where;
     switch (solid.kind) {
     case nd::Solid::Kind::box:
@@ -178,12 +179,12 @@ std::string BodyText3D(const Scene &s)
       where = Format("%s: %zu tetrahedra, volume %g m^3", solid.mesh->file.c_str(), solid.mesh->size(), nd::solid_volume(solid));
       break;
     }
-    const std::string name = k < b.solid_names.size() ? b.solid_names[k] : std::to_string(k + 1);
+    const std::string name = k < m.solid_names.size() ? m.solid_names[k] : std::to_string(k + 1);
     text += Format("            solid %s: %s a %s, %s\n", name.c_str(), to_string(solid.op), nd::to_string(solid.kind), where.c_str());
   }
-  for (std::size_t k = 0; k < b.solid.notches.size(); ++k) {
-    const std::vector<double> &v    = b.solid.notches[k].vertices;
-    const std::string          name = k < b.notch_names.size() ? b.notch_names[k] : std::to_string(k + 1);
+  for (std::size_t k = 0; k < b.notches.size(); ++k) {
+    const std::vector<double> &v    = b.notches[k].vertices;
+    const std::string          name = k < m.notch_names.size() ? m.notch_names[k] : std::to_string(k + 1);
     std::string                corners;
     for (std::size_t c = 0; c + 3 <= v.size(); c += 3) corners += Format(" (%g, %g, %g)", v[c], v[c + 1], v[c + 2]);
     text += Format("            notch %s: a planar polygon of %zu vertices,%s m\n", name.c_str(), v.size() / 3, corners.c_str());
@@ -198,7 +199,7 @@ std::string SceneText(const Scene &s)
   // built with the C library's printf (see SceneCheck), printed once by SceneView; each
   // section's lines from the section (scene_input.hpp)
   std::string text = "Scene\n";
-  text += s.dimension == 3 ? BodyText3D(s) : BodyText2D(s);
+  text += s.body.dimension == 3 ? BodyText3D(s) : BodyText2D(s);
   return text + MaterialText(s) + LoadingText(s) + ProbesText(s) + TimeSteppingText(s) + OutputText(s.output);
 }
 

@@ -170,17 +170,18 @@ const OptionTable<ShapeInput> kShapeOptions = {
      &ShapeInput::discretisation},
 };
 
-// The sheet's size and spacing: values in the Body<2>, whether each was given in the
-// SceneInput (each is required).
+// The sheet's size: values in the Body<2>, whether each was given in the SceneInput
+// (each is required).
 const OptionTable<Body<2>, SceneInput> kSheetOptions = {
     {"-body_width", "Sheet width along x [m] (required)", &Body<2>::width, &SceneInput::width_set},
     {"-body_height", "Sheet height along y [m] (required)", &Body<2>::height, &SceneInput::height_set},
     {"-body_thickness", "Sheet thickness [m] (required)", &Body<2>::thickness, &SceneInput::thickness_set},
-    {"-body_dx", "Lattice spacing of the material points [m] (required)", &Body<2>::dx, &SceneInput::dx_set},
 };
 
-// What cuts the sheet, or replaces its lattice, and the dimension, as given (CheckBody).
+// The spacing (of the sheet or the solid, as the dimension says), what cuts the sheet,
+// or replaces its lattice, and the dimension, as given (CheckBody).
 const OptionTable<SceneInput> kBodyInputOptions = {
+    {"-body_dx", "Lattice spacing of the material points [m] (required)", &SceneInput::dx, &SceneInput::dx_set},
     {"-body_holes", "Circular holes cx,cy,r,cx,cy,r,... [m] (default: none)", &SceneInput::holes},
     {"-body_notches", "Pre-notch segments x0,y0,x1,y1,... [m]; bonds crossing one are never created (default: none)", &SceneInput::notches},
     {"-body_cloud",
@@ -432,8 +433,8 @@ PetscErrorCode CheckBody(MPI_Comm comm, const SceneInput &in, Scene *scene)
   Body<2> &b = scene->body.sheet;
   PetscFunctionBeginUser;
   PetscCall(CheckSceneGiven(comm, in));
-  PetscCall(CheckDimension(comm, in, &scene->dimension));
-  if (scene->dimension == 3) {
+  PetscCall(CheckDimension(comm, in, &scene->body.dimension));
+  if (scene->body.dimension == 3) {
     PetscCall(CheckBody3D(comm, in, scene));
     PetscFunctionReturn(0);
   }
@@ -441,6 +442,7 @@ PetscErrorCode CheckBody(MPI_Comm comm, const SceneInput &in, Scene *scene)
   // centroids of one mesh shape.
   const ShapeInput *centroid_shape = nullptr;
   PetscCall(FindCentroidShape(comm, in, &centroid_shape));
+  b.dx = in.dx; // (given points: their smallest spacing, GivenPoints2D)
   b.given_points.reset();
   TriangleSet centroid_mesh; // the centroid shape's mesh, read once (CheckShape takes it)
   if (!in.cloud.empty() || centroid_shape) PetscCall(GivenPoints2D(comm, in, centroid_shape, &b, &centroid_mesh));
@@ -471,6 +473,6 @@ PetscErrorCode CheckBody(MPI_Comm comm, const SceneInput &in, Scene *scene)
   PetscFunctionReturn(0);
 }
 
-int64_t ScenePointEstimate(const Scene &scene) { return scene.dimension == 3 ? scene.body.solid.points : body_point_count(scene.body.sheet); }
+int64_t ScenePointEstimate(const Scene &scene) { return scene.body.dimension == 3 ? scene.body.solid_summary.points : body_point_count(scene.body.sheet); }
 
 } // namespace bapd

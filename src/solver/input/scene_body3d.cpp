@@ -34,7 +34,7 @@ namespace {
 std::array<double, 3> Point3(const std::vector<double> &v, std::size_t k = 0) { return {v[k], v[k + 1], v[k + 2]}; }
 
 // One shape of a 3D body: a solid (appended to body->solids) or a notch (to body->notches).
-PetscErrorCode CheckShape3D(MPI_Comm comm, const ShapeInput &in, bool first_solid, Body3D *body)
+PetscErrorCode CheckShape3D(MPI_Comm comm, const ShapeInput &in, bool first_solid, BodySection *body)
 {
   const char *n = in.name.c_str();
   PetscFunctionBeginUser;
@@ -78,7 +78,7 @@ PetscErrorCode CheckShape3D(MPI_Comm comm, const ShapeInput &in, bool first_soli
     SceneCheck(problem.empty(), comm, "-body_%s_points (notch '%s'): %s; give the vertices in order around one plane polygon", n, n,
                problem.c_str());
     body->solid.notches.push_back(notch);
-    body->notch_names.push_back(in.name);
+    body->solid_summary.notch_names.push_back(in.name);
     PetscFunctionReturn(0);
   }
   nd::Solid::Op op = first_solid ? nd::Solid::Op::add : nd::Solid::Op::subtract; // the defaults (-body_NAME_op's help)
@@ -116,7 +116,7 @@ PetscErrorCode CheckShape3D(MPI_Comm comm, const ShapeInput &in, bool first_soli
   const std::string problem = nd::solid_problem(solid);
   SceneCheck(problem.empty(), comm, "-body_%s (%s): %s", n, type.c_str(), problem.c_str());
   body->solid.solids.push_back(solid);
-  body->solid_names.push_back(in.name);
+  body->solid_summary.solid_names.push_back(in.name);
   PetscFunctionReturn(0);
 }
 
@@ -141,7 +141,7 @@ PetscErrorCode CheckNoSheetOptions(MPI_Comm comm, const SceneInput &in)
 // Given points instead of the lattice: a 3D cloud, or the element centroids of one mesh
 // solid (-body_S_discretisation centroids, the first solid: the body is its tetrahedra).
 // *centroid_solid_out: that solid's index, or the number of solids for none.
-PetscErrorCode FindCentroidSolid(MPI_Comm comm, const SceneInput &in, const Body3D &b, std::size_t *centroid_solid_out)
+PetscErrorCode FindCentroidSolid(MPI_Comm comm, const SceneInput &in, const BodySection &b, std::size_t *centroid_solid_out)
 {
   PetscFunctionBeginUser;
   std::size_t centroid_solid = b.solid.solids.size(); // none
@@ -153,7 +153,8 @@ PetscErrorCode FindCentroidSolid(MPI_Comm comm, const SceneInput &in, const Body
     SceneCheck(centroid_solid == b.solid.solids.size(), comm,
                "-body_%s_discretisation centroids: another mesh already gives the body's points as its centroids: keep one", n);
     SceneCheck(in.cloud.empty(), comm, "-body_%s_discretisation centroids and -body_cloud both give the body's points: keep one", n);
-    centroid_solid = static_cast<std::size_t>(std::find(b.solid_names.begin(), b.solid_names.end(), si.name) - b.solid_names.begin());
+    const std::vector<std::string> &names = b.solid_summary.solid_names;
+    centroid_solid                        = static_cast<std::size_t>(std::find(names.begin(), names.end(), si.name) - names.begin());
     SceneCheck(centroid_solid == 0, comm,
                "-body_%s_discretisation centroids: the mesh whose tetrahedra are the points must be the first solid of -body_shapes (the "
                "others may cut it): list '%s' first",
@@ -164,19 +165,19 @@ PetscErrorCode FindCentroidSolid(MPI_Comm comm, const SceneInput &in, const Body
 }
 
 // The given points (a 3D cloud, or the centroid solid's tetrahedra) clipped by the
-// other solids: b->given_points, their block ids and smallest spacing; *points a copy.
-PetscErrorCode GivenPoints3D(MPI_Comm comm, const SceneInput &in, std::size_t centroid_solid, Body3D *body, PointCloud *points)
+// other solids: b->solid.given_points, their block ids and smallest spacing; *points a copy.
+PetscErrorCode GivenPoints3D(MPI_Comm comm, const SceneInput &in, std::size_t centroid_solid, BodySection *body, PointCloud *points)
 {
-  Body3D    &b         = *body;
+  BodySection &b        = *body;
   const bool centroids = centroid_solid < b.solid.solids.size();
   PetscFunctionBeginUser;
-  const std::string source = centroids ? "-body_" + b.solid_names[centroid_solid] + "_discretisation centroids" : "-body_cloud";
+  const std::string source = centroids ? "-body_" + b.solid_summary.solid_names[centroid_solid] + "_discretisation centroids" : "-body_cloud";
   SceneCheck(!in.dx_set, comm, "-body_dx is the lattice spacing, but %s gives the body's points, each with its own volume: remove -body_dx",
              source.c_str());
   for (std::size_t k = 0; k < b.solid.solids.size(); ++k)
     SceneCheck(k == centroid_solid || b.solid.solids[k].op != nd::Solid::Op::add, comm,
                "-body_%s: the points of %s are the body, so a solid can only cut them: set -body_%s_op subtract or intersect",
-               b.solid_names[k].c_str(), source.c_str(), b.solid_names[k].c_str());
+               b.solid_summary.solid_names[k].c_str(), source.c_str(), b.solid_summary.solid_names[k].c_str());
   PointCloud           read;
   std::vector<int64_t> block;
   if (centroids) {
@@ -204,7 +205,7 @@ PetscErrorCode GivenPoints3D(MPI_Comm comm, const SceneInput &in, std::size_t ce
     kept->x.insert(kept->x.end(), &read.x[3 * p], &read.x[3 * p + 3]);
     kept->volume.push_back(read.volume[p]);
     kept->natural_id.push_back(static_cast<int64_t>(kept->volume.size()) - 1);
-    b.given_block.push_back(block[p]);
+    b.solid.given_block.push_back(block[p]);
   }
   SceneCheck(kept->size() > 0, comm, "%s '%s': the solids of -body_shapes cut away all %zu of its points: check each one's -op", source.c_str(),
              centroids ? b.solid.solids[centroid_solid].mesh->file.c_str() : in.cloud.c_str(), read.size());
@@ -213,17 +214,18 @@ PetscErrorCode GivenPoints3D(MPI_Comm comm, const SceneInput &in, std::size_t ce
   // The smallest spacing cbrt(V) (2D: sqrt(V/t), geometry.hpp): the faces' row depth,
   // the stable-step and travel scale; each point's horizon is its own (BodyPoints).
   b.solid.dx     = smallest;
-  b.source       = centroids ? b.solid.solids[centroid_solid].mesh->file : in.cloud;
-  b.centroids    = centroids;
-  b.given_points = kept;
+  b.solid.source       = centroids ? b.solid.solids[centroid_solid].mesh->file : in.cloud;
+  b.solid.centroids    = centroids;
+  b.solid.given_points = kept;
   *points        = *kept;
   PetscFunctionReturn(0);
 }
 
-// The solids' points on the lattice of spacing -body_dx (given as scene->body.sheet.dx).
-PetscErrorCode LatticePoints3D(MPI_Comm comm, const SceneInput &in, double dx, Body3D *body, PointCloud *points)
+// The solids' points on the lattice of spacing -body_dx.
+PetscErrorCode LatticePoints3D(MPI_Comm comm, const SceneInput &in, BodySection *body, PointCloud *points)
 {
-  Body3D &b = *body;
+  const double dx = in.dx;
+  BodySection &b = *body;
   PetscFunctionBeginUser;
   SceneCheck(in.dx_set, comm, "-body_dx is required: give the lattice spacing of the 3D body in metres (YAML: body: {dx: 0.001})%s",
              MisspeltHint("-body_dx").c_str());
@@ -242,17 +244,17 @@ PetscErrorCode LatticePoints3D(MPI_Comm comm, const SceneInput &in, double dx, B
 
 // The count of the points and the extent of their cells (lattice point +- dx/2, given
 // point +- its spacing / 2).
-void SetExtent(const PointCloud &points, Body3D *body)
+void SetExtent(const PointCloud &points, BodySection *body)
 {
-  Body3D &b = *body;
-  b.points = static_cast<int64_t>(points.size());
-  b.lo.fill(std::numeric_limits<double>::max());
-  b.hi.fill(-std::numeric_limits<double>::max());
+  SolidSummary &e = body->solid_summary;
+  e.points        = static_cast<int64_t>(points.size());
+  e.lo.fill(std::numeric_limits<double>::max());
+  e.hi.fill(-std::numeric_limits<double>::max());
   for (std::size_t p = 0; p < points.size(); ++p) {
-    const double h = b.given_points ? 0.5 * point_spacing(3, points.volume[p], 0.0) : 0.5 * b.solid.dx;
+    const double h = body->solid.given_points ? 0.5 * point_spacing(3, points.volume[p], 0.0) : 0.5 * body->solid.dx;
     for (int r = 0; r < 3; ++r) {
-      b.lo[r] = std::min(b.lo[r], points.x[3 * p + r] - h);
-      b.hi[r] = std::max(b.hi[r], points.x[3 * p + r] + h);
+      e.lo[r] = std::min(e.lo[r], points.x[3 * p + r] - h);
+      e.hi[r] = std::max(e.hi[r], points.x[3 * p + r] + h);
     }
   }
 }
@@ -264,20 +266,20 @@ void SetExtent(const PointCloud &points, Body3D *body)
 // check; about 40 bytes a point, against the run's ~6 KB: CheckBodyFits follows).
 PetscErrorCode CheckBody3D(MPI_Comm comm, const SceneInput &in, Scene *scene)
 {
-  Body3D &b = scene->body.solid;
+  BodySection &b = scene->body;
   PetscFunctionBeginUser;
   PetscCall(CheckNoSheetOptions(comm, in));
-  b = Body3D();
+  b.sheet         = Body<2>(); // (a 3D body has no sheet)
+  b.solid         = Body<3>();
+  b.solid_summary = SolidSummary();
   for (const ShapeInput &si : in.shapes) PetscCall(CheckShape3D(comm, si, b.solid.solids.empty(), &b));
   std::size_t centroid_solid = 0;
   PetscCall(FindCentroidSolid(comm, in, b, &centroid_solid));
   const bool centroids = centroid_solid < b.solid.solids.size();
   PointCloud points;
   if (!in.cloud.empty() || centroids) PetscCall(GivenPoints3D(comm, in, centroid_solid, &b, &points));
-  else PetscCall(LatticePoints3D(comm, in, scene->body.sheet.dx, &b, &points));
+  else PetscCall(LatticePoints3D(comm, in, &b, &points));
   SetExtent(points, &b);
-  scene->body.sheet    = Body<2>();
-  scene->body.sheet.dx = b.solid.dx; // (the spacing every section reads: the time-step bound, the (smallest) horizon)
   PetscCall(CheckHorizonFactor(comm, *scene));
   PetscFunctionReturn(0);
 }

@@ -91,10 +91,10 @@ PetscErrorCode CheckMemory(MPI_Comm comm, const Scene &scene, int64_t points, do
              "%lld material points need about %.3g GB on each of %d rank(s), %.3g times what a rank's process limit leaves it (ulimit -v "
              "or -d, RLIMIT_AS/RLIMIT_DATA; %.3g GB left on rank 0): raise the limit, run on more ranks, or use a coarser %s",
              static_cast<long long>(points), per_rank / gb, size, worst, rank == 0 ? room / gb : 0.0,
-             scene.dimension == 3 && (scene.body.solid.given_points || scene.body.solid.centroids) ? "point set" : "-body_dx");
+             scene.body.dimension == 3 && (scene.body.solid.given_points || scene.body.solid.centroids) ? "point set" : "-body_dx");
   if (available <= 0 || needed <= available) PetscFunctionReturn(0);
   // Points go as 1/dx^2 (3D: 1/dx^3): the spacing at which the estimate just fits.
-  const double      dx_fit = scene.body.sheet.dx * (scene.dimension == 3 ? std::cbrt(needed / available) : std::sqrt(needed / available));
+  const double      dx_fit = scene.body.dx() * (scene.body.dimension == 3 ? std::cbrt(needed / available) : std::sqrt(needed / available));
   const std::string what   = Format("%lld material points and %.3g bonds, about %.3g GB (%.3g GB on each of %d rank(s); %.2g KB a point "
                                     "at delta = %g x spacing), but this machine has %.3g GB available (MemAvailable, /proc/meminfo)",
                                     static_cast<long long>(points), static_cast<double>(points) * bonds_per_point,
@@ -107,7 +107,7 @@ PetscErrorCode CheckMemory(MPI_Comm comm, const Scene &scene, int64_t points, do
     SETERRQ(comm, PETSC_ERR_USER, "%s",
             Format("-body_%s_discretisation centroids: the tetrahedra of '%s' give %s: mesh it about %.2g times coarser, use the "
                    "lattice (-body_dx) instead, or run on more machines",
-                   scene.body.solid.solid_names[0].c_str(), scene.body.solid.source.c_str(), what.c_str(), 1.05 * std::cbrt(needed / available))
+                   scene.body.solid_summary.solid_names[0].c_str(), scene.body.solid.source.c_str(), what.c_str(), 1.05 * std::cbrt(needed / available))
                 .c_str());
   if (scene.body.solid.given_points)
     SETERRQ(comm, PETSC_ERR_USER, "%s",
@@ -145,7 +145,7 @@ PetscErrorCode CheckBodyFits(MPI_Comm comm, const Scene &scene)
 {
   PetscFunctionBeginUser;
   const double f = scene.body.horizon_factor; // bonds a point on the lattice: the horizon's area (2D) or volume (3D) in cells
-  PetscCall(CheckMemory(comm, scene, ScenePointEstimate(scene), scene.dimension == 3 ? 4.0 / 3.0 * M_PI * f * f * f : M_PI * f * f));
+  PetscCall(CheckMemory(comm, scene, ScenePointEstimate(scene), scene.body.dimension == 3 ? 4.0 / 3.0 * M_PI * f * f * f : M_PI * f * f));
   PetscFunctionReturn(0);
 }
 

@@ -187,7 +187,7 @@ PetscErrorCode CheckRegion(const RegionInput &r, LoadSet *set, EdgeRows *grip_ro
 PetscErrorCode CheckComponents(MPI_Comm comm, const LoadInput &li, const Scene &scene, LoadSet *set)
 {
   const char *n     = li.name.c_str();
-  const bool  three = scene.dimension == 3;
+  const bool  three = scene.body.dimension == 3;
   PetscFunctionBeginUser;
   SceneCheck(ParseComponent(li.x, &set->x), comm, "-load_%s_x '%s' is not a choice: choose free, fixed or stretch", n, li.x.c_str());
   SceneCheck(ParseComponent(li.y, &set->y), comm, "-load_%s_y '%s' is not a choice: choose free, fixed or stretch", n, li.y.c_str());
@@ -195,7 +195,7 @@ PetscErrorCode CheckComponents(MPI_Comm comm, const LoadInput &li, const Scene &
   SceneCheck(three || (set->z == ComponentLoad::free && !li.z_scale_set), comm,
              "-load_%s_z%s is set, but this body is a 2D sheet (x, y): remove it, or make the body 3D (-body_dimension 3)", n,
              li.z_scale_set ? "_scale" : "");
-  for (int c = 0; c < scene.dimension; ++c) {
+  for (int c = 0; c < scene.body.dimension; ++c) {
     const char          axis  = "xyz"[c];
     const ComponentLoad load  = set->component(c);
     const bool          given = c == 0 ? li.x_scale_set : c == 1 ? li.y_scale_set : li.z_scale_set;
@@ -244,7 +244,7 @@ PetscErrorCode CheckGripsSeparate(MPI_Comm comm, const Scene &scene)
                                                     : Format("-load_%s_%c fixed", l.name.c_str(), axis);
   };
   PetscFunctionBeginUser;
-  for (int c = 0; c < scene.dimension; ++c)
+  for (int c = 0; c < scene.body.dimension; ++c)
     for (const LoadSet &lo : scene.loading.sets) {
       if (lo.region != lower[c] || lo.component(c) == ComponentLoad::free) continue;
       for (const LoadSet &up : scene.loading.sets) {
@@ -345,7 +345,7 @@ PetscErrorCode CheckLoading(MPI_Comm comm, const SceneInput &in, Scene *scene, E
     SceneCheck(scene->loading.reference_length > 0, comm,
                "-load_reference_length %g: the length that turns stretch into displacement must be > 0 m (default: the body height)",
                scene->loading.reference_length);
-  else scene->loading.reference_length = scene->dimension == 3 ? scene->body.solid.hi[1] - scene->body.solid.lo[1] : scene->body.sheet.height; // (3D: the extent along y)
+  else scene->loading.reference_length = scene->body.dimension == 3 ? scene->body.solid_summary.hi[1] - scene->body.solid_summary.lo[1] : scene->body.sheet.height; // (3D: the extent along y)
 
   GripPlacement     default_placement = GripPlacement::outside;
   const std::string placement_all     = Lower(in.grip_placement);
@@ -357,7 +357,7 @@ PetscErrorCode CheckLoading(MPI_Comm comm, const SceneInput &in, Scene *scene, E
   for (const LoadInput &li : in.loads) {
     LoadSet set;
     set.name = li.name;
-    PetscCall(CheckRegion({comm, li, in, scene->body, scene->dimension, default_placement}, &set, grip_rows));
+    PetscCall(CheckRegion({comm, li, in, scene->body, scene->body.dimension, default_placement}, &set, grip_rows));
     PetscCall(CheckComponents(comm, li, *scene, &set));
     scene->loading.sets.push_back(set);
   }
@@ -368,7 +368,7 @@ PetscErrorCode CheckLoading(MPI_Comm comm, const SceneInput &in, Scene *scene, E
 
 std::string LoadingText(const Scene &s)
 {
-  const bool       three  = s.dimension == 3;
+  const bool       three  = s.body.dimension == 3;
   const BodyExtent extent = BodyExtentOf(s);
   std::string      text;
   auto        component = [](ComponentLoad c, double scale) {
@@ -412,10 +412,10 @@ std::vector<std::string> BodyGmshFiles(const Body<2> &body)
   return files;
 }
 
-std::vector<std::string> BodyGmshFiles(const Body3D &body)
+std::vector<std::string> BodyGmshFiles(const Body<3> &body)
 {
   std::vector<std::string> files;
-  for (const nd::Solid &s : body.solid.solids)
+  for (const nd::Solid &s : body.solids)
     if (s.kind == nd::Solid::Kind::mesh && std::find(files.begin(), files.end(), s.mesh->file) == files.end()) files.push_back(s.mesh->file);
   return files;
 }

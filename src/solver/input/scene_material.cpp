@@ -183,7 +183,7 @@ PetscErrorCode CheckLawChoice(MPI_Comm comm, const SceneInput &in, Scene *scene)
   if (!parse(Lower(in.formulation), scene->material.formulation))
     SETERRQ(comm, PETSC_ERR_USER, "%s",
             Format("-material_formulation '%s' is not a formulation: choose plane_stress, plane_strain or plane_stress_incompressible", in.formulation.c_str()).c_str());
-  const bool three = scene->dimension == 3;
+  const bool three = scene->body.dimension == 3;
   SceneCheck(!(three && in.formulation_set), comm,
              "-material_formulation %s is a 2D reduction (plane stress or plane strain of a sheet), and this body is 3D: remove it (a 3D "
              "body uses the law's full 3D form)",
@@ -194,7 +194,7 @@ PetscErrorCode CheckLawChoice(MPI_Comm comm, const SceneInput &in, Scene *scene)
 // The force: -force_form, -material_volumetric and the corrections of the bond-only force.
 PetscErrorCode CheckForce(MPI_Comm comm, const SceneInput &in, Scene *scene)
 {
-  const bool three = scene->dimension == 3;
+  const bool three = scene->body.dimension == 3;
   PetscFunctionBeginUser;
   std::string form = Lower(in.force_form);
   std::replace(form.begin(), form.end(), '-', '_');
@@ -291,7 +291,7 @@ PetscErrorCode CheckCompressibility(MPI_Comm comm, const SceneInput &in, Scene *
 PetscErrorCode CheckLawParameters(MPI_Comm comm, const SceneInput &in, Scene *scene)
 {
   const MaterialParameters &m     = scene->material.parameters;
-  const bool                three = scene->dimension == 3;
+  const bool                three = scene->body.dimension == 3;
   PetscFunctionBeginUser;
   // -material_mu, the law's own (-material_Jm), -material_D; then whether the law runs in
   // the formulation (the plane-stress solve refuses laws it cannot solve)
@@ -372,9 +372,9 @@ PetscErrorCode CheckFailure(MPI_Comm comm, const SceneInput &in, Scene *scene)
 std::string MaterialText(const Scene &s)
 {
   const double K    = 2.0 / s.material.parameters.D;
-  std::string  text = Format("  material  %s, %s: mu %g Pa", to_string(s.material.model), s.dimension == 3 ? "3D" : to_string(s.material.formulation), s.material.parameters.mu);
+  std::string  text = Format("  material  %s, %s: mu %g Pa", to_string(s.material.model), s.body.dimension == 3 ? "3D" : to_string(s.material.formulation), s.material.parameters.mu);
   text += parameter_summary(s.material.model, s.material.parameters); // (every law's own: the registry's summary)
-  if (s.dimension == 2 && s.material.formulation == Formulation::plane_stress_incompressible)
+  if (s.body.dimension == 2 && s.material.formulation == Formulation::plane_stress_incompressible)
     text += Format(", incompressible (J = 1, C33 = 1/det C~; D not used), density %g kg/m^3\n", s.material.density);
   else
     text += Format(", D %g 1/Pa (bulk modulus K = 2/D = %g Pa = %g mu), density %g kg/m^3\n", s.material.parameters.D, K, K / s.material.parameters.mu, s.material.density);

@@ -32,7 +32,7 @@ std::string ProbesText(const Scene &s)
 {
   std::string text;
   for (const Probe &p : s.loading.probes)
-    text += s.dimension == 3 ? Format("  probe     %s at (%g, %g, %g) m\n", p.name.c_str(), p.x, p.y, p.z)
+    text += s.body.dimension == 3 ? Format("  probe     %s at (%g, %g, %g) m\n", p.name.c_str(), p.x, p.y, p.z)
                              : Format("  probe     %s at (%g, %g) m\n", p.name.c_str(), p.x, p.y);
   return text;
 }
@@ -99,16 +99,16 @@ PetscErrorCode ProbeAtBlock(MPI_Comm comm, const ProbeInput &pi, const Body<2> &
   PetscFunctionReturn(0);
 }
 
-// A probe of a 3D body: -probe_NAME_at x,y,z on material (Body3D's solids keep it; for
+// A probe of a 3D body: -probe_NAME_at x,y,z on material (Body<3>'s solids keep it; for
 // given points, within the points' extent), -probe_NAME_group (a Gmsh physical point),
 // or -probe_NAME_block of a 3D cloud.
-PetscErrorCode CheckProbe3D(MPI_Comm comm, const ProbeInput &pi, const Body3D &b, Probe *p)
+PetscErrorCode CheckProbe3D(MPI_Comm comm, const ProbeInput &pi, const BodySection &b, Probe *p)
 {
   const char *n = pi.name.c_str();
   PetscFunctionBeginUser;
   if (!pi.group.empty()) { // a physical point (one node) of the body's Gmsh volume, or of -probe_NAME_file
     std::string file;
-    PetscCall(GroupGmshFile(comm, pi.file, BodyGmshFiles(b), "probe", "probe", pi.name, "mesh solids", pi.group, &file));
+    PetscCall(GroupGmshFile(comm, pi.file, BodyGmshFiles(b.solid), "probe", "probe", pi.name, "mesh solids", pi.group, &file));
     nd::ElementRegion group;
     const std::string problem = ReadGmshGroup3D(file, pi.group, 0.0, &group);
     SceneCheck(problem.empty(), comm, "-probe_%s_group %s: %s", n, pi.group.c_str(), problem.c_str());
@@ -122,21 +122,21 @@ PetscErrorCode CheckProbe3D(MPI_Comm comm, const ProbeInput &pi, const Body3D &b
                                 : "several points",
                pi.group.c_str(), n);
     p->x = group.segments[0], p->y = group.segments[1], p->z = group.segments[2];
-    SceneCheck(b.given_points || nd::body_contains(b.solid.solids, &group.segments[0]), comm,
+    SceneCheck(b.solid.given_points || nd::body_contains(b.solid.solids, &group.segments[0]), comm,
                "-probe_%s_group %s at (%g, %g, %g) m lies where the body's solids leave no material: name a point on the body", n,
                pi.group.c_str(), p->x, p->y, p->z);
     PetscFunctionReturn(0);
   }
   if (pi.block_set) {
-    SceneCheck(b.given_points != nullptr, comm,
+    SceneCheck(b.solid.given_points != nullptr, comm,
                "-probe_%s_block: block ids come with the points of a cloud (-body_cloud, column block_id), and this body is a lattice: "
                "place the probe by -probe_%s_at x,y,z",
                n, n);
-    const std::vector<double> at = BlockPoints3D(b.given_points->x, b.given_block, static_cast<int64_t>(pi.block));
+    const std::vector<double> at = BlockPoints3D(b.solid.given_points->x, b.solid.given_block, static_cast<int64_t>(pi.block));
     SceneCheck(at.size() == 3, comm,
                "-probe_%s_block %" PetscInt_FMT ": a probe is one point, but block %" PetscInt_FMT " has %zu points in '%s' (its block ids: "
                "%s): give the probe its own block id, or place it by -probe_%s_at x,y,z",
-               n, pi.block, pi.block, at.size() / 3, b.source.c_str(), BlockIdList(b.given_block).c_str(), n);
+               n, pi.block, pi.block, at.size() / 3, b.solid.source.c_str(), BlockIdList(b.solid.given_block).c_str(), n);
     p->x = at[0], p->y = at[1], p->z = at[2];
     PetscFunctionReturn(0);
   }
@@ -144,12 +144,12 @@ PetscErrorCode CheckProbe3D(MPI_Comm comm, const ProbeInput &pi, const Body3D &b
              MisspeltHint("-probe_" + pi.name + "_at").c_str());
   SceneCheck(pi.at.size() == 3, comm, "-probe_%s_at holds %zu numbers: a probe of a 3D body takes exactly three, x,y,z in m", n, pi.at.size());
   p->x = pi.at[0], p->y = pi.at[1], p->z = pi.at[2];
-  const double tol = 1e-12 * std::max({b.hi[0] - b.lo[0], b.hi[1] - b.lo[1], b.hi[2] - b.lo[2]});
+  const double tol = 1e-12 * std::max({b.solid_summary.hi[0] - b.solid_summary.lo[0], b.solid_summary.hi[1] - b.solid_summary.lo[1], b.solid_summary.hi[2] - b.solid_summary.lo[2]});
   bool         in_extent = true;
-  for (int r = 0; r < 3; ++r) in_extent = in_extent && pi.at[r] >= b.lo[r] - tol && pi.at[r] <= b.hi[r] + tol;
+  for (int r = 0; r < 3; ++r) in_extent = in_extent && pi.at[r] >= b.solid_summary.lo[r] - tol && pi.at[r] <= b.solid_summary.hi[r] + tol;
   SceneCheck(in_extent, comm, "-probe_%s_at (%g, %g, %g) m lies outside the body [%g, %g] x [%g, %g] x [%g, %g] m: move it onto the body", n,
-             p->x, p->y, p->z, b.lo[0], b.hi[0], b.lo[1], b.hi[1], b.lo[2], b.hi[2]);
-  if (!b.given_points)
+             p->x, p->y, p->z, b.solid_summary.lo[0], b.solid_summary.hi[0], b.solid_summary.lo[1], b.solid_summary.hi[1], b.solid_summary.lo[2], b.solid_summary.hi[2]);
+  if (!b.solid.given_points)
     SceneCheck(nd::body_contains(b.solid.solids, pi.at.data()), comm,
                "-probe_%s_at (%g, %g, %g) m lies where the body's solids leave no material (outside the solids that add, or in one "
                "that subtracts): move it onto the body",
@@ -171,8 +171,8 @@ PetscErrorCode CheckProbes(MPI_Comm comm, const SceneInput &in, Scene *scene)
     SceneCheck(!(pi.block_set && (pi.at_set || !pi.group.empty())), comm, "probe '%s' has both -probe_%s_block and -probe_%s_%s: give one of them",
                n, n, n, pi.at_set ? "at" : "group");
     Probe p = {pi.name, 0, 0};
-    if (scene->dimension == 3) {
-      PetscCall(CheckProbe3D(comm, pi, scene->body.solid, &p));
+    if (scene->body.dimension == 3) {
+      PetscCall(CheckProbe3D(comm, pi, scene->body, &p));
       scene->loading.probes.push_back(p);
       continue;
     }

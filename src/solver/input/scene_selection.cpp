@@ -70,17 +70,17 @@ PetscErrorCode LoadSetSelect(const BodyExtent &body, const LoadSet &set, const d
   PetscFunctionReturn(0);
 }
 
-// 2D: the sheet from the origin; 3D: the extent of the points' cells and the solid's
-// lattice spacing (the same as the sheet's dx once the scene is checked).
+// 2D: the sheet from the origin; 3D: the extent of the points' cells; the body's
+// spacing (BodySection::dx).
 BodyExtent BodyExtentOf(const Scene &scene)
 {
-  const Body<2> &sheet = scene.body.sheet;
-  const Body3D &solid = scene.body.solid;
-  BodyExtent    e;
-  e.dimension = scene.dimension;
-  e.thickness = sheet.thickness;
-  if (scene.dimension == 3) e.lo = solid.lo, e.hi = solid.hi, e.dx = solid.solid.dx;
-  else e.hi = {sheet.width, sheet.height, 0.0}, e.dx = sheet.dx;
+  const BodySection &body = scene.body;
+  BodyExtent         e;
+  e.dimension = body.dimension;
+  e.thickness = body.sheet.thickness;
+  e.dx        = body.dx();
+  if (body.dimension == 3) e.lo = body.solid_summary.lo, e.hi = body.solid_summary.hi;
+  else e.hi = {body.sheet.width, body.sheet.height, 0.0};
   return e;
 }
 

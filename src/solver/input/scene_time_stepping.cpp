@@ -172,7 +172,7 @@ PetscErrorCode CheckStepCount(MPI_Comm comm, const Scene &scene, bool end_time_s
   const double      max_steps  = static_cast<double>(std::numeric_limits<PetscInt>::max());
   const double      shear_wave = std::sqrt(scene.material.parameters.mu / scene.material.density);
   const bool        given      = scene.time_stepping.step > 0;
-  const double      step_bound = given ? scene.time_stepping.step : 3.0 * scene.time_stepping.safety * scene.body.sheet.dx / shear_wave;
+  const double      step_bound = given ? scene.time_stepping.step : 3.0 * scene.time_stepping.safety * scene.body.dx() / shear_wave;
   const double      steps      = scene.time_stepping.end_time / step_bound;
   const std::string how        = given ? Format("-time_step %g s", scene.time_stepping.step)
                                        : Format("the step, at most about %g s here (3 x %g x dx / sqrt(mu / rho))", step_bound,
@@ -263,7 +263,7 @@ PetscErrorCode CheckTimeStepping(MPI_Comm comm, const SceneInput &in, Scene *sce
   PetscCall(CheckReestimate(comm, &scene->time_stepping.reestimate));
   // The points' indicator forms F~ and the plane-stress I1bar of a 2D point (the dynamics'
   // re-estimate only: the static solver takes no time step).
-  SceneCheck(scene->dimension == 2 || !scene->time_stepping.reestimate.indicator || scene->run.solver == SolverKind::static_newton, comm,
+  SceneCheck(scene->body.dimension == 2 || !scene->time_stepping.reestimate.indicator || scene->run.solver == SolverKind::static_newton, comm,
              "-time_step_reestimate_indicator is a 2D measurement (the points' plane-stress I1bar): leave it out for a 3D body, or use "
              "-time_step_reestimate_bonds");
   PetscFunctionReturn(0);

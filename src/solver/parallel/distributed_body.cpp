@@ -277,11 +277,11 @@ PetscErrorCode LatticeBlock(MPI_Comm comm, const Body<2> &body2d, const Body<3> 
   PetscFunctionBegin;
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   PetscCallMPI(MPI_Comm_size(comm, &size));
-  const int64_t rows    = D == 2 ? lattice_rows(body2d) : solid_layers(body3d);
+  const int64_t rows    = D == 2 ? lattice_rows(body2d) : nd::solid_layers(body3d);
   const double  spacing = D == 2 ? body2d.dx : body3d.dx;
   auto          append  = [&](int64_t from, int64_t to, PointCloud *c, std::vector<int64_t> *counts) {
     if constexpr (D == 2) append_lattice_rows(body2d, from, to, c, counts);
-    else append_solid_layers(body3d, from, to, c, counts);
+    else nd::append_solid_layers(body3d, from, to, c, counts);
   };
   const int64_t row_begin = rows * rank / size, row_end = rows * (rank + 1) / size;
 

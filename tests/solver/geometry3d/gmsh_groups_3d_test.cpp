@@ -112,7 +112,7 @@ TEST_F(Groups3D, AGripOnANamedFaceHoldsThePointsOfABoxOverTheSameLayers)
                  &scene),
             0)
       << ErrorText();
-  const PointCloud points = nd::make_solid_points(scene.body.solid.solid);
+  const PointCloud points = nd::make_solid_points(scene.body.solid);
   ASSERT_EQ(points.size(), 72u); // 6 x 4 x 3 cells
   const auto gl = Select(scene, scene.loading.sets[0], points), bl = Select(scene, scene.loading.sets[1], points);
   EXPECT_EQ(gl.size(), 24u); // two layers of 4 x 3
@@ -192,7 +192,7 @@ TEST_F(Groups3D, TheCentroidsOfTheGmshBoxAreItsPoints)
   const PointCloud &points = *scene.body.solid.given_points;
   EXPECT_TRUE(scene.body.solid.centroids);
   ASSERT_EQ(points.size(), mesh.size());
-  EXPECT_EQ(scene.body.solid.points, static_cast<int64_t>(mesh.size()));
+  EXPECT_EQ(scene.body.solid_summary.points, static_cast<int64_t>(mesh.size()));
   double volume = 0;
   for (double vp : points.volume) volume += vp;
   EXPECT_NEAR(volume, 72 * kMm * kMm * kMm, 1e-12 * 72 * kMm * kMm * kMm); // the tetrahedra fill the box
@@ -212,7 +212,7 @@ TEST_F(Groups3D, TheCentroidsOfTheGmshBoxAreItsPoints)
   ASSERT_EQ(Read(cut, &scene), 0) << ErrorText();
   std::size_t left = 0;
   for (std::size_t p = 0; p < points.size(); ++p) left += !(points.x[3 * p] >= 3 * kMm);
-  EXPECT_EQ(scene.body.solid.points, static_cast<int64_t>(left));
+  EXPECT_EQ(scene.body.solid_summary.points, static_cast<int64_t>(left));
   Options dx = centroids;
   dx.emplace_back("-body_dx", "0.001");
   EXPECT_EQ(Read(dx, &scene), PETSC_ERR_USER);

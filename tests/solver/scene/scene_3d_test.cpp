@@ -95,31 +95,31 @@ TEST_F(Scene3D, ReadsTheBodyItsExtentAndItsPointCount)
 {
   Scene scene;
   ASSERT_EQ(Read(Block(), &scene), 0) << bapd::test::UserErrorText();
-  EXPECT_EQ(scene.dimension, 3);
+  EXPECT_EQ(scene.body.dimension, 3);
   int64_t count = 0;
   for (int k = 0; k < 6; ++k)
     for (int j = 0; j < 8; ++j)
       for (int i = 0; i < 10; ++i) count += Material(i, j, k);
   EXPECT_LT(count, 480); // the sphere removed some
-  EXPECT_EQ(scene.body.solid.points, count);
+  EXPECT_EQ(scene.body.solid_summary.points, count);
   const double hi[3] = {0.01, 0.008, 0.006};
   for (int r = 0; r < 3; ++r) {
-    EXPECT_NEAR(scene.body.solid.lo[r], 0.0, 1e-15);
-    EXPECT_NEAR(scene.body.solid.hi[r], hi[r], 1e-15);
+    EXPECT_NEAR(scene.body.solid_summary.lo[r], 0.0, 1e-15);
+    EXPECT_NEAR(scene.body.solid_summary.hi[r], hi[r], 1e-15);
   }
-  ASSERT_EQ(scene.body.solid.solid.solids.size(), 2u);
-  EXPECT_EQ(scene.body.solid.solid.solids[0].op, bapd::nd::Solid::Op::add);      // the first solid starts the body
-  EXPECT_EQ(scene.body.solid.solid.solids[1].op, bapd::nd::Solid::Op::subtract); // the next cuts it
-  EXPECT_EQ(scene.body.solid.solid.notches.size(), 1u);
+  ASSERT_EQ(scene.body.solid.solids.size(), 2u);
+  EXPECT_EQ(scene.body.solid.solids[0].op, bapd::nd::Solid::Op::add);      // the first solid starts the body
+  EXPECT_EQ(scene.body.solid.solids[1].op, bapd::nd::Solid::Op::subtract); // the next cuts it
+  EXPECT_EQ(scene.body.solid.notches.size(), 1u);
   EXPECT_DOUBLE_EQ(scene.loading.reference_length, 0.008); // the extent along y
   ASSERT_EQ(scene.loading.sets.size(), 2u);
   EXPECT_EQ(scene.loading.sets[0].region, LoadSet::Region::left);
   EXPECT_EQ(scene.loading.sets[1].region, LoadSet::Region::right);
   EXPECT_EQ(scene.loading.sets[1].z, bapd::ComponentLoad::fixed);
   // The driver's D (main.cpp builds SimulationD<3> for it); a scene without 3D options is 2D.
-  EXPECT_EQ(scene.dimension, 3);
+  EXPECT_EQ(scene.body.dimension, 3);
   Scene flat;
-  EXPECT_EQ(flat.dimension, 2);
+  EXPECT_EQ(flat.body.dimension, 2);
 }
 
 // The scene's view of a 3D body (SceneText): the lattice, point count and extent, each
@@ -132,7 +132,7 @@ TEST_F(Scene3D, ViewNamesTheSolidsNotchesFacesAndProbes)
   const std::string text = bapd::SceneText(scene);
   const std::string expected[] = {
     bapd::Format("  body      3D, dx 0.001 m: %lld points, cells in [0, 0.01] x [0, 0.008] x [0, 0.006] m, 2 solid(s), 1 notch(es)\n",
-                 static_cast<long long>(scene.body.solid.points)),
+                 static_cast<long long>(scene.body.solid_summary.points)),
     "            solid block: add a box, [0, 0.01] x [0, 0.008] x [0, 0.006] m\n",
     "            solid hole: subtract a sphere, centre (0.005, 0.004, 0.003) m, radius 0.0016 m\n",
     "            notch crack: a planar polygon of 4 vertices, (0.001, 0.004, -0.001) (0.0026, 0.004, -0.001) (0.0026, 0.004, 0.007) "
@@ -164,8 +164,8 @@ TEST_F(Scene3D, LoadSetsPickExactlyTheBruteForcePoints)
 {
   Scene scene;
   ASSERT_EQ(Read(Block(), &scene), 0) << bapd::test::UserErrorText();
-  const bapd::PointCloud points = bapd::nd::make_solid_points(scene.body.solid.solid);
-  ASSERT_EQ(static_cast<int64_t>(points.size()), scene.body.solid.points);
+  const bapd::PointCloud points = bapd::nd::make_solid_points(scene.body.solid);
+  ASSERT_EQ(static_cast<int64_t>(points.size()), scene.body.solid_summary.points);
   // Index (i, j, k) of each point, from its position.
   std::vector<std::array<int, 3>> index(points.size());
   for (std::size_t p = 0; p < points.size(); ++p)
@@ -209,7 +209,7 @@ TEST_F(Scene3D, ProbeFindsTheNearestPointInThreeDimensions)
 {
   Scene scene;
   ASSERT_EQ(Read(Block(), &scene), 0) << bapd::test::UserErrorText();
-  const bapd::PointCloud points = bapd::nd::make_solid_points(scene.body.solid.solid);
+  const bapd::PointCloud points = bapd::nd::make_solid_points(scene.body.solid);
   PetscMPIInt            rank, size;
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
   MPI_Comm_size(PETSC_COMM_WORLD, &size);
@@ -244,7 +244,7 @@ TEST_F(Scene3D, GripsHoldThreeDofsAPointAndReactInThree)
   ASSERT_EQ(Read(Block(), &scene), 0) << bapd::test::UserErrorText();
   // Every rank holds the whole body here, so the loading works on PETSC_COMM_SELF.
   bapd::Layout layout;
-  layout.cloud   = bapd::nd::make_solid_points(scene.body.solid.solid);
+  layout.cloud   = bapd::nd::make_solid_points(scene.body.solid);
   layout.n_owned = (PetscInt)layout.cloud.size();
   bapd::Loading loading;
   ASSERT_EQ(loading.Setup(PETSC_COMM_SELF, scene.loading, scene.time_stepping.end_time, bapd::BodyExtentOf(scene), layout), 0) << bapd::test::UserErrorText();
@@ -316,7 +316,7 @@ TEST_F(Scene3D, AffineGripFieldContinuesTheStretchIntoFaceAndBoxGrips)
     const bool affine = std::string(field) == "affine";
     EXPECT_EQ(scene.loading.grip_field, affine ? bapd::GripField::affine : bapd::GripField::rigid) << field;
     bapd::Layout layout;
-    layout.cloud   = bapd::nd::make_solid_points(scene.body.solid.solid);
+    layout.cloud   = bapd::nd::make_solid_points(scene.body.solid);
     layout.n_owned = (PetscInt)layout.cloud.size();
     bapd::Loading loading;
     ASSERT_EQ(loading.Setup(PETSC_COMM_SELF, scene.loading, scene.time_stepping.end_time, bapd::BodyExtentOf(scene), layout), 0) << bapd::test::UserErrorText();
@@ -438,7 +438,7 @@ TEST_F(Scene3D, TwoDimensionalSheetsRefuseTheThirdComponentAndTheZFaces)
       << bapd::test::UserErrorText();
   Scene scene;
   ASSERT_EQ(Read(sheet, &scene), 0) << bapd::test::UserErrorText();
-  EXPECT_EQ(scene.dimension, 2);
+  EXPECT_EQ(scene.body.dimension, 2);
 }
 
 // A 3D cloud (text, x y z volume block_id): solids cut it; block ids make load sets and probes.
@@ -467,7 +467,7 @@ TEST_F(Scene3D, ACloudIsClippedByItsSolidsAndItsBlocksAreLoadSets)
                          {"-end_time", "1"}};
   Scene scene;
   ASSERT_EQ(Read(cloud, &scene), 0) << bapd::test::UserErrorText();
-  EXPECT_EQ(scene.body.solid.points, 64 - 4); // the cut took i, j in {2, 3}, k = 0
+  EXPECT_EQ(scene.body.solid_summary.points, 64 - 4); // the cut took i, j in {2, 3}, k = 0
   EXPECT_EQ(scene.loading.sets[0].block_points.size(), 3u * 16);
   EXPECT_NEAR(scene.loading.probes[0].z, 3.5e-3, 1e-18);
   EXPECT_EQ(scene.material.patch_correction, bapd::PatchCorrection::off); // auto: the energy-consistent form is not corrected

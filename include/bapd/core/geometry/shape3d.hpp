@@ -71,12 +71,21 @@ struct PlanarPolygon {
 namespace bapd {
 
 // The 3D body (the 3D specialisation of Body<D>, body.hpp): solids applied in order to
-// an empty start on the lattice above, cut by planar notches.
+// an empty start on the lattice above, cut by planar notches; or given points clipped
+// by the solids: a 3D cloud (point_cloud3d.hpp) or the tetrahedron centroids of the
+// first solid, a mesh (tetrahedron_centroids). make_solid_points and the layers below
+// build the lattice only; the given points are already built.
 template <> struct Body<3> {
-  double                         dx = 0;   // lattice spacing [m]
+  double                         dx = 0;   // lattice spacing [m] (given points: their smallest cbrt(V))
   std::array<double, 3>          origin{}; // the grid's anchor: points at origin + (i + 0.5) dx [m]
   std::vector<nd::Solid>         solids;   // applied in order to an empty start
   std::vector<nd::PlanarPolygon> notches;  // pre-notches (cut bonds; also split the connectivity check)
+  // Not null: the body's points are these (x: 3 a point, clipped), not the lattice.
+  // Shared: the scene is copied, the points are not.
+  std::shared_ptr<const PointCloud> given_points;
+  std::vector<int64_t>              given_block;       // block id of each given point
+  bool                              centroids = false; // given_points are the tetrahedron centroids of the first solid
+  std::string                       source;            // the file of the given points, for messages
 };
 
 } // namespace bapd

@@ -55,7 +55,7 @@ template <std::size_t I, class Fn> void with_law_3d(ModelKind kind, const Materi
 }
 } // namespace detail
 
-// The 3D dispatch (a 3D body, Scene::dimension 3): fn(model) with the law's 3D form,
+// The 3D dispatch (a 3D body, BodySection::dimension 3): fn(model) with the law's 3D form,
 // nd::Compressible3DLanes<Law> (stress(F, P), the lane path of ba_force.hpp), for
 // every law of invariants of the registry, Law::Model3D for a law of principal
 // stretches (Ogden3D). fn returns nothing.

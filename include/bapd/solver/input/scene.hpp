@@ -55,33 +55,32 @@ struct StaticOptions {
   double   residual_tolerance = 1e-10; // Newton ends once |R| <= this x |grip reactions| (|R|: the free dofs' forces) [-]
 };
 
-// A 3D body (-body_dimension 3, or implied by a 3D solid;
-// docs/options.md "3D bodies"): the solids (boxes, cylinders, spheres, Gmsh volumes)
-// and planar polygon notches of shape3d.hpp on a lattice of spacing dx, or given
-// points clipped by the solids: a 3D cloud (point_cloud3d.hpp) or the tetrahedron
-// centroids of a Gmsh volume (nd::tetrahedron_centroids). Checked whole by the scene
-// (scene_body.cpp): the points are built once there, for their count, their extent (the
-// faces of the load sets) and the one-piece check.
-struct Body3D {
-  Body<3>                      solid;        // dx, origin (0, 0, 0), solids in order, notches
-  std::vector<std::string>           solid_names;  // -body_shapes name of each solid, for messages
-  std::vector<std::string>           notch_names;  // -body_shapes name of each notch (solid.notches)
-  std::shared_ptr<const PointCloud>  given_points; // -body_cloud in 3D (x: 3 a point), clipped; null: the lattice
-  bool                               centroids = false; // given_points are the tetrahedron centroids of the first solid (a mesh)
-  std::vector<int64_t>               given_block;  // block id of each given point
-  std::string                        source;       // the cloud file, for messages
-  int64_t                            points = 0;   // material points of the body
-  std::array<double, 3>              lo{}, hi{};   // the extent of the points' cells [m]: lattice point +- dx/2
+// What the scene learns of the 3D body by building its points once (scene_body3d.cpp),
+// beyond the body itself: names for messages, the point count (the memory check) and
+// the extent of the points' cells (the faces of the load sets).
+struct SolidSummary {
+  std::vector<std::string> solid_names; // -body_shapes name of each solid, for messages
+  std::vector<std::string> notch_names; // -body_shapes name of each notch (Body<3>::notches)
+  int64_t                  points = 0;  // material points of the body
+  std::array<double, 3>    lo{}, hi{};  // the extent of the points' cells [m]: lattice point +- dx/2
 };
 
 // The body (-body_*, -horizon_factor; scene_body.cpp, scene_body3d.cpp): the plane
-// sheet (dimension 2) or the solid (dimension 3), and the horizon.
+// sheet (dimension 2) or the solid (dimension 3; docs/options.md "3D bodies"), and the
+// horizon. Only the body of the dimension is filled; each holds its own spacing.
 struct BodySection {
-  Body<2> sheet;                  // dx: the spacing of either (given points: their smallest)
-  Body3D solid;
-  double horizon_factor = 3.015; // delta / dx (given points: delta_i / h_i, geometry.hpp)
+  // -body_dimension (or 3 implied by a 3D solid): the driver's D (SimulationD<D>,
+  // chosen once by main.cpp from the scene).
+  int          dimension = 2;
+  Body<2>      sheet;         // dimension 2
+  Body<3>      solid;         // dimension 3
+  SolidSummary solid_summary; // dimension 3
+  double       horizon_factor = 3.015; // delta / dx (given points: delta_i / h_i, geometry.hpp)
 
-  double horizon() const { return horizon_factor * sheet.dx; } // (given points: the smallest delta_i)
+  // The spacing of the body (given points: their smallest): the time-step bound, the
+  // travel scale, the faces' row depth.
+  double dx() const { return dimension == 3 ? solid.dx : sheet.dx; }
+  double horizon() const { return horizon_factor * dx(); } // (given points: the smallest delta_i)
 };
 
 // The material (-material_*, -force_*; scene_material.cpp): the law, its 2D reduction and
@@ -170,9 +169,6 @@ struct TimeSteppingSection {
 };
 
 struct Scene {
-  // 2 (the plane sheet, body.sheet) or 3 (the solid, body.solid): the driver's D
-  // (SimulationD<D>, chosen once by main.cpp from the scene).
-  int                 dimension = 2;
   BodySection         body;
   MaterialSection     material;
   FailureSection      failure;

@@ -44,6 +44,7 @@ struct ProbeInput {
 
 struct SceneInput {
   bool                     width_set = false, height_set = false, thickness_set = false, dx_set = false;
+  double                   dx = 0; // -body_dx: the lattice spacing of the sheet or the solid
   std::vector<double>      holes, notches;
   std::vector<std::string> shape_names;
   std::vector<ShapeInput>  shapes;
@@ -118,7 +119,7 @@ PetscErrorCode CheckLoading(MPI_Comm comm, const SceneInput &in, Scene *scene, E
 // The Gmsh files the body reads (its mesh shapes): where a physical group's file
 // defaults to (load sets and probes by group).
 std::vector<std::string> BodyGmshFiles(const Body<2> &body);
-std::vector<std::string> BodyGmshFiles(const Body3D &body); // (its mesh solids)
+std::vector<std::string> BodyGmshFiles(const Body<3> &body); // (its mesh solids)
 // The file of physical group `group` of -PREFIX_NAME_group (owner: "load set", "probe"):
 // `given` (-PREFIX_NAME_file), else the body's one Gmsh file (`files`, its `kinds`:
 // "mesh shapes", "mesh solids"); several files and none given is refused.

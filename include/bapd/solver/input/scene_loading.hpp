@@ -16,7 +16,7 @@ namespace bapd {
 // its dimension, its extent, the spacing and the sheet's thickness.
 struct BodyExtent {
   int                   dimension = 2;
-  std::array<double, 3> lo{}, hi{};    // 2D: the sheet, [0, width] x [0, height]; 3D: the points' cells (Body3D::lo, hi) [m]
+  std::array<double, 3> lo{}, hi{};    // 2D: the sheet, [0, width] x [0, height]; 3D: the points' cells (SolidSummary::lo, hi) [m]
   double                dx        = 0; // the lattice spacing (given points: the smallest) [m]
   double                thickness = 0; // the sheet's [m]
 };
@@ -48,8 +48,8 @@ enum class GripPlacement { outside, inside };
 // polyline (curve), or a named physical group of a Gmsh file (group: a physical
 // surface holds the points inside its elements; a physical curve or point, the
 // points closer than `depth` to it).
-// In 3D (Scene::dimension 3) the edge regions are the faces of the
-// body's extent (Body3D::lo, hi): left x-, right x+, bottom y-, top y+, back z-, front
+// In 3D (BodySection::dimension 3) the edge regions are the faces of the
+// body's extent (SolidSummary::lo, hi): left x-, right x+, bottom y-, top y+, back z-, front
 // z+ (the words x-, x+, y-, y+, z-, z+ name them too), always inside; a box has six
 // numbers; a group is a physical group of the body's Gmsh volume (a volume: the points
 // inside it; a surface, curve or point: those closer than `depth` to it); a block is a

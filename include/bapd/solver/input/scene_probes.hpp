@@ -10,7 +10,7 @@ namespace bapd {
 struct Probe {
   std::string name;
   double      x = 0, y = 0; // the material point nearest to (x, y) is recorded
-  double      z = 0;        // 3D only (Scene::dimension 3): (x, y, z)
+  double      z = 0;        // 3D only (BodySection::dimension 3): (x, y, z)
 };
 
 // Where a probe reads: the point nearest to (probe.x, probe.y[, probe.z]), ties broken by the

@@ -4,7 +4,7 @@
 // schedule and the end time start as the scene's and change only here: a static
 // hold that ends early moves the later knots (EndHold), and a restart puts the moved
 // schedule back (Restore). The scene itself is never written.
-// The dimension D = scene.dimension (2 or 3) is taken at Setup: a
+// The dimension D = scene.body.dimension (2 or 3) is taken at Setup: a
 // point has D dofs (D p + c) and a load set D reaction components. It is a run-time
 // value, not a template parameter, because nothing here runs per bond (the grips'
 // dofs once a step) and the time-step control takes a Loading of either D.

@@ -16,7 +16,7 @@ PetscErrorCode ReadBlock(const RegionInput &r, LoadSet *set)
   const char      *n     = li.name.c_str();
   const bool       three = r.dimension == 3;
   const Body<2>    &b2    = r.body.sheet;
-  const Body3D    &b3    = r.body.solid;
+  const Body<3>    &b3    = r.body.solid;
   PetscFunctionBeginUser;
   SceneCheck(li.block_set, r.comm, "-load_%s_block is required with -load_%s_region block: give a block id of the point cloud%s", n, n,
              MisspeltHint("-load_" + li.name + "_block").c_str());

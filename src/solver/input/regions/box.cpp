@@ -32,7 +32,7 @@ PetscErrorCode CheckBox2D(const RegionInput &r, LoadSet *set, EdgeRows *)
 PetscErrorCode CheckBox3D(const RegionInput &r, LoadSet *set)
 {
   const LoadInput &li = r.li;
-  const Body3D    &b  = r.body.solid;
+  const SolidSummary &b = r.body.solid_summary; // (the extent)
   const char      *n  = li.name.c_str();
   PetscFunctionBeginUser;
   SceneCheck(li.box_set, r.comm, "-load_%s_box is required with -load_%s_region box: give xmin,ymin,zmin,xmax,ymax,zmax in m%s", n, n,

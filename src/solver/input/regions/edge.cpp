@@ -86,8 +86,8 @@ PetscErrorCode CheckEdge2D(const RegionInput &r, LoadSet *set, EdgeRows *grip_ro
 PetscErrorCode CheckFace3D(const RegionInput &r, LoadSet *set)
 {
   const LoadInput &li = r.li;
-  const Body3D    &b  = r.body.solid;
-  const double     dx = b.solid.dx;
+  const SolidSummary &b  = r.body.solid_summary; // (the extent)
+  const double        dx = r.body.solid.dx;
   PetscFunctionBeginUser;
   PetscCall(CheckLayersDepth(r, "grip", "row"));
   set->layers         = li.depth_set ? GripRows(li.depth, dx) : static_cast<int>(li.layers);
@@ -111,7 +111,7 @@ bool EdgeContains2D(const BodyExtent &b, const LoadSet &set, const double *p)
   return EdgeUpper(set.region) ? q > edge - depth && q < edge : q < depth && q > 0;
 }
 
-// 3D: within `layers` rows of the body's extent (Body3D::lo, hi: lattice points sit
+// 3D: within `layers` rows of the body's extent (SolidSummary::lo, hi: lattice points sit
 // (i + 1/2) dx inside it), as the 2D edges inside.
 bool FaceContains3D(const BodyExtent &b, const LoadSet &set, const double *p)
 {

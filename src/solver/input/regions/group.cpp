@@ -52,7 +52,7 @@ PetscErrorCode CheckGroup3D(const RegionInput &r, LoadSet *set)
   PetscCall(GroupGmshFile(r.comm, li.file, BodyGmshFiles(r.body.solid), "load", "load set", li.name, "mesh solids", li.group, &set->file));
   set->group = li.group;
   PetscCall(CheckLayersDepth(r, "set", "layer"));
-  set->depth                = li.depth_set ? li.depth : static_cast<double>(li.layers) * r.body.solid.solid.dx;
+  set->depth                = li.depth_set ? li.depth : static_cast<double>(li.layers) * r.body.solid.dx;
   const std::string problem = ReadGmshGroup3D(set->file, li.group, set->depth, &set->elements);
   SceneCheck(problem.empty(), r.comm, "-load_%s_group %s: %s", n, li.group.c_str(), problem.c_str());
   SceneCheck(set->elements.dim < 3 || !(li.layers_set || li.depth_set), r.comm,

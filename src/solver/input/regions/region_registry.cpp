@@ -144,7 +144,7 @@ PetscErrorCode CheckOwnPoints2D(const RegionInput &r, LoadSet *set)
              "top, bottom, left and right add grip rows outside the body: remove it, or set it to inside",
              n, li.placement.c_str(), n, to_string(set->region));
   PetscCall(CheckLayersDepth(r, "set", "row"));
-  set->depth = li.depth_set ? li.depth : static_cast<double>(li.layers) * r.body.sheet.dx;
+  set->depth = li.depth_set ? li.depth : static_cast<double>(li.layers) * r.body.dx();
   PetscFunctionReturn(0);
 }
 
