@@ -23,14 +23,10 @@
 #include <type_traits>
 #include <utility>
 
+#include "bapd/core/kernel/volumetric_kind.hpp"
 #include "bapd/core/materials/hyperelastic_numerics.hpp"
 
 namespace bapd {
-
-enum class Volumetric { bond, point };
-
-// "bond", "point" (the -material_volumetric values).
-inline const char *to_string(Volumetric v) { return v == Volumetric::point ? "point" : "bond"; }
 
 namespace nd::detail {
 

@@ -25,7 +25,7 @@
 #include "bapd/solver/input/scene_time_stepping.hpp"
 #include "bapd/core/kernel/force_form.hpp"
 #include "bapd/core/kernel/softening_law.hpp"
-#include "bapd/core/kernel/volumetric.hpp"
+#include "bapd/core/kernel/volumetric_kind.hpp"
 #include "bapd/core/kernel/stress_correction.hpp"
 
 namespace bapd {
