@@ -84,9 +84,10 @@ PetscErrorCode SceneFromOptions(MPI_Comm comm, Scene *scene)
   }
   PetscCall(CheckBody(comm, in, scene));
   PetscCall(CheckMaterial(comm, in, scene));
-  EdgeRows grip_rows; // the rows the grips outside the sheet add to the body, which CheckBodyFits counts
-  PetscCall(CheckLoading(comm, in, scene, &grip_rows));
-  scene->body.sheet.grip_rows = grip_rows;
+  PetscCall(CheckLoading(comm, in, scene));
+  // The body is complete once the load sets are checked: the grips placed outside the
+  // sheet add rows beyond its edges, and the memory check counts their points too.
+  scene->body.sheet.grip_rows = OutsideGripRows(scene->loading);
   PetscCall(CheckBodyFits(comm, *scene));
   PetscCall(CheckProbes(comm, in, scene));
   PetscCall(CheckOutput(comm, in, scene));

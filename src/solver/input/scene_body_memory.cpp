@@ -140,7 +140,7 @@ PetscErrorCode CheckMemory(MPI_Comm comm, const Scene &scene, int64_t points, do
 
 } // namespace
 
-// After CheckLoading: the grips outside the sheet (Body<2>::grip_rows) are points too.
+// The grips outside the sheet (Body<2>::grip_rows, set from the load sets) are points too.
 PetscErrorCode CheckBodyFits(MPI_Comm comm, const Scene &scene)
 {
   PetscFunctionBeginUser;

@@ -151,12 +151,12 @@ PetscErrorCode CheckInside3D(MPI_Comm comm, const LoadInput &li, const SceneInpu
 }
 
 // Where a load set is: its region word, then what its region type reads and checks
-// (regions/). A 2D edge grip outside the sheet raises its edge's grip_rows.
-PetscErrorCode CheckRegion(const RegionInput &r, LoadSet *set, EdgeRows *grip_rows)
+// (regions/).
+PetscErrorCode CheckRegion(const RegionInput &r, LoadSet *set)
 {
   const LoadInput &li    = r.li;
   const char      *n     = li.name.c_str();
-  const bool       three = r.dimension == 3;
+  const bool       three = r.body.dimension == 3;
   const char      *choices = RegionChoices(three);
   PetscFunctionBeginUser;
   SceneCheck(li.region_set, r.comm, "-load_%s_region is required for load set '%s': choose %s%s", n, n, choices,
@@ -177,7 +177,7 @@ PetscErrorCode CheckRegion(const RegionInput &r, LoadSet *set, EdgeRows *grip_ro
                "-body_dimension 3)",
                n, li.region.c_str(), RegionChoices(false));
     PetscCall(CheckOptionsFit(r.comm, li, *set, false));
-    PetscCall(type.check2d(r, set, grip_rows));
+    PetscCall(type.check2d(r, set));
   }
   if (!set->segments.empty()) SetCurveReach(set);
   PetscFunctionReturn(0);
@@ -335,7 +335,7 @@ PetscErrorCode ReadLoading(MPI_Comm comm, LoadingSection *loading, SceneInput *i
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode CheckLoading(MPI_Comm comm, const SceneInput &in, Scene *scene, EdgeRows *grip_rows)
+PetscErrorCode CheckLoading(MPI_Comm comm, const SceneInput &in, Scene *scene)
 {
   PetscFunctionBeginUser;
   PetscCall(CheckSchedule(comm, in, &scene->loading.schedule));
@@ -352,12 +352,11 @@ PetscErrorCode CheckLoading(MPI_Comm comm, const SceneInput &in, Scene *scene, E
   if (placement_all == "inside") default_placement = GripPlacement::inside;
   else SceneCheck(placement_all == "outside", comm, "-load_grip_placement '%s' is not a choice: choose outside or inside",
                   in.grip_placement.c_str());
-  *grip_rows = {};
   scene->loading.sets.clear();
   for (const LoadInput &li : in.loads) {
     LoadSet set;
     set.name = li.name;
-    PetscCall(CheckRegion({comm, li, in, scene->body, scene->body.dimension, default_placement}, &set, grip_rows));
+    PetscCall(CheckRegion({comm, li, in, scene->body, default_placement}, &set));
     PetscCall(CheckComponents(comm, li, *scene, &set));
     scene->loading.sets.push_back(set);
   }
@@ -402,6 +401,20 @@ const char *to_string(ComponentLoad load)
 {
   static const char *const words[] = {"free", "fixed", "stretch"}; // (ComponentLoad's order)
   return words[static_cast<int>(load)];
+}
+
+EdgeRows OutsideGripRows(const LoadingSection &loading)
+{
+  EdgeRows rows;
+  for (const LoadSet &set : loading.sets) {
+    if (set.placement != GripPlacement::outside) continue; // (only a 2D edge grip is placed outside)
+    int64_t &edge = set.region == LoadSet::Region::top      ? rows.top
+                    : set.region == LoadSet::Region::bottom ? rows.bottom
+                    : set.region == LoadSet::Region::left   ? rows.left
+                                                            : rows.right;
+    edge = std::max<int64_t>(edge, set.layers);
+  }
+  return rows;
 }
 
 std::vector<std::string> BodyGmshFiles(const Body<2> &body)

@@ -41,7 +41,7 @@ struct GivenPoints {
 // A 2D plane sheet [0, width] x [0, height], cut by circular holes (which may reach
 // outside it), then shaped by `shapes` in order (shape.hpp), and cut by pre-notches.
 // The sheet is the specimen; `grip_rows` adds the material of the grips placed outside
-// it (-load_NAME_placement outside, set by the loading section, scene_loading.cpp):
+// it (-load_NAME_placement outside; OutsideGripRows of the load sets, scene_loading.cpp):
 // whole lattice rows beyond each edge, each the sheet's edge row extruded (a point
 // there is material where the edge row's point at the same x, or the edge column's at
 // the same y, is). Coordinates stay those of the sheet: a bottom grip's points have

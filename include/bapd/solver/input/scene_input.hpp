@@ -97,8 +97,8 @@ bool           IsShape3D(const std::string &type); // box, cylinder, sphere, not
 // (scene_shape.cpp); `read_mesh`: its Gmsh mesh if already read (else null).
 PetscErrorCode CheckShape(MPI_Comm comm, const ShapeInput &in, const Body<2> &b, TriangleSet *read_mesh, std::vector<Shape> *shapes);
 PetscErrorCode CheckBody3D(MPI_Comm comm, const SceneInput &in, Scene *scene);
-// Refuses a lattice that cannot fit in memory; after CheckLoading, which adds the rows
-// of the grips outside the sheet.
+// Refuses a lattice that cannot fit in memory, counting the rows of the grips outside
+// the sheet (Body<2>::grip_rows, OutsideGripRows: SceneFromOptions sets them first).
 PetscErrorCode CheckBodyFits(MPI_Comm comm, const Scene &scene);
 // Material and failure (scene_material.cpp): -material_*, -force_form, -failure_*.
 PetscErrorCode ReadMaterial(MPI_Comm comm, MaterialSection *material, FailureSection *failure, SceneInput *in);
@@ -113,9 +113,11 @@ std::string TimeSteppingText(const Scene &scene);
 std::string OutputText(const OutputSection &output);
 // Loading (scene_loading.cpp): -load_sets, -load_schedule, -load_NAME_*.
 PetscErrorCode ReadLoading(MPI_Comm comm, LoadingSection *loading, SceneInput *in);
-// grip_rows: the rows the edge grips placed outside the sheet add beyond it, for the
-// body (Body<2>::grip_rows) before CheckBodyFits counts its points.
-PetscErrorCode CheckLoading(MPI_Comm comm, const SceneInput &in, Scene *scene, EdgeRows *grip_rows);
+PetscErrorCode CheckLoading(MPI_Comm comm, const SceneInput &in, Scene *scene);
+// The rows the edge grips placed outside the sheet add beyond each edge (Body<2>::
+// grip_rows): the deepest grip's on each edge; none in 3D (a face holds the body's own
+// points). A function of the checked load sets only.
+EdgeRows OutsideGripRows(const LoadingSection &loading);
 // The Gmsh files the body reads (its mesh shapes): where a physical group's file
 // defaults to (load sets and probes by group).
 std::vector<std::string> BodyGmshFiles(const Body<2> &body);

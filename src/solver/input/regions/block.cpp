@@ -14,7 +14,7 @@ PetscErrorCode ReadBlock(const RegionInput &r, LoadSet *set)
 {
   const LoadInput &li    = r.li;
   const char      *n     = li.name.c_str();
-  const bool       three = r.dimension == 3;
+  const bool       three = r.body.dimension == 3;
   const Body<2>    &b2    = r.body.sheet;
   const Body<3>    &b3    = r.body.solid;
   PetscFunctionBeginUser;
@@ -34,7 +34,7 @@ PetscErrorCode ReadBlock(const RegionInput &r, LoadSet *set)
 }
 
 // (2D: the points of the body's own, like every region but the edges.)
-PetscErrorCode CheckBlock2D(const RegionInput &r, LoadSet *set, EdgeRows *)
+PetscErrorCode CheckBlock2D(const RegionInput &r, LoadSet *set)
 {
   PetscFunctionBeginUser;
   PetscCall(CheckOwnPoints2D(r, set));

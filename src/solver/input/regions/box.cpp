@@ -9,7 +9,7 @@
 namespace bapd {
 namespace {
 
-PetscErrorCode CheckBox2D(const RegionInput &r, LoadSet *set, EdgeRows *)
+PetscErrorCode CheckBox2D(const RegionInput &r, LoadSet *set)
 {
   const LoadInput &li = r.li;
   const Body<2>    &b  = r.body.sheet;

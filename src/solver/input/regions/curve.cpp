@@ -20,7 +20,7 @@ double SegmentDistance2(const double *s, double px, double py)
   return dx * dx + dy * dy;
 }
 
-PetscErrorCode CheckCurve2D(const RegionInput &r, LoadSet *set, EdgeRows *)
+PetscErrorCode CheckCurve2D(const RegionInput &r, LoadSet *set)
 {
   const LoadInput &li = r.li;
   PetscFunctionBeginUser;

@@ -38,7 +38,7 @@ PetscErrorCode WarnShallowGrip(MPI_Comm comm, const LoadInput &li, int layers, d
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode CheckEdge2D(const RegionInput &r, LoadSet *set, EdgeRows *grip_rows)
+PetscErrorCode CheckEdge2D(const RegionInput &r, LoadSet *set)
 {
   const LoadInput &li = r.li;
   const Body<2>    &b  = r.body.sheet;
@@ -73,13 +73,6 @@ PetscErrorCode CheckEdge2D(const RegionInput &r, LoadSet *set, EdgeRows *grip_ro
              "horizons (%g m, the default): give less", n, li.depth_set ? Format("depth %g m", li.depth).c_str() : "layers",
              set->layers, set->layers * b.dx, vertical ? "height" : "width", across, 2.0 * r.body.horizon());
   PetscCall(WarnShallowGrip(r.comm, li, set->layers, b.dx, r.body.horizon()));
-  if (outside) {
-    int64_t &rows = set->region == LoadSet::Region::top      ? grip_rows->top
-                    : set->region == LoadSet::Region::bottom ? grip_rows->bottom
-                    : set->region == LoadSet::Region::left   ? grip_rows->left
-                                                             : grip_rows->right;
-    rows = std::max<int64_t>(rows, set->layers);
-  }
   PetscFunctionReturn(0);
 }
 

@@ -15,7 +15,7 @@
 namespace bapd {
 namespace {
 
-PetscErrorCode CheckGroup2D(const RegionInput &r, LoadSet *set, EdgeRows *)
+PetscErrorCode CheckGroup2D(const RegionInput &r, LoadSet *set)
 {
   const LoadInput &li = r.li;
   const char      *n  = li.name.c_str();

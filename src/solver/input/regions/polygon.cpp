@@ -7,7 +7,7 @@
 namespace bapd {
 namespace {
 
-PetscErrorCode CheckPolygon2D(const RegionInput &r, LoadSet *set, EdgeRows *)
+PetscErrorCode CheckPolygon2D(const RegionInput &r, LoadSet *set)
 {
   const std::vector<double> &vertices = r.li.points;
   PetscFunctionBeginUser;

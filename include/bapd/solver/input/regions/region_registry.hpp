@@ -38,15 +38,14 @@ enum RegionOption : unsigned {
 };
 
 // What a region's check reads: the set's options, the whole input, the checked body
-// section (its sheet or solid, the horizon) and dimension, and the placement of edge grips
-// that no set overrides (-load_grip_placement).
+// section (its dimension, its sheet or solid, the horizon), and the placement of edge
+// grips that no set overrides (-load_grip_placement).
 struct RegionInput {
-  MPI_Comm          comm;
-  const LoadInput  &li;
-  const SceneInput &in;
+  MPI_Comm           comm;
+  const LoadInput   &li;
+  const SceneInput  &in;
   const BodySection &body;
-  int               dimension; // the scene's (2 or 3)
-  GripPlacement     default_placement;
+  GripPlacement      default_placement;
 };
 
 struct RegionType {
@@ -55,11 +54,10 @@ struct RegionType {
   const char     *alias; // a second word (the faces' x-, x+, ...), or nullptr
   bool            edge;  // an edge of the sheet, a face of a 3D body (the grip-field counts)
   unsigned        uses2d = 0, uses3d = 0; // RegionOption bits
-  // Reads and checks the set's options (set->region is id). grip_rows: the rows a 2D
-  // edge grip adds outside the sheet (max with what it holds). nullptr check3d: a 2D
+  // Reads and checks the set's options (set->region is id). nullptr check3d: a 2D
   // region, refused on a 3D body.
-  PetscErrorCode (*check2d)(const RegionInput &, LoadSet *set, EdgeRows *grip_rows) = nullptr;
-  PetscErrorCode (*check3d)(const RegionInput &, LoadSet *set)                       = nullptr;
+  PetscErrorCode (*check2d)(const RegionInput &, LoadSet *set) = nullptr;
+  PetscErrorCode (*check3d)(const RegionInput &, LoadSet *set) = nullptr;
   // Whether the point at reference position p (2 or 3 coordinates) is held.
   bool (*contains2d)(const BodyExtent &, const LoadSet &, const double *p) = nullptr;
   bool (*contains3d)(const BodyExtent &, const LoadSet &, const double *p) = nullptr;
