@@ -35,8 +35,15 @@ none_left() {
 for sig in QUIT SEGV BUS; do
   out="$work/$sig"
   start_long "$work/$sig.log" "$ranks" -output_dir "$out"
-  pid=$(rank_pid "$out" $victim_rank)
-  [ -n "$pid" ] || fail "rank $victim_rank of the run not found"
+  # The lookup is retried for up to 5 s: under load a rank's /proc entries were missed
+  # once in a few runs; a miss that lasts names what was seen.
+  pid=
+  for _ in $(seq 50); do
+    pid=$(rank_pid "$out" $victim_rank)
+    [ -n "$pid" ] && break
+    sleep 0.1
+  done
+  [ -n "$pid" ] || fail "rank $victim_rank of the run not found; processes of the run: $(pgrep -a -f -- "-output_dir $out" | cut -c1-80 | tr '\n' ';')"
   kill -$sig "$pid"
   finish_long
   if [ $sig = QUIT ]; then
