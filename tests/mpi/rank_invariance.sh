@@ -83,7 +83,7 @@ elif [ "$case" = fracture_energy ]; then
   # (the crack crosses the sheet by step 1400, which adds nothing here).
   scene+=(-load_schedule 0,1,0.15,1.45 -failure_fracture_energy 6 -end_step 550)
 else
-  scene+=(-load_schedule 0,1,0.1,1.3)
+  scene+=(-load_schedule 0,1,0.05,1.3)
 fi
 ranks=(1 2 3 4)
 # The crack's cases on 1 and 3 ranks only (the elastic ones cover 2 and 4): a running
