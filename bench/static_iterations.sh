@@ -23,13 +23,13 @@ run() { # RANKS DX: the run's log in dx<DX>_n<RANKS>.log, its output in the dire
   local name="dx${2}_n${1}"
   mpiexec -n "$1" "$bapd" -options_file_yaml "$root/examples/plate_hole.yaml" -body_dx "$2" -solver static \
     -ksp_converged_reason -info :pc -progress_wall_interval 0 -output_dir "$name" > "$name.log" 2>&1 ||
-    echo "bench: $name failed (see $work/$name.log)"
+    { echo "bench: $name failed (see $work/$name.log)"; return 1; }
 }
-runs=()
-for dx in $dx_list; do run 1 "$dx" && runs+=("1 $dx"); done
+runs=() failed=0
+for dx in $dx_list; do run 1 "$dx" && runs+=("1 $dx") || failed=1; done
 for n in $rank_list; do
   [ "$n" = 1 ] && [[ " $dx_list " == *" $rank_dx "* ]] && continue
-  run "$n" "$rank_dx" && runs+=("$n $rank_dx")
+  run "$n" "$rank_dx" && runs+=("$n $rank_dx") || failed=1
 done
 
 /usr/bin/python3 - "$rank_dx" "${runs[@]}" <<'PY'
@@ -63,11 +63,13 @@ for n, dx in runs:
     total = (f"{sum(int(a) for _, a, _, _ in rows if a != '-')} / {sum(k for _, _, k, _ in rows)}"
              f" / {sum(t for *_, t in rows)}")
     summary = re.search(r"(\d+) Newton iterations, (\d+) Krylov iterations .*?(\d+) tangents", open(f"{name}.log").read())
-    if summary and summary.group(1, 2, 3) != tuple(total.split(" / ")):
+    cut = any(a == "-" for _, a, _, _ in rows)  # a cut back step's Newton iterations are not printed
+    if summary and [g for i, g in enumerate(summary.group(1, 2, 3)) if i or not cut] != total.split(" / ")[cut:]:
         print(f"bench: {name}: the per-step counts {total} miss the summary's {'/'.join(summary.group(1, 2, 3))}", file=sys.stderr)
     diff = ""
-    if dx == rank_dx and n != "1":
+    if dx == rank_dx and n != "1" and ["1", dx] in runs:
         a, b = states(f"dx{dx}_n1"), states(name)
         diff = f"{max(abs(y / x - 1) for ra, rb in zip(a, b) for x, y in zip(ra, rb) if x != 0):.1e}"
     print(f"| {1e3 * float(dx):g} | {n} | {points.group(1) if points else '?'} | {per} | {total} | {diff} |")
 PY
+exit $((failed || $?))
