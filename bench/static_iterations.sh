@@ -8,14 +8,14 @@
 # from 1 rank's, relative. Prints a markdown table; docs/performance.md section 6.
 #   bench/static_iterations.sh [BAPD] [DX_LIST] [RANK_DX] [RANK_LIST]
 # (defaults: build/bapd, "0.002 0.001 0.0005" m on 1 rank, 0.001 m on "1 2 3 4" ranks;
-# the runs in ${BAPD_BENCH_DIR:-bench_static_iterations}).
+# the runs in ${BAPD_BENCH_DIR:-/tmp/bapd_static_iterations}).
 set -uo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 bapd="${1:-$root/build/bapd}"
 dx_list="${2:-0.002 0.001 0.0005}"
 rank_dx="${3:-0.001}"
 rank_list="${4:-1 2 3 4}"
-work="${BAPD_BENCH_DIR:-bench_static_iterations}"
+work="${BAPD_BENCH_DIR:-/tmp/bapd_static_iterations}"
 rm -rf "$work" && mkdir -p "$work" && cd "$work" || exit 1
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
 
