@@ -12,6 +12,7 @@
 set -uo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 bapd="${1:-$root/build/bapd}"
+[[ $bapd == /* ]] || bapd="$PWD/$bapd" # the runs are made in $work
 dx_list="${2:-0.002 0.001 0.0005}"
 rank_dx="${3:-0.001}"
 rank_list="${4:-1 2 3 4}"
