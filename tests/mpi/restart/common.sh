@@ -42,6 +42,31 @@ checkpointed_runs() {
   grep -q "Restart from $work/first/checkpoint.h5: step $N" "$work/second_np3.log" || fail "no restart line in second_np3.log"
 }
 
+# same_as_whole WORK END [--expect-broken] [--fields]: the continuations on 2 and 3 ranks
+# (checkpointed_runs) give the uninterrupted run's history and final state (and its
+# broken bonds: --expect-broken), tolerance 0; with --fields also its last field file.
+same_as_whole() {
+  local work="$1" end="$2" expect="" fields=0 d a
+  shift 2
+  for a in "$@"; do case "$a" in --expect-broken) expect="$a" ;; --fields) fields=1 ;; esac; done
+  local last
+  last=$(printf "fields/step_%08d.h5" "$end")
+  for d in second_np2 second_np3; do
+    python3 "$BAPD_SOURCE_DIR/tests/mpi/compare_runs.py" --tolerance 0 $expect "$work/whole" "$work/$d"
+    [ $fields = 0 ] || $PYTHON "$BAPD_SOURCE_DIR/tests/mpi/restart/compare_fields.py" --tolerance 0 "$work/whole/$last" "$work/$d/$last"
+  done
+}
+
+# crack_grows WORK N END: the uninterrupted run has broken bonds at step N and more at END,
+# so the restart met a crack that runs on.
+crack_grows() {
+  local at_n at_end
+  at_n=$(history_column "$1/whole" "$2" broken_bonds)
+  at_end=$(history_column "$1/whole" "$3" broken_bonds)
+  echo "broken bonds: $at_n at step $2, $at_end at step $3"
+  [ "$at_n" -gt 0 ] && [ "$at_end" -gt "$at_n" ] || fail "the crack must grow both before and after the restart"
+}
+
 # history_column DIR STEP COLUMN: a value of history.csv's row for STEP.
 history_column() {
   awk -F, -v step="$2" -v name="$3" 'NR == 1 { for (i = 1; i <= NF; ++i) if ($i == name) c = i }

@@ -44,17 +44,10 @@ scene+=(-output_fields -output_fields_interval $((END / 2)))
 checkpointed_runs "$work" $N $END "${scene[@]}"
 # The formulation comes back from the checkpoint's options (the restarts name none).
 for d in second_np2 second_np3; do grep -q "$said" "$work/$d.log" || fail "$d did not run with $said"; done
-expect=$([ "$case" = incompressible ] && echo --expect-broken || true)
-python3 "$BAPD_SOURCE_DIR/tests/mpi/compare_runs.py" --tolerance 0 $expect "$work/whole" "$work/second_np2"
-python3 "$BAPD_SOURCE_DIR/tests/mpi/compare_runs.py" --tolerance 0 $expect "$work/whole" "$work/second_np3"
-last=$(printf "fields/step_%08d.h5" $END)
-for d in second_np2 second_np3; do
-  $PYTHON "$BAPD_SOURCE_DIR/tests/mpi/restart/compare_fields.py" --tolerance 0 "$work/whole/$last" "$work/$d/$last"
-done
 if [ "$case" = incompressible ]; then
-  at_n=$(history_column "$work/whole" $N broken_bonds)
-  at_end=$(history_column "$work/whole" $END broken_bonds)
-  echo "broken bonds: $at_n at step $N, $at_end at step $END"
-  [ "$at_n" -gt 0 ] && [ "$at_end" -gt "$at_n" ] || fail "the crack must grow both before and after the restart"
+  same_as_whole "$work" $END --expect-broken --fields
+  crack_grows "$work" $N $END
+else
+  same_as_whole "$work" $END --fields
 fi
 echo "restart ($case): same results"
