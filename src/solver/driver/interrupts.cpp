@@ -262,11 +262,6 @@ std::string InterruptName(int signal)
   return std::strncmp(name, "SIG", 3) == 0 ? std::string(name) : "SIGUSR2";
 }
 
-bool TakeCheckpointRequest()
-{
-  if (!checkpoint_requests) return false;
-  checkpoint_requests = 0;
-  return true;
-}
+int CheckpointRequestsReceived() { return (int)checkpoint_requests; }
 
 } // namespace bapd

@@ -144,20 +144,21 @@ template <int D> PetscErrorCode SimulationD<D>::SetupObservers(double t)
   PetscFunctionReturn(0);
 }
 
-// One reduction a step: did any rank get SIGTERM/SIGINT or SIGUSR1, and is rank 0's
+// One reduction a step: did any rank get SIGTERM/SIGINT or a new SIGUSR1, and is rank 0's
 // clock past the checkpoints' or the progress lines' wall-clock interval? Every rank
 // then takes the same branch.
 template <int D> PetscErrorCode SimulationD<D>::Report(PetscInt step, double t)
 {
   PetscFunctionBegin;
   const double now      = MPI_Wtime();
-  int          flags[4] = {PendingInterrupt(), rank_ == 0 && checkpoints_->WallDue(now), TakeCheckpointRequest() ? 1 : 0,
+  int          flags[4] = {PendingInterrupt(), rank_ == 0 && checkpoints_->WallDue(now), CheckpointRequestsReceived(),
                            rank_ == 0 && progress_->WallDue(now)};
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, flags, 4, MPI_INT, MPI_MAX, comm_));
   StepEvents events;
   events.interrupt          = flags[0];
   events.checkpoint_wall    = flags[1] != 0;
-  events.checkpoint_request = flags[2] != 0;
+  events.checkpoint_request = flags[2] > checkpoint_requests_served_;
+  checkpoint_requests_served_ = flags[2];
   events.progress_wall      = flags[3] != 0;
   for (const std::unique_ptr<RunObserver> &observer : observers_) PetscCall(observer->AfterStep(step, t, events));
   PetscFunctionReturn(0);

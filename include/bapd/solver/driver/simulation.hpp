@@ -231,6 +231,7 @@ private:
   std::vector<std::unique_ptr<RunObserver>> observers_; // SetupObservers
   CheckpointObserver *checkpoints_ = nullptr; // (in observers_) its wall clock, read in Report's reduction
   ProgressObserver   *progress_    = nullptr; // (in observers_) likewise
+  int checkpoint_requests_served_ = 0; // SIGUSR1 counted so far (max over ranks): Report
   AdaptiveRelaxation<D> relaxation_;                          // its damping coefficient (relaxation.hpp)
 
   PetscLogStage stage_setup_ = 0, stage_partition_ = 0, stage_force_ = 0, stage_ghost_ = 0, stage_step_ = 0,

@@ -177,7 +177,10 @@ void RestoreInterruptHandlers();
 // ranks. Installed by PushUserErrorHandler (errors.hpp).
 void InstallFatalSignalHandlers();
 int  PendingInterrupt();      // the stop signal if one came, else 0 (a step has ended: asked once a step)
-bool TakeCheckpointRequest(); // a SIGUSR1 came since the last call
+// How many SIGUSR1 this rank has had. mpiexec passes one SIGUSR1 on to every rank, but
+// the ranks may see it at different steps: the driver reduces the count (max over ranks)
+// and writes a checkpoint when it grows, so one signal makes one checkpoint.
+int CheckpointRequestsReceived();
 // "SIGINT", "SIGTERM", or for SIGUSR2 the signal run_mpi.sh got ("SIGUSR2" if none).
 std::string InterruptName(int signal);
 
