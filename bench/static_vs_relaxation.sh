@@ -7,9 +7,12 @@
 # ratios (dynamic over static) side by side. Table: docs/performance.md.
 #   bench/static_vs_relaxation.sh [BAPD] [PLATE_DX] [SHEAR_DX]
 # (defaults: build/bapd, the plate at dx = 1 mm, pure shear at dx = 0.5 mm; examples/).
+# The runs go to $BAPD_BENCH_DIR (default ./bench_static, made afresh).
 set -uo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 bapd="${1:-$root/build/bapd}"
+[ -x "$bapd" ] || { echo "bench: no bapd executable at '$bapd': build it, or give its path as the first argument" >&2; exit 1; }
+bapd="$(realpath "$bapd")" # the runs below work in $work
 plate_dx="${2:-0.001}"
 shear_dx="${3:-0.0005}"
 work="${BAPD_BENCH_DIR:-bench_static}"
