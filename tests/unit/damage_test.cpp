@@ -88,7 +88,9 @@ TEST(Damage, EveryBondFailingInOneStepStaysInTheTouchedListsReserve)
     const std::size_t *const storage = touched.data();
     const std::size_t        broken  = break_failed_bonds(d.families, d.state, failed, touched);
     EXPECT_EQ(2 * broken, d.families.n_bonds()) << "reserved " << reserved; // a pair counts once
-    if (reserved) EXPECT_EQ(touched.data(), storage) << "the touched list outgrew its reserve";
+    if (reserved) {
+      EXPECT_EQ(touched.data(), storage) << "the touched list outgrew its reserve";
+    }
     ASSERT_EQ(touched.size(), d.size()) << "reserved " << reserved;
     for (std::size_t i = 0; i < d.size(); ++i) EXPECT_EQ(touched[i], i);
     EXPECT_EQ(d.state.count_broken(d.families, d.size()), d.families.n_bonds());
