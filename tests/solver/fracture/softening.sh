@@ -10,17 +10,14 @@ set -uo pipefail
 src="$BAPD_SOURCE_DIR"
 work="fracture_softening"
 rm -rf "$work" && mkdir -p "$work" || exit 1
-fail() { echo "FAILED: $*"; exit 1; }
+source "$src/tests/solver/fracture/common.sh"
 run() { # run RANKS DIR OPTIONS...
   local ranks="$1" dir="$2"
   shift 2
   timeout 200 mpiexec -n "$ranks" --oversubscribe --bind-to none "$BAPD_EXE" "$@" -output_dir "$dir" > "$dir.log" 2>&1 ||
     { tail -n 5 "$dir.log"; fail "the run in $dir failed"; }
 }
-scene=(-options_file_yaml "$src/examples/notched_pure_shear_gamma.yaml" -body_dx 0.001 -body_width 0.03
-       -body_notches 0.02,0.005,0.03,0.005 -probe_notch_mouth_top_at 0.03,0.0052 -probe_notch_mouth_bottom_at 0.03,0.0048
-       -load_schedule 0,1,0.2,3.3 -end_time 0.2 -failure_fracture_energy 60
-       -output_interval 10 -progress_interval 1000000 -output_final_state)
+scene=("${sheet[@]}" -load_schedule 0,1,0.2,3.3 -end_time 0.2 -failure_fracture_energy 60 -output_interval 10 -output_final_state)
 N=330 M=450 # linear: bonds soften from step ~210, 16 have broken by step 389; time: 106 broken by step 450 (measured)
 check() { # check NAME LAW_OPTIONS...
   local name="$1" dir="$work/$1"
