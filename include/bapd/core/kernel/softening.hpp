@@ -6,7 +6,8 @@
 // density, c_i the crossing density; (5.2)), taken at the largest r_ij it has reached, so
 // it never decreases. Onset at r_0 = kappa Gamma (the criterion of breaking at once), and
 // the law's work to d = 1, the integral of r dd, is Gamma: the pair dissipates
-// Gamma / ((c_i + c_j) / 2) per unit V_i V_j, Gamma per unit crack area by (5.1).
+// Gamma / ((c_i + c_j) / 2) per unit V_i V_j, Gamma per unit crack area by (5.1). The
+// time law instead grows d with time from the onset on (fading_damage).
 #include <cstddef>
 #include <vector>
 
