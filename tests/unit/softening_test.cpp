@@ -1,5 +1,6 @@
 // Softening bonds (softening.hpp; docs/method.md section 5.4): the work to failure of a
-// bond is Gamma, the damage never decreases and is the same for both copies, and the
+// bond is Gamma, the damage never decreases and is the same for both copies, the time
+// law fades a bond at dt / tau a step from its onset whatever its strain does, and the
 // kernel scales a bond's force and energy by 1 - d.
 #include <gtest/gtest.h>
 
@@ -64,8 +65,8 @@ TEST(Softening, APairDissipatesItsShareOfGammaAndNeverHeals)
   for (std::size_t step = 0; step < path.size(); ++step) {
     if (!d.state.is_intact(p, 0)) break;
     psi[b] = path[step] * scale;
-    broken += soften_bonds(Softening::linear, d.cloud, d.families, psi.data(), crossing.data(), r0, gamma, d.state, touched,
-                           dissipated.data(), d.size());
+    broken += soften_bonds(Softening::linear, d.cloud, d.families, psi.data(), crossing.data(), r0, gamma, Fading{}, d.state,
+                           touched, dissipated.data(), d.size());
     EXPECT_EQ(d.state.damage[b], d.state.damage[back]) << step;
     EXPECT_GE(d.state.damage[b], last) << step;
     last = d.state.damage[b];
@@ -82,6 +83,56 @@ TEST(Softening, APairDissipatesItsShareOfGammaAndNeverHeals)
   EXPECT_NEAR(dissipated[p] + dissipated[j], expected, 2e-3 * expected);
   for (std::size_t i = 0; i < d.size(); ++i)
     if (i != p) EXPECT_EQ(dissipated[i], 0.0) << i; // j's copy carries no energy here
+}
+
+// The time law: a pair that reaches r0 once fades by dt / tau in every step's first pass
+// (not in the passes that follow at the same positions), also once it is unloaded below
+// r0, and breaks from both ends after tau / dt steps; a pair just below r0 never starts.
+// What a pass takes is V_p omega_p V_j Psi_pj (d_new - d_old) (the other bonds carry none).
+TEST(Softening, TheTimeLawFadesAtItsRateWhateverTheStrain)
+{
+  EXPECT_EQ(fading_damage(0.0, 0.999, 1.0, Fading{0.1, 0.1}), 0.0);
+  EXPECT_EQ(fading_damage(0.0, 1.0, 1.0, Fading{0.1, 0.0}), 0.1);  // starts in any pass
+  EXPECT_EQ(fading_damage(0.3, 0.0, 1.0, Fading{0.1, 0.0}), 0.3);  // a later pass of the step
+  EXPECT_EQ(fading_damage(0.95, 0.0, 1.0, Fading{0.1, 0.1}), 1.0); // capped: it breaks
+  test::Discretisation d(test::plate(9, 9, 1.0));
+  const std::size_t    p = 4 * 9 + 4, n = d.families.neighbour.size(), b = d.families.offsets[p];
+  const std::size_t    j = static_cast<std::size_t>(d.families.neighbour[b]), back = static_cast<std::size_t>(d.families.reverse[b]);
+  const double         c = 2.0, gamma = 10.0, r0 = 0.43 * gamma, dt = 1e-4, tau = 1e-3;
+  std::vector<double>  crossing(d.size(), c), psi(n, -1.0), dissipated(d.size(), 0.0);
+  for (std::size_t i : {p, j})
+    for (std::size_t k = d.families.offsets[i]; k < d.families.offsets[i + 1]; ++k) psi[k] = 0.0;
+  d.state.damage.assign(n, 0.0);
+  const double scale = d.cloud.family_volume[p] / c; // psi[b] = r scale: the pair's release is r
+  double       volume = 0.0;                         // 1 / omega_p: the family's bonds carry energy
+  for (std::size_t k = d.families.offsets[p]; k < d.families.offsets[p + 1]; ++k)
+    volume += d.cloud.volume[static_cast<std::size_t>(d.families.neighbour[k])];
+  std::vector<std::size_t> touched;
+  std::size_t              broken = 0;
+  auto pass = [&](double r, Fading fading) {
+    psi[b] = r * scale;
+    broken += soften_bonds(Softening::time, d.cloud, d.families, psi.data(), crossing.data(), r0, gamma, fading, d.state, touched,
+                           dissipated.data(), d.size());
+    EXPECT_EQ(d.state.damage[b], d.state.damage[back]);
+  };
+  const Fading first{dt / tau, dt / tau}, later{dt / tau, 0.0};
+  pass(0.999 * r0, first);
+  EXPECT_EQ(d.state.damage[b], 0.0);
+  double expected = 0.0, last = 0.0;
+  int    steps = 0;
+  for (; steps < 100 && d.state.is_intact(p, 0); ++steps) {
+    const double r = steps == 0 ? r0 : 0.5 * r0; // unloaded after the onset: it fades on
+    pass(r, first);
+    pass(r, later); // a cascade pass at the same positions: no further fading
+    expected += d.cloud.volume[p] * d.cloud.volume[j] * r * scale * (d.state.damage[b] - last) / volume;
+    EXPECT_GT(d.state.damage[b], last) << steps;
+    last = d.state.damage[b];
+  }
+  EXPECT_NEAR(steps, tau / dt, 1.0); // (the sum of ten dt / tau in floating point may need an eleventh)
+  EXPECT_EQ(last, 1.0);
+  EXPECT_FALSE(d.state.is_intact(j, static_cast<std::size_t>(back - d.families.offsets[j])));
+  EXPECT_EQ(broken, 2u);
+  EXPECT_NEAR(dissipated[p], expected, 1e-12 * expected);
 }
 
 // The kernel: a uniform d scales every bond force (both forms) and the strain energy by

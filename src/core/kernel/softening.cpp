@@ -10,7 +10,8 @@ double softening_damage(Softening law, double r, double r0, double gamma)
 {
   if (!(r >= r0)) return 0.0;
   switch (law) {
-  case Softening::none: return 1.0;
+  case Softening::none:
+  case Softening::time: return 1.0; // (time: fading_damage; soften_bonds never asks)
   case Softening::linear: return std::min(1.0, (r - r0) / (2.0 * (gamma - r0)));
   case Softening::exponential: {
     const double rest = std::exp(-(r - r0) / (gamma - r0));
@@ -20,9 +21,16 @@ double softening_damage(Softening law, double r, double r0, double gamma)
   return 1.0;
 }
 
+double fading_damage(double d, double r, double r0, Fading fading)
+{
+  if (d > 0.0) return std::min(1.0, d + fading.advance);
+  return r >= r0 ? std::min(1.0, fading.start) : 0.0;
+}
+
 std::size_t soften_bonds(Softening law, const PointCloud &cloud, const Families &families, const double *psi,
-                         const double *crossing, double onset_release, double fracture_energy, BondState &state,
-                         std::vector<std::size_t> &touched_points, double *dissipated, std::size_t n_dissipated)
+                         const double *crossing, double onset_release, double fracture_energy, Fading fading,
+                         BondState &state, std::vector<std::size_t> &touched_points, double *dissipated,
+                         std::size_t n_dissipated)
 {
   touched_points.clear();
   const std::size_t W      = state.mask_words;
@@ -43,7 +51,9 @@ std::size_t soften_bonds(Softening law, const PointCloud &cloud, const Families 
       if (!(word & bit) || back < 0) continue; // j's owner decides (failure.hpp)
       const double e = std::max(psi[b], 0.0) / cloud.family_volume[i] +
                        std::max(psi[static_cast<std::size_t>(back)], 0.0) / cloud.family_volume[j];
-      const double next = softening_damage(law, 0.5 * e * (crossing[i] + crossing[j]), onset_release, fracture_energy);
+      const double r    = 0.5 * e * (crossing[i] + crossing[j]);
+      const double next = law == Softening::time ? fading_damage(d[b], r, onset_release, fading)
+                                                 : softening_damage(law, r, onset_release, fracture_energy);
       if (!(next > d[b])) continue;
       if (psi[b] > 0.0) taken += vj * psi[b] * (next - d[b]);
       d[b] = next;

@@ -287,7 +287,8 @@ template <int D> PetscErrorCode SimulationD<D>::PostStep(TS ts)
     PetscCall(VecRestoreArray(X, &x));
     if (sim->failure_.by_energy()) sim->force_.BondEnergies(sim->failure_.bond_energies());
     std::copy(sim->bond_state_.intact.begin(), sim->bond_state_.intact.end(), sim->intact_before_.begin());
-    PetscCall(sim->failure_.Break(sim->force_.positions(), sim->force_.failed_bonds(), sim->bond_state_, sim->geometry_));
+    PetscCall(sim->failure_.Break(sim->force_.positions(), sim->step_control_.current(), sim->force_.failed_bonds(), sim->bond_state_,
+                                  sim->geometry_));
     PetscCall(sim->BreakFurther(&broke));
     double released;
     PetscCall(sim->ReleasedEnergy(broke, &released));

@@ -181,7 +181,8 @@ template <int D> PetscErrorCode SimulationD<D>::BuildBody()
   if (scene_.failure.enabled)
     PetscCall(failure_.Setup(comm_, layout_, families_, scene_.failure.critical_stretch,
                              scene_.failure.tip_concentration * scene_.failure.fracture_energy, D, scene_.body.horizon(), scene_.body.sheet.thickness));
-  if (scene_.failure.enabled) PetscCall(failure_.SetupSoftening(scene_.failure.softening, scene_.failure.fracture_energy, bond_state_));
+  if (scene_.failure.enabled) PetscCall(failure_.SetupSoftening(scene_.failure.softening, scene_.failure.fracture_energy, scene_.failure.fade_time,
+                                                                  bond_state_));
   force_density_.assign(D * layout_.n_owned, 0.0);
   per_point_.assign(2 * layout_.n_owned, 0.0);
   point_energy_.assign(layout_.n_owned, 0.0);

@@ -127,8 +127,13 @@ const OptionTable<FailureSection, SceneInput> kFailureOptions = {
     {"-failure_softening",
      "With -failure_fracture_energy: none (the default: a bond breaks at once at the critical pair "
      "energy) | linear | exponential (it softens from there, its force and energy scaled by 1 - d, and "
-     "breaks once its work reaches its share of Gamma; docs/method.md 5.4)",
+     "breaks once its work reaches its share of Gamma) | time (it fades at a fixed rate from there, whatever "
+     "its strain does, and breaks after -failure_softening_time; docs/method.md 5.4)",
      GivenText<SceneInput>{&SceneInput::softening}},
+    {"-failure_softening_time",
+     "With -failure_softening time: tau [s], > 0, the time a bond takes to fade from the criterion to broken; "
+     "about 1.5 local wave periods delta / sqrt(mu / rho), 2 ms for the gel at delta = 3 mm (docs/method.md 5.4)",
+     &FailureSection::fade_time, &SceneInput::fade_time_set},
 };
 
 } // namespace
@@ -345,13 +350,22 @@ PetscErrorCode CheckFailure(MPI_Comm comm, const SceneInput &in, Scene *scene)
   const std::string softening = Lower(in.softening);
   if (softening == "linear") scene->failure.softening = Softening::linear;
   else if (softening == "exponential") scene->failure.softening = Softening::exponential;
+  else if (softening == "time") scene->failure.softening = Softening::time;
   else
     SceneCheck(softening == "none", comm,
-               "-failure_softening '%s' is not a softening law: choose none (the default), linear or exponential",
+               "-failure_softening '%s' is not a softening law: choose none (the default), linear, exponential or time",
                in.softening.c_str());
-  SceneCheck(scene->failure.softening == Softening::none || (in.fracture_energy_set && scene->failure.tip_concentration < 1), comm,
+  const bool fades = scene->failure.softening == Softening::time;
+  SceneCheck(fades == in.fade_time_set, comm,
+             fades ? "-failure_softening time: give the fading time with -failure_softening_time TAU (s; about 1.5 local wave "
+                     "periods delta / sqrt(mu / rho), docs/method.md 5.4)"
+                   : "-failure_softening_time is the time law's: give it with -failure_softening time, or leave it out");
+  SceneCheck(!fades || (scene->failure.fade_time > 0 && std::isfinite(scene->failure.fade_time)), comm,
+             "-failure_softening_time %g: the fading time tau must be > 0 s (about 1.5 local wave periods delta / sqrt(mu / rho))",
+             scene->failure.fade_time);
+  SceneCheck(scene->failure.softening == Softening::none || (in.fracture_energy_set && (fades || scene->failure.tip_concentration < 1)), comm,
              "-failure_softening %s: softening starts at the fracture-energy criterion's onset, kappa Gamma, and dissipates "
-             "Gamma: give -failure_fracture_energy with -failure_tip_concentration below 1",
+             "Gamma: give -failure_fracture_energy (linear and exponential: with -failure_tip_concentration below 1)",
              to_string(scene->failure.softening));
   SceneCheck(scene->failure.softening == Softening::none || scene->run.solver != SolverKind::static_newton, comm,
              "-failure_softening %s: the static solver's tangent does not know the bonds' damage; use the dynamic solver "
@@ -390,6 +404,7 @@ std::string MaterialText(const Scene &s)
     text += Format("  failure   bonds break at the critical pair energy of Gamma = %g J/m^2 (tip concentration %g)%s%s\n",
                    s.failure.fracture_energy, s.failure.tip_concentration, s.failure.softening == Softening::none ? "" : ", softening ",
                    s.failure.softening == Softening::none ? "" : to_string(s.failure.softening));
+  if (s.failure.enabled && s.failure.softening == Softening::time) text.insert(text.size() - 1, Format(" (tau %g s)", s.failure.fade_time));
   else if (s.failure.enabled) text += Format("  failure   bonds break past stretch s_c = %g\n", s.failure.critical_stretch);
   else text += "  failure   none\n";
   return text;

@@ -14,14 +14,17 @@ Failure::~Failure()
   if (damage_type_ != MPI_DATATYPE_NULL) MPI_Type_free(&damage_type_);
 }
 
-PetscErrorCode Failure::SetupSoftening(Softening law, double fracture_energy, BondState &state)
+PetscErrorCode Failure::SetupSoftening(Softening law, double fracture_energy, double fade_time, BondState &state)
 {
   PetscFunctionBegin;
   softening_       = law;
   fracture_energy_ = fracture_energy;
+  fade_time_       = fade_time;
   if (law == Softening::none) PetscFunctionReturn(0);
-  PetscCheck(by_energy() && critical_release_ < fracture_energy, comm_, PETSC_ERR_ARG_WRONG,
-             "softening needs the fracture-energy criterion with kappa < 1");
+  // (The time law starts at the criterion and dissipates what the sheet gives up while
+  // the bond fades: any kappa; the strain laws' branch must start below Gamma.)
+  PetscCheck(by_energy() && (law == Softening::time ? fade_time > 0 : critical_release_ < fracture_energy), comm_,
+             PETSC_ERR_ARG_WRONG, "softening needs the fracture-energy criterion with kappa < 1, the time law tau > 0");
   const Families &f = *families_;
   state.damage.assign(f.neighbour.size(), 0.0);
   unsigned long long largest = 0;
@@ -56,13 +59,13 @@ PetscErrorCode Failure::SynchroniseDamage(BondState &state)
   PetscFunctionReturn(0);
 }
 
-void Failure::EnergyPass(BondState &state)
+void Failure::EnergyPass(BondState &state, Fading fading)
 {
   if (softening_ == Softening::none)
     break_bonds_by_energy(layout_->cloud, *families_, psi_.data(), crossing_.data(), critical_release_, state, stretched_);
   else
-    soften_bonds(softening_, layout_->cloud, *families_, psi_.data(), crossing_.data(), critical_release_, fracture_energy_, state,
-                 stretched_, softened_.data(), softened_.size());
+    soften_bonds(softening_, layout_->cloud, *families_, psi_.data(), crossing_.data(), critical_release_, fracture_energy_, fading,
+                 state, stretched_, softened_.data(), softened_.size());
 }
 
 // The owner of a point evaluates every bond of it and every bond towards it, so its
@@ -150,7 +153,8 @@ PetscErrorCode Failure::SynchroniseGhosts(BondState &state)
 }
 
 template <int D>
-PetscErrorCode Failure::Break(const double *y, std::vector<FailedBond> &failed, BondState &state, nd::BondGeometry<D> &geometry)
+PetscErrorCode Failure::Break(const double *y, double dt, std::vector<FailedBond> &failed, BondState &state,
+                              nd::BondGeometry<D> &geometry)
 {
   PetscFunctionBegin;
   touched_.clear();
@@ -161,7 +165,10 @@ PetscErrorCode Failure::Break(const double *y, std::vector<FailedBond> &failed, 
   break_failed_bonds(*families_, state, failed, touched_);
   failed.clear();
   std::fill(softened_.begin(), softened_.end(), 0.0);
-  if (by_energy()) EnergyPass(state);
+  // The time law: the bonds fading since an earlier step fade by dt / tau here, once a
+  // step; a bond that meets the criterion in this pass or a Cascade starts at dt / tau.
+  step_fade_ = softening_ == Softening::time ? dt / fade_time_ : 0.0;
+  if (by_energy()) EnergyPass(state, Fading{step_fade_, step_fade_});
   else nd::break_bonds<D>(layout_->cloud, y, *families_, critical_stretch_, state, stretched_);
   touched_.insert(touched_.end(), stretched_.begin(), stretched_.end());
   PetscCall(SynchroniseGhosts(state));
@@ -175,7 +182,7 @@ template <int D> PetscErrorCode Failure::Cascade(BondState &state, nd::BondGeome
 {
   PetscFunctionBegin;
   const std::size_t first = touched_.size();
-  EnergyPass(state);
+  EnergyPass(state, Fading{step_fade_, 0.0});
   touched_.insert(touched_.end(), stretched_.begin(), stretched_.end());
   PetscCall(SynchroniseGhosts(state));
   if (softening()) PetscCall(SynchroniseDamage(state));
@@ -192,7 +199,7 @@ template <int D> PetscErrorCode Failure::Cascade(BondState &state, nd::BondGeome
 
 template PetscErrorCode Failure::Cascade<2>(BondState &, nd::BondGeometry<2> &, bool *);
 template PetscErrorCode Failure::Cascade<3>(BondState &, nd::BondGeometry<3> &, bool *);
-template PetscErrorCode Failure::Break<2>(const double *, std::vector<FailedBond> &, BondState &, nd::BondGeometry<2> &);
-template PetscErrorCode Failure::Break<3>(const double *, std::vector<FailedBond> &, BondState &, nd::BondGeometry<3> &);
+template PetscErrorCode Failure::Break<2>(const double *, double, std::vector<FailedBond> &, BondState &, nd::BondGeometry<2> &);
+template PetscErrorCode Failure::Break<3>(const double *, double, std::vector<FailedBond> &, BondState &, nd::BondGeometry<3> &);
 
 } // namespace bapd

@@ -12,11 +12,8 @@ set -uo pipefail
 src="$BAPD_SOURCE_DIR"
 work="fracture_budget"
 rm -rf "$work" && mkdir -p "$work" || exit 1
-fail() { echo "FAILED: $*"; exit 1; }
-timeout 280 mpiexec -n 1 --oversubscribe --bind-to none "$BAPD_EXE" -options_file_yaml "$src/examples/notched_pure_shear_gamma.yaml" \
-  -body_dx 0.001 -body_width 0.03 -body_notches 0.02,0.005,0.03,0.005 -probe_notch_mouth_top_at 0.03,0.0052 \
-  -probe_notch_mouth_bottom_at 0.03,0.0048 -load_schedule 0,1,0.25,3.3 -end_time 0.25 -output_interval 50 \
-  -progress_interval 1000000 -output_dir "$work/run" > "$work/run.log" 2>&1 || { tail -n 5 "$work/run.log"; fail "the sheet did not run"; }
+source "$src/tests/solver/fracture/common.sh"
+run_sheet "$work/run" -load_schedule 0,1,0.25,3.3 -end_time 0.25 -output_interval 50
 read -r work_J residual_J crack_m < <(awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) c[$i] = i; next }
   { w = $c["top_work_J"] + $c["bottom_work_J"]; r = $c["energy_balance_residual_J"]; l = $c["crack_length_m"] } END { print w, r, l }' "$work/run/history.csv")
 echo "grips' work $work_J J, residual $residual_J J, crack length $crack_m m"

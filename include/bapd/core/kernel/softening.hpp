@@ -6,7 +6,8 @@
 // density, c_i the crossing density; (5.2)), taken at the largest r_ij it has reached, so
 // it never decreases. Onset at r_0 = kappa Gamma (the criterion of breaking at once), and
 // the law's work to d = 1, the integral of r dd, is Gamma: the pair dissipates
-// Gamma / ((c_i + c_j) / 2) per unit V_i V_j, Gamma per unit crack area by (5.1).
+// Gamma / ((c_i + c_j) / 2) per unit V_i V_j, Gamma per unit crack area by (5.1). The
+// time law instead grows d with time from the onset on (fading_damage).
 #include <cstddef>
 #include <vector>
 
@@ -22,8 +23,21 @@ namespace bapd {
 //   exponential  d = 1 - exp(-(r - r0) / s), s = Gamma - r0 (work r0 + s = Gamma), taken
 //                as 1 (the bond breaks) once exp(...) < exponential_cut;
 // 0 below r0, 1 from the end of the branch on; none: 1 from r0 on (the bond breaks at once).
+// (time is not a function of r: fading_damage.)
 inline constexpr double exponential_cut = 1e-3;
 double softening_damage(Softening law, double r, double r0, double gamma);
+
+// The time law (-failure_softening time; docs/method.md 5.4): a bond fades at a fixed
+// rate from the pass in which r first reaches r0, whatever r does afterwards, and breaks
+// after tau. Its damage after a pass, from d before it: a fading bond (d > 0) gains
+// `advance` (dt / tau in the first pass of a step, 0 in the passes that follow at the
+// same positions: a step fades a bond once), a bond at rest (d = 0) starts with `start`
+// (dt / tau) once r >= r0; at most 1.
+struct Fading {
+  double start   = 0;
+  double advance = 0;
+};
+double fading_damage(double d, double r, double r0, Fading fading);
 
 // One softening pass of the family points at the bond energies psi (Psi(F_ij) undamaged,
 // -1: no energy; ForceOperator::BondEnergies): every intact bond (i, j) whose reverse
@@ -36,8 +50,11 @@ double softening_damage(Softening law, double r, double r0, double gamma);
 // the old damage minus W with the new, both with the old intact bonds; what a bond that
 // breaks (d = 1) then changes in its neighbours' F_ij and omega the caller measures
 // (E before minus E after the break, at the new damage).
+// With the time law the damage is fading_damage(d_ij, r_ij, ...) with `fading`, which the
+// other laws do not read.
 std::size_t soften_bonds(Softening law, const PointCloud &cloud, const Families &families, const double *psi,
-                         const double *crossing, double onset_release, double fracture_energy, BondState &state,
-                         std::vector<std::size_t> &touched_points, double *dissipated, std::size_t n_dissipated);
+                         const double *crossing, double onset_release, double fracture_energy, Fading fading,
+                         BondState &state, std::vector<std::size_t> &touched_points, double *dissipated,
+                         std::size_t n_dissipated);
 
 } // namespace bapd

@@ -5,8 +5,8 @@
 
 namespace bapd {
 
-enum class Softening { none, linear, exponential };
-inline constexpr EnumWords<Softening::exponential> softening_words{"none", "linear", "exponential"};
+enum class Softening { none, linear, exponential, time };
+inline constexpr EnumWords<Softening::time> softening_words{"none", "linear", "exponential", "time"};
 
 inline const char *to_string(Softening s) { return softening_words(s); }
 

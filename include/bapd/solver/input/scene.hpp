@@ -112,6 +112,7 @@ struct FailureSection {
   double   fracture_energy   = 0.0;   // -failure_fracture_energy Gamma [J/m^2] (docs/method.md 5.2), or 0
   double   tip_concentration = 0.43;  // -failure_tip_concentration kappa: w_c = kappa Gamma / c (docs/method.md 5.2)
   Softening softening        = Softening::none; // -failure_softening: bonds fail gradually (softening.hpp; docs/method.md 5.4)
+  double   fade_time         = 0.0;   // -failure_softening_time tau [s]: the time law's fading time (softening.hpp), or 0
   PetscInt passes            = 0;     // -failure_passes: breaking passes a step with Gamma (0: until none breaks; docs/method.md 5.2)
 };
 

@@ -57,7 +57,7 @@ struct SceneInput {
   bool                     D_set = false, bulk_ratio_set = false;
   double                   bulk_ratio = 1000.0;
   std::vector<std::string> law_options_given; // the laws' own options that were given (-material_Jm, ...), for CheckMaterial
-  bool                     critical_stretch_set = false, fracture_energy_set = false;
+  bool                     critical_stretch_set = false, fracture_energy_set = false, fade_time_set = false;
   std::string              softening = "none"; // -failure_softening
   std::vector<std::string> load_names;
   std::vector<LoadInput>   loads;

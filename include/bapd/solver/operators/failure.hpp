@@ -36,8 +36,9 @@ public:
                        double critical_release, int dimension, double horizon, double thickness);
   // -failure_softening (softening.hpp; after Setup, with the fracture-energy criterion):
   // bonds soften from the criterion's onset and break at d = 1; sizes state.damage (0:
-  // intact) and what the owners' damage copies to their ring-1 ghosts. Collective.
-  PetscErrorCode SetupSoftening(Softening law, double fracture_energy, BondState &state);
+  // intact) and what the owners' damage copies to their ring-1 ghosts. fade_time: tau [s]
+  // of the time law (a bond fades from d = 0 to 1 in tau). Collective.
+  PetscErrorCode SetupSoftening(Softening law, double fracture_energy, double fade_time, BondState &state);
   bool           softening() const { return softening_ != Softening::none; }
   // The energy the softening of the last Break and its Cascades took, a value an owned
   // point (softening.hpp's dissipated; 0 without softening): summed reproducibly by the caller.
@@ -46,12 +47,13 @@ public:
   // (ForceOperator::BondEnergies) at the positions Break is given, before it.
   bool    by_energy() const { return critical_release_ > 0; }
   double *bond_energies() { return psi_.data(); }
-  // One breaking pass after a step at positions y (every local point), with the
-  // bonds whose model failed in the step's force evaluation (cleared here); updates
-  // the bond state and the geometry of the points whose bonds broke. Collective.
+  // One breaking pass after a step of length dt [s] at positions y (every local point),
+  // with the bonds whose model failed in the step's force evaluation (cleared here);
+  // updates the bond state and the geometry of the points whose bonds broke (dt: how
+  // far the time law's bonds fade in the step). Collective.
   // D: the body's (y and the geometry D a point; the masks know no dimension).
   template <int D>
-  PetscErrorCode Break(const double *y, std::vector<FailedBond> &failed, BondState &state, nd::BondGeometry<D> &geometry);
+  PetscErrorCode Break(const double *y, double dt, std::vector<FailedBond> &failed, BondState &state, nd::BondGeometry<D> &geometry);
   // The fracture-energy criterion again at the same positions, on bond_energies()
   // refilled after the last pass: a broken bond changes F_ij of its neighbours, and
   // those that now meet (5.2) break in this pass, not a step later (docs/method.md
@@ -70,7 +72,7 @@ private:
   PetscErrorCode SynchroniseGhosts(BondState &state);
   PetscErrorCode SynchroniseDamage(BondState &state);
   // The criterion's pass: breaking at once, or softening (softening.hpp).
-  void           EnergyPass(BondState &state);
+  void           EnergyPass(BondState &state, Fading fading);
   void           TouchedOnce(); // touched_ sorted, one entry a point (Setup's reserve counts on it)
 
   MPI_Comm                 comm_     = MPI_COMM_NULL;
@@ -83,7 +85,8 @@ private:
   std::vector<std::uint64_t> ghost_masks_;
   std::vector<std::size_t> touched_, stretched_, pass_; // reserved at set-up
   Softening                softening_       = Softening::none;
-  double                   fracture_energy_ = 0;
+  double                   fracture_energy_ = 0, fade_time_ = 0; // Gamma [J/m^2]; tau [s] of the time law
+  double                   step_fade_       = 0;                 // dt / tau of the step being broken (Cascade starts bonds with it)
   std::size_t              stride_          = 0;          // the largest family over the ranks: one point's damage in the exchange
   MPI_Datatype             damage_type_     = MPI_DATATYPE_NULL; // stride_ doubles
   std::vector<double>      owned_damage_, ghost_damage_, softened_; // stride_ an owned point, a ring-1 ghost; 1 an owned point
