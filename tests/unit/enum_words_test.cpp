@@ -15,7 +15,7 @@ namespace {
 
 TEST(EnumWords, EveryWordParsesBackToItsValue)
 {
-  for (Softening s : {Softening::none, Softening::linear, Softening::exponential}) {
+  for (Softening s : {Softening::none, Softening::linear, Softening::exponential, Softening::time}) {
     Softening back = s == Softening::none ? Softening::linear : Softening::none;
     ASSERT_TRUE(softening_words.parse(to_string(s), back)) << to_string(s);
     EXPECT_EQ(back, s);

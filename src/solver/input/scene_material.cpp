@@ -401,10 +401,10 @@ std::string MaterialText(const Scene &s)
     text += Format(", volumetric energy per point (mean dilatation), stabilisation %g mu", s.material.volumetric_stabilisation);
   text += "\n";
   if (s.failure.enabled && s.failure.fracture_energy > 0)
-    text += Format("  failure   bonds break at the critical pair energy of Gamma = %g J/m^2 (tip concentration %g)%s%s\n",
+    text += Format("  failure   bonds break at the critical pair energy of Gamma = %g J/m^2 (tip concentration %g)%s%s%s\n",
                    s.failure.fracture_energy, s.failure.tip_concentration, s.failure.softening == Softening::none ? "" : ", softening ",
-                   s.failure.softening == Softening::none ? "" : to_string(s.failure.softening));
-  if (s.failure.enabled && s.failure.softening == Softening::time) text.insert(text.size() - 1, Format(" (tau %g s)", s.failure.fade_time));
+                   s.failure.softening == Softening::none ? "" : to_string(s.failure.softening),
+                   s.failure.softening == Softening::time ? Format(" (tau %g s)", s.failure.fade_time).c_str() : "");
   else if (s.failure.enabled) text += Format("  failure   bonds break past stretch s_c = %g\n", s.failure.critical_stretch);
   else text += "  failure   none\n";
   return text;

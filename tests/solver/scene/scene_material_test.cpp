@@ -8,6 +8,7 @@
 
 #include <map>
 #include <string>
+#include <vector>
 
 #include "bapd/solver/input/scene.hpp"
 #include "scene_reading.hpp"
@@ -106,3 +107,25 @@ TEST_F(SceneMaterial, IncompressiblePlaneStressIsReadAndWhatContradictsItIsNamed
 }
 
 } // namespace
+
+// The summary's failure line: one line, saying the criterion the scene chose (and the
+// time law's tau where it fades), never two criteria.
+TEST_F(SceneMaterial, TheSummaryNamesOneFailureCriterion)
+{
+  const auto failure_lines = [this](const Options &o) {
+    Scene scene;
+    EXPECT_EQ(Read(o, &scene), 0) << bapd::test::UserErrorText();
+    const std::string text = bapd::SceneText(scene);
+    std::vector<std::string> lines;
+    for (std::size_t at = text.find("  failure   "); at != std::string::npos; at = text.find("  failure   ", at + 1))
+      lines.push_back(text.substr(at, text.find('\n', at) - at));
+    return lines;
+  };
+  using Lines = std::vector<std::string>;
+  EXPECT_EQ(failure_lines(Sheet()), Lines{"  failure   none"});
+  EXPECT_EQ(failure_lines(With(Sheet(), {{"-failure_critical_stretch", "7.2"}})), Lines{"  failure   bonds break past stretch s_c = 7.2"});
+  EXPECT_EQ(failure_lines(With(Sheet(), {{"-failure_fracture_energy", "165"}})),
+            Lines{"  failure   bonds break at the critical pair energy of Gamma = 165 J/m^2 (tip concentration 0.43)"});
+  EXPECT_EQ(failure_lines(With(Sheet(), {{"-failure_fracture_energy", "165"}, {"-failure_softening", "time"}, {"-failure_softening_time", "0.002"}})),
+            Lines{"  failure   bonds break at the critical pair energy of Gamma = 165 J/m^2 (tip concentration 0.43), softening time (tau 0.002 s)"});
+}
