@@ -8,7 +8,7 @@
 #   partition_type.sh box      a 3D box with a cylinder cut out, pulled
 #   partition_type.sh notched  the notched 2D sheet of rank_invariance.sh, bonds breaking
 #   partition_type.sh cloud    given 2D points (a graded CSV cloud): set up on every rank
-#   partition_type.sh cloud3d  given 3D points (a cloud of two spacings: per-point horizons)
+#   partition_type.sh cloud3d  given 3D points (a jittered cloud: per-point horizons of every size)
 #   partition_type.sh pieces   given 2D points in two pieces: the same one error with either
 #   partition_type.sh refused  -partition_type other: one clear error
 set -euo pipefail
@@ -48,26 +48,25 @@ cloud)
          -body_cloud "$BAPD_SOURCE_DIR/examples/geometry/graded_sheet.csv"
          -load_schedule 0,1,0.05,1.2 -end_step 100 -output_interval 50 -progress_interval 100000 -output_final_state) ;;
 cloud3d)
-  # a coarse block (2 mm) beside a fine one (1 mm), as box_3d.sh graded_cloud: block 2
-  # the coarse block's first column, block 3 the fine one's last
-  $PYTHON - "$work/graded.txt" <<'PY'
-import sys
-rows = []
-for h, x0, nx, ny, nz in ((2e-3, 0.0, 4, 3, 2), (1e-3, 8e-3, 8, 6, 4)):
+  # a jittered block (1 mm cells, positions +-0.2 mm, volumes +-20 %: per-point
+  # horizons of every size), block 2 its first column, block 3 its last
+  $PYTHON - "$work/jittered.txt" <<'PY'
+import random, sys
+random.seed(7)
+nx, ny, nz, h = 12, 6, 4, 1e-3
+with open(sys.argv[1], "w") as f:
+    f.write("x y z volume block_id\n")
     for k in range(nz):
         for j in range(ny):
             for i in range(nx):
-                block = 2 if h > 1e-3 and i == 0 else 3 if h == 1e-3 and i == nx - 1 else 1
-                rows.append((x0 + (i + 0.5) * h, (j + 0.5) * h, (k + 0.5) * h, h ** 3, block))
-with open(sys.argv[1], "w") as f:
-    f.write("x y z volume block_id\n")
-    for r in rows: f.write("%.17g %.17g %.17g %.17g %d\n" % r)
+                at = [(c + 0.5 + random.uniform(-0.2, 0.2)) * h for c in (i, j, k)]
+                block = 2 if i == 0 else 3 if i == nx - 1 else 1
+                f.write("%.17g %.17g %.17g %.17g %d\n" % (*at, h ** 3 * random.uniform(0.8, 1.2), block))
 PY
-  scene=(-body_dimension 3 -body_cloud "$work/graded.txt" -horizon_factor 3.015 -material_mu 4.55e3 -material_Jm 162.6
-         -material_bulk_ratio 10 "${GENT[@]}"
+  scene=(-body_dimension 3 -body_cloud "$work/jittered.txt" -horizon_factor 3.015 -material_bulk_ratio 10 "${GENT[@]}"
          -load_sets left,right -load_left_region block -load_left_block 2 -load_left_x fixed -load_left_y fixed -load_left_z fixed
          -load_right_region block -load_right_block 3 -load_right_x stretch -load_right_y fixed -load_right_z fixed
-         -load_reference_length 0.016
+         -load_reference_length 0.011
          -load_schedule 0,1,0.1,1.2 -end_step 100 -output_interval 20) ;;
 pieces)
   # Two 2D patches 5 mm apart (further than any horizon): rank 0 and the slabs must

@@ -190,10 +190,8 @@ PetscErrorCode CheckPieces(MPI_Comm comm, const PointCloud &slab, std::size_t n_
     ask[owner].push_back((PetscInt)slab.natural_id[h]);
     asker[owner].push_back(mine);
   }
-  std::vector<PetscInt> counts(size), from(size), asked, got;
-  for (int r = 0; r < size; ++r) counts[r] = (PetscInt)ask[r].size();
-  PetscCallMPI(MPI_Alltoall(counts.data(), 1, MPIU_INT, from.data(), 1, MPIU_INT, comm));
-  PetscCall(Exchange(comm, ask, &asked));
+  std::vector<PetscInt> from, asked, got;
+  PetscCall(Ask(comm, ask, &asked, &from));
   std::size_t k = 0;
   for (int r = 0; r < size; ++r)
     for (PetscInt q = 0; q < from[r]; ++q, ++k) {

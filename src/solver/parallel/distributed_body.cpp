@@ -78,11 +78,8 @@ PetscErrorCode FetchPoints(MPI_Comm comm, const std::vector<PetscInt> &starts, c
 
   PetscFunctionBegin;
   for (PetscInt id : ids) ask[HolderOf(starts, id)].push_back(id);
-  // Who asked what: the requests arrive in rank order, so their counts are needed.
-  std::vector<PetscInt> counts(size), from(size);
-  for (int r = 0; r < size; ++r) counts[r] = (PetscInt)ask[r].size();
-  PetscCallMPI(MPI_Alltoall(counts.data(), 1, MPIU_INT, from.data(), 1, MPIU_INT, comm));
-  PetscCall(Exchange(comm, ask, &asked));
+  std::vector<PetscInt> from;
+  PetscCall(Ask(comm, ask, &asked, &from));
   std::size_t k = 0;
   for (int r = 0; r < size; ++r)
     for (PetscInt q = 0; q < from[r]; ++q, ++k) {

@@ -36,6 +36,21 @@ template <typename T> PetscErrorCode Exchange(MPI_Comm comm, const std::vector<s
   PetscFunctionReturn(0);
 }
 
+// Questions ask[r] to rank r: *asked gets every rank's questions here, in rank order,
+// and from[r] how many came from rank r (the answers go back in the order asked).
+inline PetscErrorCode Ask(MPI_Comm comm, const std::vector<std::vector<PetscInt>> &ask, std::vector<PetscInt> *asked, std::vector<PetscInt> *from)
+{
+  const int             size = (int)ask.size();
+  std::vector<PetscInt> counts(size);
+
+  PetscFunctionBegin;
+  for (int r = 0; r < size; ++r) counts[r] = (PetscInt)ask[r].size();
+  from->resize(size);
+  PetscCallMPI(MPI_Alltoall(counts.data(), 1, MPIU_INT, from->data(), 1, MPIU_INT, comm));
+  PetscCall(Exchange(comm, ask, asked));
+  PetscFunctionReturn(0);
+}
+
 // The rank whose block holds natural id `id` (starts: every rank's first id, then n).
 inline int HolderOf(const std::vector<PetscInt> &starts, PetscInt id)
 {
