@@ -7,11 +7,11 @@
 #include <string>
 
 #include "bapd/core/geometry/geometry.hpp"
-#include "bapd/core/kernel/patch_correction.hpp"
 #include "bapd/core/geometry/lattice.hpp"
+#include "bapd/core/kernel/patch_correction.hpp"
 #include "bapd/solver/parallel/cloud_block.hpp"
-#include "bapd/solver/parallel/exchange.hpp"
 #include "bapd/solver/parallel/distributed_body.hpp"
+#include "bapd/solver/parallel/exchange.hpp"
 
 namespace bapd {
 namespace {
