@@ -7,8 +7,11 @@
 #include <string>
 
 #include "bapd/core/geometry/geometry.hpp"
+#include "bapd/core/geometry/lattice.hpp"
 #include "bapd/core/kernel/patch_correction.hpp"
+#include "bapd/solver/parallel/cloud_block.hpp"
 #include "bapd/solver/parallel/distributed_body.hpp"
+#include "bapd/solver/parallel/exchange.hpp"
 
 namespace bapd {
 namespace {
@@ -37,15 +40,8 @@ template <int D> void DescribePieces(const PointCloud &cloud, const Families &fa
   std::size_t smallest = 0; // the first point of the smallest piece
   for (std::size_t i = 1; i < n; ++i)
     if (count[find(i)] < count[find(smallest)]) smallest = i;
-  const double *x = &cloud.x[D * smallest];
-  char          at[96];
-  if (D == 2) std::snprintf(at, sizeof at, "(%g, %g)", x[0], x[1]);
-  else std::snprintf(at, sizeof at, "(%g, %g, %g)", x[0], x[1], x[2]);
-  std::snprintf(message, size,
-                "%s: the given points fall apart into %zu pieces with no bond between them (the smallest: %zu point(s), e.g. "
-                "point %lld at %s m): a piece not bonded to the rest has no stiffness against it. Remove the "
-                "stray points from the file, close the gap, or raise -horizon_factor",
-                source.c_str(), n_pieces, count[find(smallest)], static_cast<long long>(cloud.natural_id[smallest]), at);
+  const std::string words = PiecesMessage(source, n_pieces, count[find(smallest)], cloud.natural_id[smallest], &cloud.x[D * smallest], D);
+  std::snprintf(message, size, "%s", words.c_str());
 }
 
 // The families of points [0, n) of a cloud: the 2D notches' segments, or the 3D
@@ -69,6 +65,42 @@ template <int D> PointCloud BodyPoints(const Scene &scene)
     set_point_horizons(&points, D, scene.body.horizon_factor, scene.body.sheet.thickness);
     return points;
   }
+}
+
+// This rank's share of the given points, natural ids [*first, *first + size) of the ones
+// the body keeps: BodyPoints' points, with their own horizons, cut into blocks as
+// ScatterBody cuts (BlockFirst). The scene holds every point (the file read whole).
+template <int D> PointCloud GivenChunk(const Scene &scene, int rank, int size, PetscInt *first)
+{
+  PointCloud chunk;
+  if constexpr (D == 2) {
+    const Body<2>     &body  = scene.body.sheet;
+    const GivenPoints &given = *body.given_points;
+    const PetscInt     n     = (PetscInt)body_point_count(body);
+    *first                   = BlockFirst(n, size, rank);
+    const PetscInt last      = BlockFirst(n, size, rank + 1);
+    PetscInt       id        = 0; // the natural id: the point's place among the kept (make_points)
+    for (std::size_t p = 0; p < given.size() && id < last; ++p) {
+      const double x = given.x[2 * p], y = given.x[2 * p + 1];
+      if (!is_material(body, x, y)) continue;
+      if (id >= *first) {
+        chunk.natural_id.push_back(id);
+        chunk.x.push_back(x), chunk.x.push_back(y);
+        chunk.volume.push_back(given.volume[p]);
+      }
+      ++id;
+    }
+  } else {
+    const PointCloud &given = *scene.body.solid.given_points;
+    const PetscInt    n     = (PetscInt)given.size();
+    *first                  = BlockFirst(n, size, rank);
+    const PetscInt last     = BlockFirst(n, size, rank + 1);
+    chunk.x.assign(given.x.begin() + 3 * *first, given.x.begin() + 3 * last);
+    chunk.volume.assign(given.volume.begin() + *first, given.volume.begin() + last);
+    chunk.natural_id.assign(given.natural_id.begin() + *first, given.natural_id.begin() + last);
+  }
+  set_point_horizons(&chunk, D, scene.body.horizon_factor, scene.body.sheet.thickness);
+  return chunk;
 }
 
 // The whole body on rank 0 (global with family_volume and, with
@@ -138,19 +170,24 @@ template <int D> PetscErrorCode SimulationD<D>::BuildBody()
 
   PetscFunctionBegin;
   PetscCall(PetscLogStagePush(stage_partition_));
-  if (parallel && !given && scene_.material.patch_correction == PatchCorrection::off) {
-    // -partition_type ptscotch on a lattice: every rank builds a slab of it, and no
-    // rank holds the whole body or bond graph (distributed_body.hpp).
+  if (parallel && scene_.material.patch_correction == PatchCorrection::off) {
+    // -partition_type ptscotch: every rank builds a slab of the lattice, or the families
+    // of a slab of the given points, and no rank holds the whole bond graph
+    // (distributed_body.hpp, cloud_block.hpp).
     BodyBlock block;
-    PetscCall(LatticeBlock<D>(comm_, scene_.body.sheet, scene_.body.solid, scene_.body.horizon(), families_of, &block));
+    if (given) {
+      PetscInt         first;
+      const PointCloud chunk  = GivenChunk<D>(scene_, rank_, size_, &first);
+      const std::string source = D == 2 ? scene_.body.sheet.given_points->source : scene_.body.solid.source;
+      PetscCall(CloudBlock<D>(comm_, chunk, first, families_of, source, &block));
+    } else PetscCall(LatticeBlock<D>(comm_, scene_.body.sheet, scene_.body.solid, scene_.body.horizon(), families_of, &block));
     int64_t counts[2] = {static_cast<int64_t>(block.size()), static_cast<int64_t>(block.neighbours.size())};
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, counts, 2, MPI_INT64_T, MPI_SUM, comm_));
     PetscCall(CheckBodyMemory(comm_, scene_, counts[0], counts[1]));
     PetscCall(DistributeBlocks<D>(comm_, block, &layout_));
   } else {
-    if (parallel) // given points, or the patch correction's solve over the whole body
-      PetscCall(PetscPrintf(comm_, "Set-up: %s built on rank 0 (-partition_type ptscotch sets up a lattice body on every rank), partitioned by PT-Scotch\n",
-                            given ? "the given points" : "the body and its patch correction"));
+    if (parallel) // the patch correction's solve runs over the whole body
+      PetscCall(PetscPrintf(comm_, "Set-up: the body and its patch correction built on rank 0 (-partition_type ptscotch sets up the body on every rank without -force_patch_correction), partitioned by PT-Scotch\n"));
     PetscCall(WholeBodyOnRankZero<D>(comm_, scene_, &global, &offsets, &neighbours));
     if (parallel) {
       BodyBlock block;

@@ -19,8 +19,8 @@ const OptionTable<RunSection, SceneInput> kRunOptions = {
      GivenText<SceneInput>{&SceneInput::solver}},
     {"-partition_type",
      "Who splits the body over the ranks: metis (rank 0 builds the whole body and bond graph, METIS splits it) or "
-     "ptscotch (PT-Scotch on every rank; a lattice body is built in slabs, one a rank, and no rank holds it whole; "
-     "given points and -force_patch_correction are still built on rank 0)",
+     "ptscotch (PT-Scotch on every rank; the families are built in slabs, one a rank, and no rank holds the whole "
+     "bond graph; -force_patch_correction is still built on rank 0)",
      GivenText<SceneInput>{&SceneInput::partition_type}},
     {"-log_setup_memory",
      "Print the set-up's wall time and peak memory (VmHWM) of the largest rank, the mean rank and rank 0 once the "

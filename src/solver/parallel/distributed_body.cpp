@@ -12,44 +12,12 @@
 
 #include "bapd/core/geometry/lattice.hpp"
 #include "bapd/core/geometry/shape3d.hpp"
+#include "bapd/solver/parallel/exchange.hpp"
 #include "bapd/solver/parallel/point_reals.hpp"
 
 namespace bapd {
 
 namespace {
-
-template <typename T> MPI_Datatype DatatypeOf();
-template <> MPI_Datatype DatatypeOf<double>() { return MPI_DOUBLE; }
-template <> MPI_Datatype DatatypeOf<PetscInt>() { return MPIU_INT; }
-
-// out[r] to rank r; *in gets what every rank sent here, in rank order.
-template <typename T> PetscErrorCode Exchange(MPI_Comm comm, const std::vector<std::vector<T>> &out, std::vector<T> *in)
-{
-  const int        size = (int)out.size();
-  std::vector<int> send_count(size), recv_count(size), send_at(size + 1, 0), recv_at(size + 1, 0);
-
-  PetscFunctionBegin;
-  for (int r = 0; r < size; ++r) {
-    PetscCheck(out[r].size() < (std::size_t)std::numeric_limits<int>::max(), comm, PETSC_ERR_SUP,
-               "The set-up sends more than 2^31 numbers to one rank: run on more ranks");
-    send_count[r]   = (int)out[r].size();
-    send_at[r + 1]  = send_at[r] + send_count[r];
-  }
-  PetscCallMPI(MPI_Alltoall(send_count.data(), 1, MPI_INT, recv_count.data(), 1, MPI_INT, comm));
-  for (int r = 0; r < size; ++r) recv_at[r + 1] = recv_at[r] + recv_count[r];
-  std::vector<T> send(send_at[size]);
-  for (int r = 0; r < size; ++r) std::copy(out[r].begin(), out[r].end(), send.begin() + send_at[r]);
-  in->resize(recv_at[size]);
-  PetscCallMPI(MPI_Alltoallv(send.data(), send_count.data(), send_at.data(), DatatypeOf<T>(), in->data(), recv_count.data(),
-                             recv_at.data(), DatatypeOf<T>(), comm));
-  PetscFunctionReturn(0);
-}
-
-// The rank whose block holds natural id `id` (starts: every rank's first id, then n).
-int HolderOf(const std::vector<PetscInt> &starts, PetscInt id)
-{
-  return (int)(std::upper_bound(starts.begin(), starts.end(), id) - starts.begin()) - 1;
-}
 
 // part[i] in [0, size) for the block's points: PT-Scotch on the distributed bond graph,
 // each rank its block's rows, vertex weight = family size (PartitionBondGraph's).
@@ -110,11 +78,8 @@ PetscErrorCode FetchPoints(MPI_Comm comm, const std::vector<PetscInt> &starts, c
 
   PetscFunctionBegin;
   for (PetscInt id : ids) ask[HolderOf(starts, id)].push_back(id);
-  // Who asked what: the requests arrive in rank order, so their counts are needed.
-  std::vector<PetscInt> counts(size), from(size);
-  for (int r = 0; r < size; ++r) counts[r] = (PetscInt)ask[r].size();
-  PetscCallMPI(MPI_Alltoall(counts.data(), 1, MPIU_INT, from.data(), 1, MPIU_INT, comm));
-  PetscCall(Exchange(comm, ask, &asked));
+  std::vector<PetscInt> from;
+  PetscCall(Ask(comm, ask, &asked, &from));
   std::size_t k = 0;
   for (int r = 0; r < size; ++r)
     for (PetscInt q = 0; q < from[r]; ++q, ++k) {
@@ -236,7 +201,7 @@ PetscErrorCode ScatterBody(MPI_Comm comm, const PointCloud &global_cloud, const 
   const PetscMPIInt    rank = shape.rank, size = shape.size;
   const PetscInt       n     = shape.n;
   const PointReals<D> &reals = shape.reals;
-  auto                first_of = [&](int r) { return (PetscInt)(n / size * r + std::min<PetscInt>(r, n % size)); };
+  auto                first_of = [&](int r) { return BlockFirst(n, size, r); };
   std::vector<std::vector<PetscInt>> out_int(size);
   std::vector<std::vector<double>>   out_real(size);
   if (rank == 0)

@@ -10,9 +10,11 @@
 //
 // A lattice body's blocks are slabs of lattice rows (2D) or layers (3D), one a rank,
 // built where they are held (LatticeBlock): a slab's families need the rows within a
-// horizon of it, which the lattice gives without communication. Given points and the
-// patch correction (a solve over the whole body) are built on rank 0 and cut into
-// blocks (ScatterBody).
+// horizon of it, which the lattice gives without communication. Given points (2D or
+// 3D clouds, a mesh's centroids) start from each rank's block of natural ids and are cut
+// into slabs along x for their families (CloudBlock, cloud_block.hpp); the scene still
+// holds their whole file on every rank. The patch correction (a solve over the whole
+// body) is built on rank 0 and cut into blocks (ScatterBody).
 #include <functional>
 #include <petscsys.h>
 #include <vector>
@@ -47,8 +49,8 @@ using FamilyBuilder = std::function<Families(const PointCloud &cloud, std::size_
 // included) or layers (3D: the solids' lattice, z) [rows * rank / size, rows * (rank
 // + 1) / size), natural ids exactly the serial lattice's (each rank's row counts
 // gathered: O(rows) numbers), its families built with the rows within a horizon on
-// either side generated here, and family volumes. Not with given points or the patch
-// correction (ScatterBody).
+// either side generated here, and family volumes. Not with given points (CloudBlock)
+// or the patch correction (ScatterBody).
 template <int D>
 PetscErrorCode LatticeBlock(MPI_Comm comm, const Body<2> &body2d, const Body<3> &body3d, double horizon,
                             const FamilyBuilder &build_families, BodyBlock *block);
