@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """The point form's volumetric energy (docs/method.md section 8) linearised about the
 reference state, on small lattices, to find which modes it leaves soft at a gel's K and
-to try stabilisations of the spread of the bonds' dilatations (docs/notes/volumetric_odd_even.md).
+to try stabilisations of the spread of the bonds' dilatations (docs/notes/volumetric-odd-even.md).
 
 Linearised, F_iq = I + H_iq with H_iq = sum_{k in B_iq} (u_k - u_i) (x) g_k (eq 9,
 g_k = K_iq^{-1} xi_k V_k), the Gent law is mu |dev sym H|^2 (3D deviator, also in plane
@@ -15,12 +15,12 @@ that no quadratic field explains (residual of the w-weighted least-squares fit o
 Needs numpy. Usage:
   volumetric_modes.py box  DIM NX NY NZ form kappa_mu kappa_r_mu K_mu   # uniaxial box, linear
   volumetric_modes.py eig  DIM N form kappa_mu kappa_r_mu K_mu          # lowest modes of a free box
-  volumetric_modes.py slab 2 H form kappa_mu kappa_r_mu K_mu              # the plane-strain slab, spacing H mm
+  volumetric_modes.py slab 2 H form kappa_mu kappa_r_mu K_mu           # the plane-strain slab, spacing H mm
   volumetric_modes.py lock DIM N form kappa_mu kappa_r_mu K_mu          # isochoric field's interior energy
-form: bond | point | smooth | pair | pairbond (pair: kappa_r on the spread of the
-pairs' dilatations; pairwhole: pair on the pairs of
-whole families only; pair2: the same about the pair's mean (thbar_i + thbar_q)/2; pairbond: the bond
-form with the pair's dilatation)."""
+form: bond | point | smooth | pair | pairwhole | pair2 | pairbond. pair: kappa_r/2 on the
+spread of the pairs' dilatations (th_iq + th_qi)/2 about thbar_i; pairwhole: the same on
+pairs of whole families only; pair2: about the pair's mean (thbar_i + thbar_q)/2;
+pairbond: the bond form with the pair's dilatation. Numbers: docs/notes/volumetric-odd-even.md."""
 import itertools, sys
 import numpy as np
 
