@@ -94,7 +94,7 @@ def stiffness(X, form, kappa, kappa_r, K, only=None):
     for (a, q) in rows:
         first.setdefault(a, q)
         bonds_of.setdefault(a, []).append(q)
-    whole = max(len(v) for v in bonds_of.values())
+    whole = max((len(v) for v in bonds_of.values()), default=0)
     if form in ("pair", "pair2", "pairbond", "pairwhole"):
         # th^pair_iq = (th_iq + th_qi) / 2: the divergence at the bond's midpoint to second
         # order for a smooth field (B_qi is B_iq reflected through the midpoint).
