@@ -1,6 +1,6 @@
 // 3D scenes (scene_body.cpp, scene_loading.cpp, scene_probes.cpp,
 // scene_selection.cpp, loading.cpp, relaxation.cpp at D = 3): a 3D body given by options
-// is read and checked (its points counted, its extent found); its load sets, grips and
+// is read and checked (its points counted, its extent found, none of them held); its load sets, grips and
 // probes pick exactly the points a brute-force count over the lattice indices says; the
 // grips hold D = 3 dofs a point and their reactions sum 3 components; each bad 3D option
 // is refused with its own message; the material section in 3D (the law's 3D form, the
