@@ -1,4 +1,5 @@
-// 3D bodies: solids, the clipped lattice, planar polygon notches (shape3d.hpp).
+// 3D bodies: solids, Gmsh volumes and planar polygon notches (shape3d.hpp); the lattice
+// they clip is solid_lattice.cpp.
 #include "bapd/core/geometry/shape3d.hpp"
 
 #include <algorithm>
@@ -111,52 +112,6 @@ bool prepared_cuts(const PreparedPolygon &p, const double *a, const double *b)
   // The projection shrinks in-plane lengths by at most |n_dropped| >= 1/sqrt(3); the
   // boundary tolerance is round-off either way.
   return strictly_inside(p.flat, x, y, tol);
-}
-
-bool solid_adds(const Solid &s) { return s.op == Solid::Op::add; }
-
-// A box around the solid (cylinders: their end points widened by the radius).
-void solid_bounds(const Solid &s, P3 &lo, P3 &hi)
-{
-  for (int r = 0; r < 3; ++r) switch (s.kind) {
-    case Solid::Kind::box: lo[r] = std::min(s.lo[r], s.hi[r]), hi[r] = std::max(s.lo[r], s.hi[r]); break;
-    case Solid::Kind::cylinder:
-      lo[r] = std::min(s.a[r], s.b[r]) - s.radius, hi[r] = std::max(s.a[r], s.b[r]) + s.radius;
-      break;
-    case Solid::Kind::sphere: lo[r] = s.a[r] - s.radius, hi[r] = s.a[r] + s.radius; break;
-    case Solid::Kind::mesh:
-      lo[r] = s.mesh->lo[r], hi[r] = s.mesh->lo[r] + static_cast<double>(s.mesh->count[r]) * s.mesh->cell;
-      break;
-    }
-}
-
-// The grid's cells around the added solids: cell (i, j, k) of the range has its centre at
-// origin + (first + (i, j, k) + 0.5) dx.
-struct Grid {
-  std::array<int64_t, 3> first{}, count{};
-  int64_t                cells() const { return count[0] * count[1] * count[2]; }
-};
-
-Grid body_grid(const Body<3> &body)
-{
-  P3   lo{}, hi{};
-  bool any = false;
-  for (const Solid &s : body.solids) {
-    if (!solid_adds(s)) continue;
-    P3 a{}, b{};
-    solid_bounds(s, a, b);
-    for (int r = 0; r < 3; ++r) lo[r] = any ? std::min(lo[r], a[r]) : a[r], hi[r] = any ? std::max(hi[r], b[r]) : b[r];
-    any = true;
-  }
-  Grid g;
-  for (int r = 0; r < 3; ++r) {
-    // Centres within [lo, hi], one cell of margin for round-off (the solids decide).
-    const double i0 = std::floor((lo[r] - body.origin[r]) / body.dx - 0.5) - 1;
-    const double i1 = std::ceil((hi[r] - body.origin[r]) / body.dx - 0.5) + 1;
-    if (!(i1 - i0 < 2e9)) throw std::invalid_argument("3D body: more than 2^31 cells along one axis; make dx larger");
-    g.first[r] = static_cast<int64_t>(i0), g.count[r] = static_cast<int64_t>(i1 - i0) + 1;
-  }
-  return g;
 }
 
 // Six times the signed volume of (a, b, c, d).
@@ -398,134 +353,6 @@ BondCut polygon_notches(const std::vector<PlanarPolygon> &polygons)
       if (prepared_cuts(p, a, b)) return true;
     return false;
   };
-}
-
-SolidPieces body_pieces(const Body<3> &body, const PointCloud &points)
-{
-  SolidPieces       pieces;
-  const std::size_t n = points.size();
-  if (n == 0) return pieces;
-  // Integer cell coordinates of every point, and the points sorted by them (z, y, x),
-  // so that a face neighbour is found by binary search: no dense cell array.
-  std::vector<std::array<int64_t, 3>> cell(n);
-  for (std::size_t i = 0; i < n; ++i)
-    for (int r = 0; r < 3; ++r)
-      cell[i][r] = std::llround((points.x[3 * i + r] - body.origin[r]) / body.dx - 0.5);
-  auto key = [](const std::array<int64_t, 3> &c) { return std::array<int64_t, 3>{c[2], c[1], c[0]}; };
-  std::vector<std::size_t> order(n);
-  for (std::size_t i = 0; i < n; ++i) order[i] = i;
-  std::sort(order.begin(), order.end(), [&](std::size_t p, std::size_t q) { return key(cell[p]) < key(cell[q]); });
-  auto find = [&](const std::array<int64_t, 3> &c) -> std::ptrdiff_t {
-    const auto it = std::lower_bound(order.begin(), order.end(), key(c),
-                                     [&](std::size_t p, const std::array<int64_t, 3> &k) { return key(cell[p]) < k; });
-    return it != order.end() && cell[*it] == c ? static_cast<std::ptrdiff_t>(*it) : -1;
-  };
-  const BondCut            cut = polygon_notches(body.notches);
-  std::vector<char>        reached(n, 0);
-  std::vector<std::size_t> stack;
-  pieces.smallest_points = static_cast<int64_t>(n) + 1;
-  for (std::size_t seed = 0; seed < n; ++seed) {
-    if (reached[seed]) continue;
-    int64_t size  = 0;
-    reached[seed] = 1;
-    stack.assign(1, seed);
-    while (!stack.empty()) {
-      const std::size_t i = stack.back();
-      stack.pop_back();
-      ++size;
-      for (int r = 0; r < 3; ++r)
-        for (int step = -1; step <= 1; step += 2) {
-          std::array<int64_t, 3> c = cell[i];
-          c[r] += step;
-          const std::ptrdiff_t j = find(c);
-          if (j < 0 || reached[static_cast<std::size_t>(j)]) continue;
-          if (cut && cut(&points.x[3 * i], &points.x[3 * static_cast<std::size_t>(j)])) continue;
-          reached[static_cast<std::size_t>(j)] = 1;
-          stack.push_back(static_cast<std::size_t>(j));
-        }
-    }
-    ++pieces.count;
-    if (size < pieces.smallest_points)
-      pieces.smallest_points = size,
-      pieces.smallest_at     = {points.x[3 * seed], points.x[3 * seed + 1], points.x[3 * seed + 2]};
-  }
-  return pieces;
-}
-
-int64_t solid_layers(const Body<3> &body)
-{
-  bool adds = false;
-  for (const Solid &s : body.solids) adds = adds || solid_adds(s);
-  return adds && body.dx > 0 ? body_grid(body).count[2] : 0;
-}
-
-void append_solid_layers(const Body<3> &body, int64_t layer_begin, int64_t layer_end, PointCloud *cloud,
-                         std::vector<int64_t> *layer_counts)
-{
-  const Grid g = body_grid(body);
-  layer_begin  = std::max<int64_t>(layer_begin, 0);
-  layer_end    = std::min<int64_t>(layer_end, g.count[2]);
-  PointCloud &c = *cloud;
-  for (int64_t k = layer_begin; k < layer_end; ++k) {
-    const std::size_t first = c.size();
-    for (int64_t j = 0; j < g.count[1]; ++j)
-      for (int64_t i = 0; i < g.count[0]; ++i) {
-        const double p[3] = {body.origin[0] + (static_cast<double>(g.first[0] + i) + 0.5) * body.dx,
-                             body.origin[1] + (static_cast<double>(g.first[1] + j) + 0.5) * body.dx,
-                             body.origin[2] + (static_cast<double>(g.first[2] + k) + 0.5) * body.dx};
-        if (!body_contains(body.solids, p)) continue;
-        c.x.insert(c.x.end(), p, p + 3);
-        c.natural_id.push_back(static_cast<int64_t>(c.volume.size()));
-        c.volume.push_back(body.dx * body.dx * body.dx);
-      }
-    if (layer_counts) layer_counts->push_back(static_cast<int64_t>(c.size() - first));
-  }
-}
-
-PointCloud make_solid_points(const Body<3> &body)
-{
-  if (!(body.dx > 0) || !std::isfinite(body.dx))
-    throw std::invalid_argument(format("3D body: the lattice spacing dx must be > 0 (got %g)", body.dx));
-  for (int r = 0; r < 3; ++r)
-    if (!std::isfinite(body.origin[r])) throw std::invalid_argument("3D body: the lattice origin must be finite numbers");
-  bool adds = false;
-  for (std::size_t k = 0; k < body.solids.size(); ++k) {
-    const std::string problem = solid_problem(body.solids[k]);
-    if (!problem.empty())
-      throw std::invalid_argument("3D body: solid " + std::to_string(k + 1) + " (" + to_string(body.solids[k].kind) +
-                                  "): " + problem);
-    adds = adds || solid_adds(body.solids[k]);
-  }
-  if (!adds)
-    throw std::invalid_argument("3D body: no solid adds material (the body starts empty); list a box, cylinder or "
-                                "sphere with op add first");
-  for (std::size_t k = 0; k < body.notches.size(); ++k) {
-    const std::string problem = planar_polygon_problem(body.notches[k]);
-    if (!problem.empty()) throw std::invalid_argument("3D body: notch " + std::to_string(k + 1) + ": " + problem);
-  }
-  const Grid g = body_grid(body);
-  if (static_cast<double>(g.count[0]) * static_cast<double>(g.count[1]) * static_cast<double>(g.count[2]) > 2147483647.0)
-    throw std::invalid_argument(format("3D body: the lattice around the solids has more than 2^31 cells at dx = %g; "
-                                       "make dx larger",
-                                       body.dx));
-
-  PointCloud c;
-  append_solid_layers(body, 0, g.count[2], &c, nullptr);
-  if (c.size() == 0)
-    throw std::invalid_argument(format("3D body: the solids keep no lattice point (no cell centre at dx = %g lies in "
-                                       "the body); make dx smaller or the solids larger",
-                                       body.dx));
-  const SolidPieces pieces = body_pieces(body, c);
-  if (pieces.count > 1) {
-    char text[320];
-    std::snprintf(text, sizeof text,
-                  "3D body: the body falls apart into %lld pieces (the smallest, %lld points, holds the point (%g, %g, "
-                  "%g)); join them, remove the stray piece, or end a notch inside the body",
-                  static_cast<long long>(pieces.count), static_cast<long long>(pieces.smallest_points), pieces.smallest_at[0],
-                  pieces.smallest_at[1], pieces.smallest_at[2]);
-    throw std::invalid_argument(text);
-  }
-  return c;
 }
 
 PointCloud tetrahedron_centroids(const TetrahedronSet &mesh)

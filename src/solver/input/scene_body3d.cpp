@@ -1,8 +1,10 @@
 // The 3D body of a scene (-body_dimension 3): the solids and planar
 // notches of shape3d.hpp applied in order to an empty start, or a 3D point cloud (or
-// a Gmsh volume's element centroids) clipped by them. Checked whole here: the points
-// are built once, for their count, their extent (the faces of the load sets) and the
-// one-piece check. scene_body.cpp reads the options and calls CheckBody3D.
+// a Gmsh volume's element centroids) clipped by them. Checked whole here: the lattice's
+// count, extent (the faces of the load sets) and one piece from a pass over it that
+// holds none of its points, so that no rank holds the whole body while the scene is
+// read (-partition_type ptscotch then builds it in slabs); given points are read whole.
+// scene_body.cpp reads the options and calls CheckBody3D.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -221,8 +223,10 @@ PetscErrorCode GivenPoints3D(MPI_Comm comm, const SceneInput &in, std::size_t ce
   PetscFunctionReturn(0);
 }
 
-// The solids' points on the lattice of spacing -body_dx.
-PetscErrorCode LatticePoints3D(MPI_Comm comm, const SceneInput &in, BodySection *body, PointCloud *points)
+// The solids on the lattice of spacing -body_dx: their checks, the count of the points
+// and the extent of their cells (lattice point +- dx/2), from one pass over the lattice
+// that holds none of its points (nd::checked_solid_lattice: the memory of one layer of cells).
+PetscErrorCode LatticeBody3D(MPI_Comm comm, const SceneInput &in, BodySection *body)
 {
   const double dx = in.dx;
   BodySection &b = *body;
@@ -235,15 +239,17 @@ PetscErrorCode LatticePoints3D(MPI_Comm comm, const SceneInput &in, BodySection 
              "or mesh (a Gmsh volume), or a 3D point cloud by -body_cloud");
   b.solid.dx = dx;
   try {
-    *points = nd::make_solid_points(b.solid);
+    const nd::SolidLattice lattice = nd::checked_solid_lattice(b.solid);
+    b.solid_summary.points         = lattice.points;
+    b.solid_summary.lo             = lattice.lo;
+    b.solid_summary.hi             = lattice.hi;
   } catch (const std::invalid_argument &e) {
     SceneCheck(false, comm, "-body_shapes: %s", e.what());
   }
   PetscFunctionReturn(0);
 }
 
-// The count of the points and the extent of their cells (lattice point +- dx/2, given
-// point +- its spacing / 2).
+// The count of the given points and the extent of their cells (point +- its spacing / 2).
 void SetExtent(const PointCloud &points, BodySection *body)
 {
   SolidSummary &e = body->solid_summary;
@@ -251,7 +257,7 @@ void SetExtent(const PointCloud &points, BodySection *body)
   e.lo.fill(std::numeric_limits<double>::max());
   e.hi.fill(-std::numeric_limits<double>::max());
   for (std::size_t p = 0; p < points.size(); ++p) {
-    const double h = body->solid.given_points ? 0.5 * point_spacing(3, points.volume[p], 0.0) : 0.5 * body->solid.dx;
+    const double h = 0.5 * point_spacing(3, points.volume[p], 0.0);
     for (int r = 0; r < 3; ++r) {
       e.lo[r] = std::min(e.lo[r], points.x[3 * p + r] - h);
       e.hi[r] = std::max(e.hi[r], points.x[3 * p + r] + h);
@@ -261,9 +267,9 @@ void SetExtent(const PointCloud &points, BodySection *body)
 
 } // namespace
 
-// The 3D body: its solids and notches on the lattice of spacing -body_dx, or a 3D cloud
-// clipped by its solids; the points are built here (their count, extent and the one-piece
-// check; about 40 bytes a point, against the run's ~6 KB: CheckBodyFits follows).
+// The 3D body: its solids and notches on the lattice of spacing -body_dx, counted and
+// checked (one piece) without building its points, or a 3D cloud clipped by its solids,
+// whose points are built here (CheckBodyFits follows).
 PetscErrorCode CheckBody3D(MPI_Comm comm, const SceneInput &in, Scene *scene)
 {
   BodySection &b = scene->body;
@@ -276,10 +282,11 @@ PetscErrorCode CheckBody3D(MPI_Comm comm, const SceneInput &in, Scene *scene)
   std::size_t centroid_solid = 0;
   PetscCall(FindCentroidSolid(comm, in, b, &centroid_solid));
   const bool centroids = centroid_solid < b.solid.solids.size();
-  PointCloud points;
-  if (!in.cloud.empty() || centroids) PetscCall(GivenPoints3D(comm, in, centroid_solid, &b, &points));
-  else PetscCall(LatticePoints3D(comm, in, &b, &points));
-  SetExtent(points, &b);
+  if (!in.cloud.empty() || centroids) {
+    PointCloud points;
+    PetscCall(GivenPoints3D(comm, in, centroid_solid, &b, &points));
+    SetExtent(points, &b);
+  } else PetscCall(LatticeBody3D(comm, in, &b));
   PetscCall(CheckHorizonFactor(comm, *scene));
   PetscFunctionReturn(0);
 }

@@ -134,7 +134,7 @@ PetscErrorCode CheckMemory(MPI_Comm comm, const Scene &scene, int64_t points, do
                 .c_str());
   }
   SETERRQ(comm, PETSC_ERR_USER, "%s",
-          Format("-body_dx %g m asks for about %s: choose -body_dx %.2g or coarser, or run on more machines", b.dx, what.c_str(), 1.05 * dx_fit)
+          Format("-body_dx %g m asks for about %s: choose -body_dx %.2g or coarser, or run on more machines", scene.body.dx(), what.c_str(), 1.05 * dx_fit)
               .c_str());
 }
 

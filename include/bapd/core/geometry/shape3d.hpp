@@ -73,8 +73,8 @@ namespace bapd {
 // The 3D body (the 3D specialisation of Body<D>, body.hpp): solids applied in order to
 // an empty start on the lattice above, cut by planar notches; or given points clipped
 // by the solids: a 3D cloud (point_cloud3d.hpp) or the tetrahedron centroids of the
-// first solid, a mesh (tetrahedron_centroids). make_solid_points and the layers below
-// build the lattice only; the given points are already built.
+// first solid, a mesh (tetrahedron_centroids). make_solid_points, solid_lattice and the
+// layers below are the lattice's (solid_lattice.cpp); the given points are already built.
 template <> struct Body<3> {
   double                         dx = 0;   // lattice spacing [m] (given points: their smallest cbrt(V))
   std::array<double, 3>          origin{}; // the grid's anchor: points at origin + (i + 0.5) dx [m]
@@ -129,24 +129,41 @@ bool polygon_cuts(const PlanarPolygon &polygon, const double *a, const double *b
 BondCut polygon_notches(const std::vector<PlanarPolygon> &polygons);
 
 // Connected pieces of the body's lattice: points linked to their 6 face neighbours
-// (the 3D form of lattice_pieces, lattice.hpp), minus the links a notch cuts.
+// (the 3D form of lattice_pieces, lattice.hpp), minus the links a notch cuts. The
+// smallest piece is the first of that size in the points' order (the natural order),
+// smallest_at its first point.
 struct SolidPieces {
   int64_t               count = 0;
   int64_t               smallest_points = 0;
   std::array<double, 3> smallest_at{}; // a point of the smallest piece [m]
 };
+// The pieces of built points (any order).
 SolidPieces body_pieces(const Body<3> &body, const PointCloud &points);
+
+// What the scene needs of a lattice body, found without holding its points: one pass
+// over the lattice layer by layer (z) that keeps two layers of piece labels (the pieces
+// by Hoshen-Kopelman labelling, the links as body_pieces's), so its memory goes as one
+// layer of cells, not as the points.
+struct SolidLattice {
+  int64_t               points = 0;   // make_solid_points's count
+  std::array<double, 3> lo{}, hi{};   // the extent of the points' cells (point +- dx / 2) [m]
+  SolidPieces           pieces;       // as body_pieces on make_solid_points's points
+};
+// The summary; throws make_solid_points's messages (below) for a bad input, not for a
+// body with no point or in pieces. checked_solid_lattice throws for those too.
+SolidLattice solid_lattice(const Body<3> &body);
+SolidLattice checked_solid_lattice(const Body<3> &body);
 
 // The body's points (order and volumes above; horizon and family_volume left empty).
 // Throws std::invalid_argument with a message that names the problem and the fix for:
 // dx not > 0 or not finite; a bad solid (solid_problem) or notch
 // (planar_polygon_problem); no solid that adds; a lattice of more than 2^31 cells
 // around the added solids; a body that holds no lattice point; a body in more than
-// one piece (body_pieces).
+// one piece (checked_solid_lattice, the same pass).
 PointCloud make_solid_points(const Body<3> &body);
 
 // The lattice layer by layer (z cells), for a body built in slabs of layers (one a
-// rank), with no check (make_solid_points's are the scene's): solid_layers(body)
+// rank), with no check (checked_solid_lattice's are the scene's): solid_layers(body)
 // layers (0 without a solid that adds), append_solid_layers appends the points of
 // layers [layer_begin, layer_end) to *cloud in make_solid_points's order, natural_id =
 // the point's index in *cloud, and each layer's count to layer_counts when given.
