@@ -61,7 +61,7 @@ done
 # with the power iteration's 61 force evaluations for the stable step (about twice the
 # 28 s and 615 MB of 304 235 points on one idle core; half the time on two) outlasts the
 # signal's 1 s and the 10 s of grace. The handlers are in place before the scene is
-# printed (errors.cpp), so that 1 s into the set-up is as much inside it as 4 s.
+# printed (errors.cpp): 1 s after the scene line the signal lands inside the set-up.
 # The run ends 10 s after the signal whatever the body's size. (A body of 304 235 points
 # with the Krylov search's 14 evaluations, or even with the 61, set up on two idle cores
 # within 14 s.)
