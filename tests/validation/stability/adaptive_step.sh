@@ -32,9 +32,10 @@
 #  crack_tip The crack-tip search keeps the energy balance of a running crack: the
 #           notched sheet by its fracture energy (Gamma = 165 J/m^2, dx = 0.5 mm, 35 mm
 #           wide, a 10 mm notch) to stretch 3.24, where the crack has grown 1.25 mm
-#           past the notch; pulled twice as fast to stretch 2.3, far below the first break (2.85): the elastic
-#           ramp costs steps and proves nothing here. The balance must close to 3e-4
-#           of the grips' work (measured: 5.8e-5; with -time_step_crack_tip 0, 9.8e-4:
+#           past the notch; pulled twice as fast to stretch 2.3, far below the first
+#           break (2.85): the elastic ramp costs steps and proves nothing here. The
+#           balance must close to 3e-4 of the grips' work (measured: 5.8e-5; with
+#           -time_step_crack_tip 0, 9.8e-4:
 #           the tip's mode, 2.4 to 8 x at rest, grows at the step the whole-body
 #           estimate allows and feeds energy into single points ahead of the tip,
 #           docs/validation.md 3.3).
