@@ -18,8 +18,8 @@
 #   plate       examples/plate_hole.yaml by the fast route (plate_hole_fast.yaml),
 #               dx = 1 mm, whole run
 #   pure_shear  examples/pure_shear.yaml, whole run (to stretch 5.125)
-#   notched     the short notched scene of tests/validation/notched_short.sh (dx = 0.5
-#               mm, 35 mm wide, to stretch 3.4: the crack starts and runs through).
+#   notched     the short notched sheet of tests/validation/notched_short.sh (dx = 0.5
+#               mm, 35 mm wide), pulled at 6 /s to stretch 3.4: the crack starts and runs through.
 #               The paper grid (dx = 1/3 mm, to stretch 5) takes ~10 min per run here,
 #               too heavy for a side-by-side on a shared 2-core machine.
 #   notched_gamma  the same sheet with examples/notched_pure_shear_gamma.yaml's fracture
