@@ -1,7 +1,7 @@
 // 3D scenes (scene_body.cpp, scene_loading.cpp, scene_probes.cpp,
 // scene_selection.cpp, loading.cpp, relaxation.cpp at D = 3): a 3D body given by options
-// is read and checked (its points counted, its extent found, none of them held); its load sets, grips and
-// probes pick exactly the points a brute-force count over the lattice indices says; the
+// is read and checked (its points counted, its extent found, none of them held); its
+// load sets, grips and probes pick exactly the points a brute-force count over the lattice indices says; the
 // grips hold D = 3 dofs a point and their reactions sum 3 components; each bad 3D option
 // is refused with its own message; the material section in 3D (the law's 3D form, the
 // 2D-only options refused, the bond-only form's default correction); the relaxation's damping and the kinetic energy run over 3 dofs a point.
@@ -23,6 +23,7 @@
 #include "bapd/solver/input/options_reader.hpp"
 #include "bapd/solver/operators/relaxation.hpp"
 #include "bapd/solver/input/scene.hpp"
+#include "bapd/solver/parallel/distributed_body.hpp"
 #include "scene_reading.hpp"
 
 namespace {
@@ -122,23 +123,13 @@ TEST_F(Scene3D, ReadsTheBodyItsExtentAndItsPointCount)
   EXPECT_EQ(flat.body.dimension, 2);
 }
 
-// The peak resident memory of this process (VmHWM) [bytes] after ResetPeak set it to the
-// current one (/proc/self/clear_refs 5; false where Linux does not allow it).
+// Sets the peak resident memory (VmHWM) to the current one (/proc/self/clear_refs 5,
+// Linux 4.0 and later); false where it cannot.
 bool ResetPeak()
 {
   std::FILE *f  = std::fopen("/proc/self/clear_refs", "w");
   const bool ok = f && std::fputs("5", f) >= 0;
   return f && std::fclose(f) == 0 && ok;
-}
-double PeakBytes()
-{
-  std::FILE *f = std::fopen("/proc/self/status", "r");
-  char       line[256];
-  double     kib = 0;
-  while (f && std::fgets(line, sizeof line, f))
-    if (std::sscanf(line, "VmHWM: %lf kB", &kib) == 1) break;
-  if (f) std::fclose(f);
-  return kib * 1024;
 }
 
 // Reading a lattice body holds none of its points, so that with -partition_type ptscotch
@@ -148,11 +139,11 @@ double PeakBytes()
 // 200 x 160 cells: 0.5 MB).
 TEST_F(Scene3D, ReadingALatticeHoldsNoPoints)
 {
-  if (!ResetPeak()) GTEST_SKIP() << "/proc/self/clear_refs cannot reset the peak memory here";
-  const double before = PeakBytes();
+  ASSERT_TRUE(ResetPeak()) << "/proc/self/clear_refs could not reset the peak memory (VmHWM) that this test measures";
+  const double before = bapd::PeakResidentBytes();
   Scene        scene;
   Read(With(Block(), {{"-body_dx", "0.00005"}, {"-load_left_layers", "4"}, {"-load_right_layers", "4"}}), &scene);
-  const double grown = PeakBytes() - before;
+  const double grown = bapd::PeakResidentBytes() - before;
   EXPECT_LT(grown, 16e6) << "the peak grew by " << grown / 1e6 << " MB";
 }
 
