@@ -102,6 +102,10 @@ Toughness rivlin_thomas(const LawFit &fit, const CrackOnset &onset, double H0)
     }
     dW[j] = (Wp - Wm) / (2.0 * h);
   }
+  if (fit.ls.covariance.size() != n) {
+    t.problem = "the fit has no covariance of its parameters: no uncertainty of Gamma from it";
+    return t;
+  }
   double variance = 0.0; // dW^T C dW, C the fitted parameters' covariance
   for (std::size_t a = 0; a < n; ++a)
     for (std::size_t b = 0; b < n; ++b) variance += dW[a] * fit.ls.covariance[a][b] * dW[b];
