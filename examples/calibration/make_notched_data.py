@@ -37,14 +37,16 @@ after = np.flatnonzero(stretch > peak_stretch + 1e-12)
 for k, fraction in zip(after, (0.40, 0.08, 0.01)):
     stress[k] = fraction * peak_stress
 noisy = stress * (1 + 0.01 * rng.standard_normal(stretch.size))
+header = [
+    "# SYNTHETIC, not measured: a notched pure-shear curve shaped on the paper's reported peak (10.25 kPa,",
+    "# crack at stretch 3): 10.25/14.1 x eq 36 (mu 4.55 kPa, Jm 162.6) to stretch 3, then the crack's drop;",
+    "# 1 % noise, seed 2026 (make_notched_data.py). Sheet: H0 = 10 mm, 70 mm x 3 mm.",
+    "# mode: notched_pure_shear",
+    "Time (s),Extension (mm),Load (N)",
+    "0,0,0",  # the rest point (bapd-fit drops it)
+]
+rows = [f"{k + 1},{(l - 1) * H0 * 1e3:.4f},{p * width * thickness:.6f}" for k, (l, p) in enumerate(zip(stretch, noisy))]
 path = os.path.join(os.path.dirname(os.path.abspath(__file__)), "notched_pure_shear_data.csv")
 with open(path, "w") as f:
-    f.write("# SYNTHETIC, not measured: a notched pure-shear curve shaped on the paper's reported peak (10.25 kPa,\n")
-    f.write("# crack at stretch 3): 10.25/14.1 x eq 36 (mu 4.55 kPa, Jm 162.6) to stretch 3, then the crack's drop;\n")
-    f.write("# 1 % noise, seed 2026 (make_notched_data.py). Sheet: H0 = 10 mm, 70 mm x 3 mm.\n")
-    f.write("# mode: notched_pure_shear\n")
-    f.write("Time (s),Extension (mm),Load (N)\n")
-    f.write("0,0,0\n")
-    for k, (l, p) in enumerate(zip(stretch, noisy)):
-        f.write(f"{k + 1},{(l - 1) * H0 * 1e3:.4f},{p * width * thickness:.6f}\n")
+    f.write("\n".join(header + rows) + "\n")
 print(f"wrote {path}")

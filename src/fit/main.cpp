@@ -247,11 +247,15 @@ int run(int argc, char **argv)
       throw FitError("the plot failed (" + cmd + "); the fit's files are written; rerun with -no_plot to skip the PNGs");
   }
   int status = 0;
-  for (const LawFit &f : fits)
-    if (!f.problem.empty()) {
-      std::cerr << "bapd-fit: error: -law " << f.law.name << ": " << f.problem << "\n";
+  for (std::size_t k = 0; k < fits.size(); ++k) {
+    const std::string problem = !fits[k].problem.empty() ? fits[k].problem
+                                : toughness             ? toughness->per_law[k].problem // (its material is written, without failure:)
+                                                        : "";
+    if (!problem.empty()) {
+      std::cerr << "bapd-fit: error: -law " << fits[k].law.name << ": " << problem << "\n";
       status = 1;
     }
+  }
   return status;
 }
 

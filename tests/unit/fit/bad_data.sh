@@ -63,6 +63,11 @@ expect_error notched_no_peak "is not in the data.*-fit_onset_stretch" -fit_gauge
 expect_error two_notched "a second notched curve" -fit_gauge_length 0.01 "$good" "notched_pure_shear:$notched" "notched_pure_shear:$notched"
 expect_error onset_alone "-fit_onset_stretch is the crack onset of a notched pure-shear test" -fit_onset_stretch 3 "$good"
 expect_error onset_below_one "-fit_onset_stretch 0.9: give the crack onset's stretch, a number > 1" -fit_onset_stretch 0.9 "$good"
+# Gent locks before stretch 20 (Jm 162.6): no Gamma there, its material still written
+expect_error onset_past_the_lock "-law gent: the law is not defined at lambda_c = 20" -output_dir "$dir/lock" -law gent -fit_onset_stretch 20 \
+  -fit_gauge_length 0.01 "$good" "notched_pure_shear:$notched"
+[ -f "$dir/lock/material_gent.yaml" ] && ! grep -q "^failure:" "$dir/lock/material_gent.yaml" && echo "ok   its material is written without failure:" ||
+  { echo "FAIL onset_past_the_lock: material_gent.yaml missing or with a failure section"; failures=$((failures + 1)); }
 # the pair gives Gamma = W(3) H0 (165.4 J/m^2 for the paper's gel, H0 = 10 mm), printed and
 # written as the failure section
 if "$fit" -no_plot -output_dir "$dir/tough" -law gent -fit_gauge_length 0.01 "$good" "notched_pure_shear:$notched" > "$dir/log" 2>&1 &&

@@ -162,14 +162,28 @@ TEST(Toughness, UncertaintyCoversTheTruthAsOftenAsItShould)
   }
 }
 
-TEST(Toughness, AGivenOnsetIsUsedWithItsUncertainty)
+// Gent fitted to a pure-shear curve (seed) and the toughness of a notched curve that
+// cracks at 3 (onset given when given_stretch > 0).
+struct GentToughness {
+  LawFit        fit;
+  ToughnessTest test;
+};
+GentToughness gent_toughness(unsigned seed, double given_stretch, double given_uncertainty)
 {
-  std::mt19937             rng(3);
+  std::mt19937             rng(seed);
   const FitLaw             gent   = fit_law("gent", 2);
   const std::vector<Curve> fitted = {pure_shear(gent, rng)};
-  const LawFit             fit    = fit_law_to_data(gent, fitted, Weighting::relative);
-  ToughnessTest            test   = prepare_toughness(notched(gent, 3.0, 1.05, 0.05, rng), fitted, 2.8, 0.01);
-  compute_toughness(test, {fit});
+  GentToughness            g{fit_law_to_data(gent, fitted, Weighting::relative), {}};
+  g.test = prepare_toughness(notched(gent, 3.0, 1.05, 0.05, rng), fitted, given_stretch, given_uncertainty);
+  compute_toughness(g.test, {g.fit});
+  return g;
+}
+
+TEST(Toughness, AGivenOnsetIsUsedWithItsUncertainty)
+{
+  const GentToughness g = gent_toughness(3, 2.8, 0.01);
+  const LawFit       &fit = g.fit;
+  const ToughnessTest &test = g.test;
   EXPECT_TRUE(test.onset.given);
   EXPECT_EQ(test.onset.stretch, 2.8);
   double W = 0.0, P = 0.0;
@@ -182,12 +196,7 @@ TEST(Toughness, AGivenOnsetIsUsedWithItsUncertainty)
 // and reads back to it within its 6 digits.
 TEST(Toughness, FailureSectionGivesGammaBack)
 {
-  std::mt19937             rng(4);
-  const FitLaw             gent   = fit_law("gent", 2);
-  const std::vector<Curve> fitted = {pure_shear(gent, rng)};
-  const LawFit             fit    = fit_law_to_data(gent, fitted, Weighting::relative);
-  ToughnessTest            test   = prepare_toughness(notched(gent, 3.0, 1.05, 0.05, rng), fitted, 0.0, 0.0);
-  compute_toughness(test, {fit});
+  const ToughnessTest test = gent_toughness(4, 0.0, 0.0).test;
   const std::string yaml = failure_yaml(test, test.per_law[0]);
   const std::string key  = "\nfailure:\n  fracture_energy: ";
   const auto        at   = yaml.find(key);
