@@ -159,7 +159,7 @@ std::unique_ptr<ToughnessTest> read_data(const std::vector<std::pair<std::string
     else notched = &c;
   }
   if (!onset.option.empty() && !notched)
-    throw FitError(onset.option + " is the crack onset of a notched pure-shear test: give that test's curve too, notched_pure_shear:FILE");
+    throw FitError(onset.option + " is for the crack onset of a notched pure-shear test: give that test's curve too, notched_pure_shear:FILE");
   if (onset.uncertainty > 0.0 && !(onset.stretch > 0.0))
     throw FitError("-fit_onset_stretch_uncertainty is the uncertainty of -fit_onset_stretch: give the onset stretch too");
   if (!notched) return nullptr;

@@ -61,7 +61,7 @@ expect_error notched_other_height "differs from the un-notched pure-shear curve'
   -fit_gauge_length 0.012 "notched_pure_shear:$notched"
 expect_error notched_no_peak "is not in the data.*-fit_onset_stretch" -fit_gauge_length 0.01 "$good" "notched_pure_shear:$rising"
 expect_error two_notched "a second notched curve" -fit_gauge_length 0.01 "$good" "notched_pure_shear:$notched" "notched_pure_shear:$notched"
-expect_error onset_alone "-fit_onset_stretch is the crack onset of a notched pure-shear test" -fit_onset_stretch 3 "$good"
+expect_error onset_alone "-fit_onset_stretch is for the crack onset of a notched pure-shear test" -fit_onset_stretch 3 "$good"
 expect_error onset_below_one "-fit_onset_stretch 0.9: give the crack onset's stretch, a number > 1" -fit_onset_stretch 0.9 "$good"
 # Gent locks before stretch 20 (Jm 162.6): no Gamma there, its material still written
 expect_error onset_past_the_lock "-law gent: the law is not defined at lambda_c = 20" -output_dir "$dir/lock" -law gent -fit_onset_stretch 20 \
