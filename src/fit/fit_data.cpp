@@ -233,9 +233,10 @@ std::size_t drop_before_loading(Curve &c, std::vector<int> &line_of)
 }
 
 // At least 2 points once loading starts, stretches > 1 that increase strictly, no
-// negative stress.
+// negative stress (a notched curve's past its largest stress: the cut sheet, read as is).
 void check_loading_branch(const std::string &path, const Curve &c, const std::vector<int> &line_of, std::size_t dropped)
 {
+  const std::size_t peak = static_cast<std::size_t>(std::max_element(c.stress_Pa.begin(), c.stress_Pa.end()) - c.stress_Pa.begin());
   if (c.stretch.size() < 2)
     throw FitError(path + ": " + std::to_string(c.stretch.size()) + " data point(s)" +
                    (dropped > 0 ? " once the " + std::to_string(dropped) + " row(s) before loading starts are dropped" : "") +
@@ -249,25 +250,37 @@ void check_loading_branch(const std::string &path, const Curve &c, const std::ve
     if (i > 0 && !(c.stretch[i] > c.stretch[i - 1]))
       throw FitError(at_line.str() + ": the stretch must increase strictly down the file (loading branch only; sort it, "
                                      "drop repeated or unloading points)");
-    if (c.stress_Pa[i] < 0.0)
+    if (c.stress_Pa[i] < 0.0 && !(c.notched && i > peak))
       throw FitError(at_line.str() + ": negative nominal stress " + number_text(c.stress_Pa[i], 6) +
                      " Pa in tension; check the sign and the offset of the load cell");
   }
 }
 } // namespace
 
-bool parse_mode(const std::string &text, LoadMode &mode)
+namespace {
+std::string mode_word(const std::string &text)
 {
   std::string t = lower(trim(text));
   std::replace(t.begin(), t.end(), '-', '_');
   std::replace(t.begin(), t.end(), ' ', '_');
-  return load_mode_words.parse(t, mode);
+  return t;
+}
+} // namespace
+
+bool parse_mode(const std::string &text, LoadMode &mode) { return load_mode_words.parse(mode_word(text), mode); }
+
+bool parse_test(const std::string &text, LoadMode &mode, bool &notched)
+{
+  notched = mode_word(text) == "notched_pure_shear";
+  if (notched) mode = LoadMode::pure_shear;
+  return notched || parse_mode(text, mode);
 }
 
 Curve read_curve(const std::string &path, const std::string &mode_tag, const Specimen &specimen)
 {
   Curve c;
-  c.file = path;
+  c.file           = path;
+  c.gauge_length_m = specimen.gauge_length_m;
   std::string             file_mode;
   const std::vector<Line> lines = read_lines(path, file_mode);
   const Header            header = find_header(path, lines, c.notes);
@@ -278,10 +291,11 @@ Curve read_curve(const std::string &path, const std::string &mode_tag, const Spe
 
   const std::string mode_text = mode_tag.empty() ? file_mode : mode_tag;
   if (mode_text.empty())
-    throw FitError(path + ": which test is it? add a line '# mode: uniaxial' (or pure_shear, equibiaxial) or tag the "
+    throw FitError(path + ": which test is it? add a line '# mode: uniaxial' (or pure_shear, equibiaxial, notched_pure_shear) or tag the "
                           "file on the command line, e.g. pure_shear:" + path);
-  if (!parse_mode(mode_text, c.mode))
-    throw FitError(path + ": mode '" + mode_text + "' is not a test: choose uniaxial, pure_shear or equibiaxial");
+  if (!parse_test(mode_text, c.mode, c.notched))
+    throw FitError(path + ": mode '" + mode_text + "' is not a test: choose uniaxial, pure_shear or equibiaxial (or "
+                          "notched_pure_shear: a notched sheet's curve, for the toughness)");
 
   const std::size_t dropped = drop_before_loading(c, line_of);
   check_loading_branch(path, c, line_of, dropped);

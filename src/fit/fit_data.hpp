@@ -1,6 +1,8 @@
 #pragma once
 // Test data for bapd-fit: one curve of nominal stress against stretch per file, tagged
-// with its homogeneous test (uniaxial | pure_shear | equibiaxial). A file is either
+// with its homogeneous test (uniaxial | pure_shear | equibiaxial) or as the notched
+// pure-shear test that gives the toughness (notched_pure_shear: not fitted, read for its
+// crack onset, toughness.hpp). A file is either
 // bapd-fit's own format or a test machine's export (export_table.hpp reads the cells):
 //
 //   # mode: pure_shear            (or the command-line tag MODE:FILE, which wins)
@@ -24,8 +26,9 @@
 // mode, no such columns, a column without a unit it knows, a true (Cauchy,
 // logarithmic) stress or strain, an extension without the gauge length or a force
 // without the section, a value that is not a number, a stretch that does not
-// increase strictly or is <= 1 after loading starts, a negative stress, fewer than
-// two points.
+// increase strictly or is <= 1 after loading starts, a negative stress (in a notched
+// curve, before its largest: past it the sheet is cut through and a load cell's offset
+// may read below zero), fewer than two points.
 #include <string>
 #include <vector>
 
@@ -36,6 +39,8 @@ namespace bapd::fit {
 struct Curve {
   std::string              file;
   LoadMode                 mode = LoadMode::uniaxial;
+  bool                     notched = false; // a notched pure-shear curve (mode pure_shear): not fitted
+  double                   gauge_length_m = 0.0; // -fit_gauge_length given before the file (0: none)
   std::vector<double>      stretch;   // [-]
   std::vector<double>      stress_Pa; // nominal stress [Pa]
   std::vector<std::string> notes;     // what was read and dropped, one line each
@@ -48,6 +53,8 @@ struct Specimen {
 };
 
 bool parse_mode(const std::string &text, LoadMode &mode);
+// parse_mode, and notched_pure_shear (mode pure_shear, notched true).
+bool parse_test(const std::string &text, LoadMode &mode, bool &notched);
 
 // mode_tag: "" (the file's "# mode:" line) or a mode name.
 Curve read_curve(const std::string &path, const std::string &mode_tag, const Specimen &specimen = {});

@@ -40,6 +40,12 @@ template <class Law> FitLaw registry_law()
     set_fitted<Law>(m, p);
     return incompressible_nominal_stress<Law>(ParametersOf<Law>(m), mode, lambda, P) && std::isfinite(P);
   };
+  f.energy = [](const std::vector<double> &p, LoadMode mode, double lambda, double &W) {
+    MaterialParameters m;
+    set_fitted<Law>(m, p);
+    // incompressible: J = 1, U(J) = 0, and the invariants are the isochoric ones
+    return Law::energy(ParametersOf<Law>(m), incompressible_invariants(mode, lambda), W) && std::isfinite(W);
+  };
   f.check = [](const std::vector<double> &p) {
     MaterialParameters m;
     set_fitted<Law>(m, p);
@@ -129,6 +135,17 @@ FitLaw ogden(int n)
     for (int k = 0; k < n; ++k) mu[k] = p[2 * k], alpha[k] = p[2 * k + 1];
     P = ogden_nominal_stress(mu, alpha, n, mode, lambda);
     return std::isfinite(P);
+  };
+  f.energy = [n](const std::vector<double> &p, LoadMode mode, double lambda, double &W) {
+    double l[3];
+    principal_stretches(mode, lambda, l);
+    W = 0.0;
+    for (int k = 0; k < n; ++k) { // sum_i l_i^a - 3 = sum_i expm1(a ln l_i): no cancellation near rest
+      double s = 0.0;
+      for (double li : l) s += std::expm1(p[2 * k + 1] * std::log(li));
+      W += p[2 * k] / p[2 * k + 1] * s;
+    }
+    return std::isfinite(W);
   };
   f.check = [n](const std::vector<double> &p) {
     std::ostringstream msg;

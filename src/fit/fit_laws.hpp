@@ -2,7 +2,8 @@
 // The laws bapd-fit can fit, each with its parameters (names, units, a scale for the
 // finite differences), starting points from the data, its incompressible homogeneous
 // response (homogeneous_response.hpp: for the registry's laws through their own
-// modulus(), so what is fitted is what bapd runs), the checks bapd applies to its values
+// modulus(), so what is fitted is what bapd runs) and energy (the law's own energy()),
+// the checks bapd applies to its values
 // (the registry's, law_registry.hpp), and its YAML material section for a scene.
 #include <functional>
 #include <string>
@@ -20,6 +21,9 @@ struct FitLaw {
   std::function<std::vector<std::vector<double>>(double mu0, double I1max)> starts;
   // nominal stress [Pa]; false where undefined (locked, or parameters out of range)
   std::function<bool(const std::vector<double> &, LoadMode, double, double &)> stress;
+  // the strain-energy density W [J/m^3] of the same incompressible test, whose
+  // derivative along the stretch is stress (the toughness of toughness.hpp reads it)
+  std::function<bool(const std::vector<double> &, LoadMode, double, double &)> energy;
   // "" when bapd accepts the values, else one line per problem (bapd's own messages)
   std::function<std::string(const std::vector<double> &)> check;
   // the scene's material: section (the shear modulus at rest included)

@@ -64,7 +64,8 @@ void print_comparison(std::ostream &out, const std::vector<LawFit> &fits)
   }
 }
 
-void write_outputs(const std::string &dir, const std::vector<Curve> &curves, const std::vector<LawFit> &fits)
+void write_outputs(const std::string &dir, const std::vector<Curve> &curves, const std::vector<LawFit> &fits,
+                   const ToughnessTest *toughness)
 {
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
@@ -75,6 +76,22 @@ void write_outputs(const std::string &dir, const std::vector<Curve> &curves, con
     for (const Curve &c : curves)
       for (std::size_t k = 0; k < c.stretch.size(); ++k)
         f << c.file << "," << to_string(c.mode) << "," << number_text(c.stretch[k], 12) << "," << number_text(c.stress_Pa[k], 12) << "\n";
+    if (toughness)
+      for (std::size_t k = 0; k < toughness->notched.stretch.size(); ++k)
+        f << toughness->notched.file << ",notched_pure_shear," << number_text(toughness->notched.stretch[k], 12) << ","
+          << number_text(toughness->notched.stress_Pa[k], 12) << "\n";
+  }
+  if (toughness) {
+    std::ofstream f = open(dir + "/toughness.csv");
+    f << "law,onset_stretch,onset_stretch_uncertainty,gauge_length_m,energy_density_J_m3,fracture_energy_J_m2,"
+         "fracture_energy_uncertainty_J_m2\n";
+    for (std::size_t k = 0; k < fits.size(); ++k) {
+      const Toughness &t = toughness->per_law[k];
+      if (!t.problem.empty()) continue;
+      f << fits[k].law.name << "," << number_text(toughness->onset.stretch, 12) << "," << number_text(toughness->onset.uncertainty, 6)
+        << "," << number_text(toughness->H0, 12) << "," << number_text(t.energy_J_m3, 12) << "," << number_text(t.gamma_J_m2, 12) << ","
+        << number_text(t.uncertainty_J_m2, 6) << "\n";
+    }
   }
   std::ofstream curves_csv = open(dir + "/curves.csv");
   curves_csv << "law,mode,stretch,nominal_stress_Pa\n";
@@ -103,6 +120,8 @@ void write_outputs(const std::string &dir, const std::vector<Curve> &curves, con
       f << "\n# RMS error " << number_text(fit.rms_Pa, 4) << " Pa. Include it after the scene: -options_file_yaml scene.yaml "
         << "-options_file_yaml material_" << name << ".yaml\n"
         << fit.law.yaml(fit.ls.p);
+      const std::size_t k = static_cast<std::size_t>(&fit - fits.data());
+      if (toughness && toughness->per_law[k].problem.empty() && fit.law.in_bapd) f << failure_yaml(*toughness, toughness->per_law[k]);
     }
     for (const Curve &c : curves) {
       const double top = c.stretch.back();

@@ -33,6 +33,29 @@ std::string error_of(const std::string &path, const std::string &tag = "", const
   return "";
 }
 
+// A notched pure-shear curve (toughness.hpp) reads as pure shear marked notched, with
+// its gauge length (H0); past its largest stress the cut sheet's load cell may read
+// below zero, before it not.
+TEST(FitData, ReadsANotchedCurveWithItsHeightAndTheCutSheetsOffset)
+{
+  const std::string text = "Extension (mm),Load (N)\n0,0\n5,1.5\n10,2.0\n15,0.3\n20,-0.002\n";
+  for (const std::string &tag : {std::string("notched_pure_shear"), std::string("Notched pure-shear")}) {
+    const Curve c = read_curve(write("notched.csv", text), tag, Specimen{0.01, 2.1e-4});
+    EXPECT_TRUE(c.notched) << tag;
+    EXPECT_EQ(c.mode, LoadMode::pure_shear);
+    EXPECT_EQ(c.gauge_length_m, 0.01);
+    ASSERT_EQ(c.stretch.size(), 4u);
+    EXPECT_DOUBLE_EQ(c.stretch[1], 2.0);
+    EXPECT_LT(c.stress_Pa[3], 0.0);
+  }
+  const std::string line = write("notched_line.csv", "# mode: notched_pure_shear\n" + text);
+  EXPECT_TRUE(read_curve(line, "", Specimen{0.01, 2.1e-4}).notched);
+  // the tag wins: as un-notched pure shear the negative row is refused
+  EXPECT_NE(error_of(line, "pure_shear", Specimen{0.01, 2.1e-4}).find("negative nominal stress"), std::string::npos);
+  const std::string early = write("notched_early.csv", "# mode: notched_pure_shear\nstretch,stress_Pa\n1.5,10\n2,-1\n3,30\n4,0\n");
+  EXPECT_NE(error_of(early).find("negative nominal stress"), std::string::npos) << error_of(early);
+}
+
 TEST(FitData, ReadsUnitsModeLineAndTag)
 {
   const std::string path = write("kpa.csv", "# mode: pure_shear\n# a comment\nstretch,nominal_stress_kPa\n1.5,2.5\n2.0,4.0\n");
