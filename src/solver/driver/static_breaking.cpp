@@ -54,15 +54,11 @@ template <int D> PetscErrorCode StaticSolver<D>::KeepBreaking()
 
 template <int D> PetscErrorCode StaticSolver<D>::BreakAt(Vec U, PetscInt *broken)
 {
-  const double *u;
-  PetscInt      before, after;
-  bool          broke;
+  PetscInt before, after;
+  bool     broke;
 
   PetscFunctionBegin;
-  PetscCall(VecGetArrayRead(U, &u));
-  std::copy(u, u + u_scratch_.size(), u_scratch_.begin());
-  PetscCall(VecRestoreArrayRead(U, &u));
-  HoldGrips(t_target_, u_scratch_.data());
+  PetscCall(CopyHeld(U));
   PetscCall(sim_.BrokenBondCount(&before));
   PetscCall(BreakAtState(u_scratch_.data(), &broke));
   PetscCall(sim_.BrokenBondCount(&after));

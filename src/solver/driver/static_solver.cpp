@@ -138,6 +138,18 @@ template <int D> PetscErrorCode StaticSolver<D>::Setup()
 
 template <int D> void StaticSolver<D>::HoldGrips(double t, double *u) const { sim_.loading_.Apply(t, u, nullptr); }
 
+template <int D> PetscErrorCode StaticSolver<D>::CopyHeld(Vec U)
+{
+  const double *u;
+
+  PetscFunctionBegin;
+  PetscCall(VecGetArrayRead(U, &u));
+  std::copy(u, u + u_scratch_.size(), u_scratch_.begin());
+  PetscCall(VecRestoreArrayRead(U, &u));
+  HoldGrips(t_target_, u_scratch_.data());
+  PetscFunctionReturn(0);
+}
+
 template <int D> PetscErrorCode StaticSolver<D>::Evaluate(const double *u, bool *ok)
 {
   PetscFunctionBegin;
@@ -153,15 +165,11 @@ template <int D> PetscErrorCode StaticSolver<D>::FormFunction(SNES snes, Vec U, 
 {
   auto          *self = static_cast<StaticSolver<D> *>(ctx);
   const Layout  &layout = self->sim_.layout_;
-  const double  *u;
   double        *r;
   bool           ok;
 
   PetscFunctionBegin;
-  PetscCall(VecGetArrayRead(U, &u));
-  std::copy(u, u + self->u_scratch_.size(), self->u_scratch_.begin());
-  PetscCall(VecRestoreArrayRead(U, &u));
-  self->HoldGrips(self->t_target_, self->u_scratch_.data());
+  PetscCall(self->CopyHeld(U));
   PetscCall(self->Evaluate(self->u_scratch_.data(), &ok));
   if (!ok) { // a bond past its law's limit or inverted: not a state of the body
     PetscCall(SNESSetFunctionDomainError(snes));
@@ -209,14 +217,10 @@ template <int D> PetscErrorCode StaticSolver<D>::FormJacobian(SNES, Vec U, Mat H
 
 template <int D> PetscErrorCode StaticSolver<D>::Tangent(Vec U, Mat H)
 {
-  const double *u;
-  PetscInt      failed;
+  PetscInt failed;
 
   PetscFunctionBegin;
-  PetscCall(VecGetArrayRead(U, &u));
-  std::copy(u, u + u_scratch_.size(), u_scratch_.begin());
-  PetscCall(VecRestoreArrayRead(U, &u));
-  HoldGrips(t_target_, u_scratch_.data());
+  PetscCall(CopyHeld(U));
   PetscCall(sim_.force_.UpdatePositions(u_scratch_.data()));
   std::vector<double> &c33 = sim_.force_.warm_start();
   PetscCall(tangent_.Assemble(sim_.force_.positions(), c33.empty() ? nullptr : c33.data(), H, &failed));

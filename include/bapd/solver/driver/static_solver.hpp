@@ -92,6 +92,7 @@ private:
   PetscErrorCode Predict(double t);
   // Owned displacements with the grips at their values at time t.
   void           HoldGrips(double t, double *u) const;
+  PetscErrorCode CopyHeld(Vec U); // u_scratch_ = U with the grips held at t_target_
   PetscErrorCode Evaluate(const double *u, bool *ok); // force_density_ at u, committed warm starts
   PetscErrorCode CopyToPreconditioner(); // P_ = H_ after an assembly
   PetscErrorCode CopyToState(); // u_ into the driver's state X_ (v = 0), for its history and fields
