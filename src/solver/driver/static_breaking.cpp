@@ -116,7 +116,7 @@ template <int D> PetscErrorCode StaticSolver<D>::AfterLoadStep(double t_before, 
   if (!broke) PetscFunctionReturn(0);
   crack_grew_ = true;
   PetscCall(KeepBreaking());
-  secant_ = false; // the last two states straddle no crack growth: the tangent predicts the next step
+  secant_ = false; // a secant through this load step would extrapolate the crack's jump: the tangent predicts the next
   PetscCall(Reequilibrate(stable));
   PetscFunctionReturn(0);
 }
