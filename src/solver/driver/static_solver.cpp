@@ -16,9 +16,9 @@ PetscErrorCode StaticSolverCheckScene(MPI_Comm comm, const RunSection &run, cons
 {
   PetscFunctionBegin;
   if (run.solver != SolverKind::static_newton) PetscFunctionReturn(0);
-  PetscCheck(!failure.enabled, comm, PETSC_ERR_USER,
-             "-solver static does not break bonds yet: remove the -failure_* options, or use -solver dynamic (the default) for a "
-             "run with failure");
+  PetscCheck(failure.softening == Softening::none, comm, PETSC_ERR_USER,
+             "-solver static breaks bonds at once (-failure_critical_stretch, -failure_fracture_energy) but does not soften them "
+             "yet: remove -failure_softening, or use -solver dynamic (the default) for softening bonds");
   PetscCheck(checkpoint.restart.empty() && !checkpoint.periodic(), comm, PETSC_ERR_USER,
              "-solver static writes no checkpoints and does not restart yet (a whole static run takes seconds to minutes): remove "
              "-checkpoint_interval, -checkpoint_wall_interval and -restart, or use -solver dynamic");
@@ -32,51 +32,6 @@ PetscErrorCode StaticSolverCheckScene(MPI_Comm comm, const RunSection &run, cons
   PetscFunctionReturn(0);
 }
 
-namespace {
-
-// The preconditioner's AIJ copy of the BAIJ tangent, value by value (MatConvert with
-// MAT_REUSE_MATRIX builds a new matrix every time). `to` is a MatConvert of `from`, which
-// keeps every entry of a block (zeros too), so AIJ row bs I + r holds block row I's blocks
-// in order, bs entries each; a block's entries are column-major in BAIJ. *same false:
-// the patterns do not match that way (nothing is copied).
-PetscErrorCode CopyBlocks(Mat from, Mat to, PetscInt bs, bool check, bool *same)
-{
-  const PetscInt *bi, *bj, *ai, *aj;
-  PetscInt        nb, n;
-  PetscBool       got_b, got_a;
-  PetscScalar    *a, *b;
-
-  PetscFunctionBegin;
-  *same = false;
-  PetscCall(MatGetRowIJ(from, 0, PETSC_FALSE, PETSC_TRUE, &nb, &bi, &bj, &got_b));
-  PetscCall(MatGetRowIJ(to, 0, PETSC_FALSE, PETSC_FALSE, &n, &ai, &aj, &got_a));
-  bool ok = got_b && got_a && n == bs * nb;
-  for (PetscInt I = 0; ok && check && I < nb; ++I)
-    for (PetscInt r = 0; ok && r < bs; ++r) {
-      const PetscInt row = bs * I + r;
-      ok = ai[row + 1] - ai[row] == bs * (bi[I + 1] - bi[I]);
-      for (PetscInt k = bi[I]; ok && k < bi[I + 1]; ++k)
-        for (PetscInt c = 0; ok && c < bs; ++c) ok = aj[ai[row] + bs * (k - bi[I]) + c] == bs * bj[k] + c;
-    }
-  if (ok) {
-    PetscCall(MatSeqBAIJGetArray(from, &b));
-    PetscCall(MatSeqAIJGetArrayWrite(to, &a));
-    for (PetscInt I = 0; I < nb; ++I)
-      for (PetscInt r = 0; r < bs; ++r) {
-        PetscScalar *out = a + ai[bs * I + r];
-        for (PetscInt k = bi[I]; k < bi[I + 1]; ++k)
-          for (PetscInt c = 0; c < bs; ++c) *out++ = b[bs * bs * k + bs * c + r];
-      }
-    PetscCall(MatSeqAIJRestoreArrayWrite(to, &a));
-    PetscCall(MatSeqBAIJRestoreArray(from, &b));
-  }
-  PetscCall(MatRestoreRowIJ(from, 0, PETSC_FALSE, PETSC_TRUE, &nb, &bi, &bj, &got_b));
-  PetscCall(MatRestoreRowIJ(to, 0, PETSC_FALSE, PETSC_FALSE, &n, &ai, &aj, &got_a));
-  *same = ok;
-  PetscFunctionReturn(0);
-}
-
-} // namespace
 
 template <int D> StaticSolver<D>::~StaticSolver()
 {
@@ -169,7 +124,10 @@ template <int D> PetscErrorCode StaticSolver<D>::Setup()
   PetscBool lag_given = PETSC_FALSE;
   PetscCall(PetscOptionsHasName(nullptr, nullptr, "-snes_lag_jacobian", &lag_given));
   reuse_tangent_ = !lag_given;
-  PetscCall(KSPSetType(ksp, KSPCG));
+  // With failure GMRES: between a break and its re-equilibration the state is not static,
+  // and its tangent need not be positive definite (CG failed on the notched sheet once its
+  // crack ran; docs/options_run.md "Static solver").
+  PetscCall(KSPSetType(ksp, sim_.scene_.failure.enabled ? KSPGMRES : KSPCG));
   PetscCall(KSPSetTolerances(ksp, reuse_tangent_ ? 3e-2 : 1e-8, PETSC_DEFAULT, PETSC_DEFAULT, 1000));
   PetscCall(KSPGetPC(ksp, &pc));
   PetscCall(PCSetType(pc, PCGAMG));
@@ -178,42 +136,19 @@ template <int D> PetscErrorCode StaticSolver<D>::Setup()
   PetscFunctionReturn(0);
 }
 
-// P_ = H_ (values) after an assembly: block by block where P_ is H_'s AIJ copy in the
-// layout CopyBlocks expects (checked at the first copy), else by MatConvert.
-template <int D> PetscErrorCode StaticSolver<D>::CopyToPreconditioner()
+template <int D> void StaticSolver<D>::HoldGrips(double t, double *u) const { sim_.loading_.Apply(t, u, nullptr); }
+
+template <int D> PetscErrorCode StaticSolver<D>::CopyHeld(Vec U)
 {
+  const double *u;
+
   PetscFunctionBegin;
-  if (P_ == H_) PetscFunctionReturn(0);
-  if (block_copy_ != 0) {
-    PetscBool seq, mpi;
-    PetscCall(PetscObjectTypeCompare((PetscObject)H_, MATSEQBAIJ, &seq));
-    PetscCall(PetscObjectTypeCompare((PetscObject)H_, MATMPIBAIJ, &mpi));
-    bool same = false;
-    if (seq) PetscCall(CopyBlocks(H_, P_, D, block_copy_ < 0, &same));
-    else if (mpi) {
-      Mat             hd, ho, pd, po;
-      const PetscInt *hmap, *pmap;
-      bool            same_off = false;
-      PetscCall(MatMPIBAIJGetSeqBAIJ(H_, &hd, &ho, &hmap));
-      PetscCall(MatMPIAIJGetSeqAIJ(P_, &pd, &po, &pmap));
-      PetscCall(CopyBlocks(hd, pd, D, block_copy_ < 0, &same));
-      if (same) PetscCall(CopyBlocks(ho, po, D, block_copy_ < 0, &same_off));
-      same = same && same_off;
-    }
-    int mine = same ? 1 : 0, all = 0;
-    PetscCallMPI(MPI_Allreduce(&mine, &all, 1, MPI_INT, MPI_MIN, sim_.comm_));
-    block_copy_ = all; // checked once: 1 from now on, or 0 (MatConvert)
-    if (all) {
-      PetscCall(MatAssemblyBegin(P_, MAT_FINAL_ASSEMBLY)); // its state moves on: the preconditioner sees the new values
-      PetscCall(MatAssemblyEnd(P_, MAT_FINAL_ASSEMBLY));
-      PetscFunctionReturn(0);
-    }
-  }
-  PetscCall(MatConvert(H_, MATAIJ, MAT_REUSE_MATRIX, &P_));
+  PetscCall(VecGetArrayRead(U, &u));
+  std::copy(u, u + u_scratch_.size(), u_scratch_.begin());
+  PetscCall(VecRestoreArrayRead(U, &u));
+  HoldGrips(t_target_, u_scratch_.data());
   PetscFunctionReturn(0);
 }
-
-template <int D> void StaticSolver<D>::HoldGrips(double t, double *u) const { sim_.loading_.Apply(t, u, nullptr); }
 
 template <int D> PetscErrorCode StaticSolver<D>::Evaluate(const double *u, bool *ok)
 {
@@ -230,15 +165,11 @@ template <int D> PetscErrorCode StaticSolver<D>::FormFunction(SNES snes, Vec U, 
 {
   auto          *self = static_cast<StaticSolver<D> *>(ctx);
   const Layout  &layout = self->sim_.layout_;
-  const double  *u;
   double        *r;
   bool           ok;
 
   PetscFunctionBegin;
-  PetscCall(VecGetArrayRead(U, &u));
-  std::copy(u, u + self->u_scratch_.size(), self->u_scratch_.begin());
-  PetscCall(VecRestoreArrayRead(U, &u));
-  self->HoldGrips(self->t_target_, self->u_scratch_.data());
+  PetscCall(self->CopyHeld(U));
   PetscCall(self->Evaluate(self->u_scratch_.data(), &ok));
   if (!ok) { // a bond past its law's limit or inverted: not a state of the body
     PetscCall(SNESSetFunctionDomainError(snes));
@@ -286,14 +217,10 @@ template <int D> PetscErrorCode StaticSolver<D>::FormJacobian(SNES, Vec U, Mat H
 
 template <int D> PetscErrorCode StaticSolver<D>::Tangent(Vec U, Mat H)
 {
-  const double *u;
-  PetscInt      failed;
+  PetscInt failed;
 
   PetscFunctionBegin;
-  PetscCall(VecGetArrayRead(U, &u));
-  std::copy(u, u + u_scratch_.size(), u_scratch_.begin());
-  PetscCall(VecRestoreArrayRead(U, &u));
-  HoldGrips(t_target_, u_scratch_.data());
+  PetscCall(CopyHeld(U));
   PetscCall(sim_.force_.UpdatePositions(u_scratch_.data()));
   std::vector<double> &c33 = sim_.force_.warm_start();
   PetscCall(tangent_.Assemble(sim_.force_.positions(), c33.empty() ? nullptr : c33.data(), H, &failed));
@@ -326,7 +253,10 @@ PetscErrorCode StaticSolver<D>::ConvergenceTest(SNES snes, PetscInt it, PetscRea
   const double previous = self->last_fnorm_;
   self->last_fnorm_      = fnorm;
   PetscCall(SNESConvergedDefault(snes, it, xnorm, step, fnorm, reason, nullptr));
-  if (*reason == SNES_CONVERGED_ITERATING && fnorm <= self->sim_.scene_.run.static_options.residual_tolerance * self->reaction_norm_)
+  // Relative to the reactions, or to 1e-3 of the largest so far where they have fallen
+  // further (a sheet cut through by a crack, or unloaded, holds almost none).
+  const double scale = std::max(self->reaction_norm_, 1e-3 * self->peak_reaction_);
+  if (*reason == SNES_CONVERGED_ITERATING && fnorm <= self->sim_.scene_.run.static_options.residual_tolerance * scale)
     *reason = SNES_CONVERGED_FNORM_ABS;
   // Modified Newton (Setup): the kept tangent is rebuilt at the next iteration once an
   // iteration with it reduces |R| by less than reuse_rate (linear convergence too slow to
@@ -378,15 +308,11 @@ template <int D> PetscErrorCode StaticSolver<D>::Predict(double t)
   PetscFunctionReturn(0);
 }
 
-template <int D> PetscErrorCode StaticSolver<D>::LoadStep(double t, PetscBool *converged, PetscInt *iterations)
+template <int D> PetscErrorCode StaticSolver<D>::Newton(PetscBool *converged, PetscInt *iterations)
 {
   PetscInt its, lits;
 
   PetscFunctionBegin;
-  PetscCall(VecCopy(u_, u_last_));
-  c33_last_ = sim_.force_.warm_start(); // a cutback starts again from these (the capacity is kept)
-  t_target_ = t;
-  PetscCall(Predict(t));
   step_tangents_ = 0;
   // A fresh tangent at the first iteration, then kept (ConvergenceTest). Keeping the last
   // load step's instead saves 2 of 7 tangents on the plate with a hole but takes more CG
@@ -401,6 +327,18 @@ template <int D> PetscErrorCode StaticSolver<D>::LoadStep(double t, PetscBool *c
   krylov_iterations_ += lits;
   *iterations = its;
   *converged  = last_reason_ > 0 ? PETSC_TRUE : PETSC_FALSE;
+  if (*converged) peak_reaction_ = std::max(peak_reaction_, reaction_norm_);
+  PetscFunctionReturn(0);
+}
+
+template <int D> PetscErrorCode StaticSolver<D>::LoadStep(double t, PetscBool *converged, PetscInt *iterations)
+{
+  PetscFunctionBegin;
+  PetscCall(VecCopy(u_, u_last_));
+  c33_last_ = sim_.force_.warm_start(); // a cutback starts again from these (the capacity is kept)
+  t_target_ = t;
+  PetscCall(Predict(t));
+  PetscCall(Newton(converged, iterations));
   if (*converged) {
     PetscCall(VecCopy(u_last_, u_before_));
     lambda_before_ = sim_.loading_.stretch_at(t_);
@@ -436,8 +374,9 @@ template <int D> PetscErrorCode StaticSolver<D>::SolveTo(double t, PetscBool *co
     const double rate = std::fabs(load.schedule().rate_at(t_)); // d lambda / dt on this ramp
     double       next = rate > 0 ? std::min(t, t_ + step / rate) : t;
     if (t - next < 0.5 * (next - t_)) next = t; // no sliver of a step at the knot
-    PetscBool ok;
-    PetscInt  its;
+    PetscBool    ok;
+    PetscInt     its;
+    const double t_before = t_;
     PetscCall(LoadStep(next, &ok, &its));
     if (!ok) {
       const double from = load.stretch_at(t_), to = load.stretch_at(next);
@@ -456,13 +395,19 @@ template <int D> PetscErrorCode StaticSolver<D>::SolveTo(double t, PetscBool *co
       continue;
     }
     linear_failures_ = 0;
-    PetscCall(CopyToState());
-    PetscCall(sim_.WriteHistoryRow(load_steps_, t_, false));
-    PetscCall(PetscPrintf(sim_.comm_, "Load step %" PetscInt_FMT ": stretch %.5f, %" PetscInt_FMT " Newton iterations, |R| %.3e N, |reactions| %.3e N\n",
-                          load_steps_, load.stretch_at(t_), its, last_fnorm_, reaction_norm_));
+    const bool fast = reuse_tangent_ ? step_tangents_ <= 1 : its <= o.fast_iterations;
+    bool       retry = false, stable = true;
+    PetscCall(AfterLoadStep(t_before, its, &retry, &stable)); // its history row; with failure, the breaking
+    if (!stable) {
+      *converged = PETSC_FALSE;
+      PetscFunctionReturn(0);
+    }
+    if (retry) continue;
     // Fast: converged on its first tangent (modified Newton), or in at most
-    // -static_fast_iterations iterations (full Newton, -snes_lag_jacobian 1).
-    if (reuse_tangent_ ? step_tangents_ <= 1 : its <= o.fast_iterations) step = std::min(o.stretch_step_max, step * o.growth);
+    // -static_fast_iterations iterations (full Newton, -snes_lag_jacobian 1). Not while
+    // the first break is being located (static_breaking.cpp): there the step only halves.
+    // Nor after a step that broke bonds: the crack's growth is followed at the same step.
+    if (fast && !onset_search_ && !crack_grew_) step = std::min(o.stretch_step_max, step * o.growth);
     if (sim_.scene_.time_stepping.end_step >= 0 && load_steps_ >= sim_.scene_.time_stepping.end_step) break;
   }
   PetscFunctionReturn(0);
@@ -492,14 +437,14 @@ template <int D> PetscErrorCode StaticSolver<D>::WriteStaticState(double t)
 
   PetscFunctionBegin;
   PetscCall(CopyToState());
-  if (s.history_.last_step() != load_steps_) PetscCall(s.WriteHistoryRow(load_steps_, t, false));
+  if (s.history_.last_step() != Solves()) PetscCall(s.WriteHistoryRow(Solves(), t, false));
   const double lambda = s.loading_.stretch_at(t);
   PetscCall(PetscPrintf(s.comm_, "Static at stretch %.5f: load step %" PetscInt_FMT, lambda, load_steps_));
   for (std::size_t p = 0; p < s.probes_.size(); ++p)
     PetscCall(PetscPrintf(s.comm_, "; %s ux = %.6e m", s.scene_.loading.probes[p].name.c_str(), s.last_probe_u_[D * p]));
   PetscCall(PetscPrintf(s.comm_, "\n"));
-  PetscCall(s.history_.WriteStaticState(s.comm_, lambda, t, load_steps_, 0.0, s.last_probe_u_.data(), s.last_reaction_.data()));
-  if (s.output_.fields.enabled) PetscCall(s.WriteFields(load_steps_, t));
+  PetscCall(s.history_.WriteStaticState(s.comm_, lambda, t, Solves(), 0.0, s.last_probe_u_.data(), s.last_reaction_.data()));
+  if (s.output_.fields.enabled) PetscCall(s.WriteFields(Solves(), t));
   ++static_states_;
   PetscFunctionReturn(0);
 }
@@ -523,12 +468,23 @@ template <int D> PetscErrorCode StaticSolver<D>::Run()
         const double from = sim_.loading_.stretch_at(t_), to = schedule.stretch[k + 1];
         PetscCall(PetscLogStagePop());
         sim_.stopped_on_error_ = true;
+        PetscCheck(unstable_bonds_ == 0, sim_.comm_, PETSC_ERR_NOT_CONVERGED,
+                   "-solver static: bonds broke at stretch %.5f (%" PetscInt_FMT " broken in all) and Newton found no static state "
+                   "with them at this load (%s)%s. What was written is kept (history.csv up to step %" PetscInt_FMT
+                   ", the last static state). Follow the crack with -solver dynamic, or try more Newton iterations (-snes_max_it 200)%s",
+                   from, unstable_bonds_, SNESConvergedReasons[last_reason_],
+                   last_reason_ == SNES_DIVERGED_FUNCTION_DOMAIN
+                     ? ": on the way a bond at the crack passes its law's limit (the Gent chain limit), where the dynamic route "
+                       "breaks it; the crack runs unstably here, with the grips held"
+                     : ": the crack may run unstably here, with the grips held",
+                   Solves(),
+                   last_reason_ == SNES_DIVERGED_LINEAR_SOLVE ? ", or the direct solver (-ksp_type preonly -pc_type lu)" : "");
         SETERRQ(sim_.comm_, PETSC_ERR_NOT_CONVERGED,
                 "-solver static: no static state found beyond stretch %.5f on the way to %.5f (Newton: %s, after %" PetscInt_FMT
                 " cutbacks, the load step below -static_stretch_step_min %g). What was written is kept (history.csv up to load step %" PetscInt_FMT
                 ")%s. Try a smaller -static_stretch_step_min, more Newton iterations (-snes_max_it 100), another line search "
                 "(-snes_linesearch_type l2), or -solver dynamic (a body past its law's limit or buckling has no static state here)",
-                from, to, SNESConvergedReasons[last_reason_], cutbacks_, sim_.scene_.run.static_options.stretch_step_min, load_steps_,
+                from, to, SNESConvergedReasons[last_reason_], cutbacks_, sim_.scene_.run.static_options.stretch_step_min, Solves(),
                 last_reason_ == SNES_DIVERGED_LINEAR_SOLVE
                   ? ". The linear solver failed (CG with GAMG: a nearly incompressible plane-strain or 3D body can defeat it): use "
                     "the direct solver, -ksp_type preonly -pc_type lu (-pc_factor_mat_solver_type mumps on several ranks)"
@@ -546,8 +502,8 @@ template <int D> PetscErrorCode StaticSolver<D>::Run()
     if (!hold && (last || hold_next)) PetscCall(WriteStaticState(schedule.time[k + 1]));
   }
   PetscCall(PetscLogStagePop());
-  if (sim_.history_.last_step() != load_steps_) PetscCall(sim_.WriteHistoryRow(load_steps_, t_, false));
-  PetscCall(sim_.OutputAtEnd(load_steps_, t_));
+  if (sim_.history_.last_step() != Solves()) PetscCall(sim_.WriteHistoryRow(Solves(), t_, false));
+  PetscCall(sim_.OutputAtEnd(Solves(), t_));
   if (sim_.scene_.output.final_state) PetscCall(sim_.WriteFinalState());
   PetscCall(Summary((double)(std::clock() - start) / CLOCKS_PER_SEC));
   PetscFunctionReturn(0);
@@ -572,6 +528,14 @@ template <int D> PetscErrorCode StaticSolver<D>::Summary(double cpu)
                         " static states, %" PetscInt_FMT " Newton iterations, %" PetscInt_FMT " Krylov iterations (%s, %s), %" PetscInt_FMT
                         " tangents assembled; CPU time of the load steps %.3f s (all ranks)\n",
                         load_steps_, cutbacks_, static_states_, newton_iterations_, krylov_iterations_, ksp_type, pc_type, jacobians_, total));
+  if (sim_.scene_.failure.enabled) {
+    PetscInt broken;
+    PetscCall(sim_.BrokenBondCount(&broken));
+    if (onset_stretch_ > 0)
+      PetscCall(PetscPrintf(sim_.comm_, "  bonds broken: %" PetscInt_FMT ", in %" PetscInt_FMT " re-equilibrations; the first at stretch %.5f (its load step %.2g wide)\n",
+                            broken, reequilibrations_, onset_stretch_, onset_width_));
+    else PetscCall(PetscPrintf(sim_.comm_, "  bonds broken: none\n"));
+  }
   for (std::size_t l = 0; l < sim_.scene_.loading.sets.size(); ++l)
     PetscCall(PetscPrintf(sim_.comm_, "  %s reaction y at stretch %.5f: %.6e N\n", sim_.scene_.loading.sets[l].name.c_str(), sim_.loading_.stretch_at(t_),
                           sim_.last_reaction_[D * l + 1]));

@@ -43,6 +43,10 @@ const OptionTable<StaticOptions> kStaticSolverOptions = {
     {"-static_residual_tolerance",
      "Static solver: Newton ends once the free points' force norm is this fraction of the grips' reaction norm [-], > 0",
      &StaticOptions::residual_tolerance},
+    {"-static_onset_tolerance",
+     "Static solver with failure: the load step in which the first bonds break is cut back until it is at most this "
+     "fraction of the strain (lambda - 1) wide [-], > 0",
+     &StaticOptions::onset_tolerance},
 };
 
 } // namespace
@@ -78,6 +82,8 @@ PetscErrorCode CheckRun(MPI_Comm comm, const SceneInput &in, Scene *scene)
   SceneCheck(s.fast_iterations >= 0, comm, "-static_fast_iterations %" PetscInt_FMT ": give N >= 0 (default 4)", s.fast_iterations);
   SceneCheck(s.residual_tolerance > 0 && s.residual_tolerance < 1, comm,
              "-static_residual_tolerance %g: give a small positive fraction such as 1e-10", s.residual_tolerance);
+  SceneCheck(s.onset_tolerance > 0 && s.onset_tolerance < 1, comm,
+             "-static_onset_tolerance %g: give a small positive fraction such as 1e-3 (the default)", s.onset_tolerance);
   PetscFunctionReturn(0);
 }
 

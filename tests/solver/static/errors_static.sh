@@ -13,7 +13,9 @@ expect() {
   ((code != 0)) || fail "$name: exit 0"
   grep -E "bapd: error:.*$pattern" "$name.log" > /dev/null || { fail "$name: no error matching '$pattern'"; tail -5 "$name.log"; }
 }
-expect failure "-solver static does not break bonds yet: remove the -failure_" -failure_critical_stretch 7.2
+expect softening "-solver static breaks bonds at once .* but does not soften them yet: remove -failure_softening" \
+  -failure_fracture_energy 165 -failure_softening linear
+expect onset "-static_onset_tolerance" -static_onset_tolerance 0
 expect checkpoint "-solver static writes no checkpoints.*-checkpoint_interval" -checkpoint_interval 10
 expect bond_only "-solver static needs -force_form energy_consistent" -force_form bond_only
 expect solver "-solver 'newton' is not a solver" -solver newton

@@ -37,7 +37,9 @@ template <int D> void Field(const Layout &layout, double a, double L, int phase,
 
 // |H v - (R(u + e v) - R(u - e v)) / 2e| / |H v| at a deformed state.
 // exact: the law's own dP/dF where it has one (the default), else differences everywhere.
-template <int D> double TangentError(const std::string &options, bool exact = true)
+// broken: the bonds that meet the scene's failure criterion at u broken first
+// (StaticSolver::BreakAt); *broken (if given) how many.
+template <int D> double TangentError(const std::string &options, bool exact = true, PetscInt *broken = nullptr)
 {
   EXPECT_EQ(bapd_test::SetOptions(options), 0);
   SimulationD<D> sim(PETSC_COMM_WORLD);
@@ -57,6 +59,9 @@ template <int D> double TangentError(const std::string &options, bool exact = tr
   const double L = 0.01;
   Field<D>(sim.layout(), 2e-4, L, 0, u);
   Field<D>(sim.layout(), 1e-4, L, 1, v);
+  if (broken) {
+    EXPECT_EQ(solver.BreakAt(u, broken), 0);
+  }
   EXPECT_EQ(solver.CreateMatrix(&H), 0);
   EXPECT_EQ(solver.Tangent(u, H), 0);
   MatMult(H, v, Hv);
@@ -169,4 +174,21 @@ TEST(StaticTangent, SolidMatchesForceDifferences)
     const double err = TangentError<3>(Box(std::string("-material_model ") + law + " -material_bulk_ratio 100"));
     EXPECT_LT(err, tolerance) << law;
   }
+}
+
+// With bonds broken (here those stretched past 1.1 at u, some of every family near the
+// stretched regions: the static solver's state after a breaking pass), the tangent is
+// still the force's derivative: both drop the broken bonds from the BA families and
+// recompute the points' shape tensors (bond_state.hpp).
+TEST(StaticTangent, BrokenBondsMatchForceDifferences)
+{
+  PetscInt broken = 0;
+  const double err = TangentError<2>(Sheet("-material_model gent -material_bulk_ratio 1000 -failure_critical_stretch 1.1"), true, &broken);
+  EXPECT_LT(err, tolerance);
+  EXPECT_GT(broken, 100) << "too few bonds broken for the test to see them";
+  PetscInt broken3 = 0;
+  const double err3 = TangentError<3>(Box("-material_model gent -material_bulk_ratio 100 -failure_critical_stretch 1.1"), true, &broken3);
+  EXPECT_LT(err3, tolerance);
+  EXPECT_GT(broken3, 100) << "too few bonds broken for the test to see them";
+  PetscPrintf(PETSC_COMM_WORLD, "bonds broken: %d (2D), %d (3D)\n", (int)broken, (int)broken3);
 }

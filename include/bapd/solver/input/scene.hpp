@@ -53,6 +53,7 @@ struct StaticOptions {
   PetscInt fast_iterations  = 4;
   bool     secant_predictor = true;  // predict by the secant through the last two states (else a tangent solve)
   double   residual_tolerance = 1e-10; // Newton ends once |R| <= this x |grip reactions| (|R|: the free dofs' forces) [-]
+  double   onset_tolerance  = 1e-3;  // the load step that breaks the first bonds is at most this x (lambda - 1) wide [-]
 };
 
 // What the scene learns of the 3D body by building its points once (scene_body3d.cpp),
