@@ -24,22 +24,11 @@ inline double orientation(double ax, double ay, double bx, double by, double cx,
 
 bool segments_cross(double ax, double ay, double bx, double by, const Segment &s)
 {
-  // Sides to round-off: a point within 1e-12 of the two lengths of a line is on it. A
-  // notch end on a lattice line (x0 = i dx) has lattice bonds through it exactly, and
-  // the sign of their rounded orientation changed with dx: the bonds through the tip
-  // were all kept at one spacing and all cut at another, which moved the crack's onset
-  // by up to 3 % (docs/validation.md section 3.2).
-  const double lab = std::hypot(bx - ax, by - ay), ls = std::hypot(s.x1 - s.x0, s.y1 - s.y0);
-  const double tol = 1e-12 * (lab + ls); // a distance; orientation() is a distance times the line's length
-  auto side = [tol](double o, double line) { return o > tol * line ? 1 : (o < -tol * line ? -1 : 0); };
-  const int d1 = side(orientation(ax, ay, bx, by, s.x0, s.y0), lab);
-  const int d2 = side(orientation(ax, ay, bx, by, s.x1, s.y1), lab);
-  const int d3 = side(orientation(s.x0, s.y0, s.x1, s.y1, ax, ay), ls);
-  const int d4 = side(orientation(s.x0, s.y0, s.x1, s.y1, bx, by), ls);
-  // The bond's ends strictly on either side of the notch's line, and the notch's ends on
-  // either side of the bond's line or one of them on it: a bond through a notch's end
-  // point is cut (the notch is closed at its ends), on every grid alike.
-  return d3 * d4 < 0 && d1 * d2 <= 0;
+  const double o1 = orientation(ax, ay, bx, by, s.x0, s.y0);
+  const double o2 = orientation(ax, ay, bx, by, s.x1, s.y1);
+  const double o3 = orientation(s.x0, s.y0, s.x1, s.y1, ax, ay);
+  const double o4 = orientation(s.x0, s.y0, s.x1, s.y1, bx, by);
+  return ((o1 > 0 && o2 < 0) || (o1 < 0 && o2 > 0)) && ((o3 > 0 && o4 < 0) || (o3 < 0 && o4 > 0));
 }
 
 Families build_families(const PointCloud &cloud, std::size_t n_family, double horizon,

@@ -48,21 +48,18 @@ struct Families {
 // Families of points [0, n_family): every j != i of the cloud (all points, ghosts
 // included) with |x_j - x_i| <= horizon (max(delta_i, delta_j) when cloud.horizon
 // gives each point its own, geometry.hpp; Families::horizon is then the largest
-// delta), found with a cell list, minus the bonds that cross a notch segment
-// (segments_cross: such bonds never exist), sorted by natural_id; then the BA masks
-// and the reverse index. Throws std::invalid_argument for a bad horizon or n_family, and
+// delta), found with a cell list, minus the bonds whose
+// segment properly crosses a notch segment (such bonds never exist; a bond that only
+// touches a notch end point is kept), sorted by natural_id; then the BA masks and the
+// reverse index. Throws std::invalid_argument for a bad horizon or n_family, and
 // std::runtime_error if the bond count does not fit the 32-bit index or a family is
 // not symmetric (j in family(i) but i not in family(j) with both < n_family).
 Families build_families(const PointCloud &cloud, std::size_t n_family, double horizon,
                         const std::vector<Segment> &notches);
 
-// True iff the bond (a, b) crosses the notch s: a and b lie strictly on opposite sides
-// of the notch's line, and the notch's end points on opposite sides of the bond's line
-// or one of them on it (a bond through a notch's end is cut; a bond with an end on the
-// notch, or along it, is not). "On a line" is to 1e-12 of the two segments' lengths, so
-// that round-off does not decide the bonds through an end that lies on a lattice line
-// (docs/method.md section 1). Symmetric in the bond's end points (build_families also
-// always passes the lower natural id first).
+// True iff segment (a, b) properly crosses segment (c, d): each one's end points lie
+// strictly on opposite sides of the other's line. Symmetric in the bond's end points
+// because build_families always passes the lower natural id first.
 bool segments_cross(double ax, double ay, double bx, double by, const Segment &s);
 
 // V(H_i) = sum of the reference volumes of i's family, in family order, for

@@ -110,10 +110,10 @@ std::string solid_problem(const Solid &solid);
 // area is not zero, else what is wrong with it.
 std::string planar_polygon_problem(const PlanarPolygon &polygon);
 
-// Whether the bond (a, b) crosses the polygon. The rule is open (the 2D segment notch,
-// segments_cross of family.hpp, is closed at its ends): cut iff a and b lie strictly on
-// opposite sides of the polygon's plane AND the point where the segment meets the plane
-// lies strictly inside the polygon. A bond lying in the plane, one with an end point on the plane, and
+// Whether the bond (a, b) crosses the polygon. The rule is open, like the 2D segment
+// notch (segments_cross, family.hpp): cut iff a and b lie strictly on opposite sides of
+// the polygon's plane AND the point where the segment meets the plane lies strictly
+// inside the polygon. A bond lying in the plane, one with an end point on the plane, and
 // one that meets the plane on the polygon's boundary (an edge or a vertex, to round-off
 // 1e-12 of the polygon's size) are NOT cut: a notch is a crack of zero thickness, and
 // a bond that only touches it does not pass through it. Symmetric in a and b.
