@@ -17,16 +17,7 @@ rm -rf "$work"; mkdir -p "$work"
 scene=("${NOTCHED[@]}" "${FRACTURE[@]}" -body_dx 0.001 -end_step 200 -output_fields -output_fields_interval 100)
 # Side by side, the two runs and then the three views below (each pvpython is mostly
 # one core's work): the test holds two cores (PROCESSORS 2), which a sequence left half
-# idle. A part that fails prints why and fails the test once every part has ended.
-side_by_side() {
-  local pid status=0 pids=()
-  for part in "$@"; do
-    "$part" &
-    pids+=($!)
-  done
-  for pid in "${pids[@]}"; do wait "$pid" || status=1; done
-  ((status == 0)) || fail "a part above failed"
-}
+# idle (side_by_side: common.sh).
 run_current() { run 2 "$work/current" "${scene[@]}"; }
 run_reference() { run 2 "$work/reference" "${scene[@]}" -output_fields_geometry reference; }
 side_by_side run_current run_reference

@@ -22,16 +22,7 @@ fast=(-relaxation adaptive -static_tolerance 1e-10 -output_interval 10
 
 # Runs that do not depend on each other go side by side (the test holds two cores):
 # the two 1-rank routes, then the 2-rank fast route with the run stopped by a checkpoint
-# (section 3). A run that fails prints its log and fails the test once both have ended.
-side_by_side() {
-  local pid status=0 pids=()
-  for part in "$@"; do
-    "$part" &
-    pids+=($!)
-  done
-  for pid in "${pids[@]}"; do wait "$pid" || status=1; done
-  ((status == 0)) || fail "a run above failed"
-}
+# (section 3) (side_by_side: common.sh).
 slow_route() { run 1 "$work/slow" "${scene[@]}" -static_tolerance 0; }
 fast_route() { run 1 "$work/fast" "${scene[@]}" "${fast[@]}"; }
 side_by_side slow_route fast_route
