@@ -2,10 +2,10 @@
 //
 // libgmsh brings OpenCASCADE and some seventy other libraries that PETSc does not
 // need; the dynamic loader spent about 0.25 s of CPU on them at every start of bapd
-// (and of every rank), twice the rest of a start, whether or not the scene names a
-// .geo or .msh file. bapd is therefore not linked to libgmsh: the Gmsh functions
-// bapd calls (gmsh_session.hpp and the readers that use it) are defined here, each
-// forwarding to the library's own, which is opened (dlopen) on the first call.
+// (and of every rank), more than twice the rest of a start, whether or not the scene
+// names a .geo or .msh file. bapd is therefore not linked to libgmsh: the functions
+// of Gmsh bapd calls (gmsh_session.hpp and the readers that use it) are defined here,
+// each forwarding to the library's own, which is opened (dlopen) on the first call.
 //
 // Each definition keeps gmsh.h's signature (another one would leave the call sites
 // unresolved at link time); the name looked up is that signature's mangled name in
@@ -66,7 +66,8 @@ template <class F> F *Find(const char *mangled, const char *name)
 template <class F> F *Require(const char *mangled, const char *name)
 {
   F *function = Find<F>(mangled, name);
-  if (!function) throw std::runtime_error(Library().problem);
+  // (also when an earlier function was missing: the session around this call is not whole)
+  if (!function || !Library().problem.empty()) throw std::runtime_error(Library().problem);
   return function;
 }
 
