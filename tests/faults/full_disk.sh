@@ -10,6 +10,7 @@
 # checkpoint or field files be written and the next one not (full_disk_scenes.sh).
 source "$BAPD_SOURCE_DIR/tests/faults/common.sh"
 what="$1" ranks="$2"
+((ranks == 1)) && export OMPI_MCA_odls_base_sigkill_timeout=0 # (bad_input.sh explains)
 work="faults_full_disk_${what}_np$ranks"
 rm -rf "$work" && mkdir -p "$work" || exit 1
 disk="$PWD/$work/disk"

@@ -6,6 +6,7 @@
 #   memory_limit.sh RANKS
 source "$BAPD_SOURCE_DIR/tests/faults/common.sh"
 ranks="$1"
+((ranks == 1)) && export OMPI_MCA_odls_base_sigkill_timeout=0 # (bad_input.sh explains)
 work="faults_memory_limit_np$ranks"
 rm -rf "$work" && mkdir -p "$work" || exit 1
 plate=(-options_file_yaml "$BAPD_SOURCE_DIR/examples/plate_hole.yaml" -end_time 0.0005 -progress_interval 1000000)

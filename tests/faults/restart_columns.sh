@@ -6,6 +6,7 @@
 #   restart_columns.sh RANKS
 source "$BAPD_SOURCE_DIR/tests/faults/common.sh"
 ranks="$1"
+((ranks == 1)) && export OMPI_MCA_odls_base_sigkill_timeout=0 # (bad_input.sh explains)
 work="faults_restart_columns_np$ranks"
 rm -rf "$work" && mkdir -p "$work" || exit 1
 out="$work/out"

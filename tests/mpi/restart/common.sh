@@ -74,3 +74,16 @@ history_column() {
 }
 
 fail() { echo "FAILED: $*"; exit 1; }
+
+# side_by_side FUNCTION...: the functions at once, each in a process of its own (a test
+# that holds two cores keeps both busy); a function that fails prints why, and the test
+# fails once every one has ended.
+side_by_side() {
+  local part pid status=0 pids=()
+  for part in "$@"; do
+    "$part" &
+    pids+=($!)
+  done
+  for pid in "${pids[@]}"; do wait "$pid" || status=1; done
+  ((status == 0)) || fail "a part above failed"
+}

@@ -20,8 +20,12 @@ scene=(-options_file_yaml "$BAPD_SOURCE_DIR/examples/plate_hole.yaml" -body_dx 0
 fast=(-relaxation adaptive -static_tolerance 1e-10 -output_interval 10
       -load_schedule 0,1,0.05,1.5,1.05,1.5,1.075,1.75,2.075,1.75,2.1,2.0,3.1,2.0)
 
-run 1 "$work/slow" "${scene[@]}" -static_tolerance 0
-run 1 "$work/fast" "${scene[@]}" "${fast[@]}"
+# Runs that do not depend on each other go side by side (the test holds two cores):
+# the two 1-rank routes, then the 2-rank fast route with the run stopped by a checkpoint
+# (section 3) (side_by_side: common.sh).
+slow_route() { run 1 "$work/slow" "${scene[@]}" -static_tolerance 0; }
+fast_route() { run 1 "$work/fast" "${scene[@]}" "${fast[@]}"; }
+side_by_side slow_route fast_route
 grep -q "^Relaxation: adaptive" "$work/fast.log" || fail "no 'Relaxation: adaptive' line in fast.log"
 $PYTHON - "$work" <<'PY'
 import csv, sys
@@ -47,14 +51,15 @@ if 4 * steps_fast > steps_slow:
     sys.exit("FAILED: the fast route takes more than a quarter of the slow route's steps")
 PY
 
-run 2 "$work/fast_np2" "${scene[@]}" "${fast[@]}"
+# A checkpoint 20 steps after the first ramp, while the damping adapts.
+N=50
+fast_route_np2() { run 2 "$work/fast_np2" "${scene[@]}" "${fast[@]}"; }
+first_part() { run 2 "$work/first" "${scene[@]}" "${fast[@]}" -end_step $N -checkpoint_interval $N; }
+side_by_side fast_route_np2 first_part
 for f in history.csv static_states.csv; do
   cmp "$work/fast/$f" "$work/fast_np2/$f" || fail "$f differs between 1 and 2 ranks"
 done
 
-# A checkpoint 20 steps after the first ramp, while the damping adapts.
-N=50
-run 2 "$work/first" "${scene[@]}" "${fast[@]}" -end_step $N -checkpoint_interval $N
 [ -f "$work/first/checkpoint.h5" ] || fail "no checkpoint after $N steps"
 run 1 "$work/second" -restart "$work/first/checkpoint.h5" -end_step 1000000
 grep -q "Restart from $work/first/checkpoint.h5: step $N" "$work/second.log" || fail "no restart line in second.log"
