@@ -57,7 +57,8 @@ template <class F> F *Find(const char *mangled, const char *name)
   void *symbol = dlsym(library.handle, mangled);
   if (!symbol && library.problem.empty())
     library.problem = std::string("Gmsh's library ") + BAPD_GMSH_LIBRARY + " has no " + name +
-                      " as bapd was built to call it: rebuild bapd against the Gmsh installed";
+                      " with the signature bapd calls (Gmsh 4.8's C++ API, named in src/solver/input/gmsh_library.cpp): "
+                      "install Gmsh 4.8 (scripts/install-deps.sh), or update those names for the Gmsh installed";
   return reinterpret_cast<F *>(symbol);
 }
 
